@@ -1,0 +1,24 @@
+#pragma once
+// Forward kinematics: global joint positions (cm) and orientations from one frame of channels.
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/motion/clip.hpp"
+#include "mocapdb/motion/skeleton.hpp"
+
+namespace mocapdb {
+
+/// Global pose of one frame, indexed like skeleton.joints() (end sites included).
+struct GlobalPose {
+    std::vector<Vec3> positions;     ///< cm, world frame
+    std::vector<Quat> orientations;  ///< world-from-joint rotation
+};
+
+/// Fills out_pose for the frame row `row` (skeleton.channel_count() values). Allocation-free when
+/// out_pose already has skeleton.size() entries.
+void forward_kinematics(const Skeleton& skeleton, const double* row, GlobalPose& out_pose);
+
+/// Global joint positions of every frame: a 3·J by F matrix (rows 3j..3j+2 hold joint j).
+MatX joint_positions(const Clip& clip);
+
+}  // namespace mocapdb

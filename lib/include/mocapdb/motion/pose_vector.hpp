@@ -1,0 +1,71 @@
+#pragma once
+// The pose-vector representation the later math works in, and its exact inverse.
+//
+// Layout of one pose vector (D = 6 + 3·(K − 1) values, K = joints with rotation channels, root first):
+//   [0..2]  root position, cm, in the canonical frame
+//   [3..5]  root orientation in the canonical frame, heading-relative: (s_x, ψ, s_z) where the
+//           orientation is swing · R_y(ψ), (s_x, 0, s_z) the swing's exponential map and ψ the
+//           unwrapped heading twist (swing_twist_log): the sum of the swing's and the twist's
+//           exponential maps. A plain exponential map cannot follow a root that spins (pirouettes,
+//           360° turns) without jumping at the 2π shell; this one can.
+//   then    for every other joint with rotation channels, in skeleton order: its local rotation
+//           (C · R(channels) · C⁻¹) as an exponential map.
+// Exp-map branches are chosen continuous in time (each frame nearest the previous one); the first
+// frame is chosen nearest a caller-given reference so samples of one set can be made consistent.
+//
+// Canonicalization is a rigid motion about the vertical (Y) axis: the first frame's root is moved to
+// x = z = 0 (its height is kept: "on the floor" means above the origin of the floor plane) and turned
+// so that the skeleton's forward direction, carried by the first frame's root orientation and
+// projected on the floor, points along +Z.
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/motion/clip.hpp"
+
+namespace mocapdb {
+
+/// p_canonical = R_y(−yaw) · (p − translation); q_canonical = R_y(−yaw) · q.
+struct Canonicalization {
+    Vec3 translation = Vec3::Zero();  ///< (x, 0, z) of the first frame's root, cm
+    double yaw = 0.0;                 ///< heading of the first frame about +Y, radians
+
+    Vec3 apply(const Vec3& world_position) const;
+    Quat apply(const Quat& world_orientation) const;
+    Vec3 invert(const Vec3& canonical_position) const;
+    Quat invert(const Quat& canonical_orientation) const;
+};
+
+/// Which joints the pose vector holds, and where.
+class PoseLayout {
+public:
+    explicit PoseLayout(const Skeleton& skeleton);
+    /// D, the length of one pose vector.
+    std::size_t dof_count() const noexcept { return 6 + 3 * (rotation_joints_.size() - 1); }
+    /// Skeleton indices of the joints with rotation channels (root first).
+    const std::vector<std::size_t>& rotation_joints() const noexcept { return rotation_joints_; }
+    /// First row of joint `skeleton_index`'s exp map, or −1 when the joint has no rotation.
+    int exp_map_row(std::size_t skeleton_index) const;
+
+private:
+    std::vector<std::size_t> rotation_joints_;
+    std::vector<int> rows_;
+};
+
+/// Heading (yaw about +Y) of a world orientation for a skeleton facing `forward` at rest.
+double heading_of(const Quat& orientation, const Vec3& forward);
+
+/// The canonicalization defined by the clip's first frame.
+Canonicalization canonicalization_of(const Clip& clip);
+
+/// Pose vectors of every frame: D by F. `reference` (D values, may be empty) is the vector the first
+/// frame's exp maps are chosen nearest to; empty means the principal branch.
+MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const VecX& reference = VecX());
+
+/// Channel rows from pose vectors (D by F): the exact inverse of to_pose_vectors for rotations the
+/// joint's channels can express (others are projected: missing axes are dropped). Euler angles are
+/// unwrapped against the previous frame; the first frame against `first_near` (a frame row, may be
+/// empty = zeros). Returns F by skeleton.channel_count().
+FrameMatrix from_pose_vectors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& poses,
+                              const Canonicalization& canonical, const VecX& first_near = VecX());
+
+}  // namespace mocapdb

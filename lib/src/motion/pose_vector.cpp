@@ -1,0 +1,125 @@
+#include "mocapdb/motion/pose_vector.hpp"
+
+#include <cmath>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/rotation.hpp"
+
+namespace mocapdb {
+namespace {
+
+Quat yaw_rotation(double yaw) { return Quat(Eigen::AngleAxisd(yaw, Vec3::UnitY())); }
+
+// Writes the Euler angles of `rotation` for joint j into `row`, unwrapped against `near_row`.
+void write_rotation_channels(const Skeleton& skeleton, std::size_t j, const Quat& local, const double* near_row,
+                             double* row) {
+    const Joint& joint = skeleton.joint(j);
+    const Quat r = joint.axis.conjugate() * local * joint.axis;  // undo C · R · C⁻¹
+    const auto ax = axes_of(joint.rotation_order);
+    int cols[3];
+    Vec3 near, weights;
+    for (int k = 0; k < 3; ++k) {
+        cols[k] = skeleton.channel_column(j, static_cast<ChannelType>(3 + static_cast<int>(ax[k])));
+        near[k] = cols[k] >= 0 ? near_row[cols[k]] : 0.0;
+        // An axis without a channel must come out at 0 (mod 2π), or dropping it would change the rotation.
+        weights[k] = cols[k] >= 0 ? 1.0 : 1e6;
+    }
+    const Vec3 angles = matrix_to_euler_near(r.toRotationMatrix(), joint.rotation_order, near, weights);
+    for (int k = 0; k < 3; ++k)
+        if (cols[k] >= 0) row[cols[k]] = angles[k];
+}
+
+}  // namespace
+
+Vec3 Canonicalization::apply(const Vec3& p) const { return yaw_rotation(-yaw) * (p - translation); }
+Quat Canonicalization::apply(const Quat& q) const { return yaw_rotation(-yaw) * q; }
+Vec3 Canonicalization::invert(const Vec3& p) const { return yaw_rotation(yaw) * p + translation; }
+Quat Canonicalization::invert(const Quat& q) const { return yaw_rotation(yaw) * q; }
+
+PoseLayout::PoseLayout(const Skeleton& skeleton) : rows_(skeleton.size(), -1) {
+    for (std::size_t j = 0; j < skeleton.size(); ++j) {
+        if (j == 0 || skeleton.has_rotation(j)) {
+            rows_[j] = static_cast<int>(3 + 3 * rotation_joints_.size());
+            rotation_joints_.push_back(j);
+        }
+    }
+}
+
+int PoseLayout::exp_map_row(std::size_t skeleton_index) const { return rows_.at(skeleton_index); }
+
+double heading_of(const Quat& orientation, const Vec3& forward) {
+    const Vec3 f = orientation * forward;
+    // Rotation about +Y by θ takes +Z to (sin θ, 0, cos θ); measure the heading relative to the
+    // skeleton's own rest forward direction.
+    const double rest = std::atan2(forward.x(), forward.z());
+    if (std::hypot(f.x(), f.z()) < 1e-9) return 0.0;  // facing straight up or down: heading undefined
+    return std::atan2(f.x(), f.z()) - rest;
+}
+
+Canonicalization canonicalization_of(const Clip& clip) {
+    validate(clip);
+    Canonicalization c;
+    if (clip.frame_count() == 0) return c;
+    const Skeleton& s = *clip.skeleton;
+    const Vec3 root = s.local_translation(0, clip.frame(0));
+    c.translation = Vec3(root.x(), 0.0, root.z());
+    c.yaw = heading_of(s.local_rotation(0, clip.frame(0)), s.forward());
+    return c;
+}
+
+MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const VecX& reference) {
+    validate(clip);
+    const Skeleton& s = *clip.skeleton;
+    const PoseLayout layout(s);
+    const auto dofs = static_cast<Eigen::Index>(layout.dof_count());
+    if (reference.size() != 0 && reference.size() != dofs)
+        throw InvalidArgument("to_pose_vectors: reference has " + std::to_string(reference.size()) +
+                              " values, the pose vector has " + std::to_string(dofs));
+    const auto frames = static_cast<Eigen::Index>(clip.frame_count());
+    MatX out(dofs, frames);
+    VecX near = reference.size() ? reference : VecX::Zero(dofs);
+    for (Eigen::Index f = 0; f < frames; ++f) {
+        const double* row = clip.frame(static_cast<std::size_t>(f));
+        out.col(f).head<3>() = canonical.apply(s.local_translation(0, row));
+        for (std::size_t j : layout.rotation_joints()) {
+            const Eigen::Index r = layout.exp_map_row(j);
+            const Quat q = s.local_rotation(j, row);
+            out.col(f).segment<3>(r) = j == 0 ? swing_twist_log(canonical.apply(q), near.segment<3>(r))
+                                              : log_map_near(q, near.segment<3>(r));
+        }
+        near = out.col(f);
+    }
+    return out;
+}
+
+FrameMatrix from_pose_vectors(const Skeleton& s, const Eigen::Ref<const MatX>& poses,
+                              const Canonicalization& canonical, const VecX& first_near) {
+    const PoseLayout layout(s);
+    const auto channels = static_cast<Eigen::Index>(s.channel_count());
+    if (poses.rows() != static_cast<Eigen::Index>(layout.dof_count()))
+        throw InvalidArgument("from_pose_vectors: poses have " + std::to_string(poses.rows()) +
+                              " rows, the skeleton's pose vector has " + std::to_string(layout.dof_count()));
+    if (first_near.size() != 0 && first_near.size() != channels)
+        throw InvalidArgument("from_pose_vectors: first_near has " + std::to_string(first_near.size()) +
+                              " values, a frame row has " + std::to_string(channels));
+    if (!poses.allFinite()) throw InvalidArgument("from_pose_vectors: non-finite pose value");
+    FrameMatrix out = FrameMatrix::Zero(poses.cols(), channels);
+    VecX near = first_near.size() ? first_near : VecX::Zero(channels);
+    for (Eigen::Index f = 0; f < poses.cols(); ++f) {
+        double* row = out.row(f).data();
+        const Vec3 root = canonical.invert(Vec3(poses.col(f).head<3>()));
+        for (int a = 0; a < 3; ++a) {
+            const int col = s.channel_column(0, static_cast<ChannelType>(a));
+            if (col >= 0) row[col] = root[a] - s.joint(0).offset[a];
+        }
+        for (std::size_t j : layout.rotation_joints()) {
+            const Vec3 v = poses.col(f).segment<3>(layout.exp_map_row(j));
+            const Quat q = j == 0 ? canonical.invert(swing_twist_exp(v)) : exp_map(v);
+            if (s.has_rotation(j)) write_rotation_channels(s, j, q, near.data(), row);
+        }
+        near = out.row(f).transpose();
+    }
+    return out;
+}
+
+}  // namespace mocapdb

@@ -1,0 +1,108 @@
+// mocapdb info FILE: what a clip file holds (skeleton, frames, rate, duration, channels).
+#include <cstdio>
+#include <iostream>
+
+#include "clip_options.hpp"
+#include "commands.hpp"
+#include "json_writer.hpp"
+
+namespace mocapdb::cli {
+namespace {
+
+struct InfoArgs {
+    std::string file;
+    ClipOptions clip;
+    bool json = false;
+    bool tree = false;
+};
+
+void print_json(const std::string& file, const Clip& clip) {
+    const Skeleton& s = *clip.skeleton;
+    JsonWriter j;
+    j.begin_object();
+    j.key("file").value(file);
+    j.key("frames").value(clip.frame_count());
+    j.key("frame_rate").value(clip.frame_rate);
+    j.key("duration").value(clip.duration());
+    j.key("channels").value(s.channel_count());
+    j.key("joints").begin_array();
+    for (const Joint& joint : s.joints()) {
+        j.begin_object();
+        j.key("name").value(joint.name);
+        if (joint.parent < 0) {
+            j.key("parent").null();
+        } else {
+            j.key("parent").value(s.joint(static_cast<std::size_t>(joint.parent)).name);
+        }
+        j.key("end_site").value(joint.end_site);
+        j.key("offset_cm").begin_array();
+        for (int a = 0; a < 3; ++a) j.value(joint.offset[a]);
+        j.end_array();
+        j.key("channels").begin_array();
+        for (ChannelType c : joint.channels) j.value(to_string(c));
+        j.end_array();
+        j.end_object();
+    }
+    j.end_array();
+    j.end_object();
+    std::cout << j.str();
+}
+
+void print_tree(const Skeleton& s, std::size_t index, int depth) {
+    const Joint& joint = s.joint(index);
+    std::printf("  %*s%s", 2 * depth, "", joint.name.c_str());
+    if (!joint.channels.empty()) {
+        std::printf("  [");
+        for (std::size_t k = 0; k < joint.channels.size(); ++k)
+            std::printf("%s%s", k ? " " : "", to_string(joint.channels[k]).c_str());
+        std::printf("]");
+    }
+    std::printf("\n");
+    for (std::size_t c = index + 1; c < s.size(); ++c)
+        if (s.joint(c).parent == static_cast<int>(index)) print_tree(s, c, depth + 1);
+}
+
+void print_text(const std::string& file, const Clip& clip, bool tree) {
+    const Skeleton& s = *clip.skeleton;
+    std::size_t end_sites = 0;
+    for (const Joint& j : s.joints()) end_sites += j.end_site ? 1 : 0;
+    std::printf("file        %s\n", file.c_str());
+    std::printf("joints      %zu (%zu end sites), root '%s'\n", s.size(), end_sites, s.joint(0).name.c_str());
+    std::printf("channels    %zu per frame\n", s.channel_count());
+    std::printf("frames      %zu\n", clip.frame_count());
+    std::printf("frame rate  %.6g Hz\n", clip.frame_rate);
+    std::printf("duration    %.3f s\n", clip.duration());
+    if (tree) {
+        std::printf("hierarchy\n");
+        print_tree(s, 0, 0);
+    }
+}
+
+}  // namespace
+
+void setup_info(CLI::App& app) {
+    auto args = std::make_shared<InfoArgs>();
+    CLI::App* cmd = app.add_subcommand("info", "Describe a motion file: skeleton, frames, rate, duration, channels");
+    cmd->footer(
+        "Examples:\n"
+        "  mocapdb info walk.bvh\n"
+        "  mocapdb info 16_15.amc --asf 16.asf --json\n"
+        "JSON keys: file, frames, frame_rate (Hz), duration (s), channels (values per frame),\n"
+        "joints (array of {name, parent, end_site, offset_cm, channels}).");
+    cmd->add_option("file", args->file, "BVH file, or AMC file (with --asf or NN.asf beside it)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    add_clip_options(*cmd, args->clip);
+    cmd->add_flag("--json", args->json, "print JSON instead of a table");
+    cmd->add_flag("--tree", args->tree, "also print the joint hierarchy");
+    cmd->callback([args] {
+        const Clip clip = load_clip(args->file, args->clip, std::cerr);
+        if (args->json) {
+            print_json(args->file, clip);
+        } else {
+            print_text(args->file, clip, args->tree);
+        }
+    });
+}
+
+}  // namespace mocapdb::cli

@@ -1,0 +1,187 @@
+#include "kriging_cli.hpp"
+
+#include <cstdlib>
+#include <sstream>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/kriging/trend.hpp"
+#include "numeric_csv.hpp"
+
+namespace mocapdb::cli {
+
+using namespace mocapdb::kriging;
+
+TableData load_table(const TableKrigingArgs& args) {
+    const NumericCsv csv = NumericCsv::read(args.data);
+    TableData d;
+    d.coords = csv.columns(split_names(args.coords, "--coords"));
+    d.values = csv.columns({args.value}).col(0);
+    if (d.coords.rows() < 2) throw InvalidArgument(args.data + ": need at least 2 data rows for kriging");
+    if (args.normalize) {
+        d.scaling = ControlScaling::from_data(d.coords);
+        d.coords = d.scaling->apply(d.coords);
+    }
+    return d;
+}
+
+KrigingOptions kriging_options(const TableKrigingArgs& args) {
+    KrigingOptions o;
+    if (args.trend == "none") {
+        o.trend = TrendKind::None;
+    } else if (args.trend == "linear") {
+        o.trend = TrendKind::Linear;
+    } else {
+        throw InvalidArgument("--trend must be none or linear, got '" + args.trend + "'");
+    }
+    if (args.trend_fit == "gls") {
+        o.trend_fit = TrendFit::GLS;
+    } else if (args.trend_fit == "ols") {
+        o.trend_fit = TrendFit::OLS;
+    } else {
+        throw InvalidArgument("--trend-fit must be gls or ols, got '" + args.trend_fit + "'");
+    }
+    return o;
+}
+
+VariogramOptions variogram_options(const TableKrigingArgs& args) {
+    VariogramOptions v;
+    if (args.bins < 1) throw InvalidArgument("--bins must be >= 1, got " + std::to_string(args.bins));
+    if (!(args.cutoff >= 0.0)) throw InvalidArgument("--cutoff must be > 0 (omit it for h_max / 2)");
+    v.bins = args.bins;
+    v.cutoff = args.cutoff;
+    if (args.estimator == "cressie") {
+        v.estimator = VariogramEstimator::Cressie;
+    } else if (args.estimator == "matheron") {
+        v.estimator = VariogramEstimator::Matheron;
+    } else {
+        throw InvalidArgument("--estimator must be cressie or matheron, got '" + args.estimator + "'");
+    }
+    return v;
+}
+
+VariogramFitOptions fit_options(const TableKrigingArgs& args) {
+    VariogramFitOptions f;
+    if (args.weights == "cressie") {
+        f.weighting = FitWeighting::Cressie;
+    } else if (args.weights == "npairs") {
+        f.weighting = FitWeighting::Npairs;
+    } else if (args.weights == "unweighted") {
+        f.weighting = FitWeighting::Unweighted;
+    } else {
+        throw InvalidArgument("--weights must be cressie, npairs or unweighted, got '" + args.weights + "'");
+    }
+    return f;
+}
+
+ExperimentalVariogram table_variogram(const TableKrigingArgs& args, const TableData& data) {
+    const KrigingOptions ko = kriging_options(args);
+    Eigen::VectorXd r = data.values;
+    if (ko.trend == TrendKind::Linear) {
+        const TrendBasis basis = TrendBasis::build(data.coords, TrendKind::Linear);
+        r = fit_trend_ols(basis, data.values).residuals.col(0);
+    }
+    return experimental_variogram_scalar(data.coords, r, variogram_options(args));
+}
+
+FitRequest parse_fit(const std::string& spec) {
+    FitRequest r;
+    if (spec == "sph") {
+        r.p = 0.0;
+    } else if (spec == "auto") {
+        r.by_loo = true;
+        r.grid = paper_exponent_grid();
+    } else if (spec == "stable") {
+        r.by_loo = true;
+        r.grid = paper_exponent_grid();
+        r.grid.erase(r.grid.begin());
+    } else if (spec.rfind("stable:", 0) == 0) {
+        const std::string num = spec.substr(7);
+        char* end = nullptr;
+        r.p = std::strtod(num.c_str(), &end);
+        if (num.empty() || end != num.c_str() + num.size() || !(r.p > 0.0 && r.p <= 2.0)) {
+            throw InvalidArgument("--fit stable:P needs 0 < P <= 2, got '" + spec + "'");
+        }
+    } else {
+        throw InvalidArgument("--fit must be sph, stable, stable:P or auto, got '" + spec + "'");
+    }
+    return r;
+}
+
+FitOutcome run_fit(const FitRequest& request, const ExperimentalVariogram& ev, const TableData& data,
+                   const TableKrigingArgs& args) {
+    FitOutcome out;
+    const VariogramFitOptions fo = fit_options(args);
+    if (request.by_loo) {
+        out.selection = select_exponent(ev, data.coords, data.values, kriging_options(args), fo, request.grid);
+        out.fit = out.selection->fits[out.selection->best];
+    } else {
+        const VariogramFamily fam = request.p == 0.0 ? VariogramFamily::Spherical : VariogramFamily::Stable;
+        out.fit = fit_variogram(ev, fam, request.p == 0.0 ? 1.0 : request.p, fo);
+    }
+    return out;
+}
+
+VariogramModel parse_model(const std::string& spec, double nugget, double sill, double range) {
+    if (spec == "sph") return VariogramModel::spherical(nugget, sill, range);
+    if (spec.rfind("stable:", 0) == 0) {
+        const std::string num = spec.substr(7);
+        char* end = nullptr;
+        const double p = std::strtod(num.c_str(), &end);
+        if (num.empty() || end != num.c_str() + num.size()) {
+            throw InvalidArgument("--model stable:P needs a number P, got '" + spec + "'");
+        }
+        return VariogramModel::stable(p, nugget, sill, range);
+    }
+    throw InvalidArgument("--model must be sph or stable:P, got '" + spec + "'");
+}
+
+void write_model_json(JsonWriter& j, const VariogramModel& m) {
+    j.begin_object();
+    j.key("model").value(to_string(m.family));
+    j.key("p").value(m.paper_p());
+    j.key("nugget").value(m.nugget);
+    j.key("sill").value(m.sill);
+    j.key("range").value(m.range);
+    j.end_object();
+}
+
+void write_fit_json(JsonWriter& j, const FitOutcome& f, const TableKrigingArgs& args) {
+    j.begin_object();
+    j.key("model").value(to_string(f.fit.model.family));
+    j.key("p").value(f.fit.model.paper_p());
+    j.key("nugget").value(f.fit.model.nugget);
+    j.key("sill").value(f.fit.model.sill);
+    j.key("range").value(f.fit.model.range);
+    j.key("weights").value(args.weights);
+    j.key("objective").value(f.fit.objective);
+    j.key("converged").value(f.fit.converged);
+    j.key("degenerate").value(f.fit.degenerate);
+    if (f.selection) {
+        j.key("selection").begin_array();
+        for (std::size_t k = 0; k < f.selection->grid.size(); ++k) {
+            j.begin_object();
+            j.key("p").value(f.selection->grid[k]);
+            j.key("loo_mse").value(f.selection->loo_mse(static_cast<Eigen::Index>(k)));
+            j.end_object();
+        }
+        j.end_array();
+    }
+    j.end_object();
+}
+
+std::string describe_fit(const FitOutcome& f, const TableKrigingArgs& args) {
+    std::ostringstream os;
+    os.precision(10);
+    os << "fit: " << f.fit.model.to_string() << "  (weights " << args.weights << ", objective " << f.fit.objective
+       << (f.fit.converged ? ", converged" : ", NOT converged") << (f.fit.degenerate ? ", degenerate" : "") << ")\n";
+    if (f.selection) {
+        os << "p chosen by leave-one-out:\n      p        loo_mse\n";
+        for (std::size_t k = 0; k < f.selection->grid.size(); ++k) {
+            os << "  " << (k == f.selection->best ? "*" : " ") << " " << f.selection->grid[k] << "  "
+               << f.selection->loo_mse(static_cast<Eigen::Index>(k)) << "\n";
+        }
+    }
+    return os.str();
+}
+
+}  // namespace mocapdb::cli

@@ -1,0 +1,29 @@
+// mocapdb: command-line front end. The library returns values and throws mocapdb::Error; this layer
+// formats results and turns errors into one line on stderr and a non-zero exit code.
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "mocapdb/core/error.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"mocapdb: store, compress and synthesize motion capture"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "mocapdb 0.1.0");
+
+    mocapdb::cli::setup_info(app);
+    mocapdb::cli::setup_convert(app);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const mocapdb::Error& e) {
+        std::cerr << "mocapdb: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "mocapdb: internal error: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}
