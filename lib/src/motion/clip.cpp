@@ -17,4 +17,17 @@ void validate(const Clip& clip) {
     if (!clip.channels.allFinite()) throw InvalidArgument("clip '" + clip.name + "': non-finite channel value");
 }
 
+Clip slice(const Clip& clip, std::size_t begin, std::size_t end) {
+    if (begin >= end || end > clip.frame_count())
+        throw InvalidArgument("clip '" + clip.name + "': frame range [" + std::to_string(begin) + ", " +
+                              std::to_string(end) + ") is empty or beyond its " +
+                              std::to_string(clip.frame_count()) + " frames");
+    Clip out;
+    out.skeleton = clip.skeleton;
+    out.frame_rate = clip.frame_rate;
+    out.name = clip.name;
+    out.channels = clip.channels.middleRows(static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end - begin));
+    return out;
+}
+
 }  // namespace mocapdb

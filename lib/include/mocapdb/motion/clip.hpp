@@ -22,6 +22,10 @@ struct Clip {
     const double* frame(std::size_t f) const { return channels.row(static_cast<Eigen::Index>(f)).data(); }
 };
 
+/// Frames [begin, end) as a clip of their own (same skeleton and rate); InvalidArgument when the
+/// range is empty or beyond the clip.
+Clip slice(const Clip& clip, std::size_t begin, std::size_t end);
+
 /// Throws InvalidArgument unless the clip has a skeleton, a positive finite frame rate, the right
 /// number of columns and only finite values.
 void validate(const Clip& clip);

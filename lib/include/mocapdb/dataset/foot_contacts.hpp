@@ -1,0 +1,35 @@
+#pragma once
+// Foot contacts from joint heights and speeds, and the root trajectory quantities the parameter
+// extractors and segmentation share.
+#include <string>
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/motion/clip.hpp"
+
+namespace mocapdb {
+
+struct FootContactOptions {
+    /// Foot joints (e.g. {"ltoes", "rtoes"}); empty: default_feet(skeleton).
+    std::vector<std::string> feet;
+    /// A foot touches the floor when it is within this height above its floor level ...
+    double height_tolerance_cm = 5.0;
+    /// ... and moves horizontally slower than this.
+    double speed_tolerance_cm_s = 40.0;
+};
+
+/// Left then right foot joint names for the skeletons we know: CMU ASF ("ltoes", "rtoes"), or the
+/// first joints whose lower-case names contain "left"/"l" + "toe" or "foot" (and right likewise).
+/// InvalidArgument when none are found (callers may pass the names instead).
+std::vector<std::string> default_feet(const Skeleton& skeleton);
+
+/// Contact flags: feet by frames (1 = in contact). The floor level of each foot is the 5th
+/// percentile of its height over the clip, so a few glitchy frames do not move it.
+Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& clip, const FootContactOptions& options);
+
+/// Global root positions (3 by F, cm) and headings (F, radians about +Y, unwrapped along time; 0
+/// when facing the skeleton's rest forward direction).
+MatX root_positions(const Clip& clip);
+VecX root_headings(const Clip& clip);
+
+}  // namespace mocapdb

@@ -1,0 +1,32 @@
+#pragma once
+// A motion set: an ordered list of comparable samples (whole clips or frame ranges of clips) that
+// share one skeleton, each with a control-parameter vector.
+#include <string>
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+
+namespace mocapdb {
+
+/// Frames [begin, end) of a stored clip.
+struct SampleRef {
+    std::string clip;       ///< clip id in the database
+    std::size_t begin = 0;  ///< first frame
+    std::size_t end = 0;    ///< one past the last frame
+    std::size_t frame_count() const noexcept { return end - begin; }
+};
+
+struct MotionSet {
+    std::string name;
+    std::vector<SampleRef> samples;                 ///< N samples
+    std::vector<std::string> parameter_names;       ///< P names
+    std::vector<std::string> parameter_units;       ///< P units ("cm", "rad", "cm/s", "" ...)
+    MatX parameters;                                ///< N by P control parameters
+    std::string parameter_source;                   ///< how they were obtained ("csv:FILE", "extract:...")
+};
+
+/// Throws InvalidArgument unless: a non-empty name, at least one sample, every sample has at least
+/// two frames, the parameter matrix is N by P with P names and P units, all finite.
+void validate(const MotionSet& set);
+
+}  // namespace mocapdb
