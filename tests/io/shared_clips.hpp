@@ -14,6 +14,7 @@ struct LoadedClip {
 };
 
 /// Every BVH in datasets/cmu-walkrun-pfnn at its true 60 fps; empty when the folder is absent.
+/// In a sanitizer build (MOCAPDB_SANITIZED_BUILD) every 6th clip of each folder only.
 const std::vector<LoadedClip>& shared_bvh_clips();
 /// Every AMC in datasets/cmu-asfamc with its NN.asf; empty when the folder is absent.
 const std::vector<LoadedClip>& shared_amc_clips();

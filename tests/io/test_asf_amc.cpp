@@ -6,7 +6,6 @@
 #include <map>
 #include <random>
 #include <regex>
-#include <set>
 #include <sstream>
 
 #include "mocapdb/core/error.hpp"

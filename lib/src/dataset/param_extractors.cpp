@@ -78,6 +78,17 @@ ParameterExtractor ParameterExtractor::parse(const std::string& spec) {
     return e;
 }
 
+std::string ParameterExtractor::spec() const {
+    switch (kind) {
+        case ParameterKind::Displacement: return "displacement";
+        case ParameterKind::Turn: return "turn";
+        case ParameterKind::Speed: return "speed";
+        case ParameterKind::Jump: return "jump";
+        case ParameterKind::Reach: return "reach:" + joint + "@" + at;
+    }
+    return {};
+}
+
 std::vector<std::string> ParameterExtractor::names() const {
     switch (kind) {
         case ParameterKind::Displacement: return {"dx", "dz"};

@@ -2,7 +2,6 @@
 // mocapdb/io/asf_amc.hpp; this file only parses and builds.
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <unordered_map>
 #include <utility>
 #include <vector>

@@ -34,6 +34,8 @@ struct ParameterExtractor {
 
     /// Parses "displacement", "turn", "speed", "jump", "reach:JOINT@F". InvalidArgument otherwise.
     static ParameterExtractor parse(const std::string& spec);
+    /// The spec this extractor parses from (parse(e.spec()) == e).
+    std::string spec() const;
     /// Names and units of the columns this extractor produces (displacement 2, reach 3, others 1).
     std::vector<std::string> names() const;
     std::vector<std::string> units() const;

@@ -1,0 +1,44 @@
+#pragma once
+// Building a motion set from stored clips: choose samples (whole clips, gait cycles or windows) and
+// measure their control parameters.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/dataset/param_extractors.hpp"
+#include "mocapdb/dataset/segmentation.hpp"
+#include "mocapdb/motion/clip.hpp"
+
+namespace mocapdb {
+
+enum class Segmentation { WholeClips, GaitCycles, Windows };
+
+struct SetBuildOptions {
+    std::string name;
+    Segmentation segmentation = Segmentation::WholeClips;
+    GaitCycleOptions gait;          ///< GaitCycles
+    std::size_t window_length = 0;  ///< Windows: frames per sample
+    std::size_t window_hop = 0;     ///< Windows: frames between window starts
+    /// Parameters measured per sample; may be empty when the caller supplies them (CSV).
+    std::vector<ParameterExtractor> extractors;
+};
+
+/// Parses "none", "gait" or "window:LENGTH[:HOP]" (frames; HOP defaults to LENGTH) into `options`.
+void parse_segmentation(const std::string& spec, SetBuildOptions& options);
+
+/// Loads one clip at a time (the set builder never holds more than one).
+using ClipLoader = std::function<Clip(const std::string& clip_id)>;
+
+/// The set over `clip_ids` (in that order; samples of one clip in time order) with the extractors'
+/// parameters (N by P; P = 0 without extractors). Clips that yield no sample (too short for a gait
+/// cycle or a window) are skipped and listed in `out_skipped` when given. InvalidArgument when no
+/// sample at all results, or an extractor's quantity is undefined for a sample (the message names
+/// clip and frames).
+MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipLoader& load,
+                           const SetBuildOptions& options, std::vector<std::string>* out_skipped = nullptr);
+
+/// "CLIP" for a sample covering its whole clip of `clip_frames` frames, else "CLIP:BEGIN-END".
+std::string sample_label(const SampleRef& sample, std::size_t clip_frames);
+
+}  // namespace mocapdb

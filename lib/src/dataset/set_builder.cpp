@@ -1,0 +1,89 @@
+#include "mocapdb/dataset/set_builder.hpp"
+
+#include "mocapdb/core/error.hpp"
+
+namespace mocapdb {
+namespace {
+
+std::size_t parse_count(const std::string& text, const std::string& spec) {
+    std::size_t used = 0;
+    unsigned long long value = 0;
+    try {
+        value = std::stoull(text, &used);
+    } catch (const std::logic_error&) {
+        used = 0;
+    }
+    if (used != text.size() || value < 1)
+        throw InvalidArgument("segmentation '" + spec + "': '" + text + "' is not a positive frame count");
+    return static_cast<std::size_t>(value);
+}
+
+}  // namespace
+
+void parse_segmentation(const std::string& spec, SetBuildOptions& options) {
+    if (spec.empty() || spec == "none") {
+        options.segmentation = Segmentation::WholeClips;
+    } else if (spec == "gait") {
+        options.segmentation = Segmentation::GaitCycles;
+    } else if (spec.rfind("window:", 0) == 0) {
+        const std::string rest = spec.substr(7);
+        const auto colon = rest.find(':');
+        options.segmentation = Segmentation::Windows;
+        options.window_length = parse_count(rest.substr(0, colon), spec);
+        options.window_hop = colon == std::string::npos ? options.window_length : parse_count(rest.substr(colon + 1), spec);
+        if (options.window_length < 2) throw InvalidArgument("segmentation '" + spec + "': windows need at least 2 frames");
+    } else {
+        throw InvalidArgument("unknown segmentation '" + spec + "' (expected none, gait or window:LENGTH[:HOP])");
+    }
+}
+
+MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipLoader& load,
+                           const SetBuildOptions& options, std::vector<std::string>* out_skipped) {
+    if (clip_ids.empty()) throw InvalidArgument("motion set '" + options.name + "': no clips selected");
+    MotionSet set;
+    set.name = options.name;
+    for (const ParameterExtractor& e : options.extractors) {
+        for (const std::string& n : e.names()) set.parameter_names.push_back(n);
+        for (const std::string& u : e.units()) set.parameter_units.push_back(u);
+    }
+    std::vector<VecX> rows;
+    for (const std::string& id : clip_ids) {
+        const Clip clip = load(id);
+        std::vector<SampleRef> samples;
+        switch (options.segmentation) {
+            case Segmentation::WholeClips: samples = {{id, 0, clip.frame_count()}}; break;
+            case Segmentation::GaitCycles: samples = gait_cycles(clip, id, options.gait); break;
+            case Segmentation::Windows:
+                samples = fixed_windows(clip, id, options.window_length, options.window_hop);
+                break;
+        }
+        if (samples.empty() && out_skipped) out_skipped->push_back(id);
+        for (const SampleRef& s : samples) {
+            try {
+                rows.push_back(extract_parameters(clip, s.begin, s.end, options.extractors));
+            } catch (const InvalidArgument& e) {
+                throw InvalidArgument("motion set '" + options.name + "', sample " + sample_label(s, clip.frame_count()) +
+                                      ": " + e.what());
+            }
+            set.samples.push_back(s);
+        }
+    }
+    if (set.samples.empty())
+        throw InvalidArgument("motion set '" + options.name + "': the " + std::to_string(clip_ids.size()) +
+                              " selected clips yield no sample");
+    set.parameters.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(set.parameter_names.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i) set.parameters.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+    if (!options.extractors.empty()) {
+        set.parameter_source = "extract:";
+        for (std::size_t k = 0; k < options.extractors.size(); ++k)
+            set.parameter_source += (k ? "," : "") + options.extractors[k].spec();
+    }
+    return set;
+}
+
+std::string sample_label(const SampleRef& sample, std::size_t clip_frames) {
+    if (sample.begin == 0 && sample.end == clip_frames) return sample.clip;
+    return sample.clip + ":" + std::to_string(sample.begin) + "-" + std::to_string(sample.end);
+}
+
+}  // namespace mocapdb
