@@ -7,6 +7,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev
   libhdf5-dev hdf5-tools
+  python3-h5py               # the README's h5py snippet, run by the store tests
   catch2
   libcli11-dev
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build

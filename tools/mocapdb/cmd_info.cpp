@@ -4,7 +4,9 @@
 
 #include "clip_options.hpp"
 #include "commands.hpp"
+#include "db_info.hpp"
 #include "json_writer.hpp"
+#include "mocapdb/store/database.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -88,14 +90,24 @@ void setup_info(CLI::App& app) {
         "  mocapdb info walk.bvh\n"
         "  mocapdb info 16_15.amc --asf 16.asf --json\n"
         "JSON keys: file, frames, frame_rate (Hz), duration (s), channels (values per frame),\n"
-        "joints (array of {name, parent, end_site, offset_cm, channels}).");
-    cmd->add_option("file", args->file, "BVH file, or AMC file (with --asf or NN.asf beside it)")
+        "joints (array of {name, parent, end_site, offset_cm, channels}).\n"
+        "On a database file (mocapdb info cmu.h5 --json) the keys are: file, format, format_version,\n"
+        "file_bytes, clip_count, total_frames, total_seconds, clips (array of {id, frames, frame_rate,\n"
+        "duration, channels, skeleton, source_file, source_format, source_sha256, source_skeleton_file,\n"
+        "subject, description, labels, stored_bytes}), skeletons ({id, source_file, joints, channels}),\n"
+        "sets ({name, samples, parameters, parameter_source, aligned, tensor_dims, tensor_shape,\n"
+        "tensor_stored_bytes}).");
+    cmd->add_option("file", args->file, "BVH file, AMC file (with --asf or NN.asf beside it), or database (.h5)")
         ->required()
         ->check(CLI::ExistingFile);
     add_clip_options(*cmd, args->clip);
     cmd->add_flag("--json", args->json, "print JSON instead of a table");
     cmd->add_flag("--tree", args->tree, "also print the joint hierarchy");
     cmd->callback([args] {
+        if (is_hdf5_file(args->file)) {  // a motion database: see db_info.cpp
+            print_database_info(args->file, args->json);
+            return;
+        }
         const Clip clip = load_clip(args->file, args->clip, std::cerr);
         if (args->json) {
             print_json(args->file, clip);

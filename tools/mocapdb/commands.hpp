@@ -6,5 +6,12 @@ namespace mocapdb::cli {
 
 void setup_info(CLI::App& app);
 void setup_convert(CLI::App& app);
+void setup_import(CLI::App& app);
+void setup_validate(CLI::App& app);
+void setup_export(CLI::App& app);
+void setup_variogram(CLI::App& app);
+void setup_krige(CLI::App& app);
+void setup_set(CLI::App& app);
+void setup_align(CLI::App& app);
 
 }  // namespace mocapdb::cli

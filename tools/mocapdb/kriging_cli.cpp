@@ -11,6 +11,25 @@ namespace mocapdb::cli {
 
 using namespace mocapdb::kriging;
 
+void add_table_options(CLI::App& cmd, TableKrigingArgs& t) {
+    cmd.add_option("--data", t.data, "CSV file with a header row")->required();
+    cmd.add_option("--coords", t.coords, "comma-separated coordinate columns, e.g. x,y")->required();
+    cmd.add_option("--value", t.value, "value column")->required();
+    cmd.add_option("--trend", t.trend, "none | linear (variogram of OLS-trend residuals)")->capture_default_str();
+    cmd.add_option("--trend-fit", t.trend_fit,
+                   "gls (standard universal kriging) | ols (the paper: OLS hyperplane, ordinary kriging of residuals); "
+                   "used for leave-one-out")
+        ->capture_default_str();
+    cmd.add_option("--bins", t.bins, "number of equal-width distance bins")->capture_default_str();
+    cmd.add_option("--cutoff", t.cutoff, "largest distance binned (default: half the largest pair distance)");
+    cmd.add_option("--estimator", t.estimator, "cressie (robust, 3-term denominator) | matheron")->capture_default_str();
+    cmd.add_option("--weights", t.weights, "fit weights: cressie (n/gamma*^2, re-evaluated) | npairs | unweighted")
+        ->capture_default_str();
+    cmd.add_flag("--normalize", t.normalize,
+                 "scale every coordinate axis to zero mean and unit standard deviation before distances");
+    cmd.add_flag("--json", t.json, "machine-readable output");
+}
+
 TableData load_table(const TableKrigingArgs& args) {
     const NumericCsv csv = NumericCsv::read(args.data);
     TableData d;

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include <CLI/CLI.hpp>
 #include <Eigen/Core>
 
 #include "json_writer.hpp"
@@ -23,7 +24,7 @@ struct TableKrigingArgs {
     int bins = 10;
     double cutoff = 0.0;              ///< 0 = h_max / 2
     std::string estimator = "cressie";
-    std::string weights = "cressie";  ///< cressie | cressie-fixed | npairs | unweighted
+    std::string weights = "cressie";  ///< cressie | npairs | unweighted
     bool normalize = false;
     bool json = false;
 };
@@ -34,6 +35,9 @@ struct TableData {
     Eigen::VectorXd values;
     std::optional<kriging::ControlScaling> scaling;  ///< set with --normalize
 };
+
+/// Registers --data --coords --value --trend --trend-fit --bins --cutoff --estimator --weights --normalize --json.
+void add_table_options(CLI::App& cmd, TableKrigingArgs& t);
 
 TableData load_table(const TableKrigingArgs& args);
 kriging::KrigingOptions kriging_options(const TableKrigingArgs& args);

@@ -13,6 +13,13 @@ int main(int argc, char** argv) {
 
     mocapdb::cli::setup_info(app);
     mocapdb::cli::setup_convert(app);
+    mocapdb::cli::setup_import(app);
+    mocapdb::cli::setup_validate(app);
+    mocapdb::cli::setup_export(app);
+    mocapdb::cli::setup_variogram(app);
+    mocapdb::cli::setup_krige(app);
+    mocapdb::cli::setup_set(app);
+    mocapdb::cli::setup_align(app);
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,208 @@
+#pragma once
+// Ordinary and universal kriging with a fixed variogram model (paper Sections 3, 4.3, Appendix B).
+//
+// Kriging is built once from the control points and the model ("factorize once"); after that a query
+// costs one vector of gamma values and one matrix-vector product (no solve), and a batch of queries is a
+// matrix product. The weights depend on the control points only, so the same object blends any number
+// of signals (pose vectors, whole motions, tensor coefficients).
+//
+// Trend handling (TrendFit), with trend = TrendKind::Linear:
+//   OLS (the paper): the hyperplane m(c) is fitted by ordinary least squares, its residuals
+//       r_i = s_i - m(c_i) are kriged with the ordinary-kriging kernel b(c) of the paper's Equation 3
+//       (sum b = 1), and s*(c) = m(c) + sum_i b_i(c) r_i. That is again a linear combination
+//       s*(c) = sum_i w_i(c) s_i with w = b + H-correction; `weights` returns w, `kernel` returns b.
+//   GLS (standard universal kriging, as gstat, geoR, ...): one system with the unbiasedness
+//       constraints G^T w = g(c); the trend is implicitly estimated by generalized least squares.
+//       Here `weights` and `kernel` coincide.
+// With TrendKind::None both are ordinary kriging.
+//
+// Outputs per query:
+//   weights w (N): partition of unity, exact interpolation at the samples (w(c_j) = e_j),
+//   variance: the prediction-error variance E[(Z(c) - sum_i w_i Z_i)^2] implied by the variogram,
+//       2 w^T gamma(c) - w^T Gamma w. For ordinary kriging and GLS this is the standard kriging
+//       variance (computed as w^T gamma(c) + mu^T g(c) with the Lagrange multipliers mu), the number gstat
+//       reports as var1.var; for OLS it is the variance of the paper's detrend-then-krige predictor.
+//   paper_variance sigma^2(c) = sum_i b_i gamma(|c - c_i|) (Appendix B; no Lagrange term), and the
+//   reliability rho(c) = 1 - sigma^2(c) / (theta0 + theta1), clipped to [0, 1] (rho(c_i) = 1, rho -> 0
+//       far from the samples).
+//
+// Numerical robustness (all reported in KrigingStatus, never thrown):
+//   * the system is solved in covariance form C = covariance(|c_i - c_j|) (symmetric positive definite
+//     for a valid model) by Cholesky; the same weights as the variogram form;
+//   * if Cholesky fails or its reciprocal condition estimate is below min_rcond (default 1e-10), a jitter
+//     delta = total_sill * 1e-12, 1e-11, ... (up to max_jitter * total_sill) is added to the diagonal
+//     (a tiny nugget: interpolation is then exact only up to that order);
+//   * if that does not suffice (e.g. a spherical model in more than 3 dimensions), the covariance
+//     matrix is replaced by its nearest positive definite matrix (eigenvalues clamped);
+//   * duplicate control points (distance <= duplicate_tolerance) are merged (Merge: one point whose
+//     value is the mean, its weight split evenly among the duplicates) or kept (Keep: relies on a
+//     nugget or the jitter);
+//   * collinear / coplanar control points make the linear trend rank deficient: the flat directions are
+//     dropped (see trend.hpp);
+//   * the unbiasedness constraints (sum w = 1, and G^T w = g(c) for GLS) are re-imposed on the computed
+//     weights by a cheap projection, so rounding errors of an ill-conditioned system cannot break the
+//     partition of unity;
+//   * variances are clipped at 0; no output is ever NaN for finite inputs.
+//
+// The object is immutable after build() and safe to query from several threads (one QueryWorkspace
+// per thread).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mocapdb/kriging/interpolator.hpp"
+#include "mocapdb/kriging/trend.hpp"
+#include "mocapdb/kriging/variogram_model.hpp"
+
+namespace mocapdb::kriging {
+
+enum class TrendFit {
+    OLS,  ///< paper: least-squares hyperplane, ordinary kriging of its residuals.
+    GLS,  ///< standard universal kriging (generalized least squares trend).
+};
+
+enum class DuplicatePolicy {
+    Merge,  ///< merge coincident control points into one sample (mean value); weights split evenly.
+    Keep,   ///< keep them (the system is then regularized by the nugget or the jitter).
+};
+
+enum class FactorizationStatus {
+    Ok,           ///< Cholesky of the covariance matrix succeeded as is.
+    Jittered,     ///< a small multiple of the identity was added (see KrigingStatus::jitter).
+    Regularized,  ///< eigenvalues were clamped to make the covariance matrix positive definite.
+};
+
+const char* to_string(TrendFit fit);
+const char* to_string(FactorizationStatus status);
+
+struct KrigingOptions {
+    TrendKind trend = TrendKind::Linear;
+    TrendFit trend_fit = TrendFit::OLS;
+    DuplicatePolicy duplicates = DuplicatePolicy::Merge;
+    double duplicate_tolerance = 0.0;    ///< >= 0: points at distance <= this are duplicates.
+    /// In [0, 1): smallest acceptable reciprocal condition estimate of the covariance matrix. Weights are
+    /// accurate to about 1e-16 / rcond, so below this the jitter is escalated instead.
+    double min_rcond = 1e-10;
+    double max_jitter = 1e-3;            ///< > 0: largest jitter tried, relative to the total sill.
+    double trend_rank_tolerance = 1e-10; ///< see TrendBasis::build.
+};
+
+struct KrigingStatus {
+    FactorizationStatus factorization = FactorizationStatus::Ok;
+    double jitter = 0.0;             ///< absolute value added to the covariance diagonal.
+    double rcond = 0.0;              ///< reciprocal condition estimate of the factorized covariance matrix.
+    Eigen::Index unique_points = 0;  ///< number of control points after merging duplicates.
+    Eigen::Index duplicates_merged = 0;  ///< N - unique_points (0 with DuplicatePolicy::Keep).
+    Eigen::Index duplicate_pairs = 0;    ///< pairs of samples within duplicate_tolerance (either policy).
+    Eigen::Index trend_rank = 0;         ///< rank of the linear trend part kept (0 for no trend).
+    bool trend_rank_deficient = false;   ///< control points do not span all P dimensions.
+    /// True when the result is exact (no jitter, no regularization).
+    bool exact() const { return factorization == FactorizationStatus::Ok; }
+};
+
+/// Everything about one query point.
+struct KrigingEstimate {
+    Eigen::VectorXd weights;     ///< N: w(c), applied to raw samples.
+    Eigen::VectorXd kernel;      ///< N: b(c) of the paper's Equation 3 (== weights for OK / GLS).
+    double variance = 0.0;       ///< kriging (prediction-error) variance, >= 0.
+    double paper_variance = 0.0; ///< sigma^2(c) = sum_i b_i gamma(|c - c_i|), >= 0.
+    double reliability = 0.0;    ///< rho(c) in [0, 1].
+};
+
+/// Per-query scalars of a batch plus the weights.
+struct KrigingBatch {
+    Eigen::MatrixXd weights;         ///< N by Q.
+    Eigen::VectorXd variance;        ///< Q.
+    Eigen::VectorXd paper_variance;  ///< Q.
+    Eigen::VectorXd reliability;     ///< Q.
+};
+
+/// Leave-one-out cross validation, in closed form from the one factorization (Dubrule 1983): for
+/// sample i the prediction from all others, without refitting. With GLS / ordinary kriging this is
+/// exactly what refitting N times would give (the trend is re-estimated without the sample, as gstat's
+/// krige.cv does). With OLS it follows the paper's Appendix A: the residuals of the full-data trend are
+/// kept and the left-out residual is predicted from the others.
+struct LooResult {
+    Eigen::MatrixXd prediction;  ///< N by D.
+    Eigen::MatrixXd residual;    ///< N by D: observed - prediction.
+    Eigen::VectorXd variance;    ///< N: kriging variance of each left-out prediction (>= 0).
+    Eigen::MatrixXd zscore;      ///< N by D: residual / sqrt(variance) (0 where the variance is 0).
+    double mse = 0.0;            ///< mean of residual^2 over all entries (the paper's MSE for D = 1).
+};
+
+class Kriging final : public Interpolator {
+public:
+    Kriging() = default;
+
+    /// coords: N by P control points (N >= 1, finite). Throws InvalidArgument on bad shapes, non-finite
+    /// coordinates, an invalid model, a model with nugget + sill == 0, or out-of-range options.
+    static Kriging build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
+                         const KrigingOptions& options = {});
+
+    Eigen::Index num_samples() const override { return group_.size(); }
+    Eigen::Index dimension() const override { return points_.cols(); }
+
+    /// w(c): c P, out_weights N. No allocation once the workspace has grown.
+    void weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out_weights,
+                 QueryWorkspace& workspace) const override;
+    /// W: queries Q by P, out_weights N by Q.
+    void weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries,
+                       Eigen::Ref<Eigen::MatrixXd> out_weights) const override;
+    using Interpolator::weights;
+    using Interpolator::weights_batch;
+
+    /// All outputs at one query (c: P).
+    KrigingEstimate estimate(const Eigen::Ref<const Eigen::VectorXd>& c) const;
+    /// All outputs at Q queries (queries: Q by P).
+    KrigingBatch estimate_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries) const;
+    /// rho at Q queries (queries: Q by P); returns Q.
+    Eigen::VectorXd reliability(const Eigen::Ref<const Eigen::MatrixXd>& queries) const;
+
+    /// Closed-form leave-one-out. values: N by D. A sample that has merged duplicates is predicted by the
+    /// mean of its duplicates (exact interpolation), with variance 0.
+    LooResult leave_one_out(const Eigen::Ref<const Eigen::MatrixXd>& values) const;
+    /// Reliability rho(c_i) of every sample computed without it (paper Section 5.2): N. A sample with a
+    /// merged duplicate has reliability 1.
+    Eigen::VectorXd leave_one_out_reliability() const;
+
+    const VariogramModel& model() const { return model_; }
+    const KrigingOptions& options() const { return options_; }
+    const KrigingStatus& status() const { return status_; }
+    const TrendBasis& trend_basis() const { return basis_; }
+    /// Unique control points (M by P) and, for each of the N samples, the index of its unique point.
+    const Eigen::MatrixXd& unique_points() const { return points_; }
+    const Eigen::VectorXi& unique_index() const { return group_; }
+
+    // Internal access for the reduction module (covariance-form data block of the inverse system,
+    // M by M, and the variogram matrix of the unique points, M by M).
+    const Eigen::MatrixXd& data_block_inverse() const { return kernel_inverse_; }
+    const Eigen::MatrixXd& gamma_matrix() const { return gamma_; }
+
+private:
+    void gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const;
+    void gamma_block(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out) const;
+    // From gamma (M by Q) and trend basis values (K by Q): kernel b (M by Q) and weights w (M by Q).
+    void solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const Eigen::Ref<const Eigen::MatrixXd>& g,
+                     Eigen::MatrixXd& out_kernel, Eigen::MatrixXd& out_weights) const;
+    void expand(const Eigen::Ref<const Eigen::MatrixXd>& unique_weights, Eigen::Ref<Eigen::MatrixXd> out) const;
+
+    VariogramModel model_;
+    KrigingOptions options_;
+    KrigingStatus status_;
+    TrendBasis basis_;             // over the unique points
+    Eigen::MatrixXd points_;       // M by P unique control points
+    Eigen::VectorXi group_;        // N -> unique index
+    Eigen::VectorXd group_size_;   // M
+    bool merged_ = false;
+    Eigen::MatrixXd gamma_;        // M by M variogram matrix (diagonal 0)
+    // Kernel system (GLS/OK: the full trend basis; OLS: only the constant):
+    //   b = -Wc gamma(c) + V g_k(c)   stored as operator_ = [-Wc, V] (M by M + K_k)
+    Eigen::MatrixXd operator_;
+    Eigen::MatrixXd kernel_inverse_;  // Wc (M by M)
+    Eigen::MatrixXd v_transpose_;     // V^T (K_k by M)
+    Eigen::MatrixXd s_inverse_;       // (F^T C^-1 F)^-1 (K_k by K_k)
+    Eigen::Index kernel_trend_size_ = 1;
+    Eigen::MatrixXd ols_u_;           // OLS only: M by r orthonormal trend columns (basis_ without the constant)
+};
+
+}  // namespace mocapdb::kriging

@@ -1,0 +1,165 @@
+#pragma once
+// The motion database file (HDF5, format "mocapdb" version 1, specified in schemas/format-v1.md):
+// a read view `Database`, and an atomic edit session `DatabaseWriter`.
+//
+// Nothing here exposes HDF5: the only code that includes HDF5 headers is in lib/src/store/h5/.
+//
+// Atomicity: a DatabaseWriter never opens its target for writing. It works on a new file beside the
+// target ("TARGET.tmp-mocapdb-PID-XXXXXXXX", a copy of the existing database or a new one) and
+// commit() closes it, fsyncs it and renames it over the target (then fsyncs the folder), so a crash
+// or kill -9 at any instant leaves either the previous file or the complete new one. A session that
+// is destroyed without commit() removes its temporary file; one that was killed leaves it behind,
+// and the next DatabaseWriter on the same target removes such files of processes that no longer
+// exist. Only one writing session per target at a time is supported (the last commit wins).
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mocapdb/dataset/aligned_set.hpp"
+#include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/motion/clip.hpp"
+#include "mocapdb/store/clip_record.hpp"
+#include "mocapdb/store/store_error.hpp"
+
+namespace mocapdb {
+
+/// The file format version this library reads and writes.
+constexpr int kDatabaseFormatVersion = 1;
+
+/// One motion set as listed by Database::sets().
+struct SetRecord {
+    std::string name;
+    std::size_t samples = 0;
+    std::vector<std::string> parameter_names;
+    std::string parameter_source;
+    bool aligned = false;
+    /// (samples, time, dofs) of the aligned tensor, as stored (C order); zeros when not aligned.
+    std::array<std::size_t, 3> tensor_shape{};
+    std::uint64_t tensor_stored_bytes = 0;  ///< compressed size of the tensor in the file
+};
+
+/// Outcome of DatabaseWriter::add_clip.
+struct AddClipResult {
+    std::string id;      ///< the new clip's id, or the id of the identical clip already stored
+    bool added = false;  ///< false when skipped as a duplicate
+    /// "added as ID" or "skipped: duplicate sha256 of clip ID".
+    std::string message;
+};
+
+/// True when `path` is an HDF5 file (any HDF5 file, not necessarily a mocapdb database).
+bool is_hdf5_file(const std::filesystem::path& path);
+
+/// Read view of a database file. Opening checks the root attributes (format = "mocapdb",
+/// format_version = 1) and throws StoreError naming the file, the HDF5 path and the expected and
+/// found values for a file that is not HDF5, truncated, foreign, or of another version. Every load
+/// checks dtypes, shapes and checksums of what it reads and throws StoreError / ChecksumError naming
+/// the offending object. Not thread-safe (HDF5's serial build is not).
+class Database {
+public:
+    /// Opens `path` read-only.
+    explicit Database(const std::filesystem::path& path);
+    ~Database();
+    Database(Database&&) noexcept;
+    Database& operator=(Database&&) noexcept;
+    Database(const Database&) = delete;
+    Database& operator=(const Database&) = delete;
+
+    /// The file this view reads (for a writer's view: its temporary file).
+    const std::filesystem::path& path() const noexcept;
+    int format_version() const noexcept { return kDatabaseFormatVersion; }
+
+    /// Every clip, sorted by id (reads only metadata).
+    std::vector<ClipRecord> clips() const;
+    /// The clip's record; nullopt when there is no such clip.
+    std::optional<ClipRecord> find_clip(const std::string& id) const;
+    bool has_clip(const std::string& id) const;
+    /// Id of the clip whose source file had this SHA-256; nullopt when none.
+    std::optional<std::string> find_sha256(const std::string& sha256) const;
+    /// Loads a clip (channels in cm and radians). Its skeleton is shared with every other clip of
+    /// the same skeleton loaded through this view. StoreError when there is no such clip.
+    Clip load_clip(const std::string& id) const;
+
+    /// Skeleton ids, sorted.
+    std::vector<std::string> skeletons() const;
+    /// The skeleton (SourceUnits and forward included), cached per id.
+    std::shared_ptr<const Skeleton> load_skeleton(const std::string& id) const;
+    /// The file name the skeleton was first read from ("16.asf", "02_01_60fps.bvh").
+    std::string skeleton_source(const std::string& id) const;
+
+    /// Motion set names, sorted.
+    std::vector<std::string> set_names() const;
+    bool has_set(const std::string& name) const;
+    std::vector<SetRecord> sets() const;
+    MotionSet load_set(const std::string& name) const;
+    /// The set's aligned form, or nullopt when the set has not been aligned. StoreError when there
+    /// is no such set.
+    std::optional<AlignedSet> load_aligned(const std::string& set) const;
+
+    /// Size of the file in bytes.
+    std::uint64_t file_size() const;
+
+private:
+    friend class DatabaseWriter;
+    struct Impl;
+    explicit Database(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+/// An atomic edit session on a database file (see the header comment for the guarantees).
+class DatabaseWriter {
+public:
+    enum class Mode {
+        OpenOrCreate,  ///< edit the existing database, or start a new one when the target is absent
+        Create,        ///< start a new, empty database; commit() replaces whatever the target was
+    };
+
+    /// Starts a session. Throws StoreError when the target exists but is not a database of this
+    /// version (OpenOrCreate), IoError when the temporary file cannot be made.
+    explicit DatabaseWriter(const std::filesystem::path& target, Mode mode = Mode::OpenOrCreate);
+    /// Without commit(): closes and removes the temporary file; the target is untouched.
+    ~DatabaseWriter();
+    DatabaseWriter(const DatabaseWriter&) = delete;
+    DatabaseWriter& operator=(const DatabaseWriter&) = delete;
+
+    const std::filesystem::path& target() const noexcept;
+    const std::filesystem::path& temp_path() const noexcept;
+
+    /// Reads the session's current content (including what this session added).
+    const Database& view() const;
+    /// Id of the stored clip whose source file had this SHA-256 (indexed: constant time).
+    std::optional<std::string> find_sha256(const std::string& sha256) const;
+
+    /// Stores a clip losslessly (float64 channels in cm and radians, with its skeleton's SourceUnits).
+    /// A clip whose source.sha256 is already stored is skipped. The id is the stem of
+    /// source.file_name, made unique with "-2", "-3", ... Its skeleton is stored once per structure:
+    /// an existing skeleton is reused when Skeleton::same_structure (1e-9) holds and the source units
+    /// and forward direction are equal. InvalidArgument for an invalid clip or source.
+    AddClipResult add_clip(const Clip& clip, const ClipSource& source);
+
+    /// Stores a motion set. Every sample must name a stored clip, lie within its frames, and all
+    /// clips must share one skeleton (InvalidArgument otherwise). An existing set of the same name is
+    /// an InvalidArgument unless `replace`; replacing drops the old set's aligned form too.
+    void put_set(const MotionSet& set, bool replace);
+    /// Removes a set (and its aligned form). StoreError when there is no such set.
+    void remove_set(const std::string& name);
+    /// Stores (replaces) the aligned form of an existing set. InvalidArgument unless validate(aligned)
+    /// holds, N equals the set's samples, D the pose-vector length (PoseLayout) of the set's skeleton,
+    /// and every warp column lies within its sample's frames [0, frame_count − 1] (1e-9 slack).
+    void put_aligned(const std::string& set, const AlignedSet& aligned);
+
+    /// Closes the temporary file, makes it durable and renames it over the target. Space freed by
+    /// replaced sets is reclaimed here (the file is rewritten compactly). The session is finished
+    /// afterwards: every other call throws.
+    void commit();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mocapdb

@@ -1,0 +1,107 @@
+#pragma once
+// Truncated HOSVD and sequentially truncated HOSVD (ST-HOSVD) of a D by T by N tensor.
+//
+// Each basis comes from the symmetric eigendecomposition of a mode Gram matrix G_n = A_(n) A_(n)^T
+// (I_n by I_n, at most 100 or so here) instead of an SVD of the wide unfolding: the eigenvectors are
+// the left singular vectors and the eigenvalues the squared singular values. The dof and time Gram
+// matrices are sums over the samples of per-slice terms,
+//     G_dof = sum_n S_n S_n^T,   G_time = sum_n S_n^T S_n,   S_n = A(:, :, n) (D by T),
+// so they are accumulated over chunks of the sample mode (GramAccumulator), which lets a tensor
+// larger than memory stream through one slice at a time. The sample Gram G_sample(n, m) = <S_n, S_m>
+// couples every pair of samples; in memory it is one product of the (D T) by N storage.
+//
+// Accuracy: eigenvalues of a Gram matrix carry absolute errors of about eps * sigma_1^2, so singular
+// values below about 1e-8 sigma_1 are not resolved (their bases are still orthonormal, and full-rank
+// reconstructions are exact to rounding).
+#include <array>
+
+#include <Eigen/Core>
+
+#include "mocapdb/tensor/tucker.hpp"
+
+namespace mocapdb::tensor {
+
+/// Accumulates the dof and time Gram matrices and the squared norm from sample slices given one at a
+/// time (or in chunks of consecutive slices). Memory: D^2 + T^2 doubles.
+class GramAccumulator {
+public:
+    /// dofs (D) >= 1, frames (T) >= 1. Throws InvalidArgument otherwise.
+    GramAccumulator(Eigen::Index dofs, Eigen::Index frames);
+
+    /// Adds one sample slice. slice: D by T, all finite. Throws InvalidArgument otherwise.
+    void add_slice(const Eigen::Ref<const MatX>& slice);
+    /// Adds k >= 0 consecutive slices given side by side: block is D by (T k), slice i in columns
+    /// [i T, (i + 1) T) -- the column-major storage of a D by T by k chunk. All finite.
+    /// Throws InvalidArgument on a shape mismatch or a non-finite element.
+    void add_slices(const Eigen::Ref<const MatX>& block);
+    /// Adds the slices of a chunk of consecutive samples. chunk: D by T by k (k >= 0), all finite.
+    /// Throws InvalidArgument on a shape mismatch or a non-finite element.
+    void add_chunk(const Tensor3& chunk);
+
+    Eigen::Index dofs() const { return dofs_; }
+    Eigen::Index frames() const { return frames_; }
+    Eigen::Index samples() const { return samples_; }  ///< slices added so far
+    double squared_norm() const { return squared_norm_; }
+
+    /// D by D, symmetric: sum_n S_n S_n^T over the slices added so far.
+    MatX dof_gram() const;
+    /// T by T, symmetric: sum_n S_n^T S_n.
+    MatX time_gram() const;
+
+private:
+    Eigen::Index dofs_;
+    Eigen::Index frames_;
+    Eigen::Index samples_ = 0;
+    double squared_norm_ = 0.0;
+    MatX dof_gram_;   // lower triangle accumulated
+    MatX time_gram_;  // lower triangle accumulated
+};
+
+/// The mode Gram matrix A_(mode) A_(mode)^T in memory. a: I0 by I1 by I2 (non-empty, finite);
+/// mode: 0, 1 or 2. Returns I_mode by I_mode, symmetric. Throws InvalidArgument on bad arguments.
+MatX mode_gram(const Tensor3& a, int mode);
+
+/// Complete eigenbases of the three Gram matrices: everything a truncated HOSVD at any ranks needs.
+struct HosvdBases {
+    std::array<MatX, 3> U;  ///< U[n]: I_n by I_n orthogonal, columns by decreasing eigenvalue
+    ModeSpectra spectra;    ///< the matching eigenvalues (squared singular values)
+};
+
+struct HosvdOptions {
+    /// Samples per chunk when accumulating the dof and time Gram matrices (>= 1).
+    Eigen::Index chunk_samples = 16;
+};
+
+/// Eigendecomposition of symmetric Gram matrix g (I by I, lower triangle read). Returns the I by I
+/// orthogonal eigenvector matrix, columns by decreasing eigenvalue, each column's largest-magnitude
+/// entry made positive; out_eigenvalues: I entries, decreasing, clamped at 0.
+MatX gram_eigenbasis(const Eigen::Ref<const MatX>& g, VecX& out_eigenvalues);
+
+/// Full bases of the three modes. a: D by T by N, non-empty, finite.
+/// Throws InvalidArgument on bad arguments.
+HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options = {});
+
+/// Bases and spectra from Gram matrices accumulated elsewhere (for instance streamed).
+/// dof_gram: D by D; time_gram: T by T; sample_gram: N by N (all symmetric, lower triangles read);
+/// squared_norm: ||A||_F^2. Throws InvalidArgument on non-square inputs.
+HosvdBases hosvd_bases_from_grams(const Eigen::Ref<const MatX>& dof_gram, const Eigen::Ref<const MatX>& time_gram,
+                                  const Eigen::Ref<const MatX>& sample_gram, double squared_norm);
+
+/// Truncated HOSVD from precomputed bases: U_n = first ranks[n] columns of bases.U[n],
+/// core = a x_0 U_0^T x_1 U_1^T x_2 U_2^T, error_bound = hosvd_error_bound(bases.spectra, ranks).
+/// a: D by T by N, the tensor the bases came from; 1 <= ranks[n] <= dims[n].
+/// Throws InvalidArgument on bad arguments.
+TuckerModel hosvd_from_bases(const Tensor3& a, const HosvdBases& bases, const Ranks& ranks);
+
+/// Truncated HOSVD at ranks (R1, R2, R3). a: D by T by N, non-empty, finite; 1 <= ranks[n] <= dims[n].
+/// Returns a model with method Hosvd, status Ok. Throws InvalidArgument on bad arguments.
+TuckerModel hosvd(const Tensor3& a, const Ranks& ranks, const HosvdOptions& options = {});
+
+/// Sequentially truncated HOSVD (Vannieuwenhoven, Vandebril, Meerbergen 2012): for each mode in
+/// `order` (a permutation of 0, 1, 2), the basis is taken from the Gram matrix of the tensor already
+/// projected on the previous modes' bases, and the tensor is projected at once. Cheaper than HOSVD;
+/// its error is at most the HOSVD bound. a and ranks as for hosvd(). Throws InvalidArgument on bad
+/// arguments (including an order that is not a permutation).
+TuckerModel st_hosvd(const Tensor3& a, const Ranks& ranks, const std::array<int, 3>& order = {0, 1, 2});
+
+}  // namespace mocapdb::tensor

@@ -1,0 +1,445 @@
+#include "mocapdb/kriging/kriging.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "duplicates.hpp"
+#include "mocapdb/core/error.hpp"
+
+namespace mocapdb::kriging {
+
+const char* to_string(TrendFit fit) { return fit == TrendFit::OLS ? "ols" : "gls"; }
+
+const char* to_string(FactorizationStatus status) {
+    switch (status) {
+        case FactorizationStatus::Ok: return "ok";
+        case FactorizationStatus::Jittered: return "jittered";
+        case FactorizationStatus::Regularized: return "regularized";
+    }
+    return "unknown";
+}
+
+namespace {
+
+// Inverse of a symmetric matrix expected to be positive definite, with jitter escalation and, as a last
+// resort, eigenvalue clamping. Fills status fields.
+Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const KrigingOptions& options,
+                                   KrigingStatus& status) {
+    const Eigen::Index m = c.rows();
+    const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
+    {
+        Eigen::LLT<Eigen::MatrixXd> llt(c);
+        if (llt.info() == Eigen::Success) {
+            const double rc = llt.rcond();
+            if (std::isfinite(rc) && rc >= options.min_rcond) {
+                status.factorization = FactorizationStatus::Ok;
+                status.jitter = 0.0;
+                status.rcond = rc;
+                return llt.solve(identity);
+            }
+        }
+    }
+    for (double rel = 1e-12; rel <= options.max_jitter * (1.0 + 1e-9); rel *= 10.0) {
+        const double delta = rel * scale;
+        Eigen::MatrixXd cj = c;
+        cj.diagonal().array() += delta;
+        Eigen::LLT<Eigen::MatrixXd> llt(cj);
+        if (llt.info() != Eigen::Success) continue;
+        const double rc = llt.rcond();
+        if (std::isfinite(rc) && rc >= options.min_rcond) {
+            status.factorization = FactorizationStatus::Jittered;
+            status.jitter = delta;
+            status.rcond = rc;
+            return llt.solve(identity);
+        }
+    }
+    // Nearest positive definite matrix: clamp the spectrum from below.
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(c);
+    Eigen::VectorXd lambda = eig.eigenvalues();
+    const double lmax = std::max(lambda.maxCoeff(), scale);
+    const double floor_value = std::max(options.max_jitter, 1e-12) * lmax;
+    lambda = lambda.cwiseMax(floor_value);
+    status.factorization = FactorizationStatus::Regularized;
+    status.jitter = floor_value;
+    status.rcond = lambda.minCoeff() / lambda.maxCoeff();
+    Eigen::MatrixXd inv = eig.eigenvectors() * lambda.cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+    return inv;
+}
+
+}  // namespace
+
+Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
+                       const KrigingOptions& options) {
+    const Eigen::Index n = coords.rows();
+    const Eigen::Index p = coords.cols();
+    if (n < 1 || p < 1) {
+        throw InvalidArgument("Kriging::build: coords must be N by P with N >= 1 and P >= 1, got " +
+                              std::to_string(n) + "x" + std::to_string(p));
+    }
+    if (!coords.allFinite()) throw InvalidArgument("Kriging::build: coords must be finite");
+    model.validate();
+    if (!(model.total_sill() > 0.0)) {
+        throw InvalidArgument("Kriging::build: the model must have nugget + sill > 0");
+    }
+    if (!(options.duplicate_tolerance >= 0.0) || !std::isfinite(options.duplicate_tolerance)) {
+        throw InvalidArgument("Kriging::build: duplicate_tolerance must be finite and >= 0");
+    }
+    if (!(options.min_rcond >= 0.0 && options.min_rcond < 1.0)) {
+        throw InvalidArgument("Kriging::build: min_rcond must be in [0, 1)");
+    }
+    if (!(options.max_jitter > 0.0 && options.max_jitter < 1.0)) {
+        throw InvalidArgument("Kriging::build: max_jitter must be in (0, 1)");
+    }
+
+    Kriging k;
+    k.model_ = model;
+    k.options_ = options;
+
+    // Duplicate detection (transitive groups).
+    detail::DuplicateGroups dg = detail::group_duplicates(coords, options.duplicate_tolerance,
+                                                          options.duplicates == DuplicatePolicy::Merge);
+    k.status_.duplicate_pairs = dg.pairs;
+    k.points_ = std::move(dg.points);
+    k.group_ = std::move(dg.group);
+    k.group_size_ = std::move(dg.group_size);
+    k.merged_ = dg.merged;
+    const Eigen::Index m = k.points_.rows();
+    k.status_.unique_points = m;
+    k.status_.duplicates_merged = n - m;
+
+    k.basis_ = TrendBasis::build(k.points_, options.trend, options.trend_rank_tolerance);
+    k.status_.trend_rank = k.basis_.rank();
+    k.status_.trend_rank_deficient = k.basis_.rank_deficient();
+
+    // Variogram and covariance matrices of the unique points.
+    const double s = model.total_sill();
+    k.gamma_.resize(m, m);
+    Eigen::MatrixXd cov(m, m);
+    for (Eigen::Index j = 0; j < m; ++j) {
+        k.gamma_(j, j) = 0.0;
+        cov(j, j) = s;
+        for (Eigen::Index i = j + 1; i < m; ++i) {
+            const double g = model((k.points_.row(i) - k.points_.row(j)).norm());
+            k.gamma_(i, j) = g;
+            k.gamma_(j, i) = g;
+            cov(i, j) = s - g;
+            cov(j, i) = s - g;
+        }
+    }
+    const Eigen::MatrixXd cinv = robust_spd_inverse(cov, s, options, k.status_);
+
+    // Kernel system: F is the trend basis (OK / GLS) or the constant only (OLS kernel, paper Eq. 3).
+    const bool ols = options.trend_fit == TrendFit::OLS && options.trend == TrendKind::Linear;
+    const Eigen::MatrixXd f = ols ? Eigen::MatrixXd(Eigen::MatrixXd::Ones(m, 1)) : k.basis_.sample_basis();
+    const Eigen::Index kk = f.cols();
+    k.kernel_trend_size_ = kk;
+    Eigen::MatrixXd cinv_f(m, kk);
+    cinv_f.noalias() = cinv * f;
+    Eigen::MatrixXd schur(kk, kk);
+    schur.noalias() = f.transpose() * cinv_f;
+    schur = 0.5 * (schur + schur.transpose()).eval();
+    k.s_inverse_ = schur.ldlt().solve(Eigen::MatrixXd::Identity(kk, kk));
+    Eigen::MatrixXd v(m, kk);
+    v.noalias() = cinv_f * k.s_inverse_;
+    Eigen::MatrixXd wc = cinv;
+    wc.noalias() -= v * cinv_f.transpose();
+    k.kernel_inverse_ = 0.5 * (wc + wc.transpose());
+    k.operator_.resize(m, m + kk);
+    k.operator_.leftCols(m) = -k.kernel_inverse_;
+    k.operator_.rightCols(kk) = v;
+    k.v_transpose_ = v.transpose();
+    if (ols) k.ols_u_ = k.basis_.sample_basis().rightCols(k.basis_.rank());
+    return k;
+}
+
+void Kriging::gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const {
+    const Eigen::Index p = points_.cols();
+    out = (points_.col(0).array() - c(0)).square().matrix();
+    for (Eigen::Index d = 1; d < p; ++d) out.array() += (points_.col(d).array() - c(d)).square();
+    model_.gamma_of_squared(out, out);
+}
+
+void Kriging::gamma_block(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out) const {
+    // Squared distances column by column (one query per column of out), then gamma on the whole block.
+    const Eigen::Index p = points_.cols();
+    for (Eigen::Index q = 0; q < queries.rows(); ++q) {
+        auto col = out.col(q).array();
+        col = (points_.col(0).array() - queries(q, 0)).square();
+        for (Eigen::Index d = 1; d < p; ++d) col += (points_.col(d).array() - queries(q, d)).square();
+    }
+    const Eigen::Map<const Eigen::VectorXd> flat_in(out.data(), out.size());
+    Eigen::Map<Eigen::VectorXd> flat_out(out.data(), out.size());
+    if (out.outerStride() == out.rows()) {
+        model_.gamma_of_squared(flat_in, flat_out);
+    } else {
+        for (Eigen::Index q = 0; q < out.cols(); ++q) model_.gamma_of_squared(out.col(q), out.col(q));
+    }
+}
+
+void Kriging::solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const Eigen::Ref<const Eigen::MatrixXd>& g,
+                          Eigen::MatrixXd& out_kernel, Eigen::MatrixXd& out_weights) const {
+    const Eigen::Index m = points_.rows();
+    out_kernel.resize(m, gamma.cols());
+    out_kernel.noalias() = operator_.leftCols(m) * gamma;
+    if (options_.trend_fit == TrendFit::OLS && options_.trend == TrendKind::Linear) {
+        out_kernel.colwise() += operator_.col(m);
+        // Partition of unity enforced exactly (see the GLS branch).
+        const Eigen::RowVectorXd defect = (1.0 - out_kernel.colwise().sum().array()) / static_cast<double>(m);
+        out_kernel.rowwise() += defect;
+        out_weights = out_kernel;
+        const Eigen::Index r = ols_u_.cols();
+        if (r > 0) {
+            Eigen::MatrixXd corr = g.bottomRows(r);
+            corr.noalias() -= ols_u_.transpose() * out_kernel;
+            out_weights.noalias() += ols_u_ * corr;
+        }
+    } else {
+        out_kernel.noalias() += operator_.rightCols(kernel_trend_size_) * g;
+        // Enforce the unbiasedness constraints G^T w = g exactly (a no-op in exact arithmetic; removes the
+        // constraint-violating part of rounding errors of an ill-conditioned system).
+        const Eigen::MatrixXd& gb = basis_.sample_basis();
+        Eigen::MatrixXd corr = g;
+        corr.noalias() -= gb.transpose() * out_kernel;
+        corr.row(0) /= static_cast<double>(m);
+        out_kernel.noalias() += gb * corr;
+        out_weights = out_kernel;
+    }
+}
+
+void Kriging::expand(const Eigen::Ref<const Eigen::MatrixXd>& unique_weights, Eigen::Ref<Eigen::MatrixXd> out) const {
+    for (Eigen::Index i = 0; i < group_.size(); ++i) {
+        out.row(i) = unique_weights.row(group_(i)) / group_size_(group_(i));
+    }
+}
+
+void Kriging::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out_weights,
+                      QueryWorkspace& ws) const {
+    const Eigen::Index m = points_.rows();
+    const Eigen::Index n = group_.size();
+    if (c.size() != dimension() || out_weights.size() != n) {
+        throw InvalidArgument("Kriging::weights: c must have P = " + std::to_string(dimension()) +
+                              " entries and out_weights N = " + std::to_string(n));
+    }
+    const Eigen::Index kk = kernel_trend_size_;
+    if (ws.rhs.size() != m + kk) ws.rhs.resize(m + kk);
+    gamma_vector(c, ws.rhs.head(m));
+    const bool ols = options_.trend_fit == TrendFit::OLS && options_.trend == TrendKind::Linear;
+    if (ols) {
+        ws.rhs(m) = 1.0;
+    } else {
+        basis_.evaluate(c, ws.rhs.tail(kk));
+    }
+    if (ws.tmp.size() != m) ws.tmp.resize(m);
+    ws.tmp.noalias() = operator_ * ws.rhs;
+    if (ols) {
+        ws.tmp.array() += (1.0 - ws.tmp.sum()) / static_cast<double>(m);
+    } else {
+        const Eigen::MatrixXd& gb = basis_.sample_basis();
+        if (ws.tmp2.size() != kk) ws.tmp2.resize(kk);
+        ws.tmp2 = ws.rhs.tail(kk);
+        ws.tmp2.noalias() -= gb.transpose() * ws.tmp;
+        ws.tmp2(0) /= static_cast<double>(m);
+        ws.tmp.noalias() += gb * ws.tmp2;
+    }
+    if (ols && ols_u_.cols() > 0) {
+        const Eigen::Index r = ols_u_.cols();
+        if (ws.tmp2.size() != basis_.size()) ws.tmp2.resize(basis_.size());
+        basis_.evaluate(c, ws.tmp2);
+        ws.tmp2.tail(r).noalias() -= ols_u_.transpose() * ws.tmp;
+        ws.tmp.noalias() += ols_u_ * ws.tmp2.tail(r);
+    }
+    if (merged_) {
+        for (Eigen::Index i = 0; i < n; ++i) out_weights(i) = ws.tmp(group_(i)) / group_size_(group_(i));
+    } else {
+        out_weights = ws.tmp;
+    }
+}
+
+namespace {
+// Queries are processed in blocks of this many columns: the temporaries stay in cache and are reused,
+// instead of fresh multi-megabyte buffers per call.
+constexpr Eigen::Index kBlock = 256;
+}  // namespace
+
+void Kriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out_weights) const {
+    if (queries.cols() != dimension() || out_weights.rows() != num_samples() || out_weights.cols() != queries.rows()) {
+        throw InvalidArgument("Kriging::weights_batch: queries must be Q by P (P = " + std::to_string(dimension()) +
+                              ") and out_weights N by Q (N = " + std::to_string(num_samples()) + ")");
+    }
+    const Eigen::Index m = points_.rows();
+    Eigen::MatrixXd gamma;
+    Eigen::MatrixXd kernel;
+    Eigen::MatrixXd w;
+    for (Eigen::Index q0 = 0; q0 < queries.rows(); q0 += kBlock) {
+        const Eigen::Index nb = std::min(kBlock, queries.rows() - q0);
+        gamma.resize(m, nb);
+        gamma_block(queries.middleRows(q0, nb), gamma);
+        const Eigen::MatrixXd g = basis_.evaluate_batch(queries.middleRows(q0, nb));
+        solve_block(gamma, g, kernel, w);
+        if (merged_) {
+            expand(w, out_weights.middleCols(q0, nb));
+        } else {
+            out_weights.middleCols(q0, nb) = w;
+        }
+    }
+}
+
+KrigingBatch Kriging::estimate_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries) const {
+    if (queries.cols() != dimension()) {
+        throw InvalidArgument("Kriging::estimate_batch: queries must be Q by P with P = " + std::to_string(dimension()));
+    }
+    const Eigen::Index m = points_.rows();
+    const Eigen::Index nq = queries.rows();
+    const bool ols = options_.trend_fit == TrendFit::OLS && options_.trend == TrendKind::Linear;
+    KrigingBatch out;
+    out.weights.resize(num_samples(), nq);
+    out.variance.resize(nq);
+    out.paper_variance.resize(nq);
+    out.reliability.resize(nq);
+    Eigen::MatrixXd gamma;
+    Eigen::MatrixXd kernel;
+    Eigen::MatrixXd w;
+    Eigen::MatrixXd aux;
+    for (Eigen::Index q0 = 0; q0 < nq; q0 += kBlock) {
+        const Eigen::Index nb = std::min(kBlock, nq - q0);
+        gamma.resize(m, nb);
+        gamma_block(queries.middleRows(q0, nb), gamma);
+        const Eigen::MatrixXd g = basis_.evaluate_batch(queries.middleRows(q0, nb));
+        solve_block(gamma, g, kernel, w);
+        if (ols) {
+            // 2 w^T gamma - w^T Gamma w.
+            aux.resize(m, nb);
+            aux.noalias() = gamma_ * w;
+            out.variance.segment(q0, nb) = 2.0 * (w.array() * gamma.array()).colwise().sum().transpose() -
+                                           (w.array() * aux.array()).colwise().sum().transpose();
+        } else {
+            // sigma^2 = b^T gamma + mu^T g,  mu = S^-1 g - s e1 + V^T gamma.
+            aux.resize(kernel_trend_size_, nb);
+            aux.noalias() = s_inverse_ * g;
+            aux.row(0).array() -= model_.total_sill();
+            aux.noalias() += v_transpose_ * gamma;
+            out.variance.segment(q0, nb) = (kernel.array() * gamma.array()).colwise().sum().transpose() +
+                                           (aux.array() * g.array()).colwise().sum().transpose();
+        }
+        out.paper_variance.segment(q0, nb) = (kernel.array() * gamma.array()).colwise().sum().transpose();
+        if (merged_) {
+            expand(w, out.weights.middleCols(q0, nb));
+        } else {
+            out.weights.middleCols(q0, nb) = w;
+        }
+    }
+    out.variance = out.variance.cwiseMax(0.0);
+    out.paper_variance = out.paper_variance.cwiseMax(0.0);
+    out.reliability = (1.0 - out.paper_variance.array() / model_.total_sill()).cwiseMax(0.0).cwiseMin(1.0).matrix();
+    return out;
+}
+
+KrigingEstimate Kriging::estimate(const Eigen::Ref<const Eigen::VectorXd>& c) const {
+    if (c.size() != dimension()) {
+        throw InvalidArgument("Kriging::estimate: c must have P = " + std::to_string(dimension()) + " entries");
+    }
+    const Eigen::MatrixXd q = c.transpose();
+    KrigingBatch b = estimate_batch(q);
+    KrigingEstimate e;
+    e.weights = b.weights.col(0);
+    e.variance = b.variance(0);
+    e.paper_variance = b.paper_variance(0);
+    e.reliability = b.reliability(0);
+    // Kernel b(c): recompute (cheap) so that it is exposed on the original samples.
+    const Eigen::Index m = points_.rows();
+    Eigen::MatrixXd gamma(m, 1);
+    gamma_block(q, gamma);
+    const Eigen::MatrixXd g = basis_.evaluate_batch(q);
+    Eigen::MatrixXd kernel;
+    Eigen::MatrixXd w;
+    solve_block(gamma, g, kernel, w);
+    e.kernel.resize(num_samples());
+    if (merged_) {
+        Eigen::MatrixXd tmp(num_samples(), 1);
+        expand(kernel, tmp);
+        e.kernel = tmp.col(0);
+    } else {
+        e.kernel = kernel.col(0);
+    }
+    return e;
+}
+
+Eigen::VectorXd Kriging::reliability(const Eigen::Ref<const Eigen::MatrixXd>& queries) const {
+    return estimate_batch(queries).reliability;
+}
+
+LooResult Kriging::leave_one_out(const Eigen::Ref<const Eigen::MatrixXd>& values) const {
+    const Eigen::Index n = num_samples();
+    const Eigen::Index m = points_.rows();
+    if (values.rows() != n || values.cols() < 1) {
+        throw InvalidArgument("Kriging::leave_one_out: values must be N by D with N = " + std::to_string(n) +
+                              " and D >= 1, got " + std::to_string(values.rows()) + "x" +
+                              std::to_string(values.cols()));
+    }
+    if (!values.allFinite()) throw InvalidArgument("Kriging::leave_one_out: values must be finite");
+    const Eigen::Index d = values.cols();
+    Eigen::MatrixXd z = Eigen::MatrixXd::Zero(m, d);
+    for (Eigen::Index i = 0; i < n; ++i) z.row(group_(i)) += values.row(i) / group_size_(group_(i));
+    const bool ols = options_.trend_fit == TrendFit::OLS && options_.trend == TrendKind::Linear;
+    if (ols) z = fit_trend_ols(basis_, z).residuals;
+    Eigen::MatrixXd e(m, d);
+    e.noalias() = kernel_inverse_ * z;
+    const Eigen::VectorXd diag = kernel_inverse_.diagonal();
+    LooResult out;
+    out.prediction.resize(n, d);
+    out.residual.resize(n, d);
+    out.variance.resize(n);
+    out.zscore.resize(n, d);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const Eigen::Index u = group_(i);
+        if (group_size_(u) > 1.0) {
+            Eigen::RowVectorXd others = Eigen::RowVectorXd::Zero(d);
+            for (Eigen::Index j = 0; j < n; ++j) {
+                if (j != i && group_(j) == u) others += values.row(j);
+            }
+            out.prediction.row(i) = others / (group_size_(u) - 1.0);
+            out.variance(i) = 0.0;
+        } else {
+            const double dii = diag(u);
+            if (dii > 0.0 && std::isfinite(dii)) {
+                out.prediction.row(i) = values.row(i) - e.row(u) / dii;
+                out.variance(i) = 1.0 / dii;
+            } else {
+                // Degenerate (cannot happen for a positive definite system); fall back to the mean.
+                out.prediction.row(i) = values.colwise().mean();
+                out.variance(i) = model_.total_sill();
+            }
+        }
+        out.residual.row(i) = values.row(i) - out.prediction.row(i);
+        const double sd = std::sqrt(std::max(out.variance(i), 0.0));
+        out.zscore.row(i) = sd > 0.0 ? Eigen::RowVectorXd(out.residual.row(i) / sd) : Eigen::RowVectorXd::Zero(d);
+    }
+    out.mse = out.residual.squaredNorm() / static_cast<double>(n * d);
+    return out;
+}
+
+Eigen::VectorXd Kriging::leave_one_out_reliability() const {
+    const Eigen::Index n = num_samples();
+    const Eigen::Index m = points_.rows();
+    // Leaving unique point u out, the kernel on the others is b_j = -Wc(j,u) / Wc(u,u), so
+    // sigma^2 = sum_j b_j gamma(j,u) = -(Gamma Wc)(u,u) / Wc(u,u).
+    Eigen::VectorXd rho_unique(m);
+    for (Eigen::Index u = 0; u < m; ++u) {
+        const double dii = kernel_inverse_(u, u);
+        const double gw = gamma_.col(u).dot(kernel_inverse_.col(u));
+        const double sigma2 = dii > 0.0 ? std::max(-gw / dii, 0.0) : model_.total_sill();
+        rho_unique(u) = std::clamp(1.0 - sigma2 / model_.total_sill(), 0.0, 1.0);
+    }
+    Eigen::VectorXd rho(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const Eigen::Index u = group_(i);
+        rho(i) = group_size_(u) > 1.0 ? 1.0 : rho_unique(u);
+    }
+    return rho;
+}
+
+}  // namespace mocapdb::kriging

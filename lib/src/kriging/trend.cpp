@@ -1,0 +1,151 @@
+#include "mocapdb/kriging/trend.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <Eigen/SVD>
+
+#include "mocapdb/core/error.hpp"
+
+namespace mocapdb::kriging {
+
+const char* to_string(TrendKind kind) { return kind == TrendKind::None ? "none" : "linear"; }
+
+TrendBasis TrendBasis::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, TrendKind kind,
+                             double rank_tolerance) {
+    const Eigen::Index n = coords.rows();
+    const Eigen::Index p = coords.cols();
+    if (n < 1 || p < 1) {
+        throw InvalidArgument("TrendBasis: coords must be N by P with N >= 1 and P >= 1, got " +
+                              std::to_string(n) + "x" + std::to_string(p));
+    }
+    if (!coords.allFinite()) throw InvalidArgument("TrendBasis: coords must be finite");
+    if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0)) {
+        throw InvalidArgument("TrendBasis: rank_tolerance must be in (0, 1)");
+    }
+    TrendBasis b;
+    b.kind_ = kind;
+    b.mean_ = coords.colwise().mean().transpose();
+    if (kind == TrendKind::None) {
+        b.rank_ = 0;
+        b.projection_.resize(p, 0);
+        b.sample_basis_ = Eigen::MatrixXd::Ones(n, 1);
+        return b;
+    }
+    const Eigen::MatrixXd centered = coords.rowwise() - b.mean_.transpose();
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(centered, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const Eigen::VectorXd& s = svd.singularValues();
+    Eigen::Index r = 0;
+    const double smax = s.size() > 0 ? s(0) : 0.0;
+    // Singular values of exactly-collinear data sit at rounding level, i.e. ~eps * smax * sqrt(N):
+    // rank_tolerance must stay well above that.
+    for (Eigen::Index k = 0; k < s.size(); ++k) {
+        if (smax > 0.0 && s(k) > rank_tolerance * smax) ++r;
+    }
+    b.rank_ = r;
+    b.projection_ = svd.matrixV().leftCols(r) * s.head(r).cwiseInverse().asDiagonal();
+    b.sample_basis_.resize(n, 1 + r);
+    b.sample_basis_.col(0).setOnes();
+    b.sample_basis_.rightCols(r) = svd.matrixU().leftCols(r);
+    return b;
+}
+
+void TrendBasis::evaluate(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out_g) const {
+    if (c.size() != dimension() || out_g.size() != size()) {
+        throw InvalidArgument("TrendBasis::evaluate: c must have P = " + std::to_string(dimension()) +
+                              " entries and out_g K = " + std::to_string(size()));
+    }
+    out_g(0) = 1.0;
+    // (c - mean)^T V S^-1 one column at a time: no temporary vector on this per-query path.
+    for (Eigen::Index k = 0; k < rank_; ++k) out_g(1 + k) = projection_.col(k).dot(c - mean_);
+}
+
+Eigen::MatrixXd TrendBasis::evaluate_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries) const {
+    if (queries.cols() != dimension()) {
+        throw InvalidArgument("TrendBasis::evaluate_batch: queries must be Q by P with P = " +
+                              std::to_string(dimension()) + ", got " + std::to_string(queries.cols()) +
+                              " columns");
+    }
+    Eigen::MatrixXd g(size(), queries.rows());
+    g.row(0).setOnes();
+    if (rank_ > 0) {
+        const Eigen::MatrixXd centered = (queries.rowwise() - mean_.transpose()).transpose();
+        g.bottomRows(rank_).noalias() = projection_.transpose() * centered;
+    }
+    return g;
+}
+
+double TrendBasis::to_hyperplane(const Eigen::Ref<const Eigen::VectorXd>& a, Eigen::Ref<Eigen::VectorXd> out_l) const {
+    if (a.size() != size() || out_l.size() != dimension()) {
+        throw InvalidArgument("TrendBasis::to_hyperplane: a must have K entries and out_l P entries");
+    }
+    out_l.setZero();
+    if (rank_ > 0) out_l.noalias() = projection_ * a.tail(rank_);
+    return a(0) - out_l.dot(mean_);
+}
+
+OlsTrend fit_trend_ols(const TrendBasis& basis, const Eigen::Ref<const Eigen::MatrixXd>& samples) {
+    const Eigen::MatrixXd& g = basis.sample_basis();
+    if (samples.rows() != g.rows()) {
+        throw InvalidArgument("fit_trend_ols: samples must have N = " + std::to_string(g.rows()) +
+                              " rows, got " + std::to_string(samples.rows()));
+    }
+    OlsTrend fit;
+    // G = [1, U] with U orthonormal and orthogonal to 1: (G^T G)^-1 = diag(1/N, I).
+    fit.coefficients.noalias() = g.transpose() * samples;
+    fit.coefficients.row(0) /= static_cast<double>(g.rows());
+    fit.residuals = samples;
+    fit.residuals.noalias() -= g * fit.coefficients;
+    return fit;
+}
+
+Eigen::MatrixXd evaluate_trend(const TrendBasis& basis, const Eigen::Ref<const Eigen::MatrixXd>& coefficients,
+                               const Eigen::Ref<const Eigen::MatrixXd>& queries) {
+    if (coefficients.rows() != basis.size()) {
+        throw InvalidArgument("evaluate_trend: coefficients must be K by D with K = " + std::to_string(basis.size()));
+    }
+    const Eigen::MatrixXd g = basis.evaluate_batch(queries);
+    Eigen::MatrixXd out(queries.rows(), coefficients.cols());
+    out.noalias() = g.transpose() * coefficients;
+    return out;
+}
+
+ControlScaling ControlScaling::from_data(const Eigen::Ref<const Eigen::MatrixXd>& coords) {
+    if (coords.rows() < 1 || coords.cols() < 1 || !coords.allFinite()) {
+        throw InvalidArgument("ControlScaling::from_data: coords must be a finite N by P matrix with N, P >= 1");
+    }
+    ControlScaling s;
+    s.offset = coords.colwise().mean().transpose();
+    s.scale.resize(coords.cols());
+    for (Eigen::Index k = 0; k < coords.cols(); ++k) {
+        const double sd = std::sqrt((coords.col(k).array() - s.offset(k)).square().mean());
+        s.scale(k) = sd > 0.0 ? sd : 1.0;
+    }
+    return s;
+}
+
+ControlScaling ControlScaling::identity(Eigen::Index dimension) {
+    ControlScaling s;
+    s.offset = Eigen::VectorXd::Zero(dimension);
+    s.scale = Eigen::VectorXd::Ones(dimension);
+    return s;
+}
+
+void ControlScaling::validate(Eigen::Index dimension) const {
+    if (offset.size() != dimension || scale.size() != dimension) {
+        throw InvalidArgument("ControlScaling: offset and scale must have P = " + std::to_string(dimension) +
+                              " entries");
+    }
+    if (!offset.allFinite() || !(scale.array() > 0.0).all() || !scale.allFinite()) {
+        throw InvalidArgument("ControlScaling: offsets must be finite and scales finite and > 0");
+    }
+}
+
+Eigen::MatrixXd ControlScaling::apply(const Eigen::Ref<const Eigen::MatrixXd>& coords) const {
+    validate(coords.cols());
+    Eigen::MatrixXd out = (coords.rowwise() - offset.transpose());
+    out.array().rowwise() /= scale.transpose().array();
+    return out;
+}
+
+}  // namespace mocapdb::kriging

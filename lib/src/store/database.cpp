@@ -1,0 +1,162 @@
+// Database: the read view of a motion database file.
+#include "mocapdb/store/database.hpp"
+
+#include <algorithm>
+
+#include "clip_codec.hpp"
+#include "database_impl.hpp"
+#include "h5/quiet.hpp"
+#include "layout.hpp"
+#include "mocapdb/core/error.hpp"
+#include "root.hpp"
+#include "set_codec.hpp"
+#include "skeleton_codec.hpp"
+
+namespace mocapdb {
+
+using store::h5::QuietScope;
+
+const store::h5::File& Database::Impl::f() const {
+    if (file == nullptr || !file->is_open())
+        throw StoreError(path.string(), "", "the database is closed (its writing session was committed)");
+    return *file;
+}
+
+Database::Database(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
+    QuietScope quiet;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw IoError(path.string() + ": no such file");
+    if (!std::filesystem::is_regular_file(path, ec)) throw IoError(path.string() + ": not a regular file");
+    impl_->path = path;
+    impl_->owned = store::h5::File::open(path, false);
+    impl_->file = &impl_->owned;
+    store::check_root(impl_->owned);
+}
+
+Database::Database(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Database::~Database() = default;
+Database::Database(Database&&) noexcept = default;
+Database& Database::operator=(Database&&) noexcept = default;
+
+const std::filesystem::path& Database::path() const noexcept { return impl_->path; }
+
+std::vector<ClipRecord> Database::clips() const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    std::vector<ClipRecord> out;
+    for (const std::string& id : f.children(store::kClips)) out.push_back(store::read_clip_record(f, id));
+    return out;
+}
+
+std::optional<ClipRecord> Database::find_clip(const std::string& id) const {
+    QuietScope quiet;
+    if (!has_clip(id)) return std::nullopt;
+    return store::read_clip_record(impl_->f(), id);
+}
+
+bool Database::has_clip(const std::string& id) const {
+    QuietScope quiet;
+    if (id.empty() || id.find('/') != std::string::npos || id == "." || id == "..") return false;
+    return impl_->f().type_of(store::clip_path(id)) == store::h5::ObjectType::Group;
+}
+
+std::optional<std::string> Database::find_sha256(const std::string& sha256) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    for (const std::string& id : f.children(store::kClips)) {
+        const std::string g = store::clip_path(id);
+        if (f.has_attribute(g, "source_sha256") && f.read_string_attribute(g, "source_sha256") == sha256) return id;
+    }
+    return std::nullopt;
+}
+
+Clip Database::load_clip(const std::string& id) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    if (!has_clip(id)) throw StoreError(f.name(), store::clip_path(id), "no such clip");
+    const ClipRecord record = store::read_clip_record(f, id);
+    Clip clip;
+    clip.skeleton = load_skeleton(record.skeleton);
+    clip.frame_rate = record.frame_rate;
+    clip.name = id;
+    clip.channels = store::read_clip_channels(f, id, clip.skeleton->channel_count());
+    if (!clip.channels.allFinite())
+        throw StoreError(f.name(), store::clip_path(id) + "/channels", "expected finite values, found NaN or infinity");
+    return clip;
+}
+
+std::vector<std::string> Database::skeletons() const {
+    QuietScope quiet;
+    return impl_->f().children(store::kSkeletons);
+}
+
+std::shared_ptr<const Skeleton> Database::load_skeleton(const std::string& id) const {
+    QuietScope quiet;
+    const auto it = impl_->skeletons.find(id);
+    if (it != impl_->skeletons.end()) return it->second;
+    store::check_link_name(id, "skeleton id");
+    auto skeleton = std::make_shared<const Skeleton>(store::read_skeleton(impl_->f(), id));
+    impl_->skeletons.emplace(id, skeleton);
+    return skeleton;
+}
+
+std::string Database::skeleton_source(const std::string& id) const {
+    QuietScope quiet;
+    return impl_->f().read_string_attribute(store::skeleton_path(id), "source_file");
+}
+
+std::vector<std::string> Database::set_names() const {
+    QuietScope quiet;
+    return impl_->f().children(store::kSets);
+}
+
+bool Database::has_set(const std::string& name) const {
+    QuietScope quiet;
+    if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..") return false;
+    return impl_->f().type_of(store::set_path(name)) == store::h5::ObjectType::Group;
+}
+
+std::vector<SetRecord> Database::sets() const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    std::vector<SetRecord> out;
+    for (const std::string& name : set_names()) {
+        const MotionSet set = store::read_set(f, name);
+        SetRecord r;
+        r.name = name;
+        r.samples = set.samples.size();
+        r.parameter_names = set.parameter_names;
+        r.parameter_source = set.parameter_source;
+        const std::string tensor = store::aligned_path(name) + "/tensor";
+        if (f.type_of(store::aligned_path(name)) == store::h5::ObjectType::Group) {
+            r.aligned = true;
+            const auto info = f.dataset_info(tensor);
+            for (std::size_t k = 0; k < 3 && k < info.shape.size(); ++k)
+                r.tensor_shape[k] = static_cast<std::size_t>(info.shape[k]);
+            r.tensor_stored_bytes = info.stored_bytes;
+        }
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
+MotionSet Database::load_set(const std::string& name) const {
+    QuietScope quiet;
+    if (!has_set(name)) throw StoreError(impl_->f().name(), store::set_path(name), "no such motion set");
+    return store::read_set(impl_->f(), name);
+}
+
+std::optional<AlignedSet> Database::load_aligned(const std::string& set) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    if (f.type_of(store::aligned_path(set)) != store::h5::ObjectType::Group) return std::nullopt;
+    return store::read_aligned(f, set);
+}
+
+std::uint64_t Database::file_size() const {
+    QuietScope quiet;
+    return impl_->f().size();
+}
+
+}  // namespace mocapdb

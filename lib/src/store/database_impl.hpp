@@ -1,0 +1,21 @@
+#pragma once
+// State shared by Database and DatabaseWriter: the open file and the skeleton cache.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "h5/file.hpp"
+#include "mocapdb/store/database.hpp"
+
+namespace mocapdb {
+
+struct Database::Impl {
+    std::filesystem::path path;
+    store::h5::File owned;              // the file, when this view opened it itself
+    store::h5::File* file = nullptr;    // the file read (owned, or a writer's session file)
+    mutable std::map<std::string, std::shared_ptr<const Skeleton>> skeletons;
+
+    const store::h5::File& f() const;
+};
+
+}  // namespace mocapdb

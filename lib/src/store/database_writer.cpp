@@ -1,0 +1,264 @@
+// DatabaseWriter: an atomic edit session (work on a temporary copy, publish it by rename).
+#include <algorithm>
+#include <cctype>
+#include <functional>
+#include <unordered_map>
+
+#include "clip_codec.hpp"
+#include "database_impl.hpp"
+#include "h5/quiet.hpp"
+#include "layout.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/store/database.hpp"
+#include "root.hpp"
+#include "set_codec.hpp"
+#include "skeleton_codec.hpp"
+#include "temp_files.hpp"
+
+namespace mocapdb {
+
+using store::h5::QuietScope;
+
+struct DatabaseWriter::Impl {
+    std::filesystem::path target;
+    std::filesystem::path temp;
+    store::h5::File file;
+    Database view{std::make_unique<Database::Impl>()};
+    std::unordered_map<std::string, std::string> sha_to_clip;
+    std::vector<std::pair<std::string, std::shared_ptr<const Skeleton>>> skeletons;  // id, structure
+    bool finished = false;
+    bool removed_objects = false;  // space to reclaim at commit
+
+    store::h5::File& f() {
+        if (finished) throw StoreError(target.string(), "", "the writing session is already committed");
+        return file;
+    }
+    void discard() noexcept {
+        try {
+            file = store::h5::File();  // closes
+        } catch (...) {
+        }
+        std::error_code ec;
+        std::filesystem::remove(temp, ec);
+    }
+};
+
+namespace {
+
+bool is_hex64(const std::string& s) {
+    return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char c) {
+               return std::isdigit(static_cast<unsigned char>(c)) || (c >= 'a' && c <= 'f');
+           });
+}
+
+std::string unique_name(const std::string& base, const std::function<bool(const std::string&)>& taken) {
+    if (!taken(base)) return base;
+    for (int k = 2;; ++k) {
+        const std::string candidate = base + "-" + std::to_string(k);
+        if (!taken(candidate)) return candidate;
+    }
+}
+
+bool same_skeleton(const Skeleton& a, const Skeleton& b) {
+    return a.same_structure(b, 1e-9) && a.source_units().cm_per_unit == b.source_units().cm_per_unit &&
+           a.source_units().degrees == b.source_units().degrees && (a.forward() - b.forward()).norm() <= 1e-12;
+}
+
+}  // namespace
+
+DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode) : impl_(std::make_unique<Impl>()) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    s.target = target;
+    std::error_code ec;
+    const bool exists = std::filesystem::exists(target, ec);
+    if (exists && !std::filesystem::is_regular_file(target, ec))
+        throw IoError(target.string() + ": exists and is not a regular file");
+    store::remove_stale_temps(target);
+    s.temp = store::make_temp_path(target);
+    try {
+        if (exists && mode == Mode::OpenOrCreate) {
+            { Database check(target); }  // refuses foreign, newer, truncated files before copying
+            std::filesystem::copy_file(target, s.temp, std::filesystem::copy_options::none, ec);
+            if (ec) throw IoError(target.string() + ": cannot copy to " + s.temp.string() + ": " + ec.message());
+            s.file = store::h5::File::open(s.temp, true);
+        } else {
+            s.file = store::h5::File::create(s.temp);
+            store::write_root(s.file);
+        }
+        s.view.impl_->path = s.temp;
+        s.view.impl_->file = &s.file;
+        for (const ClipRecord& r : s.view.clips()) s.sha_to_clip.emplace(r.source.sha256, r.id);
+        for (const std::string& id : s.view.skeletons()) s.skeletons.emplace_back(id, s.view.load_skeleton(id));
+    } catch (...) {
+        s.discard();
+        throw;
+    }
+}
+
+DatabaseWriter::~DatabaseWriter() {
+    if (impl_ && !impl_->finished) {
+        QuietScope quiet;
+        impl_->discard();
+    }
+}
+
+const std::filesystem::path& DatabaseWriter::target() const noexcept { return impl_->target; }
+const std::filesystem::path& DatabaseWriter::temp_path() const noexcept { return impl_->temp; }
+const Database& DatabaseWriter::view() const { return impl_->view; }
+
+std::optional<std::string> DatabaseWriter::find_sha256(const std::string& sha256) const {
+    const auto it = impl_->sha_to_clip.find(sha256);
+    if (it == impl_->sha_to_clip.end()) return std::nullopt;
+    return it->second;
+}
+
+AddClipResult DatabaseWriter::add_clip(const Clip& clip, const ClipSource& source) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    validate(clip);
+    const std::string who = "clip from '" + source.file_name + "'";
+    if (clip.frame_count() == 0) throw InvalidArgument(who + ": no frames");
+    if (source.file_name.empty()) throw InvalidArgument("add_clip: the source file name is empty");
+    if (!is_hex64(source.sha256))
+        throw InvalidArgument(who + ": sha256 must be 64 lowercase hex digits, found '" + source.sha256 + "'");
+    if (source.format != "bvh" && source.format != "amc")
+        throw InvalidArgument(who + ": source format must be \"bvh\" or \"amc\", found \"" + source.format + "\"");
+    if (const auto it = s.sha_to_clip.find(source.sha256); it != s.sha_to_clip.end())
+        return {it->second, false, "skipped: duplicate sha256 of clip " + it->second};
+
+    const std::string stem = std::filesystem::path(source.file_name).stem().string();
+    store::check_link_name(stem, "clip id");
+    const std::string id = unique_name(stem, [&](const std::string& c) { return s.view.has_clip(c); });
+
+    std::string skeleton_id;
+    for (const auto& [sid, skel] : s.skeletons)
+        if (same_skeleton(*skel, *clip.skeleton)) {
+            skeleton_id = sid;
+            break;
+        }
+    if (skeleton_id.empty()) {
+        const std::string skeleton_file = source.skeleton_file.empty() ? source.file_name : source.skeleton_file;
+        const std::string base = std::filesystem::path(skeleton_file).stem().string();
+        store::check_link_name(base, "skeleton id");
+        skeleton_id = unique_name(base, [&](const std::string& c) {
+            return f.type_of(store::skeleton_path(c)) != store::h5::ObjectType::None;
+        });
+        store::write_skeleton(f, skeleton_id, *clip.skeleton, skeleton_file);
+        s.skeletons.emplace_back(skeleton_id, clip.skeleton);
+    }
+    store::write_clip(f, id, clip, skeleton_id, source);
+    s.sha_to_clip.emplace(source.sha256, id);
+    return {id, true, "added as " + id};
+}
+
+void DatabaseWriter::put_set(const MotionSet& set, bool replace) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    validate(set);
+    store::check_link_name(set.name, "set name");
+    const std::string who = "motion set '" + set.name + "'";
+    std::string skeleton;
+    for (std::size_t i = 0; i < set.samples.size(); ++i) {
+        const SampleRef& r = set.samples[i];
+        const auto clip = s.view.find_clip(r.clip);
+        if (!clip) throw InvalidArgument(who + ": sample " + std::to_string(i) + " names clip '" + r.clip + "', which is not stored");
+        if (r.end > clip->frames)
+            throw InvalidArgument(who + ": sample " + std::to_string(i) + " [" + std::to_string(r.begin) + ", " +
+                                  std::to_string(r.end) + ") lies beyond clip '" + r.clip + "' (" +
+                                  std::to_string(clip->frames) + " frames)");
+        if (skeleton.empty()) skeleton = clip->skeleton;
+        if (clip->skeleton != skeleton)
+            throw InvalidArgument(who + ": sample " + std::to_string(i) + " (clip '" + r.clip + "') has skeleton '" +
+                                  clip->skeleton + "' but sample 0 has '" + skeleton +
+                                  "' (a set's samples share one skeleton)");
+    }
+    const std::string g = store::set_path(set.name);
+    if (f.exists(g)) {
+        if (!replace) throw InvalidArgument(who + " already exists (replace it explicitly)");
+        f.unlink(g);
+        s.removed_objects = true;
+    }
+    store::write_set(f, set);
+}
+
+void DatabaseWriter::remove_set(const std::string& name) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    if (!s.view.has_set(name)) throw StoreError(s.temp.string(), store::set_path(name), "no such motion set");
+    f.unlink(store::set_path(name));
+    s.removed_objects = true;
+}
+
+void DatabaseWriter::put_aligned(const std::string& set_name, const AlignedSet& aligned) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    validate(aligned);
+    if (!s.view.has_set(set_name))
+        throw InvalidArgument("aligned set: motion set '" + set_name + "' is not stored (store the set first)");
+    const MotionSet set = s.view.load_set(set_name);
+    const std::string who = "aligned set of '" + set_name + "'";
+    if (static_cast<std::size_t>(aligned.samples()) != set.samples.size())
+        throw InvalidArgument(who + ": " + std::to_string(aligned.samples()) + " samples, but the set has " +
+                              std::to_string(set.samples.size()));
+    const auto skeleton = s.view.load_skeleton(s.view.find_clip(set.samples.front().clip)->skeleton);
+    const std::size_t d = PoseLayout(*skeleton).dof_count();
+    if (static_cast<std::size_t>(aligned.dofs()) != d)
+        throw InvalidArgument(who + ": " + std::to_string(aligned.dofs()) +
+                              " dofs, but the set's skeleton has pose vectors of " + std::to_string(d));
+    for (std::size_t n = 0; n < set.samples.size(); ++n) {
+        const double last = static_cast<double>(set.samples[n].frame_count() - 1);
+        const auto col = aligned.warps.col(static_cast<Eigen::Index>(n));
+        if (col.minCoeff() < -1e-9 || col.maxCoeff() > last + 1e-9)
+            throw InvalidArgument(who + ": warps of sample " + std::to_string(n) + " leave its frames [0, " +
+                                  std::to_string(set.samples[n].frame_count() - 1) + "]");
+    }
+    const std::string g = store::aligned_path(set_name);
+    if (f.exists(g)) {
+        f.unlink(g);
+        s.removed_objects = true;
+    }
+    store::write_aligned(f, set_name, aligned);
+}
+
+void DatabaseWriter::commit() {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    s.f();
+    try {
+        s.view.impl_->skeletons.clear();
+        s.file.close();
+        if (s.removed_objects) {
+            // HDF5 does not reuse the space of removed objects: copy what is live into a new file.
+            const std::filesystem::path compact = store::make_temp_path(s.target);
+            try {
+                store::h5::File from = store::h5::File::open(s.temp, false);
+                store::h5::File to = store::h5::File::create(compact);
+                store::write_root_attributes(to);
+                for (const std::string& top : {store::kSkeletons, store::kClips, store::kSets}) from.copy_to(to, top);
+                to.close();
+                from.close();
+            } catch (...) {
+                std::error_code ec;
+                std::filesystem::remove(compact, ec);
+                throw;
+            }
+            std::error_code ec;
+            std::filesystem::remove(s.temp, ec);
+            s.temp = compact;
+        }
+        store::publish(s.temp, s.target);
+        s.finished = true;
+    } catch (...) {
+        s.discard();
+        s.finished = true;
+        throw;
+    }
+}
+
+}  // namespace mocapdb

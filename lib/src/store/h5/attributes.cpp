@@ -1,0 +1,182 @@
+// Attributes: scalar strings, string lists, int64 and float64 scalars and lists.
+#include <hdf5.h>
+
+#include <cstring>
+#include <memory>
+
+#include "errors.hpp"
+#include "file.hpp"
+#include "handle.hpp"
+#include "types.hpp"
+
+namespace mocapdb::store::h5 {
+namespace {
+
+
+herr_t collect_name(hid_t /*loc*/, const char* name, const H5A_info_t* /*info*/, void* data) {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+    return 0;
+}
+
+Shape space_shape(hid_t space) {
+    const int rank = H5Sget_simple_extent_ndims(space);
+    if (rank <= 0) return {};
+    std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    return Shape(dims.begin(), dims.end());
+}
+
+}  // namespace
+
+std::vector<std::string> File::attribute_names(const std::string& path) const {
+    Handle obj(open_object(path), H5Oclose);
+    std::vector<std::string> names;
+    hsize_t idx = 0;
+    check(H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_INC, &idx, collect_name, &names), name_, path,
+          "cannot list the attributes");
+    return names;
+}
+
+bool File::has_attribute(const std::string& path, const std::string& name) const {
+    const htri_t e = H5Aexists_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT);
+    if (e < 0) fail_call(name_, path, "cannot look up attribute '" + name + "'");
+    return e > 0;
+}
+
+File::Id File::open_attribute(const std::string& path, const std::string& name) const {
+    if (!has_attribute(path, name)) fail(name_, path, "missing attribute '" + name + "'");
+    const hid_t id = H5Aopen_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+    if (id < 0) fail_call(name_, path, "cannot open attribute '" + name + "'");
+    return id;
+}
+
+AttributeInfo File::attribute_info(const std::string& path, const std::string& name) const {
+    Handle a(open_attribute(path, name), H5Aclose);
+    Handle type(check(H5Aget_type(a.get()), name_, path, "cannot read an attribute type"), H5Tclose);
+    Handle space(check(H5Aget_space(a.get()), name_, path, "cannot read an attribute shape"), H5Sclose);
+    AttributeInfo info;
+    info.dtype = dtype_name(type.get());
+    info.shape = space_shape(space.get());
+    if (H5Sget_simple_extent_type(space.get()) == H5S_NULL) info.dtype = "null";
+    return info;
+}
+
+std::string File::read_string_attribute(const std::string& path, const std::string& name) const {
+    const AttributeInfo info = attribute_info(path, name);
+    if (info.dtype != "string" || !info.shape.empty())
+        fail(name_, path, "attribute '" + name + "': expected a scalar string, found " + info.dtype + " " +
+                              shape_text(info.shape));
+    Handle a(open_attribute(path, name), H5Aclose);
+    Handle ftype(H5Aget_type(a.get()), H5Tclose);
+    Handle mtype = vlen_string_type(H5Tget_cset(ftype.get()));
+    char* value = nullptr;
+    check(H5Aread(a.get(), mtype.get(), &value), name_, path, ("cannot read attribute '" + name + "'").c_str());
+    std::string out = value != nullptr ? value : "";
+    Handle space(H5Aget_space(a.get()), H5Sclose);
+    H5Dvlen_reclaim(mtype.get(), space.get(), H5P_DEFAULT, &value);
+    return out;
+}
+
+std::vector<std::string> File::read_strings_attribute(const std::string& path, const std::string& name) const {
+    const AttributeInfo info = attribute_info(path, name);
+    if (info.dtype != "string" || info.shape.size() != 1)
+        fail(name_, path, "attribute '" + name + "': expected a one-dimensional string array, found " + info.dtype +
+                              " " + shape_text(info.shape));
+    Handle a(open_attribute(path, name), H5Aclose);
+    Handle ftype(H5Aget_type(a.get()), H5Tclose);
+    Handle mtype = vlen_string_type(H5Tget_cset(ftype.get()));
+    std::vector<char*> buffer(static_cast<std::size_t>(info.shape[0]), nullptr);
+    if (buffer.empty()) return {};
+    check(H5Aread(a.get(), mtype.get(), buffer.data()), name_, path, ("cannot read attribute '" + name + "'").c_str());
+    std::vector<std::string> out;
+    out.reserve(buffer.size());
+    for (char* s : buffer) out.emplace_back(s != nullptr ? s : "");
+    Handle space(H5Aget_space(a.get()), H5Sclose);
+    H5Dvlen_reclaim(mtype.get(), space.get(), H5P_DEFAULT, buffer.data());
+    return out;
+}
+
+std::int64_t File::read_int_attribute(const std::string& path, const std::string& name) const {
+    const AttributeInfo info = attribute_info(path, name);
+    if (info.dtype != "int64" || !info.shape.empty())
+        fail(name_, path, "attribute '" + name + "': expected a scalar int64, found " + info.dtype + " " +
+                              shape_text(info.shape));
+    Handle a(open_attribute(path, name), H5Aclose);
+    std::int64_t v = 0;
+    check(H5Aread(a.get(), H5T_NATIVE_INT64, &v), name_, path, ("cannot read attribute '" + name + "'").c_str());
+    return v;
+}
+
+double File::read_double_attribute(const std::string& path, const std::string& name) const {
+    const AttributeInfo info = attribute_info(path, name);
+    if (info.dtype != "float64" || !info.shape.empty())
+        fail(name_, path, "attribute '" + name + "': expected a scalar float64, found " + info.dtype + " " +
+                              shape_text(info.shape));
+    Handle a(open_attribute(path, name), H5Aclose);
+    double v = 0;
+    check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v), name_, path, ("cannot read attribute '" + name + "'").c_str());
+    return v;
+}
+
+std::vector<double> File::read_doubles_attribute(const std::string& path, const std::string& name) const {
+    const AttributeInfo info = attribute_info(path, name);
+    if (info.dtype != "float64" || info.shape.size() != 1)
+        fail(name_, path, "attribute '" + name + "': expected a one-dimensional float64 array, found " + info.dtype +
+                              " " + shape_text(info.shape));
+    Handle a(open_attribute(path, name), H5Aclose);
+    std::vector<double> v(static_cast<std::size_t>(info.shape[0]));
+    if (!v.empty())
+        check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, v.data()), name_, path,
+              ("cannot read attribute '" + name + "'").c_str());
+    return v;
+}
+
+void File::write_attribute(const std::string& path, const std::string& name, hid_t file_type, hid_t mem_type,
+                           const Shape& shape, const void* data) {
+    if (has_attribute(path, name))
+        check(H5Adelete_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT), name_, path,
+              ("cannot replace attribute '" + name + "'").c_str());
+    Handle space;
+    if (shape.empty()) {
+        space = Handle(H5Screate(H5S_SCALAR), H5Sclose);
+    } else {
+        const std::vector<hsize_t> dims(shape.begin(), shape.end());
+        space = Handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+    }
+    if (!space.valid()) fail_call(name_, path, "cannot create a dataspace");
+    Handle a(H5Acreate_by_name(id_, path.c_str(), name.c_str(), file_type, space.get(), H5P_DEFAULT,
+                               H5P_DEFAULT, H5P_DEFAULT),
+             H5Aclose);
+    if (!a.valid()) fail_call(name_, path, "cannot create attribute '" + name + "'");
+    check(H5Awrite(a.get(), mem_type, data), name_, path, ("cannot write attribute '" + name + "'").c_str());
+}
+
+void File::write_string_attribute(const std::string& path, const std::string& name, const std::string& value) {
+    Handle t = vlen_string_type();
+    const char* p = value.c_str();
+    write_attribute(path, name, t.get(), t.get(), {}, &p);
+}
+
+void File::write_strings_attribute(const std::string& path, const std::string& name,
+                                   const std::vector<std::string>& values) {
+    Handle t = vlen_string_type();
+    std::vector<const char*> p;
+    p.reserve(values.size());
+    for (const std::string& v : values) p.push_back(v.c_str());
+    write_attribute(path, name, t.get(), t.get(), {values.size()}, p.data());
+}
+
+void File::write_int_attribute(const std::string& path, const std::string& name, std::int64_t value) {
+    write_attribute(path, name, H5T_STD_I64LE, H5T_NATIVE_INT64, {}, &value);
+}
+
+void File::write_double_attribute(const std::string& path, const std::string& name, double value) {
+    write_attribute(path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {}, &value);
+}
+
+void File::write_doubles_attribute(const std::string& path, const std::string& name,
+                                   const std::vector<double>& values) {
+    write_attribute(path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {values.size()}, values.data());
+}
+
+}  // namespace mocapdb::store::h5

@@ -1,0 +1,160 @@
+// Opening, creating and closing files; groups and links.
+#include "file.hpp"
+
+#include <hdf5.h>
+
+#include <cstring>
+#include <type_traits>
+#include <utility>
+
+#include "errors.hpp"
+#include "handle.hpp"
+
+namespace mocapdb::store::h5 {
+
+static_assert(std::is_same_v<hid_t, std::int64_t>, "file.hpp stores hid_t values as std::int64_t");
+
+namespace {
+
+// Format: superblock 2 and object header 2 (metadata checksums; readable by HDF5 1.8 and later).
+Handle file_access(const std::string& file) {
+    Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), file, "", "cannot create a file access property list"), H5Pclose);
+    check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), file, "", "cannot set format bounds");
+    check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), file, "", "cannot set the close degree");
+    return fapl;
+}
+
+std::vector<std::string> split_path(const std::string& path) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (start < path.size()) {
+        std::size_t end = path.find('/', start);
+        if (end == std::string::npos) end = path.size();
+        if (end > start) parts.push_back(path.substr(start, end - start));
+        start = end + 1;
+    }
+    return parts;
+}
+
+}  // namespace
+
+File::~File() {
+    if (id_ >= 0) H5Fclose(id_);
+}
+
+File::File(File&& other) noexcept
+    : id_(std::exchange(other.id_, -1)), name_(std::move(other.name_)), writable_(other.writable_) {}
+
+File& File::operator=(File&& other) noexcept {
+    if (this != &other) {
+        if (id_ >= 0) H5Fclose(id_);
+        id_ = std::exchange(other.id_, -1);
+        name_ = std::move(other.name_);
+        writable_ = other.writable_;
+    }
+    return *this;
+}
+
+File File::open(const std::filesystem::path& path, bool writable) {
+    File f;
+    f.name_ = path.string();
+    f.writable_ = writable;
+    Handle fapl = file_access(f.name_);
+    const hid_t id = H5Fopen(f.name_.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get());
+    if (id < 0) fail_call(f.name_, "", "cannot open as an HDF5 file");
+    f.id_ = id;
+    return f;
+}
+
+File File::create(const std::filesystem::path& path) {
+    File f;
+    f.name_ = path.string();
+    f.writable_ = true;
+    Handle fapl = file_access(f.name_);
+    const hid_t id = H5Fcreate(f.name_.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get());
+    if (id < 0) fail_call(f.name_, "", "cannot create the HDF5 file");
+    f.id_ = id;
+    return f;
+}
+
+void File::close() {
+    if (id_ < 0) return;
+    if (writable_) check(H5Fflush(id_, H5F_SCOPE_LOCAL), name_, "", "cannot flush the file");
+    const herr_t closed = H5Fclose(std::exchange(id_, -1));
+    if (closed < 0) fail_call(name_, "", "cannot close the file");
+}
+
+std::uint64_t File::size() const {
+    hsize_t bytes = 0;
+    check(H5Fget_filesize(id_, &bytes), name_, "", "cannot get the file size");
+    return bytes;
+}
+
+ObjectType File::type_of(const std::string& path) const {
+    if (path == "/") return ObjectType::Group;
+    std::string prefix;
+    for (const std::string& part : split_path(path)) {
+        prefix += "/" + part;
+        const htri_t e = H5Lexists(id_, prefix.c_str(), H5P_DEFAULT);
+        if (e < 0) fail_call(name_, prefix, "cannot look up the link");
+        if (e == 0) return ObjectType::None;
+    }
+    // A dangling soft link exists as a link but not as an object.
+    const htri_t target = H5Oexists_by_name(id_, path.c_str(), H5P_DEFAULT);
+    if (target <= 0) {
+        H5Eclear2(H5E_DEFAULT);
+        return ObjectType::Other;
+    }
+    Handle obj(open_object(path), H5Oclose);
+    switch (H5Iget_type(obj.get())) {
+        case H5I_GROUP: return ObjectType::Group;
+        case H5I_DATASET: return ObjectType::Dataset;
+        default: return ObjectType::Other;
+    }
+}
+
+File::Id File::open_object(const std::string& path) const {
+    const hid_t id = H5Oopen(id_, path.c_str(), H5P_DEFAULT);
+    if (id < 0) fail_call(name_, path, "cannot open the object");
+    return id;
+}
+
+void File::create_group(const std::string& path, const std::string& kind) {
+    Handle gcpl(check(H5Pcreate(H5P_GROUP_CREATE), name_, path, "cannot create a group property list"), H5Pclose);
+    check(H5Pset_obj_track_times(gcpl.get(), 0), name_, path, "cannot disable time tracking");
+    Handle g(check(H5Gcreate2(id_, path.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), name_, path,
+                   "cannot create the group"),
+             H5Gclose);
+    g.reset();
+    write_string_attribute(path, "kind", kind);
+}
+
+void File::unlink(const std::string& path) {
+    check(H5Ldelete(id_, path.c_str(), H5P_DEFAULT), name_, path, "cannot remove the link");
+}
+
+std::vector<std::string> File::children(const std::string& group) const {
+    Handle g(check(H5Gopen2(id_, group.c_str(), H5P_DEFAULT), name_, group, "cannot open the group"),
+             H5Gclose);
+    H5G_info_t info;
+    check(H5Gget_info(g.get(), &info), name_, group, "cannot read the group's links");
+    std::vector<std::string> names;
+    names.reserve(info.nlinks);
+    for (hsize_t i = 0; i < info.nlinks; ++i) {
+        const ssize_t n = H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+        if (n < 0) fail_call(name_, group, "cannot read a link name");
+        std::string name(static_cast<std::size_t>(n), '\0');
+        check(H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size() + 1,
+                                 H5P_DEFAULT),
+              name_, group, "cannot read a link name");
+        names.push_back(std::move(name));
+    }
+    return names;
+}
+
+void File::copy_to(File& destination, const std::string& path) const {
+    check(H5Ocopy(id_, path.c_str(), destination.id_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+          name_, path, ("cannot copy the object to " + destination.name_).c_str());
+}
+
+}  // namespace mocapdb::store::h5

@@ -1,0 +1,132 @@
+#pragma once
+// One open HDF5 file and the checked operations the store needs on it: groups, attributes, and
+// n-dimensional datasets written in C order with `dims` and `units` attributes, chunked, shuffled,
+// deflated and fletcher32-checksummed. Every failure throws StoreError naming the file and path.
+// This header does not include HDF5's: the codecs above it see no HDF5 types (identifiers are the
+// int64 values HDF5 1.10 uses for hid_t, checked in file.cpp).
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mocapdb/store/storage_extents.hpp"
+
+namespace mocapdb::store::h5 {
+
+using Shape = std::vector<std::uint64_t>;
+
+/// "(3, 62)"; "scalar" for rank 0.
+std::string shape_text(const Shape& shape);
+
+template <class T>
+struct Array {
+    Shape shape;
+    std::vector<T> data;  ///< C order
+};
+
+struct DatasetInfo {
+    std::string dtype;
+    Shape shape;
+    bool chunked = false;
+    Shape chunk;
+    std::vector<std::string> filters;  ///< "shuffle", "deflate", "fletcher32", ... in pipeline order
+    std::uint64_t stored_bytes = 0;
+};
+
+struct AttributeInfo {
+    std::string dtype;
+    Shape shape;  ///< empty for a scalar
+};
+
+enum class ObjectType { None, Group, Dataset, Other };
+
+class File {
+public:
+    /// Opens an existing file (read-only or read-write).
+    static File open(const std::filesystem::path& path, bool writable);
+    /// Creates a new file; fails when it exists.
+    static File create(const std::filesystem::path& path);
+
+    File() = default;
+    ~File();
+    File(File&& other) noexcept;
+    File& operator=(File&& other) noexcept;
+    File(const File&) = delete;
+    File& operator=(const File&) = delete;
+
+    const std::string& name() const noexcept { return name_; }
+    bool is_open() const noexcept { return id_ >= 0; }
+    bool writable() const noexcept { return writable_; }
+    /// Flushes and closes; throws on failure.
+    void close();
+    std::uint64_t size() const;
+
+    // Objects. Paths are absolute ("/clips/16_15"); names never contain '/'.
+    ObjectType type_of(const std::string& path) const;
+    bool exists(const std::string& path) const { return type_of(path) != ObjectType::None; }
+    /// Creates a group with attribute kind = `kind`.
+    void create_group(const std::string& path, const std::string& kind);
+    void unlink(const std::string& path);
+    /// Names of the links in a group, sorted.
+    std::vector<std::string> children(const std::string& group) const;
+    /// Copies the object at `path` (recursively) into `destination` at the same path.
+    void copy_to(File& destination, const std::string& path) const;
+
+    // Attributes of the object at `path`.
+    std::vector<std::string> attribute_names(const std::string& path) const;
+    bool has_attribute(const std::string& path, const std::string& name) const;
+    AttributeInfo attribute_info(const std::string& path, const std::string& name) const;
+    /// Scalar variable-length string attribute.
+    std::string read_string_attribute(const std::string& path, const std::string& name) const;
+    /// One-dimensional variable-length string attribute.
+    std::vector<std::string> read_strings_attribute(const std::string& path, const std::string& name) const;
+    /// Scalar int64 attribute.
+    std::int64_t read_int_attribute(const std::string& path, const std::string& name) const;
+    /// Scalar float64 attribute.
+    double read_double_attribute(const std::string& path, const std::string& name) const;
+    /// One-dimensional float64 attribute.
+    std::vector<double> read_doubles_attribute(const std::string& path, const std::string& name) const;
+
+    void write_string_attribute(const std::string& path, const std::string& name, const std::string& value);
+    void write_strings_attribute(const std::string& path, const std::string& name,
+                                 const std::vector<std::string>& values);
+    void write_int_attribute(const std::string& path, const std::string& name, std::int64_t value);
+    void write_double_attribute(const std::string& path, const std::string& name, double value);
+    void write_doubles_attribute(const std::string& path, const std::string& name, const std::vector<double>& values);
+
+    // Datasets.
+    DatasetInfo dataset_info(const std::string& path) const;
+    /// Writes a new dataset of shape `shape` (C order) with attributes dims (one name per axis) and
+    /// units. Non-empty datasets are chunked with shuffle + deflate + fletcher32.
+    template <class T>
+    void write_array(const std::string& path, const T* data, const Shape& shape, const std::vector<std::string>& dims,
+                     const std::string& units);
+    void write_strings(const std::string& path, const std::vector<std::string>& values, const std::string& dim,
+                       const std::string& units);
+    /// Reads a whole dataset; StoreError unless its dtype is exactly T's and its rank is `rank`.
+    template <class T>
+    Array<T> read_array(const std::string& path, std::size_t rank) const;
+    /// Reads a one-dimensional variable-length string dataset.
+    std::vector<std::string> read_strings(const std::string& path) const;
+    /// Reads every byte of a dataset (whatever its type) and discards it: verifies checksums.
+    void read_and_discard(const std::string& path) const;
+    std::vector<ByteExtent> extents(const std::string& path) const;
+
+private:
+    using Id = std::int64_t;  // hid_t
+    // Each returns a new identifier the caller must close (wrapped in h5::Handle inside h5/).
+    Id open_object(const std::string& path) const;
+    Id open_dataset(const std::string& path) const;
+    Id open_attribute(const std::string& path, const std::string& name) const;
+    void write_attribute(const std::string& path, const std::string& name, Id file_type, Id mem_type,
+                         const Shape& shape, const void* data);
+    void write_raw(const std::string& path, Id file_type, Id mem_type, const Shape& shape, const void* data,
+                   bool shuffle, const std::vector<std::string>& dims, const std::string& units);
+    void check_type(const std::string& path, Id type, const std::string& expected) const;
+
+    Id id_ = -1;
+    std::string name_;
+    bool writable_ = false;
+};
+
+}  // namespace mocapdb::store::h5

@@ -1,0 +1,132 @@
+#include "set_codec.hpp"
+
+#include <algorithm>
+
+#include "layout.hpp"
+#include "mocapdb/store/store_error.hpp"
+
+namespace mocapdb::store {
+namespace {
+
+[[noreturn]] void shape_error(const h5::File& file, const std::string& path, const h5::Shape& expected,
+                              const std::string& why, const h5::Shape& found) {
+    throw StoreError(file.name(), path,
+                     "expected shape " + h5::shape_text(expected) + " " + why + ", found " + h5::shape_text(found));
+}
+
+void expect_shape(const h5::File& file, const std::string& path, const h5::Shape& expected, const std::string& why,
+                  const h5::Shape& found) {
+    if (found != expected) shape_error(file, path, expected, why, found);
+}
+
+}  // namespace
+
+void write_set(h5::File& file, const MotionSet& set) {
+    const std::string g = set_path(set.name);
+    file.create_group(g, "motion_set");
+    file.write_string_attribute(g, "parameter_source", set.parameter_source);
+    const std::uint64_t n = set.samples.size();
+    std::vector<std::string> clips;
+    std::vector<std::int64_t> frames;
+    for (const SampleRef& s : set.samples) {
+        clips.push_back(s.clip);
+        frames.push_back(static_cast<std::int64_t>(s.begin));
+        frames.push_back(static_cast<std::int64_t>(s.end));
+    }
+    file.write_strings(g + "/sample_clip", clips, "sample", "");
+    file.write_array(g + "/sample_frames", frames.data(), {n, 2}, {"sample", "range"}, "frame");
+    file.write_strings(g + "/parameter_name", set.parameter_names, "parameter", "");
+    file.write_strings(g + "/parameter_unit", set.parameter_units, "parameter", "");
+    const std::vector<double> parameters = to_c_order(set.parameters);
+    file.write_array(g + "/parameters", parameters.data(), {n, static_cast<std::uint64_t>(set.parameters.cols())},
+                     {"sample", "parameter"}, "parameter_unit");
+}
+
+MotionSet read_set(const h5::File& file, const std::string& name) {
+    const std::string g = set_path(name);
+    if (file.type_of(g) != h5::ObjectType::Group) throw StoreError(file.name(), g, "no such motion set");
+    MotionSet set;
+    set.name = name;
+    set.parameter_source = file.read_string_attribute(g, "parameter_source");
+    const auto clips = file.read_strings(g + "/sample_clip");
+    const std::uint64_t n = clips.size();
+    const auto frames = file.read_array<std::int64_t>(g + "/sample_frames", 2);
+    expect_shape(file, g + "/sample_frames", {n, 2}, "(one (begin, end) row per sample_clip)", frames.shape);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::int64_t b = frames.data[2 * i], e = frames.data[2 * i + 1];
+        if (b < 0 || e < b)
+            throw StoreError(file.name(), g + "/sample_frames",
+                             "sample " + std::to_string(i) + ": expected 0 <= begin <= end, found [" + std::to_string(b) +
+                                 ", " + std::to_string(e) + ")");
+        set.samples.push_back({clips[i], static_cast<std::size_t>(b), static_cast<std::size_t>(e)});
+    }
+    set.parameter_names = file.read_strings(g + "/parameter_name");
+    const std::uint64_t p = set.parameter_names.size();
+    set.parameter_units = file.read_strings(g + "/parameter_unit");
+    if (set.parameter_units.size() != p)
+        shape_error(file, g + "/parameter_unit", {p}, "(one unit per parameter_name)", {set.parameter_units.size()});
+    const auto params = file.read_array<double>(g + "/parameters", 2);
+    expect_shape(file, g + "/parameters", {n, p}, "(samples by parameters)", params.shape);
+    set.parameters = from_c_order(params.data, static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(p));
+    return set;
+}
+
+void write_aligned(h5::File& file, const std::string& set, const AlignedSet& a) {
+    const std::string g = aligned_path(set);
+    file.create_group(g, "aligned_set");
+    file.write_string_attribute(g, "method", a.method);
+    file.write_int_attribute(g, "reference", static_cast<std::int64_t>(a.reference));
+    const auto n = static_cast<std::uint64_t>(a.samples()), t = static_cast<std::uint64_t>(a.frames()),
+               d = static_cast<std::uint64_t>(a.dofs());
+    file.write_array(g + "/tensor", a.tensor.data(), c_order_shape(a.tensor), {"sample", "time", "dof"}, "pose");
+    // warps is T by N, column-major: its buffer is the C-order (sample, time) array.
+    file.write_array(g + "/warps", a.warps.data(), {n, t}, {"sample", "time"}, "frame");
+    file.write_array(g + "/mean", a.mean.data(), {d}, {"dof"}, "pose");
+    file.write_array(g + "/scale", a.scale.data(), {d}, {"dof"}, "pose");
+    std::vector<double> translation, yaw;
+    for (const Canonicalization& c : a.canonical) {
+        translation.insert(translation.end(), {c.translation.x(), c.translation.y(), c.translation.z()});
+        yaw.push_back(c.yaw);
+    }
+    file.write_array(g + "/canonical_translation", translation.data(), {n, 3}, {"sample", "xyz"}, "cm");
+    file.write_array(g + "/canonical_yaw", yaw.data(), {n}, {"sample"}, "rad");
+}
+
+AlignedSet read_aligned(const h5::File& file, const std::string& set) {
+    const std::string g = aligned_path(set);
+    AlignedSet a;
+    a.method = file.read_string_attribute(g, "method");
+    const std::int64_t reference = file.read_int_attribute(g, "reference");
+    const auto tensor = file.read_array<double>(g + "/tensor", 3);
+    const std::uint64_t n = tensor.shape[0], t = tensor.shape[1], d = tensor.shape[2];
+    if (reference < 0 || static_cast<std::uint64_t>(reference) >= std::max<std::uint64_t>(n, 1))
+        throw StoreError(file.name(), g,
+                         "attribute 'reference': expected a sample index in [0, " + std::to_string(n) + "), found " +
+                             std::to_string(reference));
+    a.reference = static_cast<std::size_t>(reference);
+    a.tensor = Tensor3(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
+    std::copy(tensor.data.begin(), tensor.data.end(), a.tensor.data());
+    const std::string why = "(tensor " + g + "/tensor is " + h5::shape_text(tensor.shape) + " = (sample, time, dof))";
+    const auto warps = file.read_array<double>(g + "/warps", 2);
+    expect_shape(file, g + "/warps", {n, t}, why, warps.shape);
+    a.warps = Eigen::Map<const MatX>(warps.data.data(), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
+    const auto mean = file.read_array<double>(g + "/mean", 1);
+    expect_shape(file, g + "/mean", {d}, why, mean.shape);
+    a.mean = Eigen::Map<const VecX>(mean.data.data(), static_cast<Eigen::Index>(d));
+    const auto scale = file.read_array<double>(g + "/scale", 1);
+    expect_shape(file, g + "/scale", {d}, why, scale.shape);
+    a.scale = Eigen::Map<const VecX>(scale.data.data(), static_cast<Eigen::Index>(d));
+    const auto translation = file.read_array<double>(g + "/canonical_translation", 2);
+    expect_shape(file, g + "/canonical_translation", {n, 3}, why, translation.shape);
+    const auto yaw = file.read_array<double>(g + "/canonical_yaw", 1);
+    expect_shape(file, g + "/canonical_yaw", {n}, why, yaw.shape);
+    for (std::size_t s = 0; s < n; ++s) {
+        Canonicalization c;
+        c.translation = Vec3(translation.data[3 * s], translation.data[3 * s + 1], translation.data[3 * s + 2]);
+        c.yaw = yaw.data[s];
+        a.canonical.push_back(c);
+    }
+    return a;
+}
+
+}  // namespace mocapdb::store

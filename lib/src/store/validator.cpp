@@ -1,0 +1,510 @@
+// mocapdb validate: every object of the file against the schema mirror, then the content rules the
+// mirror cannot express (clip columns against skeletons, set samples against clips, aligned tensors
+// against sets), reporting violations instead of throwing.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+#include "h5/file.hpp"
+#include "h5/quiet.hpp"
+#include "layout.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/store/validate.hpp"
+#include "root.hpp"
+#include "schema.hpp"
+#include "schema_text.hpp"
+
+namespace mocapdb {
+namespace {
+
+using store::AttributeSpec;
+using store::Extent;
+using store::JsonValue;
+using store::ObjectSpec;
+using store::ValueRules;
+using store::h5::ObjectType;
+
+using Bindings = std::vector<std::pair<std::string, std::string>>;  // placeholder -> link name
+
+class Validator {
+public:
+    Validator(const store::h5::File& file, const store::Schema& schema, const ValidateOptions& options,
+              ValidationReport& report)
+        : f_(file), schema_(schema), options_(options), report_(report) {}
+
+    void run() {
+        visit("/", {});
+        check_required();
+    }
+
+    void add(const std::string& path, const std::string& message) {
+        if (report_.violations.size() < options_.max_violations) {
+            report_.violations.push_back({path, message});
+        } else {
+            report_.truncated = true;
+        }
+    }
+
+private:
+    const store::h5::File& f_;
+    const store::Schema& schema_;
+    const ValidateOptions& options_;
+    ValidationReport& report_;
+    // symbol key -> (extent, where it was bound)
+    std::map<std::string, std::pair<std::uint64_t, std::string>> symbols_;
+    // pattern index -> concrete paths matched
+    std::map<std::size_t, std::vector<std::string>> matched_;
+
+    static std::vector<std::string> split(const std::string& path) {
+        std::vector<std::string> parts;
+        std::size_t start = 1;
+        while (start < path.size()) {
+            std::size_t end = path.find('/', start);
+            if (end == std::string::npos) end = path.size();
+            parts.push_back(path.substr(start, end - start));
+            start = end + 1;
+        }
+        return parts;
+    }
+
+    std::optional<std::size_t> match(const std::string& path, Bindings& bindings) const {
+        const auto parts = split(path);
+        for (std::size_t i = 0; i < schema_.objects.size(); ++i) {
+            const auto& seg = schema_.objects[i].segments;
+            if (seg.size() != parts.size()) continue;
+            Bindings b;
+            bool ok = true;
+            for (std::size_t k = 0; k < seg.size() && ok; ++k) {
+                if (store::is_placeholder(seg[k])) {
+                    b.emplace_back(seg[k], parts[k]);
+                } else {
+                    ok = seg[k] == parts[k];
+                }
+            }
+            if (ok) {
+                bindings = b;
+                return i;
+            }
+        }
+        return std::nullopt;
+    }
+
+    static std::string child(const std::string& parent, const std::string& name) {
+        return parent == "/" ? "/" + name : parent + "/" + name;
+    }
+
+    void visit(const std::string& path, const Bindings& /*parent*/) {
+        ++report_.objects;
+        Bindings bindings;
+        const auto index = match(path, bindings);
+        ObjectType type;
+        try {
+            type = f_.type_of(path);
+        } catch (const Error& e) {
+            add(path, e.what());
+            return;
+        }
+        if (!index) {
+            add(path, std::string("unexpected ") + (type == ObjectType::Group ? "group" : "object") +
+                          " (not part of format version " + std::to_string(schema_.format_version) + ")");
+            return;
+        }
+        const ObjectSpec& spec = schema_.objects[*index];
+        if (spec.group != (type == ObjectType::Group) || (!spec.group && type != ObjectType::Dataset)) {
+            add(path, std::string("expected a ") + (spec.group ? "group" : "dataset") + ", found " +
+                          (type == ObjectType::Group ? "a group" : type == ObjectType::Dataset ? "a dataset" : "another kind of object"));
+            return;
+        }
+        matched_[*index].push_back(path);
+        try {
+            check_attributes(path, spec, bindings);
+            if (!spec.group) check_dataset(path, spec, bindings);
+        } catch (const Error& e) {
+            add(path, e.what());
+        }
+        if (spec.group) {
+            std::vector<std::string> names;
+            try {
+                names = f_.children(path);
+            } catch (const Error& e) {
+                add(path, e.what());
+            }
+            for (const std::string& name : names) visit(child(path, name), bindings);
+        }
+    }
+
+    void check_required() {
+        for (std::size_t i = 0; i < schema_.objects.size(); ++i) {
+            const ObjectSpec& spec = schema_.objects[i];
+            if (!spec.required) continue;
+            // Instances of the parent pattern must contain this object.
+            std::vector<std::string> parents;
+            if (spec.segments.size() <= 1) {
+                parents.push_back("/");
+            } else {
+                for (std::size_t p = 0; p < schema_.objects.size(); ++p) {
+                    const auto& seg = schema_.objects[p].segments;
+                    if (seg.size() + 1 == spec.segments.size() &&
+                        std::equal(seg.begin(), seg.end(), spec.segments.begin()))
+                        for (const std::string& m : matched_[p]) parents.push_back(m);
+                }
+            }
+            for (const std::string& parent : parents) {
+                const std::string path = spec.segments.empty() ? "/" : child(parent, spec.segments.back());
+                if (!f_.exists(path))
+                    add(path, std::string("missing ") + (spec.group ? "group" : "dataset") + " (format version " +
+                                  std::to_string(schema_.format_version) + " requires it" +
+                                  (spec.group ? ", kind '" + spec.kind + "')" : ", " + spec.dtype + ")"));
+            }
+        }
+    }
+
+    std::string key_of(const std::string& symbol, const Bindings& b) const {
+        std::string k = symbol;
+        for (const auto& [name, value] : b) k += "|" + name + "=" + value;
+        return k;
+    }
+
+    void bind(const std::string& path, const std::string& what, const Extent& e, std::uint64_t found,
+              const Bindings& b) {
+        if (e.symbol.empty()) {
+            if (found != e.value)
+                add(path, what + ": expected " + std::to_string(e.value) + ", found " + std::to_string(found));
+            return;
+        }
+        const std::string key = key_of(e.symbol, b);
+        const auto it = symbols_.find(key);
+        if (it == symbols_.end()) {
+            symbols_.emplace(key, std::make_pair(found, path + " " + what));
+        } else if (it->second.first != found) {
+            add(path, what + ": expected " + std::to_string(it->second.first) + " (" + e.symbol + " as in " +
+                          it->second.second + "), found " + std::to_string(found));
+        }
+    }
+
+    static std::string shape_spec_text(const std::vector<Extent>& shape) {
+        if (shape.empty()) return "scalar";
+        std::string out = "(";
+        for (std::size_t k = 0; k < shape.size(); ++k)
+            out += (k ? ", " : "") + (shape[k].symbol.empty() ? std::to_string(shape[k].value) : shape[k].symbol);
+        return out + (shape.size() == 1 ? ",)" : ")");
+    }
+
+    void check_value(const std::string& path, const std::string& what, const JsonValue& v, const ValueRules& r) {
+        const bool number = v.type == JsonValue::Type::Number;
+        if (r.value && r.value->dump() != v.dump())
+            add(path, what + ": expected " + r.value->dump() + ", found " + v.dump());
+        if (!r.one_of.empty() &&
+            std::none_of(r.one_of.begin(), r.one_of.end(), [&](const JsonValue& x) { return x.dump() == v.dump(); })) {
+            std::string allowed;
+            for (const JsonValue& x : r.one_of) allowed += (allowed.empty() ? "" : ", ") + x.dump();
+            add(path, what + ": expected one of " + allowed + ", found " + v.dump());
+        }
+        if (number && r.min && !(v.number >= *r.min))
+            add(path, what + ": expected >= " + json_number(*r.min).dump() +
+                          ", found " + v.dump());
+        if (number && r.exclusive_min && !(v.number > *r.exclusive_min))
+            add(path, what + ": expected > " +
+                          json_number(*r.exclusive_min).dump() + ", found " +
+                          v.dump());
+        if (number && !std::isfinite(v.number)) add(path, what + ": expected a finite number, found " + v.dump());
+        if (r.pattern == "hex64") {
+            const bool ok = v.type == JsonValue::Type::String && v.string.size() == 64 &&
+                            std::all_of(v.string.begin(), v.string.end(),
+                                        [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+            if (!ok) add(path, what + ": expected 64 lowercase hex digits, found " + v.dump());
+        }
+        if (!r.ref.empty() && v.type == JsonValue::Type::String) {
+            std::string target = r.ref;
+            target.replace(target.find("{}"), 2, v.string);
+            bool exists = false;
+            try {
+                exists = !v.string.empty() && v.string.find('/') == std::string::npos && f_.exists(target);
+            } catch (const Error&) {
+            }
+            if (!exists) add(path, what + ": refers to " + target + ", which does not exist");
+        }
+    }
+
+    static JsonValue json_string(const std::string& s) {
+        JsonValue v;
+        v.type = JsonValue::Type::String;
+        v.string = s;
+        return v;
+    }
+    static JsonValue json_number(double x) {
+        JsonValue v;
+        v.type = JsonValue::Type::Number;
+        v.number = x;
+        return v;
+    }
+
+    void check_attribute(const std::string& path, const std::string& name, const std::string& dtype,
+                         const std::vector<Extent>& shape, const ValueRules& rules, const Bindings& b) {
+        const std::string what = "attribute '" + name + "'";
+        const store::h5::AttributeInfo info = f_.attribute_info(path, name);
+        if (info.dtype != dtype || info.shape.size() != shape.size()) {
+            add(path, what + ": expected " + dtype + " " + shape_spec_text(shape) + ", found " + info.dtype + " " +
+                          store::h5::shape_text(info.shape));
+            return;
+        }
+        for (std::size_t k = 0; k < shape.size(); ++k)
+            bind(path, what + " axis " + std::to_string(k), shape[k], info.shape[k], b);
+        if (!rules.any()) return;
+        std::vector<JsonValue> values;
+        if (dtype == "string") {
+            if (shape.empty()) {
+                values.push_back(json_string(f_.read_string_attribute(path, name)));
+            } else {
+                for (const std::string& s : f_.read_strings_attribute(path, name)) values.push_back(json_string(s));
+            }
+        } else if (dtype == "int64" && shape.empty()) {
+            values.push_back(json_number(static_cast<double>(f_.read_int_attribute(path, name))));
+        } else if (dtype == "float64") {
+            if (shape.empty()) {
+                values.push_back(json_number(f_.read_double_attribute(path, name)));
+            } else {
+                for (double x : f_.read_doubles_attribute(path, name)) values.push_back(json_number(x));
+            }
+        }
+        for (const JsonValue& v : values) check_value(path, what, v, rules);
+    }
+
+    void check_attributes(const std::string& path, const ObjectSpec& spec, const Bindings& b) {
+        const std::vector<std::string> present = f_.attribute_names(path);
+        auto has = [&](const std::string& name) {
+            return std::find(present.begin(), present.end(), name) != present.end();
+        };
+        for (const std::string& name : present) {
+            if (!schema_.user_attribute_prefix.empty() && name.rfind(schema_.user_attribute_prefix, 0) == 0) continue;
+            const bool known = std::any_of(spec.attributes.begin(), spec.attributes.end(),
+                                           [&](const AttributeSpec& a) { return a.name == name; }) ||
+                               (!spec.group && (name == "dims" || name == "units"));
+            if (!known)
+                add(path, "unexpected attribute '" + name + "' (not part of format version " +
+                              std::to_string(schema_.format_version) + "; user attributes must start with '" +
+                              schema_.user_attribute_prefix + "')");
+        }
+        for (const AttributeSpec& a : spec.attributes) {
+            if (!has(a.name)) {
+                if (a.required)
+                    add(path, "missing attribute '" + a.name + "' (expected " + a.dtype + " " +
+                                  shape_spec_text(a.shape) + ")");
+                continue;
+            }
+            check_attribute(path, a.name, a.dtype, a.shape, a.rules, b);
+        }
+        if (spec.group) return;
+        ValueRules dims_rule;
+        JsonValue dims;
+        dims.type = JsonValue::Type::Array;
+        for (const std::string& d : spec.dims) dims.array.push_back(json_string(d));
+        if (!has("dims")) {
+            add(path, "missing attribute 'dims' (expected " + dims.dump() + ")");
+        } else {
+            const auto info = f_.attribute_info(path, "dims");
+            if (info.dtype != "string" || info.shape.size() != 1) {
+                add(path, "attribute 'dims': expected string (" + std::to_string(spec.dims.size()) + ",), found " +
+                              info.dtype + " " + store::h5::shape_text(info.shape));
+            } else {
+                JsonValue found;
+                found.type = JsonValue::Type::Array;
+                for (const std::string& d : f_.read_strings_attribute(path, "dims")) found.array.push_back(json_string(d));
+                if (found.dump() != dims.dump())
+                    add(path, "attribute 'dims': expected " + dims.dump() + ", found " + found.dump());
+            }
+        }
+        ValueRules units_rule;
+        units_rule.value = json_string(spec.units);
+        if (!has("units")) {
+            add(path, "missing attribute 'units' (expected \"" + spec.units + "\")");
+        } else {
+            check_attribute(path, "units", "string", {}, units_rule, b);
+        }
+    }
+
+    std::vector<JsonValue> element_values(const std::string& path, const std::string& dtype) {
+        std::vector<JsonValue> out;
+        if (dtype == "string" || dtype == "fixed-string") {
+            for (const std::string& s : f_.read_strings(path)) out.push_back(json_string(s));
+        } else if (dtype == "float64") {
+            const auto a = f_.read_array<double>(path, static_cast<std::size_t>(f_.dataset_info(path).shape.size()));
+            for (double x : a.data) out.push_back(json_number(x));
+        } else if (dtype == "int64") {
+            const auto a = f_.read_array<std::int64_t>(path, f_.dataset_info(path).shape.size());
+            for (auto x : a.data) out.push_back(json_number(static_cast<double>(x)));
+        } else if (dtype == "int32") {
+            const auto a = f_.read_array<std::int32_t>(path, f_.dataset_info(path).shape.size());
+            for (auto x : a.data) out.push_back(json_number(x));
+        } else if (dtype == "uint8") {
+            const auto a = f_.read_array<std::uint8_t>(path, f_.dataset_info(path).shape.size());
+            for (auto x : a.data) out.push_back(json_number(x));
+        }
+        return out;
+    }
+
+    void check_dataset(const std::string& path, const ObjectSpec& spec, const Bindings& b) {
+        const store::h5::DatasetInfo info = f_.dataset_info(path);
+        if (info.dtype != spec.dtype || info.shape.size() != spec.shape.size()) {
+            add(path, "expected " + spec.dtype + " " + shape_spec_text(spec.shape) + " " + dims_text(spec.dims) +
+                          ", found " + info.dtype + " " + store::h5::shape_text(info.shape));
+            return;
+        }
+        for (std::size_t k = 0; k < spec.shape.size(); ++k)
+            bind(path, "axis " + std::to_string(k) + " ('" + spec.dims[k] + "')", spec.shape[k], info.shape[k], b);
+        std::uint64_t count = 1;
+        for (auto e : info.shape) count *= e;
+        if (count > 0) {
+            std::vector<std::string> missing;
+            for (const std::string& filter : spec.filters)
+                if (std::find(info.filters.begin(), info.filters.end(), filter) == info.filters.end())
+                    missing.push_back(filter);
+            if (!missing.empty()) {
+                std::string want, have;
+                for (const auto& x : spec.filters) want += (want.empty() ? "" : ", ") + x;
+                for (const auto& x : info.filters) have += (have.empty() ? "" : ", ") + x;
+                add(path, "expected filters " + want + ", found " + (have.empty() ? std::string("none") : have));
+            }
+        }
+        // Reading everything verifies the checksums.
+        try {
+            f_.read_and_discard(path);
+            ++report_.datasets_read;
+            if (spec.rules.any()) {
+                std::size_t reported = 0;
+                const std::size_t before = report_.violations.size();
+                const auto values = element_values(path, spec.dtype);
+                for (std::size_t k = 0; k < values.size() && reported < 3; ++k) {
+                    check_value(path, "element " + std::to_string(k), values[k], spec.rules);
+                    reported = report_.violations.size() - before;
+                }
+            }
+        } catch (const Error& e) {
+            add(path, e.what());
+        }
+    }
+
+    static std::string dims_text(const std::vector<std::string>& dims) {
+        std::string out = "dims (";
+        for (std::size_t k = 0; k < dims.size(); ++k) out += (k ? ", " : "") + dims[k];
+        return out + ")";
+    }
+};
+
+// Content rules beyond the mirror, through the same loaders the library uses.
+void check_content(const std::filesystem::path& file, Validator& v) {
+    Database db(file);
+    std::unordered_map<std::string, std::string> sha;
+    std::map<std::string, ClipRecord> records;
+    for (const std::string& id : [&] {
+             std::vector<std::string> ids;
+             try {
+                 for (const ClipRecord& r : db.clips()) {
+                     ids.push_back(r.id);
+                     records.emplace(r.id, r);
+                 }
+             } catch (const Error& e) {
+                 v.add(store::kClips, e.what());
+             }
+             return ids;
+         }()) {
+        const std::string path = store::clip_path(id);
+        try {
+            const auto [it, fresh] = sha.emplace(records.at(id).source.sha256, id);
+            if (!fresh) v.add(path, "attribute 'source_sha256' repeats clip " + it->second + " (expected unique sources)");
+            db.load_clip(id);
+        } catch (const StoreError& e) {
+            v.add(e.object_path().empty() ? path : e.object_path(), e.message());
+        } catch (const Error& e) {
+            v.add(path, e.what());
+        }
+    }
+    for (const std::string& name : db.set_names()) {
+        const std::string path = store::set_path(name);
+        try {
+            const MotionSet set = db.load_set(name);
+            try {
+                validate(set);
+            } catch (const InvalidArgument& e) {
+                v.add(path, e.what());
+            }
+            std::string skeleton;
+            for (std::size_t i = 0; i < set.samples.size(); ++i) {
+                const SampleRef& s = set.samples[i];
+                const auto it = records.find(s.clip);
+                if (it == records.end()) continue;  // reported by the ref rule
+                if (s.end > it->second.frames)
+                    v.add(path + "/sample_frames", "sample " + std::to_string(i) + ": [" + std::to_string(s.begin) +
+                                                       ", " + std::to_string(s.end) + ") lies beyond clip '" + s.clip +
+                                                       "' (" + std::to_string(it->second.frames) + " frames)");
+                if (skeleton.empty()) skeleton = it->second.skeleton;
+                if (it->second.skeleton != skeleton)
+                    v.add(path + "/sample_clip", "sample " + std::to_string(i) + ": clip '" + s.clip + "' has skeleton '" +
+                                                     it->second.skeleton + "', expected '" + skeleton +
+                                                     "' like sample 0 (a set shares one skeleton)");
+            }
+            const auto aligned = db.load_aligned(name);
+            if (!aligned) continue;
+            const std::string apath = store::aligned_path(name);
+            try {
+                validate(*aligned);
+            } catch (const InvalidArgument& e) {
+                v.add(apath, e.what());
+            }
+            if (static_cast<std::size_t>(aligned->samples()) != set.samples.size())
+                v.add(apath + "/tensor", "expected " + std::to_string(set.samples.size()) +
+                                             " samples (the set's), found " + std::to_string(aligned->samples()));
+            if (!skeleton.empty()) {
+                const std::size_t d = PoseLayout(*db.load_skeleton(skeleton)).dof_count();
+                if (static_cast<std::size_t>(aligned->dofs()) != d)
+                    v.add(apath + "/tensor", "expected " + std::to_string(d) + " dofs (pose vectors of skeleton '" +
+                                                 skeleton + "'), found " + std::to_string(aligned->dofs()));
+            }
+        } catch (const StoreError& e) {
+            v.add(e.object_path().empty() ? path : e.object_path(), e.message());
+        } catch (const Error& e) {
+            v.add(path, e.what());
+        }
+    }
+}
+
+}  // namespace
+
+const std::string& builtin_schema_json() {
+    static const std::string text = store::schema_v1_json_text();
+    return text;
+}
+
+ValidationReport validate_database(const std::filesystem::path& file, const ValidateOptions& options) {
+    store::h5::QuietScope quiet;
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) throw IoError(file.string() + ": no such file");
+    const std::string& text = options.schema_json.empty() ? builtin_schema_json() : options.schema_json;
+    const store::Schema schema = store::parse_schema(text, options.schema_json.empty() ? "format-v1.json" : "schema");
+    ValidationReport report;
+    store::h5::File f;
+    try {
+        f = store::h5::File::open(file, false);
+        store::check_root(f);
+    } catch (const StoreError& e) {
+        report.violations.push_back({e.object_path().empty() ? "/" : e.object_path(), e.message()});
+        return report;
+    }
+    Validator v(f, schema, options, report);
+    v.run();
+    f.close();
+    // The structure must hold before the content rules can be read meaningfully.
+    if (report.ok()) {
+        try {
+            check_content(file, v);
+        } catch (const StoreError& e) {
+            v.add(e.object_path().empty() ? "/" : e.object_path(), e.message());
+        }
+    }
+    return report;
+}
+
+}  // namespace mocapdb

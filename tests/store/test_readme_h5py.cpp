@@ -1,0 +1,42 @@
+// Acceptance 6: the README's h5py snippet reads the tensor and the parameters of a database. It runs
+// on the reference file with Debian's python3-h5py when installed; otherwise the same values are
+// read with h5dump.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "shared_data.hpp"
+#include "store_test_support.hpp"
+
+using namespace mocapdb::test;
+
+TEST_CASE("README: the h5py snippet reads the tensor and the control parameters", "[store][readme]") {
+    const std::string readme = file_bytes(test_data_dir().parent_path().parent_path() / "README.md");
+    const std::string begin = "<!-- h5py-snippet:begin -->\n```python\n";
+    const auto b = readme.find(begin);
+    REQUIRE(b != std::string::npos);
+    const auto e = readme.find("```\n<!-- h5py-snippet:end -->", b);
+    REQUIRE(e != std::string::npos);
+    const std::string snippet = readme.substr(b + begin.size(), e - b - begin.size());
+    const auto reference = test_data_dir() / "reference-v1.h5";
+
+    if (run_command("/usr/bin/python3 -c 'import h5py'").exit_code == 0) {
+        TempDir dir("readme");
+        std::ofstream(dir / "snippet.py") << snippet;
+        const CommandResult r = run_command("/usr/bin/python3 " + quoted((dir / "snippet.py").string()) + " " +
+                                            quoted(reference.string()) + " tiny_set");
+        INFO(r.output);
+        REQUIRE(r.exit_code == 0);
+        CHECK(r.output.find("parameters {'speed': 'cm/s'} (2, 1) samples ['tiny_walk', 'tiny_walk']") != std::string::npos);
+        CHECK(r.output.find("tensor (sample, time, dof) = (2, 3, 9) A(d=5, t=2, s=1) = 125.0") != std::string::npos);
+    } else {
+        WARN("python3-h5py is not installed: checking the same read with h5dump");
+        const CommandResult t = run_command("h5dump -d /sets/tiny_set/aligned/tensor -s 1,2,5 -c 1,1,1 " +
+                                            quoted(reference.string()));
+        CHECK(t.output.find("(1,2,5): 125") != std::string::npos);
+        const CommandResult p = run_command("h5dump -d /sets/tiny_set/parameters " + quoted(reference.string()));
+        CHECK(p.output.find("(0,0): 10,") != std::string::npos);
+        const CommandResult d = run_command("h5dump -a /sets/tiny_set/aligned/tensor/dims " + quoted(reference.string()));
+        CHECK(d.output.find("\"sample\", \"time\", \"dof\"") != std::string::npos);
+    }
+}

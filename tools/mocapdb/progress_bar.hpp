@@ -1,0 +1,35 @@
+#pragma once
+// A one-line progress bar on stderr, drawn only when stdout is a terminal (silent in pipes, scripts
+// and tests). Fed by the library's ProgressCallback.
+#include <chrono>
+#include <string>
+
+#include "mocapdb/core/progress.hpp"
+
+namespace mocapdb::cli {
+
+class ProgressBar {
+public:
+    /// `label` starts the line ("import").
+    explicit ProgressBar(std::string label);
+    /// Clears the line when it was drawn.
+    ~ProgressBar();
+    ProgressBar(const ProgressBar&) = delete;
+    ProgressBar& operator=(const ProgressBar&) = delete;
+
+    bool enabled() const noexcept { return enabled_; }
+    /// A callback that redraws the bar (at most ~10 times a second); empty when disabled.
+    ProgressCallback callback();
+    void update(const Progress& p);
+    /// Erases the bar (before printing other lines).
+    void clear();
+
+private:
+    std::string label_;
+    bool enabled_ = false;
+    bool drawn_ = false;
+    std::chrono::steady_clock::time_point last_{};
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace mocapdb::cli
