@@ -81,6 +81,9 @@ void write_aligned(h5::File& file, const std::string& set, const AlignedSet& a) 
     file.write_array(g + "/tensor", a.tensor.data(), c_order_shape(a.tensor), {"sample", "time", "dof"}, "pose");
     // warps is T by N, column-major: its buffer is the C-order (sample, time) array.
     file.write_array(g + "/warps", a.warps.data(), {n, t}, {"sample", "time"}, "frame");
+    // Stored beside the warps for readers of the file (the synthesis kriges these increments).
+    const MatX increments = a.inverse_warp_increments();
+    file.write_array(g + "/inverse_warp_increments", increments.data(), {n, t - 1}, {"sample", "time_step"}, "frame");
     file.write_array(g + "/mean", a.mean.data(), {d}, {"dof"}, "pose");
     file.write_array(g + "/scale", a.scale.data(), {d}, {"dof"}, "pose");
     std::vector<double> translation, yaw;
@@ -110,6 +113,13 @@ AlignedSet read_aligned(const h5::File& file, const std::string& set) {
     const auto warps = file.read_array<double>(g + "/warps", 2);
     expect_shape(file, g + "/warps", {n, t}, why, warps.shape);
     a.warps = Eigen::Map<const MatX>(warps.data.data(), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
+    const auto increments = file.read_array<double>(g + "/inverse_warp_increments", 2);
+    expect_shape(file, g + "/inverse_warp_increments", {n, t - 1}, why, increments.shape);
+    const Eigen::Map<const MatX> stored(increments.data.data(), static_cast<Eigen::Index>(t - 1), static_cast<Eigen::Index>(n));
+    const double mismatch = (stored - a.inverse_warp_increments()).cwiseAbs().maxCoeff();
+    if (!(mismatch <= 1e-9 * std::max(1.0, a.warps.cwiseAbs().maxCoeff())))
+        throw StoreError(file.name(), g + "/inverse_warp_increments",
+                         "expected warps[:, 1:] - warps[:, :-1], found values differing by up to " + std::to_string(mismatch));
     const auto mean = file.read_array<double>(g + "/mean", 1);
     expect_shape(file, g + "/mean", {d}, why, mean.shape);
     a.mean = Eigen::Map<const VecX>(mean.data.data(), static_cast<Eigen::Index>(d));
