@@ -1,8 +1,9 @@
 // The motion-file commands through the built CLI: info and convert.
 #include <catch2/catch.hpp>
 
-#include "cli_support.hpp"
-#include "kriging/mini_json.hpp"
+#include "shared_data.hpp"
+#include "test_support.hpp"
+#include "mini_json.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
@@ -18,10 +19,10 @@ std::string asf(const std::string& subject) { return (datasets_dir() / "cmu-asfa
 
 TEST_CASE("info --json reports 16_15: 471 frames at 120 Hz", "[cli][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const CliResult r = mocapdb_cli("info " + shell_quote(amc("16_15")) + " --asf " + shell_quote(asf("16")) + " --json");
-    INFO(r.out << r.err);
+    const CommandResult r = run_cli("info " + quoted(amc("16_15")) + " --asf " + quoted(asf("16")) + " --json");
+    INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    const Json j = parse_json(r.out);
+    const Json j = parse_json(r.output);
     CHECK(j["frames"].number == 471);
     CHECK(j["frame_rate"].number == 120);
     CHECK(j["channels"].number == 62);
@@ -32,22 +33,22 @@ TEST_CASE("info --json reports 16_15: 471 frames at 120 Hz", "[cli][shared]") {
 
 TEST_CASE("info on a PFNN BVH warns about the short file; --strict refuses it", "[cli][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
-    const std::string file = shell_quote((datasets_dir() / "cmu-walkrun-pfnn" / "16_13_60fps.bvh").string());
-    CliResult r = mocapdb_cli("info " + file + " --fps 60");
+    const std::string file = quoted((datasets_dir() / "cmu-walkrun-pfnn" / "16_13_60fps.bvh").string());
+    CommandResult r = run_cli("info " + file + " --fps 60");
     CHECK(r.exit_code == 0);
-    CHECK_THAT(r.out, Contains("222") && Contains("60 Hz"));
-    CHECK_THAT(r.err, Contains("warning") && Contains("declares 223 frames but 222"));
-    r = mocapdb_cli("info " + file + " --strict");
+    CHECK_THAT(r.output, Contains("222") && Contains("60 Hz"));
+    CHECK_THAT(r.output, Contains("warning") && Contains("declares 223 frames but 222"));
+    r = run_cli("info " + file + " --strict");
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.err, Contains("16_13_60fps.bvh") && Contains("declares 223 frames"));
+    CHECK_THAT(r.output, Contains("16_13_60fps.bvh") && Contains("declares 223 frames"));
 }
 
 TEST_CASE("convert writes a BVH with the AMC's joint positions, and never overwrites without --force", "[cli][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    ScratchDir dir("convert");
-    const std::string out = dir / "16_15.bvh";
-    CliResult r = mocapdb_cli("convert " + shell_quote(amc("16_15")) + " -o " + shell_quote(out));
-    INFO(r.out << r.err);
+    TempDir dir("convert");
+    const std::string out = (dir / "16_15.bvh").string();
+    CommandResult r = run_cli("convert " + quoted(amc("16_15")) + " -o " + quoted(out));
+    INFO(r.output);
     REQUIRE(r.exit_code == 0);
     const Clip source = read_clip(amc("16_15"));
     const Clip written = read_bvh(out);
@@ -55,29 +56,29 @@ TEST_CASE("convert writes a BVH with the AMC's joint positions, and never overwr
     CHECK(written.frame_rate == Approx(120.0));
     CHECK((joint_positions(written) - joint_positions(source)).cwiseAbs().maxCoeff() < 1e-3);
 
-    r = mocapdb_cli("convert " + shell_quote(amc("16_15")) + " -o " + shell_quote(out));
+    r = run_cli("convert " + quoted(amc("16_15")) + " -o " + quoted(out));
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.err, Contains("exists") && Contains("--force"));
-    CHECK(mocapdb_cli("convert " + shell_quote(amc("16_15")) + " -o " + shell_quote(out) + " --force").exit_code == 0);
+    CHECK_THAT(r.output, Contains("exists") && Contains("--force"));
+    CHECK(run_cli("convert " + quoted(amc("16_15")) + " -o " + quoted(out) + " --force").exit_code == 0);
 }
 
 TEST_CASE("bad input gives one line naming the file, never a crash", "[cli]") {
-    ScratchDir dir("bad");
-    const std::string bad = dir / "bad.bvh";
+    TempDir dir("bad");
+    const std::string bad = (dir / "bad.bvh").string();
     std::FILE* f = std::fopen(bad.c_str(), "w");
     std::fputs("HIERARCHY\nROOT hip\n{\n OFFSET 0 0 x\n", f);
     std::fclose(f);
-    CliResult r = mocapdb_cli("info " + shell_quote(bad));
+    CommandResult r = run_cli("info " + quoted(bad));
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.err, Contains("bad.bvh:4:") && Contains("expected OFFSET component"));
-    const std::string txt = dir / "notes.txt";
+    CHECK_THAT(r.output, Contains("bad.bvh:4:") && Contains("expected OFFSET component"));
+    const std::string txt = (dir / "notes.txt").string();
     f = std::fopen(txt.c_str(), "w");
     std::fputs("hello\n", f);
     std::fclose(f);
-    r = mocapdb_cli("info " + shell_quote(txt));
+    r = run_cli("info " + quoted(txt));
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.err, Contains("unsupported file type"));
-    r = mocapdb_cli("info " + shell_quote(dir / "missing.bvh"));
+    CHECK_THAT(r.output, Contains("unsupported file type"));
+    r = run_cli("info " + quoted((dir / "missing.bvh").string()));
     CHECK(r.exit_code != 0);
-    CHECK(r.err.find("Segmentation") == std::string::npos);
+    CHECK(r.output.find("Segmentation") == std::string::npos);
 }

@@ -2,8 +2,9 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 
-#include "cli_support.hpp"
-#include "kriging/mini_json.hpp"
+#include "shared_data.hpp"
+#include "test_support.hpp"
+#include "mini_json.hpp"
 #include "mocapdb/store/database.hpp"
 
 using namespace mocapdb;
@@ -13,27 +14,27 @@ using Catch::Matchers::Contains;
 namespace {
 std::string walk_files() {
     std::string files;
-    for (int t = 11; t <= 34; ++t) files += " " + shell_quote((datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc")).string());
-    return files + " " + shell_quote((datasets_dir() / "cmu-asfamc" / "16_47.amc").string());
+    for (int t = 11; t <= 34; ++t) files += " " + quoted((datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc")).string());
+    return files + " " + quoted((datasets_dir() / "cmu-asfamc" / "16_47.amc").string());
 }
 }  // namespace
 
 TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    ScratchDir dir("sets");
-    const std::string db = shell_quote(dir / "walks.h5");
-    CliResult r = mocapdb_cli("import" + walk_files() + " -o " + db);
-    INFO(r.out << r.err);
+    TempDir dir("sets");
+    const std::string db = quoted((dir / "walks.h5").string());
+    CommandResult r = run_cli("import" + walk_files() + " -o " + db);
+    INFO(r.output);
     REQUIRE(r.exit_code == 0);
 
-    r = mocapdb_cli("set create " + db + " --name walks --clips '16_1[1-9]' '16_2?' '16_3[0-4]' 16_47 --extract turn speed");
-    INFO(r.out << r.err);
+    r = run_cli("set create " + db + " --name walks --clips '16_1[1-9]' '16_2?' '16_3[0-4]' 16_47 --extract turn speed");
+    INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    CHECK_THAT(r.out, Contains("25 samples"));
+    CHECK_THAT(r.output, Contains("25 samples"));
 
-    r = mocapdb_cli("set show " + db + " walks --json");
+    r = run_cli("set show " + db + " walks --json");
     REQUIRE(r.exit_code == 0);
-    const Json set = parse_json(r.out);
+    const Json set = parse_json(r.output);
     REQUIRE(set["samples"].items.size() == 25);
     CHECK(set["parameters"][0]["name"].text == "turn");
     CHECK(set["parameters"][1]["unit"].text == "cm/s");
@@ -41,31 +42,31 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     CHECK(set["aligned"].boolean == false);
 
     // A second set of the same name needs --force; a pattern that matches nothing is an error.
-    r = mocapdb_cli("set create " + db + " --name walks --clips 16_11 --extract turn");
+    r = run_cli("set create " + db + " --name walks --clips 16_11 --extract turn");
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.err, Contains("exists") && Contains("--force"));
-    r = mocapdb_cli("set create " + db + " --name other --clips 'zz*' --extract turn");
+    CHECK_THAT(r.output, Contains("exists") && Contains("--force"));
+    r = run_cli("set create " + db + " --name other --clips 'zz*' --extract turn");
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.err, Contains("no clip matches 'zz*'"));
+    CHECK_THAT(r.output, Contains("no clip matches 'zz*'"));
 
     // Parameters from a CSV: every sample needs a row.
-    const std::string csv = dir / "params.csv";
+    const std::string csv = (dir / "params.csv").string();
     std::ofstream(csv) << "sample,target[cm]\n16_11,10\n16_12,20\n";
-    r = mocapdb_cli("set create " + db + " --name two --clips 16_11 16_12 --params " + shell_quote(csv));
-    INFO(r.out << r.err);
+    r = run_cli("set create " + db + " --name two --clips 16_11 16_12 --params " + quoted(csv));
+    INFO(r.output);
     CHECK(r.exit_code == 0);
-    r = mocapdb_cli("set create " + db + " --name three --clips 16_11 16_12 16_13 --params " + shell_quote(csv));
+    r = run_cli("set create " + db + " --name three --clips 16_11 16_12 16_13 --params " + quoted(csv));
     CHECK(r.exit_code == 1);
-    CHECK_THAT(r.err, Contains("params.csv") && Contains("no row for sample '16_13'"));
+    CHECK_THAT(r.output, Contains("params.csv") && Contains("no row for sample '16_13'"));
 
-    r = mocapdb_cli("align " + db + " --set walks --frames 80");
-    INFO(r.out << r.err);
+    r = run_cli("align " + db + " --set walks --frames 80");
+    INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    CHECK_THAT(r.out, Contains("90 dofs x 80 frames x 25 samples"));
+    CHECK_THAT(r.output, Contains("90 dofs x 80 frames x 25 samples"));
 
-    r = mocapdb_cli("set list " + db + " --json");
+    r = run_cli("set list " + db + " --json");
     REQUIRE(r.exit_code == 0);
-    const Json list = parse_json(r.out);
+    const Json list = parse_json(r.output);
     REQUIRE(list.items.size() == 2);
 
     // The stored tensor and parameters read back through the library.
@@ -76,5 +77,5 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     CHECK(aligned->samples() == 25);
     CHECK((aligned->inverse_warp_increments().array() > 0).all());
     CHECK(database.load_set("two").parameters(1, 0) == 20.0);
-    CHECK(mocapdb_cli("validate " + db).exit_code == 0);
+    CHECK(run_cli("validate " + db).exit_code == 0);
 }

@@ -12,6 +12,7 @@
 
 #include "csv_fixture.hpp"
 #include "mini_json.hpp"
+#include "test_support.hpp"
 #include "mocapdb/kriging/variogram.hpp"
 #include "shared_data.hpp"
 
@@ -20,39 +21,14 @@ using mocapdb::test::parse_json;
 using mocapdb::test::read_csv;
 using mocapdb::test::reference_dir;
 using mocapdb::test::rel_err;
+using mocapdb::test::run_cli;
 
 namespace {
-
-struct RunResult {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
 
 std::filesystem::path scratch_dir() {
     const auto d = std::filesystem::temp_directory_path() / ("mocapdb_kriging_cli_" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     return d;
-}
-
-std::string slurp(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-RunResult run_cli(const std::string& args) {
-    const auto dir = scratch_dir();
-    const auto out = dir / "stdout.txt";
-    const auto err = dir / "stderr.txt";
-    const std::string cmd = "\"" + cli_path() + "\" " + args + " > \"" + out.string() + "\" 2> \"" + err.string() + "\"";
-    const int status = std::system(cmd.c_str());
-    RunResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
 }
 
 #define MOCAPDB_REQUIRE_CLI()                                           \
@@ -70,7 +46,7 @@ TEST_CASE("CLI variogram --json reproduces gstat's Meuse bins", "[kriging][cli]"
     const auto g = reference_dir() / "gstat";
     MOCAPDB_REQUIRE_SHARED(g);
     const auto ref = read_csv(g / "meuse_variogram_bins.csv");
-    const RunResult r = run_cli("variogram --data \"" + (g / "meuse_logzinc.csv").string() +
+    const mocapdb::test::CommandResult r = run_cli("variogram --data \"" + (g / "meuse_logzinc.csv").string() +
                                 "\" --coords x,y --value logzinc --bins 10 --cutoff 1600 --estimator cressie --fit sph --json");
     INFO("stderr: " << r.err);
     REQUIRE(r.exit_code == 0);
@@ -105,7 +81,7 @@ TEST_CASE("CLI krige --json reproduces gstat's universal kriging and LOO", "[kri
         out.precision(17);
         for (auto r : rows) out << ref.number(r, "x") << "," << ref.number(r, "y") << "\n";
     }
-    const RunResult r = run_cli("krige --data \"" + (g / "meuse_logzinc.csv").string() + "\" --coords x,y --value logzinc --query \"" +
+    const mocapdb::test::CommandResult r = run_cli("krige --data \"" + (g / "meuse_logzinc.csv").string() + "\" --coords x,y --value logzinc --query \"" +
                                 q.string() + "\" --model stable:1.5 --nugget 0.05 --sill 0.55 --range 500 --trend linear --loo --json");
     INFO("stderr: " << r.err);
     REQUIRE(r.exit_code == 0);
@@ -129,7 +105,7 @@ TEST_CASE("CLI krige --json reproduces gstat's universal kriging and LOO", "[kri
     CHECK(j["status"]["factorization"].text == "ok");
 
     // Text output and --fit auto also run.
-    const RunResult t = run_cli("krige --data \"" + (g / "meuse_logzinc.csv").string() + "\" --coords x,y --value logzinc --query \"" +
+    const mocapdb::test::CommandResult t = run_cli("krige --data \"" + (g / "meuse_logzinc.csv").string() + "\" --coords x,y --value logzinc --query \"" +
                                 q.string() + "\" --fit auto --trend linear --normalize");
     INFO("stderr: " << t.err);
     CHECK(t.exit_code == 0);
@@ -143,7 +119,7 @@ TEST_CASE("CLI reports bad tables with file and line, and bad options, with a no
         std::ofstream out(bad);
         out << "x,y,v\n1,2,3\n4,oops,6\n7,8,9\n";
     }
-    RunResult r = run_cli("variogram --data \"" + bad.string() + "\" --coords x,y --value v");
+    mocapdb::test::CommandResult r = run_cli("variogram --data \"" + bad.string() + "\" --coords x,y --value v");
     INFO("stderr: " << r.err);
     CHECK(r.exit_code != 0);
     CHECK(r.err.find(bad.string() + ":3") != std::string::npos);

@@ -15,38 +15,6 @@
 
 namespace mocapdb::test {
 
-TempDir::TempDir(const std::string& tag) {
-    std::random_device rd;
-    path_ = std::filesystem::temp_directory_path() /
-            ("mocapdb-test-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(rd() % 1000000));
-    std::filesystem::create_directories(path_);
-}
-
-TempDir::~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-}
-
-CommandResult run_command(const std::string& command_line) {
-    CommandResult r;
-    FILE* pipe = ::popen((command_line + " 2>&1").c_str(), "r");
-    if (pipe == nullptr) return r;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-std::string quoted(const std::string& word) {
-    std::string out = "'";
-    for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-CommandResult run_cli(const std::string& arguments) { return run_command(quoted(cli_path()) + " " + arguments); }
-
 Clip synthetic_clip(std::size_t frames, std::size_t joints, unsigned seed, double frame_rate) {
     std::vector<Joint> js;
     Joint root;

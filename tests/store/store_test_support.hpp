@@ -7,34 +7,9 @@
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/store/clip_record.hpp"
+#include "test_support.hpp"
 
 namespace mocapdb::test {
-
-/// A fresh folder under the system temp folder, removed with its content on destruction.
-class TempDir {
-public:
-    explicit TempDir(const std::string& tag);
-    ~TempDir();
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const std::filesystem::path& path() const noexcept { return path_; }
-    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
-private:
-    std::filesystem::path path_;
-};
-
-struct CommandResult {
-    int exit_code = -1;
-    std::string output;  ///< stdout and stderr together
-};
-
-/// Runs a shell command line, capturing both streams.
-CommandResult run_command(const std::string& command_line);
-/// Runs the mocapdb CLI with `arguments` (already shell-quoted where needed).
-CommandResult run_cli(const std::string& arguments);
-/// Single-quotes a path or word for the shell.
-std::string quoted(const std::string& word);
 
 /// A small synthetic clip: root with 6 channels and `joints` chain joints with 3 rotation channels
 /// each (plus an end site), smooth values; deterministic for a given seed.

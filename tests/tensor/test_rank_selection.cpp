@@ -11,7 +11,7 @@ using mocapdb::test::low_rank_tensor;
 using mocapdb::test::random_tensor;
 
 TEST_CASE("Rank selection recovers the multilinear rank of a noisy low-rank tensor", "[tensor][ranks]") {
-    const Ranks truth[] = {{3, 4, 5}, {6, 2, 4}, {1, 3, 2}};
+    const Ranks truth[] = {{3, 4, 5}, {6, 2, 4}, {2, 3, 2}};  // each rank <= product of the others
     unsigned seed = 101;
     for (const Ranks& r : truth) {
         const Tensor3 a = low_rank_tensor({12, 14, 10}, r, 1e-6, seed++);
