@@ -3,6 +3,7 @@
 // re-import of everything (all skipped as duplicates), a full read of every clip, and validate.
 // Prints one "name value unit" line per figure.
 // Usage: bench_import [SHARED_DIR]   (default: ../shared beside the repository)
+#include "bench_timing.hpp"
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -17,11 +18,11 @@
 
 using namespace mocapdb;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
+
+using namespace mocapdb::bench;
 
 namespace {
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 double peak_rss_mb() {
     rusage usage{};

@@ -3,6 +3,7 @@
 //   weights of one query for N = 92, P = 4 (target <= 1 us),
 //   weights of a batch of 10 000 queries.
 // Plain executable; prints one "key value unit" line per figure. Usage: bench_kriging [repeats]
+#include "bench_timing.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,7 +16,8 @@
 #include "mocapdb/kriging/rbf.hpp"
 
 using namespace mocapdb::kriging;
-using Clock = std::chrono::steady_clock;
+
+using namespace mocapdb::bench;
 
 namespace {
 
@@ -27,16 +29,8 @@ Eigen::MatrixXd uniform(Eigen::Index n, Eigen::Index p, unsigned seed) {
     return m;
 }
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Best of the repeats: the figure least disturbed by other processes on a shared machine.
-double best(std::vector<double> v) { return *std::min_element(v.begin(), v.end()); }
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
-volatile double g_sink = 0.0;
 
 }  // namespace
 

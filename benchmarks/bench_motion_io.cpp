@@ -1,6 +1,7 @@
 // Motion data layer throughput on the shared CMU clips: BVH parse (MB/s), AMC parse (MB/s) and
 // forward kinematics (frames/s). Prints one "name value unit" line per figure.
 // Usage: bench_motion_io [SHARED_DIR]   (default: ../shared beside the repository)
+#include "bench_timing.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -15,7 +16,8 @@
 
 using namespace mocapdb;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
+
+using namespace mocapdb::bench;
 
 namespace {
 
@@ -27,19 +29,7 @@ std::vector<fs::path> files_with(const fs::path& dir, const std::string& ext) {
     return out;
 }
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// Best of `repeats` timings of fn() (the machine is shared: the minimum is the least disturbed run).
-template <class F>
-double best_of(int repeats, F fn) {
-    double best = 1e300;
-    for (int r = 0; r < repeats; ++r) {
-        const auto t = Clock::now();
-        fn();
-        best = std::min(best, seconds_since(t));
-    }
-    return best;
-}
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 //   PoseEvaluator: DofPrecomputed ((D x R2R3) * (u_sample (x) u_time)) and CoreFirst.
 // Plain executable; prints one "key value unit" line per figure, best of the repeats (median in
 // brackets). Usage: bench_tensor [repeats]
+#include "bench_timing.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -18,18 +19,12 @@
 
 using namespace mocapdb;
 using namespace mocapdb::tensor;
-using Clock = std::chrono::steady_clock;
+
+using namespace mocapdb::bench;
 
 namespace {
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-double best(std::vector<double> v) { return *std::min_element(v.begin(), v.end()); }
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
-volatile double g_sink = 0.0;
 
 template <class F>
 std::vector<double> time_runs(int repeats, F&& f) {

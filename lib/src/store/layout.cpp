@@ -31,4 +31,16 @@ MatX from_c_order(const std::vector<double>& data, Eigen::Index rows, Eigen::Ind
                                                                                                    cols);
 }
 
+std::vector<std::string> split_path(const std::string& path) {
+    std::vector<std::string> parts;
+    std::size_t start = 1;
+    while (start < path.size()) {
+        std::size_t end = path.find('/', start);
+        if (end == std::string::npos) end = path.size();
+        parts.push_back(path.substr(start, end - start));
+        start = end + 1;
+    }
+    return parts;
+}
+
 }  // namespace mocapdb::store

@@ -19,6 +19,9 @@ inline std::string clip_path(const std::string& id) { return kClips + "/" + id; 
 inline std::string set_path(const std::string& name) { return kSets + "/" + name; }
 inline std::string aligned_path(const std::string& set) { return set_path(set) + "/aligned"; }
 
+/// "/a/b/c" -> {"a", "b", "c"}.
+std::vector<std::string> split_path(const std::string& path);
+
 /// InvalidArgument unless `name` can be one HDF5 link name: non-empty, no '/', not "." or "..",
 /// no control characters. `what` names it in the message ("clip id", "set name").
 void check_link_name(const std::string& name, const char* what);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "layout.hpp"
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb::store {
@@ -81,18 +82,6 @@ private:
     const std::string& source_;
 };
 
-std::vector<std::string> split(const std::string& path) {
-    std::vector<std::string> parts;
-    std::size_t start = 1;
-    while (start < path.size()) {
-        std::size_t end = path.find('/', start);
-        if (end == std::string::npos) end = path.size();
-        parts.push_back(path.substr(start, end - start));
-        start = end + 1;
-    }
-    return parts;
-}
-
 }  // namespace
 
 Schema parse_schema(std::string_view json, const std::string& source) {
@@ -112,7 +101,7 @@ Schema parse_schema(std::string_view json, const std::string& source) {
         spec.path = r.text(o, "path", "object");
         const std::string where = "object " + spec.path;
         if (spec.path.empty() || spec.path.front() != '/') r.fail(where, "paths must be absolute");
-        spec.segments = split(spec.path);
+        spec.segments = split_path(spec.path);
         const std::string type = r.text(o, "type", where);
         if (type != "group" && type != "dataset") r.fail(where, "type must be \"group\" or \"dataset\"");
         spec.group = type == "group";

@@ -7,8 +7,8 @@
 #include <unordered_map>
 
 #include "h5/file.hpp"
-#include "h5/quiet.hpp"
 #include "layout.hpp"
+#include "h5/quiet.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
@@ -58,20 +58,8 @@ private:
     // pattern index -> concrete paths matched
     std::map<std::size_t, std::vector<std::string>> matched_;
 
-    static std::vector<std::string> split(const std::string& path) {
-        std::vector<std::string> parts;
-        std::size_t start = 1;
-        while (start < path.size()) {
-            std::size_t end = path.find('/', start);
-            if (end == std::string::npos) end = path.size();
-            parts.push_back(path.substr(start, end - start));
-            start = end + 1;
-        }
-        return parts;
-    }
-
     std::optional<std::size_t> match(const std::string& path, Bindings& bindings) const {
-        const auto parts = split(path);
+        const auto parts = store::split_path(path);
         for (std::size_t i = 0; i < schema_.objects.size(); ++i) {
             const auto& seg = schema_.objects[i].segments;
             if (seg.size() != parts.size()) continue;

@@ -1,0 +1,36 @@
+#pragma once
+// Timing helpers shared by the benchmark programs. The machine is shared and noisy: programs report
+// the best (least disturbed) of several repeats, and the median beside it where useful.
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace mocapdb::bench {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+inline double best(std::vector<double> v) { return *std::min_element(v.begin(), v.end()); }
+
+inline double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+/// Best of `repeats` timings of fn(), seconds.
+template <class F>
+double best_of(int repeats, F fn) {
+    double result = 1e300;
+    for (int r = 0; r < repeats; ++r) {
+        const auto t = Clock::now();
+        fn();
+        result = std::min(result, seconds_since(t));
+    }
+    return result;
+}
+
+/// Written by benchmarks so the compiler cannot drop the measured work.
+inline volatile double g_sink = 0.0;
+
+}  // namespace mocapdb::bench
