@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job, end to end. For now (until synthesis lands): describe a CMU clip, convert it from
-# ASF/AMC to BVH, and read the BVH back.
+# ASF/AMC to BVH and read the BVH back; then store subject 16's walks in a motion database, build a
+# motion set with measured turn and speed, and time-align it into a pose tensor.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,4 +27,17 @@ echo
 echo "== mocapdb info $out/16_15.bvh"
 "$mocapdb" info "$out/16_15.bvh"
 echo
-echo "demo: outputs are in $out/ (16_15.bvh opens in Blender: File > Import > Motion Capture (.bvh))"
+echo "== mocapdb import (subject 16's walks) -> $out/walks.h5"
+walks=()
+for t in 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 47; do walks+=("$data/16_$t.amc"); done
+"$mocapdb" import "${walks[@]}" -o "$out/walks.h5" --force
+echo
+echo "== mocapdb set create / align"
+"$mocapdb" set create "$out/walks.h5" --name walks --clips '16_*' --extract turn speed displacement
+"$mocapdb" align "$out/walks.h5" --set walks --frames 100 --method dtw
+"$mocapdb" set show "$out/walks.h5" walks
+echo
+"$mocapdb" info "$out/walks.h5"
+echo
+echo "demo: outputs are in $out/ (16_15.bvh opens in Blender: File > Import > Motion Capture (.bvh);"
+echo "      walks.h5 holds the clips, the set and its tensor: see README.md for reading it with h5py)"
