@@ -21,8 +21,8 @@ struct AlignArgs {
 
 void run_align(const AlignArgs& a) {
     const auto start = std::chrono::steady_clock::now();
-    DatabaseWriter writer(a.db, DatabaseWriter::Mode::OpenOrCreate);
-    const Database& db = writer.view();
+    // Read from the published file (errors name it), write in a session only once aligned.
+    const Database db(a.db);
     const MotionSet set = db.load_set(a.set);
     std::vector<Clip> samples;
     std::vector<std::string> labels;
@@ -42,6 +42,7 @@ void run_align(const AlignArgs& a) {
     }
     const AlignedSet aligned = align_samples(samples, options);
     const double distance = mean_alignment_distance(samples, aligned);
+    DatabaseWriter writer(a.db, DatabaseWriter::Mode::OpenOrCreate);
     writer.put_aligned(a.set, aligned);
     writer.commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
