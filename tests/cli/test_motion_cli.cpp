@@ -22,7 +22,7 @@ TEST_CASE("info --json reports 16_15: 471 frames at 120 Hz", "[cli][shared]") {
     const CommandResult r = run_cli("info " + quoted(amc("16_15")) + " --asf " + quoted(asf("16")) + " --json");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    const Json j = parse_json(r.output);
+    const Json j = parse_json(r.out);
     CHECK(j["frames"].number == 471);
     CHECK(j["frame_rate"].number == 120);
     CHECK(j["channels"].number == 62);

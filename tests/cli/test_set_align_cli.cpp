@@ -34,7 +34,7 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
 
     r = run_cli("set show " + db + " walks --json");
     REQUIRE(r.exit_code == 0);
-    const Json set = parse_json(r.output);
+    const Json set = parse_json(r.out);
     REQUIRE(set["samples"].items.size() == 25);
     CHECK(set["parameters"][0]["name"].text == "turn");
     CHECK(set["parameters"][1]["unit"].text == "cm/s");
@@ -66,7 +66,7 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
 
     r = run_cli("set list " + db + " --json");
     REQUIRE(r.exit_code == 0);
-    const Json list = parse_json(r.output);
+    const Json list = parse_json(r.out);
     REQUIRE(list.items.size() == 2);
 
     // The stored tensor and parameters read back through the library.

@@ -72,7 +72,8 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
         throw InvalidArgument("motion set '" + options.name + "': the " + std::to_string(clip_ids.size()) +
                               " selected clips yield no sample");
     set.parameters.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(set.parameter_names.size()));
-    for (std::size_t i = 0; i < rows.size(); ++i) set.parameters.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+    if (set.parameters.cols() > 0)  // (no columns: the caller supplies the parameters, e.g. from a CSV)
+        for (std::size_t i = 0; i < rows.size(); ++i) set.parameters.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
     if (!options.extractors.empty()) {
         set.parameter_source = "extract:";
         for (std::size_t k = 0; k < options.extractors.size(); ++k)
