@@ -21,6 +21,24 @@ using namespace mocapdb::bench;
 
 namespace {
 
+// Seconds per single-query weights call of `interp`, one figure per repeat (queries: P by 4096).
+std::vector<double> per_query_seconds(const Interpolator& interp, const Eigen::MatrixXd& queries, int repeats) {
+    QueryWorkspace ws;
+    Eigen::VectorXd w(interp.num_samples());
+    const int iters = 200000;
+    std::vector<double> t;
+    for (int r = 0; r < repeats; ++r) {
+        const auto t0 = Clock::now();
+        for (int i = 0; i < iters; ++i) {
+            interp.weights(queries.col(i & 4095), w, ws);
+            g_sink = g_sink + w(i % w.size());
+        }
+        t.push_back(seconds_since(t0) / iters);
+    }
+    return t;
+}
+
+
 Eigen::MatrixXd uniform(Eigen::Index n, Eigen::Index p, unsigned seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> ud(0.0, 1.0);
@@ -68,19 +86,7 @@ int main(int argc, char** argv) {
         const Eigen::MatrixXd queries = uniform(4096, p, 3).transpose();
         for (const auto& model : models) {
             for (const auto* opt : {&ols, &gls}) {
-                const Kriging k = Kriging::build(pts, model, *opt);
-                QueryWorkspace ws;
-                Eigen::VectorXd w(n);
-                const int iters = 200000;
-                std::vector<double> t;
-                for (int r = 0; r < repeats; ++r) {
-                    const auto t0 = Clock::now();
-                    for (int i = 0; i < iters; ++i) {
-                        k.weights(queries.col(i & 4095), w, ws);
-                        g_sink = g_sink + w(i % n);
-                    }
-                    t.push_back(seconds_since(t0) / iters);
-                }
+                const std::vector<double> t = per_query_seconds(Kriging::build(pts, model, *opt), queries, repeats);
                 std::printf("weights_per_query_N92_P4_%s_%s %.1f ns (median %.1f)\n",
                             to_string(model.family) == std::string("sph")
                                 ? "sph"
@@ -89,19 +95,7 @@ int main(int argc, char** argv) {
             }
         }
         // RBF baseline, same interface.
-        const RbfInterpolator rbf = RbfInterpolator::build(pts, {});
-        QueryWorkspace ws;
-        Eigen::VectorXd w(n);
-        const int iters = 200000;
-        std::vector<double> t;
-        for (int r = 0; r < repeats; ++r) {
-            const auto t0 = Clock::now();
-            for (int i = 0; i < iters; ++i) {
-                rbf.weights(queries.col(i & 4095), w, ws);
-                g_sink = g_sink + w(i % n);
-            }
-            t.push_back(seconds_since(t0) / iters);
-        }
+        const std::vector<double> t = per_query_seconds(RbfInterpolator::build(pts, {}), queries, repeats);
         std::printf("rbf_weights_per_query_N92_P4 %.1f ns (median %.1f)\n", 1e9 * best(t), 1e9 * median(t));
     }
     // 3. Batch of 10 000 queries (weights matrix N by 10 000), N = 92 and N = 1000.
