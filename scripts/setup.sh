@@ -10,6 +10,8 @@ packages=(
   python3-h5py               # the README's h5py snippet, run by the store tests
   catch2
   libcli11-dev
+  libzfp-dev zlib1g-dev      # compression baselines (zfp) and entropy coding (deflate)
+  liblbfgspp-dev             # L-BFGS for the Gaussian-process hyperparameters
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
 )
 

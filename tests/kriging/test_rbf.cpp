@@ -46,11 +46,12 @@ TEST_CASE("RBF weights: partition of unity, exact interpolation, linear precisio
             CHECK((r.weights_batch(pts) - Eigen::MatrixXd::Identity(30, 30)).cwiseAbs().maxCoeff() <= 1e-9);
         }
         CHECK((r.predict(queries, lin).col(0) - lin_truth).cwiseAbs().maxCoeff() <= 1e-9);
-        // Single and batch paths agree.
+        // Single and batch paths agree (to rounding amplified by the system's conditioning: the two
+        // paths sum in different orders, and the cubic system has rcond ~5e-6).
         QueryWorkspace ws;
         Eigen::VectorXd wq(30);
         r.weights(queries.row(3).transpose(), wq, ws);
-        CHECK((wq - w.col(3)).cwiseAbs().maxCoeff() <= 1e-12);
+        CHECK((wq - w.col(3)).cwiseAbs().maxCoeff() <= 1e-15 / std::min(r.status().rcond, 1e-3));
     }
 }
 

@@ -1,5 +1,7 @@
 #include "reference_database.hpp"
 
+#include "mocapdb/compression/dof_weights.hpp"
+#include "mocapdb/eval/joint_error.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/sha256.hpp"
 
@@ -65,6 +67,11 @@ ReferenceContent reference_content() {
         c.yaw = 0.1 * static_cast<double>(s);
         a.canonical.push_back(c);
     }
+
+    r.model = compression::fit_set_model(a.tensor, compression::position_error_weights(*r.clip.skeleton), {1, 2, 2},
+                                         tensor::TuckerMethod::Hosvd);
+    const eval::JointErrorStats e = eval::JointErrorMeter(r.clip.skeleton, a.tensor).measure(r.model.reconstruct());
+    r.figures = {e.dof_rmse, e.rmse_cm, e.mean_cm, e.max_cm, e.p99_cm};
     return r;
 }
 
@@ -74,6 +81,7 @@ void write_reference_database(const std::filesystem::path& path) {
     w.add_clip(r.clip, r.source);
     w.put_set(r.set, false);
     w.put_aligned(r.set.name, r.aligned);
+    w.put_model(r.set.name, r.model, r.figures);
     w.commit();
 }
 

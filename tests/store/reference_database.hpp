@@ -1,13 +1,16 @@
 #pragma once
-// The tiny reference database of format version 1 kept in tests/data forever
-// (tests/data/reference-v1.h5, its `h5dump -H` in tests/data/reference-v1.h5dump.txt).
-// Everything in it is fixed here, so a test can rebuild it and compare.
+// The tiny reference database of the current format version (2) kept in tests/data forever
+// (tests/data/reference-v2.h5, its `h5dump -H` in tests/data/reference-v2.h5dump.txt). Everything in
+// it is fixed here, so a test can rebuild it and compare. tests/data/reference-v1.h5 (version 1) holds
+// the same clip, set and aligned set without the model.
 #include <filesystem>
 
+#include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/store/clip_record.hpp"
+#include "mocapdb/store/database.hpp"
 
 namespace mocapdb::test {
 
@@ -16,10 +19,14 @@ struct ReferenceContent {
     ClipSource source;
     MotionSet set;        ///< "tiny_set": 2 samples of tiny_walk, 1 parameter
     AlignedSet aligned;   ///< 9 dofs × 3 frames × 2 samples, tensor(d,t,s) = d + 10t + 100s
+    /// HOSVD of the aligned tensor at ranks (1, 2, 2) with the skeleton's position-error weights (exact:
+    /// the weighted, centred tensor has multilinear rank (1, 2, 2)); figures measured by eval.
+    compression::SetModel model;
+    ModelFigures figures;
 };
 
 ReferenceContent reference_content();
-/// Writes the reference database to `path` (which must not exist) through DatabaseWriter.
+/// Writes the reference database (version 2, with the model) to `path` through DatabaseWriter.
 void write_reference_database(const std::filesystem::path& path);
 
 }  // namespace mocapdb::test

@@ -1,4 +1,4 @@
-// Refusing files that are not valid format-1 databases: foreign and newer files, truncated files,
+// Refusing files that are not valid databases: foreign and newer files, truncated files,
 // corrupted chunks (fletcher32), wrong dtypes and shapes. Every message names the file, the HDF5 path
 // and what was expected. Fixtures: tests/data/bad-*.h5 (made by tests/data/make_bad_fixtures.py).
 #include <catch2/catch.hpp>
@@ -50,11 +50,12 @@ void flip_bytes(const std::filesystem::path& file, std::uint64_t offset, std::si
 TEST_CASE("bad files: a newer format version is refused, saying so", "[store][bad]") {
     const auto file = test_data_dir() / "bad-newer-version.h5";
     CHECK_THROWS_AS(Database(file), StoreError);
-    CHECK_THROWS_WITH(Database(file), Catch::Contains("bad-newer-version.h5: /: format_version is 2, newer than the "
-                                                      "version 1 this mocapdb reads"));
+    CHECK_THROWS_WITH(Database(file), Catch::Contains("bad-newer-version.h5: /: format_version is 3, newer than the "
+                                                      "version 2 this mocapdb reads"));
     const ValidationReport r = validate_database(file);
     REQUIRE(r.violations.size() == 1);
     CHECK(r.violations[0].path == "/");
+    CHECK(r.violations[0].message.find("newer than the version 2") != std::string::npos);
     CHECK_THROWS_AS(DatabaseWriter(file), StoreError);
 }
 
@@ -97,7 +98,7 @@ TEST_CASE("bad files: validate checks dims names and unknown attributes", "[stor
 TEST_CASE("bad files: a truncated file is refused with the file named", "[store][bad]") {
     TempDir dir("truncated");
     const auto file = dir / "cut.h5";
-    std::filesystem::copy_file(test_data_dir() / "reference-v1.h5", file);
+    std::filesystem::copy_file(test_data_dir() / "reference-v2.h5", file);
     std::filesystem::resize_file(file, std::filesystem::file_size(file) / 2);
     try {
         Database db(file);

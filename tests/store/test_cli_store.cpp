@@ -76,7 +76,7 @@ TEST_CASE("cli: refusals", "[store][cli]") {
 
     const CommandResult invalid = run_cli("validate " + quoted(text.string()));
     CHECK(invalid.exit_code == 1);
-    CHECK(invalid.output.find("not a valid mocapdb format 1 file: 1 violation") != std::string::npos);
+    CHECK(invalid.output.find("not a valid mocapdb file: 1 violation") != std::string::npos);
 
     const CommandResult empty = run_cli("import " + quoted(dir.path().string() + "/") + " -o " + quoted((dir / "x.h5").string()));
     // the folder holds a.bvh: fine; an empty folder is refused

@@ -1,8 +1,10 @@
-// Acceptance 6: the README's h5py snippet reads the tensor and the parameters of a database. It runs
-// on the reference file with Debian's python3-h5py when installed; otherwise the same values are
-// read with h5dump.
+// Acceptance 6: the README's h5py snippet reads the tensor, the parameters and the model of a
+// database, and its reconstruction formula of the model (schemas/format-v2.md §8) gives back the
+// aligned tensor of the reference file (whose model is exact). It runs on the reference file with
+// Debian's python3-h5py when installed; otherwise the same values are read with h5dump.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <fstream>
 
 #include "shared_data.hpp"
@@ -18,7 +20,7 @@ TEST_CASE("README: the h5py snippet reads the tensor and the control parameters"
     const auto e = readme.find("```\n<!-- h5py-snippet:end -->", b);
     REQUIRE(e != std::string::npos);
     const std::string snippet = readme.substr(b + begin.size(), e - b - begin.size());
-    const auto reference = test_data_dir() / "reference-v1.h5";
+    const auto reference = test_data_dir() / "reference-v2.h5";
 
     if (run_command("/usr/bin/python3 -c 'import h5py'").exit_code == 0) {
         TempDir dir("readme");
@@ -29,6 +31,12 @@ TEST_CASE("README: the h5py snippet reads the tensor and the control parameters"
         REQUIRE(r.exit_code == 0);
         CHECK(r.output.find("parameters {'speed': 'cm/s'} (2, 1) samples ['tiny_walk', 'tiny_walk']") != std::string::npos);
         CHECK(r.output.find("tensor (sample, time, dof) = (2, 3, 9) A(d=5, t=2, s=1) = 125.0") != std::string::npos);
+        const std::string model = "model ranks (1, 2, 2) max |A - A_hat| = ";
+        const auto m = r.output.find(model);
+        REQUIRE(m != std::string::npos);
+        const double error = std::strtod(r.output.c_str() + m + model.size(), nullptr);
+        CHECK(error < 1e-9);
+        CHECK(r.output.find("rmse_cm", m) != std::string::npos);
     } else {
         WARN("python3-h5py is not installed: checking the same read with h5dump");
         const CommandResult t = run_command("h5dump -d /sets/tiny_set/aligned/tensor -s 1,2,5 -c 1,1,1 " +
@@ -38,5 +46,7 @@ TEST_CASE("README: the h5py snippet reads the tensor and the control parameters"
         CHECK(p.output.find("(0,0): 10,") != std::string::npos);
         const CommandResult d = run_command("h5dump -a /sets/tiny_set/aligned/tensor/dims " + quoted(reference.string()));
         CHECK(d.output.find("\"sample\", \"time\", \"dof\"") != std::string::npos);
+        const CommandResult c = run_command("h5dump -H -d /sets/tiny_set/model/core " + quoted(reference.string()));
+        CHECK(c.output.find("( 2, 2, 1 )") != std::string::npos);
     }
 }

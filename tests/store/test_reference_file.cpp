@@ -1,7 +1,11 @@
-// The tiny reference file of format version 1 (tests/data/reference-v1.h5), kept forever:
-// - rebuilding it today gives the same structure (`h5dump -H` equals the committed dump);
-// - the committed file still opens, loads the same values and validates.
-// To regenerate after an intended format change (with a new format version and a CHANGELOG entry):
+// The tiny reference files, kept forever:
+// - tests/data/reference-v2.h5 (the current version): rebuilding it today gives the same structure
+//   (`h5dump -H` equals the committed dump); the committed file opens, loads the same values (model
+//   included) and validates;
+// - tests/data/reference-v1.h5 (version 1, no model): still opens, loads and validates, and a writing
+//   session on it publishes a version-2 file with the same content.
+// To regenerate reference-v2 after an intended format change (with a new format version and a
+// CHANGELOG entry):
 //   MOCAPDB_UPDATE_REFERENCE=1 build/tests/test_store "[reference]"
 #include <catch2/catch.hpp>
 
@@ -20,8 +24,9 @@ using namespace mocapdb::test;
 
 namespace {
 
-const std::filesystem::path kReference = test_data_dir() / "reference-v1.h5";
-const std::filesystem::path kReferenceDump = test_data_dir() / "reference-v1.h5dump.txt";
+const std::filesystem::path kReference = test_data_dir() / "reference-v2.h5";
+const std::filesystem::path kReferenceDump = test_data_dir() / "reference-v2.h5dump.txt";
+const std::filesystem::path kReferenceV1 = test_data_dir() / "reference-v1.h5";
 
 // h5dump -H without its first line (which names the file).
 std::string header_dump(const std::filesystem::path& file) {
@@ -31,28 +36,14 @@ std::string header_dump(const std::filesystem::path& file) {
     return r.output.substr(newline == std::string::npos ? 0 : newline + 1);
 }
 
-}  // namespace
-
-TEST_CASE("reference file: rebuilding it gives the committed h5dump -H", "[store][reference]") {
-    TempDir dir("reference");
-    const auto rebuilt = dir / "reference-v1.h5";
-    write_reference_database(rebuilt);
-    const std::string dump = header_dump(rebuilt);
-    if (std::getenv("MOCAPDB_UPDATE_REFERENCE") != nullptr) {
-        std::filesystem::copy_file(rebuilt, kReference, std::filesystem::copy_options::overwrite_existing);
-        std::ofstream(kReferenceDump, std::ios::binary) << "HDF5 \"reference-v1.h5\" {\n" << dump;
-        WARN("reference file regenerated in " << test_data_dir().string());
-    }
-    REQUIRE(std::filesystem::exists(kReferenceDump));
-    std::string committed = file_bytes(kReferenceDump);
-    committed = committed.substr(committed.find('\n') + 1);
-    CHECK(dump == committed);
+double max_abs_diff(const Tensor3& a, const Tensor3& b) {
+    const Eigen::Tensor<double, 0> d = (a - b).abs().maximum();
+    return d();
 }
 
-TEST_CASE("reference file: the committed file opens, loads and validates", "[store][reference]") {
-    REQUIRE(std::filesystem::exists(kReference));
+// Clip, set and aligned set of a reference file equal reference_content()'s.
+void check_common_content(const Database& db) {
     const ReferenceContent expected = reference_content();
-    const Database db(kReference);
     const auto clips = db.clips();
     REQUIRE(clips.size() == 1);
     CHECK(clips[0].id == "tiny_walk");
@@ -67,14 +58,117 @@ TEST_CASE("reference file: the committed file opens, loads and validates", "[sto
     CHECK(set.samples.size() == 2);
     const auto aligned = db.load_aligned("tiny_set");
     REQUIRE(aligned.has_value());
-    const Eigen::Tensor<double, 0> diff = (aligned->tensor - expected.aligned.tensor).abs().maximum();
-    CHECK(diff() == 0.0);
+    CHECK(max_abs_diff(aligned->tensor, expected.aligned.tensor) == 0.0);
     CHECK(aligned->warps == expected.aligned.warps);
-    CHECK(validate_database(kReference).ok());
+}
+
+}  // namespace
+
+TEST_CASE("reference file: rebuilding it gives the committed h5dump -H", "[store][reference]") {
+    TempDir dir("reference");
+    const auto rebuilt = dir / "reference-v2.h5";
+    write_reference_database(rebuilt);
+    const std::string dump = header_dump(rebuilt);
+    if (std::getenv("MOCAPDB_UPDATE_REFERENCE") != nullptr) {
+        std::filesystem::copy_file(rebuilt, kReference, std::filesystem::copy_options::overwrite_existing);
+        std::ofstream(kReferenceDump, std::ios::binary) << "HDF5 \"reference-v2.h5\" {\n" << dump;
+        WARN("reference file regenerated in " << test_data_dir().string());
+    }
+    REQUIRE(std::filesystem::exists(kReferenceDump));
+    std::string committed = file_bytes(kReferenceDump);
+    committed = committed.substr(committed.find('\n') + 1);
+    CHECK(dump == committed);
+}
+
+TEST_CASE("reference file: the committed file opens, loads and validates", "[store][reference]") {
+    REQUIRE(std::filesystem::exists(kReference));
+    const ReferenceContent expected = reference_content();
+    const Database db(kReference);
+    CHECK(db.format_version() == 2);
+    check_common_content(db);
+
+    const auto model = db.load_model("tiny_set");
+    REQUIRE(model.has_value());
+    CHECK(model->model.tucker.ranks == tensor::Ranks{1, 2, 2});
+    CHECK(model->model.tucker.method == tensor::TuckerMethod::Hosvd);
+    CHECK(model->model.tucker.status == tensor::TuckerStatus::Ok);
+    CHECK(model->model.weight == expected.model.weight);
+    CHECK(model->model.mean.isApprox(expected.model.mean, 1e-14));
+    // The model is exact (multilinear rank (1, 2, 2)); bases are unique up to sign, so compare what
+    // they reconstruct.
+    CHECK(max_abs_diff(model->model.reconstruct(), expected.aligned.tensor) < 1e-9);
+    CHECK(model->model.tucker.fit == Approx(expected.model.tucker.fit).margin(1e-12));
+    CHECK(model->figures.rmse_cm == Approx(expected.figures.rmse_cm).margin(1e-9));
+    CHECK(model->figures.max_cm == Approx(expected.figures.max_cm).margin(1e-9));
+    const auto sets = db.sets();
+    REQUIRE(sets.size() == 1);
+    CHECK(sets[0].model);
+    CHECK(sets[0].model_ranks == std::array<std::size_t, 3>{1, 2, 2});
+    CHECK(sets[0].model_stored_bytes > 0);
+    const ValidationReport report = validate_database(kReference);
+    INFO((report.ok() ? std::string() : report.violations[0].path + ": " + report.violations[0].message));
+    CHECK(report.ok());
 
     // h5dump reads element [s][t][d] = tensor(d, t, s) = d + 10 t + 100 s: (1, 2, 5) holds 125.
     const CommandResult r =
         run_command("h5dump -d /sets/tiny_set/aligned/tensor -s 1,2,5 -c 1,1,1 " + quoted(kReference.string()));
     INFO(r.output);
     CHECK(r.output.find("(1,2,5): 125") != std::string::npos);
+    // The core is stored as (R3, R2, R1).
+    const CommandResult core = run_command("h5dump -H -d /sets/tiny_set/model/core " + quoted(kReference.string()));
+    INFO(core.output);
+    CHECK(core.output.find("DATASPACE  SIMPLE { ( 2, 2, 1 ) / ( 2, 2, 1 ) }") != std::string::npos);
+}
+
+TEST_CASE("reference file: the version-1 file still opens, loads and validates", "[store][reference]") {
+    REQUIRE(std::filesystem::exists(kReferenceV1));
+    const Database db(kReferenceV1);
+    CHECK(db.format_version() == 1);
+    check_common_content(db);
+    CHECK_FALSE(db.load_model("tiny_set").has_value());
+    const auto sets = db.sets();
+    REQUIRE(sets.size() == 1);
+    CHECK_FALSE(sets[0].model);
+    CHECK(sets[0].model_ranks == std::array<std::size_t, 3>{0, 0, 0});
+    CHECK(validate_database(kReferenceV1).ok());
+    // Checked against the version-1 mirror: a model group is not part of version 1.
+    TempDir dir("reference-v1-model");
+    const auto file = dir / "v1-with-model.h5";
+    std::filesystem::copy_file(kReferenceV1, file);
+    const CommandResult copy = run_command("h5copy -i " + quoted(kReference.string()) + " -o " + quoted(file.string()) +
+                                           " -s /sets/tiny_set/model -d /sets/tiny_set/model");
+    if (copy.exit_code == 0) {
+        const ValidationReport r = validate_database(file);
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.violations[0].path == "/sets/tiny_set/model");
+        CHECK(r.violations[0].message == "unexpected group (not part of format version 1)");
+    } else {
+        WARN("h5copy is not available: " << copy.output);
+    }
+}
+
+TEST_CASE("reference file: a writing session upgrades a version-1 file to version 2", "[store][reference]") {
+    TempDir dir("reference-upgrade");
+    const auto file = dir / "db.h5";
+    std::filesystem::copy_file(kReferenceV1, file);
+    const ReferenceContent r = reference_content();
+    {
+        DatabaseWriter w(file);
+        CHECK(w.view().format_version() == 2);
+        CHECK(Database(file).format_version() == 1);  // the target is untouched before commit
+        w.put_model("tiny_set", r.model, r.figures);
+        w.commit();
+    }
+    const Database db(file);
+    CHECK(db.format_version() == 2);
+    check_common_content(db);
+    REQUIRE(db.load_model("tiny_set").has_value());
+    CHECK(validate_database(file).ok());
+
+    // A session without any change publishes version 2 too.
+    const auto plain = dir / "plain.h5";
+    std::filesystem::copy_file(kReferenceV1, plain);
+    { DatabaseWriter(plain).commit(); }
+    CHECK(Database(plain).format_version() == 2);
+    CHECK(validate_database(plain).ok());
 }

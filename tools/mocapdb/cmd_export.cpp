@@ -3,10 +3,12 @@
 
 #include "commands.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/unwarp.hpp"
 #include "mocapdb/io/amc_writer.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/store/database.hpp"
+#include "set_context.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -18,6 +20,9 @@ struct ExportArgs {
     std::string asf_output;
     int precision = 0;  // 0: the format's default
     bool force = false;
+    std::string set;
+    long long sample = -1;
+    bool from_model = false;
 };
 
 void refuse_existing(const std::filesystem::path& path, bool force) {
@@ -26,12 +31,51 @@ void refuse_existing(const std::filesystem::path& path, bool force) {
         throw IoError(path.string() + ": exists (pass --force to overwrite it)");
 }
 
+// Sample I of a set, from its aligned tensor or its stored model, back at its own timing.
+Clip sample_clip(const Database& db, const ExportArgs& args) {
+    const SetContext c = load_set_context(db, args.set);
+    const Eigen::Index n_samples = c.aligned.samples();
+    if (args.sample < 0 || args.sample >= n_samples)
+        throw InvalidArgument("--sample " + std::to_string(args.sample) + ": set '" + args.set + "' has samples 0.." +
+                              std::to_string(n_samples - 1));
+    const auto n = static_cast<Eigen::Index>(args.sample);
+    Tensor3 poses;
+    if (args.from_model) {
+        auto stored = db.load_model(args.set);
+        if (!stored)
+            throw InvalidArgument("set '" + args.set + "' in " + args.file +
+                                  " has no model (run: mocapdb compress " + args.file + " --set " + args.set + ")");
+        poses = stored->model.reconstruct();
+    } else {
+        poses = c.aligned.tensor;
+    }
+    const Eigen::Index d = poses.dimension(0), t = poses.dimension(1);
+    const Eigen::Map<const MatX> aligned(poses.data() + n * d * t, d, t);
+    const SampleRef& ref = c.set.samples[static_cast<std::size_t>(n)];
+    const MatX own = poses_at_sample_frames(aligned, c.aligned.warps.col(n), static_cast<Eigen::Index>(ref.frame_count()));
+    return clip_from_pose_vectors(c.skeleton, own, c.aligned.canonical[static_cast<std::size_t>(n)], c.frame_rate,
+                                  args.set + "_" + std::to_string(n));
+}
+
 void run_export(const ExportArgs& args) {
     namespace fs = std::filesystem;
     const fs::path out = args.output;
     const auto format = clip_format_of(out);
     if (!format) throw InvalidArgument(out.string() + ": unsupported output type (expected .bvh or .amc)");
     const Database db(args.file);
+    if (!args.set.empty()) {
+        if (*format != ClipFormat::Bvh) throw InvalidArgument(out.string() + ": a set sample is exported as .bvh");
+        const Clip clip = sample_clip(db, args);
+        refuse_existing(out, args.force);
+        BvhWriteOptions o;
+        if (args.precision > 0) o.precision = args.precision;
+        write_bvh(out, clip, o);
+        std::cout << "wrote " << out.string() << " (sample " << args.sample << " of set '" << args.set << "' "
+                  << (args.from_model ? "reconstructed from its model" : "from its aligned tensor") << ", "
+                  << clip.frame_count() << " frames at " << clip.frame_rate << " Hz)\n";
+        return;
+    }
+    if (args.clip.empty()) throw InvalidArgument("give --clip ID, or --set S --sample I");
     if (!db.has_clip(args.clip)) throw InvalidArgument(args.file + ": no clip '" + args.clip + "' (see mocapdb info)");
     const Clip clip = db.load_clip(args.clip);
     refuse_existing(out, args.force);
@@ -74,9 +118,19 @@ void setup_export(CLI::App& app) {
         "overwritten without --force.\n"
         "Examples:\n"
         "  mocapdb export cmu.h5 --clip 16_15 -o 16_15.amc      (reread: mocapdb info 16_15.amc --asf 16_15.asf)\n"
-        "  mocapdb export cmu.h5 --clip 02_01_60fps -o 02_01.bvh");
+        "  mocapdb export cmu.h5 --clip 02_01_60fps -o 02_01.bvh\n"
+        "  mocapdb export cmu.h5 --set walks --sample 3 --from-model -o walk3.bvh\n"
+        "A set sample is written as BVH at its own timing (the alignment's warp undone) and in its own\n"
+        "place in the world, from the aligned tensor or, with --from-model, from the stored Tucker model.");
     cmd->add_option("file", args->file, "database file")->required()->check(CLI::ExistingFile);
-    cmd->add_option("--clip", args->clip, "clip id (see mocapdb info DB.h5)")->required();
+    auto* clip = cmd->add_option("--clip", args->clip, "clip id (see mocapdb info DB.h5)");
+    auto* set = cmd->add_option("--set", args->set, "motion set (aligned) whose sample to export");
+    auto* sample = cmd->add_option("--sample", args->sample, "sample index in the set (0-based)");
+    auto* from_model = cmd->add_flag("--from-model", args->from_model, "reconstruct the sample from the set's model");
+    clip->excludes(set);
+    set->needs(sample);
+    sample->needs(set);
+    from_model->needs(set);
     cmd->add_option("-o,--output", args->output, "output file: .bvh or .amc")->required();
     cmd->add_option("--asf-out", args->asf_output, "where to write the skeleton of an AMC export (default OUT.asf)");
     cmd->add_option("--precision", args->precision, "significant digits (default: BVH 9, AMC 10; 17 is lossless)")

@@ -96,7 +96,7 @@ void setup_info(CLI::App& app) {
         "duration, channels, skeleton, source_file, source_format, source_sha256, source_skeleton_file,\n"
         "subject, description, labels, stored_bytes}), skeletons ({id, source_file, joints, channels}),\n"
         "sets ({name, samples, parameters, parameter_source, aligned, tensor_dims, tensor_shape,\n"
-        "tensor_stored_bytes}).");
+        "tensor_stored_bytes, model, model_ranks (R1, R2, R3) or null, model_stored_bytes}).");
     cmd->add_option("file", args->file, "BVH file, AMC file (with --asf or NN.asf beside it), or database (.h5)")
         ->required()
         ->check(CLI::ExistingFile);

@@ -198,7 +198,7 @@ void setup_set(CLI::App& app) {
     auto list_json = std::make_shared<bool>(false);
     CLI::App* list = cmd->add_subcommand("list", "List the motion sets of a database");
     list->add_option("db", *list_db, "database file")->required()->check(CLI::ExistingFile);
-    list->add_flag("--json", *list_json, "print JSON: [{name, samples, parameters, aligned}]");
+    list->add_flag("--json", *list_json, "print JSON: [{name, samples, parameters, aligned, model, model_ranks}]");
     list->callback([list_db, list_json] {
         const Database db(*list_db);
         const auto sets = db.sets();
@@ -209,7 +209,15 @@ void setup_set(CLI::App& app) {
                 j.begin_object().key("name").value(s.name).key("samples").value(s.samples);
                 j.key("parameters").begin_array();
                 for (const auto& p : s.parameter_names) j.value(p);
-                j.end_array().key("aligned").value(s.aligned).end_object();
+                j.end_array().key("aligned").value(s.aligned).key("model").value(s.model);
+                if (s.model) {
+                    j.key("model_ranks").begin_array();
+                    for (std::size_t r : s.model_ranks) j.value(r);
+                    j.end_array();
+                } else {
+                    j.key("model_ranks").null();
+                }
+                j.end_object();
             }
             j.end_array();
             std::cout << j.str();
@@ -219,8 +227,12 @@ void setup_set(CLI::App& app) {
         for (const SetRecord& s : sets) {
             std::string params;
             for (const auto& p : s.parameter_names) params += (params.empty() ? "" : ",") + p;
+            std::string state = s.aligned ? "aligned" : "not aligned";
+            if (s.model)
+                state += ", model " + std::to_string(s.model_ranks[0]) + "x" + std::to_string(s.model_ranks[1]) + "x" +
+                         std::to_string(s.model_ranks[2]);
             std::printf("%-20s %5zu samples  params %-24s %s\n", s.name.c_str(), s.samples, params.c_str(),
-                        s.aligned ? "aligned" : "not aligned");
+                        state.c_str());
         }
     });
 

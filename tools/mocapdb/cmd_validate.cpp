@@ -1,5 +1,6 @@
 // mocapdb validate DB.h5: check a database file against the format specification.
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
 #include "mocapdb/core/error.hpp"
@@ -20,14 +21,17 @@ void run_validate(const ValidateArgs& args) {
     options.max_violations = args.max;
     if (!args.schema.empty()) options.schema_json = read_text_file(args.schema);
     const ValidationReport report = validate_database(args.file, options);
+    const std::string what = report.format_version > 0
+                                 ? "mocapdb format " + std::to_string(report.format_version) + " file"
+                                 : std::string("mocapdb file");
     if (report.ok()) {
-        std::cout << args.file << ": valid mocapdb format 1 file (" << report.objects << " objects checked, "
+        std::cout << args.file << ": valid " << what << " (" << report.objects << " objects checked, "
                   << report.datasets_read << " datasets read, checksums verified)\n";
         return;
     }
     for (const Violation& v : report.violations) std::cout << "  " << v.path << ": " << v.message << "\n";
     std::string count = std::to_string(report.violations.size()) + (report.truncated ? "+" : "");
-    throw Error(args.file + ": not a valid mocapdb format 1 file: " + count + " violation" +
+    throw Error(args.file + ": not a valid " + what + ": " + count + " violation" +
                 (report.violations.size() == 1 && !report.truncated ? "" : "s") + " (listed above" +
                 (report.truncated ? ", first " + std::to_string(report.violations.size()) + " shown" : "") + ")");
 }
@@ -38,10 +42,11 @@ void setup_validate(CLI::App& app) {
     auto args = std::make_shared<ValidateArgs>();
     CLI::App* cmd = app.add_subcommand("validate", "Check a motion database file against the format specification");
     cmd->footer(
-        "Checks every group, dataset and attribute against schemas/format-v1.json (kinds, dtypes, dims,\n"
-        "shapes, filters, values), reads every dataset (verifying its fletcher32 checksums) and checks the\n"
-        "content rules (clip columns match their skeleton, set samples lie within stored clips, aligned\n"
-        "tensors match their set). Exit code 0 when valid; 1 with the first violations otherwise.\n"
+        "Checks every group, dataset and attribute against the mirror of the file's version,\n"
+        "schemas/format-v1.json or format-v2.json (kinds, dtypes, dims, shapes, filters, values), reads\n"
+        "every dataset (verifying its fletcher32 checksums) and checks the content rules (clip columns\n"
+        "match their skeleton, set samples lie within stored clips, aligned tensors match their set,\n"
+        "models match their aligned tensor). Exit code 0 when valid; 1 with the first violations otherwise.\n"
         "Example:\n"
         "  mocapdb validate cmu.h5");
     cmd->add_option("file", args->file, "database file")->required()->check(CLI::ExistingFile);

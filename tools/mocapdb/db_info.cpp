@@ -78,6 +78,15 @@ void print_json(const std::string& file, const Database& db, const std::vector<C
             j.key("tensor_shape").null();
         }
         j.key("tensor_stored_bytes").value(static_cast<std::size_t>(s.tensor_stored_bytes));
+        j.key("model").value(s.model);
+        if (s.model) {
+            j.key("model_ranks").begin_array();
+            for (std::size_t r : s.model_ranks) j.value(r);
+            j.end_array();
+        } else {
+            j.key("model_ranks").null();
+        }
+        j.key("model_stored_bytes").value(static_cast<std::size_t>(s.model_stored_bytes));
         j.end_object();
     }
     j.end_array();
@@ -109,15 +118,20 @@ void print_text(const std::string& file, const Database& db, const std::vector<C
                         static_cast<double>(c.stored_bytes) / 1e3, c.skeleton.c_str(), c.source.file_name.c_str());
     }
     if (!sets.empty()) {
-        std::printf("\n%-24s %8s %11s  %-22s %s\n", "set", "samples", "parameters", "tensor (sample,time,dof)",
-                    "stored kB");
+        std::printf("\n%-24s %8s %11s  %-24s %9s  %-16s %s\n", "set", "samples", "parameters",
+                    "tensor (sample,time,dof)", "stored kB", "model (R1,R2,R3)", "stored kB");
         for (const SetRecord& s : sets) {
             std::string shape = "-";
             if (s.aligned)
                 shape = std::to_string(s.tensor_shape[0]) + " x " + std::to_string(s.tensor_shape[1]) + " x " +
                         std::to_string(s.tensor_shape[2]);
-            std::printf("%-24s %8zu %11zu  %-24s %.1f\n", s.name.c_str(), s.samples, s.parameter_names.size(),
-                        shape.c_str(), static_cast<double>(s.tensor_stored_bytes) / 1e3);
+            std::string ranks = "-";
+            if (s.model)
+                ranks = std::to_string(s.model_ranks[0]) + " x " + std::to_string(s.model_ranks[1]) + " x " +
+                        std::to_string(s.model_ranks[2]);
+            std::printf("%-24s %8zu %11zu  %-24s %9.1f  %-16s %.1f\n", s.name.c_str(), s.samples,
+                        s.parameter_names.size(), shape.c_str(), static_cast<double>(s.tensor_stored_bytes) / 1e3,
+                        ranks.c_str(), static_cast<double>(s.model_stored_bytes) / 1e3);
         }
     }
 }

@@ -7,8 +7,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include "duplicates.hpp"
 #include "mocapdb/core/error.hpp"
+#include "prepared_points.hpp"
 
 namespace mocapdb::kriging {
 
@@ -74,13 +74,7 @@ Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const
 
 Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
                        const KrigingOptions& options) {
-    const Eigen::Index n = coords.rows();
-    const Eigen::Index p = coords.cols();
-    if (n < 1 || p < 1) {
-        throw InvalidArgument("Kriging::build: coords must be N by P with N >= 1 and P >= 1, got " +
-                              std::to_string(n) + "x" + std::to_string(p));
-    }
-    if (!coords.allFinite()) throw InvalidArgument("Kriging::build: coords must be finite");
+    detail::validate_coords("Kriging::build", coords);
     model.validate();
     if (!(model.total_sill() > 0.0)) {
         throw InvalidArgument("Kriging::build: the model must have nugget + sill > 0");
@@ -99,19 +93,19 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     k.model_ = model;
     k.options_ = options;
 
-    // Duplicate detection (transitive groups).
-    detail::DuplicateGroups dg = detail::group_duplicates(coords, options.duplicate_tolerance,
-                                                          options.duplicates == DuplicatePolicy::Merge);
-    k.status_.duplicate_pairs = dg.pairs;
-    k.points_ = std::move(dg.points);
-    k.group_ = std::move(dg.group);
-    k.group_size_ = std::move(dg.group_size);
-    k.merged_ = dg.merged;
+    // Duplicates grouped (merged or kept) and the trend basis over the resulting points.
+    detail::PreparedPoints prepared =
+        detail::prepare_points(coords, options.duplicate_tolerance, options.duplicates == DuplicatePolicy::Merge,
+                               options.trend, options.trend_rank_tolerance);
+    k.points_ = std::move(prepared.points);
+    k.group_ = std::move(prepared.group);
+    k.group_size_ = std::move(prepared.group_size);
+    k.merged_ = prepared.merged;
+    k.basis_ = std::move(prepared.basis);
     const Eigen::Index m = k.points_.rows();
+    k.status_.duplicate_pairs = prepared.duplicate_pairs;
     k.status_.unique_points = m;
-    k.status_.duplicates_merged = n - m;
-
-    k.basis_ = TrendBasis::build(k.points_, options.trend, options.trend_rank_tolerance);
+    k.status_.duplicates_merged = coords.rows() - m;
     k.status_.trend_rank = k.basis_.rank();
     k.status_.trend_rank_deficient = k.basis_.rank_deficient();
 
@@ -152,8 +146,42 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     k.operator_.leftCols(m) = -k.kernel_inverse_;
     k.operator_.rightCols(kk) = v;
     k.v_transpose_ = v.transpose();
-    if (ols) k.ols_u_ = k.basis_.sample_basis().rightCols(k.basis_.rank());
+    if (ols) {
+        k.ols_u_ = k.basis_.sample_basis().rightCols(k.basis_.rank());
+        // The OLS weights w = b + U (g_u(c) - U^T b), b = [-Wc, v] [gamma; 1], folded into one operator so
+        // that a query is one matrix-vector product: w = [(I - U U^T) [-Wc, v], U] [gamma; g(c)], with
+        // g(c) = [1, g_u(c)] the trend basis at c (as for GLS).
+        const Eigen::Index r = k.ols_u_.cols();
+        k.weight_operator_.resize(m, m + 1 + r);
+        k.weight_operator_.leftCols(m + 1) = k.operator_;
+        if (r > 0) {
+            Eigen::MatrixXd ut_op(r, m + 1);
+            ut_op.noalias() = k.ols_u_.transpose() * k.operator_;
+            k.weight_operator_.leftCols(m + 1).noalias() -= k.ols_u_ * ut_op;
+            k.weight_operator_.rightCols(r) = k.ols_u_;
+        }
+    }
     return k;
+}
+
+const Eigen::MatrixXd& Kriging::weight_operator() const {
+    return weight_operator_.size() > 0 ? weight_operator_ : operator_;
+}
+
+void Kriging::weights_from_rhs(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> out,
+                               Eigen::MatrixXd& scratch) const {
+    const Eigen::Index m = points_.rows();
+    const Eigen::Index kk = basis_.size();
+    out.noalias() = weight_operator() * rhs;
+    // Re-impose G^T w = g(c) exactly (partition of unity and reproduction of the trend): a no-op in exact
+    // arithmetic that removes the constraint-violating part of rounding errors of an ill-conditioned
+    // system. G = [1, U] has orthogonal columns, 1^T 1 = M and U^T U = I.
+    const Eigen::MatrixXd& gb = basis_.sample_basis();
+    scratch.resize(kk, rhs.cols());
+    scratch = rhs.bottomRows(kk);
+    scratch.noalias() -= gb.transpose() * out;
+    scratch.row(0) /= static_cast<double>(m);
+    out.noalias() += gb * scratch;
 }
 
 void Kriging::gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const {
@@ -210,12 +238,6 @@ void Kriging::solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const 
     }
 }
 
-void Kriging::expand(const Eigen::Ref<const Eigen::MatrixXd>& unique_weights, Eigen::Ref<Eigen::MatrixXd> out) const {
-    for (Eigen::Index i = 0; i < group_.size(); ++i) {
-        out.row(i) = unique_weights.row(group_(i)) / group_size_(group_(i));
-    }
-}
-
 void Kriging::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out_weights,
                       QueryWorkspace& ws) const {
     const Eigen::Index m = points_.rows();
@@ -224,38 +246,25 @@ void Kriging::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eig
         throw InvalidArgument("Kriging::weights: c must have P = " + std::to_string(dimension()) +
                               " entries and out_weights N = " + std::to_string(n));
     }
-    const Eigen::Index kk = kernel_trend_size_;
+    // rhs = [gamma(c); g(c)], then w = operator * rhs and the constraint projection: no allocation once
+    // the workspace has its sizes.
+    const Eigen::Index kk = basis_.size();
     if (ws.rhs.size() != m + kk) ws.rhs.resize(m + kk);
     gamma_vector(c, ws.rhs.head(m));
-    const bool ols = options_.trend_fit == TrendFit::OLS && options_.trend == TrendKind::Linear;
-    if (ols) {
-        ws.rhs(m) = 1.0;
-    } else {
-        basis_.evaluate(c, ws.rhs.tail(kk));
-    }
+    basis_.evaluate(c, ws.rhs.tail(kk));
+    const Eigen::MatrixXd& op = weight_operator();
+    const Eigen::MatrixXd& gb = basis_.sample_basis();
     if (ws.tmp.size() != m) ws.tmp.resize(m);
-    ws.tmp.noalias() = operator_ * ws.rhs;
-    if (ols) {
-        ws.tmp.array() += (1.0 - ws.tmp.sum()) / static_cast<double>(m);
-    } else {
-        const Eigen::MatrixXd& gb = basis_.sample_basis();
-        if (ws.tmp2.size() != kk) ws.tmp2.resize(kk);
-        ws.tmp2 = ws.rhs.tail(kk);
-        ws.tmp2.noalias() -= gb.transpose() * ws.tmp;
-        ws.tmp2(0) /= static_cast<double>(m);
-        ws.tmp.noalias() += gb * ws.tmp2;
-    }
-    if (ols && ols_u_.cols() > 0) {
-        const Eigen::Index r = ols_u_.cols();
-        if (ws.tmp2.size() != basis_.size()) ws.tmp2.resize(basis_.size());
-        basis_.evaluate(c, ws.tmp2);
-        ws.tmp2.tail(r).noalias() -= ols_u_.transpose() * ws.tmp;
-        ws.tmp.noalias() += ols_u_ * ws.tmp2.tail(r);
-    }
+    if (ws.tmp2.size() != kk) ws.tmp2.resize(kk);
+    Eigen::Ref<Eigen::VectorXd> w = merged_ ? Eigen::Ref<Eigen::VectorXd>(ws.tmp) : out_weights;
+    w.noalias() = op * ws.rhs;
+    // G^T w = g(c) re-imposed as in weights_from_rhs.
+    ws.tmp2 = ws.rhs.tail(kk);
+    ws.tmp2.noalias() -= gb.transpose() * w;
+    ws.tmp2(0) /= static_cast<double>(m);
+    w.noalias() += gb * ws.tmp2;
     if (merged_) {
         for (Eigen::Index i = 0; i < n; ++i) out_weights(i) = ws.tmp(group_(i)) / group_size_(group_(i));
-    } else {
-        out_weights = ws.tmp;
     }
 }
 
@@ -270,20 +279,24 @@ void Kriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries, Ei
         throw InvalidArgument("Kriging::weights_batch: queries must be Q by P (P = " + std::to_string(dimension()) +
                               ") and out_weights N by Q (N = " + std::to_string(num_samples()) + ")");
     }
+    // Per block of queries: rhs = [gamma; g] (M + K by nb), then one matrix product with the weight
+    // operator (a GEMM), written straight into out_weights unless duplicates were merged.
     const Eigen::Index m = points_.rows();
-    Eigen::MatrixXd gamma;
-    Eigen::MatrixXd kernel;
+    const Eigen::Index kk = basis_.size();
+    Eigen::MatrixXd rhs;
     Eigen::MatrixXd w;
+    Eigen::MatrixXd scratch;
     for (Eigen::Index q0 = 0; q0 < queries.rows(); q0 += kBlock) {
         const Eigen::Index nb = std::min(kBlock, queries.rows() - q0);
-        gamma.resize(m, nb);
-        gamma_block(queries.middleRows(q0, nb), gamma);
-        const Eigen::MatrixXd g = basis_.evaluate_batch(queries.middleRows(q0, nb));
-        solve_block(gamma, g, kernel, w);
+        rhs.resize(m + kk, nb);
+        gamma_block(queries.middleRows(q0, nb), rhs.topRows(m));
+        rhs.bottomRows(kk) = basis_.evaluate_batch(queries.middleRows(q0, nb));
         if (merged_) {
-            expand(w, out_weights.middleCols(q0, nb));
+            w.resize(m, nb);
+            weights_from_rhs(rhs, w, scratch);
+            detail::expand_to_samples(group_, group_size_, w, out_weights.middleCols(q0, nb));
         } else {
-            out_weights.middleCols(q0, nb) = w;
+            weights_from_rhs(rhs, out_weights.middleCols(q0, nb), scratch);
         }
     }
 }
@@ -327,7 +340,7 @@ KrigingBatch Kriging::estimate_batch(const Eigen::Ref<const Eigen::MatrixXd>& qu
         }
         out.paper_variance.segment(q0, nb) = (kernel.array() * gamma.array()).colwise().sum().transpose();
         if (merged_) {
-            expand(w, out.weights.middleCols(q0, nb));
+            detail::expand_to_samples(group_, group_size_, w, out.weights.middleCols(q0, nb));
         } else {
             out.weights.middleCols(q0, nb) = w;
         }
@@ -360,7 +373,7 @@ KrigingEstimate Kriging::estimate(const Eigen::Ref<const Eigen::VectorXd>& c) co
     e.kernel.resize(num_samples());
     if (merged_) {
         Eigen::MatrixXd tmp(num_samples(), 1);
-        expand(kernel, tmp);
+        detail::expand_to_samples(group_, group_size_, kernel, tmp);
         e.kernel = tmp.col(0);
     } else {
         e.kernel = kernel.col(0);

@@ -6,8 +6,8 @@
 
 #include <Eigen/LU>
 
-#include "duplicates.hpp"
 #include "mocapdb/core/error.hpp"
+#include "prepared_points.hpp"
 
 namespace mocapdb::kriging {
 
@@ -49,12 +49,7 @@ double radial(RadialFunction f, double r, double radius) {
 }  // namespace
 
 RbfInterpolator RbfInterpolator::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const RbfOptions& options) {
-    const Eigen::Index n = coords.rows();
-    if (n < 1 || coords.cols() < 1) {
-        throw InvalidArgument("RbfInterpolator::build: coords must be N by P with N >= 1 and P >= 1, got " +
-                              std::to_string(n) + "x" + std::to_string(coords.cols()));
-    }
-    if (!coords.allFinite()) throw InvalidArgument("RbfInterpolator::build: coords must be finite");
+    detail::validate_coords("RbfInterpolator::build", coords);
     if (!(options.radius_scale > 0.0) || !std::isfinite(options.radius_scale)) {
         throw InvalidArgument("RbfInterpolator::build: radius_scale must be finite and > 0");
     }
@@ -66,15 +61,16 @@ RbfInterpolator RbfInterpolator::build(const Eigen::Ref<const Eigen::MatrixXd>& 
     }
     RbfInterpolator rb;
     rb.options_ = options;
-    detail::DuplicateGroups dg = detail::group_duplicates(coords, options.duplicate_tolerance, true);
-    rb.points_ = std::move(dg.points);
-    rb.group_ = std::move(dg.group);
-    rb.group_size_ = std::move(dg.group_size);
-    rb.merged_ = dg.merged;
+    detail::PreparedPoints prepared = detail::prepare_points(coords, options.duplicate_tolerance, true, options.trend,
+                                                             options.trend_rank_tolerance);
+    rb.points_ = std::move(prepared.points);
+    rb.group_ = std::move(prepared.group);
+    rb.group_size_ = std::move(prepared.group_size);
+    rb.merged_ = prepared.merged;
+    rb.basis_ = std::move(prepared.basis);
     const Eigen::Index m = rb.points_.rows();
     rb.status_.unique_points = m;
-    rb.status_.duplicates_merged = n - m;
-    rb.basis_ = TrendBasis::build(rb.points_, options.trend, options.trend_rank_tolerance);
+    rb.status_.duplicates_merged = coords.rows() - m;
     rb.status_.trend_rank = rb.basis_.rank();
     rb.status_.trend_rank_deficient = rb.basis_.rank_deficient();
 
@@ -191,7 +187,7 @@ void RbfInterpolator::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& que
     Eigen::MatrixXd w(m, queries.rows());
     w.noalias() = operator_ * rhs;
     if (merged_) {
-        for (Eigen::Index i = 0; i < num_samples(); ++i) out_weights.row(i) = w.row(group_(i)) / group_size_(group_(i));
+        detail::expand_to_samples(group_, group_size_, w, out_weights);
     } else {
         out_weights = w;
     }

@@ -96,6 +96,12 @@ void VariogramModel::gamma_of_squared(const Eigen::Ref<const Eigen::VectorXd>& s
         out = (nugget + sill * (1.0 - (-(d2 * inv_r2)).exp())) * (d2 * inv_dbl_min).min(1.0);
     } else if (exponent == 1.0) {
         out = (nugget + sill * (1.0 - (-(d2 * inv_r2).sqrt()).exp())) * (d2 * inv_dbl_min).min(1.0);
+    } else if (exponent == 1.5) {
+        // Half-integer exponents by square roots instead of exp(p log x): x^1.5 = sqrt(t sqrt(t)), t = x^2.
+        out = (nugget + sill * (1.0 - (-((d2 * inv_r2) * (d2 * inv_r2).sqrt()).sqrt()).exp())) *
+              (d2 * inv_dbl_min).min(1.0);
+    } else if (exponent == 0.5) {
+        out = (nugget + sill * (1.0 - (-(d2 * inv_r2).sqrt().sqrt()).exp())) * (d2 * inv_dbl_min).min(1.0);
     } else {
         const double half_p = 0.5 * exponent;
         out = (nugget + sill * (1.0 - (-((half_p * (d2 * inv_r2).log()).exp())).exp())) * (d2 * inv_dbl_min).min(1.0);

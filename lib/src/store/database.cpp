@@ -7,6 +7,7 @@
 #include "database_impl.hpp"
 #include "h5/quiet.hpp"
 #include "layout.hpp"
+#include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
 #include "root.hpp"
 #include "set_codec.hpp"
@@ -30,7 +31,7 @@ Database::Database(const std::filesystem::path& path) : impl_(std::make_unique<I
     impl_->path = path;
     impl_->owned = store::h5::File::open(path, false);
     impl_->file = &impl_->owned;
-    store::check_root(impl_->owned);
+    impl_->format_version = store::check_root(impl_->owned);
 }
 
 Database::Database(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -39,6 +40,7 @@ Database::Database(Database&&) noexcept = default;
 Database& Database::operator=(Database&&) noexcept = default;
 
 const std::filesystem::path& Database::path() const noexcept { return impl_->path; }
+int Database::format_version() const noexcept { return impl_->format_version; }
 
 std::vector<ClipRecord> Database::clips() const {
     QuietScope quiet;
@@ -135,6 +137,15 @@ std::vector<SetRecord> Database::sets() const {
                 r.tensor_shape[k] = static_cast<std::size_t>(info.shape[k]);
             r.tensor_stored_bytes = info.stored_bytes;
         }
+        const std::string model = store::model_path(name);
+        if (f.type_of(model) == store::h5::ObjectType::Group) {
+            r.model = true;
+            // (R3, R2, R1) in the file.
+            const auto info = f.dataset_info(model + "/core");
+            for (std::size_t k = 0; k < 3 && k < info.shape.size(); ++k)
+                r.model_ranks[k] = static_cast<std::size_t>(info.shape[info.shape.size() - 1 - k]);
+            r.model_stored_bytes = store::model_stored_bytes(f, name);
+        }
         out.push_back(std::move(r));
     }
     return out;
@@ -152,6 +163,17 @@ std::optional<AlignedSet> Database::load_aligned(const std::string& set) const {
     if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
     if (f.type_of(store::aligned_path(set)) != store::h5::ObjectType::Group) return std::nullopt;
     return store::read_aligned(f, set);
+}
+
+std::optional<StoredModel> Database::load_model(const std::string& set) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    const store::h5::ObjectType t = f.type_of(store::model_path(set));
+    if (t == store::h5::ObjectType::None) return std::nullopt;
+    if (t != store::h5::ObjectType::Group)
+        throw StoreError(f.name(), store::model_path(set), "expected a group of kind 'tucker_model', found another object");
+    return store::read_model(f, set);
 }
 
 std::uint64_t Database::file_size() const {

@@ -13,6 +13,7 @@ struct Database::Impl {
     std::filesystem::path path;
     store::h5::File owned;              // the file, when this view opened it itself
     store::h5::File* file = nullptr;    // the file read (owned, or a writer's session file)
+    int format_version = kDatabaseFormatVersion;  // the root attribute, as checked when opened
     mutable std::map<std::string, std::shared_ptr<const Skeleton>> skeletons;
 
     const store::h5::File& f() const;

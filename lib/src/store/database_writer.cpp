@@ -1,6 +1,7 @@
 // DatabaseWriter: an atomic edit session (work on a temporary copy, publish it by rename).
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <functional>
 #include <unordered_map>
 
@@ -8,6 +9,7 @@
 #include "database_impl.hpp"
 #include "h5/quiet.hpp"
 #include "layout.hpp"
+#include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
@@ -83,6 +85,9 @@ DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode) :
             std::filesystem::copy_file(target, s.temp, std::filesystem::copy_options::none, ec);
             if (ec) throw IoError(target.string() + ": cannot copy to " + s.temp.string() + ": " + ec.message());
             s.file = store::h5::File::open(s.temp, true);
+            // An older version's file is a file of this version too (versions only add optional
+            // objects): the session's copy is upgraded, the target changes only at commit().
+            if (store::check_root(s.file) < kDatabaseFormatVersion) store::upgrade_root(s.file);
         } else {
             s.file = store::h5::File::create(s.temp);
             store::write_root(s.file);
@@ -219,11 +224,58 @@ void DatabaseWriter::put_aligned(const std::string& set_name, const AlignedSet& 
                                   std::to_string(set.samples[n].frame_count() - 1) + "]");
     }
     const std::string g = store::aligned_path(set_name);
+    // A stored model described the old tensor.
+    for (const std::string& old : {store::model_path(set_name), g}) {
+        if (f.exists(old)) {
+            f.unlink(old);
+            s.removed_objects = true;
+        }
+    }
+    store::write_aligned(f, set_name, aligned);
+}
+
+void DatabaseWriter::put_model(const std::string& set_name, const compression::SetModel& model,
+                               const ModelFigures& figures) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    const std::string who = "model of '" + set_name + "'";
+    compression::check(model, who.c_str());
+    if (!s.view.has_set(set_name))
+        throw InvalidArgument(who + ": motion set '" + set_name + "' is not stored (store the set first)");
+    const std::string a = store::aligned_path(set_name);
+    if (f.type_of(a) != store::h5::ObjectType::Group)
+        throw InvalidArgument(who + ": the set is not aligned (store its aligned form first: the model describes it)");
+    const store::h5::Shape shape = f.dataset_info(a + "/tensor").shape;  // (N, T, D)
+    if (shape.size() != 3)
+        throw StoreError(f.name(), a + "/tensor",
+                         "expected 3 dimensions (sample, time, dof), found shape " + store::h5::shape_text(shape));
+    const tensor::Dims3 dims = model.tucker.dims();
+    const char* const names[3] = {"D (dofs)", "T (aligned frames)", "N (samples)"};
+    for (int k = 0; k < 3; ++k) {
+        const auto expected = static_cast<Eigen::Index>(shape.at(static_cast<std::size_t>(2 - k)));
+        if (dims[static_cast<std::size_t>(k)] != expected)
+            throw InvalidArgument(who + ": " + names[k] + " is " + std::to_string(dims[static_cast<std::size_t>(k)]) +
+                                  ", but the aligned tensor has " + std::to_string(expected));
+    }
+    const tensor::TuckerModel& t = model.tucker;
+    const std::pair<const char*, double> numbers[] = {
+        {"fit", t.fit}, {"error_bound", t.error_bound}, {"data_norm", t.data_norm},
+        {"figures.dof_rmse", figures.dof_rmse}, {"figures.rmse_cm", figures.rmse_cm},
+        {"figures.mean_cm", figures.mean_cm}, {"figures.max_cm", figures.max_cm}, {"figures.p99_cm", figures.p99_cm}};
+    for (const auto& [name, value] : numbers) {
+        const bool may_be_negative = std::string(name) == "fit";
+        if (!std::isfinite(value) || (!may_be_negative && value < 0.0))
+            throw InvalidArgument(who + ": " + name + " must be finite" + (may_be_negative ? "" : " and >= 0") +
+                                  ", found " + std::to_string(value));
+    }
+    if (t.iterations < 0) throw InvalidArgument(who + ": iterations must be >= 0, found " + std::to_string(t.iterations));
+    const std::string g = store::model_path(set_name);
     if (f.exists(g)) {
         f.unlink(g);
         s.removed_objects = true;
     }
-    store::write_aligned(f, set_name, aligned);
+    store::write_model(f, set_name, model, figures);
 }
 
 void DatabaseWriter::commit() {

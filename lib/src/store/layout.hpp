@@ -1,5 +1,5 @@
 #pragma once
-// Where things live in a format-1 file (see schemas/format-v1.md), and the one place where Eigen's
+// Where things live in a database file (see schemas/format-v2.md), and the one place where Eigen's
 // column-major layout meets HDF5's C order.
 #include <string>
 #include <vector>
@@ -18,6 +18,7 @@ inline std::string skeleton_path(const std::string& id) { return kSkeletons + "/
 inline std::string clip_path(const std::string& id) { return kClips + "/" + id; }
 inline std::string set_path(const std::string& name) { return kSets + "/" + name; }
 inline std::string aligned_path(const std::string& set) { return set_path(set) + "/aligned"; }
+inline std::string model_path(const std::string& set) { return set_path(set) + "/model"; }
 
 /// "/a/b/c" -> {"a", "b", "c"}.
 std::vector<std::string> split_path(const std::string& path);

@@ -20,7 +20,9 @@ void write_root(h5::File& file) {
     file.create_group(kSets, "sets");
 }
 
-void check_root(const h5::File& file) {
+void upgrade_root(h5::File& file) { file.write_int_attribute("/", "format_version", kDatabaseFormatVersion); }
+
+int check_root(const h5::File& file) {
     const std::string& f = file.name();
     if (!file.has_attribute("/", "format"))
         throw StoreError(f, "/", "not a mocapdb database: root attribute 'format' is missing (expected \"mocapdb\")");
@@ -40,14 +42,16 @@ void check_root(const h5::File& file) {
         throw StoreError(f, "/", "format_version is " + std::to_string(version) + ", newer than the version " +
                                      std::to_string(kDatabaseFormatVersion) +
                                      " this mocapdb reads (a newer mocapdb wrote it)");
-    if (version != kDatabaseFormatVersion)
+    if (version < kOldestDatabaseFormatVersion)
         throw StoreError(f, "/", "format_version is " + std::to_string(version) + " (expected " +
+                                     std::to_string(kOldestDatabaseFormatVersion) + " to " +
                                      std::to_string(kDatabaseFormatVersion) + ")");
     for (const auto& [path, kind] : {std::pair{kSkeletons, "skeletons"}, std::pair{kClips, "clips"},
                                      std::pair{kSets, "sets"}}) {
         if (file.type_of(path) != h5::ObjectType::Group)
             throw StoreError(f, path, std::string("missing group (expected a group of kind '") + kind + "')");
     }
+    return static_cast<int>(version);
 }
 
 }  // namespace mocapdb::store

@@ -1,7 +1,9 @@
 #pragma once
-// The schema mirror schemas/format-v1.json, compiled in (generated from schema_text.cpp.in).
+// The schema mirrors schemas/format-vN.json of every version this library reads, compiled in
+// (generated from schema_text.cpp.in by lib/CMakeLists.txt).
 namespace mocapdb::store {
 
-const char* schema_v1_json_text();
+/// The text of schemas/format-v{format_version}.json; nullptr for a version without a mirror.
+const char* schema_json_text(int format_version);
 
 }  // namespace mocapdb::store

@@ -1,9 +1,11 @@
-// mocapdb validate: every object of the file against the schema mirror, then the content rules the
-// mirror cannot express (clip columns against skeletons, set samples against clips, aligned tensors
-// against sets), reporting violations instead of throwing.
+// mocapdb validate: every object of the file against the schema mirror of the file's format version,
+// then the content rules the mirror cannot express (clip columns against skeletons, set samples
+// against clips, aligned tensors against sets, models against aligned tensors), reporting violations
+// instead of throwing.
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 #include "h5/file.hpp"
@@ -434,6 +436,13 @@ void check_content(const std::filesystem::path& file, Validator& v) {
                                                      it->second.skeleton + "', expected '" + skeleton +
                                                      "' like sample 0 (a set shares one skeleton)");
             }
+            // The model's shapes against the aligned tensor (D, T, N; 1 <= R <= the dimension), its
+            // values, and that it has an aligned tensor at all.
+            try {
+                db.load_model(name);
+            } catch (const StoreError& e) {
+                v.add(e.object_path().empty() ? store::model_path(name) : e.object_path(), e.message());
+            }
             const auto aligned = db.load_aligned(name);
             if (!aligned) continue;
             const std::string apath = store::aligned_path(name);
@@ -461,26 +470,45 @@ void check_content(const std::filesystem::path& file, Validator& v) {
 
 }  // namespace
 
-const std::string& builtin_schema_json() {
-    static const std::string text = store::schema_v1_json_text();
-    return text;
+const std::string& builtin_schema_json() { return builtin_schema_json(kDatabaseFormatVersion); }
+
+const std::string& builtin_schema_json(int format_version) {
+    static const std::map<int, std::string> texts = [] {
+        std::map<int, std::string> out;
+        for (int v = store::kOldestDatabaseFormatVersion; v <= kDatabaseFormatVersion; ++v)
+            if (const char* text = store::schema_json_text(v)) out.emplace(v, text);
+        return out;
+    }();
+    const auto it = texts.find(format_version);
+    if (it == texts.end())
+        throw InvalidArgument("builtin_schema_json: no schema mirror for format version " + std::to_string(format_version) +
+                              " (this mocapdb reads versions " + std::to_string(store::kOldestDatabaseFormatVersion) +
+                              " to " + std::to_string(kDatabaseFormatVersion) + ")");
+    return it->second;
 }
 
 ValidationReport validate_database(const std::filesystem::path& file, const ValidateOptions& options) {
     store::h5::QuietScope quiet;
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) throw IoError(file.string() + ": no such file");
-    const std::string& text = options.schema_json.empty() ? builtin_schema_json() : options.schema_json;
-    const store::Schema schema = store::parse_schema(text, options.schema_json.empty() ? "format-v1.json" : "schema");
+    // A custom mirror is parsed first, so that a malformed one is refused whatever the file.
+    std::optional<store::Schema> custom;
+    if (!options.schema_json.empty()) custom = store::parse_schema(options.schema_json, "schema");
     ValidationReport report;
     store::h5::File f;
+    int version = 0;
     try {
         f = store::h5::File::open(file, false);
-        store::check_root(f);
+        version = store::check_root(f);
+        report.format_version = version;
     } catch (const StoreError& e) {
         report.violations.push_back({e.object_path().empty() ? "/" : e.object_path(), e.message()});
         return report;
     }
+    // The mirror of the file's own version: a version-1 file is checked against format-v1.json.
+    const store::Schema schema =
+        custom ? *custom
+               : store::parse_schema(builtin_schema_json(version), "format-v" + std::to_string(version) + ".json");
     Validator v(f, schema, options, report);
     v.run();
     f.close();

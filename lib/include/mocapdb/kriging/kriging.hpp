@@ -2,8 +2,9 @@
 // Ordinary and universal kriging with a fixed variogram model (paper Sections 3, 4.3, Appendix B).
 //
 // Kriging is built once from the control points and the model ("factorize once"); after that a query
-// costs one vector of gamma values and one matrix-vector product (no solve), and a batch of queries is a
-// matrix product. The weights depend on the control points only, so the same object blends any number
+// costs one vector of gamma values and one matrix-vector product (no solve) with a precomputed M by
+// (M + K) operator applied to [gamma(c); g(c)] (for OLS the trend correction is folded into it), and a
+// batch of queries is a matrix product. The weights depend on the control points only, so the same object blends any number
 // of signals (pose vectors, whole motions, tensor coefficients).
 //
 // Trend handling (TrendFit), with trend = TrendKind::Linear:
@@ -39,9 +40,10 @@
 //     nugget or the jitter);
 //   * collinear / coplanar control points make the linear trend rank deficient: the flat directions are
 //     dropped (see trend.hpp);
-//   * the unbiasedness constraints (sum w = 1, and G^T w = g(c) for GLS) are re-imposed on the computed
-//     weights by a cheap projection, so rounding errors of an ill-conditioned system cannot break the
-//     partition of unity;
+//   * the constraints G^T w = g(c) (G the trend basis at the samples: sum w = 1 and, with a linear trend,
+//     exact reproduction of the hyperplane; both OLS and GLS weights satisfy them) are re-imposed on the
+//     computed weights by a cheap projection, so rounding errors of an ill-conditioned system cannot
+//     break the partition of unity;
 //   * variances are clipped at 0; no output is ever NaN for finite inputs.
 //
 // The object is immutable after build() and safe to query from several threads (one QueryWorkspace
@@ -184,7 +186,12 @@ private:
     // From gamma (M by Q) and trend basis values (K by Q): kernel b (M by Q) and weights w (M by Q).
     void solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const Eigen::Ref<const Eigen::MatrixXd>& g,
                      Eigen::MatrixXd& out_kernel, Eigen::MatrixXd& out_weights) const;
-    void expand(const Eigen::Ref<const Eigen::MatrixXd>& unique_weights, Eigen::Ref<Eigen::MatrixXd> out) const;
+    // The operator of the weights: w = weight_operator() [gamma(c); g(c)] (M by M + K), before the
+    // constraint projection. GLS / OK: operator_ itself; OLS: weight_operator_.
+    const Eigen::MatrixXd& weight_operator() const;
+    // rhs = [gamma; g] (M + K by Q) to weights on the unique points (out: M by Q); scratch: any size.
+    void weights_from_rhs(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> out,
+                          Eigen::MatrixXd& scratch) const;
 
     VariogramModel model_;
     KrigingOptions options_;
@@ -203,6 +210,9 @@ private:
     Eigen::MatrixXd s_inverse_;       // (F^T C^-1 F)^-1 (K_k by K_k)
     Eigen::Index kernel_trend_size_ = 1;
     Eigen::MatrixXd ols_u_;           // OLS only: M by r orthonormal trend columns (basis_ without the constant)
+    // OLS only (empty otherwise): weights w = b + U (g_u(c) - U^T b) as one operator on [gamma(c); g(c)],
+    //   [(I - U U^T) operator_, U]  (M by M + 1 + r), so a query is a single matrix-vector product.
+    Eigen::MatrixXd weight_operator_;
 };
 
 }  // namespace mocapdb::kriging

@@ -1,6 +1,6 @@
 #pragma once
-// The motion database file (HDF5, format "mocapdb" version 1, specified in schemas/format-v1.md):
-// a read view `Database`, and an atomic edit session `DatabaseWriter`.
+// The motion database file (HDF5, format "mocapdb" version 2, specified in schemas/format-v2.md;
+// version 1 files are read too): a read view `Database`, and an atomic edit session `DatabaseWriter`.
 //
 // Nothing here exposes HDF5: the only code that includes HDF5 headers is in lib/src/store/h5/.
 //
@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/motion/clip.hpp"
@@ -28,8 +29,9 @@
 
 namespace mocapdb {
 
-/// The file format version this library reads and writes.
-constexpr int kDatabaseFormatVersion = 1;
+/// The file format version this library writes. It reads every version from 1 to this one (a version
+/// only adds optional objects); a writing session on an older file upgrades its format_version.
+constexpr int kDatabaseFormatVersion = 2;
 
 /// One motion set as listed by Database::sets().
 struct SetRecord {
@@ -41,6 +43,25 @@ struct SetRecord {
     /// (samples, time, dofs) of the aligned tensor, as stored (C order); zeros when not aligned.
     std::array<std::size_t, 3> tensor_shape{};
     std::uint64_t tensor_stored_bytes = 0;  ///< compressed size of the tensor in the file
+    bool model = false;                     ///< a Tucker model is stored (/sets/{set}/model)
+    std::array<std::size_t, 3> model_ranks{};  ///< (R1, R2, R3); zeros without a model
+    std::uint64_t model_stored_bytes = 0;   ///< storage size of the model's datasets in the file
+};
+
+/// Errors of a stored model, measured against the aligned tensor when the model was stored
+/// (eval/joint_error.hpp defines them).
+struct ModelFigures {
+    double dof_rmse = 0.0;
+    double rmse_cm = 0.0;
+    double mean_cm = 0.0;
+    double max_cm = 0.0;
+    double p99_cm = 0.0;
+};
+
+/// A set's compressed model as stored in /sets/{set}/model.
+struct StoredModel {
+    compression::SetModel model;
+    ModelFigures figures;
 };
 
 /// Outcome of DatabaseWriter::add_clip.
@@ -55,7 +76,7 @@ struct AddClipResult {
 bool is_hdf5_file(const std::filesystem::path& path);
 
 /// Read view of a database file. Opening checks the root attributes (format = "mocapdb",
-/// format_version = 1) and throws StoreError naming the file, the HDF5 path and the expected and
+/// format_version 1 or 2) and throws StoreError naming the file, the HDF5 path and the expected and
 /// found values for a file that is not HDF5, truncated, foreign, or of another version. Every load
 /// checks dtypes, shapes and checksums of what it reads and throws StoreError / ChecksumError naming
 /// the offending object. Not thread-safe (HDF5's serial build is not).
@@ -71,7 +92,8 @@ public:
 
     /// The file this view reads (for a writer's view: its temporary file).
     const std::filesystem::path& path() const noexcept;
-    int format_version() const noexcept { return kDatabaseFormatVersion; }
+    /// The file's format_version (1 or 2; a writer's view: kDatabaseFormatVersion).
+    int format_version() const noexcept;
 
     /// Every clip, sorted by id (reads only metadata).
     std::vector<ClipRecord> clips() const;
@@ -99,6 +121,9 @@ public:
     /// The set's aligned form, or nullopt when the set has not been aligned. StoreError when there
     /// is no such set.
     std::optional<AlignedSet> load_aligned(const std::string& set) const;
+    /// The set's Tucker model, or nullopt when none is stored. StoreError when there is no such set
+    /// or the model is malformed (shapes disagreeing with the aligned tensor, non-finite values).
+    std::optional<StoredModel> load_model(const std::string& set) const;
 
     /// Size of the file in bytes.
     std::uint64_t file_size() const;
@@ -118,8 +143,10 @@ public:
         Create,        ///< start a new, empty database; commit() replaces whatever the target was
     };
 
-    /// Starts a session. Throws StoreError when the target exists but is not a database of this
-    /// version (OpenOrCreate), IoError when the temporary file cannot be made.
+    /// Starts a session. Throws StoreError when the target exists but is not a database of a version
+    /// this library reads (OpenOrCreate), IoError when the temporary file cannot be made. An older
+    /// file's format_version is set to kDatabaseFormatVersion in the session's file (the target
+    /// changes only at commit()).
     explicit DatabaseWriter(const std::filesystem::path& target, Mode mode = Mode::OpenOrCreate);
     /// Without commit(): closes and removes the temporary file; the target is untouched.
     ~DatabaseWriter();
@@ -143,14 +170,21 @@ public:
 
     /// Stores a motion set. Every sample must name a stored clip, lie within its frames, and all
     /// clips must share one skeleton (InvalidArgument otherwise). An existing set of the same name is
-    /// an InvalidArgument unless `replace`; replacing drops the old set's aligned form too.
+    /// an InvalidArgument unless `replace`; replacing drops the old set's aligned form and model too.
     void put_set(const MotionSet& set, bool replace);
-    /// Removes a set (and its aligned form). StoreError when there is no such set.
+    /// Removes a set (and its aligned form and model). StoreError when there is no such set.
     void remove_set(const std::string& name);
-    /// Stores (replaces) the aligned form of an existing set. InvalidArgument unless validate(aligned)
+    /// Stores (replaces) the aligned form of an existing set, dropping a stored model (it described the
+    /// old tensor). InvalidArgument unless validate(aligned)
     /// holds, N equals the set's samples, D the pose-vector length (PoseLayout) of the set's skeleton,
     /// and every warp column lies within its sample's frames [0, frame_count − 1] (1e-9 slack).
     void put_aligned(const std::string& set, const AlignedSet& aligned);
+    /// Stores (replaces) the Tucker model of an aligned set. InvalidArgument unless the set is
+    /// aligned and the model's D, T, N equal the aligned tensor's and compression::check holds
+    /// (and fit, error_bound, data_norm and the figures are finite; error_bound, data_norm and the
+    /// figures >= 0).
+    /// put_aligned and put_set(replace) drop a stored model (it described the old tensor).
+    void put_model(const std::string& set, const compression::SetModel& model, const ModelFigures& figures);
 
     /// Closes the temporary file, makes it durable and renames it over the target. Space freed by
     /// replaced sets is reclaimed here (the file is rewritten compactly). The session is finished

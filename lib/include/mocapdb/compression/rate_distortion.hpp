@@ -1,0 +1,66 @@
+#pragma once
+// The compression report's engine (issue #4): on one aligned set, in one run, the bytes each method
+// needs to reach each max joint-error target, measured the same way for all of them
+// (eval/joint_error.hpp: forward kinematics, every joint, frame and sample).
+//
+// Methods (all see the same weighted, centred tensor X of set_model.hpp, so every one spends its
+// error budget in centimetres; all are charged the same side information, byte_accounting.hpp):
+//  - "tucker":          HOSVD, ranks searched (rank_search.hpp), core and bases stored as float32.
+//  - "tucker-hooi":     HOOI refinement at the same ranks (float32).
+//  - "tucker+residual": HOSVD at a ladder of ranks, core and bases quantized (codec/quantize.hpp)
+//                       and deflated, plus the error-bounded residual layer (codec/residual_layer.hpp)
+//                       whose step is searched; the cheapest rung wins.
+//  - "pca":             per-sample PCA (codec/pca_baseline.hpp), components searched, float32.
+//  - "pca+residual":    PCA at k = 0, 1, 2, 4, ... components plus the residual layer (k = 0 is the
+//                       per-(dof, frame) mean plus residuals), the cheapest wins.
+//  - "zfp":             zfp fixed accuracy (codec/zfp_codec.hpp), tolerance searched.
+//  - "raw-float32":     the aligned poses as float32 (the paper's "full" row; no target).
+//  - "deflate":         lossless deflate of the float32 poses (one row, no target).
+// Searches keep the cheapest measured setting that meets the target; a row says when none did.
+// Timing: "pose" rows report the time to synthesize one pose from the model (random access);
+// "stream" rows the time to decode the whole set divided by its T N poses.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/tensor/tucker.hpp"
+
+namespace mocapdb::compression {
+
+struct RateRow {
+    std::string method;
+    double target_cm = 0.0;          ///< 0 for the lossless row
+    std::vector<long long> ranks;    ///< Tucker: R1, R2, R3; PCA: k; others: empty
+    double setting = 0.0;            ///< zfp tolerance, residual step (in X units), quantization bits
+    std::uint64_t bytes = 0;         ///< payload + side information
+    double ratio = 0.0;              ///< raw aligned float32 bytes / bytes
+    eval::JointErrorStats stats;
+    double precompute_s = 0.0;       ///< fitting / encoding at the chosen setting
+    double us_per_pose = 0.0;
+    std::string access;              ///< "pose" or "stream" (see the header comment)
+    bool target_met = true;
+};
+
+struct RateOptions {
+    std::vector<double> max_cm = {1.0, 0.1};  ///< targets, each > 0
+    Eigen::Index parameters = 0;              ///< control parameters per sample (side information)
+    int quantization_bits = 12;               ///< tucker+residual: core and basis bits
+    bool hooi = true;
+    int hooi_iterations = 50;
+};
+
+struct RateReport {
+    tensor::Dims3 dims{0, 0, 0};
+    std::uint64_t raw_bytes = 0;   ///< aligned tensor as float32
+    std::uint64_t side_bytes = 0;  ///< charged to every row
+    std::vector<RateRow> rows;     ///< raw and lossless rows first, then per target in method order
+};
+
+/// poses: the aligned D × T × N pose tensor of `skeleton`. Throws InvalidArgument on bad targets.
+RateReport rate_distortion(const Tensor3& poses, std::shared_ptr<const Skeleton> skeleton, const RateOptions& options);
+
+/// Median-of-5 time (µs) to synthesize one pose from the model at full ranks (PoseEvaluator).
+double time_pose_evaluation(const tensor::TuckerModel& model);
+
+}  // namespace mocapdb::compression

@@ -1,0 +1,42 @@
+#pragma once
+// The compressed form of an aligned motion set: a Tucker model of the weighted, centred pose tensor
+//     X(d, t, n) = (A(d, t, n) − mean_d) · weight_d,
+// A the D × T × N pose vectors (aligned_set.hpp), mean_d the mean of dof d over frames and samples,
+// weight_d from dof_weights.hpp (so that |X − X̂| ≤ E everywhere keeps every joint within E cm).
+#include <optional>
+
+#include "mocapdb/dataset/aligned_set.hpp"
+#include "mocapdb/tensor/hooi.hpp"
+#include "mocapdb/tensor/tucker.hpp"
+
+namespace mocapdb::compression {
+
+/// Per dof: mean over frames and samples (D entries).
+VecX dof_means(const Tensor3& poses);
+/// X = (A − mean) · weight, per dof row. Throws InvalidArgument on a length mismatch or weight ≤ 0.
+Tensor3 weighted_centred(const Tensor3& poses, const VecX& mean, const VecX& weight);
+/// The inverse: A = X / weight + mean.
+Tensor3 from_weighted_centred(const Tensor3& x, const VecX& mean, const VecX& weight);
+
+struct SetModel {
+    tensor::TuckerModel tucker;  ///< of X (fit, error_bound and data_norm are in X's units)
+    VecX mean;                   ///< D
+    VecX weight;                 ///< D, > 0
+
+    Eigen::Index dofs() const { return mean.size(); }
+    /// Reconstructed pose vectors, D × T × N.
+    Tensor3 reconstruct() const;
+    /// At a level of detail lod (1 ≤ lod[n] ≤ ranks[n]).
+    Tensor3 reconstruct(const tensor::Ranks& lod) const;
+};
+
+/// Decomposes the weighted, centred tensor of `poses` at explicit ranks with `method`.
+/// Throws InvalidArgument for bad ranks, shapes or non-finite values.
+SetModel fit_set_model(const Tensor3& poses, const VecX& weight, const tensor::Ranks& ranks,
+                       tensor::TuckerMethod method, const tensor::HooiOptions& hooi = {});
+
+/// Throws InvalidArgument unless the parts agree: bases D × R1, T × R2, N × R3 with core R1 × R2 × R3,
+/// mean and weight of length D, weights > 0, everything finite. `where` names the caller.
+void check(const SetModel& model, const char* where);
+
+}  // namespace mocapdb::compression

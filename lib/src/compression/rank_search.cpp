@@ -1,0 +1,105 @@
+#include "mocapdb/compression/rank_search.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/tensor/rank_selection.hpp"
+
+namespace mocapdb::compression {
+namespace {
+
+// Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `ok`.
+template <class Measure>
+RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter, Measure ok) {
+    RankSearchResult best;
+    const tensor::Dims3 dims = tensor::dims_of(p.x);
+    const auto evaluate = [&](const tensor::Ranks& ranks) {
+        RankSearchResult r;
+        r.model = hosvd_model(p, ranks);
+        r.stats = meter.measure(r.model.reconstruct());
+        r.target_met = ok(r);
+        return r;
+    };
+    // Full ranks first: they reproduce the data (up to rounding), so the target is reachable.
+    best = evaluate({dims[0], dims[1], dims[2]});
+    int evaluations = 1;
+    if (!best.target_met) {
+        best.evaluations = evaluations;
+        return best;
+    }
+    double lo = std::log(1e-7), hi = 0.0;  // lo: known to meet (or assumed: finer than full-rank rounding)
+    tensor::Ranks last{-1, -1, -1};
+    bool last_ok = false;
+    for (int i = 0; i < 28 && hi - lo > 0.01; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        const tensor::Ranks ranks = tensor::ranks_for_error_bound(p.bases.spectra, std::exp(mid));
+        if (ranks == last) {  // same triple as the previous probe: its answer is known
+            (last_ok ? lo : hi) = mid;
+            continue;
+        }
+        last = ranks;
+        RankSearchResult r = evaluate(ranks);
+        ++evaluations;
+        last_ok = r.target_met;
+        if (r.target_met) {
+            lo = mid;
+            if (r.model.tucker.parameter_count() <= best.model.tucker.parameter_count()) best = std::move(r);
+        } else {
+            hi = mid;
+        }
+    }
+    best.evaluations = evaluations;
+    return best;
+}
+
+}  // namespace
+
+PreparedSet prepare_set(const Tensor3& poses, const VecX& weight) {
+    tensor::check_tensor(poses, "prepare_set");
+    PreparedSet p;
+    p.mean = dof_means(poses);
+    p.weight = weight;
+    p.x = weighted_centred(poses, p.mean, p.weight);
+    p.bases = tensor::hosvd_bases(p.x);
+    return p;
+}
+
+SetModel hosvd_model(const PreparedSet& p, const tensor::Ranks& ranks) {
+    SetModel m;
+    m.mean = p.mean;
+    m.weight = p.weight;
+    m.tucker = tensor::hosvd_from_bases(p.x, p.bases, ranks);
+    return m;
+}
+
+RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const eval::JointErrorMeter& meter, double max_cm) {
+    if (!(max_cm > 0.0) || !std::isfinite(max_cm))
+        throw InvalidArgument("search_ranks_for_max_error: the target must be a finite number of cm > 0, got " +
+                              std::to_string(max_cm));
+    return bisect(p, meter, [&](const RankSearchResult& r) { return r.stats.max_cm <= max_cm; });
+}
+
+RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const eval::JointErrorMeter& meter, double rmse) {
+    if (!(rmse >= 0.0) || !std::isfinite(rmse))
+        throw InvalidArgument("search_ranks_for_rmse: the target must be finite and >= 0, got " + std::to_string(rmse));
+    const double count = static_cast<double>(p.x.size());
+    return bisect(p, meter, [&](const RankSearchResult& r) {
+        // ||X - X_hat||^2 = ||X||^2 - ||G||^2 for HOSVD-type models; measured from the fit.
+        const double error = r.model.tucker.data_norm * (1.0 - r.model.tucker.fit);
+        return error / std::sqrt(count) <= rmse;
+    });
+}
+
+RankSearchResult ranks_for_ratio(const PreparedSet& p, const eval::JointErrorMeter& meter, double ratio) {
+    if (!(ratio > 0.0) || !std::isfinite(ratio))
+        throw InvalidArgument("ranks_for_ratio: the target ratio must be finite and > 0, got " + std::to_string(ratio));
+    RankSearchResult r;
+    r.model = hosvd_model(p, tensor::ranks_for_compression(p.bases.spectra, ratio));
+    r.stats = meter.measure(r.model.reconstruct());
+    r.target_met = r.model.tucker.compression_ratio() >= ratio;
+    r.evaluations = 1;
+    return r;
+}
+
+}  // namespace mocapdb::compression

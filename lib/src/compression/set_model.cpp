@@ -1,0 +1,90 @@
+#include "mocapdb/compression/set_model.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/tensor/hosvd.hpp"
+
+namespace mocapdb::compression {
+namespace {
+
+void check_dof_vector(const Tensor3& a, const VecX& v, const char* name) {
+    if (v.size() != a.dimension(0))
+        throw InvalidArgument(std::string("pose tensor has ") + std::to_string(a.dimension(0)) + " dofs, " + name +
+                              " has " + std::to_string(v.size()) + " entries");
+}
+
+}  // namespace
+
+VecX dof_means(const Tensor3& poses) {
+    const Eigen::Index d = poses.dimension(0);
+    const Eigen::Index columns = poses.dimension(1) * poses.dimension(2);
+    if (columns == 0) return VecX::Zero(d);
+    return Eigen::Map<const MatX>(poses.data(), d, columns).rowwise().mean();
+}
+
+Tensor3 weighted_centred(const Tensor3& poses, const VecX& mean, const VecX& weight) {
+    check_dof_vector(poses, mean, "mean");
+    check_dof_vector(poses, weight, "weight");
+    if (!(weight.array() > 0.0).all()) throw InvalidArgument("weighted_centred: every weight must be > 0");
+    Tensor3 x(poses.dimensions());
+    const Eigen::Index d = poses.dimension(0), columns = poses.dimension(1) * poses.dimension(2);
+    Eigen::Map<MatX>(x.data(), d, columns) =
+        (Eigen::Map<const MatX>(poses.data(), d, columns).colwise() - mean).array().colwise() * weight.array();
+    return x;
+}
+
+Tensor3 from_weighted_centred(const Tensor3& x, const VecX& mean, const VecX& weight) {
+    check_dof_vector(x, mean, "mean");
+    check_dof_vector(x, weight, "weight");
+    Tensor3 a(x.dimensions());
+    const Eigen::Index d = x.dimension(0), columns = x.dimension(1) * x.dimension(2);
+    Eigen::Map<MatX>(a.data(), d, columns) =
+        (Eigen::Map<const MatX>(x.data(), d, columns).array().colwise() / weight.array()).matrix().colwise() + mean;
+    return a;
+}
+
+Tensor3 SetModel::reconstruct() const { return from_weighted_centred(tucker.reconstruct(), mean, weight); }
+
+Tensor3 SetModel::reconstruct(const tensor::Ranks& lod) const {
+    return from_weighted_centred(tucker.reconstruct(lod), mean, weight);
+}
+
+SetModel fit_set_model(const Tensor3& poses, const VecX& weight, const tensor::Ranks& ranks,
+                       tensor::TuckerMethod method, const tensor::HooiOptions& hooi) {
+    tensor::check_tensor(poses, "fit_set_model");
+    SetModel m;
+    m.mean = dof_means(poses);
+    m.weight = weight;
+    const Tensor3 x = weighted_centred(poses, m.mean, m.weight);
+    switch (method) {
+        case tensor::TuckerMethod::Hosvd: m.tucker = tensor::hosvd(x, ranks, hooi.hosvd); break;
+        case tensor::TuckerMethod::StHosvd: m.tucker = tensor::st_hosvd(x, ranks); break;
+        case tensor::TuckerMethod::Hooi: m.tucker = tensor::hooi(x, ranks, hooi); break;
+    }
+    return m;
+}
+
+void check(const SetModel& m, const char* where) {
+    const auto fail = [&](const std::string& what) { throw InvalidArgument(std::string(where) + ": " + what); };
+    const tensor::TuckerModel& t = m.tucker;
+    const Eigen::Index d = m.mean.size();
+    if (d == 0) fail("the model has no dofs");
+    if (m.weight.size() != d) fail("weight has " + std::to_string(m.weight.size()) + " entries, mean " + std::to_string(d));
+    if (!(m.weight.array() > 0.0).all() || !m.weight.allFinite()) fail("weights must be finite and > 0");
+    if (!m.mean.allFinite()) fail("mean is not finite");
+    if (t.U[0].rows() != d) fail("dof basis has " + std::to_string(t.U[0].rows()) + " rows, expected " + std::to_string(d));
+    for (int n = 0; n < 3; ++n) {
+        if (t.U[n].cols() != t.ranks[n] || t.core.dimension(n) != t.ranks[n])
+            fail("basis " + std::to_string(n) + " is " + std::to_string(t.U[n].rows()) + " x " +
+                 std::to_string(t.U[n].cols()) + " but the core's dimension " + std::to_string(n) + " is " +
+                 std::to_string(t.core.dimension(n)) + " and the rank " + std::to_string(t.ranks[n]));
+        if (t.ranks[n] < 1 || t.ranks[n] > t.U[n].rows()) fail("rank " + std::to_string(n) + " out of range");
+        if (!t.U[n].allFinite()) fail("basis " + std::to_string(n) + " is not finite");
+    }
+    for (Eigen::Index i = 0; i < t.core.size(); ++i)
+        if (!std::isfinite(t.core.data()[i])) fail("core is not finite");
+}
+
+}  // namespace mocapdb::compression
