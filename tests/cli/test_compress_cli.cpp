@@ -111,12 +111,13 @@ TEST_CASE("report: one run, every baseline, JSON, CSV and SVG", "[cli][compress]
     }
     for (const char* m : {"raw-float32", "deflate", "tucker", "tucker+residual", "pca", "pca+residual", "zfp"})
         CHECK(methods.count(m) == 1);
-    // 2 lossless rows + 2 targets x 5 methods.
-    CHECK(j["rows"].items.size() == 12);
+    CHECK(methods.count("tucker-q12") == 1);
+    // 2 lossless rows + 2 targets x 6 methods.
+    CHECK(j["rows"].items.size() == 14);
 
     const std::string table = read_all(csv);
     CHECK_THAT(table, Contains("method,target_cm"));
-    CHECK(std::count(table.begin(), table.end(), '\n') == 13);
+    CHECK(std::count(table.begin(), table.end(), '\n') == 15);
     const std::string picture = read_all(svg);
     CHECK_THAT(picture, Contains("<svg") && Contains("tucker+residual") && Contains("zfp") && Contains("</svg>"));
 }

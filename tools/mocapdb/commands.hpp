@@ -13,6 +13,7 @@ void setup_variogram(CLI::App& app);
 void setup_krige(CLI::App& app);
 void setup_set(CLI::App& app);
 void setup_align(CLI::App& app);
+void setup_generate(CLI::App& app);
 void setup_compress(CLI::App& app);
 void setup_report(CLI::App& app);
 

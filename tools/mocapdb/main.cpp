@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     mocapdb::cli::setup_krige(app);
     mocapdb::cli::setup_set(app);
     mocapdb::cli::setup_align(app);
+    mocapdb::cli::setup_generate(app);
     mocapdb::cli::setup_compress(app);
     mocapdb::cli::setup_report(app);
 

@@ -91,6 +91,27 @@ RateRow tucker_row(const Context& c, double target) {
     return r;
 }
 
+// The "tucker" row's ranks with core and bases quantized and deflated (no residual): what
+// quantization alone saves, and what it costs in error.
+RateRow quantized_row(const Context& c, const RateRow& tucker, int bits) {
+    codec::QuantizeTuckerOptions q;
+    q.core_bits = q.basis_bits = bits;
+    const auto start = Clock::now();
+    SetModel m = hosvd_model(c.prepared, {tucker.ranks[0], tucker.ranks[1], tucker.ranks[2]});
+    const codec::QuantizedTucker quantized = codec::quantize_tucker(m.tucker, q);
+    const double precompute = seconds_since(start);
+    m.tucker = quantized.model;
+    RateRow r = c.row("tucker-q" + std::to_string(bits), tucker.target_cm, quantized.best_bytes() + c.mean_weight_bytes);
+    r.ranks = tucker.ranks;
+    r.setting = bits;
+    r.stats = c.meter.measure(m.reconstruct());
+    r.target_met = r.stats.max_cm <= tucker.target_cm;
+    r.precompute_s = precompute;
+    r.us_per_pose = time_pose_evaluation(m.tucker);
+    r.access = "pose";
+    return r;
+}
+
 RateRow hooi_row(const Context& c, const RateRow& tucker, int iterations) {
     const tensor::Ranks ranks{tucker.ranks[0], tucker.ranks[1], tucker.ranks[2]};
     tensor::HooiOptions options;
@@ -320,6 +341,7 @@ RateReport rate_distortion(const Tensor3& poses, std::shared_ptr<const Skeleton>
         const RateRow tucker = tucker_row(c, target);
         report.rows.push_back(tucker);
         if (options.hooi) report.rows.push_back(hooi_row(c, tucker, options.hooi_iterations));
+        report.rows.push_back(quantized_row(c, tucker, options.quantization_bits));
         report.rows.push_back(tucker_residual_row(c, target, options.quantization_bits));
         RateRow p = pca_row(c, pca, target);
         p.precompute_s = pca_seconds;

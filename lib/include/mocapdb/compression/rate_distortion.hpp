@@ -7,6 +7,8 @@
 // error budget in centimetres; all are charged the same side information, byte_accounting.hpp):
 //  - "tucker":          HOSVD, ranks searched (rank_search.hpp), core and bases stored as float32.
 //  - "tucker-hooi":     HOOI refinement at the same ranks (float32).
+//  - "tucker-qB":       the same ranks with core and bases quantized to B bits and deflated (the
+//                       decoded model is measured: quantization may break the target; no residual).
 //  - "tucker+residual": HOSVD at a ladder of ranks, core and bases quantized (codec/quantize.hpp)
 //                       and deflated, plus the error-bounded residual layer (codec/residual_layer.hpp)
 //                       whose step is searched; the cheapest rung wins.
