@@ -23,6 +23,10 @@ int main(int argc, char** argv) {
     mocapdb::cli::setup_generate(app);
     mocapdb::cli::setup_compress(app);
     mocapdb::cli::setup_report(app);
+    mocapdb::cli::setup_synth(app);
+    mocapdb::cli::setup_query(app);
+    mocapdb::cli::setup_reliability(app);
+    mocapdb::cli::setup_reduce(app);
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,104 @@
+#include "mocapdb/synthesis/naive_motion_model.hpp"
+
+#include <string>
+
+#include "mocapdb/compression/dof_weights.hpp"
+#include "mocapdb/compression/set_model.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/store/database.hpp"
+
+namespace mocapdb::synthesis {
+namespace {
+
+std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
+
+/// Rows vec(X_i), X = (A - mean) w (N by D T).
+MatX weighted_sample_rows(const AlignedSet& aligned, const VecX& weight) {
+    if (weight.size() != aligned.dofs())
+        throw InvalidArgument("NaiveMotionModel: weight must have D = " + idx(aligned.dofs()) + " entries, got " +
+                              idx(weight.size()));
+    const Tensor3 x = compression::weighted_centred(aligned.tensor, compression::dof_means(aligned.tensor), weight);
+    const Eigen::Map<const MatX> cols(x.data(), aligned.dofs() * aligned.frames(), aligned.samples());
+    return cols.transpose();
+}
+
+}  // namespace
+
+NaiveMotionModel::NaiveMotionModel(const AlignedSet& aligned, const MotionSet& set,
+                                   std::shared_ptr<const Skeleton> skeleton, double frame_rate, const VecX& weight,
+                                   const SynthesisOptions& options)
+    : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, weighted_sample_rows(aligned, weight), options,
+                     "NaiveMotionModel") {
+    if (!options.levels.empty())
+        throw InvalidArgument("NaiveMotionModel: the naive model has no levels of detail (options.levels must be empty)");
+    const Eigen::Index d = aligned.dofs(), t_count = aligned.frames(), n = aligned.samples();
+    frames_by_sample_.resize(d, t_count * n);
+    for (Eigen::Index t = 0; t < t_count; ++t)
+        for (Eigen::Index i = 0; i < n; ++i)
+            for (Eigen::Index k = 0; k < d; ++k) frames_by_sample_(k, t * n + i) = aligned.tensor(k, t, i);
+}
+
+tensor::Ranks NaiveMotionModel::level_ranks(Eigen::Index level) const {
+    if (level != 0) throw InvalidArgument("NaiveMotionModel::level_ranks: the naive model has only level 0");
+    return {dofs(), frames(), samples()};
+}
+
+std::size_t NaiveMotionModel::memory_bytes() const {
+    return SynthesisModel::memory_bytes() + static_cast<std::size_t>(frames_by_sample_.size()) * sizeof(double);
+}
+
+void NaiveMotionModel::coefficients_from_weights(const Eigen::Ref<const VecX>& w, Eigen::Ref<VecX> out) const {
+    out = w;
+}
+
+void NaiveMotionModel::coefficients_from_weights_batch(const Eigen::Ref<const MatX>& w, MatX& out) const { out = w; }
+
+void NaiveMotionModel::pose_from_coefficients(const Eigen::Ref<const VecX>& coefficients, double t,
+                                              Eigen::Ref<VecX> out, Workspace& /*ws*/, Eigen::Index level) const {
+    Eigen::Index t0 = 0, t1 = 0;
+    double a = 0.0;
+    frame_pair(t, level, t0, t1, a, "NaiveMotionModel::pose");
+    const Eigen::Index n = samples();
+    if (coefficients.size() != n || out.size() != dofs()) {
+        throw InvalidArgument("NaiveMotionModel::pose: coefficients must have N = " + idx(n) + " entries and out D = " +
+                              idx(dofs()) + ", got " + idx(coefficients.size()) + " and " + idx(out.size()));
+    }
+    out.noalias() = frames_by_sample_.middleCols(t0 * n, n) * coefficients;
+    if (a != 0.0) {
+        out *= (1.0 - a);
+        out.noalias() += a * (frames_by_sample_.middleCols(t1 * n, n) * coefficients);
+    }
+}
+
+void NaiveMotionModel::poses_from_coefficients(const Eigen::Ref<const MatX>& coefficients, double t,
+                                               Eigen::Ref<MatX> out, BatchWorkspace& /*ws*/, Eigen::Index level) const {
+    Eigen::Index t0 = 0, t1 = 0;
+    double a = 0.0;
+    frame_pair(t, level, t0, t1, a, "NaiveMotionModel::poses");
+    const Eigen::Index n = samples();
+    if (coefficients.rows() != n || out.rows() != dofs() || out.cols() != coefficients.cols()) {
+        throw InvalidArgument("NaiveMotionModel::poses: coefficients must be N = " + idx(n) + " by Q and out D = " +
+                              idx(dofs()) + " by Q");
+    }
+    out.noalias() = frames_by_sample_.middleCols(t0 * n, n) * coefficients;
+    if (a != 0.0) {
+        out *= (1.0 - a);
+        out.noalias() += a * (frames_by_sample_.middleCols(t1 * n, n) * coefficients);
+    }
+}
+
+std::unique_ptr<NaiveMotionModel> load_naive_motion_model(const Database& db, const std::string& name,
+                                                          const SynthesisOptions& options) {
+    const MotionSet set = db.load_set(name);
+    const auto aligned = db.load_aligned(name);
+    if (!aligned)
+        throw InvalidArgument("set '" + name + "' in " + db.path().string() + " is not aligned (run: mocapdb align " +
+                              db.path().string() + " --set " + name + ")");
+    const auto record = db.find_clip(set.samples.front().clip);
+    if (!record) throw InvalidArgument("set '" + name + "': clip '" + set.samples.front().clip + "' is missing");
+    auto skeleton = db.load_skeleton(record->skeleton);
+    const VecX weight = compression::position_error_weights(*skeleton);
+    return std::make_unique<NaiveMotionModel>(*aligned, set, std::move(skeleton), record->frame_rate, weight, options);
+}
+
+}  // namespace mocapdb::synthesis

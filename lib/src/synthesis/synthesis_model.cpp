@@ -1,0 +1,283 @@
+#include "mocapdb/synthesis/synthesis_model.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/pose_vector.hpp"
+
+namespace mocapdb::synthesis {
+namespace {
+
+std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
+
+}  // namespace
+
+Eigen::Index Timing::frame_count() const {
+    if (warp.size() == 0) return 0;
+    // The rounding slack keeps a sample's own timing (warp(T-1) = frames - 1 up to summation error).
+    return static_cast<Eigen::Index>(std::floor(warp(warp.size() - 1) + 1e-9)) + 1;
+}
+
+double Timing::aligned_frame(double f) const {
+    const Eigen::Index t_count = warp.size();
+    if (t_count < 2 || !(f > warp(0))) return 0.0;
+    if (f >= warp(t_count - 1)) return static_cast<double>(t_count - 1);
+    const double* begin = warp.data();
+    const double* it = std::upper_bound(begin, begin + t_count, f);  // first warp > f; it - 1 >= begin
+    const Eigen::Index k = static_cast<Eigen::Index>(it - begin) - 1;
+    const double span = warp(k + 1) - warp(k);
+    return static_cast<double>(k) + (span > 0.0 ? (f - warp(k)) / span : 0.0);
+}
+
+SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
+                               double frame_rate, const Eigen::Ref<const MatX>& sample_values,
+                               const SynthesisOptions& options, const char* where) {
+    const auto start = std::chrono::steady_clock::now();
+    validate(aligned);
+    validate(set);
+    const Eigen::Index n = aligned.samples();
+    if (static_cast<Eigen::Index>(set.samples.size()) != n || set.parameters.rows() != n) {
+        throw InvalidArgument(std::string(where) + ": the set '" + set.name + "' has " + idx(set.parameters.rows()) +
+                              " samples but the aligned tensor " + idx(n));
+    }
+    if (n < 2) throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " + idx(n));
+    if (!skeleton) throw InvalidArgument(std::string(where) + ": no skeleton");
+    if (static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count()) != aligned.dofs()) {
+        throw InvalidArgument(std::string(where) + ": the skeleton's pose vector has " +
+                              idx(static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count())) +
+                              " dofs, the aligned tensor " + idx(aligned.dofs()));
+    }
+    if (!(frame_rate > 0.0) || !std::isfinite(frame_rate))
+        throw InvalidArgument(std::string(where) + ": frame rate must be positive and finite");
+    if (sample_values.rows() != n || !sample_values.allFinite())
+        throw InvalidArgument(std::string(where) + ": sample values must be N by S and finite");
+    if (!(options.min_increment_fraction > 0.0 && options.min_increment_fraction <= 1.0))
+        throw InvalidArgument(std::string(where) + ": min_increment_fraction must be in (0, 1]");
+    if (!(options.max_increment_factor >= 1.0) || !std::isfinite(options.max_increment_factor))
+        throw InvalidArgument(std::string(where) + ": max_increment_factor must be >= 1");
+
+    dofs_ = aligned.dofs();
+    frames_ = aligned.frames();
+    names_ = set.parameter_names;
+    units_ = set.parameter_units;
+    coords_ = set.parameters;
+    skeleton_ = std::move(skeleton);
+    frame_rate_ = frame_rate;
+    if (options.scaling) {
+        options.scaling->validate(coords_.cols());
+        scaling_ = *options.scaling;
+    } else {
+        scaling_ = kriging::ControlScaling::from_data(coords_);
+    }
+    const MatX xc = scaling_.apply(coords_);
+
+    // Coefficient kernel: variogram on the distances between the samples' values (rows).
+    const MatX h = kriging::pairwise_distances(xc);
+    const MatX d = kriging::pairwise_distances(sample_values);
+    const kriging::ExperimentalVariogram ev = kriging::experimental_variogram(h, d, options.variogram);
+    const double h_half = std::max(0.5 * h.maxCoeff(), 1e-12);
+    kriging::VariogramModel model;
+    bool degenerate = !(d.maxCoeff() > 0.0);
+    if (!degenerate) {
+        if (options.exponent) {
+            const double p = *options.exponent;
+            if (!(p >= 0.0 && p <= 2.0)) throw InvalidArgument(std::string(where) + ": exponent p must be in [0, 2]");
+            const kriging::VariogramFit fit = kriging::fit_variogram(
+                ev, p == 0.0 ? kriging::VariogramFamily::Spherical : kriging::VariogramFamily::Stable, p == 0.0 ? 1.0 : p,
+                options.fit);
+            model = fit.model;
+            degenerate = fit.degenerate;
+        } else {
+            const kriging::ExponentSelection sel =
+                kriging::select_exponent(ev, xc, sample_values, options.kriging, options.fit);
+            model = sel.model();
+            degenerate = sel.fits[sel.best].degenerate;
+            report_.exponent_loo_mse = sel.loo_mse;
+        }
+    }
+    if (degenerate || !(model.total_sill() > 0.0)) {
+        // Samples without variation: any valid kernel gives the same (trend-only) prediction.
+        model = kriging::VariogramModel::from_paper_p(options.exponent.value_or(1.0), 0.0, 1.0, h_half);
+    }
+    kriging_ = kriging::Kriging::build(xc, model, options.kriging);
+    report_.model = model;
+    report_.status = kriging_.status();
+
+    // Timing kernel on the inverse-warp increments.
+    const MatX inc = aligned.inverse_warp_increments();  // T - 1 by N
+    kriging::MotionKrigingOptions mk;
+    mk.scope = kriging::KernelScope::PerSet;
+    mk.scaling = scaling_;
+    mk.exponent = options.timing_exponent;
+    mk.variogram = options.variogram;
+    mk.fit = options.fit;
+    mk.kriging = options.kriging;
+    increments_ = inc.transpose();
+    timing_kernel_ = options.timing_kernel;
+    if (timing_kernel_ == SynthesisOptions::TimingKernel::Separate) {
+        timing_ = kriging::MotionKriging::build(coords_, increments_, MatX(), MatX(), mk);
+        report_.timing_exponent = timing_.report().exponent;
+    } else {
+        report_.timing_exponent = model.paper_p();
+    }
+    min_increment_ = options.min_increment_fraction * inc.mean();
+    max_increment_ = options.max_increment_factor * inc.maxCoeff();
+    report_.precompute_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::size_t SynthesisModel::memory_bytes() const {
+    // Per kriging kernel: the variogram matrix and the inverse data block (N by N each), the kernel
+    // operator and the OLS weight operator (N by N + P + 1 each). Kernels: the coefficient kernel, and
+    // a Separate timing kernel (which keeps its own copy of the increments); plus the increments.
+    const auto n = static_cast<std::size_t>(samples());
+    const auto k = static_cast<std::size_t>(parameters()) + 1;
+    const std::size_t kernel = 2 * n * n + 2 * n * (n + k);
+    const std::size_t increments = n * static_cast<std::size_t>(frames_ - 1);
+    const bool separate = timing_kernel_ == SynthesisOptions::TimingKernel::Separate;
+    return sizeof(double) * (static_cast<std::size_t>(coords_.size()) + kernel + increments +
+                             (separate ? kernel + increments : 0));
+}
+
+void SynthesisModel::normalize(const Eigen::Ref<const VecX>& c, VecX& out, const char* where) const {
+    if (c.size() != parameters()) {
+        throw InvalidArgument(std::string(where) + ": c must have P = " + idx(parameters()) + " entries, got " +
+                              idx(c.size()));
+    }
+    if (!c.allFinite()) throw InvalidArgument(std::string(where) + ": c must be finite");
+    if (out.size() != c.size()) out.resize(c.size());
+    out = ((c - scaling_.offset).array() / scaling_.scale.array()).matrix();
+}
+
+void SynthesisModel::weights(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, Workspace& ws) const {
+    normalize(c, ws.c_normalized, "SynthesisModel::weights");
+    if (out.size() != samples()) {
+        throw InvalidArgument("SynthesisModel::weights: out must have N = " + idx(samples()) + " entries");
+    }
+    kriging_.weights(ws.c_normalized, out, ws.kriging);
+}
+
+void SynthesisModel::coefficients(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, Workspace& ws) const {
+    if (out.size() != coefficient_size()) {
+        throw InvalidArgument("SynthesisModel::coefficients: out must have S = " + idx(coefficient_size()) +
+                              " entries, got " + idx(out.size()));
+    }
+    if (ws.weights.size() != samples()) ws.weights.resize(samples());
+    weights(c, ws.weights, ws);
+    coefficients_from_weights(ws.weights, out);
+}
+
+void SynthesisModel::pose(const Eigen::Ref<const VecX>& c, double t, Eigen::Ref<VecX> out, Workspace& ws,
+                          Eigen::Index level) const {
+    if (ws.coefficients.size() != coefficient_size()) ws.coefficients.resize(coefficient_size());
+    coefficients(c, ws.coefficients, ws);
+    pose_from_coefficients(ws.coefficients, t, out, ws, level);
+}
+
+VecX SynthesisModel::pose(const Eigen::Ref<const VecX>& c, double t, Eigen::Index level) const {
+    Workspace ws;
+    VecX out(dofs_);
+    pose(c, t, out, ws, level);
+    return out;
+}
+
+void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref<MatX> out, BatchWorkspace& ws,
+                           Eigen::Index level) const {
+    if (C.cols() != parameters() || !C.allFinite()) {
+        throw InvalidArgument("SynthesisModel::poses: C must be Q by P = " + idx(parameters()) +
+                              " and finite, got " + idx(C.rows()) + "x" + idx(C.cols()));
+    }
+    const Eigen::Index q = C.rows();
+    if (ws.c_normalized.rows() != q || ws.c_normalized.cols() != parameters()) ws.c_normalized.resize(q, parameters());
+    ws.c_normalized = ((C.rowwise() - scaling_.offset.transpose()).array().rowwise() /
+                       scaling_.scale.transpose().array()).matrix();
+    if (ws.weights.rows() != samples() || ws.weights.cols() != q) ws.weights.resize(samples(), q);
+    kriging_.weights_batch(ws.c_normalized, ws.weights);
+    coefficients_from_weights_batch(ws.weights, ws.coefficients);
+    poses_from_coefficients(ws.coefficients, t, out, ws, level);
+}
+
+void SynthesisModel::frame_pair(double t, Eigen::Index level, Eigen::Index& t0, Eigen::Index& t1, double& a,
+                                const char* where) const {
+    if (!(t >= 0.0 && t <= static_cast<double>(frames_ - 1))) {
+        throw InvalidArgument(std::string(where) + ": aligned frame t = " + std::to_string(t) + " outside [0, " +
+                              idx(frames_ - 1) + "]");
+    }
+    if (level < 0 || level >= levels()) {
+        throw InvalidArgument(std::string(where) + ": level " + idx(level) + " outside [0, " + idx(levels() - 1) + "]");
+    }
+    t0 = std::min(static_cast<Eigen::Index>(std::floor(t)), frames_ - 1);
+    a = t - static_cast<double>(t0);
+    t1 = std::min(t0 + 1, frames_ - 1);
+}
+
+Timing SynthesisModel::timing(const Eigen::Ref<const VecX>& c) const {
+    VecX cn;
+    normalize(c, cn, "SynthesisModel::timing");
+    Timing tm;
+    tm.increments.resize(frames_ - 1);
+    if (timing_kernel_ == SynthesisOptions::TimingKernel::Separate) {
+        timing_.predict(c, tm.increments);
+    } else {
+        kriging::QueryWorkspace kws;
+        VecX w(samples());
+        kriging_.weights(cn, w, kws);
+        tm.increments.noalias() = increments_.transpose() * w;
+    }
+    tm.warp.resize(frames_);
+    tm.warp(0) = 0.0;
+    for (Eigen::Index k = 0; k + 1 < frames_; ++k) {
+        double& v = tm.increments(k);
+        if (v < min_increment_) {
+            v = min_increment_;
+            ++tm.clamped;
+        } else if (v > max_increment_) {
+            v = max_increment_;
+            ++tm.clamped;
+        }
+        tm.warp(k + 1) = tm.warp(k) + v;
+    }
+    return tm;
+}
+
+MatX SynthesisModel::motion_poses(const Eigen::Ref<const VecX>& c, Eigen::Index level) const {
+    const Timing tm = timing(c);
+    Workspace ws;
+    VecX u(coefficient_size());
+    coefficients(c, u, ws);
+    const Eigen::Index f_count = tm.frame_count();
+    MatX poses(dofs_, f_count);
+    for (Eigen::Index f = 0; f < f_count; ++f) {
+        pose_from_coefficients(u, tm.aligned_frame(static_cast<double>(f)), poses.col(f), ws, level);
+    }
+    return poses;
+}
+
+Clip SynthesisModel::motion(const Eigen::Ref<const VecX>& c, Eigen::Index level) const {
+    const MatX poses = motion_poses(c, level);
+    Clip clip;
+    clip.skeleton = skeleton_;
+    clip.frame_rate = frame_rate_;
+    clip.channels = from_pose_vectors(*skeleton_, poses, Canonicalization{});
+    clip.name = "synthesized";
+    return clip;
+}
+
+double SynthesisModel::reliability(const Eigen::Ref<const VecX>& c) const {
+    VecX cn;
+    normalize(c, cn, "SynthesisModel::reliability");
+    return kriging_.estimate(cn).reliability;
+}
+
+VecX SynthesisModel::reliability_batch(const Eigen::Ref<const MatX>& C) const {
+    if (C.cols() != parameters() || !C.allFinite()) {
+        throw InvalidArgument("SynthesisModel::reliability_batch: C must be Q by P = " + idx(parameters()) +
+                              " and finite");
+    }
+    return kriging_.reliability(scaling_.apply(C));
+}
+
+}  // namespace mocapdb::synthesis

@@ -1,0 +1,145 @@
+// mocapdb reduce: greedy sample reduction by leave-one-out reliability (the geostatistical paper
+// Section 5.2), as a report, optionally writing the reduced set (stored and aligned like the original).
+#include <chrono>
+#include <cstdio>
+
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/alignment.hpp"
+#include "mocapdb/dataset/set_builder.hpp"
+#include "mocapdb/kriging/reduction.hpp"
+#include "synthesis_cli.hpp"
+
+namespace mocapdb::cli {
+namespace {
+
+struct ReduceArgs {
+    std::string db;
+    std::string set;
+    double tau = 0.85;
+    long long min_samples = 0;
+    bool apply = false;
+    std::string name;
+    bool force = false;
+    bool naive = false;
+    bool json = false;
+};
+
+void run_reduce(const ReduceArgs& a) {
+    const auto start = std::chrono::steady_clock::now();
+    const Database db(a.db);
+    const MotionSet set = db.load_set(a.set);
+    const auto model = load_synthesis_model(db, a.set, a.naive, "");
+    const MatX xc = model->scaling().apply(model->sample_parameters());
+    kriging::ReductionOptions options;
+    options.tau = a.tau;
+    options.min_samples = static_cast<Eigen::Index>(a.min_samples);
+    options.kriging = model->kernel().options();
+    const kriging::ReductionResult r = kriging::reduce_samples(xc, model->kernel().model(), options);
+
+    std::vector<std::string> labels;
+    for (const SampleRef& s : set.samples) {
+        const auto rec = db.find_clip(s.clip);
+        labels.push_back(sample_label(s, rec ? rec->frames : s.end));
+    }
+    const std::string target = a.name.empty() ? a.set + "-reduced" : a.name;
+    std::string applied;
+    if (a.apply) {
+        if (r.kept.size() < 2) throw InvalidArgument("--apply: the reduced set would have fewer than 2 samples");
+        MotionSet reduced = set;
+        reduced.name = target;
+        reduced.samples.clear();
+        reduced.parameters.resize(static_cast<Eigen::Index>(r.kept.size()), set.parameters.cols());
+        for (std::size_t k = 0; k < r.kept.size(); ++k) {
+            reduced.samples.push_back(set.samples[static_cast<std::size_t>(r.kept[k])]);
+            reduced.parameters.row(static_cast<Eigen::Index>(k)) = set.parameters.row(r.kept[k]);
+        }
+        reduced.parameter_source = set.parameter_source + " (reduced from '" + a.set + "', tau " + std::to_string(a.tau) + ")";
+        // Align like the original (method and frames; the reference is the reduced set's median sample).
+        const auto original = db.load_aligned(a.set);
+        std::optional<AlignedSet> aligned;
+        if (original) {
+            std::vector<Clip> clips;
+            for (const SampleRef& s : reduced.samples) clips.push_back(slice(db.load_clip(s.clip), s.begin, s.end));
+            AlignOptions ao;
+            ao.method = original->method;
+            ao.frames = original->frames();
+            aligned = align_samples(clips, ao);
+        }
+        DatabaseWriter writer(a.db, DatabaseWriter::Mode::OpenOrCreate);
+        if (writer.view().has_set(target) && !a.force)
+            throw InvalidArgument("--apply: set '" + target + "' exists (use --force to replace it, or --name)");
+        writer.put_set(reduced, a.force);
+        if (aligned) writer.put_aligned(target, *aligned);
+        writer.commit();
+        applied = aligned ? "stored and aligned" : "stored";
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (a.json) {
+        JsonWriter j;
+        j.begin_object();
+        j.key("set").value(a.set);
+        j.key("tau").value(a.tau);
+        j.key("samples").value(static_cast<long long>(set.samples.size()));
+        j.key("kept").value(static_cast<long long>(r.kept.size()));
+        j.key("stopped_on_threshold").value(r.stopped_on_threshold);
+        j.key("removed").begin_array();
+        for (std::size_t k = 0; k < r.removed.size(); ++k) {
+            j.begin_object();
+            j.key("sample").value(labels[static_cast<std::size_t>(r.removed[k])]);
+            j.key("reliability").value(r.removed_reliability[k]);
+            j.end_object();
+        }
+        j.end_array();
+        j.key("kept_samples").begin_array();
+        for (Eigen::Index k : r.kept) j.value(labels[static_cast<std::size_t>(k)]);
+        j.end_array();
+        j.key("max_reliability").begin_array();
+        for (double v : r.max_reliability) j.value(v);
+        j.end_array();
+        if (a.apply) j.key("written_set").value(target);
+        j.key("seconds").value(seconds);
+        j.end_object();
+        std::fputs(j.str().c_str(), stdout);
+        return;
+    }
+    std::printf("reduction of '%s' at tau %.3f (%s kernel %s): %zu of %zu samples kept%s\n", a.set.c_str(), a.tau,
+                model->kind(), model->kernel().model().to_string().c_str(), r.kept.size(), set.samples.size(),
+                r.stopped_on_threshold ? "" : " (stopped on the minimum sample count)");
+    for (std::size_t k = 0; k < r.removed.size(); ++k)
+        std::printf("  removed %-20s leave-one-out reliability %.3f\n", labels[static_cast<std::size_t>(r.removed[k])].c_str(),
+                    r.removed_reliability[k]);
+    if (!r.max_reliability.empty() && r.stopped_on_threshold)
+        std::printf("  next candidate's reliability %.3f < tau\n", r.max_reliability.back());
+    if (a.apply) std::printf("  reduced set '%s' %s in %s\n", target.c_str(), applied.c_str(), a.db.c_str());
+    else std::printf("  (report only: --apply writes the reduced set as '%s')\n", target.c_str());
+    std::printf("  %.2f s\n", seconds);
+}
+
+}  // namespace
+
+void setup_reduce(CLI::App& app) {
+    auto a = std::make_shared<ReduceArgs>();
+    CLI::App* cmd = app.add_subcommand("reduce", "Greedy sample reduction by leave-one-out reliability");
+    cmd->footer(
+        "Example:\n"
+        "  mocapdb reduce db.h5 --set walks --tau 0.85 --apply --name walks-small\n"
+        "Repeatedly removes the sample best predicted by the others (highest leave-one-out reliability)\n"
+        "until that reliability falls below tau. The variogram is the set's synthesis kernel (the stored\n"
+        "compressed model's, or with --naive the uncompressed tensor's). --apply stores the kept samples\n"
+        "as a new set (default name SET-reduced) and aligns it with the original's method and frames;\n"
+        "run mocapdb compress on it before synthesizing.");
+    cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--set", a->set, "motion set")->required();
+    cmd->add_option("--tau", a->tau, "reliability threshold in [0, 1]")->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--min-samples", a->min_samples, "never keep fewer samples (0 = trend size + 1)")->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--apply", a->apply, "store the reduced set");
+    cmd->add_option("--name", a->name, "name of the reduced set (default SET-reduced)");
+    cmd->add_flag("--force", a->force, "replace an existing set of that name");
+    cmd->add_flag("--naive", a->naive, "use the naive model's kernel (no compressed model needed)");
+    cmd->add_flag("--json", a->json, "machine-readable output");
+    cmd->callback([a] { run_reduce(*a); });
+}
+
+}  // namespace mocapdb::cli

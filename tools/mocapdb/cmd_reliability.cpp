@@ -1,0 +1,190 @@
+// mocapdb reliability: a heat map of the reliability rho over a 2-D slice of a set's control space,
+// with the samples marked (the geostatistical paper's Figure 8).
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/io/text_file.hpp"
+#include "svg_heatmap.hpp"
+#include "synthesis_cli.hpp"
+
+namespace mocapdb::cli {
+namespace {
+
+struct ReliabilityArgs {
+    std::string db;
+    std::string set;
+    std::string grid;
+    std::vector<std::string> fix;
+    std::string svg;
+    std::string csv;
+    bool naive = false;
+    bool json = false;
+};
+
+struct GridAxis {
+    Eigen::Index axis = 0;
+    double lo = 0, hi = 0;
+    Eigen::Index count = 0;
+    double at(Eigen::Index i) const {
+        return count > 1 ? lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(count - 1) : lo;
+    }
+};
+
+double number(const std::string& text, const std::string& what) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+        throw InvalidArgument(what + ": '" + text + "' is not a finite number");
+    return v;
+}
+
+GridAxis parse_axis(const std::string& spec, const std::vector<std::string>& names) {
+    const std::string usage = "--grid: expected AXIS=LO:HI:N (N >= 2), got '" + spec + "'";
+    const auto eq = spec.rfind('=');
+    if (eq == std::string::npos) throw InvalidArgument(usage);
+    GridAxis g;
+    g.axis = parameter_index(names, spec.substr(0, eq), "--grid");
+    std::vector<std::string> parts;
+    std::stringstream in(spec.substr(eq + 1));
+    std::string item;
+    while (std::getline(in, item, ':')) parts.push_back(item);
+    if (parts.size() != 3) throw InvalidArgument(usage);
+    g.lo = number(parts[0], "--grid LO");
+    g.hi = number(parts[1], "--grid HI");
+    const double n = number(parts[2], "--grid N");
+    if (!(g.hi > g.lo) || n < 2 || n > 2000 || n != std::floor(n))
+        throw InvalidArgument(usage + " with LO < HI and 2 <= N <= 2000");
+    g.count = static_cast<Eigen::Index>(n);
+    return g;
+}
+
+void run_reliability(const ReliabilityArgs& a) {
+    const Database db(a.db);
+    const auto model = load_synthesis_model(db, a.set, a.naive, "");
+    const auto& names = model->parameter_names();
+    const auto& units = model->parameter_units();
+    const auto comma = a.grid.find(',');
+    if (comma == std::string::npos)
+        throw InvalidArgument("--grid: expected two axes AXIS=LO:HI:N,AXIS=LO:HI:N, got '" + a.grid + "'");
+    const GridAxis gx = parse_axis(a.grid.substr(0, comma), names);
+    const GridAxis gy = parse_axis(a.grid.substr(comma + 1), names);
+    if (gx.axis == gy.axis) throw InvalidArgument("--grid: the two axes must differ");
+    // The other axes: fixed by --fix, else at the samples' mean.
+    VecX base = model->sample_parameters().colwise().mean().transpose();
+    for (const std::string& f : a.fix) {
+        const auto eq = f.rfind('=');
+        if (eq == std::string::npos) throw InvalidArgument("--fix: expected AXIS=V, got '" + f + "'");
+        const Eigen::Index k = parameter_index(names, f.substr(0, eq), "--fix");
+        if (k == gx.axis || k == gy.axis) throw InvalidArgument("--fix: '" + names[static_cast<std::size_t>(k)] + "' is a grid axis");
+        base(k) = number(f.substr(eq + 1), "--fix " + names[static_cast<std::size_t>(k)]);
+    }
+    MatX queries(gx.count * gy.count, model->parameters());
+    for (Eigen::Index j = 0; j < gy.count; ++j)
+        for (Eigen::Index i = 0; i < gx.count; ++i) {
+            VecX c = base;
+            c(gx.axis) = gx.at(i);
+            c(gy.axis) = gy.at(j);
+            queries.row(j * gx.count + i) = c.transpose();
+        }
+    const VecX rho = model->reliability_batch(queries);
+    MatX map(gy.count, gx.count);
+    for (Eigen::Index j = 0; j < gy.count; ++j)
+        for (Eigen::Index i = 0; i < gx.count; ++i) map(j, i) = rho(j * gx.count + i);
+
+    const auto axis_label = [&](Eigen::Index k) {
+        const std::string& u = units[static_cast<std::size_t>(k)];
+        return names[static_cast<std::size_t>(k)] + (u.empty() ? "" : " [" + u + "]");
+    };
+    HeatMapSpec spec;
+    spec.title = "Reliability of synthesis: set '" + a.set + "' (" + model->kind() + " model)";
+    spec.x_label = axis_label(gx.axis);
+    spec.y_label = axis_label(gy.axis);
+    spec.value_label = "rho";
+    spec.x_lo = gx.lo;
+    spec.x_hi = gx.hi;
+    spec.y_lo = gy.lo;
+    spec.y_hi = gy.hi;
+    spec.values = map;
+    spec.value_lo = 0.0;
+    spec.value_hi = 1.0;
+    const MatX& sp = model->sample_parameters();
+    for (Eigen::Index n = 0; n < sp.rows(); ++n) {
+        spec.point_x.push_back(sp(n, gx.axis));
+        spec.point_y.push_back(sp(n, gy.axis));
+    }
+    spec.point_label = "samples (" + std::to_string(sp.rows()) + ")";
+    if (model->parameters() > 2) {
+        std::string fixed;
+        for (Eigen::Index k = 0; k < model->parameters(); ++k)
+            if (k != gx.axis && k != gy.axis) {
+                char buf[64];
+                std::snprintf(buf, sizeof buf, "%s%s = %g", fixed.empty() ? "" : ", ", names[static_cast<std::size_t>(k)].c_str(), base(k));
+                fixed += buf;
+            }
+        spec.note = "slice at " + fixed;
+    }
+    const std::string svg = render_heat_map(spec);
+    write_file_atomically(a.svg, [&](std::ostream& out) { out << svg; });
+    if (!a.csv.empty()) {
+        write_file_atomically(a.csv, [&](std::ostream& out) {
+            out.precision(17);
+            for (Eigen::Index k = 0; k < model->parameters(); ++k) out << names[static_cast<std::size_t>(k)] << ",";
+            out << "reliability\n";
+            for (Eigen::Index q = 0; q < queries.rows(); ++q) {
+                for (Eigen::Index k = 0; k < model->parameters(); ++k) out << queries(q, k) << ",";
+                out << rho(q) << "\n";
+            }
+        });
+    }
+    const double trusted = (rho.array() >= 0.85).cast<double>().mean();
+    if (a.json) {
+        JsonWriter j;
+        j.begin_object();
+        j.key("set").value(a.set);
+        j.key("model").value(model->kind());
+        j.key("x").value(names[static_cast<std::size_t>(gx.axis)]);
+        j.key("y").value(names[static_cast<std::size_t>(gy.axis)]);
+        j.key("cells").value(static_cast<long long>(rho.size()));
+        j.key("min").value(rho.minCoeff());
+        j.key("max").value(rho.maxCoeff());
+        j.key("mean").value(rho.mean());
+        j.key("fraction_ge_0_85").value(trusted);
+        j.key("svg").value(a.svg);
+        if (!a.csv.empty()) j.key("csv").value(a.csv);
+        j.end_object();
+        std::fputs(j.str().c_str(), stdout);
+        return;
+    }
+    std::printf("reliability of '%s' over %s x %s (%lld x %lld cells): min %.3f, mean %.3f, max %.3f; "
+                "%.0f%% of the slice has rho >= 0.85\n",
+                a.set.c_str(), spec.x_label.c_str(), spec.y_label.c_str(), static_cast<long long>(gx.count),
+                static_cast<long long>(gy.count), rho.minCoeff(), rho.mean(), rho.maxCoeff(), 100.0 * trusted);
+    std::printf("  wrote %s%s%s\n", a.svg.c_str(), a.csv.empty() ? "" : " and ", a.csv.c_str());
+}
+
+}  // namespace
+
+void setup_reliability(CLI::App& app) {
+    auto a = std::make_shared<ReliabilityArgs>();
+    CLI::App* cmd = app.add_subcommand("reliability", "Heat map of the synthesis reliability over a 2-D slice");
+    cmd->footer(
+        "Example:\n"
+        "  mocapdb reliability db.h5 --set walks --grid turn=-1.5:1.5:60,speed=80:180:40 --svg rho.svg\n"
+        "rho = 1 - sigma^2(c) / (nugget + sill) (the geostatistical paper, Appendix B): 1 at the samples,\n"
+        "towards 0 far from them. Axes not on the grid are fixed by --fix AXIS=V (default: the samples' mean).");
+    cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--set", a->set, "motion set")->required();
+    cmd->add_option("--grid", a->grid, "AXIS=LO:HI:N,AXIS=LO:HI:N")->required();
+    cmd->add_option("--fix", a->fix, "AXIS=V for an axis off the grid");
+    cmd->add_option("--svg", a->svg, "SVG file to write")->required();
+    cmd->add_option("--csv", a->csv, "CSV of the grid values");
+    cmd->add_flag("--naive", a->naive, "the naive model's kernel (no compressed model needed)");
+    cmd->add_flag("--json", a->json, "machine-readable output");
+    cmd->callback([a] { run_reliability(*a); });
+}
+
+}  // namespace mocapdb::cli

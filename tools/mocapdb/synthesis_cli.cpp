@@ -1,0 +1,81 @@
+#include "synthesis_cli.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/synthesis/motion_model.hpp"
+#include "mocapdb/synthesis/naive_motion_model.hpp"
+
+namespace mocapdb::cli {
+
+std::string describe_parameters(const std::vector<std::string>& names, const std::vector<std::string>& units) {
+    std::string s;
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        if (k) s += ", ";
+        s += names[k];
+        if (k < units.size() && !units[k].empty()) s += " [" + units[k] + "]";
+    }
+    return s;
+}
+
+VecX parse_parameters(const std::string& text, const std::vector<std::string>& names,
+                      const std::vector<std::string>& units, const std::string& option) {
+    std::vector<double> values;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+        const std::string word = b == std::string::npos ? "" : item.substr(b, e - b + 1);
+        char* end = nullptr;
+        const double v = std::strtod(word.c_str(), &end);
+        if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(v))
+            throw InvalidArgument(option + ": '" + word + "' is not a finite number (expected " +
+                                  std::to_string(names.size()) + " values: " + describe_parameters(names, units) + ")");
+        values.push_back(v);
+    }
+    if (values.size() != names.size())
+        throw InvalidArgument(option + ": expected " + std::to_string(names.size()) + " values (" +
+                              describe_parameters(names, units) + "), got " + std::to_string(values.size()));
+    return Eigen::Map<const VecX>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+tensor::Ranks parse_ranks(const std::string& text, const std::string& option) {
+    tensor::Ranks r{};
+    std::stringstream in(text);
+    std::string item;
+    int n = 0;
+    while (std::getline(in, item, 'x')) {
+        char* end = nullptr;
+        const long v = std::strtol(item.c_str(), &end, 10);
+        if (n >= 3 || item.empty() || end != item.c_str() + item.size() || v < 1)
+            throw InvalidArgument(option + ": expected ranks R1xR2xR3 (positive integers), got '" + text + "'");
+        r[static_cast<std::size_t>(n++)] = v;
+    }
+    if (n != 3) throw InvalidArgument(option + ": expected ranks R1xR2xR3 (positive integers), got '" + text + "'");
+    return r;
+}
+
+std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& db, const std::string& set, bool naive,
+                                                                const std::string& lod, const std::string& timing) {
+    synthesis::SynthesisOptions options;
+    if (timing == "separate") options.timing_kernel = synthesis::SynthesisOptions::TimingKernel::Separate;
+    else if (timing != "shared") throw InvalidArgument("--timing: expected shared or separate, got '" + timing + "'");
+    if (naive) {
+        if (!lod.empty()) throw InvalidArgument("--lod applies to the compressed model only (not with --naive)");
+        return synthesis::load_naive_motion_model(db, set, options);
+    }
+    if (!lod.empty()) options.levels.push_back(parse_ranks(lod, "--lod"));
+    return synthesis::load_motion_model(db, set, options);
+}
+
+Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name, const std::string& option) {
+    for (std::size_t k = 0; k < names.size(); ++k)
+        if (names[k] == name) return static_cast<Eigen::Index>(k);
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw InvalidArgument(option + ": the set has no parameter '" + name + "' (parameters: " + list + ")");
+}
+
+}  // namespace mocapdb::cli

@@ -1,0 +1,34 @@
+#pragma once
+// Shared by the synthesis commands (synth, query, reliability, reduce): parsing control parameters
+// given by the user and loading a set's synthesis model.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/synthesis/synthesis_model.hpp"
+
+namespace mocapdb::cli {
+
+/// "v1,v2,..." into P values in the set's units; InvalidArgument naming the set's parameters (with units)
+/// when the count is wrong or a value is not a finite number.
+VecX parse_parameters(const std::string& text, const std::vector<std::string>& names,
+                      const std::vector<std::string>& units, const std::string& option);
+
+/// "name [unit], ..." of the set's parameters, for messages.
+std::string describe_parameters(const std::vector<std::string>& names, const std::vector<std::string>& units);
+
+/// "R1xR2xR3" into ranks (InvalidArgument otherwise).
+tensor::Ranks parse_ranks(const std::string& text, const std::string& option);
+
+/// The naive model (naive = true) or the stored compressed model, with an optional extra level of
+/// detail (lod = "R1xR2xR3", compressed only; it becomes level 1). timing: "shared" (default) or
+/// "separate" (synthesis_model.hpp).
+std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& db, const std::string& set, bool naive,
+                                                                const std::string& lod,
+                                                                const std::string& timing = "shared");
+
+/// Index of a parameter by name (InvalidArgument listing the names otherwise).
+Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name, const std::string& option);
+
+}  // namespace mocapdb::cli
