@@ -1,5 +1,7 @@
 #include "svg_heatmap.hpp"
 
+#include "svg_text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,28 +11,9 @@ namespace {
 
 constexpr double kWidth = 760, kHeight = 560, kLeft = 90, kRight = 150, kTop = 50, kBottom = 90;
 
-std::string escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '&') out += "&amp;";
-        else out += c;
-    }
-    return out;
-}
-
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2f", v);
-    return buf;
-}
-
-std::string label(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
+using svg::escape;
+using svg::label;
+using svg::num;
 
 /// Low values red, high values blue (the paper's Figure 8: blue = reliable), through a pale middle.
 std::string colour(double f) {

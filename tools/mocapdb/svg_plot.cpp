@@ -1,5 +1,7 @@
 #include "svg_plot.hpp"
 
+#include "svg_text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,28 +13,10 @@ namespace {
 constexpr double kWidth = 760, kHeight = 520, kLeft = 90, kRight = 190, kTop = 50, kBottom = 80;
 const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
 
-std::string escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '&') out += "&amp;";
-        else out += c;
-    }
-    return out;
-}
+using svg::escape;
+using svg::num;
 
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f", v);
-    return buf;
-}
-
-std::string tick_label(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-}
+std::string tick_label(double v) { return svg::label(v, 6); }
 
 struct Axis {
     double lo = 0, hi = 1;
