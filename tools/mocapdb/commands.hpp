@@ -16,6 +16,7 @@ void setup_align(CLI::App& app);
 void setup_generate(CLI::App& app);
 void setup_compress(CLI::App& app);
 void setup_report(CLI::App& app);
+void setup_gp(CLI::App& app);
 void setup_synth(CLI::App& app);
 void setup_query(CLI::App& app);
 void setup_reliability(CLI::App& app);

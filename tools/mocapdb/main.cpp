@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     mocapdb::cli::setup_generate(app);
     mocapdb::cli::setup_compress(app);
     mocapdb::cli::setup_report(app);
+    mocapdb::cli::setup_gp(app);
     mocapdb::cli::setup_synth(app);
     mocapdb::cli::setup_query(app);
     mocapdb::cli::setup_reliability(app);

@@ -1,0 +1,141 @@
+#pragma once
+// Hierarchical multi-output Gaussian process (MOHGP, two layers) over replicate motions, after
+// Hensman et al. (2013) and Gil López (2017, §4.1):
+//   g(t)   ~ GP(0, K_g)          the parent trend (D outputs)
+//   f_r(t) ~ GP(g(t), K_f)       child r = 1..R, a replicate deviating from the parent
+//   y_r(t) = f_r(t) + ε,  ε ~ N(0, diag(σ²_d))   per-output white noise
+// with LMC covariances K_g, K_f (lmc.hpp). Two values of one child covary by K_g + K_f (+ noise), of
+// different children by K_g. The MOA baseline is the same LMC without the hierarchy: children are
+// independent draws of one GP(0, K_f) (+ noise); `hierarchical = false` selects it.
+//
+// Data: all children share the sample times `times` (T values); each child is a D by T matrix,
+// optionally with a per-frame mask of observed frames (all outputs of a frame observed together).
+//
+// Two implementations of the log marginal likelihood and its gradient:
+//   dense       builds the full covariance over every observed value of every child (the oracle;
+//               any masks), O((R·D·T)³);
+//   structured  all children complete: the covariance is I_R ⊗ A + 1 1ᵀ ⊗ B (A = K_f + noise,
+//               B = K_g, each (D·T)²). Rotating the children onto the eigenvectors of 1 1ᵀ (the mean
+//               direction, eigenvalue R, and its complement, eigenvalue 0) splits the likelihood into
+//               N(√R·ȳ; 0, A + R·B) and R − 1 independent N(·; 0, A) terms that only need the
+//               deviations' scatter S = Σ_r (y_r − ȳ)(y_r − ȳ)ᵀ: two factorizations of size D·T,
+//               run on two threads. O((D·T)³) independent of R.
+// Children with missing frames break the shared-times structure: the likelihood then falls back to
+// the dense path (Auto), while the posterior of a partially observed child given complete siblings
+// stays structured (the siblings enter only through the posterior of g, a Schur complement).
+//
+// Numerical outcomes are values, never exceptions: a covariance that is not positive definite gives
+// ok = false with a message. Arguments of the wrong shape throw InvalidArgument.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/gp/lmc.hpp"
+
+namespace mocapdb::gp {
+
+/// Parameters of a MOHGP (or of the MOA baseline when !hierarchical).
+struct HgpModel {
+    Lmc child;            ///< K_f: a child's deviation from the parent (MOA: the whole signal covariance)
+    Lmc parent;           ///< K_g: the parent trend; ignored (and may be empty) when !hierarchical
+    VecX log_noise;       ///< D values; σ²_d = noise_floor + exp(log_noise[d])
+    double noise_floor = 1e-6;
+    bool hierarchical = true;
+
+    std::size_t outputs() const noexcept { return static_cast<std::size_t>(log_noise.size()); }
+    VecX noise_variance() const;
+    /// Free parameters: child terms, then parent terms (hierarchical only), then log_noise.
+    std::size_t parameter_count() const;
+    VecX parameters() const;
+    void set_parameters(const VecX& p);
+    /// One name per parameter, in parameters() order ("child.q0.log_lengthscale", "parent.q1.W[3,0]",
+    /// "child.q0.log_kappa[2]", "log_noise[5]").
+    std::vector<std::string> parameter_names() const;
+};
+
+/// Throws InvalidArgument unless the model is consistent (D outputs everywhere, at least one child term,
+/// at least one parent term when hierarchical, finite values, noise_floor ≥ 0).
+void validate(const HgpModel& model);
+
+/// Replicate observations sharing sample times.
+struct HgpData {
+    VecX times;                              ///< T sample times (seconds), shared by every child
+    std::vector<MatX> children;              ///< R matrices, D by T
+    /// Per child: T flags (true = frame observed), or empty = every frame observed. May be empty.
+    std::vector<std::vector<bool>> observed;
+
+    std::size_t child_count() const noexcept { return children.size(); }
+    std::size_t outputs() const noexcept { return children.empty() ? 0 : static_cast<std::size_t>(children.front().rows()); }
+    std::size_t frames() const noexcept { return static_cast<std::size_t>(times.size()); }
+    bool is_observed(std::size_t child, std::size_t frame) const;
+    bool is_complete(std::size_t child) const;
+    bool all_complete() const;
+    /// Number of observed values (frames observed × D, summed over children).
+    std::size_t observed_value_count() const;
+};
+
+/// Throws InvalidArgument unless: T ≥ 1 finite times, ≥ 1 child, every child D by T with the same D ≥ 1,
+/// observed values finite, masks of T flags, at least one observed frame overall.
+void validate(const HgpData& data);
+
+enum class LikelihoodPath {
+    Auto,        ///< structured when every child is complete, dense otherwise
+    Dense,
+    Structured,  ///< InvalidArgument when a child has missing frames
+};
+
+struct LikelihoodValue {
+    bool ok = false;            ///< false: a covariance was not positive definite (see message)
+    double log_likelihood = 0.0;
+    VecX gradient;              ///< ∂ log p / ∂ parameters (HgpModel::parameters order); empty unless asked
+    std::string message;
+    LikelihoodPath path = LikelihoodPath::Auto;  ///< the path actually used
+};
+
+/// Log marginal likelihood log p(Y | θ) and (with_gradient) its gradient.
+/// `threads` (1 or 2): the structured path factorizes its two matrices concurrently when 2.
+LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient,
+                               LikelihoodPath path = LikelihoodPath::Auto, int threads = 2);
+
+/// Gaussian marginals of a D-output prediction at T* times. When a covariance needed for the prediction
+/// is not positive definite (a numerical outcome, not an argument error) mean and variance are NaN:
+/// check mean.allFinite().
+struct GaussianPrediction {
+    MatX mean;      ///< D by T*
+    MatX variance;  ///< D by T*, of the latent function (without observation noise)
+    VecX noise;     ///< D observation-noise variances (add to `variance` for the predictive of y)
+};
+
+/// Posterior of the parent trend g at `t_star` given every observed value (hierarchical models only;
+/// InvalidArgument for MOA). Structured when every child is complete, dense otherwise.
+GaussianPrediction predict_parent(const HgpModel& model, const HgpData& data, const VecX& t_star);
+/// Posterior of child `child`'s latent f at `t_star` given every observed value (its own observed frames
+/// and every sibling). Structured when every sibling is complete (the child itself may be partial).
+GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std::size_t child,
+                                 const VecX& t_star);
+/// The same two posteriors computed from the full dense joint covariance (the oracle).
+GaussianPrediction predict_parent_dense(const HgpModel& model, const HgpData& data, const VecX& t_star);
+GaussianPrediction predict_child_dense(const HgpModel& model, const HgpData& data, std::size_t child,
+                                       const VecX& t_star);
+
+/// The trend new children are drawn around (thesis §5.2): for MOHGP the posterior mean of g given all
+/// children; for MOA (no parent) the posterior mean of one GP(0, K_f) given every child as a noisy
+/// replicate of it (the MOA "GP prediction given the observations" of the thesis). D by T*.
+MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_star);
+
+struct SampleOptions {
+    std::uint64_t seed = 1;
+    /// Also draw the parent from its posterior covariance (the thesis uses its mean only). Needs every
+    /// child complete (InvalidArgument otherwise).
+    bool parent_uncertainty = false;
+    /// Add observation noise to the samples.
+    bool add_noise = false;
+};
+
+/// `count` new children at `t_star` (thesis §5.2): synthesis_trend + a draw of GP(0, K_f) (+ the options).
+/// Deterministic for a given seed. Each sample is D by T*.
+std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, const VecX& t_star,
+                                  std::size_t count, const SampleOptions& options = {});
+
+}  // namespace mocapdb::gp

@@ -1,0 +1,243 @@
+#include "mocapdb/gp/optimize.hpp"
+
+#include <LBFGS.h>
+
+#include <algorithm>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+#include "mocapdb/core/error.hpp"
+
+namespace mocapdb::gp {
+
+namespace {
+
+using Index = Eigen::Index;
+
+/// −log p / n and its gradient; remembers the best finite point it was asked about.
+class Objective {
+public:
+    Objective(const HgpData& data, HgpModel model, const FitOptions& options, int& evaluations, const std::string& item)
+        : data_(data), model_(std::move(model)), options_(options), evaluations_(evaluations), item_(item),
+          scale_(1.0 / static_cast<double>(data.observed_value_count())) {}
+
+    double operator()(const VecX& x, VecX& grad) {
+        ++evaluations_;
+        ++own_evaluations;
+        if (options_.progress) options_.progress(Progress{static_cast<std::uint64_t>(evaluations_), 0, item_});
+        if (!x.allFinite()) {
+            grad = VecX::Zero(x.size());
+            return std::numeric_limits<double>::infinity();
+        }
+        model_.set_parameters(x);
+        const LikelihoodValue v = log_likelihood(model_, data_, true, options_.path, options_.threads);
+        if (!v.ok || !v.gradient.allFinite()) {
+            last_message = v.message.empty() ? "non-finite gradient" : v.message;
+            grad = VecX::Zero(x.size());
+            return std::numeric_limits<double>::infinity();
+        }
+        grad = -scale_ * v.gradient;
+        const double f = -scale_ * v.log_likelihood;
+        if (f < best_f) {
+            best_f = f;
+            best_x = x;
+        }
+        return f;
+    }
+
+    double best_f = std::numeric_limits<double>::infinity();
+    VecX best_x;
+    int own_evaluations = 0;
+    std::string last_message;
+
+private:
+    const HgpData& data_;
+    HgpModel model_;
+    const FitOptions& options_;
+    int& evaluations_;
+    std::string item_;
+    double scale_;
+};
+
+VecX perturbed(const HgpModel& start, double spread, std::uint64_t seed) {
+    HgpModel m = start;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    auto shake = [&](Lmc& lmc) {
+        for (auto& t : lmc.terms) {
+            t.log_lengthscale += spread * normal(rng);
+            for (Index i = 0; i < t.W.size(); ++i) t.W.data()[i] *= std::exp(spread * normal(rng));
+            for (Index i = 0; i < t.log_kappa.size(); ++i) t.log_kappa[i] += spread * normal(rng);
+        }
+    };
+    shake(m.child);
+    if (m.hierarchical) shake(m.parent);
+    for (Index i = 0; i < m.log_noise.size(); ++i) m.log_noise[i] += spread * normal(rng);
+    return m.parameters();
+}
+
+}  // namespace
+
+std::string to_string(FitStatus status) {
+    switch (status) {
+        case FitStatus::Converged: return "converged";
+        case FitStatus::MaxIterations: return "max_iterations";
+        case FitStatus::LineSearchFailed: return "line_search_failed";
+        case FitStatus::NumericalFailure: return "numerical_failure";
+    }
+    return "unknown";
+}
+
+HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
+    validate(data);
+    if (spec.child_terms == 0 || (spec.hierarchical && spec.parent_terms == 0) || spec.rank == 0)
+        throw InvalidArgument("initial_model: need ≥ 1 term per layer and rank ≥ 1");
+    const Index d = static_cast<Index>(data.outputs());
+    const Index t = static_cast<Index>(data.frames());
+    // Per output: mean over children (of observed values) per frame, its second moment, and the
+    // deviations' variance.
+    VecX mean_m2 = VecX::Zero(d), dev_var = VecX::Zero(d), total_m2 = VecX::Zero(d);
+    VecX count_m = VecX::Zero(d), count_dev = VecX::Zero(d);
+    for (Index f = 0; f < t; ++f) {
+        VecX sum = VecX::Zero(d);
+        double n = 0.0;
+        for (std::size_t r = 0; r < data.child_count(); ++r)
+            if (data.is_observed(r, static_cast<std::size_t>(f))) {
+                sum += data.children[r].col(f);
+                n += 1.0;
+            }
+        if (n == 0.0) continue;
+        const VecX mean = sum / n;
+        mean_m2 += mean.cwiseAbs2();
+        count_m.array() += 1.0;
+        for (std::size_t r = 0; r < data.child_count(); ++r)
+            if (data.is_observed(r, static_cast<std::size_t>(f))) {
+                dev_var += (data.children[r].col(f) - mean).cwiseAbs2();
+                total_m2 += data.children[r].col(f).cwiseAbs2();
+                count_dev.array() += 1.0;
+            }
+    }
+    mean_m2 = mean_m2.cwiseQuotient(count_m.cwiseMax(1.0));
+    total_m2 = total_m2.cwiseQuotient(count_dev.cwiseMax(1.0));
+    dev_var = dev_var.cwiseQuotient(count_dev.cwiseMax(1.0));
+    const double floor = 1e-6;
+    const VecX parent_scale = mean_m2.cwiseMax(floor);
+    const VecX child_scale = (spec.hierarchical ? dev_var : total_m2).cwiseMax(floor);
+    const double span = std::max(data.times.maxCoeff() - data.times.minCoeff(), 1e-6);
+
+    auto make = [&](std::size_t terms, const VecX& scale, std::size_t layer) {
+        Lmc lmc;
+        for (std::size_t q = 0; q < terms; ++q) {
+            LmcTerm term;
+            term.kernel = spec.kernel;
+            const double frac = terms == 1 ? 0.2 : 0.05 * std::pow(10.0, static_cast<double>(q) / static_cast<double>(terms - 1));
+            term.log_lengthscale = std::log(frac * span);
+            const VecX share = scale / static_cast<double>(terms);
+            term.log_kappa = (0.5 * share).array().log().matrix();
+            term.W.resize(d, static_cast<Index>(spec.rank));
+            for (Index j = 0; j < term.W.cols(); ++j)
+                for (Index i = 0; i < d; ++i) {
+                    // Fixed, varied signs and sizes: a zero W would be a stationary point.
+                    const double s = std::sin(1.0 + 1.7 * static_cast<double>(i) + 2.3 * static_cast<double>(j) +
+                                              0.9 * static_cast<double>(q) + 0.5 * static_cast<double>(layer));
+                    term.W(i, j) = std::sqrt(0.5 * share[i] / static_cast<double>(spec.rank)) * (0.5 + 0.5 * s);
+                }
+            lmc.terms.push_back(std::move(term));
+        }
+        return lmc;
+    };
+    HgpModel m;
+    m.hierarchical = spec.hierarchical;
+    m.noise_floor = spec.noise_floor;
+    m.child = make(spec.child_terms, child_scale, 0);
+    if (spec.hierarchical) m.parent = make(spec.parent_terms, parent_scale, 1);
+    m.log_noise = (0.01 * (spec.hierarchical ? dev_var : total_m2).cwiseMax(floor)).array().log().matrix();
+    return m;
+}
+
+FitResult fit(const HgpData& data, const HgpModel& start, const FitOptions& options) {
+    validate(start);
+    validate(data);
+    if (start.outputs() != data.outputs()) throw InvalidArgument("fit: model and data have different outputs");
+    if (options.restarts < 1 || options.max_iterations < 1) throw InvalidArgument("fit: restarts and max_iterations must be ≥ 1");
+    const auto t0 = std::chrono::steady_clock::now();
+    FitResult result;
+    result.model = start;
+    result.log_likelihood = -std::numeric_limits<double>::infinity();
+    const double scale = static_cast<double>(data.observed_value_count());
+
+    LBFGSpp::LBFGSParam<double> param;
+    param.epsilon = options.gradient_tolerance;
+    param.epsilon_rel = options.gradient_tolerance;
+    param.past = options.past;
+    param.delta = options.relative_decrease;
+    param.max_iterations = options.max_iterations;
+    param.max_linesearch = 40;
+    // Strong Wolfe conditions keep the curvature pairs positive (sᵀy > 0); LBFGSpp does not skip bad
+    // pairs, and with Armijo alone the next direction can point uphill.
+    param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_STRONG_WOLFE;
+
+    for (int k = 0; k < options.restarts; ++k) {
+        const auto tk = std::chrono::steady_clock::now();
+        VecX x = k == 0 ? start.parameters()
+                        : perturbed(start, options.restart_spread, options.seed + static_cast<std::uint64_t>(k));
+        Objective objective(data, start, options, result.evaluations, "restart " + std::to_string(k + 1));
+        RestartReport report;
+        VecX g(x.size());
+        const double f0 = objective(x, g);
+        if (!std::isfinite(f0)) {
+            report.status = FitStatus::NumericalFailure;
+            report.message = "starting point unusable: " + objective.last_message;
+        } else {
+            // A failed line search ends an L-BFGS run; it is resumed from the best point with a fresh
+            // curvature memory while that still makes progress (at most kMaxResumes times).
+            constexpr int kMaxResumes = 3;
+            int iterations_left = options.max_iterations;
+            double last_best = objective.best_f;
+            for (int attempt = 0;; ++attempt) {
+                LBFGSpp::LBFGSParam<double> p = param;
+                p.max_iterations = iterations_left;
+                LBFGSpp::LBFGSSolver<double> solver(p);
+                double fx = objective.best_f;
+                const int evaluations_before = objective.own_evaluations;
+                try {
+                    const int iterations = solver.minimize(objective, x, fx);
+                    report.iterations += iterations;
+                    report.status = iterations >= iterations_left ? FitStatus::MaxIterations : FitStatus::Converged;
+                    report.message.clear();
+                    break;
+                } catch (const std::exception& e) {
+                    report.status = FitStatus::LineSearchFailed;
+                    report.message = e.what();
+                    // Iterations of a run ended by an exception are unknown: count its evaluations (≥ them).
+                    const int used = std::max(1, objective.own_evaluations - evaluations_before);
+                    report.iterations += used;
+                    iterations_left -= used;
+                }
+                const bool progressed = objective.best_f < last_best - 1e-12 * std::max(1.0, std::abs(last_best));
+                if (attempt >= kMaxResumes || !progressed || iterations_left <= 0) break;
+                last_best = objective.best_f;
+                x = objective.best_x;
+            }
+        }
+        report.evaluations = objective.own_evaluations;
+        report.log_likelihood = std::isfinite(objective.best_f) ? -objective.best_f * scale
+                                                                : -std::numeric_limits<double>::infinity();
+        report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
+        if (std::isfinite(objective.best_f) && report.log_likelihood > result.log_likelihood) {
+            result.log_likelihood = report.log_likelihood;
+            result.model.set_parameters(objective.best_x);
+            result.status = report.status;
+        }
+        result.restarts.push_back(report);
+    }
+    if (!std::isfinite(result.log_likelihood)) result.status = FitStatus::NumericalFailure;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+}
+
+}  // namespace mocapdb::gp

@@ -1,0 +1,63 @@
+#pragma once
+// Small deterministic models and data sets for the gp tests.
+#include <cmath>
+#include <random>
+
+#include "mocapdb/gp/hierarchical_gp.hpp"
+
+namespace mocapdb::gp::test {
+
+inline LmcTerm make_term(KernelType kernel, double lengthscale, Eigen::Index d, Eigen::Index rank, double scale,
+                         std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    LmcTerm t;
+    t.kernel = kernel;
+    t.log_lengthscale = std::log(lengthscale);
+    t.W.resize(d, rank);
+    for (Eigen::Index i = 0; i < t.W.size(); ++i) t.W.data()[i] = scale * normal(rng);
+    t.log_kappa.resize(d);
+    for (Eigen::Index i = 0; i < d; ++i) t.log_kappa[i] = std::log(scale * scale * (0.2 + 0.1 * static_cast<double>(i)));
+    return t;
+}
+
+/// A hierarchical model with a mixed-kernel LMC in each layer.
+inline HgpModel make_model(Eigen::Index d, bool hierarchical, std::size_t terms = 2, Eigen::Index rank = 1) {
+    HgpModel m;
+    m.hierarchical = hierarchical;
+    for (std::size_t q = 0; q < terms; ++q) {
+        const KernelType k = q % 2 == 0 ? KernelType::Rbf : KernelType::Matern32;
+        m.child.terms.push_back(make_term(k, 0.3 + 0.4 * static_cast<double>(q), d, rank, 0.4, 11 + q));
+        if (hierarchical) m.parent.terms.push_back(make_term(k, 0.8 + 0.5 * static_cast<double>(q), d, rank, 1.0, 31 + q));
+    }
+    m.log_noise = VecX::LinSpaced(d, std::log(0.01), std::log(0.05));
+    m.noise_floor = 1e-6;
+    return m;
+}
+
+/// R children, D outputs, T frames on [0, 2], values from a fixed generator (not from the model:
+/// the likelihood identities hold for any data).
+inline HgpData make_data(Eigen::Index d, Eigen::Index t, std::size_t r, std::uint64_t seed = 5) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    HgpData data;
+    data.times = VecX::LinSpaced(t, 0.0, 2.0);
+    for (std::size_t c = 0; c < r; ++c) {
+        MatX y(d, t);
+        for (Eigen::Index i = 0; i < d; ++i)
+            for (Eigen::Index f = 0; f < t; ++f)
+                y(i, f) = std::sin(2.0 * data.times[f] + static_cast<double>(i)) + 0.3 * normal(rng);
+        data.children.push_back(y);
+    }
+    return data;
+}
+
+inline double relative_difference(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300}); }
+
+inline double max_relative_difference(const VecX& a, const VecX& b) {
+    // Relative to the larger vector's norm (entries near zero are compared against the scale).
+    const double scale = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), 1e-300});
+    return (a - b).cwiseAbs().maxCoeff() / scale;
+}
+
+}  // namespace mocapdb::gp::test
