@@ -3,6 +3,7 @@
 // reliability, BVH export, batched and concurrent queries.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -385,4 +386,47 @@ TEST_CASE("timing kernels: the separate kernel interpolates too; the shared one 
     CHECK(worst[1] <= 0.08);
 #endif
     CHECK(turn_worst <= 0.05);
+}
+
+TEST_CASE("folded coefficients equal the blend of the kriging weights", "[synthesis][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const Walks& w = walks();
+    const Eigen::Index n = w.aligned.samples();
+    const compression::SetModel sm =
+        compression::fit_set_model(w.aligned.tensor, w.weight, {20, 8, n - 2}, tensor::TuckerMethod::Hosvd);
+    for (const double p : {0.0, 1.0, 1.4, 2.0}) {
+        SynthesisOptions options;
+        options.exponent = p;
+        const MotionModel model(sm, w.aligned, w.set, w.skeleton, 120.0, options);
+        const MatX& u_sample = model.set_model().tucker.U[2];  // N by R3
+        MatX C(2 * n - 1 + 3, model.parameters());
+        C << between_samples(w.set.parameters), w.set.parameters,
+            w.set.parameters.colwise().mean() + 3.0 * (w.set.parameters.colwise().maxCoeff() -
+                                                       w.set.parameters.colwise().minCoeff()),
+            w.set.parameters.colwise().minCoeff(), w.set.parameters.colwise().maxCoeff();
+        // The fold changes the order of the products: its rounding differs from the weights path's by
+        // ~1e-16 times the size of the kriging operator, i.e. grows with 1 / rcond of the covariance
+        // matrix: 1e-12 for rcond >= 1e-8, proportionally more below (the Gaussian p = 2 kernel is the
+        // ill-conditioned one here: rcond 7e-10 with the clang build's fit, difference 5e-12).
+        const double tolerance = std::max(1e-12, 1e-20 / model.kernel().status().rcond);
+        Workspace ws;
+        VecX wts(n), folded(model.coefficient_size());
+        BatchWorkspace bws;
+        MatX out(model.dofs(), C.rows());
+        model.poses(C, 2.5, out, bws);  // the folded batch path: bws.coefficients
+        for (Eigen::Index k = 0; k < C.rows(); ++k) {
+            model.weights(C.row(k).transpose(), wts, ws);
+            const VecX unfolded = u_sample.transpose() * wts;
+            model.coefficients(C.row(k).transpose(), folded, ws);
+            INFO("p " << p << " query " << k << " rcond " << model.kernel().status().rcond << " relative difference "
+                      << relative(folded, unfolded) << " (batch " << relative(bws.coefficients.col(k), unfolded) << ")");
+            CHECK(relative(folded, unfolded) < tolerance);
+            CHECK(relative(bws.coefficients.col(k), unfolded) < tolerance);
+        }
+        // At a sample, its own coefficient row (exact interpolation: only without jitter).
+        model.coefficients(w.set.parameters.row(4).transpose(), folded, ws);
+        INFO("p " << p << " factorization " << kriging::to_string(model.kernel().status().factorization) << " jitter "
+                  << model.kernel().status().jitter);
+        if (model.kernel().status().exact()) CHECK(relative(folded, u_sample.row(4).transpose()) < 1e-10);
+    }
 }

@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "mocapdb/core/error.hpp"
+#include "gamma_vector.hpp"
 #include "prepared_points.hpp"
 
 namespace mocapdb::kriging {
@@ -185,27 +186,11 @@ void Kriging::weights_from_rhs(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eig
 }
 
 void Kriging::gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const {
-    const Eigen::Index p = points_.cols();
-    out = (points_.col(0).array() - c(0)).square().matrix();
-    for (Eigen::Index d = 1; d < p; ++d) out.array() += (points_.col(d).array() - c(d)).square();
-    model_.gamma_of_squared(out, out);
+    detail::gamma_vector(points_, model_, c, out);
 }
 
 void Kriging::gamma_block(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out) const {
-    // Squared distances column by column (one query per column of out), then gamma on the whole block.
-    const Eigen::Index p = points_.cols();
-    for (Eigen::Index q = 0; q < queries.rows(); ++q) {
-        auto col = out.col(q).array();
-        col = (points_.col(0).array() - queries(q, 0)).square();
-        for (Eigen::Index d = 1; d < p; ++d) col += (points_.col(d).array() - queries(q, d)).square();
-    }
-    const Eigen::Map<const Eigen::VectorXd> flat_in(out.data(), out.size());
-    Eigen::Map<Eigen::VectorXd> flat_out(out.data(), out.size());
-    if (out.outerStride() == out.rows()) {
-        model_.gamma_of_squared(flat_in, flat_out);
-    } else {
-        for (Eigen::Index q = 0; q < out.cols(); ++q) model_.gamma_of_squared(out.col(q), out.col(q));
-    }
+    detail::gamma_block(points_, model_, queries, out);
 }
 
 void Kriging::solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const Eigen::Ref<const Eigen::MatrixXd>& g,
@@ -258,11 +243,13 @@ void Kriging::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eig
     if (ws.tmp2.size() != kk) ws.tmp2.resize(kk);
     Eigen::Ref<Eigen::VectorXd> w = merged_ ? Eigen::Ref<Eigen::VectorXd>(ws.tmp) : out_weights;
     w.noalias() = op * ws.rhs;
-    // G^T w = g(c) re-imposed as in weights_from_rhs.
-    ws.tmp2 = ws.rhs.tail(kk);
-    ws.tmp2.noalias() -= gb.transpose() * w;
-    ws.tmp2(0) /= static_cast<double>(m);
-    w.noalias() += gb * ws.tmp2;
+    // G^T w = g(c) re-imposed as in weights_from_rhs, G = [1, U]: K dot products and one pass over w
+    // (plain vector operations: Eigen's general matrix-vector kernels cost more than the arithmetic
+    // at these sizes).
+    ws.tmp2(0) = (ws.rhs(m) - w.sum()) / static_cast<double>(m);
+    for (Eigen::Index k = 1; k < kk; ++k) ws.tmp2(k) = ws.rhs(m + k) - gb.col(k).dot(w);
+    w.array() += ws.tmp2(0);
+    for (Eigen::Index k = 1; k < kk; ++k) w += ws.tmp2(k) * gb.col(k);
     if (merged_) {
         for (Eigen::Index i = 0; i < n; ++i) out_weights(i) = ws.tmp(group_(i)) / group_size_(group_(i));
     }

@@ -47,6 +47,8 @@ MotionModel::MotionModel(const compression::SetModel& model, const AlignedSet& a
         level_ranks_.push_back(lod);
     }
     for (const tensor::Ranks& lod : level_ranks_) evaluators_.emplace_back(model_.tucker, lod);
+    // coefficients(c) = U_sample^T w(c) as one R3 by (N + K) product (kriging_predictor.hpp).
+    folded_ = kriging::KrigingPredictor::build(kriging_, u_sample_);
 }
 
 tensor::Ranks MotionModel::level_ranks(Eigen::Index level) const {
@@ -62,6 +64,7 @@ std::size_t MotionModel::memory_bytes() const {
     add(t.core.size());
     for (const MatX& u : t.U) add(u.size());
     add(model_.mean.size() + model_.weight.size() + inv_weight_.size() + u_sample_.size());
+    add(folded_.folded_operator().size());
     for (const tensor::Ranks& r : level_ranks_) {
         // PoseEvaluator: the smaller of its two precomputations (Auto order)
         const Eigen::Index dof_first = dofs() * r[1] * r[2];
@@ -117,7 +120,9 @@ void MotionModel::poses_from_coefficients(const Eigen::Ref<const MatX>& coeffici
     if (ws.u_time.size() != r[1]) ws.u_time.resize(r[1]);
     ws.u_time = (1.0 - a) * ut.row(t0).head(r[1]) + a * ut.row(t1).head(r[1]);
     // Gt(i, k) = sum_j u_time(j) G(i, j, k) over the level's block, then diag(1/w) U_dof Gt: D by r3.
-    MatX gt = MatX::Zero(r[0], r[2]);
+    if (ws.core_time.rows() != r[0] || ws.core_time.cols() != r[2]) ws.core_time.resize(r[0], r[2]);
+    MatX& gt = ws.core_time;
+    gt.setZero();
     const double* g = model_.tucker.core.data();
     for (Eigen::Index k = 0; k < r[2]; ++k)
         for (Eigen::Index j = 0; j < r[1]; ++j) {

@@ -165,6 +165,11 @@ void SynthesisModel::coefficients(const Eigen::Ref<const VecX>& c, Eigen::Ref<Ve
         throw InvalidArgument("SynthesisModel::coefficients: out must have S = " + idx(coefficient_size()) +
                               " entries, got " + idx(out.size()));
     }
+    if (!folded_.empty()) {
+        normalize(c, ws.c_normalized, "SynthesisModel::coefficients");
+        folded_.predict(ws.c_normalized, out, ws.kriging);
+        return;
+    }
     if (ws.weights.size() != samples()) ws.weights.resize(samples());
     weights(c, ws.weights, ws);
     coefficients_from_weights(ws.weights, out);
@@ -194,9 +199,15 @@ void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref
     if (ws.c_normalized.rows() != q || ws.c_normalized.cols() != parameters()) ws.c_normalized.resize(q, parameters());
     ws.c_normalized = ((C.rowwise() - scaling_.offset.transpose()).array().rowwise() /
                        scaling_.scale.transpose().array()).matrix();
-    if (ws.weights.rows() != samples() || ws.weights.cols() != q) ws.weights.resize(samples(), q);
-    kriging_.weights_batch(ws.c_normalized, ws.weights);
-    coefficients_from_weights_batch(ws.weights, ws.coefficients);
+    if (!folded_.empty()) {
+        if (ws.coefficients.rows() != coefficient_size() || ws.coefficients.cols() != q)
+            ws.coefficients.resize(coefficient_size(), q);
+        folded_.predict_batch(ws.c_normalized, ws.coefficients, ws.kriging);
+    } else {
+        if (ws.weights.rows() != samples() || ws.weights.cols() != q) ws.weights.resize(samples(), q);
+        kriging_.weights_batch(ws.c_normalized, ws.weights);
+        coefficients_from_weights_batch(ws.weights, ws.coefficients);
+    }
     poses_from_coefficients(ws.coefficients, t, out, ws, level);
 }
 

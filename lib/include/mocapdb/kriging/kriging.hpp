@@ -4,8 +4,10 @@
 // Kriging is built once from the control points and the model ("factorize once"); after that a query
 // costs one vector of gamma values and one matrix-vector product (no solve) with a precomputed M by
 // (M + K) operator applied to [gamma(c); g(c)] (for OLS the trend correction is folded into it), and a
-// batch of queries is a matrix product. The weights depend on the control points only, so the same object blends any number
-// of signals (pose vectors, whole motions, tensor coefficients).
+// batch of queries is one matrix product (GEMM) per block of 256 queries. The weights depend on the
+// control points only, so the same object blends any number of signals (pose vectors, whole motions,
+// tensor coefficients); for fixed signals, KrigingPredictor (kriging_predictor.hpp) folds them into the
+// operator so that a query costs one (signal size) by (M + K) product.
 //
 // Trend handling (TrendFit), with trend = TrendKind::Linear:
 //   OLS (the paper): the hyperplane m(c) is fitted by ordinary least squares, its residuals
@@ -132,6 +134,8 @@ struct LooResult {
     double mse = 0.0;            ///< mean of residual^2 over all entries (the paper's MSE for D = 1).
 };
 
+class KrigingPredictor;
+
 class Kriging final : public Interpolator {
 public:
     Kriging() = default;
@@ -181,6 +185,8 @@ public:
     const Eigen::MatrixXd& gamma_matrix() const { return gamma_; }
 
 private:
+    friend class KrigingPredictor;  // folds sample values into weight_operator() (kriging_predictor.hpp)
+
     void gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const;
     void gamma_block(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out) const;
     // From gamma (M by Q) and trend basis values (K by Q): kernel b (M by Q) and weights w (M by Q).

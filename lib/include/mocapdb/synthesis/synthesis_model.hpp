@@ -11,7 +11,10 @@
 // evaluated through a per-motion COEFFICIENT vector: the compressed model's is the kriged sample-mode
 // row u(c) = sum_i w_i(c) u_i (R3 values), the naive model's the weight vector itself (N values). A
 // crowd computes a character's coefficients once (coefficients()) and then only poses per frame
-// (pose_from_coefficients()).
+// (pose_from_coefficients()). The compressed model folds its N by R3 coefficient rows into the kriging
+// operator at construction (kriging::KrigingPredictor): coefficients(c) is then one R3 by (N + P + 1)
+// product with [gamma(c); 1; c-terms], not N weights followed by the blend (equal up to rounding; the
+// weights are still computed where they are needed: weights(), timing(), reliability()).
 //
 // The kriging kernel (shared by both models): universal kriging with a linear trend in the normalized
 // control parameters (per axis zero mean, unit standard deviation, kriging::ControlScaling), the
@@ -54,6 +57,7 @@
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/kriging/kriging.hpp"
+#include "mocapdb/kriging/kriging_predictor.hpp"
 #include "mocapdb/kriging/motion_kriging.hpp"
 #include "mocapdb/kriging/trend.hpp"
 #include "mocapdb/kriging/variogram.hpp"
@@ -126,6 +130,8 @@ struct BatchWorkspace {
     MatX weights;        ///< N by Q
     MatX coefficients;   ///< S by Q
     MatX frame_matrix;   ///< model-specific per-frame operator
+    MatX kriging;        ///< (N + K) by block: the kriging right-hand sides of a block of characters
+    MatX core_time;      ///< model-specific: the core contracted with the frame's time row
     Eigen::RowVectorXd u_time;
 };
 
@@ -219,6 +225,9 @@ protected:
     MatX coords_;
     kriging::ControlScaling scaling_;
     kriging::Kriging kriging_;
+    /// When not empty (set by the derived model): the coefficient vectors folded into the kriging
+    /// operator, used by coefficients() and poses() instead of weights + coefficients_from_weights.
+    kriging::KrigingPredictor folded_;
     kriging::MotionKriging timing_;
     SynthesisOptions::TimingKernel timing_kernel_ = SynthesisOptions::TimingKernel::Shared;
     MatX increments_;  ///< N by T - 1 inverse-warp increments of the samples
