@@ -185,9 +185,26 @@ MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coor
         const ExponentSelection sel = select_exponent(variogram_of(rep), xc, values, options.kriging, options.fit);
         p = sel.grid[sel.best];
     }
+    // PerPose: the root dofs (positions in cm, heading) vary with c quite differently from the pose signal,
+    // so their per-element kernels get an exponent of their own, chosen the same way on the root column
+    // with the largest residual variance. (With the pose signal's p, a smooth p = 2 model on a root column
+    // of the CMU jumps was ill-conditioned enough to put one left-out root 20 m off.)
+    double p_root = p;
+    if (!options.exponent && options.scope == KernelScope::PerPose) {
+        Eigen::Index best = -1;
+        for (const auto& s : specs) {
+            if (s.kind != KernelSpec::SampleColumn) continue;
+            if (best < 0 || variance(res.col(s.index)) > variance(res.col(best))) best = s.index;
+        }
+        if (best >= 0 && !(res.col(best).cwiseAbs().maxCoeff() <= 1e-12 * samples.col(best).cwiseAbs().maxCoeff())) {
+            const KernelSpec rep{KernelSpec::SampleColumn, best, {}};
+            const Eigen::MatrixXd values = samples.col(best);
+            const ExponentSelection sel = select_exponent(variogram_of(rep), xc, values, options.kriging, options.fit);
+            p_root = sel.grid[sel.best];
+        }
+    }
     mk.report_.exponent = p;
-    const VariogramFamily family = p == 0.0 ? VariogramFamily::Spherical : VariogramFamily::Stable;
-    const double p_fit = p == 0.0 ? 1.0 : p;
+    mk.report_.root_exponent = p_root;
     const double h_half = std::max(0.5 * h.maxCoeff(), 1e-12);
 
     // A signal whose residuals are at rounding level (exactly linear in c) has no variogram to estimate.
@@ -196,6 +213,9 @@ MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coor
         return residual.cwiseAbs().maxCoeff() <= 1e-12 * scale;
     };
     for (const auto& s : specs) {
+        const double p_kernel = (options.scope == KernelScope::PerPose && s.kind == KernelSpec::SampleColumn) ? p_root : p;
+        const VariogramFamily family = p_kernel == 0.0 ? VariogramFamily::Spherical : VariogramFamily::Stable;
+        const double p_fit = p_kernel == 0.0 ? 1.0 : p_kernel;
         bool flat = false;
         switch (s.kind) {
             case KernelSpec::SampleColumn: flat = negligible(res.col(s.index), samples.col(s.index)); break;
@@ -208,7 +228,7 @@ MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coor
         if (flat || fit.degenerate || !(model.total_sill() > 0.0)) {
             // No variation: any valid kernel gives the same (trend-only) prediction.
             ++mk.report_.degenerate_kernels;
-            model = VariogramModel::from_paper_p(p, 0.0, 1.0, h_half);
+            model = VariogramModel::from_paper_p(p_kernel, 0.0, 1.0, h_half);
         }
         auto kr = std::make_shared<Kriging>(Kriging::build(xc, model, options.kriging));
         if (!kr->status().exact()) ++mk.report_.inexact_kernels;

@@ -5,7 +5,8 @@
 //       from the OLS-trend residuals of that column.
 //   PerPose (paper 3.4): one kernel per frame, estimated from the residuals of a scalar pose signal
 //       (the pose distance d_p(q_i(t), q_1(0)) to a reference pose), shared by all dofs of the frame;
-//       the root dofs (position and heading, which the pose distance ignores) get per-element kernels.
+//       the root dofs (position and heading, which the pose distance ignores) get per-element kernels,
+//       with an exponent chosen on the root columns (not the pose signal's).
 //   PerSet (multilinear paper): one kernel for whole-motion coefficient vectors (e.g. rows of the
 //       sample-mode basis, or flattened core slices), estimated on a pairwise dissimilarity between the
 //       samples (given, e.g. core-tensor slice distances, or the Euclidean distance of the OLS residual rows).
@@ -58,7 +59,8 @@ struct MotionKrigingOptions {
 
 /// Summary of what was built.
 struct MotionKrigingReport {
-    double exponent = 0.0;             ///< p used for all kernels (paper convention).
+    double exponent = 0.0;             ///< p used for all kernels (paper convention); PerPose: the pose kernels'.
+    double root_exponent = 0.0;        ///< PerPose: p of the root dofs' per-element kernels (chosen on their own).
     Eigen::Index kernels = 0;          ///< number of kernels.
     Eigen::Index degenerate_kernels = 0;  ///< signals without variation (placeholder model; weights still valid).
     Eigen::Index inexact_kernels = 0;  ///< kernels whose factorization needed jitter or regularization.
