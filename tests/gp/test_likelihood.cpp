@@ -218,3 +218,112 @@ TEST_CASE("likelihood arguments are checked", "[gp][likelihood]") {
     bad.parent.terms.clear();
     CHECK_THROWS_AS(log_likelihood(bad, data, false), InvalidArgument);
 }
+
+TEST_CASE("low-rank likelihood and gradient equal the dense and structured oracles", "[gp][likelihood][lowrank]") {
+    struct Case {
+        Eigen::Index d, t;
+        std::size_t r, terms;
+        Eigen::Index rank;
+        bool hierarchical;
+        bool zero_kappa;  ///< κ → 0 (log κ = −40): the block-diagonal part is the noise alone
+    };
+    const Case cases[] = {{1, 7, 1, 1, 1, true, false},  {2, 6, 2, 2, 1, true, false}, {3, 8, 4, 2, 2, true, false},
+                          {4, 30, 3, 2, 1, true, false}, {5, 20, 3, 1, 3, true, false}, {3, 12, 3, 2, 2, true, true},
+                          {2, 9, 3, 2, 1, false, false}, {4, 20, 2, 1, 2, false, true}};
+    for (const Case& c : cases) {
+        HgpModel model = make_model(c.d, c.hierarchical, c.terms, c.rank);
+        if (c.zero_kappa)
+            for (Lmc* lmc : {&model.child, &model.parent})
+                for (auto& term : lmc->terms) term.log_kappa.setConstant(-40.0);
+        const HgpData data = make_data(c.d, c.t, c.r, 23 + c.r);
+        const LikelihoodValue dense = log_likelihood(model, data, true, LikelihoodPath::Dense);
+        const LikelihoodValue structured = log_likelihood(model, data, true, LikelihoodPath::Structured);
+        REQUIRE(dense.ok);
+        REQUIRE(structured.ok);
+        for (int threads : {1, 2}) {
+            const LikelihoodValue lr = log_likelihood(model, data, true, LikelihoodPath::LowRank, threads);
+            REQUIRE(lr.ok);
+            CHECK(lr.path == LikelihoodPath::LowRank);
+            const double dv = relative_difference(lr.log_likelihood, dense.log_likelihood);
+            const double dg = max_relative_difference(lr.gradient, dense.gradient);
+            const double sv = relative_difference(lr.log_likelihood, structured.log_likelihood);
+            const double sg = max_relative_difference(lr.gradient, structured.gradient);
+            INFO("D=" << c.d << " T=" << c.t << " R=" << c.r << " Q=" << c.terms << " rank=" << c.rank
+                      << (c.hierarchical ? " MOHGP" : " MOA") << (c.zero_kappa ? " kappa=0" : "") << " threads=" << threads
+                      << ": vs dense value " << dv << " gradient " << dg << "; vs structured value " << sv
+                      << " gradient " << sg << " (log p = " << lr.log_likelihood << ")");
+            CHECK(dv < 1e-8);
+            CHECK(dg < 1e-8);
+            CHECK(sv < 1e-8);
+            CHECK(sg < 1e-8);
+        }
+        // And against finite differences of the low-rank likelihood itself.
+        const LikelihoodValue lr = log_likelihood(model, data, true, LikelihoodPath::LowRank, 1);
+        const VecX fd = finite_difference_gradient(model, data, LikelihoodPath::LowRank);
+        const double diff = max_relative_difference(lr.gradient, fd);
+        INFO("low rank vs finite differences: " << diff);
+        CHECK(diff < 1e-6);
+    }
+}
+
+TEST_CASE("Auto picks the low-rank path when it is cheaper; singular blocks are a status",
+          "[gp][likelihood][lowrank]") {
+    // Many outputs, rank 1: M = Q·T columns against n = D·T.
+    HgpModel model = make_model(12, true, 1, 1);
+    const HgpData data = make_data(12, 25, 3);
+    const LikelihoodValue a = log_likelihood(model, data, true);
+    REQUIRE(a.ok);
+    CHECK(a.path == LikelihoodPath::LowRank);
+    const LikelihoodValue s = log_likelihood(model, data, true, LikelihoodPath::Structured);
+    CHECK(relative_difference(a.log_likelihood, s.log_likelihood) < 1e-8);
+    CHECK(max_relative_difference(a.gradient, s.gradient) < 1e-8);
+    // One output, rank 1: the low-rank part is as wide as the matrix; the structured path is used.
+    const HgpModel small = make_model(1, true, 2, 1);
+    CHECK(log_likelihood(small, make_data(1, 20, 3), false).path == LikelihoodPath::Structured);
+    // No noise and κ → 0: every block P_d is singular, the full covariance is not (W has full rank D):
+    // the low-rank path reports it as a status; Auto (here the structured path, and in general the
+    // fallback when the low-rank path fails) agrees with the structured path.
+    HgpModel singular = make_model(2, true, 1, 2);
+    singular.noise_floor = 0.0;
+    singular.log_noise.setConstant(-800.0);
+    for (Lmc* lmc : {&singular.child, &singular.parent})
+        for (auto& term : lmc->terms) {
+            term.log_kappa.setConstant(-800.0);
+            term.kernel = KernelType::Matern32;
+        }
+    const HgpData few = make_data(2, 6, 2);
+    const LikelihoodValue lr = log_likelihood(singular, few, false, LikelihoodPath::LowRank);
+    CHECK_FALSE(lr.ok);
+    CHECK_FALSE(lr.message.empty());
+    const LikelihoodValue st = log_likelihood(singular, few, false, LikelihoodPath::Structured);
+    const LikelihoodValue au = log_likelihood(singular, few, false, LikelihoodPath::Auto);
+    CHECK(au.ok == st.ok);
+    if (st.ok) CHECK(au.log_likelihood == st.log_likelihood);
+    HgpData partial = make_data(2, 5, 2);
+    partial.observed = {{true, true, false, true, true}};
+    CHECK_THROWS_AS(log_likelihood(make_model(2, true), partial, false, LikelihoodPath::LowRank), InvalidArgument);
+}
+
+TEST_CASE("MOA synthesis trend from the replicates' mean equals conditioning on every replicate", "[gp][posterior]") {
+    const Eigen::Index d = 2, t = 7;
+    const std::size_t r = 3;
+    const HgpModel model = make_model(d, false, 2, 1);
+    const HgpData data = make_data(d, t, r, 41);
+    // Oracle: every value of every child observes one f ~ GP(0, K_f): Σ = 1 1ᵀ ⊗ K_f + I ⊗ N.
+    const MatX kf = lmc_covariance(model.child, data.times, data.times);
+    MatX noise = MatX::Zero(d * t, d * t);
+    for (Eigen::Index i = 0; i < d; ++i) noise.diagonal().segment(i * t, t).setConstant(model.noise_variance()[i]);
+    const Eigen::Index rr = static_cast<Eigen::Index>(r);
+    const MatX sigma = kron(MatX::Ones(rr, rr), kf) + kron(MatX::Identity(rr, rr), noise);
+    VecX y(sigma.rows());
+    for (std::size_t c = 0; c < r; ++c)
+        for (Eigen::Index i = 0; i < d; ++i)
+            y.segment(static_cast<Eigen::Index>(c) * d * t + i * t, t) = data.children[c].row(i).transpose();
+    const VecX ts = VecX::LinSpaced(5, 0.1, 1.9);
+    const MatX cross = kron(MatX::Ones(1, rr), lmc_covariance(model.child, ts, data.times));
+    const VecX expected = cross * Eigen::LLT<MatX>(sigma).solve(y);
+    const MatX trend = synthesis_trend(model, data, ts);
+    VecX got(expected.size());
+    for (Eigen::Index i = 0; i < d; ++i) got.segment(i * ts.size(), ts.size()) = trend.row(i).transpose();
+    CHECK(max_relative_difference(got, expected) < 1e-10);
+}

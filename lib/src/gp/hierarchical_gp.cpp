@@ -6,6 +6,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "block_low_rank.hpp"
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb::gp {
@@ -305,6 +306,167 @@ LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data
         if (!hier) return;
         std::size_t o = parent_offset;
         for (const auto& term : model.parent.terms) o = lmc_term_gradient(term, c, data.times, o, out.gradient);
+    };
+    if (threads >= 2 && hier) {
+        std::thread worker(grad_parent);
+        grad_child();
+        worker.join();
+    } else {
+        grad_child();
+        grad_parent();
+    }
+    return out;
+}
+
+/// Kernel factors of every term of both layers (child terms first), computed once per evaluation.
+struct LayerFactors {
+    std::vector<detail::KernelFactor> child, parent;
+};
+
+LayerFactors layer_factors(const HgpModel& model, const VecX& times) {
+    LayerFactors f;
+    for (const auto& term : model.child.terms) f.child.push_back(detail::factor_kernel(term, times));
+    if (model.hierarchical)
+        for (const auto& term : model.parent.terms) f.parent.push_back(detail::factor_kernel(term, times));
+    return f;
+}
+
+/// The weighted terms of A = K_f (+ noise) and of C = A + R·K_g.
+std::vector<detail::WeightedTerm> terms_a(const HgpModel& model, const LayerFactors& f) {
+    std::vector<detail::WeightedTerm> out;
+    for (std::size_t q = 0; q < model.child.terms.size(); ++q) out.push_back({&model.child.terms[q], &f.child[q], 1.0});
+    return out;
+}
+
+std::vector<detail::WeightedTerm> terms_c(const HgpModel& model, const LayerFactors& f, double r) {
+    std::vector<detail::WeightedTerm> out = terms_a(model, f);
+    for (std::size_t q = 0; q < model.parent.terms.size(); ++q) out.push_back({&model.parent.terms[q], &f.parent[q], r});
+    return out;
+}
+
+/// Rough flop counts of one evaluation with gradient: Structured vs LowRank (for Auto).
+bool low_rank_is_cheaper(const HgpModel& model, const LayerFactors& f, Index d, Index t, double r) {
+    const double n = static_cast<double>(d * t), td = static_cast<double>(t), dd = static_cast<double>(d);
+    const double matrices = model.hierarchical ? 2.0 : 1.0;
+    const double structured = matrices * n * n * n;
+    const double ma = static_cast<double>(detail::BlockLowRank::rank_of(terms_a(model, f)));
+    const double mc = model.hierarchical ? static_cast<double>(detail::BlockLowRank::rank_of(terms_c(model, f, r))) : 0.0;
+    auto one = [&](double m) { return 3.0 * dd * td * td * td + 2.0 * n * td * m + 2.0 * n * m * m + 2.0 * m * m * m; };
+    const double terms = static_cast<double>(model.child.terms.size() + (model.hierarchical ? model.parent.terms.size() : 0));
+    const double width = r + ma + 1.0 + mc;
+    const double low_rank = one(ma) + (model.hierarchical ? one(mc) : 0.0) + 2.0 * n * (ma * ma + mc * mc) +
+                            terms * 8.0 * n * td * width;
+    return low_rank < structured;
+}
+
+/// Structured likelihood with block-diagonal-plus-low-rank layers (every child complete). See
+/// block_low_rank.hpp for the algebra; the rotation of the children is the Structured path's.
+LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient, int threads,
+                                    const LayerFactors& f) {
+    LikelihoodValue out;
+    out.path = LikelihoodPath::LowRank;
+    const Index t = static_cast<Index>(data.frames());
+    const Index d = static_cast<Index>(data.outputs());
+    const Index n = d * t;
+    const Index r = static_cast<Index>(data.child_count());
+    const double rd = static_cast<double>(r);
+    const bool hier = model.hierarchical;
+    MatX e(n, r);
+    for (Index c = 0; c < r; ++c) e.col(c) = vec_output_major(data.children[static_cast<std::size_t>(c)]);
+    VecX z;
+    if (hier) {
+        const VecX mean = e.rowwise().mean();
+        z = std::sqrt(rd) * mean;
+        e.colwise() -= mean;
+    }
+    const double a_count = hier ? rd - 1.0 : rd;
+    const VecX noise = model.noise_variance();
+
+    detail::BlockLowRank fa, fc;
+    bool ok_a = false, ok_c = !hier;
+    std::string msg_a, msg_c;
+    MatX pa;       // A⁻¹ E
+    VecX alpha_c;  // C⁻¹ z
+    double quad_a = 0.0, quad_c = 0.0;
+    const auto ta = terms_a(model, f);
+    const auto tc = hier ? terms_c(model, f, rd) : std::vector<detail::WeightedTerm>{};
+    auto work_a = [&]() {
+        ok_a = fa.build(ta, noise, t, msg_a);
+        if (!ok_a) return;
+        pa = fa.solve(e);
+        quad_a = e.cwiseProduct(pa).sum();
+    };
+    auto work_c = [&]() {
+        if (!hier) return;
+        ok_c = fc.build(tc, noise, t, msg_c);
+        if (!ok_c) return;
+        alpha_c = fc.solve(z);
+        quad_c = z.dot(alpha_c);
+    };
+    if (threads >= 2 && hier) {
+        std::thread worker(work_c);
+        work_a();
+        worker.join();
+    } else {
+        work_a();
+        work_c();
+    }
+    if (!ok_a || !ok_c) {
+        out.message = !ok_a ? "child covariance K_f + noise: " + msg_a : "K_f + noise + R·K_g: " + msg_c;
+        return out;
+    }
+    out.log_likelihood = -0.5 * (quad_a + a_count * fa.log_det) - 0.5 * rd * static_cast<double>(n) * kLog2Pi;
+    if (hier) out.log_likelihood += -0.5 * (quad_c + fc.log_det);
+    if (!std::isfinite(out.log_likelihood)) {
+        out.message = "non-finite low-rank log likelihood";
+        return out;
+    }
+    out.ok = true;
+    if (!with_gradient) return out;
+
+    // W_A = (A⁻¹E)(A⁻¹E)ᵀ − count·A⁻¹ = Pa Paᵀ − count·P_A⁻¹ + count·V_A K_A⁻¹ V_Aᵀ;
+    // W_C = α αᵀ − P_C⁻¹ + V_C K_C⁻¹ V_Cᵀ. G_f = W_A + W_C (child terms, noise), G_g = R·W_C (parent).
+    const Index ma = fa.v.cols(), mc = hier ? fc.v.cols() : 0;
+    detail::StructuredSymmetric gf, gg;
+    gf.blocks.resize(static_cast<std::size_t>(d));
+    const Index wf = r + ma + (hier ? 1 + mc : 0);
+    gf.u.resize(n, wf);
+    gf.x.resize(n, wf);
+    gf.u.leftCols(r) = pa;
+    gf.x.leftCols(r) = pa;
+    gf.u.middleCols(r, ma) = fa.v;
+    if (ma > 0) gf.x.middleCols(r, ma).noalias() = a_count * fa.v * fa.cap_inverse;
+    for (Index i = 0; i < d; ++i) {
+        MatX& b = gf.blocks[static_cast<std::size_t>(i)];
+        b = -a_count * fa.p_inverse[static_cast<std::size_t>(i)];
+        if (hier) b -= fc.p_inverse[static_cast<std::size_t>(i)];
+    }
+    if (hier) {
+        gf.u.col(r + ma) = alpha_c;
+        gf.x.col(r + ma) = alpha_c;
+        gf.u.rightCols(mc) = fc.v;
+        if (mc > 0) gf.x.rightCols(mc).noalias() = fc.v * fc.cap_inverse;
+        // G_g / R shares W_C's columns; the factor R is applied in the contraction.
+        gg.blocks.resize(static_cast<std::size_t>(d));
+        for (Index i = 0; i < d; ++i) gg.blocks[static_cast<std::size_t>(i)] = -fc.p_inverse[static_cast<std::size_t>(i)];
+        gg.u = gf.u.rightCols(1 + mc);
+        gg.x = gf.x.rightCols(1 + mc);
+    }
+    out.gradient = VecX::Zero(static_cast<Index>(model.parameter_count()));
+    const std::size_t parent_offset = model.child.parameter_count();
+    auto grad_child = [&]() {
+        std::size_t o = 0;
+        for (std::size_t q = 0; q < model.child.terms.size(); ++q)
+            o = detail::structured_term_gradient(model.child.terms[q], f.child[q], gf, 1.0, data.times, o, out.gradient);
+        o = parent_offset + (hier ? model.parent.parameter_count() : 0);
+        const VecX tr = detail::structured_block_traces(gf, d, t);
+        for (Index i = 0; i < d; ++i) out.gradient[static_cast<Index>(o) + i] = 0.5 * tr[i] * std::exp(model.log_noise[i]);
+    };
+    auto grad_parent = [&]() {
+        if (!hier) return;
+        std::size_t o = parent_offset;
+        for (std::size_t q = 0; q < model.parent.terms.size(); ++q)
+            o = detail::structured_term_gradient(model.parent.terms[q], f.parent[q], gg, rd, data.times, o, out.gradient);
     };
     if (threads >= 2 && hier) {
         std::thread worker(grad_parent);
@@ -619,11 +781,21 @@ LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool 
     if (model.outputs() != data.outputs())
         throw InvalidArgument("log_likelihood: model has " + std::to_string(model.outputs()) + " outputs, data " +
                               std::to_string(data.outputs()));
-    if (path == LikelihoodPath::Structured && !data.all_complete())
-        throw InvalidArgument("log_likelihood: the structured path needs every child complete (use Dense or Auto)");
-    const bool structured = path == LikelihoodPath::Structured || (path == LikelihoodPath::Auto && data.all_complete());
-    return structured ? structured_likelihood(model, data, with_gradient, threads)
-                      : dense_likelihood(model, data, with_gradient);
+    if ((path == LikelihoodPath::Structured || path == LikelihoodPath::LowRank) && !data.all_complete())
+        throw InvalidArgument("log_likelihood: the structured and low-rank paths need every child complete (use Dense or Auto)");
+    if (path == LikelihoodPath::Dense || (path == LikelihoodPath::Auto && !data.all_complete()))
+        return dense_likelihood(model, data, with_gradient);
+    if (path == LikelihoodPath::Structured) return structured_likelihood(model, data, with_gradient, threads);
+    const LayerFactors f = layer_factors(model, data.times);
+    if (path == LikelihoodPath::LowRank) return low_rank_likelihood(model, data, with_gradient, threads, f);
+    // Auto, every child complete.
+    if (low_rank_is_cheaper(model, f, static_cast<Index>(data.outputs()), static_cast<Index>(data.frames()),
+                            static_cast<double>(data.child_count()))) {
+        LikelihoodValue v = low_rank_likelihood(model, data, with_gradient, threads, f);
+        if (v.ok) return v;
+        // P (the κ and noise blocks) may be singular while the full covariance is not.
+    }
+    return structured_likelihood(model, data, with_gradient, threads);
 }
 
 namespace {
@@ -705,6 +877,19 @@ MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_s
     // MOA: every observed value of every child is a noisy observation of one function f ~ GP(0, K_f).
     const Index t = static_cast<Index>(data.frames());
     const Index d = static_cast<Index>(data.outputs());
+    if (data.all_complete()) {
+        // R complete replicates at the same times: their mean ȳ is sufficient, with noise N/R
+        // (one (D·T)² factorization instead of (R·D·T)²).
+        const double rd = static_cast<double>(data.child_count());
+        VecX mean = VecX::Zero(d * t);
+        for (const MatX& y : data.children) mean += vec_output_major(y);
+        mean /= rd;
+        MatX s = lmc_covariance(model.child, data.times, data.times);
+        s.diagonal() += flat_noise(model.noise_variance(), t) / rd;
+        Eigen::LLT<MatX> llt(s);
+        if (llt.info() != Eigen::Success) return MatX::Constant(d, t_star.size(), std::nan(""));
+        return unvec_output_major(lmc_covariance(model.child, t_star, data.times) * llt.solve(mean), d, t_star.size());
+    }
     const DenseLayout l = dense_layout(data);
     const MatX kf = lmc_covariance(model.child, data.times, data.times);
     const VecX noise = flat_noise(model.noise_variance(), t);

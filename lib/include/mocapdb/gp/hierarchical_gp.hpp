@@ -20,6 +20,11 @@
 //               N(√R·ȳ; 0, A + R·B) and R − 1 independent N(·; 0, A) terms that only need the
 //               deviations' scatter S = Σ_r (y_r − ȳ)(y_r − ȳ)ᵀ: two factorizations of size D·T,
 //               run on two threads. O((D·T)³) independent of R.
+//   low rank    the same decomposition, but each of A and A + R·B is written as P + L Lᵀ: P block
+//               diagonal over the outputs (the diag(κ_q) ⊗ k_q terms and the noise, D blocks T×T) and
+//               L = [w_qj ⊗ S_q] with k_q = S_q S_qᵀ (rank(W_q)·T columns per term); determinant lemma
+//               and Woodbury with an M×M capacitance, M = Σ_q rank(W_q)·T, and gradient contractions
+//               that never form a (D·T)² matrix: O(D·T³ + D·T²·M + D·T·M² + M³).
 // Children with missing frames break the shared-times structure: the likelihood then falls back to
 // the dense path (Auto), while the posterior of a partially observed child given complete siblings
 // stays structured (the siblings enter only through the posterior of g, a Schur complement).
@@ -80,9 +85,12 @@ struct HgpData {
 void validate(const HgpData& data);
 
 enum class LikelihoodPath {
-    Auto,        ///< structured when every child is complete, dense otherwise
+    Auto,        ///< every child complete: the cheaper of LowRank and Structured (LowRank falls back to
+                 ///< Structured when its block-diagonal part is not positive definite); dense otherwise
     Dense,
-    Structured,  ///< InvalidArgument when a child has missing frames
+    Structured,  ///< two (D·T)² factorizations; InvalidArgument when a child has missing frames
+    LowRank,     ///< the structured decomposition with each layer's covariance as block diagonal plus
+                 ///< low rank (Woodbury); InvalidArgument when a child has missing frames
 };
 
 struct LikelihoodValue {

@@ -20,13 +20,18 @@ struct ModelSpec {
     std::size_t rank = 1;                ///< columns of every W_q
     KernelType kernel = KernelType::Rbf; ///< base kernel of every term
     double noise_floor = 1e-6;
+    /// initial_model: choose the lengthscales by a coarse likelihood scan (5 factors per layer).
+    bool scan_lengthscales = true;
 };
 
-/// A deterministic starting point from the data's scale: per output, the parent terms share the second
-/// moment of the children's mean, the child terms the children's deviations from it (MOA: the whole
-/// second moment), the noise starts at 1 % of the deviation variance; lengthscales are spread
-/// geometrically between 5 % and 50 % of the time span; W gets small fixed values (a zero W is a
-/// stationary point of the likelihood).
+/// A deterministic starting point from the data's second moments: per layer, the D×D second-moment
+/// matrix of the children's mean (parent) and of the deviations from it (child; MOA: of the values) is
+/// shared by the layer's terms; term q's W takes the next `rank` principal directions (80 % of their
+/// eigenvalues, plus a small fixed perturbation: a zero W is a stationary point of the likelihood),
+/// κ the remaining diagonal (≥ 5 %); the noise starts at 1 % of the child layer's diagonal; lengthscales
+/// are spread geometrically between 5 % and 50 % of the time span (20 % for Q = 1) and then, with
+/// spec.scan_lengthscales, scaled per layer by the best of 0.25, 0.5, 1, 2, 4 under the likelihood
+/// (≤ 25 evaluations without gradient).
 HgpModel initial_model(const HgpData& data, const ModelSpec& spec);
 
 enum class FitStatus {
