@@ -1,43 +1,26 @@
 #!/usr/bin/env bash
-# The main job, end to end. For now (until synthesis lands): describe a CMU clip, convert it from
-# ASF/AMC to BVH and read the BVH back; then store subject 16's walks in a motion database, build a
-# motion set with measured turn and speed, and time-align it into a pose tensor.
+# The main job, end to end (issue #6): install what is missing, build the command-line tool (Release),
+# and run `mocapdb demo`: a procedural parametric motion set of the built-in humanoid (or, with
+# --data DIR, the clips of a folder) imported into OUT/demo.h5, made a motion set, time-aligned,
+# compressed, reported (rate-distortion table), and synthesized at new parameters; BVH files, SVG
+# plots, report.json and README.txt are written to OUT.
+# Usage: scripts/demo.sh [OUT] [mocapdb demo options, e.g. --motion walk, --data DIR, --quick]
+#        (OUT defaults to demo-out, relative to the current folder; outputs of an earlier demo there are
+#        replaced). MOCAPDB_BUILD_DIR chooses the build folder (default build/release).
 set -euo pipefail
+out="${1:-demo-out}"
+[ $# -gt 0 ] && shift
+out="$(realpath -m -- "$out")"
 cd "$(dirname "$0")/.."
 
 scripts/setup.sh
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/release -j "$(nproc)" --target mocapdb_cli
+build="${MOCAPDB_BUILD_DIR:-build/release}"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j "$(nproc)" --target mocapdb_cli
 
-data=../shared/datasets/cmu-asfamc
-out=out/demo
-if [ ! -d "$data" ]; then
-  echo "demo: the shared CMU data is not at $data (expected beside this repository)" >&2
-  exit 1
-fi
-mkdir -p "$out"
-mocapdb=build/release/tools/mocapdb
+"$build/tools/mocapdb" demo --out "$out" --force "$@"
 
-echo "== mocapdb info $data/16_15.amc"
-"$mocapdb" info "$data/16_15.amc" --asf "$data/16.asf"
 echo
-echo "== mocapdb convert (ASF/AMC -> BVH)"
-"$mocapdb" convert "$data/16_15.amc" --asf "$data/16.asf" -o "$out/16_15.bvh" --force
-echo
-echo "== mocapdb info $out/16_15.bvh"
-"$mocapdb" info "$out/16_15.bvh"
-echo
-echo "== mocapdb import (subject 16's walks) -> $out/walks.h5"
-walks=()
-for t in 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 47; do walks+=("$data/16_$t.amc"); done
-"$mocapdb" import "${walks[@]}" -o "$out/walks.h5" --force
-echo
-echo "== mocapdb set create / align"
-"$mocapdb" set create "$out/walks.h5" --name walks --clips '16_*' --extract turn speed displacement
-"$mocapdb" align "$out/walks.h5" --set walks --frames 100 --method dtw
-"$mocapdb" set show "$out/walks.h5" walks
-echo
-"$mocapdb" info "$out/walks.h5"
-echo
-echo "demo: outputs are in $out/ (16_15.bvh opens in Blender: File > Import > Motion Capture (.bvh);"
-echo "      walks.h5 holds the clips, the set and its tensor: see README.md for reading it with h5py)"
+echo "demo: outputs are in $out/ (README.txt there says what each file is):"
+ls -l "$out"
+echo "demo: open the synth_*.bvh files in Blender (File > Import > Motion Capture (.bvh)) and the .svg files in a browser"

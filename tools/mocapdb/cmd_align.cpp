@@ -1,12 +1,8 @@
 // mocapdb align: time-align a motion set's samples and store the D × T × N pose tensor.
-#include <chrono>
 #include <cstdio>
 
 #include "commands.hpp"
-#include "mocapdb/core/error.hpp"
-#include "mocapdb/dataset/alignment.hpp"
-#include "mocapdb/dataset/set_builder.hpp"
-#include "mocapdb/store/database.hpp"
+#include "pipeline.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -20,37 +16,12 @@ struct AlignArgs {
 };
 
 void run_align(const AlignArgs& a) {
-    const auto start = std::chrono::steady_clock::now();
-    // Read from the published file (errors name it), write in a session only once aligned.
-    const Database db(a.db);
-    const MotionSet set = db.load_set(a.set);
-    std::vector<Clip> samples;
-    std::vector<std::string> labels;
-    for (const SampleRef& s : set.samples) {
-        const Clip clip = db.load_clip(s.clip);
-        labels.push_back(sample_label(s, clip.frame_count()));
-        samples.push_back(slice(clip, s.begin, s.end));
-    }
-    AlignOptions options;
-    options.method = a.method;
-    options.frames = static_cast<Eigen::Index>(a.frames);
-    if (!a.reference.empty()) {
-        const auto it = std::find(labels.begin(), labels.end(), a.reference);
-        if (it == labels.end())
-            throw InvalidArgument("set '" + a.set + "' has no sample '" + a.reference + "' (see mocapdb set show)");
-        options.reference = static_cast<std::size_t>(it - labels.begin());
-    }
-    const AlignedSet aligned = align_samples(samples, options);
-    const double distance = mean_alignment_distance(samples, aligned);
-    DatabaseWriter writer(a.db, DatabaseWriter::Mode::OpenOrCreate);
-    writer.put_aligned(a.set, aligned);
-    writer.commit();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("aligned set '%s' (%s, reference %s): tensor %lld dofs x %lld frames x %lld samples; "
-                "mean pose distance to the reference %.2f cm; %.2f s\n",
-                a.set.c_str(), aligned.method.c_str(), labels[aligned.reference].c_str(),
-                static_cast<long long>(aligned.dofs()), static_cast<long long>(aligned.frames()),
-                static_cast<long long>(aligned.samples()), distance, seconds);
+    AlignRequest r;
+    r.set = a.set;
+    r.frames = a.frames;
+    r.method = a.method;
+    r.reference = a.reference;
+    std::fputs(describe_alignment(a.set, align_set(a.db, r)).c_str(), stdout);
 }
 
 }  // namespace

@@ -1,12 +1,8 @@
 // mocapdb import FILES|DIRS... -o DB.h5: store clips in a motion database (atomic, appending).
-#include <chrono>
-#include <cstdio>
 #include <iostream>
 
 #include "commands.hpp"
-#include "mocapdb/core/error.hpp"
-#include "mocapdb/store/import.hpp"
-#include "progress_bar.hpp"
+#include "pipeline.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -21,17 +17,8 @@ struct ImportArgs {
     bool force = false;
 };
 
-std::string megabytes(std::uint64_t bytes) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.1f MB", static_cast<double>(bytes) / 1e6);
-    return buffer;
-}
-
 void run_import(const ImportArgs& args) {
-    namespace fs = std::filesystem;
-    std::vector<fs::path> inputs(args.inputs.begin(), args.inputs.end());
-    const std::vector<fs::path> files = collect_clip_files(inputs);
-    if (files.empty()) throw InvalidArgument("no .bvh or .amc files found in the given inputs");
+    std::vector<std::filesystem::path> inputs(args.inputs.begin(), args.inputs.end());
     Manifest manifest;
     ImportOptions options;
     if (!args.manifest.empty()) {
@@ -41,44 +28,9 @@ void run_import(const ImportArgs& args) {
     options.asf = args.asf;
     if (args.fps > 0.0) options.frame_rate = args.fps;
     options.strict = args.strict;
-
-    const fs::path db = args.output;
-    std::error_code ec;
-    const bool existed = fs::exists(db, ec);
-    const auto mode = args.force ? DatabaseWriter::Mode::Create : DatabaseWriter::Mode::OpenOrCreate;
-    std::unique_ptr<DatabaseWriter> writer;
-    try {
-        writer = std::make_unique<DatabaseWriter>(db, mode);
-    } catch (const StoreError& e) {
-        throw StoreError(e.file(), e.object_path(),
-                         e.message() + " (import appends to a mocapdb database; --force replaces the file with a new one)");
-    }
-
-    const auto start = std::chrono::steady_clock::now();
-    ProgressBar bar("import");
-    const ImportSummary summary = import_files(*writer, files, options, bar.callback(), [&](const ImportedFile& f) {
-        if (f.warnings.empty() && f.result.added) return;
-        bar.clear();
-        for (const Warning& w : f.warnings) std::cerr << "mocapdb: warning: " << w.to_string() << "\n";
-        if (!f.result.added) std::cout << f.file.string() << ": " << f.result.message << "\n";
-    });
-    bar.clear();
-    if (summary.added > 0 || !existed || args.force) writer->commit();
-    writer.reset();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    const Database view(db);
-    const std::size_t clips = view.clips().size();
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "imported %zu clip%s (%zu skipped as duplicates): %zu frames, %.1f s of motion; read %s in %.2f s "
-                  "(%.1f MB/s, %.1f clips/s); %s now holds %zu clips, %s\n",
-                  summary.added, summary.added == 1 ? "" : "s", summary.skipped, summary.frames, summary.seconds,
-                  megabytes(summary.bytes_read).c_str(), seconds,
-                  seconds > 0 ? static_cast<double>(summary.bytes_read) / 1e6 / seconds : 0.0,
-                  seconds > 0 ? static_cast<double>(summary.files) / seconds : 0.0, db.string().c_str(), clips,
-                  megabytes(view.file_size()).c_str());
-    std::cout << line;
+    const std::filesystem::path db = args.output;
+    const ImportOutcome outcome = import_clips(db, inputs, options, args.force, std::cout);
+    std::cout << describe_import(db, outcome);
 }
 
 }  // namespace

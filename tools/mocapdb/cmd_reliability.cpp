@@ -8,6 +8,7 @@
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/text_file.hpp"
+#include "pipeline.hpp"
 #include "svg_heatmap.hpp"
 #include "synthesis_cli.hpp"
 
@@ -25,15 +26,6 @@ struct ReliabilityArgs {
     bool json = false;
 };
 
-struct GridAxis {
-    Eigen::Index axis = 0;
-    double lo = 0, hi = 0;
-    Eigen::Index count = 0;
-    double at(Eigen::Index i) const {
-        return count > 1 ? lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(count - 1) : lo;
-    }
-};
-
 double number(const std::string& text, const std::string& what) {
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
@@ -42,11 +34,11 @@ double number(const std::string& text, const std::string& what) {
     return v;
 }
 
-GridAxis parse_axis(const std::string& spec, const std::vector<std::string>& names) {
+SliceAxis parse_axis(const std::string& spec, const std::vector<std::string>& names) {
     const std::string usage = "--grid: expected AXIS=LO:HI:N (N >= 2), got '" + spec + "'";
     const auto eq = spec.rfind('=');
     if (eq == std::string::npos) throw InvalidArgument(usage);
-    GridAxis g;
+    SliceAxis g;
     g.axis = parameter_index(names, spec.substr(0, eq), "--grid");
     std::vector<std::string> parts;
     std::stringstream in(spec.substr(eq + 1));
@@ -66,12 +58,11 @@ void run_reliability(const ReliabilityArgs& a) {
     const Database db(a.db);
     const auto model = load_synthesis_model(db, a.set, a.naive, "");
     const auto& names = model->parameter_names();
-    const auto& units = model->parameter_units();
     const auto comma = a.grid.find(',');
     if (comma == std::string::npos)
         throw InvalidArgument("--grid: expected two axes AXIS=LO:HI:N,AXIS=LO:HI:N, got '" + a.grid + "'");
-    const GridAxis gx = parse_axis(a.grid.substr(0, comma), names);
-    const GridAxis gy = parse_axis(a.grid.substr(comma + 1), names);
+    const SliceAxis gx = parse_axis(a.grid.substr(0, comma), names);
+    const SliceAxis gy = parse_axis(a.grid.substr(comma + 1), names);
     if (gx.axis == gy.axis) throw InvalidArgument("--grid: the two axes must differ");
     // The other axes: fixed by --fix, else at the samples' mean.
     VecX base = model->sample_parameters().colwise().mean().transpose();
@@ -82,51 +73,10 @@ void run_reliability(const ReliabilityArgs& a) {
         if (k == gx.axis || k == gy.axis) throw InvalidArgument("--fix: '" + names[static_cast<std::size_t>(k)] + "' is a grid axis");
         base(k) = number(f.substr(eq + 1), "--fix " + names[static_cast<std::size_t>(k)]);
     }
-    MatX queries(gx.count * gy.count, model->parameters());
-    for (Eigen::Index j = 0; j < gy.count; ++j)
-        for (Eigen::Index i = 0; i < gx.count; ++i) {
-            VecX c = base;
-            c(gx.axis) = gx.at(i);
-            c(gy.axis) = gy.at(j);
-            queries.row(j * gx.count + i) = c.transpose();
-        }
-    const VecX rho = model->reliability_batch(queries);
-    MatX map(gy.count, gx.count);
-    for (Eigen::Index j = 0; j < gy.count; ++j)
-        for (Eigen::Index i = 0; i < gx.count; ++i) map(j, i) = rho(j * gx.count + i);
-
-    const auto axis_label = [&](Eigen::Index k) {
-        const std::string& u = units[static_cast<std::size_t>(k)];
-        return names[static_cast<std::size_t>(k)] + (u.empty() ? "" : " [" + u + "]");
-    };
-    HeatMapSpec spec;
-    spec.title = "Reliability of synthesis: set '" + a.set + "' (" + model->kind() + " model)";
-    spec.x_label = axis_label(gx.axis);
-    spec.y_label = axis_label(gy.axis);
-    spec.value_label = "rho";
-    spec.x_lo = gx.lo;
-    spec.x_hi = gx.hi;
-    spec.y_lo = gy.lo;
-    spec.y_hi = gy.hi;
-    spec.values = map;
-    spec.value_lo = 0.0;
-    spec.value_hi = 1.0;
-    const MatX& sp = model->sample_parameters();
-    for (Eigen::Index n = 0; n < sp.rows(); ++n) {
-        spec.point_x.push_back(sp(n, gx.axis));
-        spec.point_y.push_back(sp(n, gy.axis));
-    }
-    spec.point_label = "samples (" + std::to_string(sp.rows()) + ")";
-    if (model->parameters() > 2) {
-        std::string fixed;
-        for (Eigen::Index k = 0; k < model->parameters(); ++k)
-            if (k != gx.axis && k != gy.axis) {
-                char buf[64];
-                std::snprintf(buf, sizeof buf, "%s%s = %g", fixed.empty() ? "" : ", ", names[static_cast<std::size_t>(k)].c_str(), base(k));
-                fixed += buf;
-            }
-        spec.note = "slice at " + fixed;
-    }
+    const ReliabilityMap m = reliability_map(*model, a.set, gx, gy, base);
+    const HeatMapSpec& spec = m.spec;
+    const MatX& queries = m.queries;
+    const VecX& rho = m.rho;
     const std::string svg = render_heat_map(spec);
     write_file_atomically(a.svg, [&](std::ostream& out) { out << svg; });
     if (!a.csv.empty()) {
@@ -140,7 +90,7 @@ void run_reliability(const ReliabilityArgs& a) {
             }
         });
     }
-    const double trusted = (rho.array() >= 0.85).cast<double>().mean();
+    const double trusted = m.fraction_trusted;
     if (a.json) {
         JsonWriter j;
         j.begin_object();

@@ -5,8 +5,8 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/io/bvh.hpp"
+#include "pipeline.hpp"
 #include "synthesis_cli.hpp"
 
 namespace mocapdb::cli {
@@ -23,23 +23,6 @@ struct SynthArgs {
     bool json = false;
 };
 
-/// The extractors the set's parameters were measured with ("extract:turn,speed"), or none.
-std::vector<ParameterExtractor> source_extractors(const std::string& source) {
-    std::vector<ParameterExtractor> ex;
-    const std::string prefix = "extract:";
-    if (source.compare(0, prefix.size(), prefix) != 0) return ex;
-    std::string rest = source.substr(prefix.size());
-    std::size_t start = 0;
-    while (start <= rest.size()) {
-        const std::size_t comma = rest.find(',', start);
-        const std::string spec = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        if (!spec.empty()) ex.push_back(ParameterExtractor::parse(spec));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    return ex;
-}
-
 void run_synth(const SynthArgs& a) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
@@ -50,20 +33,13 @@ void run_synth(const SynthArgs& a) {
     const double load_s = std::chrono::duration<double>(Clock::now() - t0).count();
     const Eigen::Index level = a.lod.empty() ? 0 : 1;
 
-    const auto t1 = Clock::now();
-    const synthesis::Timing timing = model->timing(c);
-    const Clip clip = model->motion(c, level);
-    const double rho = model->reliability(c);
-    const double synth_s = std::chrono::duration<double>(Clock::now() - t1).count();
-    write_bvh(a.out, clip);
-
-    // Measured parameters of the result, when the set's were measured by extractors.
-    const std::vector<ParameterExtractor> ex = source_extractors(set.parameter_source);
-    VecX measured;
-    if (!ex.empty() && clip.frame_count() >= 2) {
-        measured = extract_parameters(clip, 0, clip.frame_count(), ex);
-        if (measured.size() != c.size()) measured.resize(0);
-    }
+    const SynthOutcome o = synthesize(*model, set, c, level);
+    write_bvh(a.out, o.clip);
+    const Clip& clip = o.clip;
+    const synthesis::Timing& timing = o.timing;
+    const VecX& measured = o.measured;
+    const double rho = o.reliability;
+    const double synth_s = o.seconds;
     const tensor::Ranks ranks = model->level_ranks(level);
     if (a.json) {
         JsonWriter j;

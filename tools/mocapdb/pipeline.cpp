@@ -1,0 +1,575 @@
+#include "pipeline.hpp"
+
+#include <fnmatch.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "mocapdb/compression/byte_accounting.hpp"
+#include "mocapdb/compression/dof_weights.hpp"
+#include "mocapdb/compression/rank_search.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/alignment.hpp"
+#include "mocapdb/dataset/set_builder.hpp"
+#include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/store/database.hpp"
+#include "numeric_csv.hpp"
+#include "progress_bar.hpp"
+#include "svg_plot.hpp"
+
+namespace mocapdb::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string megabytes(std::uint64_t bytes) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.1f MB", static_cast<double>(bytes) / 1e6);
+    return buffer;
+}
+
+// Clip ids matching the patterns, in pattern order (ids sorted within a pattern), each once.
+std::vector<std::string> select_clips(const Database& db, const std::string& db_name,
+                                      const std::vector<std::string>& patterns) {
+    const auto records = db.clips();
+    std::vector<std::string> out;
+    std::set<std::string> seen;
+    for (const std::string& pattern : patterns) {
+        bool matched = false;
+        for (const ClipRecord& r : records) {
+            if (fnmatch(pattern.c_str(), r.id.c_str(), 0) != 0) continue;
+            matched = true;
+            if (seen.insert(r.id).second) out.push_back(r.id);
+        }
+        if (!matched) throw InvalidArgument(db_name + ": no clip matches '" + pattern + "' (mocapdb info " + db_name + " lists them)");
+    }
+    return out;
+}
+
+// Splits "NAME[UNIT]" into name and unit.
+std::pair<std::string, std::string> name_and_unit(const std::string& header) {
+    const auto open = header.find('[');
+    if (open == std::string::npos || header.back() != ']') return {header, ""};
+    return {header.substr(0, open), header.substr(open + 1, header.size() - open - 2)};
+}
+
+// Fills the set's parameters from a CSV: first column the sample label, then one column per
+// parameter, headers "name" or "name[unit]".
+void apply_params_csv(MotionSet& set, const std::string& file, const Database& db) {
+    const NumericCsv csv = NumericCsv::read(file);
+    if (csv.header.size() < 2)
+        throw ParseError(file, 1, 0, "expected a header 'sample,p1[,p2...]' with at least one parameter column");
+    std::vector<std::string> names(csv.header.begin() + 1, csv.header.end());
+    set.parameter_names.clear();
+    set.parameter_units.clear();
+    for (const std::string& h : names) {
+        const auto [n, u] = name_and_unit(h);
+        set.parameter_names.push_back(n);
+        set.parameter_units.push_back(u);
+    }
+    const MatX values = csv.columns(names);
+    std::map<std::string, Eigen::Index> row_of;
+    for (std::size_t r = 0; r < csv.cells.size(); ++r) {
+        if (!row_of.emplace(csv.cells[r][0], static_cast<Eigen::Index>(r)).second)
+            throw ParseError(file, csv.line_of_row[r], 1, "sample '" + csv.cells[r][0] + "' appears twice");
+    }
+    set.parameters.resize(static_cast<Eigen::Index>(set.samples.size()), static_cast<Eigen::Index>(names.size()));
+    for (std::size_t i = 0; i < set.samples.size(); ++i) {
+        const SampleRef& s = set.samples[i];
+        const std::string label = sample_label(s, db.find_clip(s.clip)->frames);
+        auto it = row_of.find(label);
+        if (it == row_of.end())
+            throw ParseError(file, 0, 0, "no row for sample '" + label + "' (first column: sample labels as 'CLIP' or 'CLIP:BEGIN-END')");
+        set.parameters.row(static_cast<Eigen::Index>(i)) = values.row(it->second);
+    }
+    set.parameter_source = "csv:" + std::filesystem::path(file).filename().string();
+}
+
+tensor::TuckerMethod method_of(const std::string& name) {
+    if (name == "sthosvd") return tensor::TuckerMethod::StHosvd;
+    if (name == "hooi") return tensor::TuckerMethod::Hooi;
+    return tensor::TuckerMethod::Hosvd;
+}
+
+std::string row_ranks_text(const std::vector<long long>& r) {
+    std::string s;
+    for (std::size_t i = 0; i < r.size(); ++i) s += (i ? "x" : "") + std::to_string(r[i]);
+    return s.empty() ? "-" : s;
+}
+
+std::string target_text(double t) {
+    if (t == 0.0) return "lossless";
+    std::ostringstream s;
+    s << "<=" << t << "cm";
+    return s.str();
+}
+
+}  // namespace
+
+// ---- import -------------------------------------------------------------------------------------
+
+ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<std::filesystem::path>& inputs,
+                           const ImportOptions& options, bool force, std::ostream& notes) {
+    namespace fs = std::filesystem;
+    const std::vector<fs::path> files = collect_clip_files(inputs);
+    if (files.empty()) throw InvalidArgument("no .bvh or .amc files found in the given inputs");
+    ImportOutcome o;
+    std::error_code ec;
+    o.existed = fs::exists(db, ec);
+    const auto mode = force ? DatabaseWriter::Mode::Create : DatabaseWriter::Mode::OpenOrCreate;
+    std::unique_ptr<DatabaseWriter> writer;
+    try {
+        writer = std::make_unique<DatabaseWriter>(db, mode);
+    } catch (const StoreError& e) {
+        throw StoreError(e.file(), e.object_path(),
+                         e.message() + " (import appends to a mocapdb database; --force replaces the file with a new one)");
+    }
+    const auto start = Clock::now();
+    ProgressBar bar("import");
+    o.summary = import_files(*writer, files, options, bar.callback(), [&](const ImportedFile& f) {
+        if (f.warnings.empty() && f.result.added) return;
+        bar.clear();
+        for (const Warning& w : f.warnings) std::cerr << "mocapdb: warning: " << w.to_string() << "\n";
+        if (!f.result.added) notes << f.file.string() << ": " << f.result.message << "\n";
+    });
+    bar.clear();
+    if (o.summary.added > 0 || !o.existed || force) writer->commit();
+    writer.reset();
+    o.seconds = seconds_since(start);
+    const Database view(db);
+    o.clips_in_db = view.clips().size();
+    o.file_bytes = view.file_size();
+    return o;
+}
+
+std::string describe_import(const std::filesystem::path& db, const ImportOutcome& o) {
+    const ImportSummary& s = o.summary;
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "imported %zu clip%s (%zu skipped as duplicates): %zu frames, %.1f s of motion; read %s in %.2f s "
+                  "(%.1f MB/s, %.1f clips/s); %s now holds %zu clips, %s\n",
+                  s.added, s.added == 1 ? "" : "s", s.skipped, s.frames, s.seconds, megabytes(s.bytes_read).c_str(),
+                  o.seconds, o.seconds > 0 ? static_cast<double>(s.bytes_read) / 1e6 / o.seconds : 0.0,
+                  o.seconds > 0 ? static_cast<double>(s.files) / o.seconds : 0.0, db.string().c_str(), o.clips_in_db,
+                  megabytes(o.file_bytes).c_str());
+    return line;
+}
+
+// ---- set create ---------------------------------------------------------------------------------
+
+SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
+    if (!a.params_csv.empty() && !a.extract.empty()) throw InvalidArgument("give either --params or --extract, not both");
+    DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
+    const Database& db = writer.view();
+    if (db.clips().empty()) throw InvalidArgument(db_path + ": the database holds no clips; import some first");
+    if (db.has_set(a.name) && !a.replace)
+        throw InvalidArgument(db_path + ": set '" + a.name + "' exists; pass --force to replace it");
+    SetBuildOptions options;
+    options.name = a.name;
+    parse_segmentation(a.segment, options);
+    if (!a.feet.empty()) options.gait.contacts.feet = split_names(a.feet, "--feet");
+    for (const std::string& spec : a.extract) {
+        options.extractors.push_back(ParameterExtractor::parse(spec));
+        if (!a.feet.empty()) options.extractors.back().contacts.feet = options.gait.contacts.feet;
+    }
+    const auto ids = select_clips(db, db_path, a.clips);
+    SetOutcome o;
+    o.clips = ids.size();
+    o.set = build_motion_set(ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped);
+    for (const std::string& id : o.skipped)
+        std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
+    if (!a.params_csv.empty()) apply_params_csv(o.set, a.params_csv, db);
+    validate(o.set);
+    writer.put_set(o.set, a.replace);
+    writer.commit();
+    return o;
+}
+
+std::string describe_set(const SetOutcome& o) {
+    char line[512];
+    std::snprintf(line, sizeof line, "set '%s': %zu samples from %zu clips, %zu parameters (%s)\n", o.set.name.c_str(),
+                  o.set.samples.size(), o.clips, o.set.parameter_names.size(),
+                  o.set.parameter_source.empty() ? "none" : o.set.parameter_source.c_str());
+    return line;
+}
+
+// ---- align --------------------------------------------------------------------------------------
+
+AlignOutcome align_set(const std::string& db_path, const AlignRequest& a) {
+    const auto start = Clock::now();
+    // Read from the published file (errors name it), write in a session only once aligned.
+    const Database db(db_path);
+    const MotionSet set = db.load_set(a.set);
+    std::vector<Clip> samples;
+    AlignOutcome o;
+    for (const SampleRef& s : set.samples) {
+        const Clip clip = db.load_clip(s.clip);
+        o.labels.push_back(sample_label(s, clip.frame_count()));
+        samples.push_back(slice(clip, s.begin, s.end));
+    }
+    AlignOptions options;
+    options.method = a.method;
+    options.frames = static_cast<Eigen::Index>(a.frames);
+    if (!a.reference.empty()) {
+        const auto it = std::find(o.labels.begin(), o.labels.end(), a.reference);
+        if (it == o.labels.end())
+            throw InvalidArgument("set '" + a.set + "' has no sample '" + a.reference + "' (see mocapdb set show)");
+        options.reference = static_cast<std::size_t>(it - o.labels.begin());
+    }
+    o.aligned = align_samples(samples, options);
+    o.distance = mean_alignment_distance(samples, o.aligned);
+    DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
+    writer.put_aligned(a.set, o.aligned);
+    writer.commit();
+    o.seconds = seconds_since(start);
+    return o;
+}
+
+std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "aligned set '%s' (%s, reference %s): tensor %lld dofs x %lld frames x %lld samples; "
+                  "mean pose distance to the reference %.2f cm; %.2f s\n",
+                  set.c_str(), o.aligned.method.c_str(), o.labels[o.aligned.reference].c_str(),
+                  static_cast<long long>(o.aligned.dofs()), static_cast<long long>(o.aligned.frames()),
+                  static_cast<long long>(o.aligned.samples()), o.distance, o.seconds);
+    return line;
+}
+
+// ---- compress -----------------------------------------------------------------------------------
+
+std::string ranks_text(const tensor::Ranks& r) {
+    return std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
+}
+
+CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
+    const auto start = Clock::now();
+    const SetContext c = load_set_context(Database(db), a.set);
+    const Tensor3& poses = c.aligned.tensor;
+    const VecX weight = compression::position_error_weights(*c.skeleton);
+    const eval::JointErrorMeter meter(c.skeleton, poses);
+    const compression::PreparedSet prepared = compression::prepare_set(poses, weight);
+
+    CompressOutcome o;
+    o.dims = tensor::dims_of(poses);
+    compression::RankSearchResult chosen;
+    if (!a.ranks.empty()) {
+        if (a.ranks.size() != 3) throw InvalidArgument("--ranks: expected three ranks R1,R2,R3");
+        tensor::Ranks r{};
+        for (std::size_t n = 0; n < 3; ++n) {
+            if (a.ranks[n] < 1 || a.ranks[n] > o.dims[n])
+                throw InvalidArgument("--ranks: rank " + std::to_string(n + 1) + " must be in [1, " +
+                                      std::to_string(o.dims[n]) + "] for a tensor of " + ranks_text(o.dims) +
+                                      " (dofs x frames x samples)");
+            r[n] = a.ranks[n];
+        }
+        chosen.model = compression::hosvd_model(prepared, r);
+        chosen.target_met = true;
+        o.criterion = "ranks " + ranks_text(r);
+    } else if (a.rmse >= 0.0) {
+        chosen = compression::search_ranks_for_rmse(prepared, meter, a.rmse);
+        o.criterion = "rmse <= " + std::to_string(a.rmse);
+    } else if (a.ratio > 0.0) {
+        chosen = compression::ranks_for_ratio(prepared, meter, a.ratio);
+        o.criterion = "ratio >= " + std::to_string(a.ratio);
+    } else {
+        const double target = a.max_error_cm > 0.0 ? a.max_error_cm : 1.0;
+        chosen = compression::search_ranks_for_max_error(prepared, meter, target);
+        std::ostringstream s;
+        s << "max joint error <= " << target << " cm";
+        o.criterion = s.str();
+    }
+    o.target_met = chosen.target_met;
+    o.search_s = seconds_since(start);
+
+    // The chosen ranks, decomposed with the requested method.
+    const auto fit_start = Clock::now();
+    tensor::HooiOptions hooi;
+    hooi.max_iterations = a.max_iterations;
+    o.model = compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, method_of(a.method), hooi);
+    o.fit_s = seconds_since(fit_start);
+    o.stats = meter.measure(o.model.reconstruct());
+    o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
+
+    const ModelFigures figures{o.stats.dof_rmse, o.stats.rmse_cm, o.stats.mean_cm, o.stats.max_cm, o.stats.p99_cm};
+    DatabaseWriter writer(db, DatabaseWriter::Mode::OpenOrCreate);
+    writer.put_model(a.set, o.model, figures);
+    writer.commit();
+    for (const SetRecord& r : Database(db).sets())
+        if (r.name == a.set) o.stored_bytes = r.model_stored_bytes;
+
+    o.raw_bytes = compression::aligned_float32_bytes(poses);
+    o.bytes = compression::tucker_float32_bytes(o.model) +
+              compression::side_info_bytes(poses.dimension(1), poses.dimension(2), c.set.parameters.cols());
+    o.total_s = seconds_since(start);
+    return o;
+}
+
+std::string describe_compression(const std::string& set, const CompressOutcome& o) {
+    const tensor::TuckerModel& t = o.model.tucker;
+    char buffer[2048];
+    std::snprintf(buffer, sizeof buffer,
+                  "compressed set '%s' (%s): %s -> ranks %s, %s%s\n"
+                  "  bytes %llu (float32 model + timing/parameters) vs raw aligned float32 %llu: ratio %.2f:1; "
+                  "model in file %llu bytes\n"
+                  "  relative error %.3g (HOSVD bound %.3g); joint error: rmse %.3f cm, mean %.3f cm, p99 %.3f cm, "
+                  "max %.3f cm (sample %lld, frame %lld, %s)\n"
+                  "  rank search %.2f s, decomposition %.3f s, %.3f us per pose; %.2f s in all\n",
+                  set.c_str(), o.criterion.c_str(), ranks_text(o.dims).c_str(), ranks_text(t.ranks).c_str(),
+                  tensor::to_string(t.method), o.target_met ? "" : " (target NOT met: closest ranks)",
+                  static_cast<unsigned long long>(o.bytes), static_cast<unsigned long long>(o.raw_bytes), o.ratio(),
+                  static_cast<unsigned long long>(o.stored_bytes), 1.0 - t.fit, t.error_bound / t.data_norm,
+                  o.stats.rmse_cm, o.stats.mean_cm, o.stats.p99_cm, o.stats.max_cm,
+                  static_cast<long long>(o.stats.worst.sample), static_cast<long long>(o.stats.worst.frame),
+                  o.stats.worst.joint.c_str(), o.search_s, o.fit_s, o.us_per_pose, o.total_s);
+    return buffer;
+}
+
+void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
+    const tensor::TuckerModel& t = o.model.tucker;
+    j.key("criterion").value(o.criterion);
+    j.key("target_met").value(o.target_met);
+    j.key("method").value(tensor::to_string(t.method));
+    j.key("status").value(tensor::to_string(t.status));
+    j.key("iterations").value(t.iterations);
+    j.key("dims").begin_array();
+    for (Eigen::Index d : o.dims) j.value(static_cast<long long>(d));
+    j.end_array();
+    j.key("ranks").begin_array();
+    for (Eigen::Index r : t.ranks) j.value(static_cast<long long>(r));
+    j.end_array();
+    j.key("raw_bytes").value(static_cast<long long>(o.raw_bytes));
+    j.key("bytes").value(static_cast<long long>(o.bytes));
+    j.key("ratio").value(o.ratio());
+    j.key("file_bytes").value(static_cast<long long>(o.stored_bytes));
+    j.key("relative_error").value(1.0 - t.fit);
+    j.key("relative_error_bound").value(t.error_bound / t.data_norm);
+    j.key("dof_rmse").value(o.stats.dof_rmse);
+    j.key("rmse_cm").value(o.stats.rmse_cm);
+    j.key("mean_cm").value(o.stats.mean_cm);
+    j.key("max_cm").value(o.stats.max_cm);
+    j.key("p99_cm").value(o.stats.p99_cm);
+    j.key("worst").begin_object();
+    j.key("sample").value(static_cast<long long>(o.stats.worst.sample));
+    j.key("frame").value(static_cast<long long>(o.stats.worst.frame));
+    j.key("joint").value(o.stats.worst.joint);
+    j.end_object();
+    j.key("search_s").value(o.search_s);
+    j.key("precompute_s").value(o.fit_s);
+    j.key("us_per_pose").value(o.us_per_pose);
+    j.key("total_s").value(o.total_s);
+}
+
+// ---- rate-distortion report ---------------------------------------------------------------------
+
+RateOutcome rate_report(const SetContext& c, compression::RateOptions options) {
+    options.parameters = c.set.parameters.cols();
+    RateOutcome r;
+    r.report = compression::rate_distortion(c.aligned.tensor, c.skeleton, options);
+    r.clip_bytes = 4 * c.clip_channel_values;
+    r.seconds = c.seconds_of_motion;
+    r.joints = PoseLayout(*c.skeleton).rotation_joints().size();
+    return r;
+}
+
+std::string rate_table_text(const std::string& set, const RateOutcome& o) {
+    const compression::RateReport& r = o.report;
+    std::string text;
+    char line[1024];
+    std::snprintf(line, sizeof line,
+                  "set '%s': %lld dofs x %lld frames x %lld samples (%.1f s of motion); raw aligned float32 %llu bytes, "
+                  "source channels float32 %llu bytes; every row includes %llu bytes of timing/parameters\n",
+                  set.c_str(), static_cast<long long>(r.dims[0]), static_cast<long long>(r.dims[1]),
+                  static_cast<long long>(r.dims[2]), o.seconds, static_cast<unsigned long long>(r.raw_bytes),
+                  static_cast<unsigned long long>(o.clip_bytes), static_cast<unsigned long long>(r.side_bytes));
+    text += line;
+    std::snprintf(line, sizeof line, "%-16s %-9s %-10s %10s %8s %9s %9s %9s %11s %11s %s\n", "method", "target",
+                  "ranks", "bytes", "ratio", "rmse_cm", "p99_cm", "max_cm", "precomp_s", "us/pose", "");
+    text += line;
+    for (const compression::RateRow& row : r.rows) {
+        std::snprintf(line, sizeof line, "%-16s %-9s %-10s %10llu %8.2f %9.4f %9.4f %9.4f %11.4f %11.3f %s%s\n",
+                      row.method.c_str(), target_text(row.target_cm).c_str(), row_ranks_text(row.ranks).c_str(),
+                      static_cast<unsigned long long>(row.bytes), row.ratio, row.stats.rmse_cm, row.stats.p99_cm,
+                      row.stats.max_cm, row.precompute_s, row.us_per_pose, row.access.c_str(),
+                      row.target_met ? "" : "  (target not met)");
+        text += line;
+    }
+    text += "us/pose: 'pose' = one pose synthesized from the model; 'stream' = decoding the whole set / poses.\n";
+    return text;
+}
+
+std::string rate_csv(const RateOutcome& o) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "method,target_cm,target_met,ranks,setting,bytes,ratio,ratio_clips,rmse_cm,mean_cm,max_cm,p99_cm,"
+         "precompute_s,us_per_pose,access\n";
+    for (const compression::RateRow& row : o.report.rows)
+        s << row.method << ',' << row.target_cm << ',' << (row.target_met ? 1 : 0) << ',' << row_ranks_text(row.ranks)
+          << ',' << row.setting << ',' << row.bytes << ',' << row.ratio << ','
+          << static_cast<double>(o.clip_bytes) / static_cast<double>(row.bytes) << ',' << row.stats.rmse_cm << ','
+          << row.stats.mean_cm << ',' << row.stats.max_cm << ',' << row.stats.p99_cm << ',' << row.precompute_s << ','
+          << row.us_per_pose << ',' << row.access << '\n';
+    return s.str();
+}
+
+std::string rate_svg(const std::string& set, const RateOutcome& o) {
+    const compression::RateReport& r = o.report;
+    PlotSpec spec;
+    spec.title = "Set '" + set + "': compression ratio against max joint error";
+    spec.x_label = "max joint-position error (cm, after forward kinematics), log";
+    spec.y_label = "compression ratio (raw aligned float32 / stored bytes), log";
+    for (const compression::RateRow& row : r.rows) {
+        if (row.target_cm == 0.0 || !row.target_met) continue;
+        auto it = std::find_if(spec.series.begin(), spec.series.end(), [&](const PlotSeries& p) { return p.name == row.method; });
+        if (it == spec.series.end()) {
+            spec.series.push_back({row.method, {}, {}});
+            it = spec.series.end() - 1;
+        }
+        it->x.push_back(row.stats.max_cm);
+        it->y.push_back(row.ratio);
+    }
+    spec.note = "tensor " + std::to_string(r.dims[0]) + " dofs x " + std::to_string(r.dims[1]) + " frames x " +
+                std::to_string(r.dims[2]) + " samples; every method charged the same side information; higher is better";
+    return render_line_plot(spec);
+}
+
+void write_rate_rows_json(JsonWriter& j, const RateOutcome& o) {
+    const compression::RateReport& r = o.report;
+    j.key("rows").begin_array();
+    for (const compression::RateRow& row : r.rows) {
+        j.begin_object();
+        j.key("method").value(row.method);
+        j.key("target_cm").value(row.target_cm);
+        j.key("target_met").value(row.target_met);
+        j.key("ranks").begin_array();
+        for (long long k : row.ranks) j.value(k);
+        j.end_array();
+        j.key("setting").value(row.setting);
+        j.key("bytes").value(static_cast<long long>(row.bytes));
+        j.key("ratio").value(row.ratio);
+        j.key("ratio_clips").value(static_cast<double>(o.clip_bytes) / static_cast<double>(row.bytes));
+        j.key("bytes_per_second").value(static_cast<double>(row.bytes) / o.seconds);
+        j.key("bits_per_joint_frame")
+            .value(8.0 * static_cast<double>(row.bytes) /
+                   (static_cast<double>(o.joints) * static_cast<double>(r.dims[1] * r.dims[2])));
+        j.key("dof_rmse").value(row.stats.dof_rmse);
+        j.key("rmse_cm").value(row.stats.rmse_cm);
+        j.key("mean_cm").value(row.stats.mean_cm);
+        j.key("max_cm").value(row.stats.max_cm);
+        j.key("p99_cm").value(row.stats.p99_cm);
+        j.key("worst").begin_object();
+        j.key("sample").value(static_cast<long long>(row.stats.worst.sample));
+        j.key("frame").value(static_cast<long long>(row.stats.worst.frame));
+        j.key("joint").value(row.stats.worst.joint);
+        j.end_object();
+        j.key("precompute_s").value(row.precompute_s);
+        j.key("us_per_pose").value(row.us_per_pose);
+        j.key("access").value(row.access);
+        j.end_object();
+    }
+    j.end_array();
+}
+
+// ---- synthesis ----------------------------------------------------------------------------------
+
+std::vector<ParameterExtractor> source_extractors(const std::string& source) {
+    std::vector<ParameterExtractor> ex;
+    const std::string prefix = "extract:";
+    if (source.compare(0, prefix.size(), prefix) != 0) return ex;
+    const std::string rest = source.substr(prefix.size());
+    std::size_t start = 0;
+    while (start <= rest.size()) {
+        const std::size_t comma = rest.find(',', start);
+        const std::string spec = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        if (!spec.empty()) ex.push_back(ParameterExtractor::parse(spec));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return ex;
+}
+
+SynthOutcome synthesize(const synthesis::SynthesisModel& model, const MotionSet& set, const VecX& c,
+                        Eigen::Index level) {
+    SynthOutcome o;
+    o.requested = c;
+    const auto start = Clock::now();
+    o.timing = model.timing(c);
+    o.clip = model.motion(c, level);
+    o.reliability = model.reliability(c);
+    o.seconds = seconds_since(start);
+    // Measured parameters of the result, when the set's were measured by extractors.
+    const std::vector<ParameterExtractor> ex = source_extractors(set.parameter_source);
+    if (!ex.empty() && o.clip.frame_count() >= 2) {
+        o.measured = extract_parameters(o.clip, 0, o.clip.frame_count(), ex);
+        if (o.measured.size() != c.size()) o.measured.resize(0);
+    }
+    return o;
+}
+
+// ---- reliability map ----------------------------------------------------------------------------
+
+ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const std::string& set, const SliceAxis& gx,
+                               const SliceAxis& gy, const VecX& base) {
+    const auto& names = model.parameter_names();
+    const auto& units = model.parameter_units();
+    ReliabilityMap m;
+    m.queries.resize(gx.count * gy.count, model.parameters());
+    for (Eigen::Index j = 0; j < gy.count; ++j)
+        for (Eigen::Index i = 0; i < gx.count; ++i) {
+            VecX c = base;
+            c(gx.axis) = gx.at(i);
+            c(gy.axis) = gy.at(j);
+            m.queries.row(j * gx.count + i) = c.transpose();
+        }
+    m.rho = model.reliability_batch(m.queries);
+    MatX map(gy.count, gx.count);
+    for (Eigen::Index j = 0; j < gy.count; ++j)
+        for (Eigen::Index i = 0; i < gx.count; ++i) map(j, i) = m.rho(j * gx.count + i);
+
+    const auto axis_label = [&](Eigen::Index k) {
+        const std::string& u = units[static_cast<std::size_t>(k)];
+        return names[static_cast<std::size_t>(k)] + (u.empty() ? "" : " [" + u + "]");
+    };
+    HeatMapSpec& spec = m.spec;
+    spec.title = "Reliability of synthesis: set '" + set + "' (" + model.kind() + " model)";
+    spec.x_label = axis_label(gx.axis);
+    spec.y_label = axis_label(gy.axis);
+    spec.value_label = "rho";
+    spec.x_lo = gx.lo;
+    spec.x_hi = gx.hi;
+    spec.y_lo = gy.lo;
+    spec.y_hi = gy.hi;
+    spec.values = map;
+    spec.value_lo = 0.0;
+    spec.value_hi = 1.0;
+    const MatX& sp = model.sample_parameters();
+    for (Eigen::Index n = 0; n < sp.rows(); ++n) {
+        spec.point_x.push_back(sp(n, gx.axis));
+        spec.point_y.push_back(sp(n, gy.axis));
+    }
+    spec.point_label = "samples (" + std::to_string(sp.rows()) + ")";
+    if (model.parameters() > 2) {
+        std::string fixed;
+        for (Eigen::Index k = 0; k < model.parameters(); ++k)
+            if (k != gx.axis && k != gy.axis) {
+                char buf[64];
+                std::snprintf(buf, sizeof buf, "%s%s = %g", fixed.empty() ? "" : ", ",
+                              names[static_cast<std::size_t>(k)].c_str(), base(k));
+                fixed += buf;
+            }
+        spec.note = "slice at " + fixed;
+    }
+    m.fraction_trusted = (m.rho.array() >= 0.85).cast<double>().mean();
+    return m;
+}
+
+}  // namespace mocapdb::cli
