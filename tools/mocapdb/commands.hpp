@@ -21,5 +21,7 @@ void setup_synth(CLI::App& app);
 void setup_query(CLI::App& app);
 void setup_reliability(CLI::App& app);
 void setup_reduce(CLI::App& app);
+void setup_demo(CLI::App& app);
+void setup_eval(CLI::App& app);
 
 }  // namespace mocapdb::cli

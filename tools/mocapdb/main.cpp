@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
     mocapdb::cli::setup_query(app);
     mocapdb::cli::setup_reliability(app);
     mocapdb::cli::setup_reduce(app);
+    mocapdb::cli::setup_demo(app);
+    mocapdb::cli::setup_eval(app);
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,74 @@
+#pragma once
+// The interpolation methods the evaluation compares, behind one interface: build on a (training) set,
+// then synthesize the motion at control parameters c as D x T aligned poses plus its timing (the warp:
+// source frame shown at each aligned frame), and from those a clip at the set's frame rate.
+//
+//   PerPoseKriging     kriging::MotionKriging, KernelScope::PerPose (the geostatistical paper §3.4): one
+//                      kernel per aligned frame on the pose signal d_p(q_i(t), q_0(0)) (heading-frame joint
+//                      positions, RMS over joints, cm), root position and heading dofs per element.
+//   PerElementKriging  MotionKriging, KernelScope::PerElement (§3.2): one kernel per dof and frame.
+//   TuckerKriging      synthesis::MotionModel (multilinear paper) on a HOSVD of the training tensor at the
+//                      given ranks (R3 clamped to the training size): the basis IS refitted per training set.
+//   NaiveKriging       synthesis::NaiveMotionModel: per-set kriging of the uncompressed aligned samples.
+//   Rbf                MotionKriging with InterpolationMethod::Rbf: Rose et al.'s linear + cubic B-spline
+//                      radial basis, one interpolator for every column.
+//   NearestNeighbour   eval::NearestNeighbourBlend over the k nearest samples in normalized c.
+// Timing: Tucker and naive use their own kriged inverse-warp increments (shared kernel); the
+// MotionKriging methods krige the increments with a per-set kernel of the same method (Kriging or Rbf);
+// nearest neighbour blends them with its weights. Increments are clamped to [0.05 mean, 4 max] of the
+// training increments, as synthesis_model.hpp does.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mocapdb/eval/eval_set.hpp"
+#include "mocapdb/eval/nearest_neighbour.hpp"
+#include "mocapdb/tensor/tucker.hpp"
+
+namespace mocapdb::eval {
+
+enum class MethodKind { PerPoseKriging, PerElementKriging, TuckerKriging, NaiveKriging, Rbf, NearestNeighbour };
+
+struct MethodSpec {
+    MethodKind kind = MethodKind::PerPoseKriging;
+    std::string name;                   ///< label in reports (e.g. "tucker-1cm")
+    tensor::Ranks ranks{0, 0, 0};       ///< TuckerKriging: (R1, R2, R3), R3 clamped to the training size
+    NearestNeighbourOptions nn;         ///< NearestNeighbour
+    bool is_kriging() const { return kind != MethodKind::Rbf && kind != MethodKind::NearestNeighbour; }
+};
+
+const char* to_string(MethodKind kind);
+
+struct SynthesizedMotion {
+    MatX aligned;  ///< D by T pose vectors at aligned frames (canonical frame)
+    VecX warp;     ///< T, strictly increasing from 0: the synthesized source frame at each aligned frame
+};
+
+class Synthesizer {
+public:
+    virtual ~Synthesizer() = default;
+    /// c: P values in the set's units. Thread-safe (immutable).
+    virtual void synthesize(const Eigen::Ref<const VecX>& c, SynthesizedMotion& out) const = 0;
+    double build_seconds = 0.0;  ///< wall time of the construction (variograms, trends, factorizations, Tucker)
+};
+
+/// Builds the method on `training` (>= 3 samples). InvalidArgument on bad specs.
+std::unique_ptr<Synthesizer> build_synthesizer(const MethodSpec& method, const EvalSet& training);
+
+/// The synthesized motion as a clip on `skeleton` at `frame_rate`: frames 0 .. floor(warp(T-1)), each pose
+/// interpolated at the aligned time where the warp reaches it; canonical placement (origin, facing +Z).
+Clip motion_clip(const SynthesizedMotion& motion, std::shared_ptr<const Skeleton> skeleton, double frame_rate);
+
+/// The Tucker ranks (HOSVD, smallest bound) whose measured max joint error on the whole set is <= max_cm
+/// (compression::search_ranks_for_max_error).
+tensor::Ranks ranks_for_max_error(const EvalSet& set, double max_cm);
+
+/// Per sample (N by T): d_p(q_i(t), q_0(0)), the RMS over joints of the distance between the joint
+/// positions of the aligned pose and those of sample 0's first pose, both with the root's floor position
+/// and heading removed (cm). The PerPose kernels' signal.
+MatX pose_signal(const EvalSet& set);
+
+/// Sample i's aligned poses (D by T).
+MatX aligned_sample(const AlignedSet& aligned, Eigen::Index i);
+
+}  // namespace mocapdb::eval

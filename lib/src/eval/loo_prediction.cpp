@@ -1,0 +1,119 @@
+#include "mocapdb/eval/loo_prediction.hpp"
+
+#include <chrono>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/eval/joint_error.hpp"
+
+namespace mocapdb::eval {
+
+MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& reference, const Eigen::Ref<const MatX>& approx,
+                        bool root_relative) {
+    if (reference.rows() != approx.rows() || reference.cols() != approx.cols() || reference.rows() < 6)
+        throw InvalidArgument("frame_joint_errors: the two pose sequences differ in shape");
+    MatX qa = reference, qb = approx;
+    if (root_relative) {
+        for (Eigen::Index r : {0, 2, 4}) {
+            qa.row(r).setZero();
+            qb.row(r).setZero();
+        }
+    }
+    const MatX a = pose_joint_positions(skeleton, qa);
+    const MatX b = pose_joint_positions(skeleton, qb);
+    const Eigen::Index joints = a.rows() / 3;
+    MatX out(a.cols(), 3);
+    for (Eigen::Index t = 0; t < a.cols(); ++t) {
+        double sum = 0.0, mx = -1.0;
+        Eigen::Index worst = 0;
+        for (Eigen::Index j = 0; j < joints; ++j) {
+            const double e = (a.block(3 * j, t, 3, 1) - b.block(3 * j, t, 3, 1)).norm();
+            sum += e;
+            if (e > mx) {
+                mx = e;
+                worst = j;
+            }
+        }
+        out(t, 0) = sum / static_cast<double>(joints);
+        out(t, 1) = mx;
+        out(t, 2) = static_cast<double>(worst);
+    }
+    return out;
+}
+
+LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& methods, const LooOptions& options,
+                        const ProgressCallback& progress) {
+    const Eigen::Index n = set.size();
+    if (n < 4) throw InvalidArgument("leave_one_out: at least 4 samples are needed, the set has " + std::to_string(n));
+    LooResult out;
+    out.samples = options.samples;
+    if (out.samples.empty())
+        for (Eigen::Index i = 0; i < n; ++i) out.samples.push_back(i);
+    for (Eigen::Index i : out.samples)
+        if (i < 0 || i >= n) throw InvalidArgument("leave_one_out: sample index out of range");
+    const auto m = static_cast<Eigen::Index>(out.samples.size());
+    const Eigen::Index frames = set.aligned.frames();
+    for (const MethodSpec& spec : methods) {
+        LooMethodResult r;
+        r.method = spec.name;
+        r.sample_mean_cm = VecX::Zero(m);
+        r.sample_max_cm = VecX::Zero(m);
+        r.frame_mean_cm = VecX::Zero(frames);
+        r.frame_max_cm = VecX::Zero(frames);
+        r.sample_pose_mean_cm = VecX::Zero(m);
+        r.sample_pose_max_cm = VecX::Zero(m);
+        r.frame_pose_mean_cm = VecX::Zero(frames);
+        r.duration_error_s = VecX::Zero(m);
+        if (options.foot_skating) r.skating_cm_per_s = VecX::Zero(m);
+        out.methods.push_back(std::move(r));
+    }
+    if (options.foot_skating) out.original_skating_cm_per_s = VecX::Zero(m);
+    SynthesizedMotion motion;
+    for (Eigen::Index k = 0; k < m; ++k) {
+        const Eigen::Index i = out.samples[static_cast<std::size_t>(k)];
+        std::vector<Eigen::Index> keep;
+        for (Eigen::Index j = 0; j < n; ++j)
+            if (j != i) keep.push_back(j);
+        const EvalSet training = subset(set, keep);
+        const MatX truth = aligned_sample(set.aligned, i);
+        const VecX c = set.set.parameters.row(i).transpose();
+        const Clip& original = set.samples[static_cast<std::size_t>(i)];
+        if (options.foot_skating) out.original_skating_cm_per_s(k) = foot_skating(original).cm_per_s;
+        for (std::size_t q = 0; q < methods.size(); ++q) {
+            LooMethodResult& r = out.methods[q];
+            const auto synth = build_synthesizer(methods[q], training);
+            r.build_seconds += synth->build_seconds / static_cast<double>(m);
+            const auto start = std::chrono::steady_clock::now();
+            synth->synthesize(c, motion);
+            r.synth_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
+                               static_cast<double>(m);
+            const MatX e = frame_joint_errors(*set.skeleton, truth, motion.aligned);
+            r.sample_mean_cm(k) = e.col(0).mean();
+            r.sample_max_cm(k) = e.col(1).maxCoeff();
+            r.frame_mean_cm += e.col(0) / static_cast<double>(m);
+            r.frame_max_cm = r.frame_max_cm.cwiseMax(e.col(1));
+            const MatX ep = frame_joint_errors(*set.skeleton, truth, motion.aligned, true);
+            r.sample_pose_mean_cm(k) = ep.col(0).mean();
+            Eigen::Index worst_t = 0;
+            r.sample_pose_max_cm(k) = ep.col(1).maxCoeff(&worst_t);
+            if (r.sample_pose_max_cm(k) > r.pose_max_cm || r.pose_worst_sample < 0) {
+                r.pose_max_cm = r.sample_pose_max_cm(k);
+                r.pose_worst_sample = i;
+                r.pose_worst_frame = worst_t;
+                r.pose_worst_joint = set.skeleton->joint(static_cast<std::size_t>(ep(worst_t, 2))).name;
+            }
+            r.frame_pose_mean_cm += ep.col(0) / static_cast<double>(m);
+            const double synth_duration = motion.warp(motion.warp.size() - 1) / set.frame_rate;
+            r.duration_error_s(k) = std::abs(synth_duration - original.duration());
+            if (options.foot_skating) r.skating_cm_per_s(k) = foot_skating(motion_clip(motion, set.skeleton, set.frame_rate)).cm_per_s;
+        }
+        if (progress) progress({static_cast<std::uint64_t>(k + 1), static_cast<std::uint64_t>(m), set.labels[static_cast<std::size_t>(i)]});
+    }
+    for (LooMethodResult& r : out.methods) {
+        r.mean_cm = r.sample_mean_cm.mean();
+        r.max_cm = r.sample_max_cm.maxCoeff();
+        r.pose_mean_cm = r.sample_pose_mean_cm.mean();
+    }
+    return out;
+}
+
+}  // namespace mocapdb::eval
