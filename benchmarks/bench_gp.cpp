@@ -10,9 +10,6 @@
 
 #include <cstdio>
 #include <ctime>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -20,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/core/keep_freed_memory.hpp"
 #include "mocapdb/gp/motion_data.hpp"
 #include "mocapdb/gp/optimize.hpp"
 #include "mocapdb/io/clip_file.hpp"
@@ -29,17 +27,6 @@ using namespace mocapdb::gp;
 using namespace mocapdb::bench;
 
 namespace {
-
-/// Every likelihood evaluation allocates and frees matrices of several MB; glibc's defaults return them
-/// to the kernel (mmap/trim) each time, and the page faults cost ≈ 30 % of an evaluation at 39 × 90. Keep
-/// freed memory in the process (one arena, no trimming, no mmap below 256 MB) for the fits of this process.
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-    mallopt(M_MMAP_THRESHOLD, 256 * 1024 * 1024);
-    mallopt(M_TRIM_THRESHOLD, 512 * 1024 * 1024);
-    mallopt(M_ARENA_MAX, 1);
-#endif
-}
 
 HgpData synthetic(Eigen::Index d, Eigen::Index t, std::size_t r) {
     std::mt19937_64 rng(7);

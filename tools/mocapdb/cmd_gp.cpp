@@ -3,9 +3,6 @@
 // No model file is written: every subcommand fits the model it needs (deterministically: same data
 // and options give the same fit).
 #include <chrono>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +14,7 @@
 #include "json_writer.hpp"
 #include "progress_bar.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/keep_freed_memory.hpp"
 #include "mocapdb/gp/experiment.hpp"
 #include "mocapdb/gp/motion_data.hpp"
 #include "mocapdb/io/bvh.hpp"
@@ -28,17 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace mocapdb::gp;
-
-/// Every likelihood evaluation allocates and frees matrices of several MB; glibc's defaults return them
-/// to the kernel (mmap/trim) each time, and the page faults cost ≈ 30 % of an evaluation at 39 × 90. Keep
-/// freed memory in the process (one arena, no trimming, no mmap below 256 MB) for the fits of this process.
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-    mallopt(M_MMAP_THRESHOLD, 256 * 1024 * 1024);
-    mallopt(M_TRIM_THRESHOLD, 512 * 1024 * 1024);
-    mallopt(M_ARENA_MAX, 1);
-#endif
-}
 
 
 struct GpArgs {

@@ -113,6 +113,20 @@ std::string target_text(double t) {
     return s.str();
 }
 
+// The joint-error figures of a JointErrorStats, as keys of the current JSON object.
+void write_joint_error_json(JsonWriter& j, const eval::JointErrorStats& e) {
+    j.key("dof_rmse").value(e.dof_rmse);
+    j.key("rmse_cm").value(e.rmse_cm);
+    j.key("mean_cm").value(e.mean_cm);
+    j.key("max_cm").value(e.max_cm);
+    j.key("p99_cm").value(e.p99_cm);
+    j.key("worst").begin_object();
+    j.key("sample").value(static_cast<long long>(e.worst.sample));
+    j.key("frame").value(static_cast<long long>(e.worst.frame));
+    j.key("joint").value(e.worst.joint);
+    j.end_object();
+}
+
 }  // namespace
 
 // ---- import -------------------------------------------------------------------------------------
@@ -353,16 +367,7 @@ void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
     j.key("file_bytes").value(static_cast<long long>(o.stored_bytes));
     j.key("relative_error").value(1.0 - t.fit);
     j.key("relative_error_bound").value(t.error_bound / t.data_norm);
-    j.key("dof_rmse").value(o.stats.dof_rmse);
-    j.key("rmse_cm").value(o.stats.rmse_cm);
-    j.key("mean_cm").value(o.stats.mean_cm);
-    j.key("max_cm").value(o.stats.max_cm);
-    j.key("p99_cm").value(o.stats.p99_cm);
-    j.key("worst").begin_object();
-    j.key("sample").value(static_cast<long long>(o.stats.worst.sample));
-    j.key("frame").value(static_cast<long long>(o.stats.worst.frame));
-    j.key("joint").value(o.stats.worst.joint);
-    j.end_object();
+    write_joint_error_json(j, o.stats);
     j.key("search_s").value(o.search_s);
     j.key("precompute_s").value(o.fit_s);
     j.key("us_per_pose").value(o.us_per_pose);
@@ -461,16 +466,7 @@ void write_rate_rows_json(JsonWriter& j, const RateOutcome& o) {
         j.key("bits_per_joint_frame")
             .value(8.0 * static_cast<double>(row.bytes) /
                    (static_cast<double>(o.joints) * static_cast<double>(r.dims[1] * r.dims[2])));
-        j.key("dof_rmse").value(row.stats.dof_rmse);
-        j.key("rmse_cm").value(row.stats.rmse_cm);
-        j.key("mean_cm").value(row.stats.mean_cm);
-        j.key("max_cm").value(row.stats.max_cm);
-        j.key("p99_cm").value(row.stats.p99_cm);
-        j.key("worst").begin_object();
-        j.key("sample").value(static_cast<long long>(row.stats.worst.sample));
-        j.key("frame").value(static_cast<long long>(row.stats.worst.frame));
-        j.key("joint").value(row.stats.worst.joint);
-        j.end_object();
+        write_joint_error_json(j, row.stats);
         j.key("precompute_s").value(row.precompute_s);
         j.key("us_per_pose").value(row.us_per_pose);
         j.key("access").value(row.access);

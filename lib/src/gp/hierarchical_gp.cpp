@@ -13,6 +13,19 @@ namespace mocapdb::gp {
 
 namespace {
 
+// The two factorizations (A and C) are independent: on two threads when asked.
+template <class F, class G>
+void run_both(bool parallel, F& first, G& second) {
+    if (parallel) {
+        std::thread worker(second);
+        first();
+        worker.join();
+    } else {
+        first();
+        second();
+    }
+}
+
 constexpr double kLog2Pi = 1.8378770664093454836;
 
 using Index = Eigen::Index;
@@ -258,14 +271,7 @@ LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data
         c.triangularView<Eigen::Lower>().transpose().solveInPlace(alpha_c);
         if (with_gradient) invert_from_factor_in_place(c);
     };
-    if (threads >= 2 && hier) {
-        std::thread worker(work_c);
-        work_a();
-        worker.join();
-    } else {
-        work_a();
-        work_c();
-    }
+    run_both(threads >= 2 && hier, work_a, work_c);
     if (!ok_a || !ok_c) {
         out.message = !ok_a ? "child covariance K_f + noise is not positive definite"
                             : "K_f + noise + R·K_g is not positive definite";
@@ -403,14 +409,7 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
         alpha_c = fc.solve(z);
         quad_c = z.dot(alpha_c);
     };
-    if (threads >= 2 && hier) {
-        std::thread worker(work_c);
-        work_a();
-        worker.join();
-    } else {
-        work_a();
-        work_c();
-    }
+    run_both(threads >= 2 && hier, work_a, work_c);
     if (!ok_a || !ok_c) {
         out.message = !ok_a ? "child covariance K_f + noise: " + msg_a : "K_f + noise + R·K_g: " + msg_c;
         return out;
