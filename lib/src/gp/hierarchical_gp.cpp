@@ -313,14 +313,7 @@ LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data
         std::size_t o = parent_offset;
         for (const auto& term : model.parent.terms) o = lmc_term_gradient(term, c, data.times, o, out.gradient);
     };
-    if (threads >= 2 && hier) {
-        std::thread worker(grad_parent);
-        grad_child();
-        worker.join();
-    } else {
-        grad_child();
-        grad_parent();
-    }
+    run_both(threads >= 2 && hier, grad_child, grad_parent);
     return out;
 }
 
@@ -467,14 +460,7 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
         for (std::size_t q = 0; q < model.parent.terms.size(); ++q)
             o = detail::structured_term_gradient(model.parent.terms[q], f.parent[q], gg, rd, data.times, o, out.gradient);
     };
-    if (threads >= 2 && hier) {
-        std::thread worker(grad_parent);
-        grad_child();
-        worker.join();
-    } else {
-        grad_child();
-        grad_parent();
-    }
+    run_both(threads >= 2 && hier, grad_child, grad_parent);
     return out;
 }
 
