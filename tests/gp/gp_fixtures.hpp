@@ -61,3 +61,18 @@ inline double max_relative_difference(const VecX& a, const VecX& b) {
 }
 
 }  // namespace mocapdb::gp::test
+
+namespace mocapdb::gp::test {
+
+/// A three-layer model (trend → group → child): make_model's layers plus a group LMC.
+inline HgpModel make_grouped_model(Eigen::Index d, std::size_t terms = 2, Eigen::Index rank = 1) {
+    HgpModel m = make_model(d, true, terms, rank);
+    m.grouped = true;
+    for (std::size_t q = 0; q < terms; ++q) {
+        const KernelType k = q % 2 == 0 ? KernelType::Matern32 : KernelType::Rbf;
+        m.group.terms.push_back(make_term(k, 0.5 + 0.3 * static_cast<double>(q), d, rank, 0.7, 51 + q));
+    }
+    return m;
+}
+
+}  // namespace mocapdb::gp::test

@@ -126,3 +126,66 @@ TEST_CASE("gp fit on a database set: the set's samples are the children", "[gp][
     CHECK(r.exit_code != 0);
     CHECK(r.err.find("nosuchset") != std::string::npos);
 }
+
+TEST_CASE("gp --layers 3: subjects from the CMU names form the middle layer", "[gp][cli][shared][layers]") {
+    if (mocapdb::test::cli_path().empty()) {
+        WARN("SKIPPED: the mocapdb CLI is not built in this tree");
+        return;
+    }
+    const auto dir = mocapdb::test::datasets_dir() / "cmu-asfamc";
+    MOCAPDB_REQUIRE_SHARED(dir / "16_16.amc");
+    std::string clips;
+    for (const char* n : {"02_01", "02_02", "16_15", "16_16", "35_01"}) clips += " " + quoted((dir / (std::string(n) + ".amc")).string());
+    const std::string common = " --clips" + clips + " --joints lfemur,ltibia --frames 16 --max-iterations 40 --layers 3";
+
+    auto r = run_cli("gp fit" + common + " --json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    auto j = parse_json(r.out);
+    CHECK(j["model"].text == "mohgp3");
+    REQUIRE(j["groups"].items.size() == 5);
+    const double expected_groups[] = {0, 0, 1, 1, 2};  // 02, 02, 16, 16, 35
+    for (std::size_t i = 0; i < 5; ++i) CHECK(j["groups"][i].number == expected_groups[i]);
+    CHECK(j["parameters"].has("group.q0.log_lengthscale"));
+    CHECK(j["parameters"].has("parent.q0.log_lengthscale"));
+    CHECK(j["status"].text != "numerical_failure");
+
+    // Interpolating 16_16 leaves groups of sizes 2, 1, 1 for training (the coupled structured path).
+    r = run_cli("gp interpolate" + common + " --child 16_16 --observed 5 --json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    j = parse_json(r.out);
+    CHECK(j["model"].text == "mohgp3");
+    CHECK(j["smse"].number > 0.0);
+    CHECK(std::isfinite(j["msll"].number));
+
+    mocapdb::test::TempDir tmp("gp_cli3");
+    r = run_cli("gp sample" + common + " --n 2 -o " + quoted((tmp / "s").string()));
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("groups (three layers): 0 = {02_01, 02_02} 1 = {16_15, 16_16} 2 = {35_01}") != std::string::npos);
+    CHECK(mocapdb::read_clip(tmp / "s" / "sample_002.bvh").frame_count() == 16);
+
+    r = run_cli("gp experiment" + common + " --child 16_16 --observed-list 5 --runs 1 --json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    j = parse_json(r.out);
+    CHECK(j["layers"].number == 3);
+    CHECK(j["interpolation"][0]["mohgp"]["smse"]["mean"].number > 0.0);
+
+    // Explicit groups override the names; wrong counts and --artificial are refused.
+    r = run_cli("gp fit" + common + " --groups 0,1,0,1,0 --json");
+    REQUIRE(r.exit_code == 0);
+    CHECK(parse_json(r.out)["groups"][1].number == 1);
+    r = run_cli("gp fit" + common + " --groups 0,1");
+    CHECK(r.exit_code != 0);
+    CHECK(r.err.find("--groups: 2 values for 5 children") != std::string::npos);
+    r = run_cli("gp fit" + common + " --groups 0,2,0,2,0");
+    CHECK(r.exit_code != 0);
+    CHECK(r.err.find("group 1 has no child") != std::string::npos);
+    r = run_cli("gp experiment --artificial --layers 3");
+    CHECK(r.exit_code != 0);
+    CHECK(r.err.find("two-layer") != std::string::npos);
+    r = run_cli("gp fit" + common + " --layers 4");
+    CHECK(r.exit_code != 0);
+}

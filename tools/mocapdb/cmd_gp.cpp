@@ -2,6 +2,7 @@
 // interpolate a partially observed child, sample new children, and the thesis's experiments.
 // No model file is written: every subcommand fits the model it needs (deterministically: same data
 // and options give the same fit).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -41,6 +42,8 @@ struct GpArgs {
     std::vector<std::string> exclude;
     bool keep_noisy = false;
     // model
+    int layers = 2;
+    std::vector<std::size_t> groups;
     std::size_t q = 1;
     std::size_t rank = 1;
     std::string kernel = "matern32";
@@ -100,6 +103,8 @@ MotionDataOptions data_options(const GpArgs& a) {
 ModelSpec model_spec(const GpArgs& a, bool hierarchical) {
     ModelSpec s;
     s.hierarchical = hierarchical;
+    s.grouped = hierarchical && a.layers == 3;
+    s.group_terms = a.q;
     s.parent_terms = a.q;
     s.child_terms = a.q;
     s.rank = a.rank;
@@ -130,6 +135,41 @@ std::size_t child_index(const std::vector<std::string>& names, const std::string
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
     throw InvalidArgument("no child '" + which + "' (children: " + list + "; or an index from 0)");
 }
+
+/// The subject of a CMU-named child ("02_01", "02_01:0-120" → "02").
+std::string subject_of(const std::string& name) {
+    const std::size_t us = name.find('_');
+    if (us == 0 || us == std::string::npos) return {};
+    return name.substr(0, us);
+}
+
+/// Three layers: each child's group, from --groups or from the subject in its CMU name (groups numbered
+/// in order of first appearance). Nothing for two layers or the MOA baseline.
+void assign_groups(const GpArgs& a, const std::vector<std::string>& names, HgpData& data) {
+    data.groups.clear();
+    if (a.layers != 3 || a.mo_baseline) return;
+    if (!a.groups.empty()) {
+        if (a.groups.size() != names.size())
+            throw InvalidArgument("--groups: " + std::to_string(a.groups.size()) + " values for " +
+                                  std::to_string(names.size()) + " children (one group index per child)");
+        data.groups = a.groups;
+        validate(data);
+        return;
+    }
+    std::vector<std::string> subjects;
+    for (const auto& n : names) {
+        const std::string s = subject_of(n);
+        if (s.empty())
+            throw InvalidArgument("--layers 3: cannot tell the subject of child '" + n +
+                                  "' (expected a CMU name like 02_01); give --groups with one index per child");
+        const auto it = std::find(subjects.begin(), subjects.end(), s);
+        data.groups.push_back(static_cast<std::size_t>(it - subjects.begin()));
+        if (it == subjects.end()) subjects.push_back(s);
+    }
+}
+
+const char* model_name(const GpArgs& a) { return a.mo_baseline ? "moa" : a.layers == 3 ? "mohgp3" : "mohgp"; }
+const char* model_label(const GpArgs& a) { return a.mo_baseline ? "MOA" : a.layers == 3 ? "MOHGP (3 layers)" : "MOHGP"; }
 
 void write_model(JsonWriter& w, const FitResult& f) {
     w.key("log_likelihood").value(f.log_likelihood);
@@ -169,6 +209,7 @@ void print_fit_summary(const char* label, const FitResult& f) {
                         lmc.terms[q].coregionalization().diagonal().mean());
     };
     if (f.model.hierarchical) terms("parent", f.model.parent);
+    if (f.model.grouped) terms("group ", f.model.group);
     terms(f.model.hierarchical ? "child " : "MOA   ", f.model.child);
     std::printf("  noise variance: mean %.3g (min %.3g, max %.3g)\n", f.model.noise_variance().mean(),
                 f.model.noise_variance().minCoeff(), f.model.noise_variance().maxCoeff());
@@ -178,6 +219,11 @@ void write_data_json(JsonWriter& w, const MotionData& md) {
     w.key("children").begin_array();
     for (const auto& n : md.child_names) w.value(n);
     w.end_array();
+    if (!md.data.groups.empty()) {
+        w.key("groups").begin_array();
+        for (std::size_t g : md.data.groups) w.value(static_cast<long long>(g));
+        w.end_array();
+    }
     w.key("frames").value(static_cast<long long>(md.data.frames()));
     w.key("duration_s").value(md.data.times[md.data.times.size() - 1]);
     w.key("dofs").begin_array();
@@ -190,20 +236,35 @@ void print_data_summary(const MotionData& md) {
     for (std::size_t i = 0; i < md.child_names.size(); ++i) std::printf("%s%s", i ? ", " : "", md.child_names[i].c_str());
     std::printf("); %zu dofs x %zu frames over %.3f s (%zu dofs dropped)\n", md.dofs.size(), md.data.frames(),
                 md.data.times[md.data.times.size() - 1], md.dropped.size());
+    if (!md.data.groups.empty()) {
+        std::printf("groups (three layers):");
+        for (std::size_t g = 0; g < md.data.group_count(); ++g) {
+            std::printf(" %zu = {", g);
+            bool first = true;
+            for (std::size_t r = 0; r < md.data.child_count(); ++r)
+                if (md.data.groups[r] == g) {
+                    std::printf("%s%s", first ? "" : ", ", md.child_names[r].c_str());
+                    first = false;
+                }
+            std::printf("}");
+        }
+        std::printf("\n");
+    }
 }
 
 void run_fit(const GpArgs& a) {
     std::vector<Clip> clips;
     std::vector<std::string> names;
     load_children(a, clips, names);
-    const MotionData md = prepare_motion_data(clips, names, data_options(a));
+    MotionData md = prepare_motion_data(clips, names, data_options(a));
+    assign_groups(a, md.child_names, md.data);
     ProgressBar bar("gp fit");
     const FitResult f = fit(md.data, initial_model(md.data, model_spec(a, !a.mo_baseline)), fit_options(a, &bar));
     bar.clear();
     if (a.json) {
         JsonWriter w;
         w.begin_object();
-        w.key("model").value(a.mo_baseline ? "moa" : "mohgp");
+        w.key("model").value(model_name(a));
         write_data_json(w, md);
         write_model(w, f);
         w.end_object();
@@ -211,7 +272,7 @@ void run_fit(const GpArgs& a) {
         return;
     }
     print_data_summary(md);
-    print_fit_summary(a.mo_baseline ? "MOA" : "MOHGP", f);
+    print_fit_summary(model_label(a), f);
 }
 
 void check_output(const fs::path& p, bool force) {
@@ -222,17 +283,15 @@ void run_interpolate(const GpArgs& a) {
     std::vector<Clip> clips;
     std::vector<std::string> names;
     load_children(a, clips, names);
-    const MotionData md = prepare_motion_data(clips, names, data_options(a));
+    MotionData md = prepare_motion_data(clips, names, data_options(a));
+    assign_groups(a, md.child_names, md.data);
     const std::size_t child = child_index(md.child_names, a.child);
     if (md.data.child_count() < 2) throw InvalidArgument("interpolate needs ≥ 2 children (the others train the model)");
     if (a.observed + 2 > md.data.frames())
         throw InvalidArgument("--observed " + std::to_string(a.observed) + " leaves fewer than 2 of " +
                               std::to_string(md.data.frames()) + " frames to predict");
     if (!a.out.empty()) check_output(a.out, a.force);
-    HgpData training;
-    training.times = md.data.times;
-    for (std::size_t r = 0; r < md.data.child_count(); ++r)
-        if (r != child) training.children.push_back(md.data.children[r]);
+    const HgpData training = without_child(md.data, child);
     ProgressBar bar("gp interpolate");
     const FitResult f = fit(training, initial_model(training, model_spec(a, !a.mo_baseline)), fit_options(a, &bar));
     bar.clear();
@@ -251,7 +310,7 @@ void run_interpolate(const GpArgs& a) {
     if (a.json) {
         JsonWriter w;
         w.begin_object();
-        w.key("model").value(a.mo_baseline ? "moa" : "mohgp");
+        w.key("model").value(model_name(a));
         write_data_json(w, md);
         w.key("child").value(md.child_names[child]);
         w.key("observed_frames").begin_array();
@@ -277,7 +336,7 @@ void run_interpolate(const GpArgs& a) {
         return;
     }
     print_data_summary(md);
-    print_fit_summary(a.mo_baseline ? "MOA" : "MOHGP", f);
+    print_fit_summary(model_label(a), f);
     std::printf("child %s, %zu of %zu frames observed: MSE %.5f  SMSE %.4f  MSLL %.4f (%zu values predicted)\n",
                 md.child_names[child].c_str(), a.observed, md.data.frames(), s.mse, s.smse, s.msll, s.points);
     if (!a.out.empty()) std::printf("wrote %s\n", a.out.c_str());
@@ -287,7 +346,8 @@ void run_sample(const GpArgs& a) {
     std::vector<Clip> clips;
     std::vector<std::string> names;
     load_children(a, clips, names);
-    const MotionData md = prepare_motion_data(clips, names, data_options(a));
+    MotionData md = prepare_motion_data(clips, names, data_options(a));
+    assign_groups(a, md.child_names, md.data);
     if (a.out.empty()) throw InvalidArgument("sample needs -o DIR");
     const fs::path dir(a.out);
     if (fs::exists(dir) && !fs::is_directory(dir)) throw IoError(dir.string() + ": not a directory");
@@ -312,7 +372,7 @@ void run_sample(const GpArgs& a) {
     if (a.json) {
         JsonWriter w;
         w.begin_object();
-        w.key("model").value(a.mo_baseline ? "moa" : "mohgp");
+        w.key("model").value(model_name(a));
         write_data_json(w, md);
         w.key("files").begin_array();
         for (const auto& p : files) w.value(p.string());
@@ -325,7 +385,7 @@ void run_sample(const GpArgs& a) {
         return;
     }
     print_data_summary(md);
-    print_fit_summary(a.mo_baseline ? "MOA" : "MOHGP", f);
+    print_fit_summary(model_label(a), f);
     std::printf("wrote %zu samples and the trend to %s\n", samples.size(), dir.string().c_str());
 }
 
@@ -359,6 +419,9 @@ void json_synthesis(JsonWriter& w, const SynthesisScores& s) {
 }
 
 void run_experiment_artificial(const GpArgs& a) {
+    if (a.layers == 3)
+        throw InvalidArgument("--artificial reproduces the thesis's two-layer experiment; --layers 3 needs real children "
+                              "(--set or --clips)");
     std::vector<ArtificialConfig> configs = thesis_artificial_configs();
     std::vector<std::size_t> which = a.tests;
     if (which.empty())
@@ -432,6 +495,7 @@ void run_experiment_replicates(const GpArgs& a) {
     data.children.assign(all.data.children.begin(), all.data.children.begin() + static_cast<std::ptrdiff_t>(n_train));
     std::vector<MatX> real(all.data.children.begin() + static_cast<std::ptrdiff_t>(n_train), all.data.children.end());
     std::vector<std::string> train_names(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(n_train));
+    assign_groups(a, train_names, data);
     const std::size_t child = child_index(train_names, a.child);
     ExperimentOptions o;
     o.runs = a.runs;
@@ -452,6 +516,7 @@ void run_experiment_replicates(const GpArgs& a) {
         JsonWriter w;
         w.begin_object();
         w.key("experiment").value("replicates");
+        w.key("layers").value(static_cast<long long>(a.layers));
         write_data_json(w, all);
         w.key("test_child").value(train_names[child]);
         w.key("mohgp_fit").begin_object();
@@ -494,7 +559,12 @@ void run_experiment_replicates(const GpArgs& a) {
     print_data_summary(all);
     std::printf("test child %s; models trained on the other %zu children (LMC Q=%zu %s)\n", train_names[child].c_str(),
                 n_train - 1, a.q, a.kernel.c_str());
-    print_fit_summary("MOHGP", interp.mohgp_fit);
+    if (!data.groups.empty()) {
+        std::printf("groups (three layers):");
+        for (std::size_t r = 0; r < train_names.size(); ++r) std::printf(" %s=%zu", train_names[r].c_str(), data.groups[r]);
+        std::printf("\n");
+    }
+    print_fit_summary(model_label(a), interp.mohgp_fit);
     print_fit_summary("MOA", interp.moa_fit);
     std::printf("%-6s | %-18s %-18s %-19s | %-18s %-18s %-19s\n", "N obs", "MSE MOHGP", "SMSE MOHGP", "MSLL MOHGP",
                 "MSE MOA", "SMSE MOA", "MSLL MOA");
@@ -530,6 +600,11 @@ void add_source_options(CLI::App* cmd, GpArgs& a) {
 }
 
 void add_model_options(CLI::App* cmd, GpArgs& a) {
+    cmd->add_option("--layers", a.layers,
+                    "2: trend -> child (default); 3: trend -> subject -> trial, subjects from the CMU names "
+                    "(02_01 -> 02) or --groups")
+        ->check(CLI::IsMember({2, 3}));
+    cmd->add_option("--groups", a.groups, "with --layers 3: one group index per child (0-based), e.g. 0,0,1,1")->delimiter(',');
     cmd->add_option("--q", a.q, "LMC terms per layer (default 1 = ICM)")->check(CLI::Range(1, 10));
     cmd->add_option("--rank", a.rank, "rank of every W_q (default 1)")->check(CLI::Range(1, 50));
     cmd->add_option("--kernel", a.kernel, "rbf | matern32 (default matern32)")->check(CLI::IsMember({"rbf", "matern32"}));

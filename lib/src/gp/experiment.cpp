@@ -44,17 +44,11 @@ std::vector<bool> random_mask(std::size_t frames, std::size_t count, std::mt1993
     return mask;
 }
 
-HgpData without_child(const HgpData& data, std::size_t child) {
-    HgpData out;
-    out.times = data.times;
-    for (std::size_t r = 0; r < data.child_count(); ++r)
-        if (r != child) out.children.push_back(data.children[r]);
-    return out;
-}
-
+/// MOHGP (two or three layers, as options.spec says) or, with !hierarchical, the flat MOA baseline.
 FitResult fit_model(const HgpData& training, const ExperimentOptions& options, bool hierarchical) {
     ModelSpec spec = options.spec;
     spec.hierarchical = hierarchical;
+    spec.grouped = spec.grouped && hierarchical;
     return fit(training, initial_model(training, spec), options.fit);
 }
 

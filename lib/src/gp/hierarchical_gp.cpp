@@ -1,92 +1,25 @@
 #include "mocapdb/gp/hierarchical_gp.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
-#include <thread>
 
 #include <Eigen/Cholesky>
 
-#include "block_low_rank.hpp"
+#include "gp_internal.hpp"
+#include "structured_likelihood.hpp"
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb::gp {
 
 namespace {
 
-// The two factorizations (A and C) are independent: on two threads when asked.
-template <class F, class G>
-void run_both(bool parallel, F& first, G& second) {
-    if (parallel) {
-        std::thread worker(second);
-        first();
-        worker.join();
-    } else {
-        first();
-        second();
-    }
-}
-
-constexpr double kLog2Pi = 1.8378770664093454836;
-
 using Index = Eigen::Index;
-
-/// Output-major vector of a D by T matrix: y[d·T + t] = Y(d, t).
-VecX vec_output_major(const MatX& y) {
-    VecX v(y.size());
-    const Index t = y.cols();
-    for (Index d = 0; d < y.rows(); ++d) v.segment(d * t, t) = y.row(d).transpose();
-    return v;
-}
-
-MatX unvec_output_major(const VecX& v, Index d, Index t) {
-    MatX y(d, t);
-    for (Index i = 0; i < d; ++i) y.row(i) = v.segment(i * t, t).transpose();
-    return y;
-}
-
-/// In-place Cholesky of the SPD matrix m (lower triangle); false when not positive definite.
-bool factor_in_place(MatX& m, double& out_log_det) {
-    Eigen::LLT<Eigen::Ref<MatX>> llt(m);
-    if (llt.info() != Eigen::Success) return false;
-    const auto diag = m.diagonal();
-    for (Index i = 0; i < diag.size(); ++i)
-        if (!(diag[i] > 0.0) || !std::isfinite(diag[i])) return false;
-    out_log_det = 2.0 * diag.array().log().sum();
-    return std::isfinite(out_log_det);
-}
-
-/// Replaces the Cholesky factor L held in m's lower triangle by the full symmetric inverse (L Lᵀ)⁻¹.
-/// Blocked: X = L⁻¹ column block by column block (each a triangular solve restricted to the rows at and
-/// below the block, ≈ n³/3 flops), written over L; then (L Lᵀ)⁻¹ = Xᵀ X one column block of its upper
-/// triangle at a time (≈ n³/3 flops), also in place; finally the lower triangle is mirrored.
-void invert_from_factor_in_place(MatX& m) {
-    const Index n = m.rows();
-    const Index bs = 96;
-    MatX rhs;
-    for (Index j0 = 0; j0 < n; j0 += bs) {
-        const Index bb = std::min(bs, n - j0);
-        const Index rows = n - j0;
-        rhs.setZero(rows, bb);
-        rhs.topRows(bb).setIdentity();
-        m.block(j0, j0, rows, rows).triangularView<Eigen::Lower>().solveInPlace(rhs);
-        m.block(j0, j0, rows, bb) = rhs;  // upper part of the diagonal block becomes 0 (exact)
-    }
-    // Now the lower triangle (with diagonal) of m holds X = L⁻¹ (the strict upper parts of the diagonal
-    // blocks are exact zeros; the rest of the upper triangle is stale). Inverse = Xᵀ X, its upper
-    // triangle one column block J = [j0, j1) at a time: Inv(0:j1, J) = X(j0:n, 0:j1)ᵀ X(j0:n, J).
-    // Block J only reads rows ≥ j0 and writes rows < j1 of column block J; later blocks read rows ≥ j1
-    // only, so the update is safe in place in increasing J.
-    MatX tmp;
-    for (Index j0 = 0; j0 < n; j0 += bs) {
-        const Index bb = std::min(bs, n - j0);
-        const Index j1 = j0 + bb;
-        const Index rows = n - j0;
-        tmp.noalias() = m.block(j0, 0, rows, j1).transpose() * m.block(j0, j0, rows, bb).triangularView<Eigen::Lower>();
-        m.block(0, j0, j1, bb) = tmp;
-    }
-    for (Index j = 0; j < n; ++j)
-        for (Index i = j + 1; i < n; ++i) m(i, j) = m(j, i);
-}
+using detail::flat_noise;
+using detail::kLog2Pi;
+using detail::unvec_output_major;
+using detail::vec_output_major;
 
 MatX kron(const MatX& a, const MatX& b) {
     MatX k(a.rows() * b.rows(), a.cols() * b.cols());
@@ -105,8 +38,14 @@ std::vector<Index> observed_indices(const HgpData& data, std::size_t child) {
     return idx;
 }
 
+/// The group of a child for the covariance (without groups: every child its own).
+std::size_t group_of(const HgpData& data, std::size_t child) {
+    return data.groups.empty() ? child : data.groups[child];
+}
+
 struct DenseLayout {
     std::vector<std::size_t> child;  ///< owning child of each observed value
+    std::vector<std::size_t> group;  ///< its group
     std::vector<Index> flat;         ///< its index in the child's output-major vector
     VecX y;
 };
@@ -118,6 +57,7 @@ DenseLayout dense_layout(const HgpData& data) {
         const VecX v = vec_output_major(data.children[r]);
         for (Index i : observed_indices(data, r)) {
             l.child.push_back(r);
+            l.group.push_back(group_of(data, r));
             l.flat.push_back(i);
             y.push_back(v[i]);
         }
@@ -126,14 +66,16 @@ DenseLayout dense_layout(const HgpData& data) {
     return l;
 }
 
-/// Σ over the observed values from per-child blocks: kg for every pair, kf (+ noise diag) within a child.
-MatX assemble_dense(const DenseLayout& l, const MatX* kg, const MatX* kf, const VecX* noise_flat) {
+/// Σ over the observed values from per-child blocks: kg for every pair, kh within a group, kf (+ noise
+/// diag) within a child.
+MatX assemble_dense(const DenseLayout& l, const MatX* kg, const MatX* kh, const MatX* kf, const VecX* noise_flat) {
     const Index n = static_cast<Index>(l.flat.size());
     MatX s = MatX::Zero(n, n);
     for (Index j = 0; j < n; ++j)
         for (Index i = 0; i < n; ++i) {
             double v = 0.0;
             if (kg) v += (*kg)(l.flat[i], l.flat[j]);
+            if (kh && l.group[i] == l.group[j]) v += (*kh)(l.flat[i], l.flat[j]);
             if (l.child[i] == l.child[j]) {
                 if (kf) v += (*kf)(l.flat[i], l.flat[j]);
                 if (noise_flat && i == j) v += (*noise_flat)[l.flat[i]];
@@ -141,6 +83,16 @@ MatX assemble_dense(const DenseLayout& l, const MatX* kg, const MatX* kf, const 
             s(i, j) = v;
         }
     return s;
+}
+
+/// The covariance of every observed value under the model.
+MatX dense_covariance(const HgpModel& model, const HgpData& data, const DenseLayout& l) {
+    const MatX kf = lmc_covariance(model.child, data.times, data.times);
+    MatX kg, kh;
+    if (model.hierarchical) kg = lmc_covariance(model.parent, data.times, data.times);
+    if (model.grouped) kh = lmc_covariance(model.group, data.times, data.times);
+    const VecX noise = flat_noise(model.noise_variance(), static_cast<Index>(data.frames()));
+    return assemble_dense(l, model.hierarchical ? &kg : nullptr, model.grouped ? &kh : nullptr, &kf, &noise);
 }
 
 /// The derivative matrices (D·T square) of an LMC term's covariance w.r.t. each of its parameters,
@@ -166,22 +118,12 @@ std::vector<MatX> term_derivatives(const LmcTerm& term, const VecX& times) {
     return out;
 }
 
-VecX flat_noise(const VecX& noise, Index t) {
-    VecX v(noise.size() * t);
-    for (Index d = 0; d < noise.size(); ++d) v.segment(d * t, t).setConstant(noise[d]);
-    return v;
-}
-
 LikelihoodValue dense_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient) {
     LikelihoodValue out;
     out.path = LikelihoodPath::Dense;
     const Index t = static_cast<Index>(data.frames());
     const DenseLayout l = dense_layout(data);
-    const MatX kf = lmc_covariance(model.child, data.times, data.times);
-    MatX kg;
-    if (model.hierarchical) kg = lmc_covariance(model.parent, data.times, data.times);
-    const VecX noise = flat_noise(model.noise_variance(), t);
-    MatX sigma = assemble_dense(l, model.hierarchical ? &kg : nullptr, &kf, &noise);
+    const MatX sigma = dense_covariance(model, data, l);
     Eigen::LLT<MatX> llt(sigma);
     if (llt.info() != Eigen::Success) {
         out.message = "dense covariance is not positive definite";
@@ -203,264 +145,22 @@ LikelihoodValue dense_likelihood(const HgpModel& model, const HgpData& data, boo
     Index o = 0;
     for (const auto& term : model.child.terms)
         for (const MatX& dk : term_derivatives(term, data.times))
-            out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, nullptr, &dk, nullptr)).sum();
+            out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, nullptr, nullptr, &dk, nullptr)).sum();
+    if (model.grouped)
+        for (const auto& term : model.group.terms)
+            for (const MatX& dk : term_derivatives(term, data.times))
+                out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, nullptr, &dk, nullptr, nullptr)).sum();
     if (model.hierarchical)
         for (const auto& term : model.parent.terms)
             for (const MatX& dk : term_derivatives(term, data.times))
-                out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, &dk, nullptr, nullptr)).sum();
+                out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, &dk, nullptr, nullptr, nullptr)).sum();
+    const Index nt = static_cast<Index>(data.outputs()) * t;
+    const MatX zero = MatX::Zero(nt, nt);
     for (Index d = 0; d < static_cast<Index>(model.outputs()); ++d) {
-        VecX dn = VecX::Zero(noise.size());
+        VecX dn = VecX::Zero(nt);
         dn.segment(d * t, t).setConstant(std::exp(model.log_noise[d]));
-        const MatX zero = MatX::Zero(noise.size(), noise.size());
-        out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, nullptr, &zero, &dn)).sum();
+        out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, nullptr, nullptr, &zero, &dn)).sum();
     }
-    return out;
-}
-
-/// Structured likelihood (every child complete). See the header for the decomposition.
-LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient, int threads) {
-    LikelihoodValue out;
-    out.path = LikelihoodPath::Structured;
-    const Index t = static_cast<Index>(data.frames());
-    const Index d = static_cast<Index>(data.outputs());
-    const Index n = d * t;
-    const Index r = static_cast<Index>(data.child_count());
-    const double rd = static_cast<double>(r);
-    MatX ys(n, r);
-    for (Index c = 0; c < r; ++c) ys.col(c) = vec_output_major(data.children[static_cast<std::size_t>(c)]);
-
-    MatX a = lmc_covariance(model.child, data.times, data.times);
-    a.diagonal() += flat_noise(model.noise_variance(), t);
-    const bool hier = model.hierarchical;
-
-    // Hierarchical: C = A + R·B with z = √R·ȳ; A-part uses deviations E (n by R). MOA: A-part uses Y.
-    MatX c;
-    VecX z;
-    MatX e;
-    if (hier) {
-        c = a;
-        c.noalias() += rd * lmc_covariance(model.parent, data.times, data.times);
-        const VecX mean = ys.rowwise().mean();
-        z = std::sqrt(rd) * mean;
-        e = ys.colwise() - mean;
-    } else {
-        e = ys;
-    }
-    const double a_count = hier ? rd - 1.0 : rd;  // number of independent N(·; 0, A) terms
-
-    bool ok_a = false, ok_c = !hier;
-    double logdet_a = 0.0, logdet_c = 0.0, quad_a = 0.0, quad_c = 0.0;
-    MatX pa;   // A⁻¹ E
-    VecX alpha_c;  // C⁻¹ z
-    auto work_a = [&]() {
-        ok_a = factor_in_place(a, logdet_a);
-        if (!ok_a) return;
-        pa = e;
-        a.triangularView<Eigen::Lower>().solveInPlace(pa);  // L⁻¹ E
-        quad_a = pa.squaredNorm();
-        a.triangularView<Eigen::Lower>().transpose().solveInPlace(pa);  // A⁻¹ E
-        if (with_gradient) invert_from_factor_in_place(a);
-    };
-    auto work_c = [&]() {
-        if (!hier) return;
-        ok_c = factor_in_place(c, logdet_c);
-        if (!ok_c) return;
-        alpha_c = z;
-        c.triangularView<Eigen::Lower>().solveInPlace(alpha_c);
-        quad_c = alpha_c.squaredNorm();
-        c.triangularView<Eigen::Lower>().transpose().solveInPlace(alpha_c);
-        if (with_gradient) invert_from_factor_in_place(c);
-    };
-    run_both(threads >= 2 && hier, work_a, work_c);
-    if (!ok_a || !ok_c) {
-        out.message = !ok_a ? "child covariance K_f + noise is not positive definite"
-                            : "K_f + noise + R·K_g is not positive definite";
-        return out;
-    }
-    out.log_likelihood = -0.5 * (quad_a + a_count * logdet_a) - 0.5 * rd * static_cast<double>(n) * kLog2Pi;
-    if (hier) out.log_likelihood += -0.5 * (quad_c + logdet_c);
-    if (!std::isfinite(out.log_likelihood)) {
-        out.message = "non-finite structured log likelihood";
-        return out;
-    }
-    out.ok = true;
-    if (!with_gradient) return out;
-
-    // G_f = W_C + W_A (differential through A), G_g = R·W_C (through B), with
-    // W_C = α αᵀ − C⁻¹, W_A = (A⁻¹E)(A⁻¹E)ᵀ − count·A⁻¹. `a` and `c` now hold A⁻¹ and C⁻¹.
-    MatX& gf = a;
-    gf *= -a_count;
-    gf.noalias() += pa * pa.transpose();
-    if (hier) {
-        gf -= c;
-        gf.noalias() += alpha_c * alpha_c.transpose();
-        MatX& gg = c;
-        gg = -rd * c;
-        gg.noalias() += rd * alpha_c * alpha_c.transpose();
-    }
-    out.gradient = VecX::Zero(static_cast<Index>(model.parameter_count()));
-    const std::size_t parent_offset = model.child.parameter_count();
-    auto grad_child = [&]() {
-        std::size_t o = 0;
-        for (const auto& term : model.child.terms) o = lmc_term_gradient(term, gf, data.times, o, out.gradient);
-        o = parent_offset + (hier ? model.parent.parameter_count() : 0);
-        for (Index i = 0; i < d; ++i)
-            out.gradient[static_cast<Index>(o) + i] =
-                0.5 * gf.diagonal().segment(i * t, t).sum() * std::exp(model.log_noise[i]);
-    };
-    auto grad_parent = [&]() {
-        if (!hier) return;
-        std::size_t o = parent_offset;
-        for (const auto& term : model.parent.terms) o = lmc_term_gradient(term, c, data.times, o, out.gradient);
-    };
-    run_both(threads >= 2 && hier, grad_child, grad_parent);
-    return out;
-}
-
-/// Kernel factors of every term of both layers (child terms first), computed once per evaluation.
-struct LayerFactors {
-    std::vector<detail::KernelFactor> child, parent;
-};
-
-LayerFactors layer_factors(const HgpModel& model, const VecX& times) {
-    LayerFactors f;
-    for (const auto& term : model.child.terms) f.child.push_back(detail::factor_kernel(term, times));
-    if (model.hierarchical)
-        for (const auto& term : model.parent.terms) f.parent.push_back(detail::factor_kernel(term, times));
-    return f;
-}
-
-/// The weighted terms of A = K_f (+ noise) and of C = A + R·K_g.
-std::vector<detail::WeightedTerm> terms_a(const HgpModel& model, const LayerFactors& f) {
-    std::vector<detail::WeightedTerm> out;
-    for (std::size_t q = 0; q < model.child.terms.size(); ++q) out.push_back({&model.child.terms[q], &f.child[q], 1.0});
-    return out;
-}
-
-std::vector<detail::WeightedTerm> terms_c(const HgpModel& model, const LayerFactors& f, double r) {
-    std::vector<detail::WeightedTerm> out = terms_a(model, f);
-    for (std::size_t q = 0; q < model.parent.terms.size(); ++q) out.push_back({&model.parent.terms[q], &f.parent[q], r});
-    return out;
-}
-
-/// Rough flop counts of one evaluation with gradient: Structured vs LowRank (for Auto).
-bool low_rank_is_cheaper(const HgpModel& model, const LayerFactors& f, Index d, Index t, double r) {
-    const double n = static_cast<double>(d * t), td = static_cast<double>(t), dd = static_cast<double>(d);
-    const double matrices = model.hierarchical ? 2.0 : 1.0;
-    const double structured = matrices * n * n * n;
-    const double ma = static_cast<double>(detail::BlockLowRank::rank_of(terms_a(model, f)));
-    const double mc = model.hierarchical ? static_cast<double>(detail::BlockLowRank::rank_of(terms_c(model, f, r))) : 0.0;
-    auto one = [&](double m) { return 3.0 * dd * td * td * td + 2.0 * n * td * m + 2.0 * n * m * m + 2.0 * m * m * m; };
-    const double terms = static_cast<double>(model.child.terms.size() + (model.hierarchical ? model.parent.terms.size() : 0));
-    const double width = r + ma + 1.0 + mc;
-    const double low_rank = one(ma) + (model.hierarchical ? one(mc) : 0.0) + 2.0 * n * (ma * ma + mc * mc) +
-                            terms * 8.0 * n * td * width;
-    return low_rank < structured;
-}
-
-/// Structured likelihood with block-diagonal-plus-low-rank layers (every child complete). See
-/// block_low_rank.hpp for the algebra; the rotation of the children is the Structured path's.
-LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient, int threads,
-                                    const LayerFactors& f) {
-    LikelihoodValue out;
-    out.path = LikelihoodPath::LowRank;
-    const Index t = static_cast<Index>(data.frames());
-    const Index d = static_cast<Index>(data.outputs());
-    const Index n = d * t;
-    const Index r = static_cast<Index>(data.child_count());
-    const double rd = static_cast<double>(r);
-    const bool hier = model.hierarchical;
-    MatX e(n, r);
-    for (Index c = 0; c < r; ++c) e.col(c) = vec_output_major(data.children[static_cast<std::size_t>(c)]);
-    VecX z;
-    if (hier) {
-        const VecX mean = e.rowwise().mean();
-        z = std::sqrt(rd) * mean;
-        e.colwise() -= mean;
-    }
-    const double a_count = hier ? rd - 1.0 : rd;
-    const VecX noise = model.noise_variance();
-
-    detail::BlockLowRank fa, fc;
-    bool ok_a = false, ok_c = !hier;
-    std::string msg_a, msg_c;
-    MatX pa;       // A⁻¹ E
-    VecX alpha_c;  // C⁻¹ z
-    double quad_a = 0.0, quad_c = 0.0;
-    const auto ta = terms_a(model, f);
-    const auto tc = hier ? terms_c(model, f, rd) : std::vector<detail::WeightedTerm>{};
-    auto work_a = [&]() {
-        ok_a = fa.build(ta, noise, t, msg_a);
-        if (!ok_a) return;
-        pa = fa.solve(e);
-        quad_a = e.cwiseProduct(pa).sum();
-    };
-    auto work_c = [&]() {
-        if (!hier) return;
-        ok_c = fc.build(tc, noise, t, msg_c);
-        if (!ok_c) return;
-        alpha_c = fc.solve(z);
-        quad_c = z.dot(alpha_c);
-    };
-    run_both(threads >= 2 && hier, work_a, work_c);
-    if (!ok_a || !ok_c) {
-        out.message = !ok_a ? "child covariance K_f + noise: " + msg_a : "K_f + noise + R·K_g: " + msg_c;
-        return out;
-    }
-    out.log_likelihood = -0.5 * (quad_a + a_count * fa.log_det) - 0.5 * rd * static_cast<double>(n) * kLog2Pi;
-    if (hier) out.log_likelihood += -0.5 * (quad_c + fc.log_det);
-    if (!std::isfinite(out.log_likelihood)) {
-        out.message = "non-finite low-rank log likelihood";
-        return out;
-    }
-    out.ok = true;
-    if (!with_gradient) return out;
-
-    // W_A = (A⁻¹E)(A⁻¹E)ᵀ − count·A⁻¹ = Pa Paᵀ − count·P_A⁻¹ + count·V_A K_A⁻¹ V_Aᵀ;
-    // W_C = α αᵀ − P_C⁻¹ + V_C K_C⁻¹ V_Cᵀ. G_f = W_A + W_C (child terms, noise), G_g = R·W_C (parent).
-    const Index ma = fa.v.cols(), mc = hier ? fc.v.cols() : 0;
-    detail::StructuredSymmetric gf, gg;
-    gf.blocks.resize(static_cast<std::size_t>(d));
-    const Index wf = r + ma + (hier ? 1 + mc : 0);
-    gf.u.resize(n, wf);
-    gf.x.resize(n, wf);
-    gf.u.leftCols(r) = pa;
-    gf.x.leftCols(r) = pa;
-    gf.u.middleCols(r, ma) = fa.v;
-    if (ma > 0) gf.x.middleCols(r, ma).noalias() = a_count * fa.v * fa.cap_inverse;
-    for (Index i = 0; i < d; ++i) {
-        MatX& b = gf.blocks[static_cast<std::size_t>(i)];
-        b = -a_count * fa.p_inverse[static_cast<std::size_t>(i)];
-        if (hier) b -= fc.p_inverse[static_cast<std::size_t>(i)];
-    }
-    if (hier) {
-        gf.u.col(r + ma) = alpha_c;
-        gf.x.col(r + ma) = alpha_c;
-        gf.u.rightCols(mc) = fc.v;
-        if (mc > 0) gf.x.rightCols(mc).noalias() = fc.v * fc.cap_inverse;
-        // G_g / R shares W_C's columns; the factor R is applied in the contraction.
-        gg.blocks.resize(static_cast<std::size_t>(d));
-        for (Index i = 0; i < d; ++i) gg.blocks[static_cast<std::size_t>(i)] = -fc.p_inverse[static_cast<std::size_t>(i)];
-        gg.u = gf.u.rightCols(1 + mc);
-        gg.x = gf.x.rightCols(1 + mc);
-    }
-    out.gradient = VecX::Zero(static_cast<Index>(model.parameter_count()));
-    const std::size_t parent_offset = model.child.parameter_count();
-    auto grad_child = [&]() {
-        std::size_t o = 0;
-        for (std::size_t q = 0; q < model.child.terms.size(); ++q)
-            o = detail::structured_term_gradient(model.child.terms[q], f.child[q], gf, 1.0, data.times, o, out.gradient);
-        o = parent_offset + (hier ? model.parent.parameter_count() : 0);
-        const VecX tr = detail::structured_block_traces(gf, d, t);
-        for (Index i = 0; i < d; ++i) out.gradient[static_cast<Index>(o) + i] = 0.5 * tr[i] * std::exp(model.log_noise[i]);
-    };
-    auto grad_parent = [&]() {
-        if (!hier) return;
-        std::size_t o = parent_offset;
-        for (std::size_t q = 0; q < model.parent.terms.size(); ++q)
-            o = detail::structured_term_gradient(model.parent.terms[q], f.parent[q], gg, rd, data.times, o, out.gradient);
-    };
-    run_both(threads >= 2 && hier, grad_child, grad_parent);
     return out;
 }
 
@@ -468,30 +168,36 @@ void check_times(const VecX& t_star) {
     if (t_star.size() == 0 || !t_star.allFinite()) throw InvalidArgument("prediction times: expected ≥ 1 finite time");
 }
 
-GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, const VecX& t_star,
-                                   std::ptrdiff_t child /* −1: parent */) {
-    const Index t = static_cast<Index>(data.frames());
+/// What a posterior is about: the trend g, group s's function h_s, or child r's latent f_r.
+struct Target {
+    enum Kind { Parent, Group, Child } kind = Parent;
+    std::size_t index = 0;
+};
+
+GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, const VecX& t_star, Target target) {
     const Index d = static_cast<Index>(data.outputs());
     const Index ts = t_star.size();
     const DenseLayout l = dense_layout(data);
-    const MatX kf = lmc_covariance(model.child, data.times, data.times);
-    MatX kg;
-    if (model.hierarchical) kg = lmc_covariance(model.parent, data.times, data.times);
-    const VecX noise = flat_noise(model.noise_variance(), t);
-    const MatX sigma = assemble_dense(l, model.hierarchical ? &kg : nullptr, &kf, &noise);
-    // Cross-covariance between the query (D·T*) and every observed value.
-    MatX kgs, kfs;
+    const MatX sigma = dense_covariance(model, data, l);
+    // The target's group (h_s enters the covariance with the values of that group's children).
+    const bool with_group = model.grouped && target.kind != Target::Parent;
+    const std::size_t group = target.kind == Target::Group ? target.index
+                              : target.kind == Target::Child ? group_of(data, target.index) : 0;
+    MatX kgs, khs, kfs;
     if (model.hierarchical) kgs = lmc_covariance(model.parent, t_star, data.times);
-    kfs = lmc_covariance(model.child, t_star, data.times);
+    if (with_group) khs = lmc_covariance(model.group, t_star, data.times);
+    if (target.kind == Target::Child) kfs = lmc_covariance(model.child, t_star, data.times);
     const Index n = static_cast<Index>(l.flat.size());
     MatX cross = MatX::Zero(d * ts, n);
     for (Index j = 0; j < n; ++j) {
         if (model.hierarchical) cross.col(j) += kgs.col(l.flat[j]);
-        if (child >= 0 && l.child[j] == static_cast<std::size_t>(child)) cross.col(j) += kfs.col(l.flat[j]);
+        if (with_group && l.group[j] == group) cross.col(j) += khs.col(l.flat[j]);
+        if (target.kind == Target::Child && l.child[j] == target.index) cross.col(j) += kfs.col(l.flat[j]);
     }
     MatX prior = MatX::Zero(d * ts, d * ts);
     if (model.hierarchical) prior += lmc_covariance(model.parent, t_star, t_star);
-    if (child >= 0) prior += lmc_covariance(model.child, t_star, t_star);
+    if (with_group) prior += lmc_covariance(model.group, t_star, t_star);
+    if (target.kind == Target::Child) prior += lmc_covariance(model.child, t_star, t_star);
     Eigen::LLT<MatX> llt(sigma);
     GaussianPrediction p;
     p.noise = model.noise_variance();
@@ -508,38 +214,141 @@ GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, c
     return p;
 }
 
-/// Posterior of g at `tq` given the complete children `members` (structured): mean (D·|tq|) and covariance.
-struct ParentPosterior {
+// ---- Structured posteriors: Gaussians over a time grid, conditioned group by group -------------------
+
+/// The data's times followed by the query times not among them; where each query time sits.
+struct Grid {
+    VecX z;
+    std::vector<Index> query;
+};
+
+Grid make_grid(const VecX& times, const VecX& tq) {
+    Grid g;
+    std::vector<double> z(times.data(), times.data() + times.size());
+    for (Index i = 0; i < tq.size(); ++i) {
+        Index at = -1;
+        for (Index j = 0; j < static_cast<Index>(z.size()); ++j)
+            if (z[static_cast<std::size_t>(j)] == tq[i]) {
+                at = j;
+                break;
+            }
+        if (at < 0) {
+            at = static_cast<Index>(z.size());
+            z.push_back(tq[i]);
+        }
+        g.query.push_back(at);
+    }
+    g.z = Eigen::Map<const VecX>(z.data(), static_cast<Index>(z.size()));
+    return g;
+}
+
+/// A Gaussian over D outputs at the grid times (output-major: index d·|z| + i).
+struct GridGaussian {
     VecX mean;
     MatX cov;
     bool ok = true;
 };
 
-ParentPosterior parent_posterior_structured(const HgpModel& model, const HgpData& data,
-                                            const std::vector<std::size_t>& members, const VecX& tq) {
-    ParentPosterior pp;
-    const Index t = static_cast<Index>(data.frames());
-    const Index d = static_cast<Index>(data.outputs());
-    pp.cov = lmc_covariance(model.parent, tq, tq);
-    pp.mean = VecX::Zero(d * tq.size());
-    if (members.empty()) return pp;
-    const double rc = static_cast<double>(members.size());
-    VecX mean = VecX::Zero(d * t);
-    for (std::size_t m : members) mean += vec_output_major(data.children[m]);
-    mean /= rc;
-    MatX c = lmc_covariance(model.child, data.times, data.times);
-    c.diagonal() += flat_noise(model.noise_variance(), t);
-    c.noalias() += rc * lmc_covariance(model.parent, data.times, data.times);
-    Eigen::LLT<MatX> llt(c);
-    if (llt.info() != Eigen::Success) {
-        pp.ok = false;
-        return pp;
+/// Indices of the grid entries at `frames` of the data times (which are the grid's first T), every output.
+std::vector<Index> grid_indices(Index d, Index grid_size, const std::vector<Index>& frames) {
+    std::vector<Index> idx;
+    for (Index k = 0; k < d; ++k)
+        for (Index f : frames) idx.push_back(k * grid_size + f);
+    return idx;
+}
+
+std::vector<Index> all_frames(Index t) {
+    std::vector<Index> f(static_cast<std::size_t>(t));
+    for (Index i = 0; i < t; ++i) f[static_cast<std::size_t>(i)] = i;
+    return f;
+}
+
+/// Conditions g on y = g[sel] + ε, ε ~ N(0, noise_cov). False when the innovation covariance is not
+/// positive definite.
+bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, const MatX& noise_cov) {
+    const Index m = static_cast<Index>(sel.size()), n = g.mean.size();
+    MatX s = noise_cov;
+    MatX c(m, n);
+    VecX r(m);
+    for (Index i = 0; i < m; ++i) {
+        c.row(i) = g.cov.row(sel[static_cast<std::size_t>(i)]);
+        r[i] = y[i] - g.mean[sel[static_cast<std::size_t>(i)]];
+        for (Index j = 0; j < m; ++j) s(i, j) += g.cov(sel[static_cast<std::size_t>(i)], sel[static_cast<std::size_t>(j)]);
     }
-    const MatX kqt = lmc_covariance(model.parent, tq, data.times);
-    pp.mean = rc * kqt * llt.solve(mean);
-    const MatX v = llt.matrixL().solve(kqt.transpose());
-    pp.cov.noalias() -= rc * v.transpose() * v;
-    return pp;
+    Eigen::LLT<MatX> llt(s);
+    if (llt.info() != Eigen::Success) return false;
+    llt.matrixL().solveInPlace(c);  // L⁻¹ C
+    llt.matrixL().solveInPlace(r);
+    g.mean.noalias() += c.transpose() * r;
+    g.cov.noalias() -= c.transpose() * c;
+    return g.mean.allFinite();
+}
+
+/// Posterior of the trend g on the grid given the complete children `members` (structured).
+/// Two layers: their mean ȳ = g + N(0, A / R'). Three layers: per group its members' mean, groups of one
+/// size n_c averaged: ȳ_c = g + N(0, (A + n_c K_h) / (n_c S_c)), conditioned class by class.
+GridGaussian trend_on_grid(const HgpModel& model, const HgpData& data, const std::vector<std::size_t>& members,
+                           const Grid& grid) {
+    const Index d = static_cast<Index>(data.outputs());
+    const Index t = static_cast<Index>(data.frames());
+    GridGaussian g;
+    g.cov = lmc_covariance(model.parent, grid.z, grid.z);
+    g.mean = VecX::Zero(g.cov.rows());
+    if (members.empty()) return g;
+    MatX a = lmc_covariance(model.child, data.times, data.times);
+    a.diagonal() += flat_noise(model.noise_variance(), t);
+    const auto sel = grid_indices(d, grid.z.size(), all_frames(t));
+    if (!model.grouped) {
+        VecX mean = VecX::Zero(d * t);
+        for (std::size_t m : members) mean += vec_output_major(data.children[m]);
+        const double rc = static_cast<double>(members.size());
+        g.ok = condition(g, sel, mean / rc, a / rc);
+        return g;
+    }
+    std::map<std::size_t, std::vector<std::size_t>> by_group;
+    for (std::size_t m : members) by_group[data.groups[m]].push_back(m);
+    std::map<std::size_t, std::vector<VecX>> class_means;  // group size → its groups' means
+    for (const auto& [s, kids] : by_group) {
+        VecX mean = VecX::Zero(d * t);
+        for (std::size_t m : kids) mean += vec_output_major(data.children[m]);
+        class_means[kids.size()].push_back(mean / static_cast<double>(kids.size()));
+    }
+    const MatX kh = lmc_covariance(model.group, data.times, data.times);
+    for (const auto& [nc, means] : class_means) {
+        VecX mean = VecX::Zero(d * t);
+        for (const VecX& m : means) mean += m;
+        const double sc = static_cast<double>(means.size()), ncd = static_cast<double>(nc);
+        MatX noise_cov = a + ncd * kh;
+        noise_cov /= ncd * sc;
+        if (!condition(g, sel, mean / sc, noise_cov)) {
+            g.ok = false;
+            return g;
+        }
+    }
+    return g;
+}
+
+/// Posterior of h_s (three layers) on the grid given the complete children other than `excluded`.
+GridGaussian group_on_grid(const HgpModel& model, const HgpData& data, std::size_t s, std::ptrdiff_t excluded,
+                           const Grid& grid) {
+    std::vector<std::size_t> others, own;
+    for (std::size_t r = 0; r < data.child_count(); ++r) {
+        if (static_cast<std::ptrdiff_t>(r) == excluded) continue;
+        (data.groups[r] == s ? own : others).push_back(r);
+    }
+    GridGaussian g = trend_on_grid(model, data, others, grid);
+    if (!g.ok) return g;
+    g.cov += lmc_covariance(model.group, grid.z, grid.z);
+    if (own.empty()) return g;
+    const Index d = static_cast<Index>(data.outputs());
+    const Index t = static_cast<Index>(data.frames());
+    VecX mean = VecX::Zero(d * t);
+    for (std::size_t m : own) mean += vec_output_major(data.children[m]);
+    const double rc = static_cast<double>(own.size());
+    MatX a = lmc_covariance(model.child, data.times, data.times);
+    a.diagonal() += flat_noise(model.noise_variance(), t);
+    g.ok = condition(g, grid_indices(d, grid.z.size(), all_frames(t)), mean / rc, a / rc);
+    return g;
 }
 
 GaussianPrediction nan_prediction(Index d, Index ts, const VecX& noise) {
@@ -550,78 +359,70 @@ GaussianPrediction nan_prediction(Index d, Index ts, const VecX& noise) {
     return p;
 }
 
-/// Child posterior at `t_star` and its full covariance (for sampling), structured; siblings complete.
-struct ChildPosterior {
-    VecX mean;
-    MatX cov;
-    bool ok = true;
-};
+/// The grid Gaussian at the query times: mean and full covariance (output-major over the queries).
+GridGaussian at_queries(const GridGaussian& g, const Grid& grid, Index d) {
+    const auto idx = grid_indices(d, grid.z.size(), grid.query);
+    GridGaussian out;
+    const Index m = static_cast<Index>(idx.size());
+    out.mean.resize(m);
+    out.cov.resize(m, m);
+    for (Index i = 0; i < m; ++i) {
+        out.mean[i] = g.mean[idx[static_cast<std::size_t>(i)]];
+        for (Index j = 0; j < m; ++j) out.cov(i, j) = g.cov(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]);
+    }
+    out.ok = g.ok;
+    return out;
+}
 
-ChildPosterior child_posterior_structured(const HgpModel& model, const HgpData& data, std::size_t child,
-                                          const VecX& t_star) {
+GaussianPrediction to_prediction(const GridGaussian& q, Index d, Index ts, const VecX& noise) {
+    if (!q.ok) return nan_prediction(d, ts, noise);
+    GaussianPrediction p;
+    p.mean = unvec_output_major(q.mean, d, ts);
+    p.variance = unvec_output_major(q.cov.diagonal(), d, ts);
+    p.noise = noise;
+    return p;
+}
+
+/// Posterior of child `child`'s latent f at t_star (structured; every sibling complete, the child may be
+/// partial): its parent function (g, or h_s with three layers) given the siblings, plus K_f, conditioned
+/// on the child's own observed frames.
+GridGaussian child_posterior_structured(const HgpModel& model, const HgpData& data, std::size_t child,
+                                        const VecX& t_star) {
     const Index d = static_cast<Index>(data.outputs());
-    std::vector<Index> obs_frames;
-    for (Index f = 0; f < static_cast<Index>(data.frames()); ++f)
-        if (data.is_observed(child, static_cast<std::size_t>(f))) obs_frames.push_back(f);
-    const Index no = static_cast<Index>(obs_frames.size());
-    const Index ts = t_star.size();
-    VecX tq(no + ts);
-    for (Index i = 0; i < no; ++i) tq[i] = data.times[obs_frames[static_cast<std::size_t>(i)]];
-    tq.tail(ts) = t_star;
-    const Index nq = tq.size();
-    // Prior of f_child over tq given the siblings: μ_g, Σ_g + K_f.
-    VecX mu = VecX::Zero(d * nq);
-    MatX p = lmc_covariance(model.child, tq, tq);
-    ChildPosterior out;
-    if (model.hierarchical) {
+    const Index t = static_cast<Index>(data.frames());
+    const Grid grid = make_grid(data.times, t_star);
+    GridGaussian g;
+    if (!model.hierarchical) {
+        g.mean = VecX::Zero(d * grid.z.size());
+        g.cov = MatX::Zero(g.mean.size(), g.mean.size());
+    } else if (model.grouped) {
+        g = group_on_grid(model, data, data.groups[child], static_cast<std::ptrdiff_t>(child), grid);
+    } else {
         std::vector<std::size_t> members;
         for (std::size_t r = 0; r < data.child_count(); ++r)
             if (r != child) members.push_back(r);
-        ParentPosterior pp = parent_posterior_structured(model, data, members, tq);
-        if (!pp.ok) {
-            out.ok = false;
-            return out;
-        }
-        mu = pp.mean;
-        p += pp.cov;
+        g = trend_on_grid(model, data, members, grid);
     }
-    std::vector<Index> io, is;
-    for (Index k = 0; k < d; ++k) {
-        for (Index i = 0; i < no; ++i) io.push_back(k * nq + i);
-        for (Index i = 0; i < ts; ++i) is.push_back(k * nq + no + i);
+    if (!g.ok) return g;
+    g.cov += lmc_covariance(model.child, grid.z, grid.z);
+    std::vector<Index> frames;
+    for (Index f = 0; f < t; ++f)
+        if (data.is_observed(child, static_cast<std::size_t>(f))) frames.push_back(f);
+    if (!frames.empty()) {
+        const auto sel = grid_indices(d, grid.z.size(), frames);
+        const VecX y = vec_output_major(data.children[child]);
+        const VecX noise = model.noise_variance();
+        VecX yo(static_cast<Index>(sel.size()));
+        VecX no(yo.size());
+        const Index nf = static_cast<Index>(frames.size());
+        for (Index k = 0; k < d; ++k)
+            for (Index i = 0; i < nf; ++i) {
+                yo[k * nf + i] = y[k * t + frames[static_cast<std::size_t>(i)]];
+                no[k * nf + i] = noise[k];
+            }
+        g.ok = condition(g, sel, yo, no.asDiagonal().toDenseMatrix());
     }
-    const Index m = static_cast<Index>(io.size()), ms = static_cast<Index>(is.size());
-    MatX poo(m, m), pso(ms, m), pss(ms, ms);
-    for (Index j = 0; j < m; ++j) {
-        for (Index i = 0; i < m; ++i) poo(i, j) = p(io[i], io[j]);
-        for (Index i = 0; i < ms; ++i) pso(i, j) = p(is[i], io[j]);
-    }
-    for (Index j = 0; j < ms; ++j)
-        for (Index i = 0; i < ms; ++i) pss(i, j) = p(is[i], is[j]);
-    VecX mus(ms);
-    for (Index i = 0; i < ms; ++i) mus[i] = mu[is[i]];
-    if (m == 0) {
-        out.mean = mus;
-        out.cov = pss;
-        return out;
-    }
-    const VecX noise = model.noise_variance();
-    VecX resid(m);
-    const MatX& y = data.children[child];
-    for (Index k = 0, j = 0; k < d; ++k)
-        for (Index i = 0; i < no; ++i, ++j) {
-            resid[j] = y(k, obs_frames[static_cast<std::size_t>(i)]) - mu[io[j]];
-            poo(j, j) += noise[k];
-        }
-    Eigen::LLT<MatX> llt(poo);
-    if (llt.info() != Eigen::Success) {
-        out.ok = false;
-        return out;
-    }
-    out.mean = mus + pso * llt.solve(resid);
-    const MatX v = llt.matrixL().solve(pso.transpose());
-    out.cov = pss - v.transpose() * v;
-    return out;
+    return at_queries(g, grid, d);
 }
 
 void draw_gaussian(const VecX& mean, const MatX& cov, std::size_t count, std::mt19937_64& rng, Index d, Index ts,
@@ -651,12 +452,15 @@ void draw_gaussian(const VecX& mean, const MatX& cov, std::size_t count, std::mt
 VecX HgpModel::noise_variance() const { return (log_noise.array().exp() + noise_floor).matrix(); }
 
 std::size_t HgpModel::parameter_count() const {
-    return child.parameter_count() + (hierarchical ? parent.parameter_count() : 0) + static_cast<std::size_t>(log_noise.size());
+    return child.parameter_count() + (grouped ? group.parameter_count() : 0) + (hierarchical ? parent.parameter_count() : 0) +
+           static_cast<std::size_t>(log_noise.size());
 }
 
 VecX HgpModel::parameters() const {
     std::vector<double> p;
     for (const auto& t : child.terms) append_parameters(t, p);
+    if (grouped)
+        for (const auto& t : group.terms) append_parameters(t, p);
     if (hierarchical)
         for (const auto& t : parent.terms) append_parameters(t, p);
     for (Index i = 0; i < log_noise.size(); ++i) p.push_back(log_noise[i]);
@@ -669,6 +473,8 @@ void HgpModel::set_parameters(const VecX& p) {
                               " values, found " + std::to_string(p.size()));
     std::size_t o = 0;
     for (auto& t : child.terms) o = read_parameters(t, p, o);
+    if (grouped)
+        for (auto& t : group.terms) o = read_parameters(t, p, o);
     if (hierarchical)
         for (auto& t : parent.terms) o = read_parameters(t, p, o);
     for (Index i = 0; i < log_noise.size(); ++i) log_noise[i] = p[static_cast<Index>(o) + i];
@@ -688,6 +494,7 @@ std::vector<std::string> HgpModel::parameter_names() const {
         }
     };
     add(child, "child");
+    if (grouped) add(group, "group");
     if (hierarchical) add(parent, "parent");
     for (Index i = 0; i < log_noise.size(); ++i) names.push_back("log_noise[" + std::to_string(i) + "]");
     return names;
@@ -704,6 +511,11 @@ void validate(const HgpModel& model) {
     if (model.hierarchical) {
         if (model.parent.terms.empty()) throw InvalidArgument("HgpModel: the parent LMC needs at least one term");
         validate(model.parent, d, "parent LMC");
+    }
+    if (model.grouped) {
+        if (!model.hierarchical) throw InvalidArgument("HgpModel: a grouped (three-layer) model must be hierarchical");
+        if (model.group.terms.empty()) throw InvalidArgument("HgpModel: the group LMC needs at least one term");
+        validate(model.group, d, "group LMC");
     }
 }
 
@@ -733,6 +545,44 @@ std::size_t HgpData::observed_value_count() const {
     return n;
 }
 
+HgpData without_child(const HgpData& data, std::size_t child) {
+    if (child >= data.child_count()) throw InvalidArgument("without_child: no child " + std::to_string(child));
+    HgpData out;
+    out.times = data.times;
+    std::vector<std::size_t> kept_groups;
+    for (std::size_t r = 0; r < data.child_count(); ++r) {
+        if (r == child) continue;
+        out.children.push_back(data.children[r]);
+        if (r < data.observed.size()) {
+            out.observed.resize(out.children.size());
+            out.observed.back() = data.observed[r];
+        }
+        if (!data.groups.empty()) kept_groups.push_back(data.groups[r]);
+    }
+    std::vector<std::size_t> present = kept_groups;
+    std::sort(present.begin(), present.end());
+    present.erase(std::unique(present.begin(), present.end()), present.end());
+    for (std::size_t g : kept_groups)
+        out.groups.push_back(static_cast<std::size_t>(std::lower_bound(present.begin(), present.end(), g) - present.begin()));
+    return out;
+}
+
+std::size_t HgpData::group_count() const {
+    std::size_t s = 0;
+    for (std::size_t g : groups) s = std::max(s, g + 1);
+    return s;
+}
+
+std::size_t HgpData::balanced_group_size() const {
+    const std::size_t s = group_count();
+    if (s == 0) return 0;
+    std::vector<std::size_t> size(s, 0);
+    for (std::size_t g : groups) ++size[g];
+    for (std::size_t n : size)
+        if (n != size.front()) return 0;
+    return size.front();
+}
+
 void validate(const HgpData& data) {
     if (data.times.size() == 0 || !data.times.allFinite()) throw InvalidArgument("HgpData: expected ≥ 1 finite sample time");
     if (data.children.empty()) throw InvalidArgument("HgpData: no children");
@@ -757,45 +607,97 @@ void validate(const HgpData& data) {
                                       std::to_string(f));
     }
     if (data.observed_value_count() == 0) throw InvalidArgument("HgpData: nothing is observed");
+    if (!data.groups.empty()) {
+        if (data.groups.size() != data.children.size())
+            throw InvalidArgument("HgpData: " + std::to_string(data.groups.size()) + " group indices for " +
+                                  std::to_string(data.children.size()) + " children");
+        std::vector<bool> used(data.group_count(), false);
+        for (std::size_t g : data.groups) used[g] = true;
+        for (std::size_t g = 0; g < used.size(); ++g)
+            if (!used[g]) throw InvalidArgument("HgpData: group " + std::to_string(g) + " has no child (groups are 0..S−1)");
+    }
 }
 
-LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient, LikelihoodPath path,
-                               int threads) {
+namespace {
+void check_model_data(const HgpModel& model, const HgpData& data, const char* what) {
     validate(model);
     validate(data);
     if (model.outputs() != data.outputs())
-        throw InvalidArgument("log_likelihood: model has " + std::to_string(model.outputs()) + " outputs, data " +
+        throw InvalidArgument(std::string(what) + ": model has " + std::to_string(model.outputs()) + " outputs, data " +
                               std::to_string(data.outputs()));
-    if ((path == LikelihoodPath::Structured || path == LikelihoodPath::LowRank) && !data.all_complete())
+    if (model.grouped && data.groups.empty())
+        throw InvalidArgument(std::string(what) + ": a three-layer model needs each child's group (HgpData::groups)");
+}
+
+/// Whether the structured and low-rank likelihoods apply: every child complete.
+bool structure_applies(const HgpData& data) { return data.all_complete(); }
+}  // namespace
+
+LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient, LikelihoodPath path,
+                               int threads) {
+    check_model_data(model, data, "log_likelihood");
+    const bool structured = structure_applies(data);
+    if ((path == LikelihoodPath::Structured || path == LikelihoodPath::LowRank) && !structured)
         throw InvalidArgument("log_likelihood: the structured and low-rank paths need every child complete (use Dense or Auto)");
-    if (path == LikelihoodPath::Dense || (path == LikelihoodPath::Auto && !data.all_complete()))
+    if (path == LikelihoodPath::Dense || (path == LikelihoodPath::Auto && !structured))
         return dense_likelihood(model, data, with_gradient);
-    if (path == LikelihoodPath::Structured) return structured_likelihood(model, data, with_gradient, threads);
-    const LayerFactors f = layer_factors(model, data.times);
-    if (path == LikelihoodPath::LowRank) return low_rank_likelihood(model, data, with_gradient, threads, f);
+    if (path == LikelihoodPath::Structured) return detail::structured_likelihood(model, data, with_gradient, threads);
+    const detail::Levels levels = detail::make_levels(model, data);
+    if (path == LikelihoodPath::LowRank) {
+        if (!levels.coupled.empty())
+            throw InvalidArgument("log_likelihood: the low-rank path needs groups of one size (use Structured or Auto)");
+        return detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
+    }
     // Auto, every child complete.
-    if (low_rank_is_cheaper(model, f, static_cast<Index>(data.outputs()), static_cast<Index>(data.frames()),
-                            static_cast<double>(data.child_count()))) {
-        LikelihoodValue v = low_rank_likelihood(model, data, with_gradient, threads, f);
+    if (detail::low_rank_is_cheaper(model, data, levels)) {
+        LikelihoodValue v = detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
         if (v.ok) return v;
         // P (the κ and noise blocks) may be singular while the full covariance is not.
     }
-    return structured_likelihood(model, data, with_gradient, threads);
+    return detail::structured_likelihood(model, data, with_gradient, threads);
 }
 
 namespace {
 void check_prediction_args(const HgpModel& model, const HgpData& data, const VecX& t_star) {
-    validate(model);
-    validate(data);
-    if (model.outputs() != data.outputs()) throw InvalidArgument("prediction: model and data have different outputs");
+    check_model_data(model, data, "prediction");
     check_times(t_star);
+}
+
+std::vector<std::size_t> all_children(const HgpData& data) {
+    std::vector<std::size_t> all(data.child_count());
+    for (std::size_t r = 0; r < all.size(); ++r) all[r] = r;
+    return all;
 }
 }  // namespace
 
 GaussianPrediction predict_parent_dense(const HgpModel& model, const HgpData& data, const VecX& t_star) {
     check_prediction_args(model, data, t_star);
     if (!model.hierarchical) throw InvalidArgument("predict_parent: the MOA baseline has no parent");
-    return condition_dense(model, data, t_star, -1);
+    return condition_dense(model, data, t_star, Target{Target::Parent, 0});
+}
+
+namespace {
+void check_group(const HgpModel& model, const HgpData& data, std::size_t group) {
+    if (!model.grouped) throw InvalidArgument("predict_group: the model has no group layer");
+    if (group >= data.group_count()) throw InvalidArgument("predict_group: no group " + std::to_string(group));
+}
+}  // namespace
+
+GaussianPrediction predict_group_dense(const HgpModel& model, const HgpData& data, std::size_t group,
+                                       const VecX& t_star) {
+    check_prediction_args(model, data, t_star);
+    check_group(model, data, group);
+    return condition_dense(model, data, t_star, Target{Target::Group, group});
+}
+
+GaussianPrediction predict_group(const HgpModel& model, const HgpData& data, std::size_t group, const VecX& t_star) {
+    check_prediction_args(model, data, t_star);
+    check_group(model, data, group);
+    if (!data.all_complete()) return condition_dense(model, data, t_star, Target{Target::Group, group});
+    const Grid grid = make_grid(data.times, t_star);
+    const Index d = static_cast<Index>(data.outputs());
+    return to_prediction(at_queries(group_on_grid(model, data, group, -1, grid), grid, d), d, t_star.size(),
+                         model.noise_variance());
 }
 
 GaussianPrediction predict_child_dense(const HgpModel& model, const HgpData& data, std::size_t child,
@@ -818,25 +720,19 @@ GaussianPrediction predict_child_dense(const HgpModel& model, const HgpData& dat
             p.noise = model.noise_variance();
             return p;
         }
-        return condition_dense(model, own, t_star, 0);
+        return condition_dense(model, own, t_star, Target{Target::Child, 0});
     }
-    return condition_dense(model, data, t_star, static_cast<std::ptrdiff_t>(child));
+    return condition_dense(model, data, t_star, Target{Target::Child, child});
 }
 
 GaussianPrediction predict_parent(const HgpModel& model, const HgpData& data, const VecX& t_star) {
     check_prediction_args(model, data, t_star);
     if (!model.hierarchical) throw InvalidArgument("predict_parent: the MOA baseline has no parent");
-    if (!data.all_complete()) return condition_dense(model, data, t_star, -1);
-    std::vector<std::size_t> all(data.child_count());
-    for (std::size_t r = 0; r < all.size(); ++r) all[r] = r;
+    if (!data.all_complete()) return condition_dense(model, data, t_star, Target{Target::Parent, 0});
+    const Grid grid = make_grid(data.times, t_star);
     const Index d = static_cast<Index>(data.outputs());
-    ParentPosterior pp = parent_posterior_structured(model, data, all, t_star);
-    if (!pp.ok) return nan_prediction(d, t_star.size(), model.noise_variance());
-    GaussianPrediction p;
-    p.mean = unvec_output_major(pp.mean, d, t_star.size());
-    p.variance = unvec_output_major(pp.cov.diagonal(), d, t_star.size());
-    p.noise = model.noise_variance();
-    return p;
+    return to_prediction(at_queries(trend_on_grid(model, data, all_children(data), grid), grid, d), d, t_star.size(),
+                         model.noise_variance());
 }
 
 GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std::size_t child, const VecX& t_star) {
@@ -845,15 +741,9 @@ GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std
     bool siblings_complete = true;
     for (std::size_t r = 0; r < data.child_count(); ++r)
         if (r != child && !data.is_complete(r)) siblings_complete = false;
-    if (model.hierarchical && !siblings_complete) return condition_dense(model, data, t_star, static_cast<std::ptrdiff_t>(child));
+    if (model.hierarchical && !siblings_complete) return condition_dense(model, data, t_star, Target{Target::Child, child});
     const Index d = static_cast<Index>(data.outputs());
-    ChildPosterior cp = child_posterior_structured(model, data, child, t_star);
-    if (!cp.ok) return nan_prediction(d, t_star.size(), model.noise_variance());
-    GaussianPrediction p;
-    p.mean = unvec_output_major(cp.mean, d, t_star.size());
-    p.variance = unvec_output_major(cp.cov.diagonal(), d, t_star.size());
-    p.noise = model.noise_variance();
-    return p;
+    return to_prediction(child_posterior_structured(model, data, child, t_star), d, t_star.size(), model.noise_variance());
 }
 
 MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_star) {
@@ -897,12 +787,13 @@ std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, co
     const Index ts = t_star.size();
     VecX mean;
     MatX cov = lmc_covariance(model.child, t_star, t_star);
+    // Three layers: a new child of a new group deviates from the trend by h + f.
+    if (model.grouped) cov += lmc_covariance(model.group, t_star, t_star);
     if (model.hierarchical && options.parent_uncertainty) {
         if (!data.all_complete())
             throw InvalidArgument("sample_children: parent_uncertainty needs every child complete");
-        std::vector<std::size_t> all(data.child_count());
-        for (std::size_t r = 0; r < all.size(); ++r) all[r] = r;
-        ParentPosterior pp = parent_posterior_structured(model, data, all, t_star);
+        const Grid grid = make_grid(data.times, t_star);
+        const GridGaussian pp = at_queries(trend_on_grid(model, data, all_children(data), grid), grid, d);
         if (!pp.ok) throw InvalidArgument("sample_children: the parent posterior cannot be computed");
         mean = pp.mean;
         cov += pp.cov;

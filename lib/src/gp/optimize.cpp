@@ -79,6 +79,7 @@ VecX perturbed(const HgpModel& start, double spread, std::uint64_t seed) {
         }
     };
     shake(m.child);
+    if (m.grouped) shake(m.group);
     if (m.hierarchical) shake(m.parent);
     for (Index i = 0; i < m.log_noise.size(); ++i) m.log_noise[i] += spread * normal(rng);
     return m.parameters();
@@ -98,14 +99,19 @@ std::string to_string(FitStatus status) {
 
 HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
     validate(data);
-    if (spec.child_terms == 0 || (spec.hierarchical && spec.parent_terms == 0) || spec.rank == 0)
+    if (spec.child_terms == 0 || (spec.hierarchical && spec.parent_terms == 0) || (spec.grouped && spec.group_terms == 0) ||
+        spec.rank == 0)
         throw InvalidArgument("initial_model: need ≥ 1 term per layer and rank ≥ 1");
+    if (spec.grouped && (!spec.hierarchical || data.groups.empty()))
+        throw InvalidArgument("initial_model: three layers need a hierarchical model and each child's group (HgpData::groups)");
     const Index d = static_cast<Index>(data.outputs());
     const Index t = static_cast<Index>(data.frames());
     // Second-moment matrices (D×D) over the observed frames: of the children's mean per frame (the
     // parent's share) and of the deviations from it (the child's); MOA: of the values themselves.
     MatX mean_m2 = MatX::Zero(d, d), dev_m2 = MatX::Zero(d, d), total_m2 = MatX::Zero(d, d);
-    double count_m = 0.0, count_dev = 0.0;
+    MatX group_m2 = MatX::Zero(d, d), within_m2 = MatX::Zero(d, d);
+    double count_m = 0.0, count_dev = 0.0, count_group = 0.0;
+    const std::size_t groups = spec.grouped ? data.group_count() : 0;
     for (Index f = 0; f < t; ++f) {
         VecX sum = VecX::Zero(d);
         double n = 0.0;
@@ -125,13 +131,34 @@ HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
                 total_m2.noalias() += data.children[r].col(f) * data.children[r].col(f).transpose();
                 count_dev += 1.0;
             }
+        // Three layers: each group's mean about the mean, each child about its group's mean.
+        for (std::size_t s = 0; s < groups; ++s) {
+            VecX gsum = VecX::Zero(d);
+            double gn = 0.0;
+            for (std::size_t r = 0; r < data.child_count(); ++r)
+                if (data.groups[r] == s && data.is_observed(r, static_cast<std::size_t>(f))) {
+                    gsum += data.children[r].col(f);
+                    gn += 1.0;
+                }
+            if (gn == 0.0) continue;
+            const VecX gmean = gsum / gn;
+            group_m2.noalias() += (gmean - mean) * (gmean - mean).transpose();
+            count_group += 1.0;
+            for (std::size_t r = 0; r < data.child_count(); ++r)
+                if (data.groups[r] == s && data.is_observed(r, static_cast<std::size_t>(f))) {
+                    const VecX dev = data.children[r].col(f) - gmean;
+                    within_m2.noalias() += dev * dev.transpose();
+                }
+        }
     }
     mean_m2 /= std::max(count_m, 1.0);
     dev_m2 /= std::max(count_dev, 1.0);
     total_m2 /= std::max(count_dev, 1.0);
+    group_m2 /= std::max(count_group, 1.0);
+    within_m2 /= std::max(count_dev, 1.0);
     const double floor = 1e-6;
     const MatX& parent_m2 = mean_m2;
-    const MatX& child_m2 = spec.hierarchical ? dev_m2 : total_m2;
+    const MatX& child_m2 = spec.grouped ? within_m2 : spec.hierarchical ? dev_m2 : total_m2;
     const double span = std::max(data.times.maxCoeff() - data.times.minCoeff(), 1e-6);
 
     // Each layer's Q terms share its second moment; term q's W takes the next `rank` principal
@@ -167,8 +194,10 @@ HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
     };
     HgpModel m;
     m.hierarchical = spec.hierarchical;
+    m.grouped = spec.grouped;
     m.noise_floor = spec.noise_floor;
     m.child = make(spec.child_terms, child_m2, 0);
+    if (spec.grouped) m.group = make(spec.group_terms, group_m2, 2);
     if (spec.hierarchical) m.parent = make(spec.parent_terms, parent_m2, 1);
     m.log_noise = (0.01 * child_m2.diagonal().cwiseMax(floor)).array().log().matrix();
     if (!spec.scan_lengthscales) return m;
@@ -183,6 +212,7 @@ HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
             HgpModel trial = base;
             for (auto& term : trial.child.terms) term.log_lengthscale += std::log(fc);
             for (auto& term : trial.parent.terms) term.log_lengthscale += std::log(fp);
+            for (auto& term : trial.group.terms) term.log_lengthscale += std::log(fp);
             const LikelihoodValue v = log_likelihood(trial, data, false);
             if (v.ok && v.log_likelihood > best) {
                 best = v.log_likelihood;

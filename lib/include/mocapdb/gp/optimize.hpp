@@ -15,7 +15,9 @@ namespace mocapdb::gp {
 /// Shape of a model to fit.
 struct ModelSpec {
     bool hierarchical = true;            ///< false: the MOA baseline
+    bool grouped = false;                ///< three layers (trend → group → child); needs HgpData::groups
     std::size_t parent_terms = 1;        ///< Q of the parent LMC (hierarchical only)
+    std::size_t group_terms = 1;         ///< Q of the group LMC (grouped only)
     std::size_t child_terms = 1;         ///< Q of the child LMC
     std::size_t rank = 1;                ///< columns of every W_q
     KernelType kernel = KernelType::Rbf; ///< base kernel of every term
@@ -25,13 +27,14 @@ struct ModelSpec {
 };
 
 /// A deterministic starting point from the data's second moments: per layer, the D×D second-moment
-/// matrix of the children's mean (parent) and of the deviations from it (child; MOA: of the values) is
-/// shared by the layer's terms; term q's W takes the next `rank` principal directions (80 % of their
+/// matrix of the children's mean (parent) and of the deviations from it (child; MOA: of the values;
+/// three layers: the group means' deviations from the mean for the group layer, the children's
+/// deviations from their group's mean for the child layer) is shared by the layer's terms; term q's W takes the next `rank` principal directions (80 % of their
 /// eigenvalues, plus a small fixed perturbation: a zero W is a stationary point of the likelihood),
 /// κ the remaining diagonal (≥ 5 %); the noise starts at 1 % of the child layer's diagonal; lengthscales
 /// are spread geometrically between 5 % and 50 % of the time span (20 % for Q = 1) and then, with
 /// spec.scan_lengthscales, scaled per layer by the best of 0.25, 0.5, 1, 2, 4 under the likelihood
-/// (≤ 25 evaluations without gradient).
+/// (≤ 25 evaluations without gradient; three layers: the group layer's factor follows the parent's).
 HgpModel initial_model(const HgpData& data, const ModelSpec& spec);
 
 enum class FitStatus {
