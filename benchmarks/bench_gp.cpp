@@ -1,7 +1,7 @@
 // MOHGP timings (issue "Hierarchical multi-output Gaussian processes", acceptance 4):
 //   one log likelihood + gradient evaluation, structured (1 and 2 threads) vs dense, by size;
 //   training time for 3 children × 39 outputs × 90 frames (CMU walks 02_01, 02_02, 35_01; target ≤ 60 s);
-//   per-evaluation time at larger D·T, from which the largest problem trainable in 10 minutes is
+//   per-evaluation time at larger D·T (two layers, and three layers with equal and unequal groups), from which the largest problem trainable in 10 minutes is
 //   estimated (evaluations needed × seconds per evaluation).
 // Plain executable; prints one "key value unit" line per figure.
 // Usage: bench_gp [max_iterations=300] [q=1] [--no-train] [--no-structured] [--sizes N1,N2,...] [--train-dofs K=39]
@@ -115,6 +115,28 @@ int main(int argc, char** argv) {
         const double l2 = eval_seconds(m, data, LikelihoodPath::LowRank, 2, 3);
         std::printf("eval_lowrank D=%lld T=90 R=3 n=%lld params=%zu: %.4f s (1 thread) %.4f s (2 threads)\n",
                     static_cast<long long>(d), static_cast<long long>(d * 90), m.parameter_count(), l1, l2);
+    }
+    // 2b. Three layers (trend → group → child) at the same sizes: equal groups {0,0,1,1} and unequal
+    // groups {0,0,1} (the coupled size classes).
+    for (Eigen::Index n : sizes) {
+        const Eigen::Index d = std::max<Eigen::Index>(1, n / 90);
+        ModelSpec s3 = spec;
+        s3.grouped = true;
+        s3.group_terms = q;
+        HgpData equal = synthetic(d, 90, 4);
+        equal.groups = {0, 0, 1, 1};
+        const HgpModel m = initial_model(equal, s3);
+        std::printf("eval_lowrank_3layers D=%lld T=90 R=4 groups=2x2 params=%zu: %.4f s (1 thread) %.4f s (2 threads)\n",
+                    static_cast<long long>(d), m.parameter_count(), eval_seconds(m, equal, LikelihoodPath::LowRank, 1, 3),
+                    eval_seconds(m, equal, LikelihoodPath::LowRank, 2, 3));
+        HgpData unequal = synthetic(d, 90, 3);
+        unequal.groups = {0, 0, 1};
+        std::printf("eval_lowrank_3layers D=%lld T=90 R=3 groups=2+1 (coupled): %.4f s (1 thread) %.4f s (2 threads)\n",
+                    static_cast<long long>(d), eval_seconds(m, unequal, LikelihoodPath::LowRank, 1, 3),
+                    eval_seconds(m, unequal, LikelihoodPath::LowRank, 2, 3));
+        if (structured)
+            std::printf("eval_structured_3layers D=%lld T=90 R=3 groups=2+1 (coupled): %.3f s (2 threads)\n",
+                        static_cast<long long>(d), eval_seconds(m, unequal, LikelihoodPath::Structured, 2, 1));
     }
     if (!train) return 0;
     // 3. Training: 3 children × 39 outputs × 90 frames of CMU walks.

@@ -150,7 +150,7 @@ TEST_CASE("gp --layers 3: subjects from the CMU names form the middle layer", "[
     CHECK(j["parameters"].has("parent.q0.log_lengthscale"));
     CHECK(j["status"].text != "numerical_failure");
 
-    // Interpolating 16_16 leaves groups of sizes 2, 1, 1 for training (the coupled structured path).
+    // Interpolating 16_16 leaves groups of sizes 2, 1, 1 for training (the coupled size classes).
     r = run_cli("gp interpolate" + common + " --child 16_16 --observed 5 --json");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);

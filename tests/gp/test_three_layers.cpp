@@ -48,8 +48,8 @@ TEST_CASE("three layers: structured and low-rank likelihoods and gradients equal
         std::size_t terms;
         Eigen::Index rank;
     };
-    // Balanced groups (one size: every path), unequal sizes (coupled size classes: structured only),
-    // one child per group and one group; n = D·T = 150 crosses the blocked inverse's block boundary.
+    // Balanced groups (one size), unequal sizes (the coupled size classes), one child per group and one
+    // group; n = D·T = 150 crosses the blocked inverse's block boundary.
     const Case cases[] = {{2, 6, {0, 0, 1, 1}, 2, 1},     {3, 8, {0, 1, 2, 0, 1, 2}, 1, 2}, {2, 7, {0, 1, 2}, 2, 1},
                           {2, 6, {0, 0, 0}, 1, 1},        {3, 50, {1, 0, 1, 0}, 1, 1},      {2, 6, {0, 1, 1}, 2, 1},
                           {2, 5, {0, 1, 1, 2, 2, 2}, 1, 2}, {3, 50, {0, 0, 1}, 1, 1}};
@@ -58,7 +58,6 @@ TEST_CASE("three layers: structured and low-rank likelihoods and gradients equal
         const HgpData data = grouped_data(c.d, c.t, c.groups, 41 + c.groups.size());
         const LikelihoodValue dense = log_likelihood(model, data, true, LikelihoodPath::Dense);
         REQUIRE(dense.ok);
-        const bool balanced = data.balanced_group_size() > 0;
         for (int threads : {1, 2}) {
             const LikelihoodValue s = log_likelihood(model, data, true, LikelihoodPath::Structured, threads);
             REQUIRE(s.ok);
@@ -68,10 +67,6 @@ TEST_CASE("three layers: structured and low-rank likelihoods and gradients equal
                            << ": structured vs dense value " << dv << ", gradient " << dg);
             CHECK(dv < 1e-8);
             CHECK(dg < 1e-8);
-            if (!balanced) {
-                CHECK_THROWS_AS(log_likelihood(model, data, true, LikelihoodPath::LowRank, threads), InvalidArgument);
-                continue;
-            }
             const LikelihoodValue lr = log_likelihood(model, data, true, LikelihoodPath::LowRank, threads);
             REQUIRE(lr.ok);
             const double lv = relative_difference(lr.log_likelihood, dense.log_likelihood);
@@ -85,13 +80,15 @@ TEST_CASE("three layers: structured and low-rank likelihoods and gradients equal
 
 TEST_CASE("three layers: analytic gradients match finite differences", "[gp][likelihood][layers]") {
     const HgpModel model = make_grouped_model(2, 2, 1);
-    // Dense with a partial child, structured with unequal groups (coupled), low rank with equal groups.
+    // Dense with a partial child; structured and low rank with unequal groups (coupled), low rank with
+    // equal groups.
     HgpData partial = grouped_data(2, 5, {0, 0, 1}, 3);
     partial.observed = {{}, {true, false, true, true, false}, {}};
     const HgpData unequal = grouped_data(2, 5, {0, 1, 1, 2, 2, 2}, 4);
     const HgpData equal = grouped_data(2, 5, {0, 1, 0, 1}, 5);
     const std::pair<const HgpData*, LikelihoodPath> runs[] = {
-        {&partial, LikelihoodPath::Dense}, {&unequal, LikelihoodPath::Structured}, {&equal, LikelihoodPath::LowRank}};
+        {&partial, LikelihoodPath::Dense}, {&unequal, LikelihoodPath::Structured}, {&unequal, LikelihoodPath::LowRank},
+        {&equal, LikelihoodPath::LowRank}};
     for (const auto& [data, path] : runs) {
         const LikelihoodValue v = log_likelihood(model, *data, true, path);
         REQUIRE(v.ok);

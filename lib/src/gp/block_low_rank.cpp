@@ -26,6 +26,29 @@ KernelFactor factor_kernel(const LmcTerm& term, const VecX& times) {
     return f;
 }
 
+KernelFactor extended_factor(const LmcTerm& term, const KernelFactor& base, const VecX& times, const VecX& a,
+                             bool a_rank1) {
+    const Index k = a.size(), t = base.k.rows(), m = base.s.cols();
+    const MatX amat = a_rank1 ? MatX(a * a.transpose()) : MatX(a.asDiagonal());
+    const MatX dk = kernel_matrix_dlog_lengthscale(term.kernel, term.log_lengthscale, times, times);
+    KernelFactor f;
+    f.k.resize(k * t, k * t);
+    f.dk.resize(k * t, k * t);
+    for (Index j = 0; j < k; ++j)
+        for (Index i = 0; i < k; ++i) {
+            f.k.block(i * t, j * t, t, t) = amat(i, j) * base.k;
+            f.dk.block(i * t, j * t, t, t) = amat(i, j) * dk;
+        }
+    if (a_rank1) {
+        f.s.resize(k * t, m);
+        for (Index i = 0; i < k; ++i) f.s.middleRows(i * t, t) = a[i] * base.s;
+    } else {
+        f.s = MatX::Zero(k * t, k * m);
+        for (Index i = 0; i < k; ++i) f.s.block(i * t, i * m, t, m) = std::sqrt(a[i]) * base.s;
+    }
+    return f;
+}
+
 Index BlockLowRank::rank_of(const std::vector<WeightedTerm>& terms) {
     Index m = 0;
     for (const auto& wt : terms) m += wt.term->W.cols() * wt.factor->s.cols();
@@ -147,10 +170,10 @@ MatX weighted_block_sum(const MatX& a, const VecX& w, Index d, Index t) {
 std::size_t structured_term_gradient(const LmcTerm& term, const KernelFactor& factor, const StructuredSymmetric& g,
                                      double scale, const VecX& times, std::size_t offset, VecX& out_gradient) {
     const Index d = static_cast<Index>(term.outputs());
-    const Index t = times.size();
+    const Index t = factor.k.rows();
     const Index m = g.u.cols();
     const MatX& k = factor.k;
-    const MatX dk = kernel_matrix_dlog_lengthscale(term.kernel, term.log_lengthscale, times, times);
+    const MatX dk = factor.dk.size() > 0 ? factor.dk : kernel_matrix_dlog_lengthscale(term.kernel, term.log_lengthscale, times, times);
     const VecX kappa = term.log_kappa.array().exp().matrix();
     const MatX& w = term.W;
     // Block-diagonal part.

@@ -26,11 +26,16 @@
 namespace mocapdb::gp::detail {
 
 /// k = kernel matrix at the shared times, s = its square-root factor (T × m, k ≈ s sᵀ, m ≤ T columns
-/// with eigenvalue above T·ε·λ_max).
+/// with eigenvalue above T·ε·λ_max). A factor may also describe an "extended" kernel A ⊗ k over
+/// (class, time) pairs (the coupled size classes of three-layer data): then dk holds ∂k/∂log ℓ of that
+/// kernel (empty: computed from the term and the times).
 struct KernelFactor {
     MatX k;
     MatX s;
+    MatX dk;
 };
+/// The factor of A ⊗ k for a K×K matrix A = a aᵀ (a_rank1) or diag(a) (!a_rank1), with dk.
+KernelFactor extended_factor(const LmcTerm& term, const KernelFactor& base, const VecX& times, const VecX& a, bool a_rank1);
 KernelFactor factor_kernel(const LmcTerm& term, const VecX& times);
 
 /// One weighted term c·(B_q ⊗ k_q) of a covariance.

@@ -643,11 +643,7 @@ LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool 
         return dense_likelihood(model, data, with_gradient);
     if (path == LikelihoodPath::Structured) return detail::structured_likelihood(model, data, with_gradient, threads);
     const detail::Levels levels = detail::make_levels(model, data);
-    if (path == LikelihoodPath::LowRank) {
-        if (!levels.coupled.empty())
-            throw InvalidArgument("log_likelihood: the low-rank path needs groups of one size (use Structured or Auto)");
-        return detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
-    }
+    if (path == LikelihoodPath::LowRank) return detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
     // Auto, every child complete.
     if (detail::low_rank_is_cheaper(model, data, levels)) {
         LikelihoodValue v = detail::low_rank_likelihood(model, data, levels, with_gradient, threads);

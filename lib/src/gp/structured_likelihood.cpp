@@ -305,16 +305,79 @@ LayerFactors layer_factors(const HgpModel& model, const VecX& times) {
     return f;
 }
 
-/// The weighted terms of one level's covariance.
-std::vector<WeightedTerm> level_terms(const HgpModel& model, const LayerFactors& f, const Level& lev) {
-    std::vector<WeightedTerm> out;
-    for (std::size_t q = 0; q < model.child.terms.size(); ++q) out.push_back({&model.child.terms[q], &f.child[q], 1.0});
-    if (lev.group_weight != 0.0)
-        for (std::size_t q = 0; q < model.group.terms.size(); ++q)
-            out.push_back({&model.group.terms[q], &f.group[q], lev.group_weight});
-    if (lev.parent_weight != 0.0)
-        for (std::size_t q = 0; q < model.parent.terms.size(); ++q)
-            out.push_back({&model.parent.terms[q], &f.parent[q], lev.parent_weight});
+/// One level of the low-rank path: columns e over D outputs × `frames`, covariance Σ weight·B_q ⊗ k_q
+/// (+ noise), each term with the offset of its parameters.
+struct LowRankLevel {
+    MatX e;
+    double count = 1.0;
+    Index frames = 0;
+    std::vector<WeightedTerm> terms;
+    std::vector<std::size_t> offsets;
+    std::string name;
+};
+
+void add_terms(const Lmc& lmc, const std::vector<KernelFactor>& factors, double weight, std::size_t offset,
+               LowRankLevel& level) {
+    if (weight == 0.0) return;
+    for (std::size_t q = 0; q < lmc.terms.size(); ++q) {
+        level.terms.push_back({&lmc.terms[q], &factors[q], weight});
+        level.offsets.push_back(offset);
+        offset += lmc.terms[q].parameter_count();
+    }
+}
+
+/// The low-rank levels: the independent ones over the shared times, and the coupled size classes
+/// (if any) as one covariance over D outputs × (class, time): with v_c = √R_c,
+///   Σ = Σ_q B_q^f ⊗ (I ⊗ k_q) + Σ_q B_q^h ⊗ (diag(n_c) ⊗ k_q) + Σ_q B_q^g ⊗ (v vᵀ ⊗ k_q) + noise,
+/// an LMC over extended inputs whose kernels stay factored (extended_factor). `extended` holds their
+/// factors (it must outlive the levels).
+std::vector<LowRankLevel> low_rank_levels(const HgpModel& model, const HgpData& data, const Levels& levels,
+                                          const LayerFactors& f, std::vector<KernelFactor>& extended) {
+    const ParameterOffsets off = parameter_offsets(model);
+    const Index t = static_cast<Index>(data.frames());
+    std::vector<LowRankLevel> out;
+    for (const Level& lev : levels.independent) {
+        LowRankLevel l;
+        l.e = lev.e;
+        l.count = lev.count;
+        l.frames = t;
+        l.name = level_name(lev.group_weight, lev.parent_weight);
+        add_terms(model.child, f.child, 1.0, off.child, l);
+        if (model.grouped) add_terms(model.group, f.group, lev.group_weight, off.group, l);
+        if (model.hierarchical) add_terms(model.parent, f.parent, lev.parent_weight, off.parent, l);
+        out.push_back(std::move(l));
+    }
+    if (levels.coupled.empty()) return out;
+    const Index k = static_cast<Index>(levels.coupled.size());
+    const Index d = static_cast<Index>(data.outputs());
+    VecX ones = VecX::Ones(k), sizes(k), v(k);
+    for (Index c = 0; c < k; ++c) {
+        sizes[c] = levels.coupled[static_cast<std::size_t>(c)].group_size;
+        v[c] = std::sqrt(levels.coupled[static_cast<std::size_t>(c)].children);
+    }
+    LowRankLevel l;
+    l.frames = k * t;
+    l.name = "the coupled size classes";
+    l.e.resize(d * k * t, 1);
+    for (Index c = 0; c < k; ++c) {
+        const VecX& mean = levels.coupled[static_cast<std::size_t>(c)].mean;
+        for (Index i = 0; i < d; ++i) l.e.block(i * k * t + c * t, 0, t, 1) = v[c] * mean.segment(i * t, t);
+    }
+    // Reserved: the levels point into `extended`.
+    extended.clear();
+    extended.reserve(model.child.terms.size() + model.group.terms.size() + model.parent.terms.size());
+    auto add = [&](const Lmc& lmc, const std::vector<KernelFactor>& base, const VecX& a, bool rank1, std::size_t offset) {
+        for (std::size_t q = 0; q < lmc.terms.size(); ++q) {
+            extended.push_back(extended_factor(lmc.terms[q], base[q], data.times, a, rank1));
+            l.terms.push_back({&lmc.terms[q], &extended.back(), 1.0});
+            l.offsets.push_back(offset);
+            offset += lmc.terms[q].parameter_count();
+        }
+    };
+    add(model.child, f.child, ones, false, off.child);
+    add(model.group, f.group, sizes, false, off.group);
+    add(model.parent, f.parent, v, true, off.parent);
+    out.push_back(std::move(l));
     return out;
 }
 
@@ -322,38 +385,38 @@ std::vector<WeightedTerm> level_terms(const HgpModel& model, const LayerFactors&
 
 LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, const Levels& levels,
                                     bool with_gradient, int threads) {
-    if (!levels.coupled.empty()) throw InvalidArgument("low-rank likelihood: groups of unequal size (use Structured)");
-    const Index t = static_cast<Index>(data.frames());
     const Index d = static_cast<Index>(data.outputs());
-    const Index n = d * t;
+    const Index n = d * static_cast<Index>(data.frames());
     const VecX noise = model.noise_variance();
     const ParameterOffsets off = parameter_offsets(model);
     const Index parameters = static_cast<Index>(model.parameter_count());
     const LayerFactors f = layer_factors(model, data.times);
-    std::vector<LevelResult> parts(levels.independent.size());
+    std::vector<KernelFactor> extended;
+    const std::vector<LowRankLevel> lr = low_rank_levels(model, data, levels, f, extended);
+    std::vector<LevelResult> parts(lr.size());
     std::vector<std::function<void()>> tasks;
-    for (std::size_t k = 0; k < levels.independent.size(); ++k)
+    for (std::size_t k = 0; k < lr.size(); ++k)
         tasks.push_back([&, k] {
-            const Level& lev = levels.independent[k];
+            const LowRankLevel& lev = lr[k];
             LevelResult& res = parts[k];
             BlockLowRank fx;
             std::string msg;
-            if (!fx.build(level_terms(model, f, lev), noise, t, msg)) {
-                res.message = level_name(lev.group_weight, lev.parent_weight) + ": " + msg;
+            if (!fx.build(lev.terms, noise, lev.frames, msg)) {
+                res.message = lev.name + ": " + msg;
                 return;
             }
             const MatX p = fx.solve(lev.e);
             res.value = -0.5 * (lev.e.cwiseProduct(p).sum() + lev.count * fx.log_det);
             res.ok = std::isfinite(res.value);
-            if (!res.ok) res.message = "non-finite log likelihood of " + level_name(lev.group_weight, lev.parent_weight);
+            if (!res.ok) res.message = "non-finite log likelihood of " + lev.name;
             if (!res.ok || !with_gradient) return;
             // W = P Pᵀ − count·X⁻¹ = P Pᵀ − count·P_X⁻¹ + count·V K⁻¹ Vᵀ (block_low_rank.hpp).
-            const Index cols = p.cols(), m = fx.v.cols();
+            const Index cols = p.cols(), m = fx.v.cols(), rows = lev.e.rows();
             StructuredSymmetric g;
             g.blocks.resize(static_cast<std::size_t>(d));
             for (Index i = 0; i < d; ++i) g.blocks[static_cast<std::size_t>(i)] = -lev.count * fx.p_inverse[static_cast<std::size_t>(i)];
-            g.u.resize(n, cols + m);
-            g.x.resize(n, cols + m);
+            g.u.resize(rows, cols + m);
+            g.x.resize(rows, cols + m);
             g.u.leftCols(cols) = p;
             g.x.leftCols(cols) = p;
             if (m > 0) {
@@ -361,15 +424,10 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
                 g.x.rightCols(m).noalias() = lev.count * fx.v * fx.cap_inverse;
             }
             res.gradient = VecX::Zero(parameters);
-            auto layer = [&](const Lmc& lmc, const std::vector<KernelFactor>& factors, double weight, std::size_t offset) {
-                if (weight == 0.0) return;
-                for (std::size_t q = 0; q < lmc.terms.size(); ++q)
-                    offset = structured_term_gradient(lmc.terms[q], factors[q], g, weight, data.times, offset, res.gradient);
-            };
-            layer(model.child, f.child, 1.0, off.child);
-            if (model.grouped) layer(model.group, f.group, lev.group_weight, off.group);
-            if (model.hierarchical) layer(model.parent, f.parent, lev.parent_weight, off.parent);
-            const VecX tr = structured_block_traces(g, d, t);
+            for (std::size_t j = 0; j < lev.terms.size(); ++j)
+                structured_term_gradient(*lev.terms[j].term, *lev.terms[j].factor, g, lev.terms[j].weight, data.times,
+                                         lev.offsets[j], res.gradient);
+            const VecX tr = structured_block_traces(g, d, lev.frames);
             for (Index i = 0; i < d; ++i)
                 res.gradient[static_cast<Index>(off.noise) + i] = 0.5 * tr[i] * std::exp(model.log_noise[i]);
         });
@@ -379,19 +437,19 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
 }
 
 bool low_rank_is_cheaper(const HgpModel& model, const HgpData& data, const Levels& levels) {
-    if (!levels.coupled.empty()) return false;
-    const Index t = static_cast<Index>(data.frames());
     const Index d = static_cast<Index>(data.outputs());
-    const double n = static_cast<double>(d * t), td = static_cast<double>(t), dd = static_cast<double>(d);
+    const double n = static_cast<double>(d * static_cast<Index>(data.frames())), dd = static_cast<double>(d);
     const LayerFactors f = layer_factors(model, data.times);
+    std::vector<KernelFactor> extended;
     double structured = 0.0, low_rank = 0.0;
-    for (const Level& lev : levels.independent) {
-        structured += n * n * n;
-        const auto terms = level_terms(model, f, lev);
-        const double m = static_cast<double>(BlockLowRank::rank_of(terms));
+    for (const LowRankLevel& lev : low_rank_levels(model, data, levels, f, extended)) {
+        const double td = static_cast<double>(lev.frames), rows = dd * td;
+        // Structured: a factorization and an inverse per level; the coupled classes about 12 n³.
+        structured += lev.frames == static_cast<Index>(data.frames()) ? n * n * n : 12.0 * n * n * n;
+        const double m = static_cast<double>(BlockLowRank::rank_of(lev.terms));
         const double width = static_cast<double>(lev.e.cols()) + m;
-        low_rank += 3.0 * dd * td * td * td + 2.0 * n * td * m + 4.0 * n * m * m + 2.0 * m * m * m +
-                    static_cast<double>(terms.size()) * 8.0 * n * td * width;
+        low_rank += 3.0 * dd * td * td * td + 2.0 * rows * td * m + 4.0 * rows * m * m + 2.0 * m * m * m +
+                    static_cast<double>(lev.terms.size()) * 8.0 * rows * td * width;
     }
     return low_rank < structured;
 }

@@ -45,7 +45,8 @@ ParameterOffsets parameter_offsets(const HgpModel& model);
 
 LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient, int threads);
 
-/// Low-rank path; needs no coupled part (`levels.coupled` empty).
+/// Low-rank path. The coupled size classes become one block-diagonal-plus-low-rank covariance over
+/// D outputs × (class, time) pairs (see the .cpp).
 LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, const Levels& levels,
                                     bool with_gradient, int threads);
 

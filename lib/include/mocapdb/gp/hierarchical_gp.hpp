@@ -25,14 +25,19 @@
 //               A + R·K_g for √R·ȳ; three layers, A for the R − S deviations from the group means,
 //               A + m·K_h for the S − 1 deviations of √m·ȳ_s from √m·ȳ, A + m·K_h + R·K_g for √R·ȳ.
 //               Only the deviations' scatter enters each level: one factorization of size D·T per
-//               level, O(levels·(D·T)³) independent of R. The levels run on two threads.
+//               level, O(levels·(D·T)³) independent of R. The levels run on two threads. Groups of
+//               unequal size: the deviations within each size class are levels as above, and the K
+//               classes' means ȳ_c = g + N(0, (A + n_c·K_h) / R_c) are one coupled Gaussian (Woodbury
+//               without inverting K_g; about 12 (D·T)³ flops).
 //   low rank    the same levels, but each covariance is written as P + L Lᵀ: P block diagonal over
 //               the outputs (the diag(κ_q) ⊗ k_q terms and the noise, D blocks T×T) and
 //               L = [w_qj ⊗ S_q] with k_q = S_q S_qᵀ (rank(W_q)·T columns per term); determinant lemma
 //               and Woodbury with an M×M capacitance, M = Σ_q rank(W_q)·T, and gradient contractions
-//               that never form a (D·T)² matrix: O(D·T³ + D·T²·M + D·T·M² + M³) per level.
-// Children with missing frames (or unequal groups) break the structure: the likelihood then falls back
-// to the dense path (Auto), while the posterior of a partially observed child given complete siblings
+//               that never form a (D·T)² matrix: O(D·T³ + D·T²·M + D·T·M² + M³) per level. The coupled
+//               size classes are an LMC over D outputs at K·T (class, time) inputs with kernels
+//               I ⊗ k, diag(n_c) ⊗ k and v vᵀ ⊗ k (v_c = √R_c): the same algebra with K·T for T.
+// Children with missing frames break the structure: the likelihood then falls back to the dense path
+// (Auto), while the posterior of a partially observed child given complete siblings
 // stays structured (the siblings enter through the posterior of g and of the child's group function,
 // conditioned group by group).
 //
@@ -112,8 +117,7 @@ enum class LikelihoodPath {
     Auto,        ///< structure present: the cheaper of LowRank and Structured (LowRank falls back to
                  ///< Structured when its block-diagonal part is not positive definite); dense otherwise
     Dense,
-    Structured,  ///< one (D·T)² factorization per level; InvalidArgument when a child has missing
-                 ///< frames (three layers: or the groups differ in size)
+    Structured,  ///< one (D·T)² factorization per level; InvalidArgument when a child has missing frames
     LowRank,     ///< the structured decomposition with each level's covariance as block diagonal plus
                  ///< low rank (Woodbury); the same preconditions as Structured
 };
