@@ -52,6 +52,23 @@ inline HgpData make_data(Eigen::Index d, Eigen::Index t, std::size_t r, std::uin
     return data;
 }
 
+/// Central differences of the log likelihood on `path`, parameter by parameter.
+inline VecX finite_difference_gradient(HgpModel model, const HgpData& data, LikelihoodPath path, double h = 1e-5) {
+    const VecX p0 = model.parameters();
+    VecX g(p0.size());
+    for (Eigen::Index i = 0; i < p0.size(); ++i) {
+        VecX p = p0;
+        p[i] = p0[i] + h;
+        model.set_parameters(p);
+        const double fp = log_likelihood(model, data, false, path).log_likelihood;
+        p[i] = p0[i] - h;
+        model.set_parameters(p);
+        const double fm = log_likelihood(model, data, false, path).log_likelihood;
+        g[i] = (fp - fm) / (2.0 * h);
+    }
+    return g;
+}
+
 inline double relative_difference(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300}); }
 
 inline double max_relative_difference(const VecX& a, const VecX& b) {

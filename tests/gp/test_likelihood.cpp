@@ -13,22 +13,6 @@ using namespace mocapdb::gp::test;
 
 namespace {
 
-VecX finite_difference_gradient(HgpModel model, const HgpData& data, LikelihoodPath path, double h = 1e-5) {
-    const VecX p0 = model.parameters();
-    VecX g(p0.size());
-    for (Eigen::Index i = 0; i < p0.size(); ++i) {
-        VecX p = p0;
-        p[i] = p0[i] + h;
-        model.set_parameters(p);
-        const double fp = log_likelihood(model, data, false, path).log_likelihood;
-        p[i] = p0[i] - h;
-        model.set_parameters(p);
-        const double fm = log_likelihood(model, data, false, path).log_likelihood;
-        g[i] = (fp - fm) / (2.0 * h);
-    }
-    return g;
-}
-
 MatX kron(const MatX& a, const MatX& b) {
     MatX k(a.rows() * b.rows(), a.cols() * b.cols());
     for (Eigen::Index j = 0; j < a.cols(); ++j)

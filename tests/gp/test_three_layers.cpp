@@ -11,26 +11,23 @@ using namespace mocapdb::gp::test;
 
 namespace {
 
-VecX finite_difference_gradient(HgpModel model, const HgpData& data, LikelihoodPath path, double h = 1e-5) {
-    const VecX p0 = model.parameters();
-    VecX g(p0.size());
-    for (Eigen::Index i = 0; i < p0.size(); ++i) {
-        VecX p = p0;
-        p[i] = p0[i] + h;
-        model.set_parameters(p);
-        const double fp = log_likelihood(model, data, false, path).log_likelihood;
-        p[i] = p0[i] - h;
-        model.set_parameters(p);
-        const double fm = log_likelihood(model, data, false, path).log_likelihood;
-        g[i] = (fp - fm) / (2.0 * h);
-    }
-    return g;
-}
-
 HgpData grouped_data(Eigen::Index d, Eigen::Index t, const std::vector<std::size_t>& groups, std::uint64_t seed) {
     HgpData data = make_data(d, t, groups.size(), seed);
     data.groups = groups;
     return data;
+}
+
+/// The same likelihood (value and gradient, parameters in the same order) on every path.
+void check_same_likelihood(const HgpModel& a, const HgpData& da, const HgpModel& b, const HgpData& db) {
+    for (LikelihoodPath path : {LikelihoodPath::Dense, LikelihoodPath::Structured, LikelihoodPath::LowRank}) {
+        const LikelihoodValue va = log_likelihood(a, da, true, path);
+        const LikelihoodValue vb = log_likelihood(b, db, true, path);
+        REQUIRE(va.ok);
+        REQUIRE(vb.ok);
+        INFO("path " << static_cast<int>(path) << ": " << va.log_likelihood << " vs " << vb.log_likelihood);
+        CHECK(relative_difference(va.log_likelihood, vb.log_likelihood) < 1e-10);
+        CHECK(max_relative_difference(va.gradient, vb.gradient) < 1e-10);
+    }
 }
 
 std::string describe(const std::vector<std::size_t>& groups) {
@@ -112,15 +109,7 @@ TEST_CASE("three layers with one child per group equal two layers with K_f + K_h
     HgpData data = grouped_data(d, t, {2, 0, 1}, 9);
     HgpData plain = data;
     plain.groups.clear();
-    for (LikelihoodPath path : {LikelihoodPath::Dense, LikelihoodPath::Structured, LikelihoodPath::LowRank}) {
-        const LikelihoodValue a = log_likelihood(three, data, true, path);
-        const LikelihoodValue b = log_likelihood(two, plain, true, path);
-        REQUIRE(a.ok);
-        REQUIRE(b.ok);
-        INFO("path " << static_cast<int>(path) << ": " << a.log_likelihood << " vs " << b.log_likelihood);
-        CHECK(relative_difference(a.log_likelihood, b.log_likelihood) < 1e-10);
-        CHECK(max_relative_difference(a.gradient, b.gradient) < 1e-10);
-    }
+    check_same_likelihood(three, data, two, plain);
     // Posteriors: the trend, and a partially observed child (its group function is then its own f − ε).
     const VecX ts = VecX::LinSpaced(5, -0.3, 2.4);
     CHECK((predict_parent(three, data, ts).mean - predict_parent(two, plain, ts).mean).cwiseAbs().maxCoeff() < 1e-10);
@@ -140,14 +129,7 @@ TEST_CASE("three layers with one group equal two layers with K_h + K_g as the pa
     const HgpData data = grouped_data(d, t, {0, 0, 0, 0}, 12);
     HgpData plain = data;
     plain.groups.clear();
-    for (LikelihoodPath path : {LikelihoodPath::Dense, LikelihoodPath::Structured, LikelihoodPath::LowRank}) {
-        const LikelihoodValue a = log_likelihood(three, data, true, path);
-        const LikelihoodValue b = log_likelihood(two, plain, true, path);
-        REQUIRE(a.ok);
-        REQUIRE(b.ok);
-        CHECK(relative_difference(a.log_likelihood, b.log_likelihood) < 1e-10);
-        CHECK(max_relative_difference(a.gradient, b.gradient) < 1e-10);
-    }
+    check_same_likelihood(three, data, two, plain);
     // The group function of the only group is the two-layer parent.
     const VecX ts = VecX::LinSpaced(4, 0.1, 2.2);
     CHECK((predict_group(three, data, 0, ts).mean - predict_parent(two, plain, ts).mean).cwiseAbs().maxCoeff() < 1e-10);

@@ -623,7 +623,9 @@ void setup_gp(CLI::App& app) {
     gp->footer(
         "Children are the samples of a set (DB.h5 --set NAME) or clip files (--clips ...). Each is converted to\n"
         "pose vectors, subsampled to --frames frames, dofs selected and min-max normalized (docs/gp.md).\n"
-        "No model file is written: each subcommand fits the model it uses (deterministic for given options).");
+        "No model file is written: each subcommand fits the model it uses (deterministic for given options).\n"
+        "--layers 3 adds a subject layer (trend -> subject -> trial): subjects from the CMU names (02_01 -> 02)\n"
+        "or --groups, one index per child.");
 
     CLI::App* fitc = gp->add_subcommand("fit", "Fit a MOHGP (or the MOA baseline) and print its parameters");
     add_source_options(fitc, *a);
