@@ -102,3 +102,28 @@ TEST_CASE("sampling new children: deterministic, around the trend, with the chil
     CHECK((mt - ybar).cwiseAbs().maxCoeff() < 0.5);
     CHECK(sample_children(moa, data, ts, 2, o).size() == 2);
 }
+
+TEST_CASE("predictions under several masks of one child equal one prediction per mask", "[gp][posterior]") {
+    const Eigen::Index d = 2, t = 10;
+    std::vector<std::vector<bool>> masks = {std::vector<bool>(t, false), std::vector<bool>(t, false), std::vector<bool>(t, true)};
+    masks[0][2] = masks[0][7] = true;
+    for (Eigen::Index f = 0; f < t; f += 2) masks[1][static_cast<std::size_t>(f)] = true;
+    for (int layers : {1, 2, 3}) {
+        const HgpModel model = layers == 3 ? make_grouped_model(d, 1, 1) : make_model(d, layers == 2, 2, 1);
+        HgpData data = make_data(d, t, 4);
+        if (layers == 3) data.groups = {0, 1, 1, 0};
+        const auto many = predict_child_masks(model, data, 1, masks);
+        REQUIRE(many.size() == masks.size());
+        for (std::size_t i = 0; i < masks.size(); ++i) {
+            HgpData one = data;
+            one.observed = {{}, masks[i], {}, {}};
+            const GaussianPrediction p = predict_child(model, one, 1, data.times);
+            INFO("layers " << layers << " mask " << i);
+            CHECK((many[i].mean - p.mean).cwiseAbs().maxCoeff() < 1e-10);
+            CHECK((many[i].variance - p.variance).cwiseAbs().maxCoeff() < 1e-10);
+        }
+        data.observed = {{}, {}, std::vector<bool>(t, false), {}};
+        data.observed[2][0] = true;
+        CHECK_THROWS_AS(predict_child_masks(model, data, 1, masks), mocapdb::InvalidArgument);
+    }
+}

@@ -126,40 +126,69 @@ void ModelRuns::summarize() {
     msll = mean_std(c);
 }
 
-InterpolationScores score_interpolation(const HgpModel& model, const HgpData& data, std::size_t test_child,
-                                        const std::vector<bool>& observed) {
-    if (test_child >= data.child_count() || observed.size() != data.frames())
-        throw InvalidArgument("score_interpolation: bad test child or mask");
-    HgpData d = data;
-    d.observed.assign(data.child_count(), {});
-    d.observed[test_child] = observed;
+namespace {
+
+/// Scores of a prediction of the test child at every frame under the mask `observed`: the truth is its
+/// values at the unobserved frames; the trivial model's moments come from every observed value
+/// (siblings and the test child's observed frames).
+InterpolationScores score_prediction(const GaussianPrediction& p, const HgpData& data, std::size_t test_child,
+                                     const std::vector<bool>& observed) {
+    const Index dd = static_cast<Index>(data.outputs());
     std::vector<Index> missing;
     for (std::size_t f = 0; f < observed.size(); ++f)
         if (!observed[f]) missing.push_back(static_cast<Index>(f));
-    VecX ts(static_cast<Index>(missing.size()));
-    MatX truth(static_cast<Index>(data.outputs()), ts.size());
-    for (Index i = 0; i < ts.size(); ++i) {
-        ts[i] = data.times[missing[static_cast<std::size_t>(i)]];
-        truth.col(i) = data.children[test_child].col(missing[static_cast<std::size_t>(i)]);
+    const Index nm = static_cast<Index>(missing.size());
+    MatX truth(dd, nm), mean_pred(dd, nm), variance(dd, nm);
+    for (Index i = 0; i < nm; ++i) {
+        const Index f = missing[static_cast<std::size_t>(i)];
+        truth.col(i) = data.children[test_child].col(f);
+        mean_pred.col(i) = p.mean.col(f);
+        variance.col(i) = p.variance.col(f) + p.noise;
     }
-    const GaussianPrediction p = predict_child(model, d, test_child, ts);
-    MatX variance = p.variance;
-    for (Index i = 0; i < variance.rows(); ++i) variance.row(i).array() += p.noise[i];
     variance = variance.cwiseMax(1e-12);  // round-off can make a tiny variance ≤ 0
-    // Training moments per output: every observed value (siblings and the test child's observed frames).
-    const Index dd = static_cast<Index>(data.outputs());
     VecX sum = VecX::Zero(dd), sq = VecX::Zero(dd);
     double n = 0.0;
-    for (std::size_t r = 0; r < d.child_count(); ++r)
-        for (std::size_t f = 0; f < d.frames(); ++f)
-            if (d.is_observed(r, f)) {
+    for (std::size_t r = 0; r < data.child_count(); ++r)
+        for (std::size_t f = 0; f < data.frames(); ++f)
+            if (r == test_child ? static_cast<bool>(observed[f]) : data.is_observed(r, f)) {
                 sum += data.children[r].col(static_cast<Index>(f));
                 sq += data.children[r].col(static_cast<Index>(f)).cwiseAbs2();
                 n += 1.0;
             }
     const VecX mean = sum / n;
     const VecX var = (sq / n - mean.cwiseAbs2()).cwiseMax(1e-12);
-    return interpolation_scores(truth, p.mean, variance, mean, var);
+    return interpolation_scores(truth, mean_pred, variance, mean, var);
+}
+
+}  // namespace
+
+std::vector<InterpolationScores> score_interpolations(const HgpModel& model, const HgpData& data, std::size_t test_child,
+                                                      const std::vector<std::vector<bool>>& masks) {
+    if (test_child >= data.child_count()) throw InvalidArgument("score_interpolation: no child " + std::to_string(test_child));
+    for (const auto& m : masks)
+        if (m.size() != data.frames()) throw InvalidArgument("score_interpolation: a mask needs one flag per frame");
+    bool siblings_complete = true;
+    for (std::size_t r = 0; r < data.child_count(); ++r)
+        if (r != test_child && !data.is_complete(r)) siblings_complete = false;
+    std::vector<GaussianPrediction> preds;
+    if (siblings_complete) {
+        preds = predict_child_masks(model, data, test_child, masks);
+    } else {
+        for (const auto& m : masks) {
+            HgpData d = data;
+            d.observed.resize(d.child_count());
+            d.observed[test_child] = m;
+            preds.push_back(predict_child(model, d, test_child, data.times));
+        }
+    }
+    std::vector<InterpolationScores> out;
+    for (std::size_t i = 0; i < masks.size(); ++i) out.push_back(score_prediction(preds[i], data, test_child, masks[i]));
+    return out;
+}
+
+InterpolationScores score_interpolation(const HgpModel& model, const HgpData& data, std::size_t test_child,
+                                        const std::vector<bool>& observed) {
+    return score_interpolations(model, data, test_child, {observed}).front();
 }
 
 ArtificialResult run_artificial(const ArtificialConfig& config, const ExperimentOptions& options) {
@@ -210,14 +239,22 @@ ReplicateInterpolation run_replicate_interpolation(const HgpData& data, std::siz
     if (options.progress) options.progress(Progress{1, 2, "MOHGP"});
     out.moa_fit = fit_model(training, options, false);
     if (options.progress) options.progress(Progress{2, 2, "MOA"});
+    // Every row's masks at once: each model's share of the siblings is computed once.
+    std::vector<std::vector<bool>> masks;
+    for (std::size_t k : observed_counts)
+        for (std::size_t run = 0; run < options.runs; ++run) {
+            std::mt19937_64 rng(options.seed * 1000003ULL + k * 131ULL + run);
+            masks.push_back(random_mask(data.frames(), k, rng));
+        }
+    const auto mohgp = score_interpolations(out.mohgp_fit.model, data, test_child, masks);
+    const auto moa = score_interpolations(out.moa_fit.model, data, test_child, masks);
+    std::size_t next = 0;
     for (std::size_t k : observed_counts) {
         InterpolationRow row;
         row.observed = k;
-        for (std::size_t run = 0; run < options.runs; ++run) {
-            std::mt19937_64 rng(options.seed * 1000003ULL + k * 131ULL + run);
-            const std::vector<bool> mask = random_mask(data.frames(), k, rng);
-            row.mohgp.runs.push_back(score_interpolation(out.mohgp_fit.model, data, test_child, mask));
-            row.moa.runs.push_back(score_interpolation(out.moa_fit.model, data, test_child, mask));
+        for (std::size_t run = 0; run < options.runs; ++run, ++next) {
+            row.mohgp.runs.push_back(mohgp[next]);
+            row.moa.runs.push_back(moa[next]);
         }
         row.mohgp.fit_seconds = out.mohgp_fit.seconds;
         row.moa.fit_seconds = out.moa_fit.seconds;

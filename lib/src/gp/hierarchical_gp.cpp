@@ -263,9 +263,10 @@ std::vector<Index> all_frames(Index t) {
     return f;
 }
 
-/// Conditions g on y = g[sel] + ε, ε ~ N(0, noise_cov). False when the innovation covariance is not
+/// Conditions g on y = g[sel] + ε, ε ~ N(0, noise_cov). With !full_cov only the diagonal of the
+/// covariance is updated (the last step of a prediction). False when the innovation covariance is not
 /// positive definite.
-bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, const MatX& noise_cov) {
+bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, const MatX& noise_cov, bool full_cov = true) {
     const Index m = static_cast<Index>(sel.size()), n = g.mean.size();
     MatX s = noise_cov;
     MatX c(m, n);
@@ -280,7 +281,13 @@ bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, co
     llt.matrixL().solveInPlace(c);  // L⁻¹ C
     llt.matrixL().solveInPlace(r);
     g.mean.noalias() += c.transpose() * r;
-    g.cov.noalias() -= c.transpose() * c;
+    if (full_cov) {
+        // Lower triangle by a rank-m update (half the flops of a product), then mirrored.
+        g.cov.selfadjointView<Eigen::Lower>().rankUpdate(c.transpose(), -1.0);
+        g.cov.triangularView<Eigen::StrictlyUpper>() = g.cov.transpose();
+    } else {
+        g.cov.diagonal() -= c.colwise().squaredNorm().transpose();
+    }
     return g.mean.allFinite();
 }
 
@@ -374,23 +381,10 @@ GridGaussian at_queries(const GridGaussian& g, const Grid& grid, Index d) {
     return out;
 }
 
-GaussianPrediction to_prediction(const GridGaussian& q, Index d, Index ts, const VecX& noise) {
-    if (!q.ok) return nan_prediction(d, ts, noise);
-    GaussianPrediction p;
-    p.mean = unvec_output_major(q.mean, d, ts);
-    p.variance = unvec_output_major(q.cov.diagonal(), d, ts);
-    p.noise = noise;
-    return p;
-}
-
-/// Posterior of child `child`'s latent f at t_star (structured; every sibling complete, the child may be
-/// partial): its parent function (g, or h_s with three layers) given the siblings, plus K_f, conditioned
-/// on the child's own observed frames.
-GridGaussian child_posterior_structured(const HgpModel& model, const HgpData& data, std::size_t child,
-                                        const VecX& t_star) {
+/// The prior of child `child`'s latent f on the grid given its (complete) siblings: its parent function
+/// (g, or h_s with three layers) given them, plus K_f.
+GridGaussian child_prior_on_grid(const HgpModel& model, const HgpData& data, std::size_t child, const Grid& grid) {
     const Index d = static_cast<Index>(data.outputs());
-    const Index t = static_cast<Index>(data.frames());
-    const Grid grid = make_grid(data.times, t_star);
     GridGaussian g;
     if (!model.hierarchical) {
         g.mean = VecX::Zero(d * grid.z.size());
@@ -403,26 +397,50 @@ GridGaussian child_posterior_structured(const HgpModel& model, const HgpData& da
             if (r != child) members.push_back(r);
         g = trend_on_grid(model, data, members, grid);
     }
-    if (!g.ok) return g;
-    g.cov += lmc_covariance(model.child, grid.z, grid.z);
+    if (g.ok) g.cov += lmc_covariance(model.child, grid.z, grid.z);
+    return g;
+}
+
+/// Conditions a child's prior on its own observed frames (`mask`, or its HgpData mask when empty).
+bool condition_on_own_frames(GridGaussian& g, const HgpModel& model, const HgpData& data, std::size_t child,
+                             const std::vector<bool>* mask, const Grid& grid, bool full_cov) {
+    const Index d = static_cast<Index>(data.outputs());
+    const Index t = static_cast<Index>(data.frames());
     std::vector<Index> frames;
     for (Index f = 0; f < t; ++f)
-        if (data.is_observed(child, static_cast<std::size_t>(f))) frames.push_back(f);
-    if (!frames.empty()) {
-        const auto sel = grid_indices(d, grid.z.size(), frames);
-        const VecX y = vec_output_major(data.children[child]);
-        const VecX noise = model.noise_variance();
-        VecX yo(static_cast<Index>(sel.size()));
-        VecX no(yo.size());
-        const Index nf = static_cast<Index>(frames.size());
-        for (Index k = 0; k < d; ++k)
-            for (Index i = 0; i < nf; ++i) {
-                yo[k * nf + i] = y[k * t + frames[static_cast<std::size_t>(i)]];
-                no[k * nf + i] = noise[k];
-            }
-        g.ok = condition(g, sel, yo, no.asDiagonal().toDenseMatrix());
-    }
-    return at_queries(g, grid, d);
+        if (mask ? (*mask)[static_cast<std::size_t>(f)] : data.is_observed(child, static_cast<std::size_t>(f)))
+            frames.push_back(f);
+    if (frames.empty()) return true;
+    const auto sel = grid_indices(d, grid.z.size(), frames);
+    const VecX y = vec_output_major(data.children[child]);
+    const VecX noise = model.noise_variance();
+    VecX yo(static_cast<Index>(sel.size()));
+    VecX no(yo.size());
+    const Index nf = static_cast<Index>(frames.size());
+    for (Index k = 0; k < d; ++k)
+        for (Index i = 0; i < nf; ++i) {
+            yo[k * nf + i] = y[k * t + frames[static_cast<std::size_t>(i)]];
+            no[k * nf + i] = noise[k];
+        }
+    return condition(g, sel, yo, no.asDiagonal().toDenseMatrix(), full_cov);
+}
+
+/// Mean and latent variance of a grid Gaussian at the grid's query times.
+GaussianPrediction grid_prediction(const GridGaussian& g, const Grid& grid, Index d, const VecX& noise) {
+    const Index ts = static_cast<Index>(grid.query.size());
+    if (!g.ok) return nan_prediction(d, ts, noise);
+    GaussianPrediction p;
+    p.mean.resize(d, ts);
+    p.variance.resize(d, ts);
+    const Index nz = grid.z.size();
+    for (Index k = 0; k < d; ++k)
+        for (Index i = 0; i < ts; ++i) {
+            const Index at = k * nz + grid.query[static_cast<std::size_t>(i)];
+            p.mean(k, i) = g.mean[at];
+            p.variance(k, i) = g.cov(at, at);
+        }
+    p.noise = noise;
+    return p;
 }
 
 void draw_gaussian(const VecX& mean, const MatX& cov, std::size_t count, std::mt19937_64& rng, Index d, Index ts,
@@ -692,8 +710,7 @@ GaussianPrediction predict_group(const HgpModel& model, const HgpData& data, std
     if (!data.all_complete()) return condition_dense(model, data, t_star, Target{Target::Group, group});
     const Grid grid = make_grid(data.times, t_star);
     const Index d = static_cast<Index>(data.outputs());
-    return to_prediction(at_queries(group_on_grid(model, data, group, -1, grid), grid, d), d, t_star.size(),
-                         model.noise_variance());
+    return grid_prediction(group_on_grid(model, data, group, -1, grid), grid, d, model.noise_variance());
 }
 
 GaussianPrediction predict_child_dense(const HgpModel& model, const HgpData& data, std::size_t child,
@@ -727,8 +744,7 @@ GaussianPrediction predict_parent(const HgpModel& model, const HgpData& data, co
     if (!data.all_complete()) return condition_dense(model, data, t_star, Target{Target::Parent, 0});
     const Grid grid = make_grid(data.times, t_star);
     const Index d = static_cast<Index>(data.outputs());
-    return to_prediction(at_queries(trend_on_grid(model, data, all_children(data), grid), grid, d), d, t_star.size(),
-                         model.noise_variance());
+    return grid_prediction(trend_on_grid(model, data, all_children(data), grid), grid, d, model.noise_variance());
 }
 
 GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std::size_t child, const VecX& t_star) {
@@ -738,8 +754,32 @@ GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std
     for (std::size_t r = 0; r < data.child_count(); ++r)
         if (r != child && !data.is_complete(r)) siblings_complete = false;
     if (model.hierarchical && !siblings_complete) return condition_dense(model, data, t_star, Target{Target::Child, child});
-    const Index d = static_cast<Index>(data.outputs());
-    return to_prediction(child_posterior_structured(model, data, child, t_star), d, t_star.size(), model.noise_variance());
+    const Grid grid = make_grid(data.times, t_star);
+    GridGaussian g = child_prior_on_grid(model, data, child, grid);
+    if (g.ok) g.ok = condition_on_own_frames(g, model, data, child, nullptr, grid, false);
+    return grid_prediction(g, grid, static_cast<Index>(data.outputs()), model.noise_variance());
+}
+
+std::vector<GaussianPrediction> predict_child_masks(const HgpModel& model, const HgpData& data, std::size_t child,
+                                                    const std::vector<std::vector<bool>>& masks) {
+    check_prediction_args(model, data, data.times);
+    if (child >= data.child_count()) throw InvalidArgument("predict_child_masks: no child " + std::to_string(child));
+    for (std::size_t r = 0; r < data.child_count(); ++r)
+        if (r != child && !data.is_complete(r))
+            throw InvalidArgument("predict_child_masks: sibling " + std::to_string(r) + " has missing frames");
+    for (const auto& m : masks)
+        if (m.size() != data.frames())
+            throw InvalidArgument("predict_child_masks: a mask has " + std::to_string(m.size()) + " flags, expected " +
+                                  std::to_string(data.frames()));
+    const Grid grid = make_grid(data.times, data.times);
+    const GridGaussian prior = child_prior_on_grid(model, data, child, grid);
+    std::vector<GaussianPrediction> out;
+    for (const auto& m : masks) {
+        GridGaussian g = prior;
+        if (g.ok) g.ok = condition_on_own_frames(g, model, data, child, &m, grid, false);
+        out.push_back(grid_prediction(g, grid, static_cast<Index>(data.outputs()), model.noise_variance()));
+    }
+    return out;
 }
 
 MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_star) {

@@ -82,6 +82,10 @@ ReplicateInterpolation run_replicate_interpolation(const HgpData& data, std::siz
 /// is the child's values at the unobserved frames.
 InterpolationScores score_interpolation(const HgpModel& model, const HgpData& data, std::size_t test_child,
                                         const std::vector<bool>& observed);
+/// The same for several masks of one test child (its siblings' share of the posterior computed once when
+/// they are complete).
+std::vector<InterpolationScores> score_interpolations(const HgpModel& model, const HgpData& data, std::size_t test_child,
+                                                      const std::vector<std::vector<bool>>& masks);
 
 struct SynthesisResult {
     SynthesisScores mohgp, moa, control;

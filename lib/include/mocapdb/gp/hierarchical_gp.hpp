@@ -152,6 +152,11 @@ GaussianPrediction predict_parent(const HgpModel& model, const HgpData& data, co
 /// and every sibling). Structured when every sibling is complete (the child itself may be partial).
 GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std::size_t child,
                                  const VecX& t_star);
+/// predict_child at the data's times under each of several observation masks of the same child (T flags
+/// each; the child's own mask in `data` is ignored), every sibling complete (InvalidArgument otherwise):
+/// the siblings' share — the posterior of the child's parent function — is computed once.
+std::vector<GaussianPrediction> predict_child_masks(const HgpModel& model, const HgpData& data, std::size_t child,
+                                                    const std::vector<std::vector<bool>>& masks);
 /// The same two posteriors computed from the full dense joint covariance (the oracle).
 GaussianPrediction predict_parent_dense(const HgpModel& model, const HgpData& data, const VecX& t_star);
 GaussianPrediction predict_child_dense(const HgpModel& model, const HgpData& data, std::size_t child,
