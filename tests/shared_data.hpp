@@ -23,3 +23,12 @@ inline std::string cli_path() { return MOCAPDB_CLI_PATH; }
             return;                                                                               \
         }                                                                                         \
     } while (0)
+
+/// Skips the current test case when the mocapdb CLI is not built in this tree.
+#define MOCAPDB_REQUIRE_CLI()                                                  \
+    do {                                                                       \
+        if (mocapdb::test::cli_path().empty()) {                               \
+            WARN("SKIPPED: the mocapdb CLI is not built in this tree");        \
+            return;                                                            \
+        }                                                                      \
+    } while (0)

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <random>
 
+#include <catch2/catch.hpp>
+
 #include "mocapdb/gp/hierarchical_gp.hpp"
 
 namespace mocapdb::gp::test {
@@ -75,6 +77,17 @@ inline double max_relative_difference(const VecX& a, const VecX& b) {
     // Relative to the larger vector's norm (entries near zero are compared against the scale).
     const double scale = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), 1e-300});
     return (a - b).cwiseAbs().maxCoeff() / scale;
+}
+
+/// `actual` has the value and gradient of `oracle` to `tolerance` (relative).
+inline void check_same_likelihood(const LikelihoodValue& actual, const LikelihoodValue& oracle, double tolerance = 1e-8) {
+    REQUIRE(actual.ok);
+    REQUIRE(oracle.ok);
+    const double dv = relative_difference(actual.log_likelihood, oracle.log_likelihood);
+    const double dg = max_relative_difference(actual.gradient, oracle.gradient);
+    INFO("value rel diff " << dv << ", gradient max rel diff " << dg << " (log p = " << actual.log_likelihood << ")");
+    CHECK(dv < tolerance);
+    CHECK(dg < tolerance);
 }
 
 }  // namespace mocapdb::gp::test

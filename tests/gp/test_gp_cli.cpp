@@ -22,10 +22,7 @@ std::string walk_clips() {
 }  // namespace
 
 TEST_CASE("gp fit, interpolate and sample on CMU walks", "[gp][cli][shared]") {
-    if (mocapdb::test::cli_path().empty()) {
-        WARN("SKIPPED: the mocapdb CLI is not built in this tree");
-        return;
-    }
+    MOCAPDB_REQUIRE_CLI();
     MOCAPDB_REQUIRE_SHARED(mocapdb::test::datasets_dir() / "cmu-asfamc" / "35_01.amc");
     const std::string common = " --clips" + walk_clips() + " --joints lfemur,ltibia --frames 20 --max-iterations 60";
 
@@ -82,10 +79,7 @@ TEST_CASE("gp fit, interpolate and sample on CMU walks", "[gp][cli][shared]") {
 }
 
 TEST_CASE("gp experiment --artificial prints the thesis's table as JSON", "[gp][cli]") {
-    if (mocapdb::test::cli_path().empty()) {
-        WARN("SKIPPED: the mocapdb CLI is not built in this tree");
-        return;
-    }
+    MOCAPDB_REQUIRE_CLI();
     const auto r = run_cli("gp experiment --artificial --tests 1 --runs 1 --kernel rbf --max-iterations 40 --json");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
@@ -100,10 +94,7 @@ TEST_CASE("gp experiment --artificial prints the thesis's table as JSON", "[gp][
 }
 
 TEST_CASE("gp fit on a database set: the set's samples are the children", "[gp][cli][shared]") {
-    if (mocapdb::test::cli_path().empty()) {
-        WARN("SKIPPED: the mocapdb CLI is not built in this tree");
-        return;
-    }
+    MOCAPDB_REQUIRE_CLI();
     const auto dir = mocapdb::test::datasets_dir() / "cmu-asfamc";
     MOCAPDB_REQUIRE_SHARED(dir / "16_16.amc");
     mocapdb::test::TempDir tmp("gp_cli_db");
@@ -128,10 +119,7 @@ TEST_CASE("gp fit on a database set: the set's samples are the children", "[gp][
 }
 
 TEST_CASE("gp --layers 3: subjects from the CMU names form the middle layer", "[gp][cli][shared][layers]") {
-    if (mocapdb::test::cli_path().empty()) {
-        WARN("SKIPPED: the mocapdb CLI is not built in this tree");
-        return;
-    }
+    MOCAPDB_REQUIRE_CLI();
     const auto dir = mocapdb::test::datasets_dir() / "cmu-asfamc";
     MOCAPDB_REQUIRE_SHARED(dir / "16_16.amc");
     std::string clips;
