@@ -31,14 +31,6 @@ std::filesystem::path scratch_dir() {
     return d;
 }
 
-#define MOCAPDB_REQUIRE_CLI()                                           \
-    do {                                                                \
-        if (cli_path().empty()) {                                       \
-            WARN("SKIPPED: the mocapdb CLI is not built in this tree"); \
-            return;                                                     \
-        }                                                               \
-    } while (0)
-
 }  // namespace
 
 TEST_CASE("CLI variogram --json reproduces gstat's Meuse bins", "[kriging][cli]") {

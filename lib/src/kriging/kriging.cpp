@@ -9,6 +9,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "gamma_vector.hpp"
+#include "query_kernels.hpp"
 #include "prepared_points.hpp"
 
 namespace mocapdb::kriging {
@@ -147,6 +148,10 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     k.operator_.leftCols(m) = -k.kernel_inverse_;
     k.operator_.rightCols(kk) = v;
     k.v_transpose_ = v.transpose();
+#ifdef MOCAPDB_KRIGING_QUERY_KERNELS
+    // The single-query operator (query_kernels.hpp): -Wc is exactly symmetric (symmetrized above).
+    k.query_operator_ = std::make_shared<const detail::QueryOperator>(k.operator_.leftCols(m), v, k.basis_.sample_basis());
+#endif
     if (ols) {
         k.ols_u_ = k.basis_.sample_basis().rightCols(k.basis_.rank());
         // The OLS weights w = b + U (g_u(c) - U^T b), b = [-Wc, v] [gamma; 1], folded into one operator so
@@ -231,25 +236,38 @@ void Kriging::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eig
         throw InvalidArgument("Kriging::weights: c must have P = " + std::to_string(dimension()) +
                               " entries and out_weights N = " + std::to_string(n));
     }
-    // rhs = [gamma(c); g(c)], then w = operator * rhs and the constraint projection: no allocation once
-    // the workspace has its sizes.
+    if (m == 0) throw InvalidArgument("Kriging::weights: the kriging object is empty (not built)");
+    // No allocation once the workspace has its sizes.
     const Eigen::Index kk = basis_.size();
+    if (ws.tmp2.size() != kk) ws.tmp2.resize(kk);
+#ifdef MOCAPDB_KRIGING_QUERY_KERNELS
+    // rhs = [gamma(c); zero padding; g(c)], then the weights from the packed operator (query_kernels.hpp;
+    // for OLS its projection also applies the U correction that weight_operator_ folds in).
+    const detail::QueryOperator& qo = *query_operator_;
+    const Eigen::Index mp = qo.padded_size();
+    if (ws.rhs.size() != mp + kk) ws.rhs.resize(mp + kk);
+    if (ws.tmp.size() != mp) ws.tmp.resize(mp);
+    gamma_vector(c, ws.rhs.head(m));
+    ws.rhs.segment(m, mp - m).setZero();
+    basis_.evaluate(c, ws.rhs.tail(kk));
+    qo.weights(ws.rhs.data(), ws.rhs.data() + mp, ws.tmp.data(), ws.tmp2.data(),
+               merged_ ? ws.tmp.data() : out_weights.data());
+#else
+    // rhs = [gamma(c); g(c)], w = weight_operator() rhs, then G^T w = g(c) re-imposed as in
+    // weights_from_rhs, G = [1, U]: K dot products and one pass over w (plain vector operations: Eigen's
+    // general matrix-vector kernels cost more than the arithmetic at these sizes).
     if (ws.rhs.size() != m + kk) ws.rhs.resize(m + kk);
     gamma_vector(c, ws.rhs.head(m));
     basis_.evaluate(c, ws.rhs.tail(kk));
-    const Eigen::MatrixXd& op = weight_operator();
     const Eigen::MatrixXd& gb = basis_.sample_basis();
     if (ws.tmp.size() != m) ws.tmp.resize(m);
-    if (ws.tmp2.size() != kk) ws.tmp2.resize(kk);
     Eigen::Ref<Eigen::VectorXd> w = merged_ ? Eigen::Ref<Eigen::VectorXd>(ws.tmp) : out_weights;
-    w.noalias() = op * ws.rhs;
-    // G^T w = g(c) re-imposed as in weights_from_rhs, G = [1, U]: K dot products and one pass over w
-    // (plain vector operations: Eigen's general matrix-vector kernels cost more than the arithmetic
-    // at these sizes).
+    w.noalias() = weight_operator() * ws.rhs;
     ws.tmp2(0) = (ws.rhs(m) - w.sum()) / static_cast<double>(m);
     for (Eigen::Index k = 1; k < kk; ++k) ws.tmp2(k) = ws.rhs(m + k) - gb.col(k).dot(w);
     w.array() += ws.tmp2(0);
     for (Eigen::Index k = 1; k < kk; ++k) w += ws.tmp2(k) * gb.col(k);
+#endif
     if (merged_) {
         for (Eigen::Index i = 0; i < n; ++i) out_weights(i) = ws.tmp(group_(i)) / group_size_(group_(i));
     }

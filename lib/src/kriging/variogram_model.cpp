@@ -7,6 +7,10 @@
 #include <limits>
 #include <sstream>
 
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#endif
+
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb::kriging {
@@ -135,6 +139,124 @@ void exp_in_place(double* v, Eigen::Index n) {
 #endif
 }
 
+#if defined(__AVX2__) && defined(__FMA__)
+// The general exponent (gamma = nugget + sill (1 - exp(-exp(p/2 log(d2 / range^2))))) with AVX2 + FMA
+// intrinsics: three passes over a chunk instead of seven (measured 0.29 instead of 0.40 us for 92
+// values, most of it from the logarithm below, about twice as fast as Eigen 3.4's, whose frexp
+// emulation and select chain dominate).
+
+// exp_in_place above, four values at a time: the same operations, so the same results (NaN aside).
+inline __m256d exp4(__m256d x) {
+    x = _mm256_max_pd(x, _mm256_set1_pd(-708.0));
+    x = _mm256_min_pd(x, _mm256_set1_pd(709.0));
+    const __m256d shifter = _mm256_set1_pd(6755399441055744.0);
+    const __m256d kd = _mm256_fmadd_pd(x, _mm256_set1_pd(1.4426950408889634074), shifter);
+    const __m256d k = _mm256_sub_pd(kd, shifter);
+    __m256d r = _mm256_fnmadd_pd(k, _mm256_set1_pd(6.93147180369123816490e-01), x);
+    r = _mm256_fnmadd_pd(k, _mm256_set1_pd(1.90821492927058770002e-10), r);
+    __m256d p = _mm256_set1_pd(1.0 / 479001600.0);
+    for (const double c : {1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0, 1.0 / 40320.0, 1.0 / 5040.0, 1.0 / 720.0,
+                           1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5, 1.0, 1.0}) {
+        p = _mm256_fmadd_pd(p, r, _mm256_set1_pd(c));
+    }
+    return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(_mm256_castpd_si256(kd), 52)));
+}
+
+// exp(-t) for t >= 0, four values at a time, for 1 - exp(-t): as exp4 but with t clamped to 708 only and
+// the reduction r = -t - k ln2 by one FMA. The rounding of ln2 (2.3e-17) then adds a relative error
+// |k| 2.3e-17 with |k| <= 1.45 t + 1, i.e. an absolute error of at most
+// max_t exp(-t) (1.45 t + 1) 2.3e-17 < 3e-17 in 1 - exp(-t) (a quarter of its ulp where exp(-t) is not
+// negligible).
+inline __m256d exp_neg4(__m256d t) {
+    t = _mm256_min_pd(t, _mm256_set1_pd(708.0));
+    const __m256d shifter = _mm256_set1_pd(6755399441055744.0);
+    const __m256d kd = _mm256_fnmadd_pd(t, _mm256_set1_pd(1.4426950408889634074), shifter);
+    const __m256d k = _mm256_sub_pd(kd, shifter);
+    const __m256d r = _mm256_fnmsub_pd(k, _mm256_set1_pd(0.693147180559945309417), t);
+    __m256d p = _mm256_set1_pd(1.0 / 479001600.0);
+    for (const double c : {1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0, 1.0 / 40320.0, 1.0 / 5040.0, 1.0 / 720.0,
+                           1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5, 1.0, 1.0}) {
+        p = _mm256_fmadd_pd(p, r, _mm256_set1_pd(c));
+    }
+    return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(_mm256_castpd_si256(kd), 52)));
+}
+
+// log(x) for x > 0, four values at a time: x = 2^k m with m in [sqrt(1/2), sqrt(2)) from the exponent
+// bits, f = m - 1, s = f / (2 + f) and log(1 + f) = 2 atanh(s) = f - s (f - R(s^2)), R the atanh series
+// to s^20 (|s| <= 0.172: truncation below 3e-17 relative), plus k ln2 by one FMA (as Eigen's; the
+// rounding of ln2, 2.3e-17, adds |k| 2.3e-17 <= 0.3 ulp of |k ln2|). Measured within 1.23 ulp of the
+// exact logarithm (Eigen's: 1.29). Like Eigen's, values below DBL_MIN are taken as DBL_MIN
+// (log = -708.4); +inf gives 1024 ln2 = 709.8 instead of inf (exp4 clamps either) and NaN some finite
+// value (stable_general's mask turns a NaN distance into a NaN gamma).
+inline __m256d log4(__m256d x) {
+    x = _mm256_max_pd(x, _mm256_set1_pd(std::numeric_limits<double>::min()));
+    const __m256i bits = _mm256_castpd_si256(x);
+    // The exponent field of bits + (bits(1) - bits(sqrt(1/2))) is k + 1023.
+    const __m256i biased_k =
+        _mm256_srli_epi64(_mm256_add_epi64(bits, _mm256_set1_epi64x(0x3FF0000000000000LL - 0x3FE6A09E667F3BCDLL)), 52);
+    // k as a double: (2^52 + biased_k) - (2^52 + 1023), both exact.
+    const __m256d k = _mm256_sub_pd(_mm256_castsi256_pd(_mm256_or_si256(biased_k, _mm256_set1_epi64x(0x4330000000000000LL))),
+                                    _mm256_set1_pd(4503599627370496.0 + 1023.0));
+    const __m256d m = _mm256_castsi256_pd(
+        _mm256_sub_epi64(bits, _mm256_slli_epi64(_mm256_sub_epi64(biased_k, _mm256_set1_epi64x(1023)), 52)));
+    const __m256d f = _mm256_sub_pd(m, _mm256_set1_pd(1.0));  // exact (Sterbenz)
+    const __m256d s = _mm256_div_pd(f, _mm256_add_pd(_mm256_set1_pd(2.0), f));
+    const __m256d z = _mm256_mul_pd(s, s);
+    __m256d r = _mm256_set1_pd(2.0 / 19.0);  // R = 2 z / 3 + 2 z^2 / 5 + ... + 2 z^9 / 19
+    for (const double c : {2.0 / 17.0, 2.0 / 15.0, 2.0 / 13.0, 2.0 / 11.0, 2.0 / 9.0, 2.0 / 7.0, 2.0 / 5.0, 2.0 / 3.0}) {
+        r = _mm256_fmadd_pd(r, z, _mm256_set1_pd(c));
+    }
+    r = _mm256_mul_pd(r, z);
+    __m256d l = _mm256_fnmadd_pd(s, _mm256_sub_pd(f, r), f);
+    return _mm256_fmadd_pd(k, _mm256_set1_pd(0.693147180559945309417), l);
+}
+
+// The 4 values at p, or the n < 4 there followed by `fill`.
+inline __m256d load4(const double* p, Eigen::Index n, double fill) {
+    if (n >= 4) return _mm256_loadu_pd(p);
+    alignas(32) double v[4] = {fill, fill, fill, fill};
+    std::copy(p, p + n, v);
+    return _mm256_load_pd(v);
+}
+
+// The first min(n, 4) values of x to p.
+inline void store4(double* p, __m256d x, Eigen::Index n) {
+    if (n >= 4) {
+        _mm256_storeu_pd(p, x);
+        return;
+    }
+    alignas(32) double v[4];
+    _mm256_store_pd(v, x);
+    std::copy(v, v + n, p);
+}
+
+// out = nugget + sill (1 - exp(-exp(half_p log(d2 inv_r2)))) times the mask of gamma_of_squared (whose
+// min(1, NaN) = NaN also makes the result NaN for a NaN distance); out may be d2.
+void stable_general(const VariogramModel& model, const double* d2, double* out, Eigen::Index n) {
+    const __m256d inv_r2 = _mm256_set1_pd(1.0 / (model.range * model.range));
+    const __m256d half_p = _mm256_set1_pd(0.5 * model.exponent);
+    const __m256d nugget = _mm256_set1_pd(model.nugget);
+    const __m256d sill = _mm256_set1_pd(model.sill);
+    const __m256d one = _mm256_set1_pd(1.0);
+    const __m256d inv_dbl_min = _mm256_set1_pd(1.0 / std::numeric_limits<double>::min());
+    alignas(64) double buffer[kChunk];
+    for (Eigen::Index i0 = 0; i0 < n; i0 += kChunk) {
+        const Eigen::Index len = std::min(kChunk, n - i0);
+        for (Eigen::Index i = 0; i < len; i += 4) {
+            const __m256d x = _mm256_mul_pd(load4(d2 + i0 + i, len - i, 1.0), inv_r2);
+            _mm256_store_pd(buffer + i, _mm256_mul_pd(log4(x), half_p));
+        }
+        for (Eigen::Index i = 0; i < len; i += 4) _mm256_store_pd(buffer + i, exp4(_mm256_load_pd(buffer + i)));
+        for (Eigen::Index i = 0; i < len; i += 4) {
+            const __m256d e = exp_neg4(_mm256_load_pd(buffer + i));
+            const __m256d mask = _mm256_min_pd(one, _mm256_mul_pd(load4(d2 + i0 + i, len - i, 0.0), inv_dbl_min));
+            store4(out + i0 + i, _mm256_mul_pd(_mm256_add_pd(nugget, _mm256_mul_pd(sill, _mm256_sub_pd(one, e))), mask),
+                   len - i);
+        }
+    }
+}
+#endif
+
 }  // namespace
 
 void VariogramModel::gamma_of_squared(const Eigen::Ref<const Eigen::VectorXd>& squared_distances,
@@ -156,6 +278,12 @@ void VariogramModel::gamma_of_squared(const Eigen::Ref<const Eigen::VectorXd>& s
             (d2 * inv_dbl_min).min(1.0);
         return;
     }
+#if defined(__AVX2__) && defined(__FMA__)
+    if (exponent != 2.0 && exponent != 1.0 && exponent != 1.5 && exponent != 0.5) {
+        stable_general(*this, squared_distances.data(), out_gamma.data(), n);
+        return;
+    }
+#endif
     alignas(64) double buffer[kChunk];
     const double half_p = 0.5 * exponent;
     for (Eigen::Index i0 = 0; i0 < n; i0 += kChunk) {

@@ -3,7 +3,9 @@
 //
 // Kriging is built once from the control points and the model ("factorize once"); after that a query
 // costs one vector of gamma values and one matrix-vector product (no solve) with a precomputed M by
-// (M + K) operator applied to [gamma(c); g(c)] (for OLS the trend correction is folded into it), and a
+// (M + K) operator applied to [gamma(c); g(c)] (for OLS the trend correction is folded into it; with
+// AVX2 + FMA a single query reads the symmetric M by M block of the operator packed as its lower
+// triangle, half the bytes, and applies the trend correction by the constraint projection), and a
 // batch of queries is one matrix product (GEMM) per block of 256 queries. The weights depend on the
 // control points only, so the same object blends any number of signals (pose vectors, whole motions,
 // tensor coefficients); for fixed signals, KrigingPredictor (kriging_predictor.hpp) folds them into the
@@ -50,6 +52,7 @@
 //
 // The object is immutable after build() and safe to query from several threads (one QueryWorkspace
 // per thread).
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -59,6 +62,10 @@
 #include "mocapdb/kriging/variogram_model.hpp"
 
 namespace mocapdb::kriging {
+
+namespace detail {
+struct QueryOperator;
+}  // namespace detail
 
 enum class TrendFit {
     OLS,  ///< paper: least-squares hyperplane, ordinary kriging of its residuals.
@@ -219,6 +226,10 @@ private:
     // OLS only (empty otherwise): weights w = b + U (g_u(c) - U^T b) as one operator on [gamma(c); g(c)],
     //   [(I - U U^T) operator_, U]  (M by M + 1 + r), so a query is a single matrix-vector product.
     Eigen::MatrixXd weight_operator_;
+    // Single queries with AVX2 + FMA (null otherwise): -Wc packed as its lower block triangle (half the
+    // bytes of operator_), V and the trend basis, in the layout of the vector kernels of `weights`
+    // (internal, lib/src/kriging/query_kernels.hpp). Immutable, so shared by copies.
+    std::shared_ptr<const detail::QueryOperator> query_operator_;
 };
 
 }  // namespace mocapdb::kriging
