@@ -10,19 +10,13 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/kriging/kriging.hpp"
+#include "random_points.hpp"
 #include "mocapdb/kriging/kriging_predictor.hpp"
 
 using namespace mocapdb::kriging;
+using mocapdb::kriging::test::uniform;
 
 namespace {
-
-Eigen::MatrixXd uniform(Eigen::Index n, Eigen::Index p, unsigned seed, double lo, double hi) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> ud(lo, hi);
-    Eigen::MatrixXd m(n, p);
-    for (Eigen::Index k = 0; k < m.size(); ++k) m.data()[k] = ud(rng);
-    return m;
-}
 
 // Every code path of gamma_of_squared: spherical, p = 2, 1, 1.5, 0.5 and general exponents, with and
 // without a nugget.

@@ -16,18 +16,12 @@
 #include <catch2/catch.hpp>
 
 #include "mocapdb/kriging/kriging.hpp"
+#include "random_points.hpp"
 
 using namespace mocapdb::kriging;
+using mocapdb::kriging::test::uniform;
 
 namespace {
-
-Eigen::MatrixXd uniform(Eigen::Index n, Eigen::Index p, unsigned seed, double lo, double hi) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> ud(lo, hi);
-    Eigen::MatrixXd m(n, p);
-    for (Eigen::Index k = 0; k < m.size(); ++k) m.data()[k] = ud(rng);
-    return m;
-}
 
 // gamma(|c - c_i|) over the unique points.
 Eigen::VectorXd gamma_at(const Kriging& k, const Eigen::VectorXd& c) {

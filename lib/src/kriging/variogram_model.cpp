@@ -145,6 +145,17 @@ void exp_in_place(double* v, Eigen::Index n) {
 // values, most of it from the logarithm below, about twice as fast as Eigen 3.4's, whose frexp
 // emulation and select chain dominate).
 
+// e^r 2^k for |r| <= ln2 / 2, with kd = k + 1.5 2^52 (k in the low mantissa bits): the Taylor polynomial
+// to r^12 (truncation below 1e-17 relative), then k added to the exponent field.
+inline __m256d scaled_exp_polynomial(__m256d r, __m256d kd) {
+    __m256d p = _mm256_set1_pd(1.0 / 479001600.0);
+    for (const double c : {1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0, 1.0 / 40320.0, 1.0 / 5040.0, 1.0 / 720.0,
+                           1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5, 1.0, 1.0}) {
+        p = _mm256_fmadd_pd(p, r, _mm256_set1_pd(c));
+    }
+    return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(_mm256_castpd_si256(kd), 52)));
+}
+
 // exp_in_place above, four values at a time: the same operations, so the same results (NaN aside).
 inline __m256d exp4(__m256d x) {
     x = _mm256_max_pd(x, _mm256_set1_pd(-708.0));
@@ -154,12 +165,7 @@ inline __m256d exp4(__m256d x) {
     const __m256d k = _mm256_sub_pd(kd, shifter);
     __m256d r = _mm256_fnmadd_pd(k, _mm256_set1_pd(6.93147180369123816490e-01), x);
     r = _mm256_fnmadd_pd(k, _mm256_set1_pd(1.90821492927058770002e-10), r);
-    __m256d p = _mm256_set1_pd(1.0 / 479001600.0);
-    for (const double c : {1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0, 1.0 / 40320.0, 1.0 / 5040.0, 1.0 / 720.0,
-                           1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5, 1.0, 1.0}) {
-        p = _mm256_fmadd_pd(p, r, _mm256_set1_pd(c));
-    }
-    return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(_mm256_castpd_si256(kd), 52)));
+    return scaled_exp_polynomial(r, kd);
 }
 
 // exp(-t) for t >= 0, four values at a time, for 1 - exp(-t): as exp4 but with t clamped to 708 only and
@@ -172,13 +178,7 @@ inline __m256d exp_neg4(__m256d t) {
     const __m256d shifter = _mm256_set1_pd(6755399441055744.0);
     const __m256d kd = _mm256_fnmadd_pd(t, _mm256_set1_pd(1.4426950408889634074), shifter);
     const __m256d k = _mm256_sub_pd(kd, shifter);
-    const __m256d r = _mm256_fnmsub_pd(k, _mm256_set1_pd(0.693147180559945309417), t);
-    __m256d p = _mm256_set1_pd(1.0 / 479001600.0);
-    for (const double c : {1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0, 1.0 / 40320.0, 1.0 / 5040.0, 1.0 / 720.0,
-                           1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5, 1.0, 1.0}) {
-        p = _mm256_fmadd_pd(p, r, _mm256_set1_pd(c));
-    }
-    return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(_mm256_castpd_si256(kd), 52)));
+    return scaled_exp_polynomial(_mm256_fnmsub_pd(k, _mm256_set1_pd(0.693147180559945309417), t), kd);
 }
 
 // log(x) for x > 0, four values at a time: x = 2^k m with m in [sqrt(1/2), sqrt(2)) from the exponent
