@@ -25,23 +25,26 @@ using namespace mocapdb::bench;
 
 namespace {
 
-// Seconds per single-query weights call of `interp` (queries: P by 4096), one figure per chunk of 2000
-// calls, 50 chunks per repeat: on a shared machine the best chunk is the undisturbed speed and the
-// median shows the interference.
-std::vector<double> per_query_seconds(const Interpolator& interp, const Eigen::MatrixXd& queries, int repeats) {
+// Seconds per single-query weights call of each interpolator (queries: P by 4096), one figure per chunk
+// of 2000 calls, 50 chunks per repeat. The interpolators take turns chunk by chunk, so a slow phase of
+// the shared machine (they last seconds here) falls on all of them alike: the best chunk is the
+// undisturbed speed and the median shows the interference.
+std::vector<std::vector<double>> per_query_seconds(const std::vector<const Interpolator*>& interps,
+                                                   const Eigen::MatrixXd& queries, int repeats) {
     QueryWorkspace ws;
-    Eigen::VectorXd w(interp.num_samples());
     const int iters = 2000;
-    std::vector<double> t;
+    std::vector<std::vector<double>> t(interps.size());
     int i = 0;
-    for (int r = 0; r < repeats * 50; ++r) {
-        const auto t0 = Clock::now();
-        for (int k = 0; k < iters; ++k, ++i) {
-            interp.weights(queries.col(i & 4095), w, ws);
-            g_sink = g_sink + w(i % w.size());
+    for (int r = 0; r < repeats * 50; ++r)
+        for (std::size_t j = 0; j < interps.size(); ++j) {
+            Eigen::VectorXd w(interps[j]->num_samples());
+            const auto t0 = Clock::now();
+            for (int k = 0; k < iters; ++k, ++i) {
+                interps[j]->weights(queries.col(i & 4095), w, ws);
+                g_sink = g_sink + w(i % w.size());
+            }
+            t[j].push_back(seconds_since(t0) / iters);
         }
-        t.push_back(seconds_since(t0) / iters);
-    }
     return t;
 }
 
@@ -81,7 +84,7 @@ int main(int argc, char** argv) {
     gls.trend_fit = TrendFit::GLS;
 
     std::printf("# bench_kriging: P = %d, model stable(p=1.5) unless noted, best of %d repeats (median in brackets;\n"
-                "# per-query figures: best and median of 50 x repeats chunks of 2000 queries)\n",
+                "# per-query figures: best and median of 50 x repeats chunks of 2000 queries, the models taking turns)\n",
                 static_cast<int>(p), repeats);
     // 1. Factorization.
     for (Eigen::Index n : {Eigen::Index{92}, Eigen::Index{1000}}) {
@@ -104,19 +107,25 @@ int main(int argc, char** argv) {
         const Eigen::MatrixXd pts = uniform(n, p, 2);
         // One query per column (contiguous), as a caller holding its control vectors would pass them.
         const Eigen::MatrixXd queries = uniform(4096, p, 3).transpose();
-        for (const auto& model : models) {
+        std::vector<Kriging> krigings;
+        std::vector<std::string> names;
+        for (const auto& model : models)
             for (const auto* opt : {&ols, &gls}) {
-                const std::vector<double> t = per_query_seconds(Kriging::build(pts, model, *opt), queries, repeats);
-                const std::string name = model.family == VariogramFamily::Spherical
-                                             ? std::string("sph")
-                                             : "stable" + std::to_string(model.exponent).substr(0, 3);
-                std::printf("weights_per_query_N92_P4_%s_%s %.1f ns (median %.1f)\n", name.c_str(),
-                            to_string(opt->trend_fit), 1e9 * best(t), 1e9 * median(t));
+                krigings.push_back(Kriging::build(pts, model, *opt));
+                names.push_back("weights_per_query_N92_P4_" +
+                                (model.family == VariogramFamily::Spherical ? std::string("sph")
+                                                                            : "stable" + std::to_string(model.exponent).substr(0, 3)) +
+                                "_" + to_string(opt->trend_fit));
             }
-        }
         // RBF baseline, same interface.
-        const std::vector<double> t = per_query_seconds(RbfInterpolator::build(pts, {}), queries, repeats);
-        std::printf("rbf_weights_per_query_N92_P4 %.1f ns (median %.1f)\n", 1e9 * best(t), 1e9 * median(t));
+        const RbfInterpolator rbf = RbfInterpolator::build(pts, {});
+        std::vector<const Interpolator*> interps;
+        for (const auto& k : krigings) interps.push_back(&k);
+        interps.push_back(&rbf);
+        names.push_back("rbf_weights_per_query_N92_P4");
+        const auto t = per_query_seconds(interps, queries, repeats);
+        for (std::size_t j = 0; j < interps.size(); ++j)
+            std::printf("%s %.1f ns (median %.1f)\n", names[j].c_str(), 1e9 * best(t[j]), 1e9 * median(t[j]));
     }
     // 3. Batch of 10 000 queries (weights matrix N by 10 000), N = 92 and N = 1000.
     for (Eigen::Index n : {Eigen::Index{92}, Eigen::Index{1000}}) {
