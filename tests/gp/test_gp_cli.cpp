@@ -153,6 +153,13 @@ TEST_CASE("gp --layers 3: subjects from the CMU names form the middle layer", "[
     REQUIRE(r.exit_code == 0);
     CHECK(r.out.find("groups (three layers): 0 = {02_01, 02_02} 1 = {16_15, 16_16} 2 = {35_01}") != std::string::npos);
     CHECK(mocapdb::read_clip(tmp / "s" / "sample_002.bvh").frame_count() == 16);
+    r = run_cli("gp sample" + common + " --n 1 --subject 16 -o " + quoted((tmp / "s16").string()));
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK(mocapdb::read_clip(tmp / "s16" / "sample_001.bvh").frame_count() == 16);
+    r = run_cli("gp sample" + common + " --n 1 --subject 99 -o " + quoted((tmp / "s99").string()));
+    CHECK(r.exit_code != 0);
+    CHECK(r.err.find("no child of that subject (subjects: 02, 16, 35)") != std::string::npos);
 
     r = run_cli("gp experiment" + common + " --child 16_16 --observed-list 5 --runs 1 --json");
     INFO(r.output);

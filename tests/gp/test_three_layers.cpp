@@ -171,6 +171,24 @@ TEST_CASE("three-layer samples: a new child of a new group varies by K_h + K_f a
     CHECK((cov - expected).cwiseAbs().maxCoeff() < 0.05 * expected.diagonal().maxCoeff());
     // Deterministic for a seed.
     CHECK(sample_children(model, data, ts, 2)[1] == samples[1]);
+    // New children of existing group 1: around its function's posterior mean, varying by K_f.
+    SampleOptions in_group;
+    in_group.group = 1;
+    const auto kids = sample_children(model, data, ts, n, in_group);
+    const VecX group_mean = predict_group(model, data, 1, ts).mean.row(0).transpose();
+    MatX kcov = MatX::Zero(3, 3);
+    for (const MatX& s : kids) {
+        const VecX dev = s.row(0).transpose() - group_mean;
+        kcov += dev * dev.transpose();
+    }
+    kcov /= static_cast<double>(n);
+    const MatX kf = lmc_covariance(model.child, ts, ts);
+    INFO("in group 1: empirical\n" << kcov << "\nexpected K_f\n" << kf);
+    CHECK((kcov - kf).cwiseAbs().maxCoeff() < 0.05 * kf.diagonal().maxCoeff());
+    in_group.group = 2;
+    CHECK_THROWS_AS(sample_children(model, data, ts, 1, in_group), InvalidArgument);
+    in_group.group = 0;
+    CHECK_THROWS_AS(sample_children(make_model(d, true, 1, 1), data, ts, 1, in_group), InvalidArgument);
 }
 
 TEST_CASE("three-layer arguments are checked", "[gp][layers]") {

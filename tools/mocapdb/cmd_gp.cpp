@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -44,6 +45,7 @@ struct GpArgs {
     // model
     int layers = 2;
     std::vector<std::size_t> groups;
+    std::string subject;
     std::size_t q = 1;
     std::size_t rank = 1;
     std::string kernel = "matern32";
@@ -166,6 +168,32 @@ void assign_groups(const GpArgs& a, const std::vector<std::string>& names, HgpDa
         data.groups.push_back(static_cast<std::size_t>(it - subjects.begin()));
         if (it == subjects.end()) subjects.push_back(s);
     }
+}
+
+/// The group of --subject: a subject of the CMU names (e.g. 16), or with --groups a group index.
+std::size_t subject_group(const GpArgs& a, const std::vector<std::string>& names, const HgpData& data) {
+    if (a.layers != 3 || a.mo_baseline) throw InvalidArgument("--subject needs --layers 3 (and not --mo-baseline)");
+    if (!a.groups.empty()) {
+        std::size_t pos = 0;
+        unsigned long v = 0;
+        try {
+            v = std::stoul(a.subject, &pos);
+        } catch (const std::exception&) {
+            pos = 0;
+        }
+        if (pos != a.subject.size() || v >= data.group_count())
+            throw InvalidArgument("--subject '" + a.subject + "': with --groups give a group index 0.." +
+                                  std::to_string(data.group_count() - 1));
+        return v;
+    }
+    std::string known;
+    for (std::size_t r = 0; r < names.size(); ++r) {
+        const std::string s = subject_of(names[r]);
+        if (s == a.subject) return data.groups[r];
+        if (known.find(" " + s + ",") == std::string::npos) known += " " + s + ",";
+    }
+    if (!known.empty()) known.pop_back();
+    throw InvalidArgument("--subject '" + a.subject + "': no child of that subject (subjects:" + known + ")");
 }
 
 const char* model_name(const GpArgs& a) { return a.mo_baseline ? "moa" : a.layers == 3 ? "mohgp3" : "mohgp"; }
@@ -348,6 +376,8 @@ void run_sample(const GpArgs& a) {
     load_children(a, clips, names);
     MotionData md = prepare_motion_data(clips, names, data_options(a));
     assign_groups(a, md.child_names, md.data);
+    std::optional<std::size_t> group;
+    if (!a.subject.empty()) group = subject_group(a, md.child_names, md.data);
     if (a.out.empty()) throw InvalidArgument("sample needs -o DIR");
     const fs::path dir(a.out);
     if (fs::exists(dir) && !fs::is_directory(dir)) throw IoError(dir.string() + ": not a directory");
@@ -365,6 +395,7 @@ void run_sample(const GpArgs& a) {
     bar.clear();
     SampleOptions so;
     so.seed = a.seed;
+    so.group = group;
     const auto samples = sample_children(f.model, md.data, md.data.times, a.n, so);
     for (std::size_t i = 0; i < samples.size(); ++i)
         write_bvh(files[i], reassemble_clip(md, samples[i], files[i].stem().string()));
@@ -661,10 +692,14 @@ void setup_gp(CLI::App& app) {
     add_model_options(samp, *a);
     samp->add_flag("--mo-baseline", a->mo_baseline, "use the flat multi-output GP (MOA)");
     samp->add_option("--n", a->n, "number of samples (default 10)")->check(CLI::Range(1, 10000));
+    samp->add_option("--subject", a->subject,
+                     "with --layers 3: new trials of this subject (e.g. 16; with --groups a group index) instead of a new subject");
     samp->add_option("-o,--output", a->out, "output folder (sample_001.bvh ..., trend.bvh)")->required();
     samp->add_flag("--force", a->force, "overwrite existing files");
     samp->footer("Example:\n  mocapdb gp sample db.h5 --set walks --n 5 -o samples/\n"
-                 "Samples are the parent's posterior mean plus a draw of the child process (thesis §5.2).");
+                 "Samples are the parent's posterior mean plus a draw of the child process (thesis §5.2). With --layers 3\n"
+                 "a sample is a new trial of a new subject (trend + subject and trial processes), or with --subject S a\n"
+                 "new trial of subject S (its posterior mean + the trial process).");
     samp->callback([a] {
         keep_freed_memory();
         run_sample(*a);

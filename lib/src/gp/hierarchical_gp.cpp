@@ -823,18 +823,29 @@ std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, co
     const Index ts = t_star.size();
     VecX mean;
     MatX cov = lmc_covariance(model.child, t_star, t_star);
-    // Three layers: a new child of a new group deviates from the trend by h + f.
-    if (model.grouped) cov += lmc_covariance(model.group, t_star, t_star);
-    if (model.hierarchical && options.parent_uncertainty) {
-        if (!data.all_complete())
-            throw InvalidArgument("sample_children: parent_uncertainty needs every child complete");
+    const bool posterior_needed = options.group.has_value() || (model.hierarchical && options.parent_uncertainty);
+    if (posterior_needed && !data.all_complete())
+        throw InvalidArgument("sample_children: parent_uncertainty and group need every child complete");
+    if (options.group) {
+        // A new child of an existing group: that group's function's posterior, then K_f.
+        check_group(model, data, *options.group);
         const Grid grid = make_grid(data.times, t_star);
-        const GridGaussian pp = at_queries(trend_on_grid(model, data, all_children(data), grid), grid, d);
-        if (!pp.ok) throw InvalidArgument("sample_children: the parent posterior cannot be computed");
-        mean = pp.mean;
-        cov += pp.cov;
+        const GridGaussian pg = at_queries(group_on_grid(model, data, *options.group, -1, grid), grid, d);
+        if (!pg.ok) throw InvalidArgument("sample_children: the group posterior cannot be computed");
+        mean = pg.mean;
+        if (options.parent_uncertainty) cov += pg.cov;
     } else {
-        mean = vec_output_major(synthesis_trend(model, data, t_star));
+        // Three layers: a new child of a new group deviates from the trend by h + f.
+        if (model.grouped) cov += lmc_covariance(model.group, t_star, t_star);
+        if (model.hierarchical && options.parent_uncertainty) {
+            const Grid grid = make_grid(data.times, t_star);
+            const GridGaussian pp = at_queries(trend_on_grid(model, data, all_children(data), grid), grid, d);
+            if (!pp.ok) throw InvalidArgument("sample_children: the parent posterior cannot be computed");
+            mean = pp.mean;
+            cov += pp.cov;
+        } else {
+            mean = vec_output_major(synthesis_trend(model, data, t_star));
+        }
     }
     if (!mean.allFinite()) throw InvalidArgument("sample_children: the trend could not be computed (covariance not positive definite)");
     if (options.add_noise) cov.diagonal() += flat_noise(model.noise_variance(), ts);

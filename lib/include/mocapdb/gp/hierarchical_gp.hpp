@@ -44,6 +44,7 @@
 // Numerical outcomes are values, never exceptions: a covariance that is not positive definite gives
 // ok = false with a message. Arguments of the wrong shape throw InvalidArgument.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -180,10 +181,15 @@ struct SampleOptions {
     bool parent_uncertainty = false;
     /// Add observation noise to the samples.
     bool add_noise = false;
+    /// Three layers: draw new children of this existing group (its function's posterior mean + a draw of
+    /// GP(0, K_f); with parent_uncertainty also its posterior covariance) instead of a new group.
+    /// InvalidArgument for a model without groups or a group that does not exist.
+    std::optional<std::size_t> group;
 };
 
 /// `count` new children at `t_star` (thesis §5.2): synthesis_trend + a draw of GP(0, K_f) (+ the options).
-/// Three layers: each sample is a new child of a new group, synthesis_trend + a draw of GP(0, K_h + K_f).
+/// Three layers: each sample is a new child of a new group, synthesis_trend + a draw of GP(0, K_h + K_f),
+/// or with options.group a new child of that group.
 /// Deterministic for a given seed. Each sample is D by T*.
 std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, const VecX& t_star,
                                   std::size_t count, const SampleOptions& options = {});
