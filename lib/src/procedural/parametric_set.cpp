@@ -1,5 +1,6 @@
 #include "mocapdb/procedural/parametric_set.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -117,75 +118,68 @@ void apply_grid_specs(ReachGrid& grid, const std::vector<std::string>& specs) {
     }
 }
 
-ParametricSet generate_walk_set(const WalkGrid& grid) {
-    for (const GridAxis* a : {&grid.speed, &grid.turn, &grid.stride}) check_axis(*a);
-    const std::vector<Column> columns =
-        varying({{&grid.speed, "cm/s", 100.0}, {&grid.turn, "rad", kDeg}, {&grid.stride, "cm", 100.0}});
+namespace {
+
+/// One clip per point of a three-axis grid — `make(v0, v1, v2, taken)` returns it, named uniquely
+/// against `taken` — with the axes that vary as the parameter columns (grid value · scale).
+template <class Make>
+ParametricSet grid_set(const std::string& kind, const std::array<Column, 3>& axes, Make make) {
+    for (const Column& a : axes) check_axis(*a.axis);
+    const std::vector<Column> columns = varying({axes[0], axes[1], axes[2]});
     ParametricSet set;
-    set.kind = "walk";
+    set.kind = kind;
     for (const Column& c : columns) {
-        // The speed and turn columns carry the extractors' names, units and definitions.
         set.parameter_names.push_back(c.axis->name);
         set.parameter_units.push_back(c.unit);
     }
-    const std::size_t n = grid.speed.count * grid.turn.count * grid.stride.count;
-    set.parameters.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(columns.size()));
+    const GridAxis &a0 = *axes[0].axis, &a1 = *axes[1].axis, &a2 = *axes[2].axis;
+    set.parameters.resize(static_cast<Eigen::Index>(a0.count * a1.count * a2.count), static_cast<Eigen::Index>(columns.size()));
     std::set<std::string> taken;
-    std::size_t row = 0;
-    for (std::size_t i = 0; i < grid.speed.count; ++i)
-        for (std::size_t j = 0; j < grid.turn.count; ++j)
-            for (std::size_t k = 0; k < grid.stride.count; ++k, ++row) {
-                WalkParams p;
-                p.speed_m_s = grid.speed.value(i);
-                p.turn_deg = grid.turn.value(j);
-                p.stride_m = grid.stride.value(k);
-                WalkMotion m = generate_walk(p, grid.options);
-                std::string name = "walk_s" + std::to_string(std::lround(100.0 * p.speed_m_s)) + "_t" + signed_int(p.turn_deg, 3);
-                if (p.stride_m > 0.0) name += "_l" + std::to_string(std::lround(100.0 * p.stride_m));
-                m.clip.name = unique(name, taken);
-                const double values[3] = {p.speed_m_s, p.turn_deg, p.stride_m};
+    Eigen::Index row = 0;
+    for (std::size_t i = 0; i < a0.count; ++i)
+        for (std::size_t j = 0; j < a1.count; ++j)
+            for (std::size_t k = 0; k < a2.count; ++k, ++row) {
+                const double values[3] = {a0.value(i), a1.value(j), a2.value(k)};
+                set.clips.push_back(make(values[0], values[1], values[2], taken));
                 for (std::size_t c = 0; c < columns.size(); ++c) {
-                    const std::size_t axis = columns[c].axis == &grid.speed ? 0 : columns[c].axis == &grid.turn ? 1 : 2;
-                    set.parameters(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c)) = values[axis] * columns[c].scale;
+                    const std::size_t axis = columns[c].axis == &a0 ? 0 : columns[c].axis == &a1 ? 1 : 2;
+                    set.parameters(row, static_cast<Eigen::Index>(c)) = values[axis] * columns[c].scale;
                 }
-                set.clips.push_back(std::move(m.clip));
             }
     return set;
 }
 
+}  // namespace
+
+ParametricSet generate_walk_set(const WalkGrid& grid) {
+    // The speed and turn columns carry the extractors' names, units and definitions.
+    return grid_set("walk", {{{&grid.speed, "cm/s", 100.0}, {&grid.turn, "rad", kDeg}, {&grid.stride, "cm", 100.0}}},
+                    [&](double speed, double turn, double stride, std::set<std::string>& taken) {
+                        WalkParams p;
+                        p.speed_m_s = speed;
+                        p.turn_deg = turn;
+                        p.stride_m = stride;
+                        WalkMotion m = generate_walk(p, grid.options);
+                        std::string name = "walk_s" + std::to_string(std::lround(100.0 * speed)) + "_t" + signed_int(turn, 3);
+                        if (stride > 0.0) name += "_l" + std::to_string(std::lround(100.0 * stride));
+                        m.clip.name = unique(name, taken);
+                        return std::move(m.clip);
+                    });
+}
+
 ParametricSet generate_reach_set(const ReachGrid& grid) {
-    for (const GridAxis* a : {&grid.angle, &grid.height, &grid.distance}) check_axis(*a);
-    const std::vector<Column> columns =
-        varying({{&grid.angle, "deg", 1.0}, {&grid.height, "cm", 1.0}, {&grid.distance, "cm", 1.0}});
-    ParametricSet set;
-    set.kind = "reach";
-    for (const Column& c : columns) {
-        set.parameter_names.push_back(c.axis->name);
-        set.parameter_units.push_back(c.unit);
-    }
-    const std::size_t n = grid.angle.count * grid.height.count * grid.distance.count;
-    set.parameters.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(columns.size()));
-    std::set<std::string> taken;
-    std::size_t row = 0;
-    for (std::size_t i = 0; i < grid.angle.count; ++i)
-        for (std::size_t j = 0; j < grid.height.count; ++j)
-            for (std::size_t k = 0; k < grid.distance.count; ++k, ++row) {
-                ReachParams p;
-                p.angle_deg = grid.angle.value(i);
-                p.height_cm = grid.height.value(j);
-                p.distance_cm = grid.distance.value(k);
-                ReachMotion m = generate_reach(p, grid.options);
-                m.clip.name = unique("reach_a" + signed_int(p.angle_deg, 3) + "_h" + std::to_string(std::lround(p.height_cm)) +
-                                         "_d" + std::to_string(std::lround(p.distance_cm)),
-                                     taken);
-                const double values[3] = {p.angle_deg, p.height_cm, p.distance_cm};
-                for (std::size_t c = 0; c < columns.size(); ++c) {
-                    const std::size_t axis = columns[c].axis == &grid.angle ? 0 : columns[c].axis == &grid.height ? 1 : 2;
-                    set.parameters(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c)) = values[axis] * columns[c].scale;
-                }
-                set.clips.push_back(std::move(m.clip));
-            }
-    return set;
+    return grid_set("reach", {{{&grid.angle, "deg", 1.0}, {&grid.height, "cm", 1.0}, {&grid.distance, "cm", 1.0}}},
+                    [&](double angle, double height, double distance, std::set<std::string>& taken) {
+                        ReachParams p;
+                        p.angle_deg = angle;
+                        p.height_cm = height;
+                        p.distance_cm = distance;
+                        ReachMotion m = generate_reach(p, grid.options);
+                        m.clip.name = unique("reach_a" + signed_int(angle, 3) + "_h" + std::to_string(std::lround(height)) +
+                                                 "_d" + std::to_string(std::lround(distance)),
+                                             taken);
+                        return std::move(m.clip);
+                    });
 }
 
 std::vector<std::filesystem::path> write_parametric_set(const std::filesystem::path& dir, const ParametricSet& set,
