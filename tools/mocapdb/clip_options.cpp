@@ -9,7 +9,20 @@ ClipReadOptions ClipOptions::to_read_options() const {
     o.asf = asf;
     if (fps > 0.0) o.frame_rate = fps;
     o.strict = strict;
+    o.bvh_positions = bvh_positions_from_option(bvh_positions);
     return o;
+}
+
+void add_bvh_positions_option(CLI::App& command, std::string& value) {
+    command
+        .add_option("--bvh-positions", value,
+                    "BVH position channels: 'replace' = the joint's local translation, replacing OFFSET (Blender, "
+                    "MotionBuilder; default), 'add' = added to OFFSET")
+        ->check(CLI::IsMember({"replace", "add"}));
+}
+
+PositionChannels bvh_positions_from_option(const std::string& value) {
+    return value == "add" ? PositionChannels::add_to_offset : PositionChannels::replace_offset;
 }
 
 void add_clip_options(CLI::App& command, ClipOptions& options) {
@@ -18,6 +31,7 @@ void add_clip_options(CLI::App& command, ClipOptions& options) {
     command.add_option("--fps", options.fps, "frame rate override in Hz (AMC default 120; BVH: its Frame Time)")
         ->check(CLI::PositiveNumber);
     command.add_flag("--strict", options.strict, "refuse file defects instead of working around them");
+    add_bvh_positions_option(command, options.bvh_positions);
 }
 
 Clip load_clip(const std::string& path, const ClipOptions& options, std::ostream& warnings) {

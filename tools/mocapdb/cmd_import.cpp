@@ -1,6 +1,7 @@
 // mocapdb import FILES|DIRS... -o DB.h5: store clips in a motion database (atomic, appending).
 #include <iostream>
 
+#include "clip_options.hpp"
 #include "commands.hpp"
 #include "pipeline.hpp"
 
@@ -15,6 +16,7 @@ struct ImportArgs {
     std::string manifest;
     bool strict = false;
     bool force = false;
+    std::string bvh_positions = "replace";
 };
 
 void run_import(const ImportArgs& args) {
@@ -28,6 +30,7 @@ void run_import(const ImportArgs& args) {
     options.asf = args.asf;
     if (args.fps > 0.0) options.frame_rate = args.fps;
     options.strict = args.strict;
+    options.bvh_positions = bvh_positions_from_option(args.bvh_positions);
     const std::filesystem::path db = args.output;
     const ImportOutcome outcome = import_clips(db, inputs, options, args.force, std::cout);
     std::cout << describe_import(db, outcome);
@@ -57,6 +60,7 @@ void setup_import(CLI::App& app) {
     cmd->add_option("--manifest", args->manifest, "CSV with per-file subject, description, labels, fps")
         ->check(CLI::ExistingFile);
     cmd->add_flag("--strict", args->strict, "refuse file defects instead of working around them");
+    add_bvh_positions_option(*cmd, args->bvh_positions);
     cmd->add_flag("--force", args->force, "replace an existing output file with a new database");
     cmd->callback([args] { run_import(*args); });
 }

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "db_info.hpp"
 #include "json_writer.hpp"
+#include "mocapdb/motion/figure_height.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb::cli {
@@ -27,6 +28,10 @@ void print_json(const std::string& file, const Clip& clip) {
     j.key("frame_rate").value(clip.frame_rate);
     j.key("duration").value(clip.duration());
     j.key("channels").value(s.channel_count());
+    j.key("figure_height_cm").value(figure_height(s, clip.frame(0)));
+    j.key("root").value(s.joint(0).name);
+    j.key("motion_root").value(s.joint(s.motion_root()).name);
+    j.key("position_channels").value(to_string(s.position_channels()));
     j.key("joints").begin_array();
     for (const Joint& joint : s.joints()) {
         j.begin_object();
@@ -69,7 +74,10 @@ void print_text(const std::string& file, const Clip& clip, bool tree) {
     std::size_t end_sites = 0;
     for (const Joint& j : s.joints()) end_sites += j.end_site ? 1 : 0;
     std::printf("file        %s\n", file.c_str());
-    std::printf("joints      %zu (%zu end sites), root '%s'\n", s.size(), end_sites, s.joint(0).name.c_str());
+    std::printf("joints      %zu (%zu end sites), root '%s'", s.size(), end_sites, s.joint(0).name.c_str());
+    if (s.motion_root() != 0) std::printf(", body carried by '%s'", s.joint(s.motion_root()).name.c_str());
+    std::printf("\n");
+    std::printf("height      %.1f cm (frame 0, lowest to highest joint)\n", figure_height(s, clip.frame(0)));
     std::printf("channels    %zu per frame\n", s.channel_count());
     std::printf("frames      %zu\n", clip.frame_count());
     std::printf("frame rate  %.6g Hz\n", clip.frame_rate);
@@ -90,6 +98,8 @@ void setup_info(CLI::App& app) {
         "  mocapdb info walk.bvh\n"
         "  mocapdb info 16_15.amc --asf 16.asf --json\n"
         "JSON keys: file, frames, frame_rate (Hz), duration (s), channels (values per frame),\n"
+        "figure_height_cm (frame 0, lowest to highest joint), root, motion_root (the joint that carries\n"
+        "the body: a static ROOT's only child), position_channels (replace_offset or add_to_offset),\n"
         "joints (array of {name, parent, end_site, offset_cm, channels}).\n"
         "On a database file (mocapdb info cmu.h5 --json) the keys are: file, format, format_version,\n"
         "file_bytes, clip_count, total_frames, total_seconds, clips (array of {id, frames, frame_rate,\n"
@@ -109,6 +119,8 @@ void setup_info(CLI::App& app) {
             return;
         }
         const Clip clip = load_clip(args->file, args->clip, std::cerr);
+        const std::string tall = figure_height_warning(figure_height(*clip.skeleton, clip.frame(0)));
+        if (!tall.empty()) std::cerr << "mocapdb: warning: " << args->file << ": " << tall << "\n";
         if (args->json) {
             print_json(args->file, clip);
         } else {

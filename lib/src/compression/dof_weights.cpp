@@ -32,7 +32,7 @@ VecX position_error_weights(const Skeleton& skeleton) {
     VecX w(static_cast<Eigen::Index>(layout.dof_count()));
     w.head<3>().setConstant(k * std::sqrt(3.0));
     for (std::size_t j : layout.rotation_joints()) {
-        const double c = j == 0 ? 1.0 + std::sqrt(2.0) : std::sqrt(3.0);
+        const double c = j == skeleton.motion_root() ? 1.0 + std::sqrt(2.0) : std::sqrt(3.0);
         w.segment<3>(layout.exp_map_row(j)).setConstant(k * c * std::max(lever[j], 1.0));
     }
     return w;

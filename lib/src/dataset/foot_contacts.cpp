@@ -80,7 +80,7 @@ MatX root_positions(const Clip& clip) {
     validate(clip);
     MatX out(3, static_cast<Eigen::Index>(clip.frame_count()));
     for (std::size_t f = 0; f < clip.frame_count(); ++f)
-        out.col(static_cast<Eigen::Index>(f)) = clip.skeleton->local_translation(0, clip.frame(f));
+        out.col(static_cast<Eigen::Index>(f)) = motion_root_transform(*clip.skeleton, clip.frame(f)).position;
     return out;
 }
 
@@ -90,7 +90,7 @@ VecX root_headings(const Clip& clip) {
     VecX out(static_cast<Eigen::Index>(clip.frame_count()));
     double previous = 0.0;
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-        double h = heading_of(s.local_rotation(0, clip.frame(f)), s.forward());
+        double h = heading_of(motion_root_transform(s, clip.frame(f)).orientation, s.forward());
         if (f > 0) h -= 2.0 * kPi * std::round((h - previous) / (2.0 * kPi));
         out[static_cast<Eigen::Index>(f)] = previous = h;
     }

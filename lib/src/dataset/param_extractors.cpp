@@ -146,7 +146,7 @@ VecX extract_parameters(const Clip& clip, std::size_t begin, std::size_t end,
                 const std::size_t f = reach_frame(e.at, begin, end);
                 GlobalPose pose;
                 forward_kinematics(*clip.skeleton, clip.frame(f), pose);
-                const Vec3 local = rotate_about_y(pose.positions[*j] - pose.positions[0], -heading[static_cast<Eigen::Index>(f)]);
+                const Vec3 local = rotate_about_y(pose.positions[*j] - pose.positions[clip.skeleton->motion_root()], -heading[static_cast<Eigen::Index>(f)]);
                 values.insert(values.end(), {local.x(), local.y(), local.z()});
                 break;
             }

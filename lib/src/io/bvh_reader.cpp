@@ -38,6 +38,9 @@ public:
         clip.name = std::filesystem::path(in_.source_name()).stem().string();
         clip.skeleton = std::make_shared<const Skeleton>(build_skeleton());
         parse_motion(clip);
+        // A static ROOT above the body (exported rigs' "Reference"): its only child carries the motion.
+        const std::size_t motion_root = find_motion_root(*clip.skeleton, clip.channels);
+        if (motion_root != 0) clip.skeleton = std::make_shared<const Skeleton>(clip.skeleton->with_motion_root(motion_root));
         return clip;
     }
 
@@ -142,7 +145,7 @@ private:
                                      "duplicate joint name '" + joints_[i].name + "' (first on line " +
                                          std::to_string(names_line_[k]) + ")");
         try {
-            return Skeleton(joints_, SourceUnits{options_.cm_per_unit, true});
+            return Skeleton(joints_, SourceUnits{options_.cm_per_unit, true}, Vec3::UnitZ(), options_.position_channels);
         } catch (const InvalidArgument& e) {
             throw ParseError(in_.source_name(), 0, 0, e.what());
         }

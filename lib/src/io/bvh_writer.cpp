@@ -115,11 +115,20 @@ bool joint_is_bvh_compatible(const Joint& joint) {
     return true;
 }
 
+// BVH position channels replace OFFSET (see PositionChannels): a skeleton whose channels add to a
+// non-zero offset component must be rewritten.
+bool positions_are_bvh_compatible(const Skeleton& s, std::size_t j) {
+    if (s.position_channels() == PositionChannels::replace_offset) return true;
+    for (int a = 0; a < 3; ++a)
+        if (s.channel_column(j, static_cast<ChannelType>(a)) >= 0 && s.joint(j).offset[a] != 0.0) return false;
+    return true;
+}
+
 }  // namespace
 
 bool is_bvh_compatible(const Skeleton& skeleton) {
-    for (const Joint& j : skeleton.joints())
-        if (!joint_is_bvh_compatible(j)) return false;
+    for (std::size_t j = 0; j < skeleton.size(); ++j)
+        if (!joint_is_bvh_compatible(skeleton.joint(j)) || !positions_are_bvh_compatible(skeleton, j)) return false;
     return true;
 }
 
@@ -143,7 +152,8 @@ Clip to_bvh_channels(const Clip& clip, EulerOrder order) {
     Clip out;
     out.name = clip.name;
     out.frame_rate = clip.frame_rate;
-    auto skeleton = std::make_shared<const Skeleton>(joints, s.source_units(), s.forward());
+    auto skeleton = std::make_shared<const Skeleton>(joints, s.source_units(), s.forward(), PositionChannels::replace_offset,
+                                                     s.motion_root());
     const Skeleton& t = *skeleton;
     out.skeleton = skeleton;
     out.channels = FrameMatrix::Zero(clip.channels.rows(), static_cast<Eigen::Index>(t.channel_count()));
@@ -154,7 +164,11 @@ Clip to_bvh_channels(const Clip& clip, EulerOrder order) {
             const Joint& old_joint = s.joint(j);
             for (std::size_t k = 0; k < old_joint.channels.size(); ++k) {
                 const ChannelType c = old_joint.channels[k];
-                if (!convert[j] || !is_rotation(c)) dst[t.channel_column(j, c)] = row[s.first_channel(j) + k];
+                if (convert[j] && is_rotation(c)) continue;
+                double value = row[s.first_channel(j) + k];
+                if (!is_rotation(c) && s.position_channels() == PositionChannels::add_to_offset)
+                    value += old_joint.offset[static_cast<int>(channel_axis(c))];
+                dst[t.channel_column(j, c)] = value;
             }
             if (!convert[j]) continue;
             Vec3 near = Vec3::Zero();

@@ -26,6 +26,7 @@ Clip read_clip(const std::filesystem::path& path, const ClipReadOptions& options
         BvhReadOptions o;
         o.strict = options.strict;
         o.frame_rate = options.frame_rate;
+        o.position_channels = options.bvh_positions;
         return read_bvh(path, o, out_warnings);
     }
     std::filesystem::path asf = options.asf;

@@ -21,6 +21,15 @@ void forward_kinematics(const Skeleton& skeleton, const double* row, GlobalPose&
     }
 }
 
+JointTransform motion_root_transform(const Skeleton& skeleton, const double* row) {
+    JointTransform t;
+    for (std::size_t j : skeleton.motion_root_chain()) {
+        t.position += t.orientation * skeleton.local_translation(j, row);
+        t.orientation = t.orientation * skeleton.local_rotation(j, row);
+    }
+    return t;
+}
+
 MatX joint_positions(const Clip& clip) {
     const Skeleton& skeleton = *clip.skeleton;
     const auto frames = static_cast<Eigen::Index>(clip.frame_count());

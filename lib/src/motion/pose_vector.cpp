@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/rotation.hpp"
 
 namespace mocapdb {
@@ -37,8 +38,11 @@ Vec3 Canonicalization::invert(const Vec3& p) const { return yaw_rotation(yaw) * 
 Quat Canonicalization::invert(const Quat& q) const { return yaw_rotation(yaw) * q; }
 
 PoseLayout::PoseLayout(const Skeleton& skeleton) : rows_(skeleton.size(), -1) {
-    for (std::size_t j = 0; j < skeleton.size(); ++j) {
-        if (j == 0 || skeleton.has_rotation(j)) {
+    const auto& chain = skeleton.motion_root_chain();
+    rows_[skeleton.motion_root()] = 3;
+    rotation_joints_.push_back(skeleton.motion_root());
+    for (std::size_t j = chain.back() + 1; j < skeleton.size(); ++j) {
+        if (skeleton.has_rotation(j)) {
             rows_[j] = static_cast<int>(3 + 3 * rotation_joints_.size());
             rotation_joints_.push_back(j);
         }
@@ -61,9 +65,9 @@ Canonicalization canonicalization_of(const Clip& clip) {
     Canonicalization c;
     if (clip.frame_count() == 0) return c;
     const Skeleton& s = *clip.skeleton;
-    const Vec3 root = s.local_translation(0, clip.frame(0));
-    c.translation = Vec3(root.x(), 0.0, root.z());
-    c.yaw = heading_of(s.local_rotation(0, clip.frame(0)), s.forward());
+    const JointTransform root = motion_root_transform(s, clip.frame(0));
+    c.translation = Vec3(root.position.x(), 0.0, root.position.z());
+    c.yaw = heading_of(root.orientation, s.forward());
     return c;
 }
 
@@ -80,12 +84,13 @@ MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const 
     VecX near = reference.size() ? reference : VecX::Zero(dofs);
     for (Eigen::Index f = 0; f < frames; ++f) {
         const double* row = clip.frame(static_cast<std::size_t>(f));
-        out.col(f).head<3>() = canonical.apply(s.local_translation(0, row));
-        for (std::size_t j : layout.rotation_joints()) {
+        const JointTransform root = motion_root_transform(s, row);
+        out.col(f).head<3>() = canonical.apply(root.position);
+        out.col(f).segment<3>(3) = swing_twist_log(canonical.apply(root.orientation), near.segment<3>(3));
+        for (std::size_t k = 1; k < layout.rotation_joints().size(); ++k) {
+            const std::size_t j = layout.rotation_joints()[k];
             const Eigen::Index r = layout.exp_map_row(j);
-            const Quat q = s.local_rotation(j, row);
-            out.col(f).segment<3>(r) = j == 0 ? swing_twist_log(canonical.apply(q), near.segment<3>(r))
-                                              : log_map_near(q, near.segment<3>(r));
+            out.col(f).segment<3>(r) = log_map_near(s.local_rotation(j, row), near.segment<3>(r));
         }
         near = out.col(f);
     }
@@ -103,19 +108,37 @@ FrameMatrix from_pose_vectors(const Skeleton& s, const Eigen::Ref<const MatX>& p
         throw InvalidArgument("from_pose_vectors: first_near has " + std::to_string(first_near.size()) +
                               " values, a frame row has " + std::to_string(channels));
     if (!poses.allFinite()) throw InvalidArgument("from_pose_vectors: non-finite pose value");
-    FrameMatrix out = FrameMatrix::Zero(poses.cols(), channels);
+    // Channels the pose vector does not carry hold their rest values: position channels at the
+    // offset (non-root translations), joints above the motion root at rest.
+    VecX rest = VecX::Zero(channels);
+    for (std::size_t j = 0; j < s.size(); ++j)
+        for (int a = 0; a < 3; ++a) {
+            const int col = s.channel_column(j, static_cast<ChannelType>(a));
+            if (col >= 0) rest[col] = s.rest_position_value(j, static_cast<Axis>(a));
+        }
+    const std::size_t m = s.motion_root();
+    JointTransform above;  // world transform of the motion root's parent at rest
+    for (std::size_t j : s.motion_root_chain()) {
+        if (j == m) break;
+        above.position += above.orientation * s.local_translation(j, rest.data());
+        above.orientation = above.orientation * s.local_rotation(j, rest.data());
+    }
+    const Quat above_inverse = above.orientation.conjugate();
+    const bool adds = s.position_channels() == PositionChannels::add_to_offset;
+    FrameMatrix out = rest.transpose().replicate(poses.cols(), 1);
     VecX near = first_near.size() ? first_near : VecX::Zero(channels);
     for (Eigen::Index f = 0; f < poses.cols(); ++f) {
         double* row = out.row(f).data();
-        const Vec3 root = canonical.invert(Vec3(poses.col(f).head<3>()));
+        const Vec3 local = above_inverse * (canonical.invert(Vec3(poses.col(f).head<3>())) - above.position);
         for (int a = 0; a < 3; ++a) {
-            const int col = s.channel_column(0, static_cast<ChannelType>(a));
-            if (col >= 0) row[col] = root[a] - s.joint(0).offset[a];
+            const int col = s.channel_column(m, static_cast<ChannelType>(a));
+            if (col >= 0) row[col] = local[a] - (adds ? s.joint(m).offset[a] : 0.0);
         }
-        for (std::size_t j : layout.rotation_joints()) {
-            const Vec3 v = poses.col(f).segment<3>(layout.exp_map_row(j));
-            const Quat q = j == 0 ? canonical.invert(swing_twist_exp(v)) : exp_map(v);
-            if (s.has_rotation(j)) write_rotation_channels(s, j, q, near.data(), row);
+        const Quat root_rotation = above_inverse * canonical.invert(swing_twist_exp(poses.col(f).segment<3>(3)));
+        if (s.has_rotation(m)) write_rotation_channels(s, m, root_rotation, near.data(), row);
+        for (std::size_t k = 1; k < layout.rotation_joints().size(); ++k) {
+            const std::size_t j = layout.rotation_joints()[k];
+            write_rotation_channels(s, j, exp_map(poses.col(f).segment<3>(layout.exp_map_row(j))), near.data(), row);
         }
         near = out.row(f).transpose();
     }

@@ -1,5 +1,6 @@
 #include "mocapdb/motion/skeleton.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_set>
 
@@ -19,12 +20,23 @@ std::optional<ChannelType> channel_type_from_string(std::string_view text) {
     return std::nullopt;
 }
 
+std::string to_string(PositionChannels mode) {
+    return mode == PositionChannels::replace_offset ? "replace_offset" : "add_to_offset";
+}
+
+std::optional<PositionChannels> position_channels_from_string(std::string_view text) {
+    if (text == "replace_offset") return PositionChannels::replace_offset;
+    if (text == "add_to_offset") return PositionChannels::add_to_offset;
+    return std::nullopt;
+}
+
 bool is_rotation(ChannelType type) { return static_cast<int>(type) >= 3; }
 
 Axis channel_axis(ChannelType type) { return static_cast<Axis>(static_cast<int>(type) % 3); }
 
-Skeleton::Skeleton(std::vector<Joint> joints, SourceUnits units, Vec3 forward)
-    : joints_(std::move(joints)), units_(units) {
+Skeleton::Skeleton(std::vector<Joint> joints, SourceUnits units, Vec3 forward, PositionChannels positions,
+                   std::size_t motion_root)
+    : joints_(std::move(joints)), units_(units), positions_(positions), motion_root_(motion_root) {
     if (joints_.empty()) throw InvalidArgument("skeleton: at least one joint is required");
     if (!(forward.allFinite() && std::abs(forward.y()) < 1e-9 && forward.norm() > 1e-9))
         throw InvalidArgument("skeleton: the forward direction must be a finite, non-zero horizontal vector");
@@ -68,6 +80,43 @@ Skeleton::Skeleton(std::vector<Joint> joints, SourceUnits units, Vec3 forward)
         for (ChannelType c : joints_[i].channels)
             columns_[i][static_cast<int>(c)] = static_cast<int>(channel_count_++);
     }
+
+    if (motion_root_ >= joints_.size() || joints_[motion_root_].end_site)
+        throw InvalidArgument("skeleton: motion root " + std::to_string(motion_root_) + " is not a joint");
+    chain_.clear();
+    for (int j = static_cast<int>(motion_root_); j >= 0; j = joints_[static_cast<std::size_t>(j)].parent)
+        chain_.insert(chain_.begin(), static_cast<std::size_t>(j));
+    for (std::size_t i = 1; i < joints_.size(); ++i) {
+        const auto parent = static_cast<std::size_t>(joints_[i].parent);
+        const bool above = parent != motion_root_ && std::find(chain_.begin(), chain_.end(), parent) != chain_.end();
+        if (above && !joints_[i].end_site && std::find(chain_.begin(), chain_.end(), i) == chain_.end())
+            throw InvalidArgument("skeleton: joint '" + joints_[parent].name + "' above the motion root '" +
+                                  joints_[motion_root_].name + "' has another child, '" + joints_[i].name + "'");
+    }
+}
+
+Skeleton Skeleton::with_motion_root(std::size_t motion_root) const {
+    return Skeleton(joints_, units_, forward_, positions_, motion_root);
+}
+
+std::size_t find_motion_root(const Skeleton& s, const FrameMatrix& channels) {
+    std::vector<std::vector<std::size_t>> children(s.size());
+    for (std::size_t i = 1; i < s.size(); ++i)
+        if (!s.joint(i).end_site) children[static_cast<std::size_t>(s.joint(i).parent)].push_back(i);
+    auto at_rest = [&](std::size_t j) {
+        const Joint& joint = s.joint(j);
+        for (std::size_t k = 0; k < joint.channels.size(); ++k) {
+            const ChannelType c = joint.channels[k];
+            const double rest = is_rotation(c) ? 0.0 : s.rest_position_value(j, channel_axis(c));
+            const double tolerance = is_rotation(c) ? 1e-9 : 1e-6;
+            const auto column = channels.col(static_cast<Eigen::Index>(s.first_channel(j) + k));
+            if (column.size() > 0 && (column.array() - rest).abs().maxCoeff() > tolerance) return false;
+        }
+        return true;
+    };
+    std::size_t m = 0;
+    while (children[m].size() == 1 && at_rest(m)) m = children[m].front();
+    return m;
 }
 
 std::optional<std::size_t> Skeleton::find(std::string_view name) const {
@@ -100,22 +149,54 @@ Quat Skeleton::local_rotation(std::size_t index, const double* row) const {
 Vec3 Skeleton::local_translation(std::size_t index, const double* row) const {
     const auto& cols = columns_[index];
     Vec3 t = joints_[index].offset;
-    for (int a = 0; a < 3; ++a)
-        if (cols[a] >= 0) t[a] += row[cols[a]];
+    if (positions_ == PositionChannels::replace_offset) {
+        for (int a = 0; a < 3; ++a)
+            if (cols[a] >= 0) t[a] = row[cols[a]];
+    } else {
+        for (int a = 0; a < 3; ++a)
+            if (cols[a] >= 0) t[a] += row[cols[a]];
+    }
     return t;
 }
 
+double Skeleton::rest_position_value(std::size_t index, Axis axis) const {
+    return positions_ == PositionChannels::replace_offset ? joints_.at(index).offset[static_cast<int>(axis)] : 0.0;
+}
+
+bool Skeleton::offset_replaced(std::size_t index) const {
+    const auto& c = columns_.at(index);
+    return positions_ == PositionChannels::replace_offset && c[0] >= 0 && c[1] >= 0 && c[2] >= 0;
+}
+
 bool Skeleton::same_structure(const Skeleton& other, double tol) const {
-    if (size() != other.size()) return false;
+    if (size() != other.size() || motion_root_ != other.motion_root_) return false;
     for (std::size_t i = 0; i < size(); ++i) {
         const Joint& a = joints_[i];
         const Joint& b = other.joints_[i];
         if (a.name != b.name || a.parent != b.parent || a.channels != b.channels || a.end_site != b.end_site ||
             a.rotation_order != b.rotation_order)
             return false;
-        if ((a.offset - b.offset).cwiseAbs().maxCoeff() > tol) return false;
+        for (int k = 0; k < 3; ++k) {
+            if (columns_[i][k] < 0) {
+                if (std::abs(a.offset[k] - b.offset[k]) > tol) return false;
+                continue;
+            }
+            // A position channel: the offset is replaced (no effect) or added (must match). Between
+            // the two conventions the rows mean the same only where the adding side's offset is 0.
+            const bool a_adds = positions_ == PositionChannels::add_to_offset;
+            const bool b_adds = other.positions_ == PositionChannels::add_to_offset;
+            if (a_adds && b_adds && std::abs(a.offset[k] - b.offset[k]) > tol) return false;
+            if (a_adds != b_adds && std::abs((a_adds ? a : b).offset[k]) > tol) return false;
+        }
         if (angle_between(a.axis, b.axis) > tol) return false;
     }
+    return true;
+}
+
+bool Skeleton::same_definition(const Skeleton& other, double tol) const {
+    if (!same_structure(other, tol)) return false;
+    for (std::size_t i = 0; i < size(); ++i)
+        if ((joints_[i].offset - other.joints_[i].offset).cwiseAbs().maxCoeff() > tol) return false;
     return true;
 }
 

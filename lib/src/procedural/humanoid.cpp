@@ -64,7 +64,8 @@ std::shared_ptr<const Skeleton> build() {
         const int toe = b.add(side + "ToeBase", foot, Vec3(0, -7, 13), true);
         b.end(toe, Vec3(0, 0, 6));
     }
-    return std::make_shared<const Skeleton>(b.joints, SourceUnits{1.0, true}, Vec3::UnitZ());
+    return std::make_shared<const Skeleton>(b.joints, SourceUnits{1.0, true}, Vec3::UnitZ(),
+                                            PositionChannels::replace_offset);  // as the BVH files it writes are read
 }
 
 }  // namespace

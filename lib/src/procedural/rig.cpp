@@ -113,7 +113,8 @@ void ChannelEncoder::encode(const Pose& pose, double* row) {
         if (joint.end_site) continue;
         for (int a = 0; a < 3; ++a) {
             const int col = s.channel_column(j, static_cast<ChannelType>(a));
-            if (col >= 0) row[col] = pose.root[a] - joint.offset[a];  // only the root has position channels
+            // Only the root has position channels; they hold its translation (or the part beyond its offset).
+            if (col >= 0) row[col] = pose.root[a] - (joint.offset[a] - s.rest_position_value(j, static_cast<Axis>(a)));
         }
         if (!s.has_rotation(j)) continue;
         const Vec3 angles = matrix_to_euler_near(pose.local[j].toRotationMatrix(), joint.rotation_order, previous_[j]);

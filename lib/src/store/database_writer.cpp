@@ -63,7 +63,8 @@ std::string unique_name(const std::string& base, const std::function<bool(const 
 }
 
 bool same_skeleton(const Skeleton& a, const Skeleton& b) {
-    return a.same_structure(b, 1e-9) && a.source_units().cm_per_unit == b.source_units().cm_per_unit &&
+    return a.same_definition(b, 1e-9) && a.position_channels() == b.position_channels() &&
+           a.source_units().cm_per_unit == b.source_units().cm_per_unit &&
            a.source_units().degrees == b.source_units().degrees && (a.forward() - b.forward()).norm() <= 1e-12;
 }
 
@@ -176,10 +177,13 @@ void DatabaseWriter::put_set(const MotionSet& set, bool replace) {
                                   std::to_string(r.end) + ") lies beyond clip '" + r.clip + "' (" +
                                   std::to_string(clip->frames) + " frames)");
         if (skeleton.empty()) skeleton = clip->skeleton;
-        if (clip->skeleton != skeleton)
+        // Performers of one rig are stored as separate skeletons when their OFFSET lines differ;
+        // they share a set when those offsets have no effect (replaced by position channels).
+        if (clip->skeleton != skeleton &&
+            !s.view.load_skeleton(clip->skeleton)->same_structure(*s.view.load_skeleton(skeleton)))
             throw InvalidArgument(who + ": sample " + std::to_string(i) + " (clip '" + r.clip + "') has skeleton '" +
-                                  clip->skeleton + "' but sample 0 has '" + skeleton +
-                                  "' (a set's samples share one skeleton)");
+                                  clip->skeleton + "', whose structure differs from sample 0's '" + skeleton +
+                                  "' (a set's samples share one skeleton structure)");
     }
     const std::string g = store::set_path(set.name);
     if (f.exists(g)) {

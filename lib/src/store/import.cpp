@@ -11,6 +11,7 @@
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/io/text_file.hpp"
+#include "mocapdb/motion/figure_height.hpp"
 #include "mocapdb/store/sha256.hpp"
 
 namespace mocapdb {
@@ -96,6 +97,7 @@ ImportSummary import_files(DatabaseWriter& db, const std::vector<std::filesystem
             BvhReadOptions o;
             o.strict = options.strict;
             o.frame_rate = rate;
+            o.position_channels = options.bvh_positions;
             clip = parse_bvh(text, path.string(), o, &imported.warnings);
             source.format = "bvh";
         } else {
@@ -117,6 +119,10 @@ ImportSummary import_files(DatabaseWriter& db, const std::vector<std::filesystem
             source.skeleton_file = asf.filename().string();
         }
         text = std::string();  // release the source text before storing
+        if (clip.frame_count() > 0) {
+            const std::string tall = figure_height_warning(figure_height(*clip.skeleton, clip.frame(0)));
+            if (!tall.empty()) imported.warnings.push_back(Warning{path.string(), 0, tall});
+        }
         imported.frames = clip.frame_count();
         imported.seconds = clip.duration();
         imported.result = db.add_clip(clip, source);

@@ -20,6 +20,8 @@ void write_skeleton(h5::File& file, const std::string& id, const Skeleton& s, co
     file.write_double_attribute(g, "cm_per_unit", s.source_units().cm_per_unit);
     file.write_string_attribute(g, "source_angles", s.source_units().degrees ? "deg" : "rad");
     file.write_doubles_attribute(g, "forward", {s.forward().x(), s.forward().y(), s.forward().z()});
+    file.write_string_attribute(g, "position_channels", to_string(s.position_channels()));
+    file.write_int_attribute(g, "motion_root", static_cast<std::int64_t>(s.motion_root()));
 
     const std::size_t n = s.size();
     std::vector<std::string> names, orders;
@@ -136,8 +138,26 @@ Skeleton read_skeleton(const h5::File& file, const std::string& id) {
     const auto forward = file.read_doubles_attribute(g, "forward");
     if (forward.size() != 3)
         throw StoreError(fname, g, "attribute 'forward': expected 3 values, found " + std::to_string(forward.size()));
+    // Formats 1 and 2 have no such attribute: their position channels add to the offset.
+    PositionChannels positions = PositionChannels::add_to_offset;
+    if (file.has_attribute(g, "position_channels")) {
+        const std::string text = file.read_string_attribute(g, "position_channels");
+        const auto mode = position_channels_from_string(text);
+        if (!mode)
+            throw StoreError(fname, g, "attribute 'position_channels': expected \"replace_offset\" or \"add_to_offset\", found \"" +
+                                           text + "\"");
+        positions = *mode;
+    }
+    std::int64_t motion_root = 0;  // formats 1 and 2: joint 0
+    if (file.has_attribute(g, "motion_root")) {
+        motion_root = file.read_int_attribute(g, "motion_root");
+        if (motion_root < 0 || static_cast<std::uint64_t>(motion_root) >= n)
+            throw StoreError(fname, g, "attribute 'motion_root': expected a joint index in [0, " + count_text(n) +
+                                           "), found " + std::to_string(motion_root));
+    }
     try {
-        return Skeleton(std::move(joints), units, Vec3(forward[0], forward[1], forward[2]));
+        return Skeleton(std::move(joints), units, Vec3(forward[0], forward[1], forward[2]), positions,
+                        static_cast<std::size_t>(motion_root));
     } catch (const InvalidArgument& e) {
         throw StoreError(fname, g, std::string("invalid skeleton: ") + e.what());
     }

@@ -431,10 +431,11 @@ void check_content(const std::filesystem::path& file, Validator& v) {
                                                        ", " + std::to_string(s.end) + ") lies beyond clip '" + s.clip +
                                                        "' (" + std::to_string(it->second.frames) + " frames)");
                 if (skeleton.empty()) skeleton = it->second.skeleton;
-                if (it->second.skeleton != skeleton)
+                if (it->second.skeleton != skeleton &&
+                    !db.load_skeleton(it->second.skeleton)->same_structure(*db.load_skeleton(skeleton)))
                     v.add(path + "/sample_clip", "sample " + std::to_string(i) + ": clip '" + s.clip + "' has skeleton '" +
-                                                     it->second.skeleton + "', expected '" + skeleton +
-                                                     "' like sample 0 (a set shares one skeleton)");
+                                                     it->second.skeleton + "', whose structure differs from sample 0's '" +
+                                                     skeleton + "' (a set shares one skeleton structure)");
             }
             // The model's shapes against the aligned tensor (D, T, N; 1 <= R <= the dimension), its
             // values, and that it has an aligned tensor at all.

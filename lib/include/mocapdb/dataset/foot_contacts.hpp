@@ -27,7 +27,7 @@ std::vector<std::string> default_feet(const Skeleton& skeleton);
 /// percentile of its height over the clip, so a few glitchy frames do not move it.
 Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& clip, const FootContactOptions& options);
 
-/// Global root positions (3 by F, cm) and headings (F, radians about +Y, unwrapped along time; 0
+/// Global positions of the motion root (Skeleton::motion_root(); 3 by F, cm) and its headings (F, radians about +Y, unwrapped along time; 0
 /// when facing the skeleton's rest forward direction).
 MatX root_positions(const Clip& clip);
 VecX root_headings(const Clip& clip);

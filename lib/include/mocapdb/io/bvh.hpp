@@ -18,6 +18,9 @@ struct BvhReadOptions {
     std::optional<double> frame_rate;
     /// Centimetres per file length unit (BVH does not state its unit; the CMU conversions here are in cm).
     double cm_per_unit = 1.0;
+    /// What position channels mean. Blender, MotionBuilder and most readers: the local translation,
+    /// replacing OFFSET on its axes. `add_to_offset` reads files written for the other convention.
+    PositionChannels position_channels = PositionChannels::replace_offset;
 };
 
 struct BvhWriteOptions {
@@ -42,11 +45,13 @@ void write_bvh(std::ostream& out, const Clip& clip, const BvhWriteOptions& optio
 /// Atomic: writes a temporary file beside `path` and renames it over `path`.
 void write_bvh(const std::filesystem::path& path, const Clip& clip, const BvhWriteOptions& options = {});
 
-/// True when every joint can be written to BVH as it is.
+/// True when every joint can be written to BVH as it is (position channels written as BVH readers
+/// take them: replacing OFFSET, or adding to a zero offset).
 bool is_bvh_compatible(const Skeleton& skeleton);
 /// An equivalent clip whose joints are all BVH-compatible: each joint that needs it gets three
 /// rotation channels in `order` (identity axis), with angles unwrapped along time; position channels
-/// are kept. Joints already compatible are kept as they are.
+/// are kept, as local translations (PositionChannels::replace_offset: offset added where the
+/// source skeleton adds). Joints already compatible are kept as they are.
 Clip to_bvh_channels(const Clip& clip, EulerOrder order = EulerOrder::ZYX);
 
 }  // namespace mocapdb

@@ -17,6 +17,8 @@ struct ClipReadOptions {
     std::optional<double> frame_rate;
     /// Refuse defects instead of working around them with a warning.
     bool strict = false;
+    /// What BVH position channels mean (BvhReadOptions::position_channels).
+    PositionChannels bvh_positions = PositionChannels::replace_offset;
 };
 
 /// The format of a path by its extension (case-insensitive); nullopt when unsupported.

@@ -18,6 +18,16 @@ struct GlobalPose {
 /// out_pose already has skeleton.size() entries.
 void forward_kinematics(const Skeleton& skeleton, const double* row, GlobalPose& out_pose);
 
+/// World transform of one joint.
+struct JointTransform {
+    Vec3 position = Vec3::Zero();          ///< cm
+    Quat orientation = Quat::Identity();   ///< world-from-joint rotation
+};
+
+/// World transform of the skeleton's motion root (Skeleton::motion_root()) for one frame row: FK
+/// along motion_root_chain(), so a static ROOT above a moving Hips is accounted for.
+JointTransform motion_root_transform(const Skeleton& skeleton, const double* row);
+
 /// Global joint positions of every frame: a 3·J by F matrix (rows 3j..3j+2 hold joint j).
 MatX joint_positions(const Clip& clip);
 

@@ -169,7 +169,7 @@ public:
     AddClipResult add_clip(const Clip& clip, const ClipSource& source);
 
     /// Stores a motion set. Every sample must name a stored clip, lie within its frames, and all
-    /// clips must share one skeleton (InvalidArgument otherwise). An existing set of the same name is
+    /// clips must share one skeleton structure (Skeleton::same_structure; InvalidArgument otherwise). An existing set of the same name is
     /// an InvalidArgument unless `replace`; replacing drops the old set's aligned form and model too.
     void put_set(const MotionSet& set, bool replace);
     /// Removes a set (and its aligned form and model). StoreError when there is no such set.

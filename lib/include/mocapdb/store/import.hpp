@@ -22,6 +22,8 @@ struct ImportOptions {
     std::optional<double> frame_rate;
     /// Refuse reader defects instead of working around them with a warning.
     bool strict = false;
+    /// What BVH position channels mean (BvhReadOptions::position_channels).
+    PositionChannels bvh_positions = PositionChannels::replace_offset;
     /// Optional per-file fields; may be null.
     const Manifest* manifest = nullptr;
 };
