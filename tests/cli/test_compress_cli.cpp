@@ -120,6 +120,12 @@ TEST_CASE("report: one run, every baseline, JSON, CSV and SVG", "[cli][compress]
     CHECK(std::count(table.begin(), table.end(), '\n') == 15);
     const std::string picture = read_all(svg);
     CHECK_THAT(picture, Contains("<svg") && Contains("tucker+residual") && Contains("zfp") && Contains("</svg>"));
+    // #16: the CSV and SVG are not overwritten without --force.
+    r = run_cli("report " + db + " --set runs --targets 2 --no-hooi --csv " + quoted(csv.string()));
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("rd.csv: exists") && Contains("--force"));
+    r = run_cli("report " + db + " --set runs --targets 2 --no-hooi --svg " + quoted(svg.string()) + " --force");
+    CHECK(r.exit_code == 0);
 }
 
 TEST_CASE("export a set sample from the aligned tensor and from the model, at its own timing", "[cli][compress][shared]") {

@@ -58,6 +58,21 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     r = run_cli("set create " + db + " --name three --clips 16_11 16_12 16_13 --params " + quoted(csv));
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.output, Contains("params.csv") && Contains("no row for sample '16_13'"));
+    // #16: a set of one sample, or of samples that all share one parameter vector, is refused at creation.
+    r = run_cli("set create " + db + " --name one --clips 16_11 --extract turn speed");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("motion set 'one': 1 sample; a set needs at least 2"));
+    std::ofstream(dir / "same.csv") << "sample,target[cm]\n16_11,10\n16_12,10\n16_13,10\n";
+    r = run_cli("set create " + db + " --name same --clips 16_11 16_12 16_13 --params " + quoted((dir / "same.csv").string()));
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("every sample has the same parameters"));
+
+    // #16: a runaway --frames is refused before the file grows (it took 1 GB before).
+    const auto size_before = std::filesystem::file_size(dir / "walks.h5");
+    r = run_cli("align " + db + " --set walks --frames 100000");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("100000 aligned frames") && Contains("use at most"));
+    CHECK(std::filesystem::file_size(dir / "walks.h5") == size_before);
 
     r = run_cli("align " + db + " --set walks --frames 80");
     INFO(r.output);

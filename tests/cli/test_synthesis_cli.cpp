@@ -134,6 +134,19 @@ TEST_CASE("synth between the samples: the BVH's measured turn and speed match th
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     CHECK_THAT(r.out, Contains("ranks 4x3x2") && Contains("reliability"));
+    // #16: errors speak of what the user asked for, not of internal classes.
+    r = run_cli("synth " + w.db + " --set walks --param " + csv_of(c) + " -o " + quoted((w.dir->path() / "lod99.bvh").string()) +
+                " --lod 99x1x1");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("synthesis model: level-of-detail ranks 99x1x1"));
+    CHECK(r.err.find("MotionModel") == std::string::npos);
+    // #16: an existing output is kept unless --force.
+    r = run_cli("synth " + w.db + " --set walks --param " + csv_of(c) + " -o " + quoted((w.dir->path() / "lod.bvh").string()));
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("lod.bvh: exists") && Contains("--force"));
+    r = run_cli("synth " + w.db + " --set walks --param " + csv_of(c) + " -o " + quoted((w.dir->path() / "lod.bvh").string()) +
+                " --force");
+    CHECK(r.exit_code == 0);
     // Wrong parameter count: the message names the set's parameters.
     r = run_cli("synth " + w.db + " --set walks --param 0.1 -o " + quoted((w.dir->path() / "x.bvh").string()));
     CHECK(r.exit_code == 1);
@@ -197,9 +210,22 @@ TEST_CASE("reliability map: SVG with samples marked, CSV of the grid", "[cli][sy
     while (std::getline(c, line)) ++lines;
     CHECK(lines == 232);
     // Errors name what is wrong.
-    const CommandResult bad = run_cli("reliability " + w.db + " --set walks --grid pace=0:1:5,speed=60:200:11 --svg " + quoted(svg));
+    const std::string other = (w.dir->path() / "rho_bad.svg").string();
+    const CommandResult bad = run_cli("reliability " + w.db + " --set walks --grid pace=0:1:5,speed=60:200:11 --svg " + quoted(other));
     CHECK(bad.exit_code == 1);
     CHECK_THAT(bad.err, Contains("no parameter 'pace'") && Contains("turn, speed"));
+    // #16: existing outputs are not overwritten without --force (the SVG, then the CSV alone).
+    const std::string grid = " --set walks --grid turn=-2:2:5,speed=60:200:5 --svg ";
+    CommandResult again = run_cli("reliability " + w.db + grid + quoted(svg));
+    CHECK(again.exit_code == 1);
+    CHECK_THAT(again.err, Contains(svg) && Contains("exists") && Contains("--force"));
+    again = run_cli("reliability " + w.db + grid + quoted(other) + " --csv " + quoted(csv));
+    CHECK(again.exit_code == 1);
+    CHECK_THAT(again.err, Contains(csv) && Contains("--force"));
+    CHECK(!std::filesystem::exists(other));  // refused before any output
+    again = run_cli("reliability " + w.db + grid + quoted(svg) + " --csv " + quoted(csv) + " --force");
+    INFO(again.output);
+    CHECK(again.exit_code == 0);
 }
 
 TEST_CASE("reduce reports the greedy reduction and --apply stores an aligned reduced set", "[cli][synthesis][shared]") {
@@ -229,6 +255,11 @@ TEST_CASE("reduce reports the greedy reduction and --apply stores an aligned red
     REQUIRE(aligned);
     CHECK(aligned->frames() == 60);
     CHECK(aligned->samples() == static_cast<Eigen::Index>(kept));
+    // #16: a reduced set synthesizes like the original (it failed on its parameter source before).
+    r = run_cli("synth " + w.db + " --set small --naive --param 0,120 -o " + quoted((w.dir->path() / "small.bvh").string()));
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    CHECK(db.load_set("small").parameter_source == db.load_set("walks").parameter_source);
     // Existing name without --force.
     r = run_cli("reduce " + w.db + " --set walks --tau 0.7 --apply --name small");
     CHECK(r.exit_code == 1);

@@ -10,6 +10,7 @@
 
 using namespace mocapdb;
 using namespace mocapdb::test;
+using Catch::Matchers::Contains;
 
 namespace {
 
@@ -103,4 +104,32 @@ TEST_CASE("cli: refusals", "[store][cli]") {
         CHECK(help.exit_code == 0);
         CHECK(help.output.find("Example") != std::string::npos);
     }
+}
+
+TEST_CASE("cli: import --keep-going stores the good files and lists the bad ones", "[store][cli]") {
+    TempDir dir("keepgoing");
+    for (unsigned k = 1; k <= 3; ++k) write_small_bvh(dir, "good" + std::to_string(k) + ".bvh", k);
+    { std::ofstream(dir / "clips/broken.bvh") << "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n"; }
+    const auto db = dir / "db.h5";
+    // Without the flag the first bad file stops the import and nothing is stored.
+    CommandResult r = run_cli("import " + quoted((dir / "clips").string()) + " -o " + quoted(db.string()));
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("broken.bvh:"));
+    CHECK(!std::filesystem::exists(db));
+    // With it the good files are stored, the bad one is named with its line, and the exit code says so.
+    r = run_cli("import " + quoted((dir / "clips").string()) + " --keep-going -o " + quoted(db.string()));
+    INFO(r.output);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("mocapdb: error: ") && Contains("broken.bvh:5") &&
+                          Contains("1 file could not be imported") && Contains("the other clips were stored"));
+    CHECK_THAT(r.out, Contains("imported 3 clips"));
+    CHECK(Database(db).clips().size() == 3);
+    // Re-importing a folder of stored files: one line for the duplicates, not one per file, past a few.
+    for (unsigned k = 4; k <= 15; ++k) write_small_bvh(dir, "more" + std::to_string(k) + ".bvh", k);
+    std::filesystem::remove(dir / "clips/broken.bvh");
+    REQUIRE(run_cli("import " + quoted((dir / "clips").string()) + " -o " + quoted(db.string())).exit_code == 0);
+    r = run_cli("import " + quoted((dir / "clips").string()) + " -o " + quoted(db.string()));
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.output, Contains("15 files skipped: already stored"));
 }

@@ -4,6 +4,7 @@
 
 #include "clip_options.hpp"
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
 
@@ -33,8 +34,7 @@ void setup_convert(CLI::App& app) {
     cmd->add_option("--precision", args->precision, "significant digits written")->check(CLI::Range(1, 17));
     cmd->add_flag("--force", args->force, "overwrite an existing output file");
     cmd->callback([args] {
-        if (!args->force && std::filesystem::exists(args->output))
-            throw IoError(args->output + ": exists; pass --force to overwrite it");
+        refuse_existing(args->output, args->force);
         const Clip clip = load_clip(args->input, args->clip, std::cerr);
         BvhWriteOptions options;
         options.precision = args->precision;

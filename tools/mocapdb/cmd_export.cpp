@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/unwarp.hpp"
 #include "mocapdb/io/amc_writer.hpp"
@@ -24,12 +25,6 @@ struct ExportArgs {
     long long sample = -1;
     bool from_model = false;
 };
-
-void refuse_existing(const std::filesystem::path& path, bool force) {
-    std::error_code ec;
-    if (!force && std::filesystem::exists(path, ec))
-        throw IoError(path.string() + ": exists (pass --force to overwrite it)");
-}
 
 // Sample I of a set, from its aligned tensor or its stored model, back at its own timing.
 Clip sample_clip(const Database& db, const ExportArgs& args) {

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "json_writer.hpp"
 #include "progress_bar.hpp"
 #include "mocapdb/core/error.hpp"
@@ -303,10 +304,6 @@ void run_fit(const GpArgs& a) {
     print_fit_summary(model_label(a), f);
 }
 
-void check_output(const fs::path& p, bool force) {
-    if (fs::exists(p) && !force) throw IoError(p.string() + ": exists (use --force to overwrite)");
-}
-
 void run_interpolate(const GpArgs& a) {
     std::vector<Clip> clips;
     std::vector<std::string> names;
@@ -318,7 +315,7 @@ void run_interpolate(const GpArgs& a) {
     if (a.observed + 2 > md.data.frames())
         throw InvalidArgument("--observed " + std::to_string(a.observed) + " leaves fewer than 2 of " +
                               std::to_string(md.data.frames()) + " frames to predict");
-    if (!a.out.empty()) check_output(a.out, a.force);
+    if (!a.out.empty()) refuse_existing(a.out, a.force);
     const HgpData training = without_child(md.data, child);
     ProgressBar bar("gp interpolate");
     const FitResult f = fit(training, initial_model(training, model_spec(a, !a.mo_baseline)), fit_options(a, &bar));
@@ -389,7 +386,7 @@ void run_sample(const GpArgs& a) {
         files.push_back(dir / name);
     }
     files.push_back(dir / "trend.bvh");
-    for (const auto& p : files) check_output(p, a.force);
+    for (const auto& p : files) refuse_existing(p, a.force);
     ProgressBar bar("gp sample");
     const FitResult f = fit(md.data, initial_model(md.data, model_spec(a, !a.mo_baseline)), fit_options(a, &bar));
     bar.clear();

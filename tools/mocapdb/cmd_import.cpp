@@ -16,6 +16,7 @@ struct ImportArgs {
     std::string manifest;
     bool strict = false;
     bool force = false;
+    bool keep_going = false;
     std::string bvh_positions = "replace";
 };
 
@@ -31,9 +32,13 @@ void run_import(const ImportArgs& args) {
     if (args.fps > 0.0) options.frame_rate = args.fps;
     options.strict = args.strict;
     options.bvh_positions = bvh_positions_from_option(args.bvh_positions);
+    options.keep_going = args.keep_going;
     const std::filesystem::path db = args.output;
     const ImportOutcome outcome = import_clips(db, inputs, options, args.force, std::cout);
     std::cout << describe_import(db, outcome);
+    if (outcome.summary.failed > 0)
+        throw Error(std::to_string(outcome.summary.failed) + (outcome.summary.failed == 1 ? " file" : " files") +
+                    " could not be imported (errors above); the other clips were stored");
 }
 
 }  // namespace
@@ -61,6 +66,8 @@ void setup_import(CLI::App& app) {
         ->check(CLI::ExistingFile);
     cmd->add_flag("--strict", args->strict, "refuse file defects instead of working around them");
     add_bvh_positions_option(*cmd, args->bvh_positions);
+    cmd->add_flag("--keep-going", args->keep_going,
+                  "store the files that can be read, list the others with their errors (exit code 1 if any failed)");
     cmd->add_flag("--force", args->force, "replace an existing output file with a new database");
     cmd->callback([args] { run_import(*args); });
 }

@@ -55,7 +55,7 @@ void run_reduce(const ReduceArgs& a) {
             reduced.samples.push_back(set.samples[static_cast<std::size_t>(r.kept[k])]);
             reduced.parameters.row(static_cast<Eigen::Index>(k)) = set.parameters.row(r.kept[k]);
         }
-        reduced.parameter_source = set.parameter_source + " (reduced from '" + a.set + "', tau " + std::to_string(a.tau) + ")";
+        // parameter_source keeps saying how the values were obtained (synth re-measures with it).
         // Align like the original (method and frames; the reference is the reduced set's median sample).
         const auto original = db.load_aligned(a.set);
         std::optional<AlignedSet> aligned;

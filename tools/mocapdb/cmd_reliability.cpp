@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/text_file.hpp"
@@ -24,6 +25,7 @@ struct ReliabilityArgs {
     std::string csv;
     bool naive = false;
     bool json = false;
+    bool force = false;
 };
 
 double number(const std::string& text, const std::string& what) {
@@ -55,6 +57,7 @@ SliceAxis parse_axis(const std::string& spec, const std::vector<std::string>& na
 }
 
 void run_reliability(const ReliabilityArgs& a) {
+    refuse_existing({a.svg, a.csv}, a.force);
     const Database db(a.db);
     const auto model = load_synthesis_model(db, a.set, a.naive, "");
     const auto& names = model->parameter_names();
@@ -134,6 +137,7 @@ void setup_reliability(CLI::App& app) {
     cmd->add_option("--csv", a->csv, "CSV of the grid values");
     cmd->add_flag("--naive", a->naive, "the naive model's kernel (no compressed model needed)");
     cmd->add_flag("--json", a->json, "machine-readable output");
+    cmd->add_flag("--force", a->force, "overwrite existing output files");
     cmd->callback([a] { run_reliability(*a); });
 }
 

@@ -3,6 +3,7 @@
 #include <ostream>
 
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "pipeline.hpp"
@@ -20,9 +21,11 @@ struct ReportArgs {
     int bits = 12;
     std::string csv;
     std::string svg;
+    bool force = false;
 };
 
 void run_report(const ReportArgs& a) {
+    refuse_existing({a.csv, a.svg}, a.force);
     const SetContext c = load_set_context(Database(a.db), a.set);
     compression::RateOptions options;
     if (!a.targets.empty()) options.max_cm = a.targets;
@@ -82,6 +85,7 @@ void setup_report(CLI::App& app) {
     cmd->add_option("--csv", a->csv, "also write the table as CSV");
     cmd->add_option("--svg", a->svg, "also write ratio against max error as an SVG chart");
     cmd->add_flag("--json", a->json, "print the table as JSON");
+    cmd->add_flag("--force", a->force, "overwrite existing --csv/--svg files");
     cmd->callback([a] { run_report(*a); });
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
@@ -21,9 +22,11 @@ struct SynthArgs {
     std::string timing = "shared";
     bool naive = false;
     bool json = false;
+    bool force = false;
 };
 
 void run_synth(const SynthArgs& a) {
+    refuse_existing(a.out, a.force);
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     const Database db(a.db);
@@ -112,6 +115,7 @@ void setup_synth(CLI::App& app) {
     cmd->add_option("--timing", a->timing, "timing kernel: shared | separate")->check(CLI::IsMember({"shared", "separate"}));
     cmd->add_flag("--naive", a->naive, "kriging on the uncompressed aligned tensor");
     cmd->add_flag("--json", a->json, "machine-readable output");
+    cmd->add_flag("--force", a->force, "overwrite an existing output file");
     cmd->callback([a] { run_synth(*a); });
 }
 

@@ -131,6 +131,8 @@ void write_joint_error_json(JsonWriter& j, const eval::JointErrorStats& e) {
 
 // ---- import -------------------------------------------------------------------------------------
 
+constexpr std::size_t kListedDuplicates = 10;
+
 ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<std::filesystem::path>& inputs,
                            const ImportOptions& options, bool force, std::ostream& notes) {
     namespace fs = std::filesystem;
@@ -149,13 +151,24 @@ ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<st
     }
     const auto start = Clock::now();
     ProgressBar bar("import");
+    std::vector<std::string> duplicates;
     o.summary = import_files(*writer, files, options, bar.callback(), [&](const ImportedFile& f) {
-        if (f.warnings.empty() && f.result.added) return;
+        if (f.warnings.empty() && f.error.empty() && f.result.added) return;
         bar.clear();
         for (const Warning& w : f.warnings) std::cerr << "mocapdb: warning: " << w.to_string() << "\n";
-        if (!f.result.added) notes << f.file.string() << ": " << f.result.message << "\n";
+        if (!f.error.empty()) {
+            std::cerr << "mocapdb: error: " << f.error << "\n";
+        } else if (!f.result.added) {
+            duplicates.push_back(f.file.string() + ": " + f.result.message);
+        }
     });
     bar.clear();
+    // A few duplicates are listed; thousands (re-importing a folder) are counted.
+    if (duplicates.size() <= kListedDuplicates) {
+        for (const std::string& d : duplicates) notes << d << "\n";
+    } else {
+        notes << duplicates.size() << " files skipped: already stored (same sha256)\n";
+    }
     if (o.summary.added > 0 || !o.existed || force) writer->commit();
     writer.reset();
     o.seconds = seconds_since(start);
@@ -203,6 +216,7 @@ SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
         std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
     if (!a.params_csv.empty()) apply_params_csv(o.set, a.params_csv, db);
     validate(o.set);
+    check_distinguishable(o.set);
     writer.put_set(o.set, a.replace);
     writer.commit();
     return o;

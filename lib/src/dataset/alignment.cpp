@@ -52,6 +52,20 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
     if (options.method != "dtw" && options.method != "linear")
         throw InvalidArgument("align: method must be 'dtw' or 'linear', found '" + options.method + "'");
     if (options.frames < 2) throw InvalidArgument("align: at least 2 aligned frames are needed");
+    // Beyond a few times the longest sample, more aligned frames only interpolate, and the tensor
+    // (D x T x N doubles) grows without bound.
+    std::size_t longest = 0;
+    for (const Clip& s : samples) longest = std::max(longest, s.frame_count());
+    const auto most = static_cast<Eigen::Index>(std::max<std::size_t>(4 * longest, kAlignedFramesAlwaysAllowed));
+    if (options.frames > most) {
+        const double bytes = 8.0 * static_cast<double>(PoseLayout(*samples.front().skeleton).dof_count()) *
+                             static_cast<double>(options.frames) * static_cast<double>(samples.size());
+        throw InvalidArgument("align: " + std::to_string(options.frames) + " aligned frames for samples of at most " +
+                              std::to_string(longest) + " frames would only interpolate and take " +
+                              std::to_string(static_cast<long long>(bytes / 1e6)) + " MB; use at most " +
+                              std::to_string(most) + " (4x the longest sample, or " +
+                              std::to_string(kAlignedFramesAlwaysAllowed) + ")");
+    }
     const std::size_t count = samples.size();
     const std::size_t ref = options.reference.value_or(median_length_sample(samples));
     if (ref >= count) throw InvalidArgument("align: reference sample " + std::to_string(ref) + " out of range");

@@ -16,14 +16,37 @@ std::string lower(std::string s) {
     return s;
 }
 
-// First joint whose lower-case name starts with one of `sides` and contains `part`.
-std::optional<std::string> find_foot(const Skeleton& s, std::initializer_list<const char*> sides, const char* part) {
+// The words of a joint name, lower case: split at non-alphanumerics and where a lower-case letter
+// meets an upper-case one ("mixamorig:LeftToeBase" -> mixamorig, left, toe, base; "Foot_L" -> foot, l).
+std::vector<std::string> name_words(const std::string& name) {
+    std::vector<std::string> words(1);
+    for (std::size_t i = 0; i < name.size(); ++i) {
+        const auto c = static_cast<unsigned char>(name[i]);
+        const bool boundary = !std::isalnum(c) ||
+                              (i > 0 && std::isupper(c) && std::islower(static_cast<unsigned char>(name[i - 1])));
+        if (boundary && !words.back().empty()) words.emplace_back();
+        if (std::isalnum(c)) words.back() += static_cast<char>(std::tolower(c));
+    }
+    if (words.back().empty()) words.pop_back();
+    return words;
+}
+
+// A name on one side: a word "l"/"left" (or starting with "left"), or the whole name starting with the
+// side (CMU's lfoot, rtoes).
+bool on_side(const std::string& name, const std::string& letter, const std::string& word) {
+    for (const std::string& w : name_words(name))
+        if (w == letter || w.rfind(word, 0) == 0) return true;
+    const std::string n = lower(name);
+    return n.rfind(letter, 0) == 0 || n.rfind(word, 0) == 0;
+}
+
+// First joint (not an end site) on the side whose lower-case name contains `part`.
+std::optional<std::string> find_foot(const Skeleton& s, const std::string& letter, const std::string& word,
+                                     const char* part) {
     for (const Joint& j : s.joints()) {
-        if (j.end_site) continue;
-        const std::string n = lower(j.name);
-        if (n.find(part) == std::string::npos) continue;
-        for (const char* side : sides)
-            if (n.rfind(side, 0) == 0) return j.name;
+        if (j.end_site || lower(j.name).find(part) == std::string::npos) continue;
+        if (on_side(j.name, letter, word) && !on_side(j.name, letter == "l" ? "r" : "l", letter == "l" ? "right" : "left"))
+            return j.name;
     }
     return std::nullopt;
 }
@@ -32,11 +55,12 @@ std::optional<std::string> find_foot(const Skeleton& s, std::initializer_list<co
 
 std::vector<std::string> default_feet(const Skeleton& s) {
     for (const char* part : {"toe", "foot"}) {
-        const auto left = find_foot(s, {"left", "l"}, part);
-        const auto right = find_foot(s, {"right", "r"}, part);
+        const auto left = find_foot(s, "l", "left", part);
+        const auto right = find_foot(s, "r", "right", part);
         if (left && right) return {*left, *right};
     }
-    throw InvalidArgument("no left/right foot joints found by name (toe/foot); name the foot joints explicitly");
+    throw InvalidArgument("no left/right foot joints found by name (a joint named with toe or foot and left/right, "
+                          "L/R); name them explicitly (command line: --feet LEFT,RIGHT)");
 }
 
 Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& clip, const FootContactOptions& options) {

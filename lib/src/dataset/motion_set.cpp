@@ -28,4 +28,17 @@ void validate(const MotionSet& set) {
     if (!set.parameters.allFinite()) throw InvalidArgument(who + ": non-finite control parameter");
 }
 
+void check_distinguishable(const MotionSet& set) {
+    const std::string who = "motion set '" + set.name + "'";
+    if (set.samples.size() < 2)
+        throw InvalidArgument(who + ": " + std::to_string(set.samples.size()) +
+                              " sample; a set needs at least 2 (select more clips or a finer --segment)");
+    if (set.parameters.cols() == 0) return;
+    const auto first = set.parameters.row(0);
+    for (Eigen::Index i = 1; i < set.parameters.rows(); ++i)
+        if (set.parameters.row(i) != first) return;
+    throw InvalidArgument(who + ": every sample has the same parameters, so synthesis could not tell them apart "
+                          "(give parameters that differ between the samples)");
+}
+
 }  // namespace mocapdb

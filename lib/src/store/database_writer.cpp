@@ -17,12 +17,14 @@
 #include "set_codec.hpp"
 #include "skeleton_codec.hpp"
 #include "temp_files.hpp"
+#include "writer_lock.hpp"
 
 namespace mocapdb {
 
 using store::h5::QuietScope;
 
 struct DatabaseWriter::Impl {
+    std::unique_ptr<store::WriterLock> lock;  // held for the whole session
     std::filesystem::path target;
     std::filesystem::path temp;
     store::h5::File file;
@@ -70,14 +72,16 @@ bool same_skeleton(const Skeleton& a, const Skeleton& b) {
 
 }  // namespace
 
-DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode) : impl_(std::make_unique<Impl>()) {
+DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode, double wait_seconds) : impl_(std::make_unique<Impl>()) {
     QuietScope quiet;
     Impl& s = *impl_;
     s.target = target;
     std::error_code ec;
-    const bool exists = std::filesystem::exists(target, ec);
-    if (exists && !std::filesystem::is_regular_file(target, ec))
+    if (std::filesystem::exists(target, ec) && !std::filesystem::is_regular_file(target, ec))
         throw IoError(target.string() + ": exists and is not a regular file");
+    // Before looking at the target: a session that waited here sees the previous session's commit.
+    s.lock = std::make_unique<store::WriterLock>(target, wait_seconds);
+    const bool exists = std::filesystem::exists(target, ec);
     store::remove_stale_temps(target);
     s.temp = store::make_temp_path(target);
     try {
@@ -310,9 +314,11 @@ void DatabaseWriter::commit() {
         }
         store::publish(s.temp, s.target);
         s.finished = true;
+        s.lock.reset();  // the next session may start from the published file
     } catch (...) {
         s.discard();
         s.finished = true;
+        s.lock.reset();
         throw;
     }
 }

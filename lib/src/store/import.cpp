@@ -45,6 +45,78 @@ std::vector<std::filesystem::path> collect_clip_files(const std::vector<std::fil
     return out;
 }
 
+namespace {
+
+// Reads and parses one file into `clip` and `source`. False when its SHA-256 is already stored
+// (imported.result says so). Throws the reader's errors.
+bool read_source(const std::filesystem::path& path, const ImportOptions& options, const DatabaseWriter& db,
+                 std::map<std::filesystem::path, std::shared_ptr<const Skeleton>>& asf_cache, ImportSummary& summary,
+                 std::uint64_t& done, std::uint64_t total, const ProgressCallback& progress, ImportedFile& imported,
+                 Clip& clip, ClipSource& source) {
+    namespace fs = std::filesystem;
+    const std::string name = path.filename().string();
+    if (progress) progress(Progress{done, total, name});
+    const auto format = clip_format_of(path);
+    if (!format)
+        throw InvalidArgument(path.string() + ": unsupported file type '" + path.extension().string() +
+                              "' (expected .bvh or .amc)");
+    std::string text = read_text_file(path);
+    imported.bytes = text.size();
+    const std::string sha = sha256_hex(text);
+    ++summary.files;
+    summary.bytes_read += imported.bytes;
+    done += imported.bytes;
+
+    if (const auto existing = db.find_sha256(sha)) {
+        imported.result = {*existing, false, "skipped: duplicate sha256 of clip " + *existing};
+        return false;
+    }
+
+    const ManifestEntry* entry = options.manifest ? options.manifest->find(path) : nullptr;
+    std::optional<double> rate = options.frame_rate;
+    if (entry && entry->frame_rate) rate = entry->frame_rate;
+    source.file_name = name;
+    source.sha256 = sha;
+    if (entry) {
+        source.subject = entry->subject;
+        source.description = entry->description;
+        source.labels = entry->labels;
+    }
+    if (*format == ClipFormat::Bvh) {
+        BvhReadOptions o;
+        o.strict = options.strict;
+        o.frame_rate = rate;
+        o.position_channels = options.bvh_positions;
+        clip = parse_bvh(text, path.string(), o, &imported.warnings);
+        source.format = "bvh";
+    } else {
+        fs::path asf = options.asf;
+        if (asf.empty()) {
+            const auto found = find_asf_for_amc(path);
+            if (!found)
+                throw InvalidArgument(path.string() + ": no skeleton given and none found beside it by the CMU "
+                                      "naming (NN_MM.amc -> NN.asf); pass --asf");
+            asf = *found;
+        }
+        auto& skeleton = asf_cache[asf];
+        if (!skeleton) skeleton = read_asf(asf);
+        AmcReadOptions o;
+        o.strict = options.strict;
+        if (rate) o.frame_rate = *rate;
+        clip = parse_amc(text, path.string(), skeleton, o, &imported.warnings);
+        source.format = "amc";
+        source.skeleton_file = asf.filename().string();
+    }
+    text = std::string();  // release the source text before storing
+    if (clip.frame_count() > 0) {
+        const std::string tall = figure_height_warning(figure_height(*clip.skeleton, clip.frame(0)));
+        if (!tall.empty()) imported.warnings.push_back(Warning{path.string(), 0, tall});
+    }
+    return true;
+}
+
+}  // namespace
+
 ImportSummary import_files(DatabaseWriter& db, const std::vector<std::filesystem::path>& files,
                            const ImportOptions& options, const ProgressCallback& progress,
                            const std::function<void(const ImportedFile&)>& on_file) {
@@ -59,69 +131,24 @@ ImportSummary import_files(DatabaseWriter& db, const std::vector<std::filesystem
     ImportSummary summary;
     std::uint64_t done = 0;
     for (const fs::path& path : files) {
-        const std::string name = path.filename().string();
-        if (progress) progress(Progress{done, total, name});
-        const auto format = clip_format_of(path);
-        if (!format)
-            throw InvalidArgument(path.string() + ": unsupported file type '" + path.extension().string() +
-                                  "' (expected .bvh or .amc)");
         ImportedFile imported;
         imported.file = path;
-        std::string text = read_text_file(path);
-        imported.bytes = text.size();
-        const std::string sha = sha256_hex(text);
-        ++summary.files;
-        summary.bytes_read += imported.bytes;
-        done += imported.bytes;
-
-        if (const auto existing = db.find_sha256(sha)) {
-            imported.result = {*existing, false, "skipped: duplicate sha256 of clip " + *existing};
-            ++summary.skipped;
+        Clip clip;
+        ClipSource source;
+        // Reading and parsing: with keep_going a bad file is reported and the others go on. Nothing
+        // of it has reached the database yet.
+        try {
+            if (!read_source(path, options, db, asf_cache, summary, done, total, progress, imported, clip, source)) {
+                ++summary.skipped;
+                if (on_file) on_file(imported);
+                continue;
+            }
+        } catch (const Error& e) {
+            if (!options.keep_going) throw;
+            imported.error = e.what();
+            ++summary.failed;
             if (on_file) on_file(imported);
             continue;
-        }
-
-        const ManifestEntry* entry = options.manifest ? options.manifest->find(path) : nullptr;
-        std::optional<double> rate = options.frame_rate;
-        if (entry && entry->frame_rate) rate = entry->frame_rate;
-        ClipSource source;
-        source.file_name = name;
-        source.sha256 = sha;
-        if (entry) {
-            source.subject = entry->subject;
-            source.description = entry->description;
-            source.labels = entry->labels;
-        }
-        Clip clip;
-        if (*format == ClipFormat::Bvh) {
-            BvhReadOptions o;
-            o.strict = options.strict;
-            o.frame_rate = rate;
-            o.position_channels = options.bvh_positions;
-            clip = parse_bvh(text, path.string(), o, &imported.warnings);
-            source.format = "bvh";
-        } else {
-            fs::path asf = options.asf;
-            if (asf.empty()) {
-                const auto found = find_asf_for_amc(path);
-                if (!found)
-                    throw InvalidArgument(path.string() + ": no skeleton given and none found beside it by the CMU "
-                                          "naming (NN_MM.amc -> NN.asf); pass --asf");
-                asf = *found;
-            }
-            auto& skeleton = asf_cache[asf];
-            if (!skeleton) skeleton = read_asf(asf);
-            AmcReadOptions o;
-            o.strict = options.strict;
-            if (rate) o.frame_rate = *rate;
-            clip = parse_amc(text, path.string(), skeleton, o, &imported.warnings);
-            source.format = "amc";
-            source.skeleton_file = asf.filename().string();
-        }
-        text = std::string();  // release the source text before storing
-        if (clip.frame_count() > 0) {
-            const std::string tall = figure_height_warning(figure_height(*clip.skeleton, clip.frame(0)));
-            if (!tall.empty()) imported.warnings.push_back(Warning{path.string(), 0, tall});
         }
         imported.frames = clip.frame_count();
         imported.seconds = clip.duration();

@@ -13,10 +13,10 @@ std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i
 /// Rows G x_3 u_i (flattened core slices, N by R1 R2): their Euclidean distances are the core-slice
 /// distances ||G x_3 (u_i - u_j)||_F. Checks the model first.
 MatX core_slice_values(const compression::SetModel& model, const AlignedSet& aligned) {
-    compression::check(model, "MotionModel");
+    compression::check(model, "synthesis model");
     const tensor::Dims3 dims = model.tucker.dims();
     if (dims[0] != aligned.dofs() || dims[1] != aligned.frames() || dims[2] != aligned.samples()) {
-        throw InvalidArgument("MotionModel: the model is " + idx(dims[0]) + "x" + idx(dims[1]) + "x" + idx(dims[2]) +
+        throw InvalidArgument("synthesis model: the model is " + idx(dims[0]) + "x" + idx(dims[1]) + "x" + idx(dims[2]) +
                               " but the aligned tensor " + idx(aligned.dofs()) + "x" + idx(aligned.frames()) + "x" +
                               idx(aligned.samples()) + " (dofs x frames x samples): recompress the set");
     }
@@ -30,7 +30,7 @@ MatX core_slice_values(const compression::SetModel& model, const AlignedSet& ali
 MotionModel::MotionModel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
                          std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options)
     : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, core_slice_values(model, aligned), options,
-                     "MotionModel"),
+                     "synthesis model"),
       model_(model),
       u_sample_(model.tucker.U[2]),
       inv_weight_(model.weight.cwiseInverse()) {
@@ -39,7 +39,7 @@ MotionModel::MotionModel(const compression::SetModel& model, const AlignedSet& a
     for (const tensor::Ranks& lod : options.levels) {
         for (int m = 0; m < 3; ++m) {
             if (lod[static_cast<std::size_t>(m)] < 1 || lod[static_cast<std::size_t>(m)] > full[static_cast<std::size_t>(m)]) {
-                throw InvalidArgument("MotionModel: level-of-detail ranks " + idx(lod[0]) + "x" + idx(lod[1]) + "x" +
+                throw InvalidArgument("synthesis model: level-of-detail ranks " + idx(lod[0]) + "x" + idx(lod[1]) + "x" +
                                       idx(lod[2]) + " must lie within 1 and the model's ranks " + idx(full[0]) + "x" +
                                       idx(full[1]) + "x" + idx(full[2]));
             }

@@ -15,7 +15,7 @@ std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i
 /// Rows vec(X_i), X = (A - mean) w (N by D T).
 MatX weighted_sample_rows(const AlignedSet& aligned, const VecX& weight) {
     if (weight.size() != aligned.dofs())
-        throw InvalidArgument("NaiveMotionModel: weight must have D = " + idx(aligned.dofs()) + " entries, got " +
+        throw InvalidArgument("naive synthesis model: weight must have D = " + idx(aligned.dofs()) + " entries, got " +
                               idx(weight.size()));
     const Tensor3 x = compression::weighted_centred(aligned.tensor, compression::dof_means(aligned.tensor), weight);
     const Eigen::Map<const MatX> cols(x.data(), aligned.dofs() * aligned.frames(), aligned.samples());
@@ -28,9 +28,9 @@ NaiveMotionModel::NaiveMotionModel(const AlignedSet& aligned, const MotionSet& s
                                    std::shared_ptr<const Skeleton> skeleton, double frame_rate, const VecX& weight,
                                    const SynthesisOptions& options)
     : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, weighted_sample_rows(aligned, weight), options,
-                     "NaiveMotionModel") {
+                     "naive synthesis model") {
     if (!options.levels.empty())
-        throw InvalidArgument("NaiveMotionModel: the naive model has no levels of detail (options.levels must be empty)");
+        throw InvalidArgument("naive synthesis model: the naive model has no levels of detail (options.levels must be empty)");
     const Eigen::Index d = aligned.dofs(), t_count = aligned.frames(), n = aligned.samples();
     frames_by_sample_.resize(d, t_count * n);
     for (Eigen::Index t = 0; t < t_count; ++t)

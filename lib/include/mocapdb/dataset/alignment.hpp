@@ -9,6 +9,9 @@
 
 namespace mocapdb {
 
+/// align_samples refuses more aligned frames than max(4 x the longest sample, this).
+constexpr std::size_t kAlignedFramesAlwaysAllowed = 1000;
+
 struct AlignOptions {
     std::string method = "dtw";  ///< "dtw" (against a reference sample) or "linear" (uniform resampling)
     Eigen::Index frames = 100;   ///< T, aligned frames per sample

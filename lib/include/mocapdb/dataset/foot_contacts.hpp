@@ -18,9 +18,10 @@ struct FootContactOptions {
     double speed_tolerance_cm_s = 40.0;
 };
 
-/// Left then right foot joint names for the skeletons we know: CMU ASF ("ltoes", "rtoes"), or the
-/// first joints whose lower-case names contain "left"/"l" + "toe" or "foot" (and right likewise).
-/// InvalidArgument when none are found (callers may pass the names instead).
+/// Left then right foot joint names: the first joints (not end sites) whose names contain "toe"
+/// (else "foot", case-insensitive) and name a side: a word "L"/"Left"/"Left..." of the name (words split
+/// at punctuation and camelCase: "Toes_L", "mixamorig:LeftToeBase", "foot.r") or a name that starts
+/// with the side (CMU's "ltoes"). InvalidArgument when none are found (callers may pass the names).
 std::vector<std::string> default_feet(const Skeleton& skeleton);
 
 /// Contact flags: feet by frames (1 = in contact). The floor level of each foot is the 5th

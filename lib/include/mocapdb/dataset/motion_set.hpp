@@ -29,4 +29,10 @@ struct MotionSet {
 /// two frames, the parameter matrix is N by P with P names and P units, all finite.
 void validate(const MotionSet& set);
 
+/// Throws InvalidArgument, saying why, when the set cannot serve to tell motions apart by their
+/// parameters: fewer than 2 samples, or (with parameters) every sample at the same parameter vector
+/// (kriging would get a degenerate kernel and give one motion for every request). Checked where sets
+/// are created; stored sets of earlier versions still load.
+void check_distinguishable(const MotionSet& set);
+
 }  // namespace mocapdb

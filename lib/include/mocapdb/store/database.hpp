@@ -10,7 +10,9 @@
 // or kill -9 at any instant leaves either the previous file or the complete new one. A session that
 // is destroyed without commit() removes its temporary file; one that was killed leaves it behind,
 // and the next DatabaseWriter on the same target removes such files of processes that no longer
-// exist. Only one writing session per target at a time is supported (the last commit wins).
+// exist. One writing session per target at a time: a session holds an exclusive lock on
+// "TARGET.lock" from before it reads the target until it ends, and a second one waits for it (up to
+// a limit, then refuses with StoreError), so no session's commit is ever lost. Readers take no lock.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -32,6 +34,9 @@ namespace mocapdb {
 /// The file format version this library writes. It reads every version from 1 to this one (a version
 /// only adds optional objects); a writing session on an older file upgrades its format_version.
 constexpr int kDatabaseFormatVersion = 2;
+
+/// How long a DatabaseWriter waits by default for another writing session on its target.
+constexpr double kWriterWaitSeconds = 600.0;
 
 /// One motion set as listed by Database::sets().
 struct SetRecord {
@@ -147,7 +152,10 @@ public:
     /// this library reads (OpenOrCreate), IoError when the temporary file cannot be made. An older
     /// file's format_version is set to kDatabaseFormatVersion in the session's file (the target
     /// changes only at commit()).
-    explicit DatabaseWriter(const std::filesystem::path& target, Mode mode = Mode::OpenOrCreate);
+    /// `wait_seconds`: how long to wait for another session on the same target to end (StoreError
+    /// "another mocapdb session is writing this database" after that).
+    explicit DatabaseWriter(const std::filesystem::path& target, Mode mode = Mode::OpenOrCreate,
+                            double wait_seconds = kWriterWaitSeconds);
     /// Without commit(): closes and removes the temporary file; the target is untouched.
     ~DatabaseWriter();
     DatabaseWriter(const DatabaseWriter&) = delete;

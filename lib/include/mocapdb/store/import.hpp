@@ -24,6 +24,9 @@ struct ImportOptions {
     bool strict = false;
     /// What BVH position channels mean (BvhReadOptions::position_channels).
     PositionChannels bvh_positions = PositionChannels::replace_offset;
+    /// A file that cannot be read or parsed is reported (ImportedFile::error) and skipped instead of
+    /// stopping the import.
+    bool keep_going = false;
     /// Optional per-file fields; may be null.
     const Manifest* manifest = nullptr;
 };
@@ -36,12 +39,14 @@ struct ImportedFile {
     double seconds = 0.0;        ///< duration of the clip
     std::uint64_t bytes = 0;     ///< size of the source file
     Warnings warnings;           ///< the reader's warnings
+    std::string error;           ///< with keep_going: why the file was not imported (empty: it was read)
 };
 
 struct ImportSummary {
     std::size_t files = 0;    ///< files read
     std::size_t added = 0;    ///< clips stored
     std::size_t skipped = 0;  ///< duplicates (sha256 already stored)
+    std::size_t failed = 0;   ///< with keep_going: files that could not be read or parsed
     std::size_t frames = 0;   ///< frames of the added clips
     double seconds = 0.0;     ///< motion duration of the added clips
     std::uint64_t bytes_read = 0;  ///< source bytes read (all files)
@@ -55,8 +60,10 @@ std::vector<std::filesystem::path> collect_clip_files(const std::vector<std::fil
 
 /// Reads each file and adds it to `db` (duplicates by SHA-256 are skipped before parsing).
 /// `progress` is called with bytes done of the total; `on_file` after each file. The first error
-/// (ParseError, IoError, InvalidArgument naming the file) stops the import; the caller then simply
-/// does not commit.
+/// (ParseError, IoError, InvalidArgument naming the file) stops the import, and the caller then simply
+/// does not commit; with options.keep_going a file that cannot be read or parsed is counted in
+/// `failed`, passed to `on_file` with its error, and the import goes on (errors while storing a
+/// parsed clip still stop it).
 ImportSummary import_files(DatabaseWriter& db, const std::vector<std::filesystem::path>& files,
                            const ImportOptions& options, const ProgressCallback& progress = {},
                            const std::function<void(const ImportedFile&)>& on_file = {});
