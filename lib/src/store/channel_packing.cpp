@@ -1,6 +1,8 @@
 // Lossless channel packing: decimal detection, prediction along time, varints, zstd.
 // Layout of the decompressed payload (schemas/format-v3.md §5), channel-major, frames in order:
-//   1. residuals: per decimal channel, F zigzag LEB128 varints of the coarse integers' prediction residuals;
+//   1. residuals: the zigzag codes u of the coarse integers' prediction residuals as byte planes: one
+//                 width byte W (0..8) per decimal channel, then plane 0 (least significant bytes) of
+//                 every decimal channel with W > 0, plane 1 of those with W > 1, ..., F bytes each;
 //   2. extra:     per decimal channel, F bytes: extra decimals e (0..22-k), 0xFE exception, 0xFF -0.0;
 //   3. refine:    per value with e >= 1, a zigzag varint r (N = c * 10^e + r, d = k + e);
 //   4. raw:       per raw channel, 8 byte planes (most significant first) of F bytes of the float64
@@ -229,6 +231,27 @@ private:
     const char* section_;
 };
 
+// The residual section back to one zigzag code per frame and decimal channel.
+std::vector<std::vector<std::uint64_t>> residual_planes(const std::uint8_t* p, std::size_t size, std::size_t channels,
+                                                        std::size_t frames) {
+    if (size < channels) throw Error("lossless channels: the residual section ends early");
+    std::size_t expected = channels;
+    for (std::size_t i = 0; i < channels; ++i) {
+        if (p[i] > 8) throw Error("lossless channels: residual width " + std::to_string(p[i]) + " (expected 0..8)");
+        expected += p[i] * frames;
+    }
+    if (expected != size)
+        throw Error("lossless channels: the residual section has " + std::to_string(size) + " bytes, its widths say " +
+                    std::to_string(expected));
+    std::vector<std::vector<std::uint64_t>> out(channels, std::vector<std::uint64_t>(frames, 0));
+    const std::uint8_t* b = p + channels;
+    for (int plane = 0; plane < 8; ++plane)
+        for (std::size_t i = 0; i < channels; ++i)
+            if (p[i] > plane)
+                for (std::uint64_t& u : out[i]) u |= static_cast<std::uint64_t>(*b++) << (8 * plane);
+    return out;
+}
+
 }  // namespace
 
 std::vector<double> reader_scales(const Skeleton& s) {
@@ -260,7 +283,8 @@ PackedChannels pack_channels(const FrameMatrix& channels, const std::vector<doub
     out.scale = scales;
     out.decimals.assign(nc, kRawChannel);
     out.predictor.assign(nc, 1);
-    std::vector<std::uint8_t> residuals, extra, refine, raw, exceptions;
+    std::vector<std::uint8_t> extra, refine, raw, exceptions;
+    std::vector<std::vector<std::uint64_t>> zigzags;  // per decimal channel
     std::vector<std::size_t> raw_columns;
 
     std::vector<Kind> kind(f);
@@ -281,8 +305,9 @@ PackedChannels pack_channels(const FrameMatrix& channels, const std::vector<doub
         out.decimals[j] = best.k;
         out.predictor[j] = best.order;
         std::size_t next_refinement = 0;
+        std::vector<std::uint64_t>& z = zigzags.emplace_back(f);
         for (std::size_t t = 0; t < f; ++t) {
-            put_varint(residuals, zigzag(best.coarse[t] - predict(best.coarse.data(), t, best.order)));
+            z[t] = zigzag(best.coarse[t] - predict(best.coarse.data(), t, best.order));
             extra.push_back(best.extra[t]);
             if (best.extra[t] == kException) {
                 const std::uint64_t b = bits_of(channels(static_cast<Eigen::Index>(t), col));
@@ -304,6 +329,20 @@ PackedChannels pack_channels(const FrameMatrix& channels, const std::vector<doub
         }
     }
     raw.insert(raw.end(), exceptions.begin(), exceptions.end());
+    // Byte planes rather than varints: the high planes are nearly constant and zstd's entropy stage
+    // codes the noisy low planes on their own statistics (docs/storage.md has the measurement).
+    std::vector<std::uint8_t> residuals;
+    std::vector<int> widths;
+    for (const auto& z : zigzags) {
+        int w = 0;
+        for (std::uint64_t m = *std::max_element(z.begin(), z.end()); m != 0; m >>= 8) ++w;
+        widths.push_back(w);
+        residuals.push_back(static_cast<std::uint8_t>(w));
+    }
+    for (int plane = 0; plane < 8; ++plane)
+        for (std::size_t i = 0; i < zigzags.size(); ++i)
+            if (widths[i] > plane)
+                for (const std::uint64_t u : zigzags[i]) residuals.push_back(static_cast<std::uint8_t>(u >> (8 * plane)));
     out.section_bytes = {residuals.size(), extra.size(), refine.size(), raw.size()};
 
     std::vector<std::uint8_t> payload;
@@ -365,7 +404,8 @@ FrameMatrix unpack_channels(const PackedChannels& packed) {
         throw Error(std::string("lossless channels: zstd cannot decode the bytes: ") +
                     (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "short frame"));
     const std::uint8_t* p = payload.data();
-    Reader residuals(p, packed.section_bytes[0], "residuals");
+    const std::vector<std::vector<std::uint64_t>> zigzags =
+        residual_planes(p, static_cast<std::size_t>(packed.section_bytes[0]), decimal_channels, f);
     const std::uint8_t* extra = p + packed.section_bytes[0];
     Reader refine(extra + packed.section_bytes[1], packed.section_bytes[2], "refinements");
     const std::uint8_t* raw = extra + packed.section_bytes[1] + packed.section_bytes[2];
@@ -374,7 +414,7 @@ FrameMatrix unpack_channels(const PackedChannels& packed) {
 
     FrameMatrix out(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(nc));
     std::vector<std::int64_t> coarse(f);
-    std::size_t raw_index = 0;
+    std::size_t raw_index = 0, decimal_index = 0;
     for (std::size_t j = 0; j < nc; ++j) {
         const auto col = static_cast<Eigen::Index>(j);
         if (packed.decimals[j] == kRawChannel) {
@@ -391,7 +431,8 @@ FrameMatrix unpack_channels(const PackedChannels& packed) {
         }
         const int k = static_cast<int>(packed.decimals[j]);
         const int order = static_cast<int>(packed.predictor[j]);
-        for (std::size_t t = 0; t < f; ++t) coarse[t] = wrapping_add(unzigzag(residuals.varint()), predict(coarse.data(), t, order));
+        const std::vector<std::uint64_t>& z = zigzags[decimal_index++];
+        for (std::size_t t = 0; t < f; ++t) coarse[t] = wrapping_add(unzigzag(z[t]), predict(coarse.data(), t, order));
         for (std::size_t t = 0; t < f; ++t) {
             const std::uint8_t e = *extra++;
             double x;
@@ -424,7 +465,7 @@ FrameMatrix unpack_channels(const PackedChannels& packed) {
             out(static_cast<Eigen::Index>(t), col) = x;
         }
     }
-    if (!residuals.done() || !refine.done() || exceptions != exceptions_end)
+    if (!refine.done() || exceptions != exceptions_end)
         throw Error("lossless channels: the payload has bytes left over after decoding");
     return out;
 }

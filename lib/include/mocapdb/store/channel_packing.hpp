@@ -8,7 +8,7 @@
 // exact numbers, so it equals the reader's strtod; the same multiplication follows). Per channel a
 // base count k is chosen; a value with more decimals (small numbers written as %g) is split into a
 // coarse part c at k decimals and a refinement r. The coarse parts are predicted along time (first or
-// second difference, per channel), zigzag varint coded and everything is compressed with zstd.
+// second difference, per channel), zigzag coded as byte planes and everything is compressed with zstd.
 // Channels that are not decimals (computed clips) store their float64 bits, xor-ed with the previous
 // frame, as byte planes. Negative zero and any value without a short decimal form are kept exactly.
 // pack_channels verifies its output by decoding it: the round trip is bitwise or it throws.
