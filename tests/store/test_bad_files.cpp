@@ -148,3 +148,23 @@ TEST_CASE("bad files: flipped bytes in a clip's chunk give a checksum error nami
     CHECK(cli.output.find("checksum mismatch in dataset /clips/16_15/channels_packed") != std::string::npos);
     CHECK(cli.output.find("mocapdb: error: ") != std::string::npos);
 }
+
+TEST_CASE("bad files: a clip with both float64 and packed channels is refused, naming the clip", "[store][bad]") {
+    TempDir dir("both-channels");
+    const auto file = dir / "both.h5";
+    std::filesystem::copy_file(test_data_dir() / "reference-v3.h5", file);
+    const CommandResult copy = run_command("h5copy -i " + quoted((test_data_dir() / "reference-v2.h5").string()) +
+                                           " -o " + quoted(file.string()) +
+                                           " -s /clips/tiny_walk/channels -d /clips/tiny_walk/channels");
+    if (copy.exit_code != 0) {
+        WARN("h5copy is not available: " << copy.output);
+        return;
+    }
+    const Database db(file);
+    CHECK_THROWS_WITH(db.load_clip("tiny_walk"),
+                      Catch::Contains("both.h5: /clips/tiny_walk: expected one of the datasets 'channels_packed' and "
+                                      "'channels', found both"));
+    const ValidationReport r = validate_database(file);
+    INFO(all_violations(r));
+    CHECK(has_violation(r, "/clips", "found both"));
+}

@@ -67,8 +67,10 @@ std::string clip_channels_path(const h5::File& file, const std::string& id) {
     const std::string packed = clip_path(id) + "/" + kPackedChannels;
     const bool has_plain = file.type_of(plain) != h5::ObjectType::None;
     const bool has_packed = file.type_of(packed) != h5::ObjectType::None;
-    if (has_plain && has_packed)
-        throw StoreError(file.name(), clip_path(id), "expected one of 'channels' and '" + kPackedChannels + "', found both");
+    if (has_plain == has_packed)
+        throw StoreError(file.name(), clip_path(id),
+                         "expected one of the datasets '" + kPackedChannels + "' and 'channels', found " +
+                             (has_plain ? "both" : "neither"));
     return has_packed ? packed : plain;
 }
 

@@ -15,7 +15,7 @@ inline const std::string kPackedChannels = "channels_packed";
 void write_clip(h5::File& file, const std::string& id, const Clip& clip, const std::string& skeleton_id,
                 const ClipSource& source);
 /// The clip's channel dataset: /clips/{id}/channels_packed (v3) or /clips/{id}/channels (v1, v2, and
-/// v3 files upgraded from them); StoreError when both exist.
+/// v3 files upgraded from them); StoreError naming the clip when both or neither exist.
 std::string clip_channels_path(const h5::File& file, const std::string& id);
 /// Metadata only (attributes and the channel dataset's shape).
 ClipRecord read_clip_record(const h5::File& file, const std::string& id);
