@@ -78,7 +78,7 @@ TEST_CASE("channel packing: the base decimals follow the source resolution", "[s
     }
     const PackedChannels p = pack_channels(m, {1.0, 1.0, kDegree});
     CHECK(p.decimals == std::vector<std::int64_t>{2, 0, 4});
-    CHECK(p.predictor[1] == 1);  // a straight line: one difference is constant, 2 would be zero too
+    CHECK(p.predictor[1] == 2);  // a straight line: order 2 predicts it exactly (residuals 0)
     CHECK(same_bits(unpack_channels(p), m));
 }
 

@@ -78,15 +78,6 @@ void put_varint(std::vector<std::uint8_t>& out, std::uint64_t u) {
     out.push_back(static_cast<std::uint8_t>(u));
 }
 
-std::size_t varint_size(std::uint64_t u) {
-    std::size_t n = 1;
-    while (u >= 0x80) {
-        u >>= 7;
-        ++n;
-    }
-    return n;
-}
-
 // Order-p prediction of v[t] from earlier values (0 before the first frame).
 // Wrapping arithmetic: valid data stays far below 2^63, and corrupt data must not be undefined behaviour.
 std::int64_t predict(const std::int64_t* v, std::size_t t, int order) {
@@ -126,7 +117,7 @@ struct DecimalChannel {
     std::vector<std::int64_t> coarse;
     std::vector<std::uint8_t> extra;
     std::vector<std::int64_t> refine;  // one per value with 1 <= e <= 22
-    std::size_t cost = 0;              // estimated bytes before zstd
+    std::size_t cost = 0;              // estimated bits after zstd
 };
 
 enum class Kind : std::uint8_t { Decimal, NegativeZero, Exception };
@@ -163,13 +154,16 @@ bool split(const std::vector<Kind>& kind, const std::vector<Decimal>& dec, int k
     return true;
 }
 
+// Significant bits of u (0 for 0): the estimate of what zstd's entropy stage leaves of a code.
+std::size_t bit_length(std::uint64_t u) { return u == 0 ? 0 : static_cast<std::size_t>(64 - __builtin_clzll(u)); }
+
 std::size_t residual_cost(const std::vector<std::int64_t>& c, int order) {
-    std::size_t bytes = 0;
-    for (std::size_t t = 0; t < c.size(); ++t) bytes += varint_size(zigzag(c[t] - predict(c.data(), t, order)));
-    return bytes;
+    std::size_t bits = 0;
+    for (std::size_t t = 0; t < c.size(); ++t) bits += bit_length(zigzag(c[t] - predict(c.data(), t, order)));
+    return bits;
 }
 
-// Estimated bytes of the decimal form at its best k and order; false when no k is usable.
+// Estimated bits of the decimal form at its best k and order; false when no k is usable.
 bool best_decimal_form(const std::vector<Kind>& kind, const std::vector<Decimal>& dec, const PackOptions& o,
                        DecimalChannel& best) {
     bool found = false;
@@ -177,9 +171,9 @@ bool best_decimal_form(const std::vector<Kind>& kind, const std::vector<Decimal>
     for (int k = 0; k <= o.max_decimals; ++k) {
         if (!split(kind, dec, k, trial)) continue;
         std::size_t side = 0;
-        for (const std::int64_t r : trial.refine) side += varint_size(zigzag(r));
-        for (std::size_t t = 1; t < trial.extra.size(); ++t) side += trial.extra[t] != trial.extra[t - 1];
-        for (const Kind x : kind) side += x == Kind::Exception ? 8 : 0;
+        for (const std::int64_t r : trial.refine) side += bit_length(zigzag(r)) + 1;
+        for (std::size_t t = 1; t < trial.extra.size(); ++t) side += trial.extra[t] != trial.extra[t - 1] ? 8 : 0;
+        for (const Kind x : kind) side += x == Kind::Exception ? 64 : 0;
         for (const int order : {1, 2}) {
             if (o.predictor != 0 && order != o.predictor) continue;
             const std::size_t cost = side + residual_cost(trial.coarse, order);
@@ -194,16 +188,16 @@ bool best_decimal_form(const std::vector<Kind>& kind, const std::vector<Decimal>
     return found;
 }
 
-// Estimated bytes of the float64 bits xor-ed with the previous frame's (non-zero bytes).
+// Estimated bits of the float64 bits xor-ed with the previous frame's (significant bits, as above).
 std::size_t raw_cost(const FrameMatrix& m, Eigen::Index col) {
-    std::size_t bytes = 0;
+    std::size_t bits = 0;
     std::uint64_t previous = 0;
     for (Eigen::Index t = 0; t < m.rows(); ++t) {
         const std::uint64_t b = bits_of(m(t, col));
-        for (std::uint64_t x = b ^ previous; x != 0; x >>= 8) ++bytes;
+        bits += bit_length(b ^ previous);
         previous = b;
     }
-    return bytes;
+    return bits;
 }
 
 class Reader {
