@@ -1,4 +1,4 @@
-// Lossless channel packing: decimal detection, prediction along time, varints, zstd.
+// Lossless channel packing: decimal detection, prediction along time, byte planes, zstd.
 // Layout of the decompressed payload (schemas/format-v3.md §5), channel-major, frames in order:
 //   1. residuals: the zigzag codes u of the coarse integers' prediction residuals as byte planes: one
 //                 width byte W (0..8) per decimal channel, then plane 0 (least significant bytes) of
@@ -200,9 +200,10 @@ std::size_t raw_cost(const FrameMatrix& m, Eigen::Index col) {
     return bits;
 }
 
-class Reader {
+// The LEB128 varints of one payload section, never read past its end.
+class VarintReader {
 public:
-    Reader(const std::uint8_t* data, std::size_t size, const char* section) : p_(data), end_(data + size), section_(section) {}
+    VarintReader(const std::uint8_t* data, std::size_t size, const char* section) : p_(data), end_(data + size), section_(section) {}
     std::uint64_t varint() {
         std::uint64_t u = 0;
         for (int shift = 0; shift < 64; shift += 7) {
@@ -217,7 +218,6 @@ public:
         return *p_++;
     }
     bool done() const { return p_ == end_; }
-    const char* section() const { return section_; }
 
 private:
     const std::uint8_t* p_;
@@ -401,7 +401,7 @@ FrameMatrix unpack_channels(const PackedChannels& packed) {
     const std::vector<std::vector<std::uint64_t>> zigzags =
         residual_planes(p, static_cast<std::size_t>(packed.section_bytes[0]), decimal_channels, f);
     const std::uint8_t* extra = p + packed.section_bytes[0];
-    Reader refine(extra + packed.section_bytes[1], packed.section_bytes[2], "refinements");
+    VarintReader refine(extra + packed.section_bytes[1], packed.section_bytes[2], "refinements");
     const std::uint8_t* raw = extra + packed.section_bytes[1] + packed.section_bytes[2];
     const std::uint8_t* exceptions = raw + raw_channels * f * 8;
     const std::uint8_t* exceptions_end = raw + packed.section_bytes[3];
