@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Makes the malformed database fixtures of tests/store/test_bad_files.cpp from reference-v2.h5.
+"""Makes the malformed database fixtures of tests/store/test_bad_files.cpp from reference-v2.h5
+(version-2 files: their clips have float64 channels, which version 3 still reads).
 
 Each file breaks one rule of schemas/format-v2.md the way a foreign writer (here h5py) might; the
 library never writes them. Run from this folder with Debian's python3-h5py:
@@ -30,7 +31,7 @@ def replace_dataset(f, path, data):
 
 # A newer format version.
 with copy("bad-newer-version.h5") as f:
-    f.attrs["format_version"] = np.int64(3)
+    f.attrs["format_version"] = np.int64(4)
 
 # An HDF5 file that is not a mocapdb database at all.
 with h5py.File("bad-foreign.h5", "w") as f:

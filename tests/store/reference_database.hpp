@@ -1,8 +1,9 @@
 #pragma once
-// The tiny reference database of the current format version (2) kept in tests/data forever
-// (tests/data/reference-v2.h5, its `h5dump -H` in tests/data/reference-v2.h5dump.txt). Everything in
-// it is fixed here, so a test can rebuild it and compare. tests/data/reference-v1.h5 (version 1) holds
-// the same clip, set and aligned set without the model.
+// The tiny reference database of the current format version (3) kept in tests/data forever
+// (tests/data/reference-v3.h5, its `h5dump -H` in tests/data/reference-v3.h5dump.txt). Everything in
+// it is fixed here, so a test can rebuild it and compare. tests/data/reference-v2.h5 (version 2) holds
+// the same content with float64 clip channels, tests/data/reference-v1.h5 (version 1) the same clip,
+// set and aligned set without the model.
 #include <filesystem>
 
 #include "mocapdb/compression/set_model.hpp"
@@ -26,7 +27,7 @@ struct ReferenceContent {
 };
 
 ReferenceContent reference_content();
-/// Writes the reference database (version 2, with the model) to `path` through DatabaseWriter.
+/// Writes the reference database (version 3, with the model) to `path` through DatabaseWriter.
 void write_reference_database(const std::filesystem::path& path);
 
 }  // namespace mocapdb::test

@@ -50,12 +50,12 @@ void flip_bytes(const std::filesystem::path& file, std::uint64_t offset, std::si
 TEST_CASE("bad files: a newer format version is refused, saying so", "[store][bad]") {
     const auto file = test_data_dir() / "bad-newer-version.h5";
     CHECK_THROWS_AS(Database(file), StoreError);
-    CHECK_THROWS_WITH(Database(file), Catch::Contains("bad-newer-version.h5: /: format_version is 3, newer than the "
-                                                      "version 2 this mocapdb reads"));
+    CHECK_THROWS_WITH(Database(file), Catch::Contains("bad-newer-version.h5: /: format_version is 4, newer than the "
+                                                      "version 3 this mocapdb reads"));
     const ValidationReport r = validate_database(file);
     REQUIRE(r.violations.size() == 1);
     CHECK(r.violations[0].path == "/");
-    CHECK(r.violations[0].message.find("newer than the version 2") != std::string::npos);
+    CHECK(r.violations[0].message.find("newer than the version 3") != std::string::npos);
     CHECK_THROWS_AS(DatabaseWriter(file), StoreError);
 }
 
@@ -122,26 +122,49 @@ TEST_CASE("bad files: flipped bytes in a clip's chunk give a checksum error nami
         w.add_clip(synthetic_clip(100, 6, 4), synthetic_source("intact.bvh", "keep me"));
         w.commit();
     }
-    const std::string path = "/clips/16_15/channels";
+    // Packed channels (format 3): flip bytes inside a chunk of zstd bytes.
+    const std::string path = "/clips/16_15/channels_packed";
     const auto extents = dataset_extents(file, path);
-    REQUIRE(extents.size() >= 2);  // chunked
-    const ByteExtent chunk = extents[1];
+    REQUIRE(!extents.empty());
+    // The first chunk is full of zstd bytes (an edge chunk ends in zero padding, where Fletcher-32
+    // cannot tell 0x0000 from 0xFFFF).
+    const ByteExtent chunk = extents.front();
     REQUIRE(chunk.size > 16);
     flip_bytes(file, chunk.offset + chunk.size / 2, 4);
 
     const Database db(file);
     CHECK_NOTHROW(db.load_clip("intact"));
     CHECK_THROWS_AS(db.load_clip("16_15"), ChecksumError);
-    CHECK_THROWS_WITH(db.load_clip("16_15"), Catch::Contains("db.h5: /clips/16_15/channels: checksum mismatch in "
-                                                             "dataset /clips/16_15/channels"));
+    CHECK_THROWS_WITH(db.load_clip("16_15"), Catch::Contains("db.h5: /clips/16_15/channels_packed: checksum mismatch in "
+                                                             "dataset /clips/16_15/channels_packed"));
     const ValidationReport r = validate_database(file);
     INFO(first_violation(r));
-    CHECK(has_violation(r, path, "checksum mismatch in dataset /clips/16_15/channels"));
+    CHECK(has_violation(r, path, "checksum mismatch in dataset /clips/16_15/channels_packed"));
 
     const CommandResult cli = run_cli("validate " + quoted(file.string()));
     INFO(cli.output);
     CHECK(cli.exit_code == 1);
-    CHECK(cli.output.find("/clips/16_15/channels: ") != std::string::npos);
-    CHECK(cli.output.find("checksum mismatch in dataset /clips/16_15/channels") != std::string::npos);
+    CHECK(cli.output.find("/clips/16_15/channels_packed: ") != std::string::npos);
+    CHECK(cli.output.find("checksum mismatch in dataset /clips/16_15/channels_packed") != std::string::npos);
     CHECK(cli.output.find("mocapdb: error: ") != std::string::npos);
+}
+
+TEST_CASE("bad files: a clip with both float64 and packed channels is refused, naming the clip", "[store][bad]") {
+    TempDir dir("both-channels");
+    const auto file = dir / "both.h5";
+    std::filesystem::copy_file(test_data_dir() / "reference-v3.h5", file);
+    const CommandResult copy = run_command("h5copy -i " + quoted((test_data_dir() / "reference-v2.h5").string()) +
+                                           " -o " + quoted(file.string()) +
+                                           " -s /clips/tiny_walk/channels -d /clips/tiny_walk/channels");
+    if (copy.exit_code != 0) {
+        WARN("h5copy is not available: " << copy.output);
+        return;
+    }
+    const Database db(file);
+    CHECK_THROWS_WITH(db.load_clip("tiny_walk"),
+                      Catch::Contains("both.h5: /clips/tiny_walk: expected one of the datasets 'channels_packed' and "
+                                      "'channels', found both"));
+    const ValidationReport r = validate_database(file);
+    INFO(all_violations(r));
+    CHECK(has_violation(r, "/clips", "found both"));
 }

@@ -132,7 +132,7 @@ TEST_CASE("model: put_model, commit, load_model round-trips every double exactly
         w.commit();
     }
     const Database db(db_path);
-    CHECK(db.format_version() == 2);
+    CHECK(db.format_version() == kDatabaseFormatVersion);
     const auto back = db.load_model("walks");
     REQUIRE(back.has_value());
     check_identical(*back, m, fig);
@@ -150,7 +150,7 @@ TEST_CASE("model: put_model, commit, load_model round-trips every double exactly
     const ValidationReport r = validate_database(db_path);
     INFO(all_violations(r));
     CHECK(r.ok());
-    CHECK(r.format_version == 2);
+    CHECK(r.format_version == kDatabaseFormatVersion);
 
     // The CLI lists the ranks.
     const CommandResult list = run_cli("set list " + quoted(db_path.string()));
@@ -168,12 +168,12 @@ TEST_CASE("model: put_model, commit, load_model round-trips every double exactly
     const CommandResult info = run_cli("info " + quoted(db_path.string()));
     INFO(info.output);
     CHECK(info.exit_code == 0);
-    CHECK(info.output.find("format      mocapdb 2") != std::string::npos);
+    CHECK(info.output.find("format      mocapdb " + std::to_string(kDatabaseFormatVersion)) != std::string::npos);
     CHECK(info.output.find("5 x 4 x 3") != std::string::npos);
     const CommandResult info_json = run_cli("info --json " + quoted(db_path.string()));
     REQUIRE(info_json.exit_code == 0);
     const Json doc = parse_json(info_json.out);
-    CHECK(doc["format_version"].number == 2);
+    CHECK(doc["format_version"].number == kDatabaseFormatVersion);
     CHECK(doc["sets"][0]["model"].boolean);
     CHECK(doc["sets"][0]["model_ranks"][1].number == 4);
     CHECK(doc["sets"][0]["model_stored_bytes"].number > 0);

@@ -1,12 +1,16 @@
-// Acceptance 6: the README's h5py snippet reads the tensor, the parameters and the model of a
-// database, and its reconstruction formula of the model (schemas/format-v2.md §8) gives back the
+// Acceptance 6: the README's h5py snippet decodes a packed clip (schemas/format-v3.md §5.1) to the
+// library's values bit for bit (same sha256 of the float64 bytes), reads the tensor, the parameters
+// and the model of a database, and its reconstruction formula of the model (§8) gives back the
 // aligned tensor of the reference file (whose model is exact). It runs on the reference file with
-// Debian's python3-h5py when installed; otherwise the same values are read with h5dump.
+// Debian's python3-h5py and python3-zstandard when installed; otherwise the same values are read
+// with h5dump.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
 #include <fstream>
 
+#include "mocapdb/store/sha256.hpp"
+#include "reference_database.hpp"
 #include "shared_data.hpp"
 #include "store_test_support.hpp"
 
@@ -20,9 +24,9 @@ TEST_CASE("README: the h5py snippet reads the tensor and the control parameters"
     const auto e = readme.find("```\n<!-- h5py-snippet:end -->", b);
     REQUIRE(e != std::string::npos);
     const std::string snippet = readme.substr(b + begin.size(), e - b - begin.size());
-    const auto reference = test_data_dir() / "reference-v2.h5";
+    const auto reference = test_data_dir() / "reference-v3.h5";
 
-    if (run_command("/usr/bin/python3 -c 'import h5py'").exit_code == 0) {
+    if (run_command("/usr/bin/python3 -c 'import h5py, zstandard'").exit_code == 0) {
         TempDir dir("readme");
         std::ofstream(dir / "snippet.py") << snippet;
         const CommandResult r = run_command("/usr/bin/python3 " + quoted((dir / "snippet.py").string()) + " " +
@@ -30,6 +34,11 @@ TEST_CASE("README: the h5py snippet reads the tensor and the control parameters"
         INFO(r.output);
         REQUIRE(r.exit_code == 0);
         CHECK(r.output.find("parameters {'speed': 'cm/s'} (2, 1) samples ['tiny_walk', 'tiny_walk']") != std::string::npos);
+        const ReferenceContent content = reference_content();
+        const mocapdb::FrameMatrix& x = content.clip.channels;  // C order (row-major), little-endian here
+        const std::string bytes(reinterpret_cast<const char*>(x.data()), static_cast<std::size_t>(x.size()) * sizeof(double));
+        CHECK(r.output.find("clip tiny_walk (frames, channels) = (4, 9) sha256 " + mocapdb::sha256_hex(bytes)) !=
+              std::string::npos);
         CHECK(r.output.find("tensor (sample, time, dof) = (2, 3, 9) A(d=5, t=2, s=1) = 125.0") != std::string::npos);
         const std::string model = "model ranks (1, 2, 2) max |A - A_hat| = ";
         const auto m = r.output.find(model);
@@ -38,7 +47,7 @@ TEST_CASE("README: the h5py snippet reads the tensor and the control parameters"
         CHECK(error < 1e-9);
         CHECK(r.output.find("rmse_cm", m) != std::string::npos);
     } else {
-        WARN("python3-h5py is not installed: checking the same read with h5dump");
+        WARN("python3-h5py or python3-zstandard is not installed: checking the same read with h5dump");
         const CommandResult t = run_command("h5dump -d /sets/tiny_set/aligned/tensor -s 1,2,5 -c 1,1,1 " +
                                             quoted(reference.string()));
         CHECK(t.output.find("(1,2,5): 125") != std::string::npos);

@@ -30,18 +30,20 @@ std::string mirror_name(int version) { return "format-v" + std::to_string(versio
 
 }  // namespace
 
-TEST_CASE("schema: the compiled-in mirrors are schemas/format-v1.json and format-v2.json", "[store][schema]") {
-    CHECK(kDatabaseFormatVersion == 2);
+TEST_CASE("schema: the compiled-in mirrors are schemas/format-v1.json to format-v3.json", "[store][schema]") {
+    CHECK(kDatabaseFormatVersion == 3);
     CHECK(builtin_schema_json(1) == file_bytes(kSchemas / "format-v1.json"));
     CHECK(builtin_schema_json(2) == file_bytes(kSchemas / "format-v2.json"));
+    CHECK(builtin_schema_json(3) == file_bytes(kSchemas / "format-v3.json"));
     CHECK(builtin_schema_json() == builtin_schema_json(kDatabaseFormatVersion));
-    CHECK_THROWS_AS(builtin_schema_json(3), InvalidArgument);
+    CHECK_THROWS_AS(builtin_schema_json(4), InvalidArgument);
     CHECK_THROWS_AS(builtin_schema_json(0), InvalidArgument);
 }
 
 TEST_CASE("schema: every object and attribute of each mirror is specified in its format-vN.md", "[store][schema]") {
-    // Objects per version: version 2 adds /sets/{set}/model and its six datasets.
-    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}};
+    // Objects per version: version 2 adds /sets/{set}/model and its six datasets, version 3
+    // /clips/{clip}/channels_packed.
+    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 37}};
     for (const auto& [version, path_count] : versions) {
         const std::string json = file_bytes(kSchemas / mirror_name(version));
         const std::string md = file_bytes(kSchemas / ("format-v" + std::to_string(version) + ".md"));
@@ -73,6 +75,14 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     }
     for (const std::string& path : v2)
         if (v1.count(path) == 0) CHECK(path.rfind("/sets/{set}/model", 0) == 0);
+    // Version 3 is version 2 plus the packed clip channels.
+    const auto v3 = matches(file_bytes(kSchemas / "format-v3.json"), "\"path\": \"([^\"]+)\"");
+    for (const std::string& path : v2) {
+        INFO(path);
+        CHECK(v3.count(path) == 1);
+    }
+    for (const std::string& path : v3)
+        if (v2.count(path) == 0) CHECK(path == "/clips/{clip}/channels_packed");
 }
 
 TEST_CASE("schema: a custom mirror is honoured and a malformed one refused", "[store][schema]") {
@@ -84,12 +94,12 @@ TEST_CASE("schema: a custom mirror is honoured and a malformed one refused", "[s
     json.replace(json.find(from), from.size(), to);
     ValidateOptions o;
     o.schema_json = json;
-    const ValidationReport r = validate_database(test_data_dir() / "reference-v2.h5", o);
+    const ValidationReport r = validate_database(test_data_dir() / "reference-v3.h5", o);
     REQUIRE(r.violations.size() == 1);
     CHECK(r.violations[0].path == "/");
     CHECK(r.violations[0].message == "attribute 'creator': expected \"someone else\", found \"mocapdb 0.1.0\"");
     o.schema_json = "{\"format\": \"mocapdb\", \"format_version\": 2, \"objects\": [}";
-    CHECK_THROWS_AS(validate_database(test_data_dir() / "reference-v2.h5", o), ParseError);
+    CHECK_THROWS_AS(validate_database(test_data_dir() / "reference-v3.h5", o), ParseError);
 }
 
 TEST_CASE("schema: each file is checked against the mirror of its own version", "[store][schema]") {
@@ -106,4 +116,11 @@ TEST_CASE("schema: each file is checked against the mirror of its own version", 
     const ValidationReport v2 = validate_database(test_data_dir() / "reference-v2.h5");
     CHECK(v2.ok());
     CHECK(v2.format_version == 2);
+    const ValidationReport v3 = validate_database(test_data_dir() / "reference-v3.h5");
+    CHECK(v3.ok());
+    CHECK(v3.format_version == 3);
+    // The packed clip channels are not part of version 2.
+    o.schema_json = builtin_schema_json(2);
+    const ValidationReport packed = validate_database(test_data_dir() / "reference-v3.h5", o);
+    CHECK_FALSE(packed.ok());
 }

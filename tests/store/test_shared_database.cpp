@@ -95,7 +95,7 @@ TEST_CASE("shared CMU folders: import both, validate, info --json, export reprod
     const CommandResult valid = run_cli("validate " + quoted(db_path.string()));
     INFO(valid.output);
     CHECK(valid.exit_code == 0);
-    CHECK(valid.output.find("valid mocapdb format 2 file") != std::string::npos);
+    CHECK(valid.output.find("valid mocapdb format " + std::to_string(kDatabaseFormatVersion) + " file") != std::string::npos);
 
     const CommandResult info = run_cli("info " + quoted(db_path.string()) + " --json");
     REQUIRE(info.exit_code == 0);

@@ -43,10 +43,11 @@ void setup_validate(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("validate", "Check a motion database file against the format specification");
     cmd->footer(
         "Checks every group, dataset and attribute against the mirror of the file's version,\n"
-        "schemas/format-v1.json or format-v2.json (kinds, dtypes, dims, shapes, filters, values), reads\n"
-        "every dataset (verifying its fletcher32 checksums) and checks the content rules (clip columns\n"
-        "match their skeleton, set samples lie within stored clips, aligned tensors match their set,\n"
-        "models match their aligned tensor). Exit code 0 when valid; 1 with the first violations otherwise.\n"
+        "schemas/format-v1.json to format-v3.json (kinds, dtypes, dims, shapes, filters, values), reads\n"
+        "every dataset (verifying its fletcher32 checksums) and checks the content rules (every clip\n"
+        "decodes and is finite, with columns matching its skeleton; set samples lie within stored clips,\n"
+        "aligned tensors match their set, models match their aligned tensor).\n"
+        "Exit code 0 when valid; 1 with the first violations otherwise.\n"
         "Example:\n"
         "  mocapdb validate cmu.h5");
     cmd->add_option("file", args->file, "database file")->required()->check(CLI::ExistingFile);

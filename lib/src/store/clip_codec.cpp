@@ -1,11 +1,41 @@
 #include "clip_codec.hpp"
 
+#include <array>
 #include <cmath>
+#include <tuple>
 
 #include "layout.hpp"
+#include "mocapdb/store/channel_packing.hpp"
 #include "mocapdb/store/store_error.hpp"
 
 namespace mocapdb::store {
+namespace {
+
+const char* const kPackedCodec = "decimal-zstd-1";
+
+std::array<std::uint64_t, 4> section_sizes(const h5::File& file, const std::string& path) {
+    const std::vector<std::int64_t> v = file.read_ints_attribute(path, "section_bytes");
+    std::array<std::uint64_t, 4> out{};
+    if (v.size() != out.size())
+        throw StoreError(file.name(), path, "attribute 'section_bytes': expected 4 values, found " + std::to_string(v.size()));
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (v[i] < 0) throw StoreError(file.name(), path, "attribute 'section_bytes': expected values >= 0");
+        out[i] = static_cast<std::uint64_t>(v[i]);
+    }
+    return out;
+}
+
+// The packed form's frames and channels (attributes frames and channel_scale), checked.
+std::pair<std::size_t, std::size_t> packed_shape(const h5::File& file, const std::string& path) {
+    const std::int64_t frames = file.read_int_attribute(path, "frames");
+    if (frames < 1) throw StoreError(file.name(), path, "attribute 'frames': expected >= 1, found " + std::to_string(frames));
+    const h5::AttributeInfo scale = file.attribute_info(path, "channel_scale");
+    if (scale.shape.size() != 1)
+        throw StoreError(file.name(), path, "attribute 'channel_scale': expected one dimension, found " + h5::shape_text(scale.shape));
+    return {static_cast<std::size_t>(frames), static_cast<std::size_t>(scale.shape[0])};
+}
+
+}  // namespace
 
 void write_clip(h5::File& file, const std::string& id, const Clip& clip, const std::string& skeleton_id,
                 const ClipSource& source) {
@@ -20,10 +50,28 @@ void write_clip(h5::File& file, const std::string& id, const Clip& clip, const s
     if (!source.subject.empty()) file.write_string_attribute(g, "subject", source.subject);
     if (!source.description.empty()) file.write_string_attribute(g, "description", source.description);
     if (!source.labels.empty()) file.write_strings_attribute(g, "labels", source.labels);
-    // FrameMatrix is row-major: its buffer is the C-order (frame, channel) array.
-    file.write_array(g + "/channels", clip.channels.data(),
-                     {static_cast<std::uint64_t>(clip.channels.rows()), static_cast<std::uint64_t>(clip.channels.cols())},
-                     {"frame", "channel"}, "cm|rad");
+    // Exact to the bit (pack_channels verifies its own output), in a few bytes per value.
+    const PackedChannels p = pack_channels(clip.channels, reader_scales(*clip.skeleton));
+    const std::string d = g + "/" + kPackedChannels;
+    file.write_compressed_bytes(d, p.bytes, "byte", "zstd");
+    file.write_string_attribute(d, "codec", kPackedCodec);
+    file.write_int_attribute(d, "frames", static_cast<std::int64_t>(p.frames));
+    file.write_doubles_attribute(d, "channel_scale", p.scale);
+    file.write_ints_attribute(d, "channel_decimals", p.decimals);
+    file.write_ints_attribute(d, "channel_predictor", p.predictor);
+    file.write_ints_attribute(d, "section_bytes", {p.section_bytes.begin(), p.section_bytes.end()});
+}
+
+std::string clip_channels_path(const h5::File& file, const std::string& id) {
+    const std::string plain = clip_path(id) + "/channels";
+    const std::string packed = clip_path(id) + "/" + kPackedChannels;
+    const bool has_plain = file.type_of(plain) != h5::ObjectType::None;
+    const bool has_packed = file.type_of(packed) != h5::ObjectType::None;
+    if (has_plain == has_packed)
+        throw StoreError(file.name(), clip_path(id),
+                         "expected one of the datasets '" + kPackedChannels + "' and 'channels', found " +
+                             (has_plain ? "both" : "neither"));
+    return has_packed ? packed : plain;
 }
 
 ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
@@ -44,6 +92,15 @@ ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
     if (file.has_attribute(g, "subject")) r.source.subject = file.read_string_attribute(g, "subject");
     if (file.has_attribute(g, "description")) r.source.description = file.read_string_attribute(g, "description");
     if (file.has_attribute(g, "labels")) r.source.labels = file.read_strings_attribute(g, "labels");
+    const std::string packed = clip_channels_path(file, id);
+    if (packed == g + "/" + kPackedChannels) {
+        const h5::DatasetInfo info = file.dataset_info(packed);
+        if (info.dtype != "uint8" || info.shape.size() != 1)
+            throw StoreError(file.name(), packed, "expected uint8 (byte), found " + info.dtype + " " + h5::shape_text(info.shape));
+        std::tie(r.frames, r.channels) = packed_shape(file, packed);
+        r.stored_bytes = info.stored_bytes;
+        return r;
+    }
     const h5::DatasetInfo info = file.dataset_info(g + "/channels");
     if (info.dtype != "float64" || info.shape.size() != 2)
         throw StoreError(file.name(), g + "/channels",
@@ -55,7 +112,8 @@ ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
 }
 
 FrameMatrix read_clip_channels(const h5::File& file, const std::string& id, std::size_t channels) {
-    const std::string path = clip_path(id) + "/channels";
+    const std::string path = clip_channels_path(file, id);
+    if (path == clip_path(id) + "/" + kPackedChannels) return read_packed_channels(file, path, channels);
     auto a = file.read_array<double>(path, 2);
     if (a.shape[1] != channels)
         throw StoreError(file.name(), path,
@@ -64,6 +122,31 @@ FrameMatrix read_clip_channels(const h5::File& file, const std::string& id, std:
     if (a.shape[0] == 0) throw StoreError(file.name(), path, "expected at least one frame, found shape " + h5::shape_text(a.shape));
     return Eigen::Map<const FrameMatrix>(a.data.data(), static_cast<Eigen::Index>(a.shape[0]),
                                          static_cast<Eigen::Index>(a.shape[1]));
+}
+
+FrameMatrix read_packed_channels(const h5::File& file, const std::string& path, std::size_t channels) {
+    const std::string codec = file.read_string_attribute(path, "codec");
+    if (codec != kPackedCodec)
+        throw StoreError(file.name(), path, "attribute 'codec': expected \"" + std::string(kPackedCodec) + "\", found \"" + codec + "\"");
+    PackedChannels p;
+    std::size_t columns = 0;
+    std::tie(p.frames, columns) = packed_shape(file, path);
+    if (columns != channels)
+        throw StoreError(file.name(), path,
+                         "expected " + std::to_string(channels) + " channels (the channels of its skeleton), found " +
+                             std::to_string(columns));
+    p.scale = file.read_doubles_attribute(path, "channel_scale");
+    p.decimals = file.read_ints_attribute(path, "channel_decimals");
+    p.predictor = file.read_ints_attribute(path, "channel_predictor");
+    p.section_bytes = section_sizes(file, path);
+    p.bytes = file.read_array<std::uint8_t>(path, 1).data;  // ChecksumError on a corrupted chunk
+    try {
+        return unpack_channels(p);
+    } catch (const StoreError&) {
+        throw;
+    } catch (const Error& e) {
+        throw StoreError(file.name(), path, e.what());
+    }
 }
 
 }  // namespace mocapdb::store

@@ -83,7 +83,7 @@ Clip Database::load_clip(const std::string& id) const {
     clip.name = id;
     clip.channels = store::read_clip_channels(f, id, clip.skeleton->channel_count());
     if (!clip.channels.allFinite())
-        throw StoreError(f.name(), store::clip_path(id) + "/channels", "expected finite values, found NaN or infinity");
+        throw StoreError(f.name(), store::clip_channels_path(f, id), "expected finite values, found NaN or infinity");
     return clip;
 }
 

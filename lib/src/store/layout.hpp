@@ -1,5 +1,5 @@
 #pragma once
-// Where things live in a database file (see schemas/format-v2.md), and the one place where Eigen's
+// Where things live in a database file (see schemas/format-v3.md), and the one place where Eigen's
 // column-major layout meets HDF5's C order.
 #include <string>
 #include <vector>

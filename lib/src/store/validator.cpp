@@ -253,6 +253,9 @@ private:
             }
         } else if (dtype == "int64" && shape.empty()) {
             values.push_back(json_number(static_cast<double>(f_.read_int_attribute(path, name))));
+        } else if (dtype == "int64") {
+            for (const std::int64_t x : f_.read_ints_attribute(path, name))
+                values.push_back(json_number(static_cast<double>(x)));
         } else if (dtype == "float64") {
             if (shape.empty()) {
                 values.push_back(json_number(f_.read_double_attribute(path, name)));

@@ -1,6 +1,6 @@
 #pragma once
-// The motion database file (HDF5, format "mocapdb" version 2, specified in schemas/format-v2.md;
-// version 1 files are read too): a read view `Database`, and an atomic edit session `DatabaseWriter`.
+// The motion database file (HDF5, format "mocapdb" version 3, specified in schemas/format-v3.md;
+// version 1 and 2 files are read too): a read view `Database`, and an atomic edit session `DatabaseWriter`.
 //
 // Nothing here exposes HDF5: the only code that includes HDF5 headers is in lib/src/store/h5/.
 //
@@ -33,7 +33,7 @@ namespace mocapdb {
 
 /// The file format version this library writes. It reads every version from 1 to this one (a version
 /// only adds optional objects); a writing session on an older file upgrades its format_version.
-constexpr int kDatabaseFormatVersion = 2;
+constexpr int kDatabaseFormatVersion = 3;
 
 /// How long a DatabaseWriter waits by default for another writing session on its target.
 constexpr double kWriterWaitSeconds = 600.0;
@@ -97,7 +97,7 @@ public:
 
     /// The file this view reads (for a writer's view: its temporary file).
     const std::filesystem::path& path() const noexcept;
-    /// The file's format_version (1 or 2; a writer's view: kDatabaseFormatVersion).
+    /// The file's format_version (1 to 3; a writer's view: kDatabaseFormatVersion).
     int format_version() const noexcept;
 
     /// Every clip, sorted by id (reads only metadata).

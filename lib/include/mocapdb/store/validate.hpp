@@ -26,7 +26,7 @@ struct ValidationReport {
 struct ValidateOptions {
     std::size_t max_violations = 50;
     /// Schema mirror text (JSON) to check against; empty: the built-in mirror of the file's
-    /// format_version (format-v1.json for a version-1 file, format-v2.json for a version-2 file).
+    /// format_version (format-vN.json for a version-N file).
     std::string schema_json;
 };
 
@@ -39,7 +39,7 @@ struct ValidateOptions {
 /// options.schema_json.
 ValidationReport validate_database(const std::filesystem::path& file, const ValidateOptions& options = {});
 
-/// The built-in schema mirror of the current version (schemas/format-v2.json).
+/// The built-in schema mirror of the current version (schemas/format-v3.json).
 const std::string& builtin_schema_json();
 /// The built-in schema mirror schemas/format-v{format_version}.json; InvalidArgument for a version
 /// this library does not read.

@@ -118,17 +118,26 @@ double File::read_double_attribute(const std::string& path, const std::string& n
     return v;
 }
 
-std::vector<double> File::read_doubles_attribute(const std::string& path, const std::string& name) const {
+template <class T>
+std::vector<T> File::read_vector_attribute(const std::string& path, const std::string& name, const char* dtype,
+                                           Id mem_type) const {
     const AttributeInfo info = attribute_info(path, name);
-    if (info.dtype != "float64" || info.shape.size() != 1)
-        fail(name_, path, "attribute '" + name + "': expected a one-dimensional float64 array, found " + info.dtype +
+    if (info.dtype != dtype || info.shape.size() != 1)
+        fail(name_, path, "attribute '" + name + "': expected a one-dimensional " + dtype + " array, found " + info.dtype +
                               " " + shape_text(info.shape));
     Handle a(open_attribute(path, name), H5Aclose);
-    std::vector<double> v(static_cast<std::size_t>(info.shape[0]));
+    std::vector<T> v(static_cast<std::size_t>(info.shape[0]));
     if (!v.empty())
-        check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, v.data()), name_, path,
-              ("cannot read attribute '" + name + "'").c_str());
+        check(H5Aread(a.get(), mem_type, v.data()), name_, path, ("cannot read attribute '" + name + "'").c_str());
     return v;
+}
+
+std::vector<double> File::read_doubles_attribute(const std::string& path, const std::string& name) const {
+    return read_vector_attribute<double>(path, name, "float64", H5T_NATIVE_DOUBLE);
+}
+
+std::vector<std::int64_t> File::read_ints_attribute(const std::string& path, const std::string& name) const {
+    return read_vector_attribute<std::int64_t>(path, name, "int64", H5T_NATIVE_INT64);
 }
 
 void File::write_attribute(const std::string& path, const std::string& name, hid_t file_type, hid_t mem_type,
@@ -177,6 +186,11 @@ void File::write_double_attribute(const std::string& path, const std::string& na
 void File::write_doubles_attribute(const std::string& path, const std::string& name,
                                    const std::vector<double>& values) {
     write_attribute(path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {values.size()}, values.data());
+}
+
+void File::write_ints_attribute(const std::string& path, const std::string& name,
+                                const std::vector<std::int64_t>& values) {
+    write_attribute(path, name, H5T_STD_I64LE, H5T_NATIVE_INT64, {values.size()}, values.data());
 }
 
 }  // namespace mocapdb::store::h5

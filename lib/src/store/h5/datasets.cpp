@@ -107,7 +107,7 @@ DatasetInfo File::dataset_info(const std::string& path) const {
 }
 
 void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, const Shape& shape, const void* data,
-                     bool shuffle, const std::vector<std::string>& dims, const std::string& units) {
+                     Filters filters, const std::vector<std::string>& dims, const std::string& units) {
     const std::vector<hsize_t> extent(shape.begin(), shape.end());
     Handle space(shape.empty() ? H5Screate(H5S_SCALAR)
                                : H5Screate_simple(static_cast<int>(extent.size()), extent.data(), nullptr),
@@ -121,10 +121,17 @@ void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, c
         std::vector<hsize_t> chunk(extent);
         const std::uint64_t row_bytes = count / extent[0] * H5Tget_size(file_type);
         chunk[0] = std::clamp<hsize_t>(kChunkBytes / std::max<std::uint64_t>(row_bytes, 1), 1, extent[0]);
+        if (filters == Filters::ChecksumOnly) {
+            // Unfiltered edge chunks are stored whole: split evenly so that the padding is < 1 row per chunk.
+            const hsize_t count_of_chunks = (extent[0] + chunk[0] - 1) / chunk[0];
+            chunk[0] = (extent[0] + count_of_chunks - 1) / count_of_chunks;
+        }
         check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), name_, path,
               "cannot set the chunk shape");
-        if (shuffle) check(H5Pset_shuffle(dcpl.get()), name_, path, "cannot enable the shuffle filter");
-        check(H5Pset_deflate(dcpl.get(), kDeflateLevel), name_, path, "cannot enable the deflate filter");
+        if (filters == Filters::ShuffleDeflate)
+            check(H5Pset_shuffle(dcpl.get()), name_, path, "cannot enable the shuffle filter");
+        if (filters != Filters::ChecksumOnly)
+            check(H5Pset_deflate(dcpl.get(), kDeflateLevel), name_, path, "cannot enable the deflate filter");
         check(H5Pset_fletcher32(dcpl.get()), name_, path, "cannot enable the fletcher32 filter");
     }
     Handle d(H5Dcreate2(id_, path.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
@@ -141,7 +148,13 @@ void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, c
 template <class T>
 void File::write_array(const std::string& path, const T* data, const Shape& shape,
                        const std::vector<std::string>& dims, const std::string& units) {
-    write_raw(path, Traits<T>::file(), Traits<T>::memory(), shape, data, sizeof(T) > 1, dims, units);
+    write_raw(path, Traits<T>::file(), Traits<T>::memory(), shape, data,
+              sizeof(T) > 1 ? Filters::ShuffleDeflate : Filters::Deflate, dims, units);
+}
+
+void File::write_compressed_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes,
+                                  const std::string& dim, const std::string& units) {
+    write_raw(path, H5T_STD_U8LE, H5T_NATIVE_UINT8, {bytes.size()}, bytes.data(), Filters::ChecksumOnly, {dim}, units);
 }
 
 void File::write_strings(const std::string& path, const std::vector<std::string>& values, const std::string& dim,
@@ -156,7 +169,7 @@ void File::write_strings(const std::string& path, const std::vector<std::string>
         fail_call(name_, path, "cannot make a string datatype");
     std::vector<char> buffer(values.size() * width, '\0');
     for (std::size_t i = 0; i < values.size(); ++i) std::copy(values[i].begin(), values[i].end(), buffer.begin() + static_cast<std::ptrdiff_t>(i * width));
-    write_raw(path, t.get(), t.get(), {values.size()}, buffer.data(), false, {dim}, units);
+    write_raw(path, t.get(), t.get(), {values.size()}, buffer.data(), Filters::Deflate, {dim}, units);
 }
 
 void File::check_type(const std::string& path, hid_t type, const std::string& expected) const {

@@ -86,6 +86,8 @@ public:
     double read_double_attribute(const std::string& path, const std::string& name) const;
     /// One-dimensional float64 attribute.
     std::vector<double> read_doubles_attribute(const std::string& path, const std::string& name) const;
+    /// One-dimensional int64 attribute.
+    std::vector<std::int64_t> read_ints_attribute(const std::string& path, const std::string& name) const;
 
     void write_string_attribute(const std::string& path, const std::string& name, const std::string& value);
     void write_strings_attribute(const std::string& path, const std::string& name,
@@ -93,6 +95,7 @@ public:
     void write_int_attribute(const std::string& path, const std::string& name, std::int64_t value);
     void write_double_attribute(const std::string& path, const std::string& name, double value);
     void write_doubles_attribute(const std::string& path, const std::string& name, const std::vector<double>& values);
+    void write_ints_attribute(const std::string& path, const std::string& name, const std::vector<std::int64_t>& values);
 
     // Datasets.
     DatasetInfo dataset_info(const std::string& path) const;
@@ -101,6 +104,10 @@ public:
     template <class T>
     void write_array(const std::string& path, const T* data, const Shape& shape, const std::vector<std::string>& dims,
                      const std::string& units);
+    /// Writes bytes that are already compressed as a one-dimensional uint8 dataset with attributes dims
+    /// = [dim] and units: chunked with fletcher32 only (shuffle and deflate would not shrink them).
+    void write_compressed_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes, const std::string& dim,
+                                const std::string& units);
     void write_strings(const std::string& path, const std::vector<std::string>& values, const std::string& dim,
                        const std::string& units);
     /// Reads a whole dataset; StoreError unless its dtype is exactly T's and its rank is `rank`.
@@ -114,6 +121,8 @@ public:
 
 private:
     using Id = std::int64_t;  // hid_t
+    /// Filter pipeline of a new non-empty dataset (fletcher32 always comes last).
+    enum class Filters { Deflate, ShuffleDeflate, ChecksumOnly };
     // Each returns a new identifier the caller must close (wrapped in h5::Handle inside h5/).
     Id open_object(const std::string& path) const;
     Id open_dataset(const std::string& path) const;
@@ -121,8 +130,11 @@ private:
     void write_attribute(const std::string& path, const std::string& name, Id file_type, Id mem_type,
                          const Shape& shape, const void* data);
     void write_raw(const std::string& path, Id file_type, Id mem_type, const Shape& shape, const void* data,
-                   bool shuffle, const std::vector<std::string>& dims, const std::string& units);
+                   Filters filters, const std::vector<std::string>& dims, const std::string& units);
     void check_type(const std::string& path, Id type, const std::string& expected) const;
+    template <class T>
+    std::vector<T> read_vector_attribute(const std::string& path, const std::string& name, const char* dtype,
+                                         Id mem_type) const;
 
     Id id_ = -1;
     std::string name_;
