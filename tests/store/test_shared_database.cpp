@@ -89,7 +89,9 @@ TEST_CASE("shared CMU folders: import both, validate, info --json, export reprod
     INFO(again.output);
     CHECK(again.exit_code == 0);
     CHECK(again.output.find("imported 0 clips (33 skipped as duplicates)") != std::string::npos);
-    CHECK(again.output.find("02_01_60fps.bvh: skipped: duplicate sha256 of clip 02_01_60fps") != std::string::npos);
+    // Past a few, duplicates are counted in one line rather than listed one per file (#16).
+    CHECK(again.output.find("33 files skipped: already stored (same sha256)") != std::string::npos);
+    CHECK(again.output.find("02_01_60fps.bvh: skipped") == std::string::npos);
     CHECK(file_bytes(db_path) == before);
 
     const CommandResult valid = run_cli("validate " + quoted(db_path.string()));
