@@ -1,0 +1,63 @@
+#pragma once
+// Entropy coding of one window's quantized core coefficients with a context model.
+//
+// A window's coefficients are visited in a fixed scan order (largest expected magnitude first). Each
+// position has a class: how large its coefficient is expected to be relative to the quantization step
+// (class = clamp(floor(2 log2(sigma / step)) + kClassBias, 0, kClasses - 1), sigma the position's
+// expected RMS from the group's learned bases). Coded per window:
+//   - the number L of scan positions up to the last nonzero one (Elias-gamma, adaptive bits);
+//   - for each of the first L positions: nonzero? (context: class, previous position nonzero?);
+//     if nonzero: sign (at 1/2), |q| > 1? (class), then |q| - 2 in Elias-gamma (prefix bits adaptive
+//     per class and bit position, suffix bits at 1/2).
+// Contexts start from per-group trained probabilities (ContextSet::initial), so a window codes on its
+// own (random access) without paying for re-learning the statistics in every window.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "mocapdb/packing/range_coder.hpp"
+
+namespace mocapdb::packing {
+
+constexpr int kClasses = 28;
+constexpr int kClassBias = 10;
+constexpr int kGammaBits = 31;  ///< longest Elias-gamma prefix (magnitudes below 2^31)
+
+/// Every adaptive context of the model, in one flat array (serialized as such).
+struct ContextSet {
+    static constexpr int kLengthContexts = 2 * kGammaBits;
+    static constexpr int kPerClass = 2 + 1 + kGammaBits;  // nonzero x2, greater-than-one, gamma prefix
+    static constexpr int kCount = kLengthContexts + kClasses * kPerClass;
+    std::array<BitContext, kCount> p;
+
+    ContextSet() { p.fill(kProbabilityHalf); }
+    BitContext* length() { return p.data(); }
+    BitContext* nonzero(int cls, int previous_nonzero) { return &p[kLengthContexts + cls * kPerClass + previous_nonzero]; }
+    BitContext* greater_one(int cls) { return &p[kLengthContexts + cls * kPerClass + 2]; }
+    BitContext* gamma(int cls) { return &p[kLengthContexts + cls * kPerClass + 3]; }
+};
+
+/// Counts of 0s and 1s seen by each context; turned into initial probabilities for a group.
+struct ContextCounts {
+    std::array<std::array<std::uint64_t, 2>, ContextSet::kCount> n{};
+    /// Probabilities (of a 0) estimated from the counts, clamped away from 0 and 1.
+    ContextSet to_contexts() const;
+};
+
+/// Class of every scan position for a window quantized with `step` (`sigma` in scan order).
+void position_classes(const std::vector<float>& sigma, double step, std::vector<std::uint8_t>& out_classes);
+
+/// The coded coefficients `q` (scan order; may end early, missing entries are 0) of one window.
+/// `contexts` is copied: each window starts from the same initial probabilities.
+std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q,
+                                              const std::vector<std::uint8_t>& classes, ContextSet contexts);
+
+/// Adds the binary decisions that coding `q` would make, per context (static statistics).
+void count_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,
+                        ContextCounts& counts);
+
+/// Decodes one window's coefficients (scan order) into out_q (resized to classes.size()).
+void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::vector<std::uint8_t>& classes,
+                         ContextSet contexts, std::vector<std::int32_t>& out_q);
+
+}  // namespace mocapdb::packing

@@ -1,0 +1,80 @@
+#pragma once
+// Error-bounded packing of a group of clips (one skeleton topology, one frame rate) into bytes.
+//
+// Contract: decoding the bytes (GroupDecoder) gives, for every clip and every SOURCE frame, channel
+// rows whose forward-kinematics positions of every joint and end site (world frame) are within
+// max_error_cm of the source clip's (as given to pack_group). The bound is guaranteed, not targeted:
+// every window is decoded at encode time with the decoder's own routine and its quantization step is
+// made finer until the bound holds (PackingFailed if even the finest step cannot meet it).
+//
+// Representation (docs/packing.md says why): each clip in its pose-vector form (pose_vector.hpp;
+// canonical frame, root heading-relative swing-twist, continuous exp maps) plus every non-root
+// position channel, each dof weighted by its effect in cm (dof_weights.hpp); cut into windows of W
+// source frames (the last one padded by repeating its last frame); each window X (D by W) is
+// projected on a dof basis U (D by D) and a time basis V (W by W) learned from the group (the
+// eigenvectors of the summed second moments: ST-HOSVD at full rank): G = Uᵀ X V. G is quantized with
+// one uniform step per window (2^(k/8 − 14), k stored in a byte) and entropy-coded with an adaptive
+// binary range coder whose contexts are trained on the group (coefficient_coder.hpp). Each window
+// decodes on its own.
+//
+// Bytes count everything the decoder needs: topology, every distinct skeleton (offsets, axes),
+// bases, energies, trained contexts, per-clip canonicalization and frame count, per-window step and
+// size, payloads. Clip names are not stored (the caller keeps them in the same order).
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/core/progress.hpp"
+#include "mocapdb/motion/clip.hpp"
+#include "mocapdb/packing/error_stats.hpp"
+
+namespace mocapdb::packing {
+
+struct PackOptions {
+    double max_error_cm = 1.0;  ///< E, > 0 and finite
+    int window = 32;            ///< W, source frames per window, 2 ... 256
+    /// Quantizer rounding offset in [0.1, 0.5]: q = sign(c)·floor(|c|/step + rounding). 0.5 is plain
+    /// rounding; smaller values widen the zero bin (fewer nonzero coefficients, finer step needed).
+    double rounding = 0.5;
+    int threads = 2;            ///< encoder threads (>= 1)
+};
+
+/// Where the bytes went and what the error is (measured at encode time, on every source frame).
+struct PackStats {
+    std::size_t clips = 0;
+    std::size_t frames = 0;
+    std::size_t windows = 0;
+    std::size_t channels = 0;        ///< channels per frame (float32 reference = frames·channels·4)
+    std::size_t bytes = 0;           ///< total
+    std::size_t header_bytes = 0;    ///< topology, skeletons, bases, contexts
+    std::size_t table_bytes = 0;     ///< per-clip and per-window entries
+    std::size_t payload_bytes = 0;   ///< coded coefficients
+    std::size_t probes = 0;          ///< window decodes tried while choosing steps
+    ErrorStats error;
+    double encode_seconds = 0.0;
+};
+
+struct PackedGroup {
+    std::vector<std::uint8_t> bytes;
+    PackStats stats;
+};
+
+/// Thrown when a window cannot meet the bound even at the finest step (should not happen with full
+/// rank bases; would indicate non-finite data or a representation the decoder cannot express).
+class PackingFailed : public Error {
+public:
+    using Error::Error;
+};
+
+/// Packs `clips` (same topology and frame rate; InvalidArgument otherwise, or when options are out of
+/// range: E <= 0 or not finite, W outside 2..256). An empty list gives a valid empty group.
+PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions& options,
+                       const ProgressCallback& progress = {});
+
+/// Splits a collection into groups of one topology and frame rate (indices into `clips`, each group
+/// in input order, groups in order of first appearance).
+std::vector<std::vector<std::size_t>> group_clips(const std::vector<const Clip*>& clips);
+
+}  // namespace mocapdb::packing

@@ -1,0 +1,332 @@
+#include "mocapdb/packing/packed_group.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "group_model.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
+
+namespace mocapdb::packing {
+namespace {
+
+using detail::GroupModel;
+using detail::step_of;
+
+void check_options(const PackOptions& o) {
+    if (!(o.max_error_cm > 0) || !std::isfinite(o.max_error_cm))
+        throw InvalidArgument("pack: max error must be a finite number > 0 cm, got " + std::to_string(o.max_error_cm));
+    if (o.window < 2 || o.window > 256)
+        throw InvalidArgument("pack: window must be 2..256 frames, got " + std::to_string(o.window));
+    if (!(o.rounding >= 0.1 && o.rounding <= 0.5))
+        throw InvalidArgument("pack: rounding must be in [0.1, 0.5], got " + std::to_string(o.rounding));
+    if (o.threads < 1) throw InvalidArgument("pack: threads must be >= 1");
+}
+
+/// Window `w` of x (D by F) as D by W, the last frame repeated past the end.
+MatX window_of(const MatX& x, int w, int length) {
+    MatX out(x.rows(), length);
+    const Eigen::Index f0 = static_cast<Eigen::Index>(w) * length;
+    for (int t = 0; t < length; ++t) out.col(t) = x.col(std::min(f0 + t, x.cols() - 1));
+    return out;
+}
+
+/// Descending eigen-decomposition of a symmetric matrix; basis rounded to float32 (as stored).
+void eigen_basis(const MatX& moment, MatX& out_basis, std::vector<double>& out_values) {
+    Eigen::SelfAdjointEigenSolver<MatX> solver(moment);
+    const auto n = moment.rows();
+    out_basis.resize(n, n);
+    out_values.resize(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) {
+        out_basis.col(i) = solver.eigenvectors().col(n - 1 - i).cast<float>().cast<double>();
+        out_values[static_cast<std::size_t>(i)] = std::max(0.0, solver.eigenvalues()[n - 1 - i]);
+    }
+}
+
+struct WindowResult {
+    std::uint8_t step = 0;
+    std::vector<std::int32_t> q;  // scan order, trimmed after the last nonzero
+};
+
+struct ThreadState {
+    explicit ThreadState(double e) : errors(e) {}
+    ErrorAccumulator errors;
+    ContextCounts counts;
+    std::size_t probes = 0;
+};
+
+}  // namespace
+
+std::vector<std::vector<std::size_t>> group_clips(const std::vector<const Clip*>& clips) {
+    std::vector<std::vector<std::size_t>> groups;
+    std::vector<const Clip*> firsts;
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        const Clip& c = *clips[i];
+        std::size_t g = 0;
+        for (; g < firsts.size(); ++g)
+            if (firsts[g]->frame_rate == c.frame_rate && detail::same_topology(*firsts[g]->skeleton, *c.skeleton)) break;
+        if (g == firsts.size()) {
+            firsts.push_back(&c);
+            groups.emplace_back();
+        }
+        groups[g].push_back(i);
+    }
+    return groups;
+}
+
+PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions& options,
+                       const ProgressCallback& progress) {
+    check_options(options);
+    const auto started = std::chrono::steady_clock::now();
+    PackedGroup result;
+    GroupModel m;
+    for (const Clip* c : clips) {
+        if (c == nullptr) throw InvalidArgument("pack: null clip");
+        validate(*c);
+        if (c->frame_count() == 0) throw InvalidArgument("pack: clip '" + c->name + "' has no frames");
+        if (c->frame_rate != clips.front()->frame_rate || !detail::same_topology(*c->skeleton, *clips.front()->skeleton))
+            throw InvalidArgument("pack: clip '" + c->name + "' has another topology or frame rate than '" +
+                                  clips.front()->name + "' (use group_clips)");
+    }
+    if (clips.empty()) {
+        m.write_header(result.bytes);
+        result.stats.bytes = result.stats.header_bytes = result.bytes.size();
+        return result;
+    }
+
+    // Layout shared by the group.
+    const Skeleton& s0 = *clips.front()->skeleton;
+    m.frame_rate = clips.front()->frame_rate;
+    m.window = options.window;
+    m.pose_dofs = static_cast<int>(PoseLayout(s0).dof_count());
+    for (std::size_t j = 1; j < s0.size(); ++j)
+        for (ChannelType c : s0.joint(j).channels)
+            if (!is_rotation(c)) m.extra_columns.push_back(s0.channel_column(j, c));
+    m.dofs = m.pose_dofs + static_cast<int>(m.extra_columns.size());
+    const int W = m.window;
+    const auto D = static_cast<Eigen::Index>(m.dofs);
+
+    // Distinct skeletons (float32-rounded, as the decoder will see them) and per-clip entries.
+    std::vector<const Skeleton*> sources;
+    m.clips.resize(clips.size());
+    std::uint64_t window_total = 0;
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        const Skeleton& s = *clips[i]->skeleton;
+        std::size_t k = 0;
+        while (k < sources.size() && !(sources[k] == &s || sources[k]->same_structure(s, 0.0))) ++k;
+        if (k == sources.size()) {
+            sources.push_back(&s);
+            m.skeletons.push_back(detail::make_entry(s, m.pose_dofs, m.extra_columns.size()));
+        }
+        detail::ClipEntry& e = m.clips[i];
+        e.skeleton = static_cast<std::uint32_t>(k);
+        e.frames = clips[i]->frame_count();
+        const Canonicalization c = canonicalization_of(*clips[i]);
+        e.canonical.translation = Vec3(static_cast<float>(c.translation.x()), 0.0, static_cast<float>(c.translation.z()));
+        e.canonical.yaw = static_cast<float>(c.yaw);
+        e.first_window = window_total;
+        window_total += (e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W);
+    }
+    const auto total_units = static_cast<std::uint64_t>(2 * window_total);
+    std::atomic<std::uint64_t> units_done{0};
+    std::mutex progress_mutex;
+    auto report = [&](const Clip& c) {
+        if (!progress) return;
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        progress(Progress{units_done.load(), total_units, c.name});
+    };
+
+    auto run_parallel = [&](auto&& per_clip, auto& states) {
+        std::atomic<std::size_t> next{0};
+        auto worker = [&](std::size_t t) {
+            for (std::size_t i; (i = next.fetch_add(1)) < clips.size();) per_clip(i, states[t]);
+        };
+        std::vector<std::thread> pool;
+        for (std::size_t t = 1; t < states.size(); ++t) pool.emplace_back(worker, t);
+        std::exception_ptr failure;
+        try {
+            worker(0);
+        } catch (...) {
+            failure = std::current_exception();
+            next = clips.size();
+        }
+        for (auto& th : pool) th.join();
+        if (failure) std::rethrow_exception(failure);
+    };
+    const std::size_t threads = static_cast<std::size_t>(
+        std::min<std::size_t>(static_cast<std::size_t>(options.threads), clips.size()));
+
+    // Pass 0: the group's second moments along dofs and along time (ST-HOSVD at full rank).
+    struct Moments {
+        MatX dof, time;
+        std::uint64_t windows = 0;
+    };
+    std::vector<Moments> moments(threads, Moments{MatX::Zero(D, D), MatX::Zero(W, W), 0});
+    run_parallel(
+        [&](std::size_t i, Moments& mo) {
+            const detail::ClipEntry& e = m.clips[i];
+            const MatX x = m.weighted_dofs(*clips[i], m.skeletons[e.skeleton], e.canonical);
+            const auto nw = static_cast<int>((e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W));
+            for (int w = 0; w < nw; ++w) {
+                const MatX xw = window_of(x, w, W);
+                mo.dof.selfadjointView<Eigen::Lower>().rankUpdate(xw);
+                mo.time.selfadjointView<Eigen::Lower>().rankUpdate(xw.transpose());
+                ++mo.windows;
+            }
+            units_done += static_cast<std::uint64_t>(nw);
+            report(*clips[i]);
+        },
+        moments);
+    for (std::size_t t = 1; t < threads; ++t) {
+        moments[0].dof += moments[t].dof;
+        moments[0].time += moments[t].time;
+        moments[0].windows += moments[t].windows;
+    }
+    {
+        const MatX dof_moment = moments[0].dof.selfadjointView<Eigen::Lower>();
+        const MatX time_moment = moments[0].time.selfadjointView<Eigen::Lower>();
+        std::vector<double> dof_values, time_values;
+        eigen_basis(dof_moment, m.dof_basis, dof_values);
+        eigen_basis(time_moment, m.time_basis, time_values);
+        double total = 0.0;
+        for (double v : dof_values) total += v;
+        const double nw = static_cast<double>(std::max<std::uint64_t>(1, moments[0].windows));
+        for (double v : dof_values) m.dof_energy.push_back(static_cast<float>(v / nw));
+        for (double v : time_values) m.time_energy.push_back(static_cast<float>(total > 0 ? v / total : 0.0));
+        m.build_scan();
+    }
+
+    // Pass 1: per window, the coarsest step whose decode meets the bound; context statistics.
+    std::vector<WindowResult> results(window_total);
+    const double E = options.max_error_cm;
+    const int k_start = std::clamp(static_cast<int>(std::lround(8.0 * (std::log2(E) + 14.0))), 0, 255);
+    std::vector<ThreadState> states;
+    for (std::size_t t = 0; t < threads; ++t) states.emplace_back(E);
+    const auto cells = static_cast<std::size_t>(D) * static_cast<std::size_t>(W);
+    run_parallel(
+        [&](std::size_t i, ThreadState& st) {
+            const Clip& clip = *clips[i];
+            const detail::ClipEntry& e = m.clips[i];
+            const Skeleton& decoded_skeleton = *m.skeletons[e.skeleton].skeleton;
+            const MatX x = m.weighted_dofs(clip, m.skeletons[e.skeleton], e.canonical);
+            const MatX source = joint_positions(clip);
+            const auto J = static_cast<Eigen::Index>(decoded_skeleton.size());
+            const auto frames = static_cast<Eigen::Index>(e.frames);
+            const auto nw = static_cast<int>((frames + W - 1) / W);
+            GlobalPose pose;
+            FrameMatrix rows;
+            std::vector<std::int32_t> q(cells);
+            std::vector<double> dist, best_dist;
+            int k = k_start;
+            MatX g(D, W), tmp(D, W);
+            std::vector<std::uint8_t> classes;
+            for (int w = 0; w < nw; ++w) {
+                tmp.noalias() = m.dof_basis.transpose() * window_of(x, w, W);
+                g.noalias() = tmp * m.time_basis;
+                const Eigen::Index f0 = static_cast<Eigen::Index>(w) * W;
+                const int count = static_cast<int>(std::min<Eigen::Index>(W, frames - f0));
+                // Decodes with step index kk; true when every position is within E.
+                auto probe = [&](int kk) -> bool {
+                    ++st.probes;
+                    const double inv = 1.0 / step_of(kk);
+                    for (std::size_t s = 0; s < cells; ++s) {
+                        const double c = g.data()[m.scan[s]] * inv;
+                        const double a = std::abs(c);
+                        if (!(a < 1e9)) return false;
+                        const auto mag = static_cast<std::int32_t>(std::floor(a + options.rounding));
+                        q[s] = c < 0 ? -mag : mag;
+                    }
+                    m.reconstruct(e, kk, q, count, rows);
+                    dist.clear();
+                    for (int t = 0; t < count; ++t) {
+                        forward_kinematics(decoded_skeleton, rows.row(t).data(), pose);
+                        for (Eigen::Index j = 0; j < J; ++j) {
+                            const double d = (pose.positions[static_cast<std::size_t>(j)] -
+                                              source.block<3, 1>(3 * j, f0 + t)).norm();
+                            if (!(d <= E)) return false;
+                            dist.push_back(d);
+                        }
+                    }
+                    return true;
+                };
+                int best = -1;
+                std::vector<std::int32_t> best_q;
+                auto keep = [&](int kk) {
+                    best = kk;
+                    best_q = q;
+                    std::swap(best_dist, dist);
+                };
+                if (probe(k)) {
+                    keep(k);
+                    while (k < 255 && probe(k + 1)) keep(++k);
+                } else {
+                    while (k > 0 && !probe(k - 1)) --k;
+                    if (k == 0) throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
+                                                    " cannot meet " + std::to_string(E) + " cm at the finest step");
+                    keep(--k);
+                }
+                for (double d : best_dist) st.errors.add(d);
+                std::size_t length = best_q.size();
+                while (length > 0 && best_q[length - 1] == 0) --length;
+                best_q.resize(length);
+                position_classes(m.sigma, step_of(best), classes);
+                count_coefficients(best_q, classes, st.counts);
+                WindowResult& r = results[e.first_window + static_cast<std::uint64_t>(w)];
+                r.step = static_cast<std::uint8_t>(best);
+                r.q = std::move(best_q);
+            }
+            units_done += static_cast<std::uint64_t>(nw);
+            report(clip);
+        },
+        states);
+
+    ErrorAccumulator errors(E);
+    ContextCounts counts;
+    for (const ThreadState& st : states) {
+        errors.merge(st.errors);
+        for (std::size_t c = 0; c < counts.n.size(); ++c) {
+            counts.n[c][0] += st.counts.n[c][0];
+            counts.n[c][1] += st.counts.n[c][1];
+        }
+        result.stats.probes += st.probes;
+    }
+    m.contexts = counts.to_contexts();
+
+    // Pass 2: entropy-code every window from the trained contexts.
+    std::vector<std::vector<std::uint8_t>> payloads(window_total);
+    m.windows.resize(window_total);
+    std::vector<std::uint8_t> classes;
+    for (std::size_t w = 0; w < window_total; ++w) {
+        position_classes(m.sigma, step_of(results[w].step), classes);
+        payloads[w] = encode_coefficients(results[w].q, classes, m.contexts);
+        m.windows[w].step = results[w].step;
+        m.windows[w].size = static_cast<std::uint32_t>(payloads[w].size());
+        results[w].q = {};
+    }
+    m.write_header(result.bytes);
+    const std::size_t before_payload = result.bytes.size();
+    for (const auto& p : payloads) result.stats.payload_bytes += p.size();
+    result.bytes.reserve(before_payload + result.stats.payload_bytes);
+    for (const auto& p : payloads) result.bytes.insert(result.bytes.end(), p.begin(), p.end());
+
+    PackStats& st = result.stats;
+    st.clips = clips.size();
+    for (const Clip* c : clips) st.frames += c->frame_count();
+    st.windows = window_total;
+    st.channels = s0.channel_count();
+    st.bytes = result.bytes.size();
+    std::size_t table = 0;
+    for (const auto& c : m.clips) table += 12 + (c.frames < 128 ? 1 : c.frames < 16384 ? 2 : 3) + 1;
+    for (const auto& w : m.windows) table += 1 + (w.size < 128 ? 1 : w.size < 16384 ? 2 : 3);
+    st.table_bytes = table;
+    st.header_bytes = before_payload - table;
+    st.error = errors.stats();
+    st.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+}
+
+}  // namespace mocapdb::packing

@@ -1,0 +1,156 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+
+#include "mocapdb/io/clip_file.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/procedural/walk.hpp"
+#include "shared_data.hpp"
+
+using namespace mocapdb;
+using namespace mocapdb::packing;
+
+namespace {
+
+/// Max FK distance (cm) between a source clip and its decode, over every joint, end site and frame.
+double max_position_error(const Clip& source, const Clip& decoded) {
+    REQUIRE(decoded.frame_count() == source.frame_count());
+    const MatX a = joint_positions(source);
+    const MatX b = joint_positions(decoded);
+    double worst = 0.0;
+    for (Eigen::Index f = 0; f < a.cols(); ++f)
+        for (Eigen::Index j = 0; j < a.rows(); j += 3)
+            worst = std::max(worst, (a.block<3, 1>(j, f) - b.block<3, 1>(j, f)).norm());
+    return worst;
+}
+
+std::vector<Clip> procedural_walks() {
+    std::vector<Clip> out;
+    int i = 0;
+    for (double speed : {0.9, 1.5})
+        for (double turn : {-60.0, 0.0, 90.0}) {
+            procedural::WalkOptions o;
+            o.frame_rate = 60.0;
+            o.cycles = 2;
+            Clip c = procedural::generate_walk({speed, turn, 0.0}, o).clip;
+            c.name = "walk" + std::to_string(i++);
+            out.push_back(std::move(c));
+        }
+    return out;
+}
+
+std::vector<Clip> shared_clips(const std::string& folder, const std::vector<std::string>& stems) {
+    std::vector<Clip> out;
+    for (const auto& stem : stems) {
+        const auto dir = test::datasets_dir() / folder;
+        ClipReadOptions o;
+        std::filesystem::path path = dir / (stem + ".amc");
+        if (!std::filesystem::exists(path)) {
+            path = dir / (stem + ".bvh");
+            o.frame_rate = 60.0;
+        }
+        Clip c = read_clip(path, o);
+        c.name = stem;
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+/// Packs `clips` (one group) at each E and checks the bound on every clip, every source frame.
+void check_bound(const std::vector<Clip>& clips, std::size_t max_frames_per_clip) {
+    std::vector<Clip> cut;
+    for (const Clip& c : clips)
+        cut.push_back(c.frame_count() > max_frames_per_clip ? slice(c, 0, max_frames_per_clip) : c);
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : cut) ptrs.push_back(&c);
+    REQUIRE(group_clips(ptrs).size() == 1);
+    for (double E : {1.0, 0.5, 0.1}) {
+        PackOptions options;
+        options.max_error_cm = E;
+        const PackedGroup packed = pack_group(ptrs, options);
+        INFO("E " << E << ": " << packed.stats.bytes << " bytes, encode-time max " << packed.stats.error.max_cm);
+        CHECK(packed.stats.error.max_cm <= E);
+        const GroupDecoder decoder(packed.bytes);
+        REQUIRE(decoder.clip_count() == cut.size());
+        for (std::size_t k = 0; k < cut.size(); ++k) {
+            const double err = max_position_error(cut[k], decoder.decode_clip(k));
+            INFO("clip " << cut[k].name << " max " << err);
+            CHECK(err <= E);
+        }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("packing meets the bound on the procedural humanoid", "[packing]") {
+    check_bound(procedural_walks(), 100000);
+}
+
+TEST_CASE("packing meets the bound on PFNN BVH clips", "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
+    check_bound(shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}), 400);
+}
+
+TEST_CASE("packing meets the bound on ASF/AMC clips", "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    check_bound(shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}), 400);
+}
+
+TEST_CASE("a decoded window equals the same frames of a full decode; poses by random access", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : clips) ptrs.push_back(&c);
+    PackOptions options;
+    options.max_error_cm = 0.5;
+    options.window = 16;
+    const GroupDecoder decoder(pack_group(ptrs, options).bytes);
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 10; ++trial) {
+        const std::size_t k = rng() % decoder.clip_count();
+        const Clip full = decoder.decode_clip(k);
+        const std::size_t w = rng() % decoder.window_count(k);
+        const FrameMatrix window = decoder.decode_window(k, w);
+        const std::size_t f0 = w * decoder.window_length();
+        REQUIRE(window.rows() == static_cast<Eigen::Index>(std::min(decoder.window_length(), full.frame_count() - f0)));
+        CHECK(window == full.channels.middleRows(static_cast<Eigen::Index>(f0), window.rows()));
+        const std::size_t begin = rng() % full.frame_count();
+        const std::size_t end = begin + rng() % (full.frame_count() - begin + 1);
+        CHECK(decoder.decode_frames(k, begin, end) ==
+              full.channels.middleRows(static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end - begin)));
+        // One pose: the same joint positions as the full decode's frame (Euler branches may differ).
+        const std::size_t f = rng() % full.frame_count();
+        std::vector<double> row(full.skeleton->channel_count());
+        decoder.decode_pose(k, f, row.data());
+        GlobalPose a, b;
+        forward_kinematics(*full.skeleton, row.data(), a);
+        forward_kinematics(*full.skeleton, full.frame(f), b);
+        for (std::size_t j = 0; j < a.positions.size(); ++j) CHECK((a.positions[j] - b.positions[j]).norm() < 1e-9);
+    }
+}
+
+TEST_CASE("packing refuses a bad bound; an empty group and one short clip work", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    const std::vector<const Clip*> one{&clips[0]};
+    for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+        PackOptions o;
+        o.max_error_cm = bad;
+        CHECK_THROWS_AS(pack_group(one, o), InvalidArgument);
+    }
+    const PackedGroup empty = pack_group({}, PackOptions{});
+    CHECK(GroupDecoder(empty.bytes).clip_count() == 0);
+    CHECK(empty.bytes.size() < 16);
+
+    const Clip short_clip = slice(clips[0], 0, 5);  // shorter than one window
+    PackOptions o;
+    o.max_error_cm = 0.1;
+    const PackedGroup packed = pack_group({&short_clip}, o);
+    const GroupDecoder decoder(packed.bytes);
+    REQUIRE(decoder.frame_count(0) == 5);
+    CHECK(max_position_error(short_clip, decoder.decode_clip(0)) <= 0.1);
+}
