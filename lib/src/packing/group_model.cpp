@@ -39,31 +39,38 @@ void GroupModel::build_scan() {
     for (std::size_t i = 0; i < scan.size(); ++i) sigma[i] = raw[scan[i]];
 }
 
-MatX GroupModel::weighted_dofs(const Clip& clip, const SkeletonEntry& entry, const Canonicalization& canonical) const {
+MatX GroupModel::dofs_of(const Clip& clip, const Canonicalization& canonical) const {
     const MatX poses = to_pose_vectors(clip, canonical);
     MatX x(dofs, poses.cols());
-    x.topRows(pose_dofs) = entry.weights.head(pose_dofs).asDiagonal() * poses;
-    for (std::size_t e = 0; e < extra_columns.size(); ++e) {
-        const auto row = static_cast<Eigen::Index>(pose_dofs + static_cast<int>(e));
-        x.row(row) = entry.weights[row] * clip.channels.col(extra_columns[e]).transpose();
-    }
+    x.topRows(pose_dofs) = poses;
+    for (std::size_t e = 0; e < extra_columns.size(); ++e)
+        x.row(pose_dofs + static_cast<Eigen::Index>(e)) = clip.channels.col(extra_columns[e]).transpose();
     return x;
+}
+
+MatX GroupModel::weighted_active(const Clip& clip, const SkeletonEntry& entry, const Canonicalization& canonical) const {
+    const MatX x = dofs_of(clip, canonical);
+    MatX out(static_cast<Eigen::Index>(active.size()), x.cols());
+    for (std::size_t i = 0; i < active.size(); ++i)
+        out.row(static_cast<Eigen::Index>(i)) = entry.weights[active[i]] * x.row(active[i]);
+    return out;
 }
 
 void GroupModel::to_rows(const ClipEntry& clip, const Eigen::Ref<const MatX>& x, FrameMatrix& out_rows) const {
     const SkeletonEntry& entry = skeletons[clip.skeleton];
-    const MatX poses = entry.weights.head(pose_dofs).cwiseInverse().asDiagonal() * x.topRows(pose_dofs);
-    out_rows = from_pose_vectors(*entry.skeleton, poses, clip.canonical);
-    for (std::size_t e = 0; e < extra_columns.size(); ++e) {
-        const auto row = static_cast<Eigen::Index>(pose_dofs + static_cast<int>(e));
-        out_rows.col(extra_columns[e]) = x.row(row).transpose() / entry.weights[row];
-    }
+    MatX p(dofs, x.cols());
+    for (int d = 0; d < dofs; ++d) p.row(d).setConstant(constant[static_cast<std::size_t>(d)]);
+    for (std::size_t i = 0; i < active.size(); ++i)
+        p.row(active[i]) = x.row(static_cast<Eigen::Index>(i)) / entry.weights[active[i]];
+    out_rows = from_pose_vectors(*entry.skeleton, p.topRows(pose_dofs), clip.canonical);
+    for (std::size_t e = 0; e < extra_columns.size(); ++e)
+        out_rows.col(extra_columns[e]) = p.row(pose_dofs + static_cast<Eigen::Index>(e)).transpose();
 }
 
 namespace {
 MatX dequantize(const GroupModel& m, int step_index, const std::vector<std::int32_t>& q) {
     const double step = step_of(step_index);
-    MatX g = MatX::Zero(m.dofs, m.window);
+    MatX g = MatX::Zero(static_cast<Eigen::Index>(m.active.size()), m.window);
     const std::size_t n = std::min(q.size(), m.scan.size());
     for (std::size_t i = 0; i < n; ++i)
         if (q[i] != 0) g.data()[m.scan[i]] = q[i] * step;
@@ -74,9 +81,9 @@ MatX dequantize(const GroupModel& m, int step_index, const std::vector<std::int3
 void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
                              FrameMatrix& out_rows) const {
     const MatX g = dequantize(*this, step_index, q);
-    MatX gv(dofs, count);
+    MatX gv(g.rows(), count);
     gv.noalias() = g * time_basis.topRows(count).transpose();
-    MatX x(dofs, count);
+    MatX x(g.rows(), count);
     x.noalias() = dof_basis * gv;
     to_rows(clip, x, out_rows);
 }
@@ -84,9 +91,9 @@ void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::v
 void GroupModel::reconstruct_frame(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int t,
                                    double* out_row) const {
     const MatX g = dequantize(*this, step_index, q);
-    VecX gv(dofs);
+    VecX gv(g.rows());
     gv.noalias() = g * time_basis.row(t).transpose();
-    MatX x(dofs, 1);
+    MatX x(g.rows(), 1);
     x.col(0).noalias() = dof_basis * gv;
     FrameMatrix rows;
     to_rows(clip, x, rows);
@@ -102,6 +109,23 @@ VecX weights_of(const Skeleton& s, int pose_dofs, std::size_t extra) {
     return out;
 }
 }  // namespace
+
+std::vector<std::uint8_t> encode_basis(const MatX& basis) {
+    std::vector<std::int32_t> q(static_cast<std::size_t>(basis.size()));
+    for (Eigen::Index i = 0; i < basis.size(); ++i)
+        q[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(std::lround(basis.data()[i] / kBasisStep));
+    const std::vector<std::uint8_t> classes(q.size(), std::uint8_t(kClassBias + 12));
+    return encode_coefficients(q, classes, ContextSet());
+}
+
+MatX decode_basis(const std::uint8_t* data, std::size_t size, Eigen::Index n) {
+    const std::vector<std::uint8_t> classes(static_cast<std::size_t>(n * n), std::uint8_t(kClassBias + 12));
+    std::vector<std::int32_t> q;
+    decode_coefficients(data, size, classes, ContextSet(), q);
+    MatX out(n, n);
+    for (Eigen::Index i = 0; i < out.size(); ++i) out.data()[i] = q[static_cast<std::size_t>(i)] * kBasisStep;
+    return out;
+}
 
 SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extra) {
     std::vector<Joint> joints = source.joints();
@@ -152,8 +176,22 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
                 for (int a = 0; a < 4; ++a) w.f32(j.axis.coeffs()[a]);
         }
     }
-    for (Eigen::Index i = 0; i < dof_basis.size(); ++i) w.f32(dof_basis.data()[i]);
-    for (Eigen::Index i = 0; i < time_basis.size(); ++i) w.f32(time_basis.data()[i]);
+    std::vector<std::uint8_t> mask((static_cast<std::size_t>(dofs) + 7) / 8, 0);
+    for (int d : active) mask[static_cast<std::size_t>(d) / 8] |= static_cast<std::uint8_t>(1u << (d % 8));
+    w.bytes(mask);
+    std::size_t next = 0;
+    for (int d = 0; d < dofs; ++d) {
+        if (next < active.size() && active[next] == d) {
+            ++next;
+            continue;
+        }
+        w.raw<double>(constant[static_cast<std::size_t>(d)]);
+    }
+    for (const MatX* basis : {&dof_basis, &time_basis}) {
+        const std::vector<std::uint8_t> coded = encode_basis(*basis);
+        w.varint(coded.size());
+        w.bytes(coded);
+    }
     for (float v : dof_energy) w.raw<float>(v);
     for (float v : time_energy) w.raw<float>(v);
     for (BitContext c : contexts.p) w.raw<std::uint16_t>(c);
@@ -230,11 +268,25 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
     for (std::size_t j = 1; j < s0.size(); ++j)
         for (ChannelType c : s0.joint(j).channels)
             if (!is_rotation(c)) extra_columns.push_back(s0.channel_column(j, c));
-    dof_basis.resize(dofs, dofs);
-    for (Eigen::Index i = 0; i < dof_basis.size(); ++i) dof_basis.data()[i] = r.f32();
-    time_basis.resize(window, window);
-    for (Eigen::Index i = 0; i < time_basis.size(); ++i) time_basis.data()[i] = r.f32();
-    dof_energy.resize(static_cast<std::size_t>(dofs));
+    active.clear();
+    constant.assign(static_cast<std::size_t>(dofs), 0.0);
+    std::vector<std::uint8_t> mask((static_cast<std::size_t>(dofs) + 7) / 8);
+    for (auto& b : mask) b = r.u8();
+    for (int d = 0; d < dofs; ++d) {
+        if (mask[static_cast<std::size_t>(d) / 8] & (1u << (d % 8)))
+            active.push_back(d);
+        else
+            constant[static_cast<std::size_t>(d)] = r.raw<double>();
+    }
+    const auto da = static_cast<Eigen::Index>(active.size());
+    for (MatX* basis : {&dof_basis, &time_basis}) {
+        const Eigen::Index n = basis == &dof_basis ? da : window;
+        const auto coded = r.varint();
+        if (coded > r.size() - r.position()) throw Error("packed group: truncated basis");
+        *basis = decode_basis(data + r.position(), coded, n);
+        for (std::uint64_t i = 0; i < coded; ++i) r.u8();
+    }
+    dof_energy.resize(active.size());
     for (float& v : dof_energy) v = r.raw<float>();
     time_energy.resize(static_cast<std::size_t>(window));
     for (float& v : time_energy) v = r.raw<float>();

@@ -16,6 +16,11 @@
 namespace mocapdb::packing::detail {
 
 constexpr std::uint8_t kFormatVersion = 1;
+/// Range (pose units: cm or rad) under which a dof counts as constant in the group.
+constexpr double kConstantTolerance = 1e-6;
+/// Quantum of the stored basis entries (the encoder inverts the quantized bases, so this costs
+/// compactness only, never accuracy).
+constexpr double kBasisStep = 1.0 / 4096.0;
 
 /// Step of quantizer index k (0..255): 2^(k/8 - 14) weighted cm.
 double step_of(int k);
@@ -45,9 +50,13 @@ struct GroupModel {
     int dofs = 0;                    ///< D = D0 + extra
     std::vector<int> extra_columns;  ///< channel columns of non-root position channels (extra dofs)
     std::vector<SkeletonEntry> skeletons;
-    MatX dof_basis;   ///< D by D (columns: basis vectors), float32-rounded
-    MatX time_basis;  ///< W by W
-    std::vector<float> dof_energy;   ///< D, eigenvalues of the dof second moment, descending
+    /// Dofs that vary in the group (indices into D); the others are constant[d] (pose units) in
+    /// every frame of every clip (to within kConstantTolerance) and are not transformed.
+    std::vector<int> active;
+    std::vector<double> constant;  ///< D entries (used where not active)
+    MatX dof_basis;   ///< Da by Da (columns: basis vectors), entries multiples of kBasisStep
+    MatX time_basis;  ///< W by W, entries multiples of kBasisStep
+    std::vector<float> dof_energy;   ///< Da, eigenvalues of the dof second moment per window, descending
     std::vector<float> time_energy;  ///< W
     std::vector<std::uint32_t> scan;  ///< scan position -> r1 + D * r2
     std::vector<float> sigma;         ///< expected RMS per scan position
@@ -57,15 +66,17 @@ struct GroupModel {
 
     /// Fills scan and sigma from the energies.
     void build_scan();
-    /// Weighted dofs (D by F) of a clip whose skeleton is `entry`.
-    MatX weighted_dofs(const Clip& clip, const SkeletonEntry& entry, const Canonicalization& canonical) const;
+    /// Unweighted dofs (D by F: pose vector, then extra position channels) of a clip.
+    MatX dofs_of(const Clip& clip, const Canonicalization& canonical) const;
+    /// Weighted active dofs (Da by F) of a clip whose skeleton is `entry`.
+    MatX weighted_active(const Clip& clip, const SkeletonEntry& entry, const Canonicalization& canonical) const;
     /// Channel rows of frames [0, count) of a window from its quantized coefficients (scan order).
     void reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
                      FrameMatrix& out_rows) const;
     /// One frame (index `t` in its window) into `out_row` (channel_count values).
     void reconstruct_frame(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int t,
                            double* out_row) const;
-    /// Channel rows from weighted dofs (D by n).
+    /// Channel rows from weighted active dofs (Da by n).
     void to_rows(const ClipEntry& clip, const Eigen::Ref<const MatX>& x, FrameMatrix& out_rows) const;
 
     /// Header and tables (everything but the window payloads) and their parse.
@@ -77,6 +88,10 @@ struct GroupModel {
 /// The decoder's copy of a skeleton (offsets, axes, forward rounded to float32) and its dof weights
 /// (pose dofs: position_error_weights relative to the root translation's; extra position channels: 1).
 SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extra);
+
+/// A basis (entries rounded to multiples of kBasisStep) as coded bytes, and back (n by n).
+std::vector<std::uint8_t> encode_basis(const MatX& basis);
+MatX decode_basis(const std::uint8_t* data, std::size_t size, Eigen::Index n);
 
 /// Same joints, channels, orders, end sites (offsets and axes may differ).
 bool same_topology(const Skeleton& a, const Skeleton& b);

@@ -1,6 +1,7 @@
 #include "mocapdb/packing/packed_group.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -35,14 +36,15 @@ MatX window_of(const MatX& x, int w, int length) {
     return out;
 }
 
-/// Descending eigen-decomposition of a symmetric matrix; basis rounded to float32 (as stored).
+/// Descending eigen-decomposition of a symmetric matrix; basis rounded to multiples of kBasisStep
+/// (as stored).
 void eigen_basis(const MatX& moment, MatX& out_basis, std::vector<double>& out_values) {
     Eigen::SelfAdjointEigenSolver<MatX> solver(moment);
     const auto n = moment.rows();
     out_basis.resize(n, n);
     out_values.resize(static_cast<std::size_t>(n));
     for (Eigen::Index i = 0; i < n; ++i) {
-        out_basis.col(i) = solver.eigenvectors().col(n - 1 - i).cast<float>().cast<double>();
+        out_basis.col(i) = (solver.eigenvectors().col(n - 1 - i) / detail::kBasisStep).array().round() * detail::kBasisStep;
         out_values[static_cast<std::size_t>(i)] = std::max(0.0, solver.eigenvalues()[n - 1 - i]);
     }
 }
@@ -108,7 +110,6 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             if (!is_rotation(c)) m.extra_columns.push_back(s0.channel_column(j, c));
     m.dofs = m.pose_dofs + static_cast<int>(m.extra_columns.size());
     const int W = m.window;
-    const auto D = static_cast<Eigen::Index>(m.dofs);
 
     // Distinct skeletons (float32-rounded, as the decoder will see them) and per-clip entries.
     std::vector<const Skeleton*> sources;
@@ -160,6 +161,31 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     const std::size_t threads = static_cast<std::size_t>(
         std::min<std::size_t>(static_cast<std::size_t>(options.threads), clips.size()));
 
+    // Pre-pass: which dofs vary in the group (the others are stored as constants).
+    struct Range {
+        VecX lo, hi;
+    };
+    std::vector<Range> ranges(threads, Range{VecX::Constant(m.dofs, 1e300), VecX::Constant(m.dofs, -1e300)});
+    run_parallel(
+        [&](std::size_t i, Range& r) {
+            const MatX x = m.dofs_of(*clips[i], m.clips[i].canonical);
+            r.lo = r.lo.cwiseMin(x.rowwise().minCoeff());
+            r.hi = r.hi.cwiseMax(x.rowwise().maxCoeff());
+        },
+        ranges);
+    for (std::size_t t = 1; t < threads; ++t) {
+        ranges[0].lo = ranges[0].lo.cwiseMin(ranges[t].lo);
+        ranges[0].hi = ranges[0].hi.cwiseMax(ranges[t].hi);
+    }
+    m.constant.assign(static_cast<std::size_t>(m.dofs), 0.0);
+    for (int d = 0; d < m.dofs; ++d) {
+        if (ranges[0].hi[d] - ranges[0].lo[d] > detail::kConstantTolerance)
+            m.active.push_back(d);
+        else
+            m.constant[static_cast<std::size_t>(d)] = 0.5 * (ranges[0].hi[d] + ranges[0].lo[d]);
+    }
+    const auto D = static_cast<Eigen::Index>(m.active.size());
+
     // Pass 0: the group's second moments along dofs and along time (ST-HOSVD at full rank).
     struct Moments {
         MatX dof, time;
@@ -169,7 +195,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     run_parallel(
         [&](std::size_t i, Moments& mo) {
             const detail::ClipEntry& e = m.clips[i];
-            const MatX x = m.weighted_dofs(*clips[i], m.skeletons[e.skeleton], e.canonical);
+            const MatX x = m.weighted_active(*clips[i], m.skeletons[e.skeleton], e.canonical);
             const auto nw = static_cast<int>((e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W));
             for (int w = 0; w < nw; ++w) {
                 const MatX xw = window_of(x, w, W);
@@ -199,6 +225,10 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         for (double v : time_values) m.time_energy.push_back(static_cast<float>(total > 0 ? v / total : 0.0));
         m.build_scan();
     }
+    // The stored bases are rounded: project with their exact inverses so that reconstruction is
+    // exact up to the coefficients' quantization.
+    const MatX dof_inverse = m.dof_basis.partialPivLu().inverse();
+    const MatX time_inverse_t = m.time_basis.partialPivLu().inverse().transpose();
 
     // Pass 1: per window, the coarsest step whose decode meets the bound; context statistics.
     std::vector<WindowResult> results(window_total);
@@ -212,7 +242,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             const Clip& clip = *clips[i];
             const detail::ClipEntry& e = m.clips[i];
             const Skeleton& decoded_skeleton = *m.skeletons[e.skeleton].skeleton;
-            const MatX x = m.weighted_dofs(clip, m.skeletons[e.skeleton], e.canonical);
+            const MatX x = m.weighted_active(clip, m.skeletons[e.skeleton], e.canonical);
             const MatX source = joint_positions(clip);
             const auto J = static_cast<Eigen::Index>(decoded_skeleton.size());
             const auto frames = static_cast<Eigen::Index>(e.frames);
@@ -225,8 +255,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             MatX g(D, W), tmp(D, W);
             std::vector<std::uint8_t> classes;
             for (int w = 0; w < nw; ++w) {
-                tmp.noalias() = m.dof_basis.transpose() * window_of(x, w, W);
-                g.noalias() = tmp * m.time_basis;
+                tmp.noalias() = dof_inverse * window_of(x, w, W);
+                g.noalias() = tmp * time_inverse_t;
                 const Eigen::Index f0 = static_cast<Eigen::Index>(w) * W;
                 const int count = static_cast<int>(std::min<Eigen::Index>(W, frames - f0));
                 // Decodes with step index kk; true when every position is within E.
