@@ -37,6 +37,8 @@ TEST_CASE("coefficient coder round-trips a window, trained contexts code it smal
     std::vector<std::uint8_t> classes;
     position_classes(sigma, 1.0, classes);
     ContextCounts counts;
+    const std::vector<std::uint32_t> scan = identity_scan(n);
+    const ScanGrid grid{&scan, 20};
     std::vector<std::vector<std::int32_t>> windows;
     for (int w = 0; w < 30; ++w) {
         std::vector<std::int32_t> q(n, 0);
@@ -47,15 +49,15 @@ TEST_CASE("coefficient coder round-trips a window, trained contexts code it smal
         q[1] = 3000000;  // a long gamma code
         q[n - 1] = 0;
         windows.push_back(q);
-        count_coefficients(q, classes, counts);
+        count_coefficients(q, classes, grid, counts);
     }
     const ContextSet trained = counts.to_contexts();
     std::size_t plain_bytes = 0, trained_bytes = 0;
     for (const auto& q : windows) {
         for (const ContextSet& ctx : {ContextSet(), trained}) {
-            const auto bytes = encode_coefficients(q, classes, ctx);
+            const auto bytes = encode_coefficients(q, classes, grid, ctx);
             std::vector<std::int32_t> back;
-            decode_coefficients(bytes.data(), bytes.size(), classes, ctx, back);
+            decode_coefficients(bytes.data(), bytes.size(), classes, grid, ctx, back);
             REQUIRE(back == q);
             (&ctx == &trained ? trained_bytes : plain_bytes) += bytes.size();
         }
@@ -63,8 +65,8 @@ TEST_CASE("coefficient coder round-trips a window, trained contexts code it smal
     INFO("plain " << plain_bytes << " B, trained " << trained_bytes << " B");
     CHECK(trained_bytes < plain_bytes);
     std::vector<std::int32_t> zeros(n, 0), back;
-    const auto empty = encode_coefficients(zeros, classes, trained);
-    decode_coefficients(empty.data(), empty.size(), classes, trained, back);
+    const auto empty = encode_coefficients(zeros, classes, grid, trained);
+    decode_coefficients(empty.data(), empty.size(), classes, grid, trained, back);
     CHECK(back == zeros);
     CHECK(empty.size() <= 1);
 }

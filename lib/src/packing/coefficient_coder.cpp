@@ -27,8 +27,12 @@ std::uint32_t gamma(Sink& sink, BitContext* prefix, std::uint32_t value) {
 }
 
 template <class Sink>
-void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& classes, std::int32_t* q) {
+void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& classes, const ScanGrid& grid,
+              std::int32_t* q) {
     const auto size = classes.size();
+    const std::vector<std::uint32_t>& scan = *grid.scan;
+    const auto rows = static_cast<std::uint32_t>(grid.rows);
+    std::vector<std::uint8_t> level(size, 0);  // min(|q|, 2) by grid index
     std::uint32_t length = 0;
     if constexpr (!Sink::kDecoding) {
         for (std::size_t i = size; i-- > 0;)
@@ -41,7 +45,10 @@ void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& clas
     int previous = 1;
     for (std::size_t i = 0; i < length; ++i) {
         const int cls = classes[i];
-        const int nz = sink.bit(ctx.nonzero(cls, previous), q[i] != 0 ? 1 : 0);
+        const std::uint32_t pos = scan[i];
+        const std::uint32_t r1 = pos % rows;
+        const int n = std::min(4, (r1 > 0 ? level[pos - 1] : 0) + (pos >= rows ? level[pos - rows] : 0));
+        const int nz = sink.bit(ctx.nonzero(cls, previous, n), q[i] != 0 ? 1 : 0);
         previous = nz;
         if (!nz) {
             if constexpr (Sink::kDecoding) q[i] = 0;
@@ -50,7 +57,8 @@ void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& clas
         const std::uint32_t negative = sink.direct(q[i] < 0 ? 1u : 0u, 1);
         const std::uint32_t magnitude = static_cast<std::uint32_t>(std::abs(q[i]));
         std::uint32_t m = 1;
-        if (sink.bit(ctx.greater_one(cls), magnitude > 1 ? 1 : 0)) m = gamma(sink, ctx.gamma(cls), magnitude - 1) + 1;
+        if (sink.bit(ctx.greater_one(cls, n), magnitude > 1 ? 1 : 0)) m = gamma(sink, ctx.gamma(cls), magnitude - 1) + 1;
+        level[pos] = static_cast<std::uint8_t>(std::min<std::uint32_t>(m, 2));
         if constexpr (Sink::kDecoding) q[i] = negative ? -static_cast<std::int32_t>(m) : static_cast<std::int32_t>(m);
     }
     if constexpr (Sink::kDecoding)
@@ -121,29 +129,35 @@ void position_classes(const std::vector<float>& sigma, double step, std::vector<
     }
 }
 
-std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q,
-                                              const std::vector<std::uint8_t>& classes, ContextSet contexts) {
+std::vector<std::uint32_t> identity_scan(std::size_t size) {
+    std::vector<std::uint32_t> out(size);
+    for (std::size_t i = 0; i < size; ++i) out[i] = static_cast<std::uint32_t>(i);
+    return out;
+}
+
+std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,
+                                              const ScanGrid& grid, ContextSet contexts) {
     EncodeSink sink;
     std::vector<std::int32_t> copy(q);
     copy.resize(classes.size(), 0);  // q may stop after its last nonzero
-    traverse(sink, contexts, classes, copy.data());
+    traverse(sink, contexts, classes, grid, copy.data());
     return sink.rc.finish();
 }
 
 void count_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,
-                        ContextCounts& counts) {
+                        const ScanGrid& grid, ContextCounts& counts) {
     ContextSet contexts;
     CountSink sink{&counts, contexts.p.data()};
     std::vector<std::int32_t> copy(q);
     copy.resize(classes.size(), 0);
-    traverse(sink, contexts, classes, copy.data());
+    traverse(sink, contexts, classes, grid, copy.data());
 }
 
 void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::vector<std::uint8_t>& classes,
-                         ContextSet contexts, std::vector<std::int32_t>& out_q) {
+                         const ScanGrid& grid, ContextSet contexts, std::vector<std::int32_t>& out_q) {
     DecodeSink sink{RangeDecoder(data, size)};
     out_q.resize(classes.size());
-    traverse(sink, contexts, classes, out_q.data());
+    traverse(sink, contexts, classes, grid, out_q.data());
 }
 
 }  // namespace mocapdb::packing

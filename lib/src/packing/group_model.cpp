@@ -115,13 +115,15 @@ std::vector<std::uint8_t> encode_basis(const MatX& basis) {
     for (Eigen::Index i = 0; i < basis.size(); ++i)
         q[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(std::lround(basis.data()[i] / kBasisStep));
     const std::vector<std::uint8_t> classes(q.size(), std::uint8_t(kClassBias + 12));
-    return encode_coefficients(q, classes, ContextSet());
+    const std::vector<std::uint32_t> scan = identity_scan(q.size());
+    return encode_coefficients(q, classes, ScanGrid{&scan, static_cast<int>(basis.rows())}, ContextSet());
 }
 
 MatX decode_basis(const std::uint8_t* data, std::size_t size, Eigen::Index n) {
     const std::vector<std::uint8_t> classes(static_cast<std::size_t>(n * n), std::uint8_t(kClassBias + 12));
     std::vector<std::int32_t> q;
-    decode_coefficients(data, size, classes, ContextSet(), q);
+    const std::vector<std::uint32_t> scan = identity_scan(classes.size());
+    decode_coefficients(data, size, classes, ScanGrid{&scan, static_cast<int>(n)}, ContextSet(), q);
     MatX out(n, n);
     for (Eigen::Index i = 0; i < out.size(); ++i) out.data()[i] = q[static_cast<std::size_t>(i)] * kBasisStep;
     return out;

@@ -3,6 +3,7 @@
 // skeletons as the decoder sees them (float32-rounded), the per-clip canonicalizations, the learned
 // bases, the scan order, the trained contexts, and the one reconstruction routine both use, so that
 // the error verified at encode time is exactly the error of any later decode.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -64,6 +65,8 @@ struct GroupModel {
     std::vector<ClipEntry> clips;
     std::vector<WindowEntry> windows;
 
+    /// The scan as the coefficient coder sees it (grid rows = Da).
+    ScanGrid grid() const { return ScanGrid{&scan, static_cast<int>(std::max<std::size_t>(1, active.size()))}; }
     /// Fills scan and sigma from the energies.
     void build_scan();
     /// Unweighted dofs (D by F: pose vector, then extra position channels) of a clip.

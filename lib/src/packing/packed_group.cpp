@@ -304,7 +304,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                 while (length > 0 && best_q[length - 1] == 0) --length;
                 best_q.resize(length);
                 position_classes(m.sigma, step_of(best), classes);
-                count_coefficients(best_q, classes, st.counts);
+                count_coefficients(best_q, classes, m.grid(), st.counts);
                 WindowResult& r = results[e.first_window + static_cast<std::uint64_t>(w)];
                 r.step = static_cast<std::uint8_t>(best);
                 r.q = std::move(best_q);
@@ -332,7 +332,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     std::vector<std::uint8_t> classes;
     for (std::size_t w = 0; w < window_total; ++w) {
         position_classes(m.sigma, step_of(results[w].step), classes);
-        payloads[w] = encode_coefficients(results[w].q, classes, m.contexts);
+        payloads[w] = encode_coefficients(results[w].q, classes, m.grid(), m.contexts);
         m.windows[w].step = results[w].step;
         m.windows[w].size = static_cast<std::uint32_t>(payloads[w].size());
         results[w].q = {};

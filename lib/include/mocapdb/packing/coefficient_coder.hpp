@@ -6,9 +6,11 @@
 // (class = clamp(floor(2 log2(sigma / step)) + kClassBias, 0, kClasses - 1), sigma the position's
 // expected RMS from the group's learned bases). Coded per window:
 //   - the number L of scan positions up to the last nonzero one (Elias-gamma, adaptive bits);
-//   - for each of the first L positions: nonzero? (context: class, previous position nonzero?);
-//     if nonzero: sign (at 1/2), |q| > 1? (class), then |q| - 2 in Elias-gamma (prefix bits adaptive
-//     per class and bit position, suffix bits at 1/2).
+//   - for each of the first L positions: nonzero? (context: class, previous position nonzero?, and
+//     the neighbourhood n = min(|q|, 2) of the coefficient one row up plus the one one column left in
+//     the window's coefficient grid, both coded before it since the scan runs down both axes' energy);
+//     if nonzero: sign (at 1/2), |q| > 1? (class, n), then |q| - 2 in Elias-gamma (prefix bits
+//     adaptive per class and bit position, suffix bits at 1/2).
 // Contexts start from per-group trained probabilities (ContextSet::initial), so a window codes on its
 // own (random access) without paying for re-learning the statistics in every window.
 #include <array>
@@ -26,15 +28,19 @@ constexpr int kGammaBits = 31;  ///< longest Elias-gamma prefix (magnitudes belo
 /// Every adaptive context of the model, in one flat array (serialized as such).
 struct ContextSet {
     static constexpr int kLengthContexts = 2 * kGammaBits;
-    static constexpr int kPerClass = 2 + 1 + kGammaBits;  // nonzero x2, greater-than-one, gamma prefix
+    static constexpr int kNeighbourhoods = 5;
+    // nonzero x (previous nonzero, neighbourhood), greater-than-one x neighbourhood, gamma prefix
+    static constexpr int kPerClass = 2 * kNeighbourhoods + kNeighbourhoods + kGammaBits;
     static constexpr int kCount = kLengthContexts + kClasses * kPerClass;
     std::array<BitContext, kCount> p;
 
     ContextSet() { p.fill(kProbabilityHalf); }
     BitContext* length() { return p.data(); }
-    BitContext* nonzero(int cls, int previous_nonzero) { return &p[kLengthContexts + cls * kPerClass + previous_nonzero]; }
-    BitContext* greater_one(int cls) { return &p[kLengthContexts + cls * kPerClass + 2]; }
-    BitContext* gamma(int cls) { return &p[kLengthContexts + cls * kPerClass + 3]; }
+    BitContext* nonzero(int cls, int previous_nonzero, int n) {
+        return &p[kLengthContexts + cls * kPerClass + previous_nonzero * kNeighbourhoods + n];
+    }
+    BitContext* greater_one(int cls, int n) { return &p[kLengthContexts + cls * kPerClass + 2 * kNeighbourhoods + n]; }
+    BitContext* gamma(int cls) { return &p[kLengthContexts + cls * kPerClass + 3 * kNeighbourhoods]; }
 };
 
 /// Counts of 0s and 1s seen by each context; turned into initial probabilities for a group.
@@ -47,17 +53,27 @@ struct ContextCounts {
 /// Class of every scan position for a window quantized with `step` (`sigma` in scan order).
 void position_classes(const std::vector<float>& sigma, double step, std::vector<std::uint8_t>& out_classes);
 
+/// Where each scan position sits in the coefficient grid (rows by columns, column-major index), for
+/// the neighbourhood contexts. Every position's upper and left neighbours must come earlier in scan.
+struct ScanGrid {
+    const std::vector<std::uint32_t>* scan = nullptr;  ///< scan position -> grid index
+    int rows = 1;
+};
+
+/// A scan in grid order (identity) of a rows-by-columns grid (the caller keeps the vector alive).
+std::vector<std::uint32_t> identity_scan(std::size_t size);
+
 /// The coded coefficients `q` (scan order; may end early, missing entries are 0) of one window.
 /// `contexts` is copied: each window starts from the same initial probabilities.
-std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q,
-                                              const std::vector<std::uint8_t>& classes, ContextSet contexts);
+std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,
+                                              const ScanGrid& grid, ContextSet contexts);
 
 /// Adds the binary decisions that coding `q` would make, per context (static statistics).
 void count_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,
-                        ContextCounts& counts);
+                        const ScanGrid& grid, ContextCounts& counts);
 
 /// Decodes one window's coefficients (scan order) into out_q (resized to classes.size()).
 void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::vector<std::uint8_t>& classes,
-                         ContextSet contexts, std::vector<std::int32_t>& out_q);
+                         const ScanGrid& grid, ContextSet contexts, std::vector<std::int32_t>& out_q);
 
 }  // namespace mocapdb::packing
