@@ -154,3 +154,42 @@ TEST_CASE("packing refuses a bad bound; an empty group and one short clip work",
     REQUIRE(decoder.frame_count(0) == 5);
     CHECK(max_position_error(short_clip, decoder.decode_clip(0)) <= 0.1);
 }
+
+TEST_CASE("moving non-root position channels are coded too; a one-frame clip works", "[packing]") {
+    const Clip walk = procedural_walks()[2];
+    const Skeleton& s = *walk.skeleton;
+    const std::size_t forearm = *s.find("LeftForeArm");
+    std::vector<Joint> joints = s.joints();
+    joints[forearm].channels.insert(joints[forearm].channels.begin(),
+                                    {ChannelType::Xposition, ChannelType::Yposition, ChannelType::Zposition});
+    auto skeleton = std::make_shared<const Skeleton>(joints, s.source_units(), s.forward());
+    Clip clip;
+    clip.skeleton = skeleton;
+    clip.frame_rate = walk.frame_rate;
+    clip.name = "stretchy";
+    clip.channels.resize(walk.channels.rows(), static_cast<Eigen::Index>(skeleton->channel_count()));
+    for (std::size_t j = 0; j < s.size(); ++j) {
+        const auto n = static_cast<Eigen::Index>(s.joint(j).channels.size());
+        const auto to = static_cast<Eigen::Index>(skeleton->first_channel(j)) + (j == forearm ? 3 : 0);
+        clip.channels.middleCols(to, n) = walk.channels.middleCols(static_cast<Eigen::Index>(s.first_channel(j)), n);
+    }
+    const auto px = static_cast<Eigen::Index>(skeleton->first_channel(forearm));
+    for (Eigen::Index f = 0; f < clip.channels.rows(); ++f)
+        for (Eigen::Index a = 0; a < 3; ++a)
+            clip.channels(f, px + a) = 4.0 * std::sin(0.05 * static_cast<double>(f) * static_cast<double>(a + 1));
+    const Clip one_frame = slice(clip, 7, 8);
+    for (double E : {1.0, 0.1}) {
+        PackOptions o;
+        o.max_error_cm = E;
+        const GroupDecoder decoder(pack_group({&clip, &one_frame}, o).bytes);
+        const Clip back = decoder.decode_clip(0);
+        CHECK(max_position_error(clip, back) <= E);
+        CHECK((back.channels.middleCols(px, 3) - clip.channels.middleCols(px, 3)).cwiseAbs().maxCoeff() <= E);
+        CHECK(max_position_error(one_frame, decoder.decode_clip(1)) <= E);
+    }
+    // A group of one one-frame clip: every dof is constant.
+    PackOptions o;
+    o.max_error_cm = 0.1;
+    const GroupDecoder single(pack_group({&one_frame}, o).bytes);
+    CHECK(max_position_error(one_frame, single.decode_clip(0)) <= 0.1);
+}

@@ -11,7 +11,7 @@
 
 namespace mocapdb::packing::detail {
 
-double step_of(int k) { return std::exp2(static_cast<double>(k) / 8.0 - 14.0); }
+double step_of(int k) { return std::exp2(static_cast<double>(k) / 12.0 - 14.0); }
 
 bool same_topology(const Skeleton& a, const Skeleton& b) {
     if (a.size() != b.size()) return false;

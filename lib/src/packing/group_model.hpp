@@ -23,7 +23,7 @@ constexpr double kConstantTolerance = 1e-6;
 /// compactness only, never accuracy).
 constexpr double kBasisStep = 1.0 / 4096.0;
 
-/// Step of quantizer index k (0..255): 2^(k/8 - 14) weighted cm.
+/// Step of quantizer index k (0..255): 2^(k/12 - 14) weighted cm (6e-5 ... 150).
 double step_of(int k);
 
 struct SkeletonEntry {

@@ -39,10 +39,11 @@ MatX window_of(const MatX& x, int w, int length) {
 /// Descending eigen-decomposition of a symmetric matrix; basis rounded to multiples of kBasisStep
 /// (as stored).
 void eigen_basis(const MatX& moment, MatX& out_basis, std::vector<double>& out_values) {
-    Eigen::SelfAdjointEigenSolver<MatX> solver(moment);
     const auto n = moment.rows();
     out_basis.resize(n, n);
     out_values.resize(static_cast<std::size_t>(n));
+    if (n == 0) return;  // every dof constant
+    Eigen::SelfAdjointEigenSolver<MatX> solver(moment);
     for (Eigen::Index i = 0; i < n; ++i) {
         out_basis.col(i) = (solver.eigenvectors().col(n - 1 - i) / detail::kBasisStep).array().round() * detail::kBasisStep;
         out_values[static_cast<std::size_t>(i)] = std::max(0.0, solver.eigenvalues()[n - 1 - i]);
@@ -227,13 +228,13 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     }
     // The stored bases are rounded: project with their exact inverses so that reconstruction is
     // exact up to the coefficients' quantization.
-    const MatX dof_inverse = m.dof_basis.partialPivLu().inverse();
+    const MatX dof_inverse = D > 0 ? MatX(m.dof_basis.partialPivLu().inverse()) : MatX(0, 0);
     const MatX time_inverse_t = m.time_basis.partialPivLu().inverse().transpose();
 
     // Pass 1: per window, the coarsest step whose decode meets the bound; context statistics.
     std::vector<WindowResult> results(window_total);
     const double E = options.max_error_cm;
-    const int k_start = std::clamp(static_cast<int>(std::lround(8.0 * (std::log2(E) + 14.0))), 0, 255);
+    const int k_start = std::clamp(static_cast<int>(std::lround(12.0 * (std::log2(E) + 14.0))), 0, 255);
     std::vector<ThreadState> states;
     for (std::size_t t = 0; t < threads; ++t) states.emplace_back(E);
     const auto cells = static_cast<std::size_t>(D) * static_cast<std::size_t>(W);

@@ -37,7 +37,7 @@ struct PackOptions {
     int window = 32;            ///< W, source frames per window, 2 ... 256
     /// Quantizer rounding offset in [0.1, 0.5]: q = sign(c)·floor(|c|/step + rounding). 0.5 is plain
     /// rounding; smaller values widen the zero bin (fewer nonzero coefficients, finer step needed).
-    double rounding = 0.5;
+    double rounding = 0.4;
     int threads = 2;            ///< encoder threads (>= 1)
 };
 
