@@ -29,6 +29,13 @@ using namespace mocapdb::bench;
 
 namespace {
 
+std::size_t probes_windows(const std::vector<packing::GroupDecoder>& decoders) {
+    std::size_t n = 0;
+    for (const auto& d : decoders)
+        for (std::size_t k = 0; k < d.clip_count(); ++k) n += d.window_count(k);
+    return n;
+}
+
 std::vector<Clip> read_folder(const std::string& name, std::size_t limit) {
     const fs::path dir = fs::path(MOCAPDB_SHARED_DIR) / "datasets" / name;
     std::vector<fs::path> files;
@@ -70,6 +77,7 @@ int main(int argc, char** argv) {
         else if (a == "--threads") options.threads = std::stoi(next());
         else if (a == "--limit") limit = std::stoul(next());
         else if (a == "--no-verify") verify = false;
+        else if (a == "--zstd") options.compare_zstd = true;
         else {
             std::fprintf(stderr, "unknown argument %s\n", a.c_str());
             return 2;
@@ -98,7 +106,7 @@ int main(int argc, char** argv) {
                     clips.size(), frames, groups.size(), f32_bytes, read_s);
         for (double E : errors) {
             options.max_error_cm = E;
-            std::size_t bytes = 0, header = 0, table = 0, payload = 0, probes = 0;
+            std::size_t bytes = 0, header = 0, table = 0, payload = 0, probes = 0, zw = 0, zd = 0, zs = 0;
             double encode_s = 0.0, max_cm = 0.0, p99_cm = 0.0, sq = 0.0;
             std::size_t positions = 0;
             std::vector<packing::GroupDecoder> decoders;
@@ -114,6 +122,9 @@ int main(int argc, char** argv) {
                 table += s.table_bytes;
                 payload += s.payload_bytes;
                 probes += s.probes;
+                zw += s.zstd_window_bytes;
+                zd += s.zstd_dictionary_bytes;
+                zs += s.zstd_stream_bytes;
                 max_cm = std::max(max_cm, s.error.max_cm);
                 p99_cm = std::max(p99_cm, s.error.p99_cm);  // max over groups (upper bound of the pooled p99)
                 sq += s.error.rmse_cm * s.error.rmse_cm * static_cast<double>(s.error.positions);
@@ -159,16 +170,19 @@ int main(int argc, char** argv) {
             std::printf(
                 "folder=%s E=%g window=%d rounding=%g clips=%zu frames=%zu bytes=%zu header_bytes=%zu table_bytes=%zu "
                 "payload_bytes=%zu ratio_f32=%.2f bytes_per_s=%.1f bits_per_joint_frame=%.3f max_cm=%.4f p99_cm=%.4f "
-                "rmse_cm=%.4f verify_max_cm=%.4f encode_s=%.2f probes_per_window=%.2f decode_pose_us=%.2f "
+                "rmse_cm=%.4f verify_max_cm=%.4f encode_s=%.2f decode_pose_us=%.2f "
                 "stream_MB_s=%.1f\n",
                 name.c_str(), E, options.window, options.rounding, clips.size(), frames, bytes, header, table, payload,
                 static_cast<double>(f32_bytes) / static_cast<double>(bytes), static_cast<double>(bytes) / seconds,
                 8.0 * static_cast<double>(bytes) / (static_cast<double>(frames) * joints_avg), max_cm, p99_cm, rmse,
-                verify_max, encode_s, 0.0, pose_us,
+                verify_max, encode_s, pose_us,
                 verify && stream_s > 0 ? static_cast<double>(f32_bytes) / stream_s / 1e6 : 0.0);
             std::printf("#   compare: python3 compare.py %s.csv --bytes %zu --max-cm %.4f --rmse-cm %.4f\n", name.c_str(),
                         bytes, max_cm, rmse);
-            (void)probes;
+            if (options.compare_zstd)
+                std::printf("#   payload alternatives: range coder %zu, zstd-19 per window %zu, per window + trained dictionary %zu, "
+                            "one stream (no random access) %zu\n", payload, zw, zd, zs);
+            std::printf("#   probes per window %.2f\n", static_cast<double>(probes) / static_cast<double>(std::max<std::size_t>(1, decoders.empty() ? 1 : probes_windows(decoders))));
             std::fflush(stdout);
         }
     }

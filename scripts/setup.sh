@@ -11,6 +11,7 @@ packages=(
   catch2
   libcli11-dev
   libzfp-dev zlib1g-dev      # compression baselines (zfp) and entropy coding (deflate)
+  libzstd-dev                # the packing module measures zstd against its range coder
   liblbfgspp-dev             # L-BFGS for the Gaussian-process hyperparameters
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
 )

@@ -9,6 +9,9 @@
 #include <mutex>
 #include <thread>
 
+#include <zdict.h>
+#include <zstd.h>
+
 #include "group_model.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 
@@ -61,6 +64,45 @@ struct ThreadState {
     ContextCounts counts;
     std::size_t probes = 0;
 };
+
+/// zstd's sizes for the windows' coefficients (see PackStats::zstd_*).
+void measure_zstd(const std::vector<WindowResult>& results, PackStats& out) {
+    std::vector<std::uint8_t> all;
+    std::vector<std::size_t> sizes;
+    for (const WindowResult& r : results) {
+        const std::size_t before = all.size();
+        all.push_back(r.step);
+        for (std::int32_t v : r.q) {
+            auto z = static_cast<std::uint32_t>((v << 1) ^ (v >> 31));
+            while (z >= 0x80) {
+                all.push_back(static_cast<std::uint8_t>(z | 0x80));
+                z >>= 7;
+            }
+            all.push_back(static_cast<std::uint8_t>(z));
+        }
+        sizes.push_back(all.size() - before);
+    }
+    const int level = 19;
+    std::vector<std::uint8_t> buffer(ZSTD_compressBound(all.size()));
+    out.zstd_stream_bytes = ZSTD_compress(buffer.data(), buffer.size(), all.data(), all.size(), level);
+    std::vector<std::uint8_t> dictionary(16384);
+    const std::size_t dict_size =
+        ZDICT_trainFromBuffer(dictionary.data(), dictionary.size(), all.data(), sizes.data(), static_cast<unsigned>(sizes.size()));
+    const bool have_dict = !ZDICT_isError(dict_size);
+    ZSTD_CCtx* cctx = ZSTD_createCCtx();
+    ZSTD_CDict* cdict = have_dict ? ZSTD_createCDict(dictionary.data(), dict_size, level) : nullptr;
+    out.zstd_window_bytes = 0;
+    out.zstd_dictionary_bytes = have_dict ? dict_size : 0;
+    std::size_t offset = 0;
+    for (std::size_t size : sizes) {
+        const std::size_t plain = ZSTD_compressCCtx(cctx, buffer.data(), buffer.size(), all.data() + offset, size, level);
+        out.zstd_window_bytes += plain;
+        out.zstd_dictionary_bytes += cdict ? ZSTD_compress_usingCDict(cctx, buffer.data(), buffer.size(), all.data() + offset, size, cdict) : plain;
+        offset += size;
+    }
+    ZSTD_freeCDict(cdict);
+    ZSTD_freeCCtx(cctx);
+}
 
 }  // namespace
 
@@ -326,6 +368,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         result.stats.probes += st.probes;
     }
     m.contexts = counts.to_contexts();
+    if (options.compare_zstd) measure_zstd(results, result.stats);
 
     // Pass 2: entropy-code every window from the trained contexts.
     std::vector<std::vector<std::uint8_t>> payloads(window_total);

@@ -39,6 +39,9 @@ struct PackOptions {
     /// rounding; smaller values widen the zero bin (fewer nonzero coefficients, finer step needed).
     double rounding = 0.4;
     int threads = 2;            ///< encoder threads (>= 1)
+    /// Also measure what libzstd (level 19) makes of the same quantized coefficients (PackStats::
+    /// zstd_*): a measurement for the design, not a format option. Costs encode time.
+    bool compare_zstd = false;
 };
 
 /// Where the bytes went and what the error is (measured at encode time, on every source frame).
@@ -54,6 +57,12 @@ struct PackStats {
     std::size_t probes = 0;          ///< window decodes tried while choosing steps
     ErrorStats error;
     double encode_seconds = 0.0;
+    /// With compare_zstd: the coefficients (zigzag varints after the step byte, per window) as
+    /// zstd frames, one per window (random access); one per window with a 16 kB dictionary trained
+    /// on the group (dictionary included); and one stream of all windows (no random access).
+    std::size_t zstd_window_bytes = 0;
+    std::size_t zstd_dictionary_bytes = 0;
+    std::size_t zstd_stream_bytes = 0;
 };
 
 struct PackedGroup {
