@@ -112,9 +112,12 @@ struct DecodeSink {
 ContextSet ContextCounts::to_contexts() const {
     ContextSet out;
     for (std::size_t i = 0; i < n.size(); ++i) {
+        if (n[i][0] + n[i][1] == 0) continue;  // unused: stays at 1/2
         const double p0 = (static_cast<double>(n[i][0]) + 0.4) / (static_cast<double>(n[i][0] + n[i][1]) + 0.8);
-        const double v = std::clamp(p0 * kProbabilityOne, 64.0, double(kProbabilityOne - 64));
-        out.p[i] = static_cast<BitContext>(std::lround(v));
+        // 8 bits of precision (what a packed group stores), never exactly 1/2 (that means unused).
+        long v = std::clamp(std::lround(p0 * 256.0), 1L, 255L);
+        if (v == 128) v = p0 < 0.5 ? 127 : 129;
+        out.p[i] = static_cast<BitContext>(v << (kProbabilityBits - 8));
     }
     return out;
 }

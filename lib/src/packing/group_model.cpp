@@ -196,7 +196,13 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
     }
     for (float v : dof_energy) w.raw<float>(v);
     for (float v : time_energy) w.raw<float>(v);
-    for (BitContext c : contexts.p) w.raw<std::uint16_t>(c);
+    // Trained contexts: a bit mask of those used, then 8 bits each (to_contexts' precision).
+    std::vector<std::uint8_t> used((contexts.p.size() + 7) / 8, 0);
+    for (std::size_t i = 0; i < contexts.p.size(); ++i)
+        if (contexts.p[i] != kProbabilityHalf) used[i / 8] |= static_cast<std::uint8_t>(1u << (i % 8));
+    w.bytes(used);
+    for (BitContext c : contexts.p)
+        if (c != kProbabilityHalf) w.u8(static_cast<std::uint8_t>(c >> (kProbabilityBits - 8)));
     for (const ClipEntry& c : clips) {
         w.varint(c.skeleton);
         w.varint(c.frames);
@@ -292,7 +298,14 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
     for (float& v : dof_energy) v = r.raw<float>();
     time_energy.resize(static_cast<std::size_t>(window));
     for (float& v : time_energy) v = r.raw<float>();
-    for (BitContext& c : contexts.p) c = r.raw<std::uint16_t>();
+    {
+        std::vector<std::uint8_t> used((contexts.p.size() + 7) / 8);
+        for (auto& b : used) b = r.u8();
+        for (std::size_t i = 0; i < contexts.p.size(); ++i)
+            contexts.p[i] = (used[i / 8] & (1u << (i % 8)))
+                                ? static_cast<BitContext>(static_cast<unsigned>(r.u8()) << (kProbabilityBits - 8))
+                                : kProbabilityHalf;
+    }
     build_scan();
     // Tables.
     clips.assign(clip_count, ClipEntry{});

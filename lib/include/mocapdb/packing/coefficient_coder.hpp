@@ -46,7 +46,8 @@ struct ContextSet {
 /// Counts of 0s and 1s seen by each context; turned into initial probabilities for a group.
 struct ContextCounts {
     std::array<std::array<std::uint64_t, 2>, ContextSet::kCount> n{};
-    /// Probabilities (of a 0) estimated from the counts, clamped away from 0 and 1.
+    /// Probabilities (of a 0) estimated from the counts, with 8 bits of precision (multiples of
+    /// 1/256 in 1/256 ... 255/256, never 1/2); contexts never used stay at exactly 1/2.
     ContextSet to_contexts() const;
 };
 
