@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
         else if (a == "--limit") limit = std::stoul(next());
         else if (a == "--no-verify") verify = false;
         else if (a == "--zstd") options.compare_zstd = true;
+        else if (a == "--rounding-search") options.rounding_search = true;
         else {
             std::fprintf(stderr, "unknown argument %s\n", a.c_str());
             return 2;
@@ -168,11 +169,11 @@ int main(int argc, char** argv) {
             const double pose_us = seconds_since(t_pose) / poses * 1e6;
             const double joints_avg = static_cast<double>(positions_per_frame_sum) / static_cast<double>(frames);
             std::printf(
-                "folder=%s E=%g window=%d rounding=%g clips=%zu frames=%zu bytes=%zu header_bytes=%zu table_bytes=%zu "
+                "folder=%s E=%g window=%d rounding=%s clips=%zu frames=%zu bytes=%zu header_bytes=%zu table_bytes=%zu "
                 "payload_bytes=%zu ratio_f32=%.2f bytes_per_s=%.1f bits_per_joint_frame=%.3f max_cm=%.4f p99_cm=%.4f "
                 "rmse_cm=%.4f verify_max_cm=%.4f encode_s=%.2f decode_pose_us=%.2f "
                 "stream_MB_s=%.1f\n",
-                name.c_str(), E, options.window, options.rounding, clips.size(), frames, bytes, header, table, payload,
+                name.c_str(), E, options.window, options.rounding_search ? "search" : std::to_string(options.rounding).substr(0, 4).c_str(), clips.size(), frames, bytes, header, table, payload,
                 static_cast<double>(f32_bytes) / static_cast<double>(bytes), static_cast<double>(bytes) / seconds,
                 8.0 * static_cast<double>(bytes) / (static_cast<double>(frames) * joints_avg), max_cm, p99_cm, rmse,
                 verify_max, encode_s, pose_us,

@@ -280,6 +280,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     std::vector<ThreadState> states;
     for (std::size_t t = 0; t < threads; ++t) states.emplace_back(E);
     const auto cells = static_cast<std::size_t>(D) * static_cast<std::size_t>(W);
+    const std::vector<double> roundings =
+        options.rounding_search ? std::vector<double>{0.5, 0.4, 0.3, 0.2} : std::vector<double>{options.rounding};
     run_parallel(
         [&](std::size_t i, ThreadState& st) {
             const Clip& clip = *clips[i];
@@ -294,7 +296,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             FrameMatrix rows;
             std::vector<std::int32_t> q(cells);
             std::vector<double> dist, best_dist;
-            int k = k_start;
+            std::vector<int> ks(roundings.size(), k_start);
             MatX g(D, W), tmp(D, W);
             std::vector<std::uint8_t> classes;
             for (int w = 0; w < nw; ++w) {
@@ -303,14 +305,14 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                 const Eigen::Index f0 = static_cast<Eigen::Index>(w) * W;
                 const int count = static_cast<int>(std::min<Eigen::Index>(W, frames - f0));
                 // Decodes with step index kk; true when every position is within E.
-                auto probe = [&](int kk) -> bool {
+                auto probe = [&](int kk, double rounding) -> bool {
                     ++st.probes;
                     const double inv = 1.0 / step_of(kk);
                     for (std::size_t s = 0; s < cells; ++s) {
                         const double c = g.data()[m.scan[s]] * inv;
                         const double a = std::abs(c);
                         if (!(a < 1e9)) return false;
-                        const auto mag = static_cast<std::int32_t>(std::floor(a + options.rounding));
+                        const auto mag = static_cast<std::int32_t>(std::floor(a + rounding));
                         q[s] = c < 0 ? -mag : mag;
                     }
                     m.reconstruct(e, kk, q, count, rows);
@@ -328,19 +330,39 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                 };
                 int best = -1;
                 std::vector<std::int32_t> best_q;
-                auto keep = [&](int kk) {
-                    best = kk;
-                    best_q = q;
-                    std::swap(best_dist, dist);
-                };
-                if (probe(k)) {
-                    keep(k);
-                    while (k < 255 && probe(k + 1)) keep(++k);
-                } else {
-                    while (k > 0 && !probe(k - 1)) --k;
-                    if (k == 0) throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
-                                                    " cannot meet " + std::to_string(E) + " cm at the finest step");
-                    keep(--k);
+                std::size_t best_cost = 0;
+                for (std::size_t c = 0; c < roundings.size(); ++c) {
+                    const double rounding = roundings[c];
+                    int& k = ks[c];
+                    int found = -1;
+                    std::vector<std::int32_t> found_q;
+                    std::vector<double> found_dist;
+                    auto keep = [&](int kk) {
+                        found = kk;
+                        found_q = q;
+                        std::swap(found_dist, dist);
+                    };
+                    if (probe(k, rounding)) {
+                        keep(k);
+                        while (k < 255 && probe(k + 1, rounding)) keep(++k);
+                    } else {
+                        while (k > 0 && !probe(k - 1, rounding)) --k;
+                        if (k == 0)
+                            throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
+                                                " cannot meet " + std::to_string(E) + " cm at the finest step");
+                        keep(--k);
+                    }
+                    std::size_t cost = 0;
+                    if (roundings.size() > 1) {  // bytes with untrained contexts: a proxy to compare roundings
+                        position_classes(m.sigma, step_of(found), classes);
+                        cost = encode_coefficients(found_q, classes, m.grid(), ContextSet()).size();
+                    }
+                    if (best < 0 || cost < best_cost) {
+                        best = found;
+                        best_cost = cost;
+                        best_q = std::move(found_q);
+                        best_dist = std::move(found_dist);
+                    }
                 }
                 for (double d : best_dist) st.errors.add(d);
                 std::size_t length = best_q.size();

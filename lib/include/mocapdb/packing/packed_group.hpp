@@ -38,6 +38,9 @@ struct PackOptions {
     /// Quantizer rounding offset in [0.1, 0.5]: q = sign(c)·floor(|c|/step + rounding). 0.5 is plain
     /// rounding; smaller values widen the zero bin (fewer nonzero coefficients, finer step needed).
     double rounding = 0.4;
+    /// Try the roundings 0.5, 0.4, 0.3, 0.2 in every window and keep the one whose coefficients code
+    /// smallest (rounding is then ignored). About 4x the encode time.
+    bool rounding_search = false;
     int threads = 2;            ///< encoder threads (>= 1)
     /// Also measure what libzstd (level 19) makes of the same quantized coefficients (PackStats::
     /// zstd_*): a measurement for the design, not a format option. Costs encode time.
