@@ -17,6 +17,8 @@
 namespace mocapdb::packing::detail {
 
 constexpr std::uint8_t kFormatVersion = 1;
+/// Weight of a translation dof (cm) relative to a rotation dof's lever weight (see weights_of).
+constexpr double kTranslationWeight = 3.0;
 /// Range (pose units: cm or rad) under which a dof counts as constant in the group.
 constexpr double kConstantTolerance = 1e-6;
 /// Quantum of the stored basis entries (the encoder inverts the quantized bases, so this costs
@@ -89,7 +91,7 @@ struct GroupModel {
 };
 
 /// The decoder's copy of a skeleton (offsets, axes, forward rounded to float32) and its dof weights
-/// (pose dofs: position_error_weights relative to the root translation's; extra position channels: 1).
+/// (rotations: position_error_weights relative to the root translation's; translations: kTranslationWeight).
 SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extra);
 
 /// A basis (entries rounded to multiples of kBasisStep) as coded bytes, and back (n by n).
