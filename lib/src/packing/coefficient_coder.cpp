@@ -11,17 +11,25 @@ namespace {
 // cannot disagree: Sink::bit(ctx, bit) codes/counts/decodes one adaptive decision and returns it;
 // Sink::direct(value, count) the same at probability 1/2.
 template <class Sink>
-std::uint32_t gamma(Sink& sink, BitContext* prefix, std::uint32_t value) {
-    // value >= 1: n = floor(log2 value) as n ones and a zero, then the n low bits.
+std::uint32_t gamma(Sink& sink, BitContext* prefix, BitContext* msb, std::uint32_t value) {
+    // value >= 1: n = floor(log2 value) as n ones and a zero, then the n low bits, the highest of
+    // them adaptive (context msb[n]) when msb is given.
     int n = 0;
     if constexpr (Sink::kDecoding) {
         while (n < kGammaBits - 1 && sink.bit(prefix + n, 0)) ++n;
-        return (1u << n) | sink.direct(0, n);
+        if (msb == nullptr || n == 0) return (1u << n) | sink.direct(0, n);
+        const auto top = static_cast<std::uint32_t>(sink.bit(msb + n, 0));
+        return (1u << n) | (top << (n - 1)) | sink.direct(0, n - 1);
     } else {
         while ((value >> (n + 1)) != 0) ++n;
         for (int k = 0; k < n; ++k) sink.bit(prefix + k, 1);
         if (n < kGammaBits - 1) sink.bit(prefix + n, 0);
-        sink.direct(value & ((1u << n) - 1u), n);
+        if (msb == nullptr || n == 0) {
+            sink.direct(value & ((1u << n) - 1u), n);
+        } else {
+            sink.bit(msb + n, static_cast<int>((value >> (n - 1)) & 1u));
+            sink.direct(value & ((1u << (n - 1)) - 1u), n - 1);
+        }
         return value;
     }
 }
@@ -41,7 +49,7 @@ void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& clas
                 break;
             }
     }
-    length = gamma(sink, ctx.length(), length + 1) - 1;
+    length = gamma(sink, ctx.length(), nullptr, length + 1) - 1;
     int previous = 1;
     for (std::size_t i = 0; i < length; ++i) {
         const int cls = classes[i];
@@ -57,7 +65,7 @@ void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& clas
         const std::uint32_t negative = sink.direct(q[i] < 0 ? 1u : 0u, 1);
         const std::uint32_t magnitude = static_cast<std::uint32_t>(std::abs(q[i]));
         std::uint32_t m = 1;
-        if (sink.bit(ctx.greater_one(cls, n), magnitude > 1 ? 1 : 0)) m = gamma(sink, ctx.gamma(cls), magnitude - 1) + 1;
+        if (sink.bit(ctx.greater_one(cls, n), magnitude > 1 ? 1 : 0)) m = gamma(sink, ctx.gamma(cls), ctx.gamma_msb(cls), magnitude - 1) + 1;
         level[pos] = static_cast<std::uint8_t>(std::min<std::uint32_t>(m, 2));
         if constexpr (Sink::kDecoding) q[i] = negative ? -static_cast<std::int32_t>(m) : static_cast<std::int32_t>(m);
     }

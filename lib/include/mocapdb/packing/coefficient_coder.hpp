@@ -10,7 +10,8 @@
 //     the neighbourhood n = min(|q|, 2) of the coefficient one row up plus the one one column left in
 //     the window's coefficient grid, both coded before it since the scan runs down both axes' energy);
 //     if nonzero: sign (at 1/2), |q| > 1? (class, n), then |q| - 2 in Elias-gamma (prefix bits
-//     adaptive per class and bit position, suffix bits at 1/2).
+//     adaptive per class and bit position, the suffix's highest bit adaptive per class and length,
+//     the other suffix bits at 1/2).
 // Contexts start from per-group trained probabilities (ContextSet::initial), so a window codes on its
 // own (random access) without paying for re-learning the statistics in every window.
 #include <array>
@@ -30,7 +31,7 @@ struct ContextSet {
     static constexpr int kLengthContexts = 2 * kGammaBits;
     static constexpr int kNeighbourhoods = 5;
     // nonzero x (previous nonzero, neighbourhood), greater-than-one x neighbourhood, gamma prefix
-    static constexpr int kPerClass = 2 * kNeighbourhoods + kNeighbourhoods + kGammaBits;
+    static constexpr int kPerClass = 2 * kNeighbourhoods + kNeighbourhoods + 2 * kGammaBits;
     static constexpr int kCount = kLengthContexts + kClasses * kPerClass;
     std::array<BitContext, kCount> p;
 
@@ -41,6 +42,7 @@ struct ContextSet {
     }
     BitContext* greater_one(int cls, int n) { return &p[kLengthContexts + cls * kPerClass + 2 * kNeighbourhoods + n]; }
     BitContext* gamma(int cls) { return &p[kLengthContexts + cls * kPerClass + 3 * kNeighbourhoods]; }
+    BitContext* gamma_msb(int cls) { return &p[kLengthContexts + cls * kPerClass + 3 * kNeighbourhoods + kGammaBits]; }
 };
 
 /// Counts of 0s and 1s seen by each context; turned into initial probabilities for a group.
