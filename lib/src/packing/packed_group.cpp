@@ -342,16 +342,46 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         found_q = q;
                         std::swap(found_dist, dist);
                     };
+                    // Galloping search from the previous window's step, then bisection: ends with
+                    // `lo` passing and lo + 1 failing (or 255); `found` is the last passing probe.
+                    int lo = -1, hi = -1;
                     if (probe(k, rounding)) {
                         keep(k);
-                        while (k < 255 && probe(k + 1, rounding)) keep(++k);
+                        lo = k;
+                        for (int stride = 1; lo < 255; stride *= 2) {
+                            const int cand = std::min(255, lo + stride);
+                            if (!probe(cand, rounding)) {
+                                hi = cand;
+                                break;
+                            }
+                            keep(cand);
+                            lo = cand;
+                        }
                     } else {
-                        while (k > 0 && !probe(k - 1, rounding)) --k;
-                        if (k == 0)
-                            throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
-                                                " cannot meet " + std::to_string(E) + " cm at the finest step");
-                        keep(--k);
+                        hi = k;
+                        for (int stride = 1; lo < 0; stride *= 2) {
+                            if (hi == 0)
+                                throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
+                                                    " cannot meet " + std::to_string(E) + " cm at the finest step");
+                            const int cand = std::max(0, hi - stride);
+                            if (probe(cand, rounding)) {
+                                keep(cand);
+                                lo = cand;
+                            } else {
+                                hi = cand;
+                            }
+                        }
                     }
+                    while (hi >= 0 && hi - lo > 1) {
+                        const int mid = (lo + hi) / 2;
+                        if (probe(mid, rounding)) {
+                            keep(mid);
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    k = lo;
                     std::size_t cost = 0;
                     if (roundings.size() > 1) {  // bytes with untrained contexts: a proxy to compare roundings
                         position_classes(m.sigma, step_of(found), classes);
