@@ -35,7 +35,7 @@ TEST_CASE("coefficient coder round-trips a window, trained contexts code it smal
     std::vector<float> sigma(n);
     for (std::size_t i = 0; i < n; ++i) sigma[i] = 1000.0f / static_cast<float>(1 + i);
     std::vector<std::uint8_t> classes;
-    position_classes(sigma, 1.0, classes);
+    position_classes(class_levels(sigma), 1.0, classes);
     ContextCounts counts;
     const std::vector<std::uint32_t> scan = identity_scan(n);
     const ScanGrid grid{&scan, 20};

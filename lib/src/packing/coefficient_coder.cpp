@@ -130,13 +130,19 @@ ContextSet ContextCounts::to_contexts() const {
     return out;
 }
 
-void position_classes(const std::vector<float>& sigma, double step, std::vector<std::uint8_t>& out_classes) {
-    out_classes.resize(sigma.size());
-    const double inv = 1.0 / step;
-    for (std::size_t i = 0; i < sigma.size(); ++i) {
-        const double r = static_cast<double>(sigma[i]) * inv;
-        const int c = r > 0 ? static_cast<int>(std::floor(2.0 * std::log2(r))) + kClassBias : 0;
-        out_classes[i] = static_cast<std::uint8_t>(std::clamp(c, 0, kClasses - 1));
+std::vector<double> class_levels(const std::vector<float>& sigma) {
+    std::vector<double> out(sigma.size());
+    for (std::size_t i = 0; i < sigma.size(); ++i)
+        out[i] = sigma[i] > 0 ? 2.0 * std::log2(static_cast<double>(sigma[i])) : -1e30;
+    return out;
+}
+
+void position_classes(const std::vector<double>& levels, double step, std::vector<std::uint8_t>& out_classes) {
+    out_classes.resize(levels.size());
+    const double offset = kClassBias - 2.0 * std::log2(step);
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+        const double c = std::floor(levels[i] + offset);
+        out_classes[i] = static_cast<std::uint8_t>(c <= 0 ? 0 : c >= kClasses - 1 ? kClasses - 1 : c);
     }
 }
 

@@ -43,7 +43,7 @@ namespace {
 void decode_q(const detail::GroupModel& m, const std::uint8_t* payload, const detail::WindowEntry& e,
               std::vector<std::int32_t>& out_q) {
     std::vector<std::uint8_t> classes;
-    position_classes(m.sigma, detail::step_of(e.step), classes);
+    position_classes(m.levels, detail::step_of(e.step), classes);
     decode_coefficients(payload + e.offset, e.size, classes, m.grid(), m.contexts, out_q);
 }
 }  // namespace

@@ -37,6 +37,7 @@ void GroupModel::build_scan() {
     std::iota(scan.begin(), scan.end(), 0u);
     std::stable_sort(scan.begin(), scan.end(), [&](std::uint32_t i, std::uint32_t j) { return raw[i] > raw[j]; });
     for (std::size_t i = 0; i < scan.size(); ++i) sigma[i] = raw[scan[i]];
+    levels = class_levels(sigma);
 }
 
 MatX GroupModel::dofs_of(const Clip& clip, const Canonicalization& canonical) const {

@@ -63,6 +63,7 @@ struct GroupModel {
     std::vector<float> time_energy;  ///< W
     std::vector<std::uint32_t> scan;  ///< scan position -> r1 + D * r2
     std::vector<float> sigma;         ///< expected RMS per scan position
+    std::vector<double> levels;       ///< class_levels(sigma)
     ContextSet contexts;
     std::vector<ClipEntry> clips;
     std::vector<WindowEntry> windows;

@@ -384,7 +384,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                     k = lo;
                     std::size_t cost = 0;
                     if (roundings.size() > 1) {  // bytes with untrained contexts: a proxy to compare roundings
-                        position_classes(m.sigma, step_of(found), classes);
+                        position_classes(m.levels, step_of(found), classes);
                         cost = encode_coefficients(found_q, classes, m.grid(), ContextSet()).size();
                     }
                     if (best < 0 || cost < best_cost) {
@@ -398,7 +398,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                 std::size_t length = best_q.size();
                 while (length > 0 && best_q[length - 1] == 0) --length;
                 best_q.resize(length);
-                position_classes(m.sigma, step_of(best), classes);
+                position_classes(m.levels, step_of(best), classes);
                 count_coefficients(best_q, classes, m.grid(), st.counts);
                 WindowResult& r = results[e.first_window + static_cast<std::uint64_t>(w)];
                 r.step = static_cast<std::uint8_t>(best);
@@ -427,7 +427,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     m.windows.resize(window_total);
     std::vector<std::uint8_t> classes;
     for (std::size_t w = 0; w < window_total; ++w) {
-        position_classes(m.sigma, step_of(results[w].step), classes);
+        position_classes(m.levels, step_of(results[w].step), classes);
         payloads[w] = encode_coefficients(results[w].q, classes, m.grid(), m.contexts);
         m.windows[w].step = results[w].step;
         m.windows[w].size = static_cast<std::uint32_t>(payloads[w].size());

@@ -53,8 +53,10 @@ struct ContextCounts {
     ContextSet to_contexts() const;
 };
 
-/// Class of every scan position for a window quantized with `step` (`sigma` in scan order).
-void position_classes(const std::vector<float>& sigma, double step, std::vector<std::uint8_t>& out_classes);
+/// 2·log2(sigma) of every scan position (−1e30 where sigma is 0): what position_classes needs.
+std::vector<double> class_levels(const std::vector<float>& sigma);
+/// Class of every scan position for a window quantized with `step` (`levels` from class_levels).
+void position_classes(const std::vector<double>& levels, double step, std::vector<std::uint8_t>& out_classes);
 
 /// Where each scan position sits in the coefficient grid (rows by columns, column-major index), for
 /// the neighbourhood contexts. Every position's upper and left neighbours must come earlier in scan.
