@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
                 8.0 * static_cast<double>(bytes) / (static_cast<double>(frames) * joints_avg), max_cm, p99_cm, rmse,
                 verify_max, encode_s, pose_us,
                 verify && stream_s > 0 ? static_cast<double>(f32_bytes) / stream_s / 1e6 : 0.0);
-            std::printf("#   compare: python3 compare.py %s.csv --bytes %zu --max-cm %.4f --rmse-cm %.4f\n", name.c_str(),
+            std::printf("#   compare: python3 compare.py %s.csv --bytes %zu --max-cm %.5f --rmse-cm %.5f\n", name.c_str(),
                         bytes, max_cm, rmse);
             if (options.compare_zstd)
                 std::printf("#   payload alternatives: range coder %zu, zstd-19 per window %zu, per window + trained dictionary %zu, "

@@ -142,6 +142,15 @@ TEST_CASE("packing refuses a bad bound; an empty group and one short clip work",
         o.max_error_cm = bad;
         CHECK_THROWS_AS(pack_group(one, o), InvalidArgument);
     }
+    // The bytes do not depend on the number of encoder threads.
+    {
+        std::vector<const Clip*> all;
+        for (const Clip& c : clips) all.push_back(&c);
+        PackOptions a, b;
+        a.threads = 1;
+        b.threads = 3;
+        CHECK(pack_group(all, a).bytes == pack_group(all, b).bytes);
+    }
     const PackedGroup empty = pack_group({}, PackOptions{});
     CHECK(GroupDecoder(empty.bytes).clip_count() == 0);
     CHECK(empty.bytes.size() < 16);

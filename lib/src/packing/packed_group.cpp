@@ -230,30 +230,37 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     const auto D = static_cast<Eigen::Index>(m.active.size());
 
     // Pass 0: the group's second moments along dofs and along time (ST-HOSVD at full rank).
+    // Per clip, summed in clip order afterwards: the bases (and so the bytes) do not depend on
+    // how clips were spread over threads.
     struct Moments {
         MatX dof, time;
         std::uint64_t windows = 0;
     };
-    std::vector<Moments> moments(threads, Moments{MatX::Zero(D, D), MatX::Zero(W, W), 0});
+    std::vector<Moments> per_clip(clips.size());
+    std::vector<int> no_state(threads);
     run_parallel(
-        [&](std::size_t i, Moments& mo) {
+        [&](std::size_t i, int&) {
             const detail::ClipEntry& e = m.clips[i];
             const MatX x = m.weighted_active(*clips[i], m.skeletons[e.skeleton], e.canonical);
             const auto nw = static_cast<int>((e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W));
+            Moments mo{MatX::Zero(D, D), MatX::Zero(W, W), 0};
             for (int w = 0; w < nw; ++w) {
                 const MatX xw = window_of(x, w, W);
                 mo.dof.selfadjointView<Eigen::Lower>().rankUpdate(xw);
                 mo.time.selfadjointView<Eigen::Lower>().rankUpdate(xw.transpose());
                 ++mo.windows;
             }
+            per_clip[i] = std::move(mo);
             units_done += static_cast<std::uint64_t>(nw);
             report(*clips[i]);
         },
-        moments);
-    for (std::size_t t = 1; t < threads; ++t) {
-        moments[0].dof += moments[t].dof;
-        moments[0].time += moments[t].time;
-        moments[0].windows += moments[t].windows;
+        no_state);
+    std::vector<Moments> moments(1, Moments{MatX::Zero(D, D), MatX::Zero(W, W), 0});
+    for (Moments& mo : per_clip) {
+        moments[0].dof += mo.dof;
+        moments[0].time += mo.time;
+        moments[0].windows += mo.windows;
+        mo = Moments{};
     }
     {
         const MatX dof_moment = moments[0].dof.selfadjointView<Eigen::Lower>();
