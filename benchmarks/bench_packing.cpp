@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
         else if (a == "--no-verify") verify = false;
         else if (a == "--zstd") options.compare_zstd = true;
         else if (a == "--rounding-search") options.rounding_search = true;
+        else if (a == "--trim-tail") options.trim_tail = std::stoi(next());
         else {
             std::fprintf(stderr, "unknown argument %s\n", a.c_str());
             return 2;

@@ -311,17 +311,10 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                 g.noalias() = tmp * time_inverse_t;
                 const Eigen::Index f0 = static_cast<Eigen::Index>(w) * W;
                 const int count = static_cast<int>(std::min<Eigen::Index>(W, frames - f0));
-                // Decodes with step index kk; true when every position is within E.
-                auto probe = [&](int kk, double rounding) -> bool {
+                // Decodes q with step index kk; true when every position is within E (dist then
+                // holds every distance).
+                auto check = [&](int kk) -> bool {
                     ++st.probes;
-                    const double inv = 1.0 / step_of(kk);
-                    for (std::size_t s = 0; s < cells; ++s) {
-                        const double c = g.data()[m.scan[s]] * inv;
-                        const double a = std::abs(c);
-                        if (!(a < 1e9)) return false;
-                        const auto mag = static_cast<std::int32_t>(std::floor(a + rounding));
-                        q[s] = c < 0 ? -mag : mag;
-                    }
                     m.reconstruct(e, kk, q, count, rows);
                     dist.clear();
                     for (int t = 0; t < count; ++t) {
@@ -334,6 +327,18 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         }
                     }
                     return true;
+                };
+                // Quantizes the window with step index kk, then check.
+                auto probe = [&](int kk, double rounding) -> bool {
+                    const double inv = 1.0 / step_of(kk);
+                    for (std::size_t s = 0; s < cells; ++s) {
+                        const double c = g.data()[m.scan[s]] * inv;
+                        const double a = std::abs(c);
+                        if (!(a < 1e9)) return false;
+                        const auto mag = static_cast<std::int32_t>(std::floor(a + rounding));
+                        q[s] = c < 0 ? -mag : mag;
+                    }
+                    return check(kk);
                 };
                 int best = -1;
                 std::vector<std::int32_t> best_q;
@@ -389,6 +394,29 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         }
                     }
                     k = lo;
+                    if (options.trim_tail > 0) {
+                        // Drop the last t nonzero +-1 coefficients of the scan (they cost their zero
+                        // run too) for the largest t that still passes (bisection).
+                        std::vector<std::size_t> tail;
+                        for (std::size_t s = found_q.size(); s-- > 0 && tail.size() < static_cast<std::size_t>(options.trim_tail);) {
+                            if (found_q[s] == 0) continue;
+                            if (std::abs(found_q[s]) > 1) continue;
+                            tail.push_back(s);
+                        }
+                        std::size_t ok = 0, bad = tail.size() + 1;
+                        while (bad - ok > 1) {
+                            const std::size_t mid = (ok + bad) / 2;
+                            q = found_q;
+                            for (std::size_t t = 0; t < mid; ++t) q[tail[t]] = 0;
+                            if (check(found)) {
+                                ok = mid;
+                                std::swap(found_dist, dist);
+                            } else {
+                                bad = mid;
+                            }
+                        }
+                        for (std::size_t t = 0; t < ok; ++t) found_q[tail[t]] = 0;
+                    }
                     std::size_t cost = 0;
                     if (roundings.size() > 1) {  // bytes with untrained contexts: a proxy to compare roundings
                         position_classes(m.levels, step_of(found), classes);

@@ -41,6 +41,9 @@ struct PackOptions {
     /// Try the roundings 0.5, 0.4, 0.3, 0.2 in every window and keep the one whose coefficients code
     /// smallest (rounding is then ignored). About 4x the encode time.
     bool rounding_search = false;
+    /// After a window's step is chosen, drop up to this many of the last nonzero +-1 coefficients in
+    /// scan order where the window still meets the bound (0 = off).
+    int trim_tail = 64;
     int threads = 2;            ///< encoder threads (>= 1)
     /// Also measure what libzstd (level 19) makes of the same quantized coefficients (PackStats::
     /// zstd_*): a measurement for the design, not a format option. Costs encode time.
