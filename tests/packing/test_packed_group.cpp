@@ -202,3 +202,19 @@ TEST_CASE("moving non-root position channels are coded too; a one-frame clip wor
     const GroupDecoder single(pack_group({&one_frame}, o).bytes);
     CHECK(max_position_error(one_frame, single.decode_clip(0)) <= 0.1);
 }
+
+TEST_CASE("a truncated or foreign packed group is refused with an error", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    const std::vector<std::uint8_t> bytes = pack_group({&clips[0], &clips[1]}, PackOptions{}).bytes;
+    for (std::size_t cut : {std::size_t(0), std::size_t(3), bytes.size() / 3, bytes.size() - 1}) {
+        INFO("cut at " << cut << " of " << bytes.size());
+        CHECK_THROWS_AS(GroupDecoder(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + static_cast<long>(cut))),
+                        Error);
+    }
+    std::vector<std::uint8_t> foreign = bytes;
+    foreign[0] = 'X';
+    CHECK_THROWS_AS(GroupDecoder(foreign), Error);
+    std::vector<std::uint8_t> newer = bytes;
+    newer[4] = 99;
+    CHECK_THROWS_WITH(GroupDecoder(newer), Catch::Contains("version 99"));
+}
