@@ -171,8 +171,8 @@ int main(int argc, char** argv) {
             const double joints_avg = static_cast<double>(positions_per_frame_sum) / static_cast<double>(frames);
             std::printf(
                 "folder=%s E=%g window=%d rounding=%s clips=%zu frames=%zu bytes=%zu header_bytes=%zu table_bytes=%zu "
-                "payload_bytes=%zu ratio_f32=%.2f bytes_per_s=%.1f bits_per_joint_frame=%.3f max_cm=%.4f p99_cm=%.4f "
-                "rmse_cm=%.4f verify_max_cm=%.4f encode_s=%.2f decode_pose_us=%.2f "
+                "payload_bytes=%zu ratio_f32=%.2f bytes_per_s=%.1f bits_per_joint_frame=%.3f max_cm=%.5f p99_cm=%.5f "
+                "rmse_cm=%.5f verify_max_cm=%.5f encode_s=%.2f decode_pose_us=%.2f "
                 "stream_MB_s=%.1f\n",
                 name.c_str(), E, options.window, options.rounding_search ? "search" : std::to_string(options.rounding).substr(0, 4).c_str(), clips.size(), frames, bytes, header, table, payload,
                 static_cast<double>(f32_bytes) / static_cast<double>(bytes), static_cast<double>(bytes) / seconds,
