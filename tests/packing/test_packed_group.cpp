@@ -218,3 +218,23 @@ TEST_CASE("a truncated or foreign packed group is refused with an error", "[pack
     newer[4] = 99;
     CHECK_THROWS_WITH(GroupDecoder(newer), Catch::Contains("version 99"));
 }
+
+TEST_CASE("packing works at 24 Hz and 120 Hz; frame rates form separate groups", "[packing]") {
+    std::vector<Clip> clips;
+    for (double rate : {24.0, 120.0}) {
+        procedural::WalkOptions o;
+        o.frame_rate = rate;
+        o.cycles = 2;
+        clips.push_back(procedural::generate_walk({1.2, 45.0, 0.0}, o).clip);
+    }
+    std::vector<const Clip*> ptrs{&clips[0], &clips[1]};
+    REQUIRE(group_clips(ptrs).size() == 2);
+    CHECK_THROWS_AS(pack_group(ptrs, PackOptions{}), InvalidArgument);
+    for (const Clip& c : clips) {
+        PackOptions o;
+        o.max_error_cm = 0.5;
+        const GroupDecoder decoder(pack_group({&c}, o).bytes);
+        CHECK(decoder.frame_rate() == c.frame_rate);
+        CHECK(max_position_error(c, decoder.decode_clip(0)) <= 0.5);
+    }
+}
