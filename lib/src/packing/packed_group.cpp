@@ -29,6 +29,7 @@ void check_options(const PackOptions& o) {
     if (!(o.rounding >= 0.1 && o.rounding <= 0.5))
         throw InvalidArgument("pack: rounding must be in [0.1, 0.5], got " + std::to_string(o.rounding));
     if (o.threads < 1) throw InvalidArgument("pack: threads must be >= 1");
+    if (o.trim_tail < 0) throw InvalidArgument("pack: trim_tail must be >= 0");
 }
 
 /// Window `w` of x (D by F) as D by W, the last frame repeated past the end.
@@ -255,22 +256,22 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             report(*clips[i]);
         },
         no_state);
-    std::vector<Moments> moments(1, Moments{MatX::Zero(D, D), MatX::Zero(W, W), 0});
+    Moments sum{MatX::Zero(D, D), MatX::Zero(W, W), 0};
     for (Moments& mo : per_clip) {
-        moments[0].dof += mo.dof;
-        moments[0].time += mo.time;
-        moments[0].windows += mo.windows;
+        sum.dof += mo.dof;
+        sum.time += mo.time;
+        sum.windows += mo.windows;
         mo = Moments{};
     }
     {
-        const MatX dof_moment = moments[0].dof.selfadjointView<Eigen::Lower>();
-        const MatX time_moment = moments[0].time.selfadjointView<Eigen::Lower>();
+        const MatX dof_moment = sum.dof.selfadjointView<Eigen::Lower>();
+        const MatX time_moment = sum.time.selfadjointView<Eigen::Lower>();
         std::vector<double> dof_values, time_values;
         eigen_basis(dof_moment, m.dof_basis, dof_values);
         eigen_basis(time_moment, m.time_basis, time_values);
         double total = 0.0;
         for (double v : dof_values) total += v;
-        const double nw = static_cast<double>(std::max<std::uint64_t>(1, moments[0].windows));
+        const double nw = static_cast<double>(std::max<std::uint64_t>(1, sum.windows));
         for (double v : dof_values) m.dof_energy.push_back(static_cast<float>(v / nw));
         for (double v : time_values) m.time_energy.push_back(static_cast<float>(total > 0 ? v / total : 0.0));
         m.build_scan();
