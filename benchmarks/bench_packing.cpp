@@ -80,6 +80,15 @@ int main(int argc, char** argv) {
         else if (a == "--zstd") options.compare_zstd = true;
         else if (a == "--rounding-search") options.rounding_search = true;
         else if (a == "--trim-tail") options.trim_tail = std::stoi(next());
+        else if (a == "--time-basis") {
+            const std::string v = next();
+            options.time_basis = v == "learned" ? packing::TimeBasis::Learned
+                                 : v == "cosine" ? packing::TimeBasis::Cosine : packing::TimeBasis::Auto;
+        } else if (a == "--dof-basis") {
+            const std::string v = next();
+            options.dof_basis = v == "learned" ? packing::DofBasis::Learned
+                                : v == "identity" ? packing::DofBasis::Identity : packing::DofBasis::Auto;
+        }
         else {
             std::fprintf(stderr, "unknown argument %s\n", a.c_str());
             return 2;
@@ -109,6 +118,7 @@ int main(int argc, char** argv) {
         for (double E : errors) {
             options.max_error_cm = E;
             std::size_t bytes = 0, header = 0, table = 0, payload = 0, probes = 0, zw = 0, zd = 0, zs = 0;
+            std::string bases;
             double encode_s = 0.0, max_cm = 0.0, p99_cm = 0.0, sq = 0.0;
             std::size_t positions = 0;
             std::vector<packing::GroupDecoder> decoders;
@@ -124,6 +134,9 @@ int main(int argc, char** argv) {
                 table += s.table_bytes;
                 payload += s.payload_bytes;
                 probes += s.probes;
+                bases += std::string(bases.empty() ? "" : ",") +
+                         (s.time_basis == packing::TimeBasis::Cosine ? "cosine" : "learned") + "/" +
+                         (s.dof_basis == packing::DofBasis::Identity ? "identity" : "learned");
                 zw += s.zstd_window_bytes;
                 zd += s.zstd_dictionary_bytes;
                 zs += s.zstd_stream_bytes;
@@ -184,6 +197,7 @@ int main(int argc, char** argv) {
             if (options.compare_zstd)
                 std::printf("#   payload alternatives: range coder %zu, zstd-19 per window %zu, per window + trained dictionary %zu, "
                             "one stream (no random access) %zu\n", payload, zw, zd, zs);
+            std::printf("#   bases (time/dof) per group: %s\n", bases.c_str());
             std::printf("#   probes per window %.2f\n", static_cast<double>(probes) / static_cast<double>(std::max<std::size_t>(1, decoders.empty() ? 1 : probes_windows(decoders))));
             std::fflush(stdout);
         }

@@ -138,6 +138,50 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             throw InvalidArgument("pack: clip '" + c->name + "' has another topology or frame rate than '" +
                                   clips.front()->name + "' (use group_clips)");
     }
+    if (!clips.empty() && (options.time_basis == TimeBasis::Auto || options.dof_basis == DofBasis::Auto)) {
+        // Try each candidate on a sample; estimate the whole group's bytes as header + payload and
+        // tables scaled by frames.
+        const std::size_t every = (clips.size() + 7) / 8;
+        std::vector<Clip> sample;
+        std::size_t all_frames = 0, sample_frames = 0;
+        for (const Clip* c : clips) all_frames += c->frame_count();
+        for (std::size_t i = 0; i < clips.size(); i += every) {
+            sample.push_back(clips[i]->frame_count() > 4000 ? slice(*clips[i], 0, 4000) : *clips[i]);
+            sample.back().name = clips[i]->name;
+            sample_frames += sample.back().frame_count();
+        }
+        std::vector<const Clip*> sample_ptrs;
+        for (const Clip& c : sample) sample_ptrs.push_back(&c);
+        std::vector<TimeBasis> times{options.time_basis};
+        if (options.time_basis == TimeBasis::Auto) times = {TimeBasis::Learned, TimeBasis::Cosine};
+        std::vector<DofBasis> dofs{options.dof_basis};
+        if (options.dof_basis == DofBasis::Auto) dofs = {DofBasis::Learned, DofBasis::Identity};
+        PackOptions best = options;
+        double best_bytes = 0.0;
+        bool first = true;
+        for (TimeBasis tb : times)
+            for (DofBasis db : dofs) {
+                PackOptions trial = options;
+                trial.time_basis = tb;
+                trial.dof_basis = db;
+                trial.compare_zstd = false;
+                const PackStats s = pack_group(sample_ptrs, trial).stats;
+                const double estimate = static_cast<double>(s.header_bytes) +
+                                        static_cast<double>(s.payload_bytes + s.table_bytes) *
+                                            static_cast<double>(all_frames) / static_cast<double>(sample_frames);
+                if (first || estimate < best_bytes) {
+                    best = trial;
+                    best_bytes = estimate;
+                    first = false;
+                }
+            }
+        best.compare_zstd = options.compare_zstd;
+        PackedGroup chosen = pack_group(clips, best, progress);
+        chosen.stats.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        return chosen;
+    }
+    result.stats.time_basis = options.time_basis == TimeBasis::Auto ? TimeBasis::Learned : options.time_basis;
+    result.stats.dof_basis = options.dof_basis == DofBasis::Auto ? DofBasis::Learned : options.dof_basis;
     if (clips.empty()) {
         m.write_header(result.bytes);
         result.stats.bytes = result.stats.header_bytes = result.bytes.size();
@@ -269,6 +313,21 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         std::vector<double> dof_values, time_values;
         eigen_basis(dof_moment, m.dof_basis, dof_values);
         eigen_basis(time_moment, m.time_basis, time_values);
+        if (options.time_basis == TimeBasis::Cosine) {
+            // Orthonormal DCT-II, rounded like a learned basis; energies as the learned ones'.
+            for (int k = 0; k < W; ++k) {
+                const double scale = std::sqrt((k == 0 ? 1.0 : 2.0) / W);
+                for (int t = 0; t < W; ++t)
+                    m.time_basis(t, k) = std::round(scale * std::cos(kPi * (t + 0.5) * k / W) / detail::kBasisStep) *
+                                         detail::kBasisStep;
+                time_values[static_cast<std::size_t>(k)] =
+                    std::max(0.0, m.time_basis.col(k).dot(time_moment * m.time_basis.col(k)));
+            }
+        }
+        if (options.dof_basis == DofBasis::Identity) {
+            m.dof_basis.setIdentity();
+            for (Eigen::Index d = 0; d < D; ++d) dof_values[static_cast<std::size_t>(d)] = std::max(0.0, dof_moment(d, d));
+        }
         double total = 0.0;
         for (double v : dof_values) total += v;
         const double nw = static_cast<double>(std::max<std::uint64_t>(1, sum.windows));

@@ -32,6 +32,12 @@
 
 namespace mocapdb::packing {
 
+/// The time basis of a group: learned (eigenvectors of the windows' time second moment) or the
+/// orthonormal DCT-II (cosines); Auto tries both on a sample of the group (see PackOptions).
+enum class TimeBasis { Auto, Learned, Cosine };
+/// The dof basis of a group: learned (eigenvectors of the dof second moment) or none (identity).
+enum class DofBasis { Auto, Learned, Identity };
+
 struct PackOptions {
     double max_error_cm = 1.0;  ///< E, > 0 and finite
     int window = 32;            ///< W, source frames per window, 2 ... 256
@@ -45,6 +51,12 @@ struct PackOptions {
     /// scan order where the window still meets the bound (0 = off).
     int trim_tail = 64;
     int threads = 2;            ///< encoder threads (>= 1)
+    /// Bases. With Auto, each candidate combination is packed on a sample of the group (every k-th
+    /// clip, k = ceil(clips / 8), each cut to its first 4000 frames) and the one with the fewest
+    /// estimated bytes for the whole group is used (about +50-100% encode time). Both kinds are
+    /// stored the same way, so the decoder does not know or care which was chosen.
+    TimeBasis time_basis = TimeBasis::Auto;
+    DofBasis dof_basis = DofBasis::Auto;
     /// Also measure what libzstd (level 19) makes of the same quantized coefficients (PackStats::
     /// zstd_*): a measurement for the design, not a format option. Costs encode time.
     bool compare_zstd = false;
@@ -63,6 +75,8 @@ struct PackStats {
     std::size_t probes = 0;          ///< window decodes tried while choosing steps
     ErrorStats error;
     double encode_seconds = 0.0;
+    TimeBasis time_basis = TimeBasis::Learned;  ///< the bases used (never Auto)
+    DofBasis dof_basis = DofBasis::Learned;
     /// With compare_zstd: the coefficients (zigzag varints after the step byte, per window) as
     /// zstd frames, one per window (random access); one per window with a 16 kB dictionary trained
     /// on the group (dictionary included); and one stream of all windows (no random access).
