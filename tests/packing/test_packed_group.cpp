@@ -238,3 +238,21 @@ TEST_CASE("packing works at 24 Hz and 120 Hz; frame rates form separate groups",
         CHECK(max_position_error(c, decoder.decode_clip(0)) <= 0.5);
     }
 }
+
+TEST_CASE("automatic and fixed bases all meet the bound", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : clips) ptrs.push_back(&c);
+    for (TimeBasis tb : {TimeBasis::Auto, TimeBasis::Cosine})
+        for (DofBasis db : {DofBasis::Auto, DofBasis::Identity}) {
+            PackOptions o;
+            o.max_error_cm = 0.5;
+            o.time_basis = tb;
+            o.dof_basis = db;
+            const PackedGroup packed = pack_group(ptrs, o);
+            CHECK(packed.stats.time_basis != TimeBasis::Auto);
+            CHECK(packed.stats.dof_basis != DofBasis::Auto);
+            const GroupDecoder decoder(packed.bytes);
+            for (std::size_t k = 0; k < clips.size(); ++k) CHECK(max_position_error(clips[k], decoder.decode_clip(k)) <= 0.5);
+        }
+}

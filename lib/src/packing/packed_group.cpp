@@ -432,9 +432,14 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                     } else {
                         hi = k;
                         for (int stride = 1; lo < 0; stride *= 2) {
-                            if (hi == 0)
+                            if (hi == 0) {
+                                const double largest = g.cwiseAbs().maxCoeff();
                                 throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
-                                                    " cannot meet " + std::to_string(E) + " cm at the finest step");
+                                                    " cannot meet " + std::to_string(E) +
+                                                    " cm at the finest step (largest coefficient " +
+                                                    std::to_string(largest) + ", " + std::to_string(dist.size()) +
+                                                    " positions passed before the first failure)");
+                            }
                             const int cand = std::max(0, hi - stride);
                             if (probe(cand, rounding)) {
                                 keep(cand);
