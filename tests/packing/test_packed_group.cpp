@@ -256,3 +256,18 @@ TEST_CASE("automatic and fixed bases all meet the bound", "[packing]") {
             for (std::size_t k = 0; k < clips.size(); ++k) CHECK(max_position_error(clips[k], decoder.decode_clip(k)) <= 0.5);
         }
 }
+
+TEST_CASE("a window no step brings within the bound is stored as its source rows", "[packing]") {
+    // The humanoid's offsets are exact in float32, so its source rows decode exactly; no quantized
+    // window can reach 1e-9 cm.
+    const Clip clip = slice(procedural_walks()[1], 0, 40);
+    PackOptions o;
+    o.max_error_cm = 1e-9;
+    const PackedGroup packed = pack_group({&clip}, o);
+    CHECK(packed.stats.raw_windows == 2);
+    const GroupDecoder decoder(packed.bytes);
+    CHECK(decoder.decode_clip(0).channels == clip.channels);
+    std::vector<double> row(clip.skeleton->channel_count());
+    decoder.decode_pose(0, 35, row.data());
+    CHECK(Eigen::Map<const VecX>(row.data(), static_cast<Eigen::Index>(row.size())) == clip.channels.row(35).transpose());
+}

@@ -1,6 +1,7 @@
 #include "mocapdb/packing/group_decoder.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "group_model.hpp"
@@ -48,16 +49,29 @@ void decode_q(const detail::GroupModel& m, const std::uint8_t* payload, const de
 }
 }  // namespace
 
+void GroupDecoder::raw_rows(const detail::WindowEntry& e, int count, std::size_t channels, FrameMatrix& out) const {
+    const std::size_t values = static_cast<std::size_t>(count) * channels;
+    if (e.size != values * sizeof(double))
+        throw Error("packed group: raw window of " + std::to_string(e.size) + " bytes, expected " +
+                    std::to_string(values * sizeof(double)));
+    out.resize(count, static_cast<Eigen::Index>(channels));
+    std::memcpy(out.data(), bytes_.data() + payload_ + e.offset, values * sizeof(double));
+}
+
 FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) const {
     if (window >= window_count(clip))
         throw InvalidArgument("GroupDecoder: window " + std::to_string(window) + " of " +
                               std::to_string(window_count(clip)));
     const detail::ClipEntry& c = model_->clips[clip];
     const detail::WindowEntry& e = model_->windows[c.first_window + window];
-    std::vector<std::int32_t> q;
-    decode_q(*model_, bytes_.data() + payload_, e, q);
     const auto count = static_cast<int>(std::min<std::uint64_t>(window_length(), c.frames - window * window_length()));
     FrameMatrix rows;
+    if (e.step == detail::kRawStep) {
+        raw_rows(e, count, skeleton(clip)->channel_count(), rows);
+        return rows;
+    }
+    std::vector<std::int32_t> q;
+    decode_q(*model_, bytes_.data() + payload_, e, q);
     model_->reconstruct(c, e.step, q, count, rows);
     return rows;
 }
@@ -94,6 +108,14 @@ void GroupDecoder::decode_pose(std::size_t clip, std::size_t frame, double* out_
     const detail::ClipEntry& c = model_->clips[clip];
     const std::size_t W = window_length();
     const detail::WindowEntry& e = model_->windows[c.first_window + frame / W];
+    if (e.step == detail::kRawStep) {
+        FrameMatrix rows;
+        const auto count = static_cast<int>(std::min<std::uint64_t>(W, c.frames - (frame / W) * W));
+        raw_rows(e, count, skeleton(clip)->channel_count(), rows);
+        std::copy(rows.row(static_cast<Eigen::Index>(frame % W)).data(),
+                  rows.row(static_cast<Eigen::Index>(frame % W)).data() + rows.cols(), out_row);
+        return;
+    }
     std::vector<std::int32_t> q;
     decode_q(*model_, bytes_.data() + payload_, e, q);
     model_->reconstruct_frame(c, e.step, q, static_cast<int>(frame % W), out_row);

@@ -25,8 +25,11 @@ constexpr double kConstantTolerance = 1e-6;
 /// compactness only, never accuracy).
 constexpr double kBasisStep = 1.0 / 4096.0;
 
-/// Step of quantizer index k (0..255): 2^(k/12 - 14) weighted cm (6e-5 ... 150).
+/// Step of quantizer index k (0..kMaxStep): 2^(k/12 - 14) weighted cm (6e-5 ... 140).
 double step_of(int k);
+constexpr int kMaxStep = 254;
+/// Step byte of a window stored as its source channel rows (float64, row-major, little-endian).
+constexpr std::uint8_t kRawStep = 255;
 
 struct SkeletonEntry {
     std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <thread>
 
@@ -57,6 +58,7 @@ void eigen_basis(const MatX& moment, MatX& out_basis, std::vector<double>& out_v
 struct WindowResult {
     std::uint8_t step = 0;
     std::vector<std::int32_t> q;  // scan order, trimmed after the last nonzero
+    std::vector<double> raw;      // step == kRawStep: the window's source channel rows, row-major
 };
 
 struct ThreadState {
@@ -64,6 +66,7 @@ struct ThreadState {
     ErrorAccumulator errors;
     ContextCounts counts;
     std::size_t probes = 0;
+    std::size_t raw_windows = 0;
 };
 
 /// zstd's sizes for the windows' coefficients (see PackStats::zstd_*).
@@ -420,8 +423,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                     if (probe(k, rounding)) {
                         keep(k);
                         lo = k;
-                        for (int stride = 1; lo < 255; stride *= 2) {
-                            const int cand = std::min(255, lo + stride);
+                        for (int stride = 1; lo < detail::kMaxStep; stride *= 2) {
+                            const int cand = std::min(detail::kMaxStep, lo + stride);
                             if (!probe(cand, rounding)) {
                                 hi = cand;
                                 break;
@@ -431,15 +434,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         }
                     } else {
                         hi = k;
-                        for (int stride = 1; lo < 0; stride *= 2) {
-                            if (hi == 0) {
-                                const double largest = g.cwiseAbs().maxCoeff();
-                                throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
-                                                    " cannot meet " + std::to_string(E) +
-                                                    " cm at the finest step (largest coefficient " +
-                                                    std::to_string(largest) + ", " + std::to_string(dist.size()) +
-                                                    " positions passed before the first failure)");
-                            }
+                        for (int stride = 1; lo < 0 && hi > 0; stride *= 2) {
                             const int cand = std::max(0, hi - stride);
                             if (probe(cand, rounding)) {
                                 keep(cand);
@@ -457,6 +452,10 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         } else {
                             hi = mid;
                         }
+                    }
+                    if (lo < 0) {  // even the finest step fails: this rounding has no candidate
+                        k = k_start;
+                        continue;
                     }
                     k = lo;
                     if (options.trim_tail > 0) {
@@ -487,12 +486,36 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         position_classes(m.levels, step_of(found), classes);
                         cost = encode_coefficients(found_q, classes, m.grid(), ContextSet()).size();
                     }
-                    if (best < 0 || cost < best_cost) {
+                    if (found >= 0 && (best < 0 || cost < best_cost)) {
                         best = found;
                         best_cost = cost;
                         best_q = std::move(found_q);
                         best_dist = std::move(found_dist);
                     }
+                }
+                WindowResult& r = results[e.first_window + static_cast<std::uint64_t>(w)];
+                if (best < 0) {
+                    // Escape: the window's source channel rows, stored as they are (float64). Seen
+                    // only where decoded rotations cannot be projected back onto a joint's channels
+                    // stably (docs/packing.md); checked like any other window.
+                    r.step = detail::kRawStep;
+                    const FrameMatrix raw = clip.channels.middleRows(f0, count);
+                    r.raw.assign(raw.data(), raw.data() + raw.size());
+                    for (int t = 0; t < count; ++t) {
+                        forward_kinematics(decoded_skeleton, raw.row(t).data(), pose);
+                        for (Eigen::Index j = 0; j < J; ++j) {
+                            const double d = (pose.positions[static_cast<std::size_t>(j)] -
+                                              source.block<3, 1>(3 * j, f0 + t)).norm();
+                            if (!(d <= E))
+                                throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
+                                                    ": even its source rows are " + std::to_string(d) +
+                                                    " cm off with the stored (float32) skeleton, over " +
+                                                    std::to_string(E) + " cm");
+                            st.errors.add(d);
+                        }
+                    }
+                    ++st.raw_windows;
+                    continue;
                 }
                 for (double d : best_dist) st.errors.add(d);
                 std::size_t length = best_q.size();
@@ -500,7 +523,6 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                 best_q.resize(length);
                 position_classes(m.levels, step_of(best), classes);
                 count_coefficients(best_q, classes, m.grid(), st.counts);
-                WindowResult& r = results[e.first_window + static_cast<std::uint64_t>(w)];
                 r.step = static_cast<std::uint8_t>(best);
                 r.q = std::move(best_q);
             }
@@ -518,6 +540,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             counts.n[c][1] += st.counts.n[c][1];
         }
         result.stats.probes += st.probes;
+        result.stats.raw_windows += st.raw_windows;
     }
     m.contexts = counts.to_contexts();
     if (options.compare_zstd) measure_zstd(results, result.stats);
@@ -527,11 +550,17 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     m.windows.resize(window_total);
     std::vector<std::uint8_t> classes;
     for (std::size_t w = 0; w < window_total; ++w) {
-        position_classes(m.levels, step_of(results[w].step), classes);
-        payloads[w] = encode_coefficients(results[w].q, classes, m.grid(), m.contexts);
+        if (results[w].step == detail::kRawStep) {
+            payloads[w].resize(results[w].raw.size() * sizeof(double));
+            std::memcpy(payloads[w].data(), results[w].raw.data(), payloads[w].size());
+        } else {
+            position_classes(m.levels, step_of(results[w].step), classes);
+            payloads[w] = encode_coefficients(results[w].q, classes, m.grid(), m.contexts);
+        }
         m.windows[w].step = results[w].step;
         m.windows[w].size = static_cast<std::uint32_t>(payloads[w].size());
         results[w].q = {};
+        results[w].raw = {};
     }
     m.write_header(result.bytes);
     const std::size_t before_payload = result.bytes.size();

@@ -13,6 +13,7 @@ namespace mocapdb::packing {
 
 namespace detail {
 struct GroupModel;
+struct WindowEntry;
 }
 
 class GroupDecoder {
@@ -43,6 +44,7 @@ public:
 
 private:
     void check(std::size_t clip) const;
+    void raw_rows(const detail::WindowEntry& e, int count, std::size_t channels, FrameMatrix& out) const;
     std::vector<std::uint8_t> bytes_;
     std::unique_ptr<detail::GroupModel> model_;
     std::size_t payload_ = 0;

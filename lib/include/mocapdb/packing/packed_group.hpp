@@ -5,7 +5,8 @@
 // rows whose forward-kinematics positions of every joint and end site (world frame) are within
 // max_error_cm of the source clip's (as given to pack_group). The bound is guaranteed, not targeted:
 // every window is decoded at encode time with the decoder's own routine and its quantization step is
-// made finer until the bound holds (PackingFailed if even the finest step cannot meet it).
+// made finer until the bound holds (a window no step can bring within it is stored as its source
+// channel rows; PackingFailed only if even those miss it with the stored skeleton).
 //
 // Representation (docs/packing.md says why): each clip in its pose-vector form (pose_vector.hpp;
 // canonical frame, root heading-relative swing-twist, continuous exp maps) plus every non-root
@@ -74,6 +75,7 @@ struct PackStats {
     std::size_t table_bytes = 0;     ///< per-clip and per-window entries
     std::size_t payload_bytes = 0;   ///< coded coefficients
     std::size_t probes = 0;          ///< window decodes tried while choosing steps
+    std::size_t raw_windows = 0;     ///< windows stored as source rows (no step met the bound)
     ErrorStats error;
     double encode_seconds = 0.0;
     TimeBasis time_basis = TimeBasis::Learned;  ///< the bases used (never Auto)
@@ -91,8 +93,9 @@ struct PackedGroup {
     PackStats stats;
 };
 
-/// Thrown when a window cannot meet the bound even at the finest step (should not happen with full
-/// rank bases; would indicate non-finite data or a representation the decoder cannot express).
+/// Thrown when a window cannot meet the bound even stored as its source channel rows (a window that
+/// no quantization step brings within the bound is stored that way, see PackStats::raw_windows):
+/// only when the float32-rounded skeleton alone moves a joint by more than E.
 class PackingFailed : public Error {
 public:
     using Error::Error;
