@@ -119,6 +119,7 @@ int main(int argc, char** argv) {
             options.max_error_cm = E;
             std::size_t bytes = 0, header = 0, table = 0, payload = 0, probes = 0, zw = 0, zd = 0, zs = 0;
             std::string bases;
+            std::size_t raw_windows = 0;
             double encode_s = 0.0, max_cm = 0.0, p99_cm = 0.0, sq = 0.0;
             std::size_t positions = 0;
             std::vector<packing::GroupDecoder> decoders;
@@ -138,6 +139,7 @@ int main(int argc, char** argv) {
                          (s.time_basis == packing::TimeBasis::Cosine ? "cosine" : "learned") + "/" +
                          (s.dof_basis == packing::DofBasis::Identity ? "identity" : "learned");
                 zw += s.zstd_window_bytes;
+                raw_windows += s.raw_windows;
                 zd += s.zstd_dictionary_bytes;
                 zs += s.zstd_stream_bytes;
                 max_cm = std::max(max_cm, s.error.max_cm);
@@ -197,7 +199,7 @@ int main(int argc, char** argv) {
             if (options.compare_zstd)
                 std::printf("#   payload alternatives: range coder %zu, zstd-19 per window %zu, per window + trained dictionary %zu, "
                             "one stream (no random access) %zu\n", payload, zw, zd, zs);
-            std::printf("#   bases (time/dof) per group: %s\n", bases.c_str());
+            std::printf("#   bases (time/dof) per group: %s; windows stored as source rows: %zu\n", bases.c_str(), raw_windows);
             std::printf("#   probes per window %.2f\n", static_cast<double>(probes) / static_cast<double>(std::max<std::size_t>(1, decoders.empty() ? 1 : probes_windows(decoders))));
             std::fflush(stdout);
         }

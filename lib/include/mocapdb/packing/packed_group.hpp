@@ -55,10 +55,9 @@ struct PackOptions {
     /// Bases. With Auto, each candidate combination is packed on a sample of the group (every k-th
     /// clip, k = ceil(clips / 8), each cut to its first 4000 frames) and the one with the fewest
     /// estimated bytes for the whole group is used (about +60% encode time). Both kinds are stored
-    /// the same way, so the decoder does not know or care which was chosen. Default: learned (on the
-    /// shared data Auto picked them anyway; see docs/packing.md for a case where Cosine fails).
-    TimeBasis time_basis = TimeBasis::Learned;
-    DofBasis dof_basis = DofBasis::Learned;
+    /// the same way, so the decoder does not know or care which was chosen.
+    TimeBasis time_basis = TimeBasis::Auto;
+    DofBasis dof_basis = DofBasis::Auto;
     /// Also measure what libzstd (level 19) makes of the same quantized coefficients (PackStats::
     /// zstd_*): a measurement for the design, not a format option. Costs encode time.
     bool compare_zstd = false;
