@@ -10,13 +10,15 @@
 //
 // Representation (docs/packing.md says why): each clip in its pose-vector form (pose_vector.hpp;
 // canonical frame, root heading-relative swing-twist, continuous exp maps) plus every non-root
-// position channel, each dof weighted by its effect in cm (dof_weights.hpp); cut into windows of W
-// source frames (the last one padded by repeating its last frame); each window X (D by W) is
-// projected on a dof basis U (D by D) and a time basis V (W by W) learned from the group (the
-// eigenvectors of the summed second moments: ST-HOSVD at full rank): G = Uᵀ X V. G is quantized with
-// one uniform step per window (2^(k/8 − 14), k stored in a byte) and entropy-coded with an adaptive
-// binary range coder whose contexts are trained on the group (coefficient_coder.hpp). Each window
-// decodes on its own.
+// position channel, each dof weighted by its effect in cm (dof_weights.hpp; translations 3x), dofs
+// constant over the group stored once; cut into windows of W source frames (the last one padded by
+// repeating its last frame); each window X (Da by W) is projected on a dof basis U (Da by Da) and a
+// time basis V (W by W): learned from the group (the eigenvectors of the summed second moments:
+// ST-HOSVD at full rank), or the DCT-II / identity (PackOptions), entries rounded to 1/4096:
+// G = U⁻¹ X V⁻ᵀ. G is quantized with one uniform step per window (2^(k/12 − 14), k stored in a
+// byte), trailing ±1s dropped while the bound holds, and entropy-coded with an adaptive binary range
+// coder whose contexts are trained on the group (coefficient_coder.hpp). Each window decodes on its
+// own.
 //
 // Bytes count everything the decoder needs: topology, every distinct skeleton (offsets, axes),
 // bases, energies, trained contexts, per-clip canonicalization and frame count, per-window step and
