@@ -1,0 +1,114 @@
+#pragma once
+// Error-bounded packing of a group of clips (one skeleton topology, one frame rate) into bytes.
+//
+// Contract: decoding the bytes (GroupDecoder) gives, for every clip and every SOURCE frame, channel
+// rows whose forward-kinematics positions of every joint and end site (world frame) are within
+// max_error_cm of the source clip's (as given to pack_group). The bound is guaranteed, not targeted:
+// every window is decoded at encode time with the decoder's own routine and its quantization step is
+// made finer until the bound holds (a window no step can bring within it is stored as its source
+// channel rows; PackingFailed only if even those miss it with the stored skeleton).
+//
+// Representation (docs/packing.md says why): each clip in its pose-vector form (pose_vector.hpp;
+// canonical frame, root heading-relative swing-twist, continuous exp maps) plus every non-root
+// position channel, each dof weighted by its effect in cm (dof_weights.hpp; translations 3x), dofs
+// constant over the group stored once; cut into windows of W source frames (the last one padded by
+// repeating its last frame); each window X (Da by W) is projected on a dof basis U (Da by Da) and a
+// time basis V (W by W): learned from the group (the eigenvectors of the summed second moments:
+// ST-HOSVD at full rank), or the DCT-II / identity (PackOptions), entries rounded to 1/4096:
+// G = U⁻¹ X V⁻ᵀ. G is quantized with one uniform step per window (2^(k/12 − 14), k stored in a
+// byte), trailing ±1s dropped while the bound holds, and entropy-coded with an adaptive binary range
+// coder whose contexts are trained on the group (coefficient_coder.hpp). Each window decodes on its
+// own.
+//
+// Bytes count everything the decoder needs: topology, every distinct skeleton (offsets, axes),
+// bases, energies, trained contexts, per-clip canonicalization and frame count, per-window step and
+// size, payloads. Clip names are not stored (the caller keeps them in the same order).
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/core/progress.hpp"
+#include "mocapdb/motion/clip.hpp"
+#include "mocapdb/packing/error_stats.hpp"
+
+namespace mocapdb::packing {
+
+/// The time basis of a group: learned (eigenvectors of the windows' time second moment) or the
+/// orthonormal DCT-II (cosines); Auto tries both on a sample of the group (see PackOptions).
+enum class TimeBasis { Auto, Learned, Cosine };
+/// The dof basis of a group: learned (eigenvectors of the dof second moment) or none (identity).
+enum class DofBasis { Auto, Learned, Identity };
+
+struct PackOptions {
+    double max_error_cm = 1.0;  ///< E, > 0 and finite
+    int window = 32;            ///< W, source frames per window, 2 ... 256
+    /// Quantizer rounding offset in [0.1, 0.5]: q = sign(c)·floor(|c|/step + rounding). 0.5 is plain
+    /// rounding; smaller values widen the zero bin (fewer nonzero coefficients, finer step needed).
+    double rounding = 0.4;
+    /// Try the roundings 0.5, 0.4, 0.3, 0.2 in every window and keep the one whose coefficients code
+    /// smallest (rounding is then ignored). About 4x the encode time.
+    bool rounding_search = false;
+    /// After a window's step is chosen, drop up to this many of the last nonzero +-1 coefficients in
+    /// scan order where the window still meets the bound (0 = off).
+    int trim_tail = 64;
+    int threads = 2;            ///< encoder threads (>= 1)
+    /// Bases. With Auto, each candidate combination is packed on a sample of the group (every k-th
+    /// clip, k = ceil(clips / 8), each cut to its first 4000 frames) and the one with the fewest
+    /// estimated bytes for the whole group is used (about +60% encode time). Both kinds are stored
+    /// the same way, so the decoder does not know or care which was chosen.
+    TimeBasis time_basis = TimeBasis::Auto;
+    DofBasis dof_basis = DofBasis::Auto;
+    /// Also measure what libzstd (level 19) makes of the same quantized coefficients (PackStats::
+    /// zstd_*): a measurement for the design, not a format option. Costs encode time.
+    bool compare_zstd = false;
+};
+
+/// Where the bytes went and what the error is (measured at encode time, on every source frame).
+struct PackStats {
+    std::size_t clips = 0;
+    std::size_t frames = 0;
+    std::size_t windows = 0;
+    std::size_t channels = 0;        ///< channels per frame (float32 reference = frames·channels·4)
+    std::size_t bytes = 0;           ///< total
+    std::size_t header_bytes = 0;    ///< topology, skeletons, bases, contexts
+    std::size_t table_bytes = 0;     ///< per-clip and per-window entries
+    std::size_t payload_bytes = 0;   ///< coded coefficients
+    std::size_t probes = 0;          ///< window decodes tried while choosing steps
+    std::size_t raw_windows = 0;     ///< windows stored as source rows (no step met the bound)
+    ErrorStats error;
+    double encode_seconds = 0.0;
+    TimeBasis time_basis = TimeBasis::Learned;  ///< the bases used (never Auto)
+    DofBasis dof_basis = DofBasis::Learned;
+    /// With compare_zstd: the coefficients (zigzag varints after the step byte, per window) as
+    /// zstd frames, one per window (random access); one per window with a 16 kB dictionary trained
+    /// on the group (dictionary included); and one stream of all windows (no random access).
+    std::size_t zstd_window_bytes = 0;
+    std::size_t zstd_dictionary_bytes = 0;
+    std::size_t zstd_stream_bytes = 0;
+};
+
+struct PackedGroup {
+    std::vector<std::uint8_t> bytes;
+    PackStats stats;
+};
+
+/// Thrown when a window cannot meet the bound even stored as its source channel rows (a window that
+/// no quantization step brings within the bound is stored that way, see PackStats::raw_windows):
+/// only when the float32-rounded skeleton alone moves a joint by more than E.
+class PackingFailed : public Error {
+public:
+    using Error::Error;
+};
+
+/// Packs `clips` (same topology and frame rate; InvalidArgument otherwise, or when options are out of
+/// range: E <= 0 or not finite, W outside 2..256). An empty list gives a valid empty group.
+PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions& options,
+                       const ProgressCallback& progress = {});
+
+/// Splits a collection into groups of one topology and frame rate (indices into `clips`, each group
+/// in input order, groups in order of first appearance).
+std::vector<std::vector<std::size_t>> group_clips(const std::vector<const Clip*>& clips);
+
+}  // namespace mocapdb::packing

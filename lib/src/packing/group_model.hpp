@@ -1,0 +1,108 @@
+#pragma once
+// What the encoder and the decoder of one packed group share (internal to the packing module): the
+// skeletons as the decoder sees them (float32-rounded), the per-clip canonicalizations, the learned
+// bases, the scan order, the trained contexts, and the one reconstruction routine both use, so that
+// the error verified at encode time is exactly the error of any later decode.
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/motion/clip.hpp"
+#include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/packing/coefficient_coder.hpp"
+#include "mocapdb/packing/packed_group.hpp"
+
+namespace mocapdb::packing::detail {
+
+constexpr std::uint8_t kFormatVersion = 1;
+/// Weight of a translation dof (cm) relative to a rotation dof's lever weight (see weights_of).
+constexpr double kTranslationWeight = 3.0;
+/// Range (pose units: cm or rad) under which a dof counts as constant in the group.
+constexpr double kConstantTolerance = 1e-6;
+/// Quantum of the stored basis entries (the encoder inverts the quantized bases, so this costs
+/// compactness only, never accuracy).
+constexpr double kBasisStep = 1.0 / 4096.0;
+
+/// Step of quantizer index k (0..kMaxStep): 2^(k/12 - 14) weighted cm (6e-5 ... 140).
+double step_of(int k);
+constexpr int kMaxStep = 254;
+/// Step byte of a window stored as its source channel rows (float64, row-major, little-endian).
+constexpr std::uint8_t kRawStep = 255;
+
+struct SkeletonEntry {
+    std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes
+    VecX weights;                              ///< D weights (pose dofs, then extra position channels)
+};
+
+struct ClipEntry {
+    std::uint32_t skeleton = 0;
+    std::uint64_t frames = 0;
+    Canonicalization canonical;  ///< float32-rounded
+    std::uint64_t first_window = 0;  ///< index into windows
+};
+
+struct WindowEntry {
+    std::uint8_t step = 0;
+    std::uint64_t offset = 0;  ///< into the payload
+    std::uint32_t size = 0;
+};
+
+struct GroupModel {
+    double frame_rate = 0.0;
+    int window = 0;                  ///< W
+    int pose_dofs = 0;               ///< D0 (pose vector)
+    int dofs = 0;                    ///< D = D0 + extra
+    std::vector<int> extra_columns;  ///< channel columns of non-root position channels (extra dofs)
+    std::vector<SkeletonEntry> skeletons;
+    /// Dofs that vary in the group (indices into D); the others are constant[d] (pose units) in
+    /// every frame of every clip (to within kConstantTolerance) and are not transformed.
+    std::vector<int> active;
+    std::vector<double> constant;  ///< D entries (used where not active)
+    MatX dof_basis;   ///< Da by Da (columns: basis vectors), entries multiples of kBasisStep
+    MatX time_basis;  ///< W by W, entries multiples of kBasisStep
+    std::vector<float> dof_energy;   ///< Da, eigenvalues of the dof second moment per window, descending
+    std::vector<float> time_energy;  ///< W
+    std::vector<std::uint32_t> scan;  ///< scan position -> r1 + D * r2
+    std::vector<float> sigma;         ///< expected RMS per scan position
+    std::vector<double> levels;       ///< class_levels(sigma)
+    ContextSet contexts;
+    std::vector<ClipEntry> clips;
+    std::vector<WindowEntry> windows;
+
+    /// The scan as the coefficient coder sees it (grid rows = Da).
+    ScanGrid grid() const { return ScanGrid{&scan, static_cast<int>(std::max<std::size_t>(1, active.size()))}; }
+    /// Fills scan and sigma from the energies.
+    void build_scan();
+    /// Unweighted dofs (D by F: pose vector, then extra position channels) of a clip.
+    MatX dofs_of(const Clip& clip, const Canonicalization& canonical) const;
+    /// Weighted active dofs (Da by F) of a clip whose skeleton is `entry`.
+    MatX weighted_active(const Clip& clip, const SkeletonEntry& entry, const Canonicalization& canonical) const;
+    /// Channel rows of frames [0, count) of a window from its quantized coefficients (scan order).
+    void reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
+                     FrameMatrix& out_rows) const;
+    /// One frame (index `t` in its window) into `out_row` (channel_count values).
+    void reconstruct_frame(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int t,
+                           double* out_row) const;
+    /// Channel rows from weighted active dofs (Da by n).
+    void to_rows(const ClipEntry& clip, const Eigen::Ref<const MatX>& x, FrameMatrix& out_rows) const;
+
+    /// Header and tables (everything but the window payloads) and their parse.
+    void write_header(std::vector<std::uint8_t>& out) const;
+    /// Parses a header; returns the offset of the payload.
+    std::size_t read_header(const std::uint8_t* data, std::size_t size);
+};
+
+/// The decoder's copy of a skeleton (offsets, axes, forward rounded to float32) and its dof weights
+/// (rotations: position_error_weights relative to the root translation's; translations: kTranslationWeight).
+SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extra);
+
+/// A basis (entries rounded to multiples of kBasisStep) as coded bytes, and back (n by n).
+std::vector<std::uint8_t> encode_basis(const MatX& basis);
+MatX decode_basis(const std::uint8_t* data, std::size_t size, Eigen::Index n);
+
+/// Same joints, channels, orders, end sites (offsets and axes may differ).
+bool same_topology(const Skeleton& a, const Skeleton& b);
+
+}  // namespace mocapdb::packing::detail

@@ -1,0 +1,273 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+
+#include "mocapdb/io/clip_file.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/procedural/walk.hpp"
+#include "shared_data.hpp"
+
+using namespace mocapdb;
+using namespace mocapdb::packing;
+
+namespace {
+
+/// Max FK distance (cm) between a source clip and its decode, over every joint, end site and frame.
+double max_position_error(const Clip& source, const Clip& decoded) {
+    REQUIRE(decoded.frame_count() == source.frame_count());
+    const MatX a = joint_positions(source);
+    const MatX b = joint_positions(decoded);
+    double worst = 0.0;
+    for (Eigen::Index f = 0; f < a.cols(); ++f)
+        for (Eigen::Index j = 0; j < a.rows(); j += 3)
+            worst = std::max(worst, (a.block<3, 1>(j, f) - b.block<3, 1>(j, f)).norm());
+    return worst;
+}
+
+std::vector<Clip> procedural_walks() {
+    std::vector<Clip> out;
+    int i = 0;
+    for (double speed : {0.9, 1.5})
+        for (double turn : {-60.0, 0.0, 90.0}) {
+            procedural::WalkOptions o;
+            o.frame_rate = 60.0;
+            o.cycles = 2;
+            Clip c = procedural::generate_walk({speed, turn, 0.0}, o).clip;
+            c.name = "walk" + std::to_string(i++);
+            out.push_back(std::move(c));
+        }
+    return out;
+}
+
+std::vector<Clip> shared_clips(const std::string& folder, const std::vector<std::string>& stems) {
+    std::vector<Clip> out;
+    for (const auto& stem : stems) {
+        const auto dir = test::datasets_dir() / folder;
+        ClipReadOptions o;
+        std::filesystem::path path = dir / (stem + ".amc");
+        if (!std::filesystem::exists(path)) {
+            path = dir / (stem + ".bvh");
+            o.frame_rate = 60.0;
+        }
+        Clip c = read_clip(path, o);
+        c.name = stem;
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+/// Packs `clips` (one group) at each E and checks the bound on every clip, every source frame.
+void check_bound(const std::vector<Clip>& clips, std::size_t max_frames_per_clip) {
+    std::vector<Clip> cut;
+    for (const Clip& c : clips)
+        cut.push_back(c.frame_count() > max_frames_per_clip ? slice(c, 0, max_frames_per_clip) : c);
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : cut) ptrs.push_back(&c);
+    REQUIRE(group_clips(ptrs).size() == 1);
+    for (double E : {1.0, 0.5, 0.1}) {
+        PackOptions options;
+        options.max_error_cm = E;
+        const PackedGroup packed = pack_group(ptrs, options);
+        INFO("E " << E << ": " << packed.stats.bytes << " bytes, encode-time max " << packed.stats.error.max_cm);
+        CHECK(packed.stats.error.max_cm <= E);
+        const GroupDecoder decoder(packed.bytes);
+        REQUIRE(decoder.clip_count() == cut.size());
+        for (std::size_t k = 0; k < cut.size(); ++k) {
+            const double err = max_position_error(cut[k], decoder.decode_clip(k));
+            INFO("clip " << cut[k].name << " max " << err);
+            CHECK(err <= E);
+        }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("packing meets the bound on the procedural humanoid", "[packing]") {
+    check_bound(procedural_walks(), 100000);
+}
+
+TEST_CASE("packing meets the bound on PFNN BVH clips", "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
+    check_bound(shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}), 400);
+}
+
+TEST_CASE("packing meets the bound on ASF/AMC clips", "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    check_bound(shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}), 400);
+}
+
+TEST_CASE("a decoded window equals the same frames of a full decode; poses by random access", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : clips) ptrs.push_back(&c);
+    PackOptions options;
+    options.max_error_cm = 0.5;
+    options.window = 16;
+    const GroupDecoder decoder(pack_group(ptrs, options).bytes);
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 10; ++trial) {
+        const std::size_t k = rng() % decoder.clip_count();
+        const Clip full = decoder.decode_clip(k);
+        const std::size_t w = rng() % decoder.window_count(k);
+        const FrameMatrix window = decoder.decode_window(k, w);
+        const std::size_t f0 = w * decoder.window_length();
+        REQUIRE(window.rows() == static_cast<Eigen::Index>(std::min(decoder.window_length(), full.frame_count() - f0)));
+        CHECK(window == full.channels.middleRows(static_cast<Eigen::Index>(f0), window.rows()));
+        const std::size_t begin = rng() % full.frame_count();
+        const std::size_t end = begin + rng() % (full.frame_count() - begin + 1);
+        CHECK(decoder.decode_frames(k, begin, end) ==
+              full.channels.middleRows(static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end - begin)));
+        // One pose: the same joint positions as the full decode's frame (Euler branches may differ).
+        const std::size_t f = rng() % full.frame_count();
+        std::vector<double> row(full.skeleton->channel_count());
+        decoder.decode_pose(k, f, row.data());
+        GlobalPose a, b;
+        forward_kinematics(*full.skeleton, row.data(), a);
+        forward_kinematics(*full.skeleton, full.frame(f), b);
+        for (std::size_t j = 0; j < a.positions.size(); ++j) CHECK((a.positions[j] - b.positions[j]).norm() < 1e-9);
+    }
+}
+
+TEST_CASE("packing refuses a bad bound; an empty group and one short clip work", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    const std::vector<const Clip*> one{&clips[0]};
+    for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+        PackOptions o;
+        o.max_error_cm = bad;
+        CHECK_THROWS_AS(pack_group(one, o), InvalidArgument);
+    }
+    // The bytes do not depend on the number of encoder threads.
+    {
+        std::vector<const Clip*> all;
+        for (const Clip& c : clips) all.push_back(&c);
+        PackOptions a, b;
+        a.threads = 1;
+        b.threads = 3;
+        CHECK(pack_group(all, a).bytes == pack_group(all, b).bytes);
+    }
+    const PackedGroup empty = pack_group({}, PackOptions{});
+    CHECK(GroupDecoder(empty.bytes).clip_count() == 0);
+    CHECK(empty.bytes.size() < 16);
+
+    const Clip short_clip = slice(clips[0], 0, 5);  // shorter than one window
+    PackOptions o;
+    o.max_error_cm = 0.1;
+    const PackedGroup packed = pack_group({&short_clip}, o);
+    const GroupDecoder decoder(packed.bytes);
+    REQUIRE(decoder.frame_count(0) == 5);
+    CHECK(max_position_error(short_clip, decoder.decode_clip(0)) <= 0.1);
+}
+
+TEST_CASE("moving non-root position channels are coded too; a one-frame clip works", "[packing]") {
+    const Clip walk = procedural_walks()[2];
+    const Skeleton& s = *walk.skeleton;
+    const std::size_t forearm = *s.find("LeftForeArm");
+    std::vector<Joint> joints = s.joints();
+    joints[forearm].channels.insert(joints[forearm].channels.begin(),
+                                    {ChannelType::Xposition, ChannelType::Yposition, ChannelType::Zposition});
+    auto skeleton = std::make_shared<const Skeleton>(joints, s.source_units(), s.forward());
+    Clip clip;
+    clip.skeleton = skeleton;
+    clip.frame_rate = walk.frame_rate;
+    clip.name = "stretchy";
+    clip.channels.resize(walk.channels.rows(), static_cast<Eigen::Index>(skeleton->channel_count()));
+    for (std::size_t j = 0; j < s.size(); ++j) {
+        const auto n = static_cast<Eigen::Index>(s.joint(j).channels.size());
+        const auto to = static_cast<Eigen::Index>(skeleton->first_channel(j)) + (j == forearm ? 3 : 0);
+        clip.channels.middleCols(to, n) = walk.channels.middleCols(static_cast<Eigen::Index>(s.first_channel(j)), n);
+    }
+    const auto px = static_cast<Eigen::Index>(skeleton->first_channel(forearm));
+    for (Eigen::Index f = 0; f < clip.channels.rows(); ++f)
+        for (Eigen::Index a = 0; a < 3; ++a)
+            clip.channels(f, px + a) = 4.0 * std::sin(0.05 * static_cast<double>(f) * static_cast<double>(a + 1));
+    const Clip one_frame = slice(clip, 7, 8);
+    for (double E : {1.0, 0.1}) {
+        PackOptions o;
+        o.max_error_cm = E;
+        const GroupDecoder decoder(pack_group({&clip, &one_frame}, o).bytes);
+        const Clip back = decoder.decode_clip(0);
+        CHECK(max_position_error(clip, back) <= E);
+        CHECK((back.channels.middleCols(px, 3) - clip.channels.middleCols(px, 3)).cwiseAbs().maxCoeff() <= E);
+        CHECK(max_position_error(one_frame, decoder.decode_clip(1)) <= E);
+    }
+    // A group of one one-frame clip: every dof is constant.
+    PackOptions o;
+    o.max_error_cm = 0.1;
+    const GroupDecoder single(pack_group({&one_frame}, o).bytes);
+    CHECK(max_position_error(one_frame, single.decode_clip(0)) <= 0.1);
+}
+
+TEST_CASE("a truncated or foreign packed group is refused with an error", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    const std::vector<std::uint8_t> bytes = pack_group({&clips[0], &clips[1]}, PackOptions{}).bytes;
+    for (std::size_t cut : {std::size_t(0), std::size_t(3), bytes.size() / 3, bytes.size() - 1}) {
+        INFO("cut at " << cut << " of " << bytes.size());
+        CHECK_THROWS_AS(GroupDecoder(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + static_cast<long>(cut))),
+                        Error);
+    }
+    std::vector<std::uint8_t> foreign = bytes;
+    foreign[0] = 'X';
+    CHECK_THROWS_AS(GroupDecoder(foreign), Error);
+    std::vector<std::uint8_t> newer = bytes;
+    newer[4] = 99;
+    CHECK_THROWS_WITH(GroupDecoder(newer), Catch::Contains("version 99"));
+}
+
+TEST_CASE("packing works at 24 Hz and 120 Hz; frame rates form separate groups", "[packing]") {
+    std::vector<Clip> clips;
+    for (double rate : {24.0, 120.0}) {
+        procedural::WalkOptions o;
+        o.frame_rate = rate;
+        o.cycles = 2;
+        clips.push_back(procedural::generate_walk({1.2, 45.0, 0.0}, o).clip);
+    }
+    std::vector<const Clip*> ptrs{&clips[0], &clips[1]};
+    REQUIRE(group_clips(ptrs).size() == 2);
+    CHECK_THROWS_AS(pack_group(ptrs, PackOptions{}), InvalidArgument);
+    for (const Clip& c : clips) {
+        PackOptions o;
+        o.max_error_cm = 0.5;
+        const GroupDecoder decoder(pack_group({&c}, o).bytes);
+        CHECK(decoder.frame_rate() == c.frame_rate);
+        CHECK(max_position_error(c, decoder.decode_clip(0)) <= 0.5);
+    }
+}
+
+TEST_CASE("automatic and fixed bases all meet the bound", "[packing]") {
+    const std::vector<Clip> clips = procedural_walks();
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : clips) ptrs.push_back(&c);
+    for (TimeBasis tb : {TimeBasis::Auto, TimeBasis::Cosine})
+        for (DofBasis db : {DofBasis::Auto, DofBasis::Identity}) {
+            PackOptions o;
+            o.max_error_cm = 0.5;
+            o.time_basis = tb;
+            o.dof_basis = db;
+            const PackedGroup packed = pack_group(ptrs, o);
+            CHECK(packed.stats.time_basis != TimeBasis::Auto);
+            CHECK(packed.stats.dof_basis != DofBasis::Auto);
+            const GroupDecoder decoder(packed.bytes);
+            for (std::size_t k = 0; k < clips.size(); ++k) CHECK(max_position_error(clips[k], decoder.decode_clip(k)) <= 0.5);
+        }
+}
+
+TEST_CASE("a window no step brings within the bound is stored as its source rows", "[packing]") {
+    // The humanoid's offsets are exact in float32, so its source rows decode exactly; no quantized
+    // window can reach 1e-9 cm.
+    const Clip clip = slice(procedural_walks()[1], 0, 40);
+    PackOptions o;
+    o.max_error_cm = 1e-9;
+    const PackedGroup packed = pack_group({&clip}, o);
+    CHECK(packed.stats.raw_windows == 2);
+    const GroupDecoder decoder(packed.bytes);
+    CHECK(decoder.decode_clip(0).channels == clip.channels);
+    std::vector<double> row(clip.skeleton->channel_count());
+    decoder.decode_pose(0, 35, row.data());
+    CHECK(Eigen::Map<const VecX>(row.data(), static_cast<Eigen::Index>(row.size())) == clip.channels.row(35).transpose());
+}
