@@ -1,5 +1,6 @@
 #include "mocapdb/compression/rank_search.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -21,13 +22,13 @@ RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter
         r.target_met = ok(r);
         return r;
     };
-    // Full ranks first: they reproduce the data (up to rounding), so the target is reachable.
-    best = evaluate({dims[0], dims[1], dims[2]});
-    int evaluations = 1;
-    if (!best.target_met) {
-        best.evaluations = evaluations;
-        return best;
-    }
+    // Full ranks reproduce the data (up to rounding), so the target is reachable: the bisection
+    // assumes it and measures them only when no probe met the target (they are the largest model,
+    // so any probe that meets the target is preferred to them). The sample rank of a D x T x N
+    // tensor is at most D T, so min(N, D T) sample columns are already full.
+    const tensor::Ranks full{dims[0], dims[1], std::min(dims[2], dims[0] * dims[1])};
+    bool found = false;
+    int evaluations = 0;
     double lo = std::log(1e-7), hi = 0.0;  // lo: known to meet (or assumed: finer than full-rank rounding)
     tensor::Ranks last{-1, -1, -1};
     bool last_ok = false;
@@ -44,10 +45,15 @@ RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter
         last_ok = r.target_met;
         if (r.target_met) {
             lo = mid;
-            if (r.model.tucker.parameter_count() <= best.model.tucker.parameter_count()) best = std::move(r);
+            if (!found || r.model.tucker.parameter_count() <= best.model.tucker.parameter_count()) best = std::move(r);
+            found = true;
         } else {
             hi = mid;
         }
+    }
+    if (!found) {
+        best = evaluate(full);
+        ++evaluations;
     }
     best.evaluations = evaluations;
     return best;
