@@ -72,10 +72,16 @@ TEST_CASE("joint error meter: zero for the reference, exact for a rigid shift", 
     CHECK(s.mean_cm == Approx(1.5).epsilon(1e-9));
     CHECK(s.rmse_cm == Approx(1.5).epsilon(1e-9));
     CHECK(s.p99_cm == Approx(1.5).epsilon(1e-9));
+    // exceeds() decides as measure() does, around the measured maximum (#16).
+    CHECK_FALSE(meter.exceeds(a.tensor, 0.0));
+    CHECK_FALSE(meter.exceeds(shifted, s.max_cm));
+    CHECK(meter.exceeds(shifted, s.max_cm * (1.0 - 1e-12)));
+    CHECK(meter.exceeds(shifted, 1.0));
 
     Tensor3 wrong(a.tensor.dimension(0), 19, 3);
     wrong.setZero();
     CHECK_THROWS_AS(meter.measure(wrong), InvalidArgument);
+    CHECK_THROWS_AS(meter.exceeds(wrong, 1.0), InvalidArgument);
 }
 
 TEST_CASE("position-error weights bound every joint's error", "[compression][shared]") {

@@ -305,11 +305,15 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
     o.target_met = chosen.target_met;
     o.search_s = seconds_since(start);
 
-    // The chosen ranks, decomposed with the requested method.
+    // The chosen ranks, decomposed with the requested method. HOSVD reuses the prepared bases (the
+    // same model fit_set_model computes, without a second pass over the set).
     const auto fit_start = Clock::now();
     tensor::HooiOptions hooi;
     hooi.max_iterations = a.max_iterations;
-    o.model = compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, method_of(a.method), hooi);
+    const tensor::TuckerMethod method = method_of(a.method);
+    o.model = method == tensor::TuckerMethod::Hosvd
+                  ? compression::hosvd_model(prepared, chosen.model.tucker.ranks)
+                  : compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, method, hooi);
     o.fit_s = seconds_since(fit_start);
     o.stats = meter.measure(o.model.reconstruct());
     o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
