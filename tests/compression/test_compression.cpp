@@ -72,10 +72,16 @@ TEST_CASE("joint error meter: zero for the reference, exact for a rigid shift", 
     CHECK(s.mean_cm == Approx(1.5).epsilon(1e-9));
     CHECK(s.rmse_cm == Approx(1.5).epsilon(1e-9));
     CHECK(s.p99_cm == Approx(1.5).epsilon(1e-9));
+    // exceeds() decides as measure() does, around the measured maximum (#16).
+    CHECK_FALSE(meter.exceeds(a.tensor, 0.0));
+    CHECK_FALSE(meter.exceeds(shifted, s.max_cm));
+    CHECK(meter.exceeds(shifted, s.max_cm * (1.0 - 1e-12)));
+    CHECK(meter.exceeds(shifted, 1.0));
 
     Tensor3 wrong(a.tensor.dimension(0), 19, 3);
     wrong.setZero();
     CHECK_THROWS_AS(meter.measure(wrong), InvalidArgument);
+    CHECK_THROWS_AS(meter.exceeds(wrong, 1.0), InvalidArgument);
 }
 
 TEST_CASE("position-error weights bound every joint's error", "[compression][shared]") {
@@ -136,4 +142,69 @@ TEST_CASE("set model: full ranks reproduce the poses, truncation meets the searc
         CHECK(r.model.tucker.parameter_count() < tensor::tucker_parameter_count(dims, dims));
     }
     CHECK_THROWS_AS(compression::search_ranks_for_max_error(prepared, meter, 0.0), InvalidArgument);
+}
+
+TEST_CASE("rank search: projected sample basis gives the dense path's ranks and errors (#16)", "[compression][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const auto skeleton = skeleton_of("cmu-asfamc/16_15.amc");
+    const VecX w = compression::position_error_weights(*skeleton);
+    // Real tensors on both sides of N = D T: six walks aligned to 30 frames (N < D T), and 3-frame
+    // windows cut every 4 frames from the same walks (N > D T).
+    Tensor3 windows;
+    {
+        std::vector<MatX> cut;
+        for (int t = 11; t < 17; ++t) {
+            const Clip clip = read_clip(test::datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc"));
+            for (std::size_t f = 0; f + 3 <= clip.frame_count() && cut.size() < 400; f += 4) {
+                const Clip part = slice(clip, f, f + 3);
+                cut.push_back(to_pose_vectors(part, canonicalization_of(part)));
+            }
+        }
+        windows = Tensor3(cut[0].rows(), 3, static_cast<Eigen::Index>(cut.size()));
+        for (std::size_t k = 0; k < cut.size(); ++k)
+            std::copy(cut[k].data(), cut[k].data() + cut[k].size(), windows.data() + k * cut[k].size());
+    }
+    REQUIRE(windows.dimension(2) > windows.dimension(0) * windows.dimension(1));
+    const AlignedSet aligned = walks(6, 30);
+    for (const Tensor3* poses : std::initializer_list<const Tensor3*>{&aligned.tensor, &windows}) {
+        const tensor::Dims3 dims = tensor::dims_of(*poses);
+        const eval::JointErrorMeter meter(skeleton, *poses);
+        compression::PreparedSet dense = compression::prepare_set(*poses, w);
+        compression::PreparedSet projected = dense;
+        tensor::HosvdOptions o;
+        o.sample_basis = tensor::SampleBasisMethod::Dense;
+        dense.bases = tensor::hosvd_bases(dense.x, o);
+        o.sample_basis = tensor::SampleBasisMethod::Projected;
+        projected.bases = tensor::hosvd_bases(projected.x, o);
+        for (const double target : {2.0, 0.5}) {
+            const auto rd = compression::search_ranks_for_max_error(dense, meter, target);
+            const auto rp = compression::search_ranks_for_max_error(projected, meter, target);
+            const tensor::Ranks& a = rd.model.tucker.ranks;
+            const tensor::Ranks& b = rp.model.tucker.ranks;
+            INFO("tensor " << dims[0] << "x" << dims[1] << "x" << dims[2] << ", target " << target << " cm: dense ranks "
+                           << a[0] << "x" << a[1] << "x" << a[2] << " max " << rd.stats.max_cm << " cm, projected "
+                           << b[0] << "x" << b[1] << "x" << b[2] << " max " << rp.stats.max_cm << " cm");
+            CHECK(a == b);
+            CHECK(rd.evaluations == rp.evaluations);
+            CHECK(rp.target_met);
+            CHECK(std::abs(rd.stats.max_cm - rp.stats.max_cm) <= 1e-6);
+            const double fd = 1.0 - rd.model.tucker.fit, fp = 1.0 - rp.model.tucker.fit;
+            CHECK(std::abs(fd * fd - fp * fp) <= 1e-12);
+            const double bd = rd.model.tucker.error_bound, bp = rp.model.tucker.error_bound;
+            const double norm = rd.model.tucker.data_norm;
+            CHECK(std::abs(bd * bd - bp * bp) <= 1e-12 * norm * norm);
+        }
+        // The other decompositions at explicit ranks, as compress runs them after the search.
+        const tensor::Ranks r{std::min<Eigen::Index>(20, dims[0]), std::min<Eigen::Index>(3, dims[1]),
+                              std::min<Eigen::Index>(12, dims[2])};
+        const compression::SetModel h = compression::fit_set_model(*poses, w, r, tensor::TuckerMethod::Hosvd);
+        const compression::SetModel oracle = compression::hosvd_model(dense, r);
+        CHECK(max_abs_difference(h.reconstruct(), oracle.reconstruct()) <= 1e-8);
+        for (auto method : {tensor::TuckerMethod::StHosvd, tensor::TuckerMethod::Hooi}) {
+            const compression::SetModel m = compression::fit_set_model(*poses, w, r, method);
+            CHECK(m.tucker.U[2].rows() == dims[2]);
+            CHECK(m.tucker.U[2].cols() == r[2]);
+            CHECK(m.tucker.fit >= oracle.tucker.fit - 1e-6);
+        }
+    }
 }

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/tensor/hooi.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
 #include "tensor_fixtures.hpp"
 
@@ -130,4 +131,125 @@ TEST_CASE("HOSVD rejects bad arguments", "[tensor][hosvd]") {
     GramAccumulator acc(4, 5);
     CHECK_THROWS_AS(acc.add_slice(MatX::Zero(4, 6)), InvalidArgument);
     CHECK_THROWS_AS(acc.add_slices(MatX::Zero(4, 12)), InvalidArgument);
+}
+
+namespace {
+
+HosvdOptions sample_basis_by(SampleBasisMethod method) {
+    HosvdOptions o;
+    o.sample_basis = method;
+    return o;
+}
+
+double max_spectrum_difference(const VecX& a, const VecX& b) {
+    REQUIRE(a.size() == b.size());
+    return (a - b).cwiseAbs().maxCoeff();
+}
+
+// ST-HOSVD as it was before issue #16: every basis from the dense Gram of its mode.
+TuckerModel dense_st_hosvd(const Tensor3& a, const Ranks& r, const std::array<int, 3>& order) {
+    TuckerModel m;
+    Tensor3 b = a;
+    for (const int n : order) {
+        VecX ev;
+        const auto un = static_cast<std::size_t>(n);
+        m.U[un] = gram_eigenbasis(mode_gram(b, n), ev).leftCols(r[un]);
+        b = mode_product_transposed(b, m.U[un], n);
+    }
+    m.core = b;
+    m.ranks = r;
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("Projected sample basis equals the dense N by N one (#16)", "[tensor][hosvd]") {
+    struct Case {
+        const char* what;
+        Tensor3 a;
+    };
+    const Case cases[] = {
+        {"random, N < D T", random_tensor(6, 5, 20, 61)},
+        {"random, N > D T", random_tensor(5, 4, 60, 62)},
+        {"low rank + 1% noise, N > D T", low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.01, 63)},
+        {"exactly low rank, N > D T (the projection leaves dof and time vectors out)",
+         low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.0, 64)},
+        {"sample rank 12 with full dof and time ranks, D T > 256 (randomized range)",
+         low_rank_tensor({20, 15, 400}, {20, 15, 12}, 0.0, 65)},
+    };
+    for (const Case& c : cases) {
+        INFO(c.what);
+        const Dims3 dims = dims_of(c.a);
+        const Eigen::Index dt = dims[0] * dims[1];
+        const HosvdBases dense = hosvd_bases(c.a, sample_basis_by(SampleBasisMethod::Dense));
+        const HosvdBases projected = hosvd_bases(c.a, sample_basis_by(SampleBasisMethod::Projected));
+        const HosvdBases automatic = hosvd_bases(c.a);
+        CHECK(dense.U[2].cols() == dims[2]);
+        CHECK(projected.U[2].cols() <= std::min(dims[2], dt));
+        if (dims[2] > dt) CHECK(automatic.U[2].cols() <= dt);  // Auto takes the projected path
+        CHECK(orthonormality_error(projected.U[2]) < 1e-12);
+        const double top = dense.spectra.squared_sv[2](0);
+        for (std::size_t n = 0; n < 3; ++n) {
+            CHECK(projected.spectra.dims[n] == dims[n]);
+            const double diff = max_spectrum_difference(dense.spectra.squared_sv[n], projected.spectra.squared_sv[n]);
+            INFO("mode " << n << ": largest eigenvalue difference " << diff << " (largest " << top << ")");
+            CHECK(diff <= 1e-12 * top);
+        }
+        CHECK(projected.spectra.squared_norm == dense.spectra.squared_norm);
+        // Leading sample vectors (well separated eigenvalues): equal, with the same signs.
+        const Eigen::Index lead = std::min<Eigen::Index>(5, projected.U[2].cols());
+        const double vdiff = (dense.U[2].leftCols(lead) - projected.U[2].leftCols(lead)).cwiseAbs().maxCoeff();
+        INFO("leading " << lead << " sample vectors differ by " << vdiff);
+        CHECK(vdiff <= 1e-8);
+        const Ranks rank_list[] = {{1, 1, 1},
+                                   {2, 3, 4},
+                                   {dims[0], dims[1], std::min(dims[2], dt)},
+                                   {dims[0] - 1, dims[1] - 2, std::min(dims[2], dt) / 2},
+                                   dims};  // more sample columns than can carry energy: completed
+        for (const Ranks& r : rank_list) {
+            const TuckerModel hd = hosvd_from_bases(c.a, dense, r);
+            const TuckerModel hp = hosvd_from_bases(c.a, projected, r);
+            const double rd = rel_diff(hd.reconstruct(), hp.reconstruct());
+            INFO("ranks " << r[0] << "x" << r[1] << "x" << r[2] << ": reconstructions differ by " << rd << ", fits "
+                          << hd.fit << " / " << hp.fit << ", bounds " << hd.error_bound << " / " << hp.error_bound);
+            CHECK(rd <= 1e-9);
+            // Fit and bound are square roots of energies: compare the energies (near full ranks the
+            // dense path's bound is the root of N rounding-level eigenvalues, the projected one's 0).
+            const double ed = (1.0 - hd.fit) * (1.0 - hd.fit), ep = (1.0 - hp.fit) * (1.0 - hp.fit);
+            CHECK(std::abs(ed - ep) <= 1e-12);
+            const double norm2 = hd.data_norm * hd.data_norm;
+            CHECK(std::abs(hd.error_bound * hd.error_bound - hp.error_bound * hp.error_bound) <= 1e-12 * norm2);
+            CHECK(hp.U[2].rows() == dims[2]);
+            CHECK(hp.U[2].cols() == r[2]);
+            CHECK(orthonormality_error(hp.U[2]) < 1e-12);
+        }
+    }
+}
+
+TEST_CASE("sample_mode_basis, ST-HOSVD and HOOI without an N by N Gram (#16)", "[tensor][hosvd]") {
+    const Tensor3 a = low_rank_tensor({6, 5, 200}, {4, 4, 9}, 0.02, 71);
+    VecX ev_dense, ev;
+    const MatX dense = gram_eigenbasis(mode_gram(a, 2), ev_dense);
+    const MatX u = sample_mode_basis(a, 12, ev);
+    REQUIRE(u.rows() == 200);
+    REQUIRE(u.cols() == 12);
+    CHECK(max_spectrum_difference(ev_dense, ev) <= 1e-12 * ev_dense(0));
+    CHECK((dense.leftCols(9) - u.leftCols(9)).cwiseAbs().maxCoeff() <= 1e-8);
+    CHECK(orthonormality_error(sample_mode_basis(a, 200, ev)) < 1e-12);  // completed to N columns
+    CHECK_THROWS_AS(sample_mode_basis(a, 0, ev), InvalidArgument);
+    CHECK_THROWS_AS(sample_mode_basis(a, 201, ev), InvalidArgument);
+
+    const Ranks r{4, 4, 9};
+    for (const std::array<int, 3>& order : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{2, 0, 1}}) {
+        const TuckerModel s = st_hosvd(a, r, order);
+        const TuckerModel oracle = dense_st_hosvd(a, r, order);
+        const double rd = rel_diff(oracle.reconstruct(), s.reconstruct());
+        INFO("order " << order[0] << order[1] << order[2] << ": differs from the dense ST-HOSVD by " << rd);
+        CHECK(rd <= 1e-9);
+    }
+    const TuckerModel h = hosvd(a, r);
+    const TuckerModel o = hooi(a, r);
+    CHECK(o.fit >= h.fit - 1e-12);
+    CHECK(orthonormality_error(o.U[2]) < 1e-12);
+    CHECK(relative_error(a, o) <= relative_error(a, h) + 1e-12);
 }

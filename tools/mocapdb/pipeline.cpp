@@ -319,13 +319,18 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
     o.target_met = chosen.target_met;
     o.search_s = seconds_since(start);
 
-    // The chosen ranks, decomposed with the requested method.
+    // The chosen ranks, decomposed with the requested method. HOSVD is the search's own model (the
+    // model fit_set_model would compute from the same bases) with its measured errors: no second
+    // pass over the set (#16).
     const auto fit_start = Clock::now();
     tensor::HooiOptions hooi;
     hooi.max_iterations = a.max_iterations;
-    o.model = compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, method_of(a.method), hooi);
+    const tensor::TuckerMethod method = method_of(a.method);
+    const bool reuse = method == tensor::TuckerMethod::Hosvd;
+    o.model = reuse ? chosen.model
+                    : compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, method, hooi);
     o.fit_s = seconds_since(fit_start);
-    o.stats = meter.measure(o.model.reconstruct());
+    o.stats = reuse && chosen.stats.positions > 0 ? chosen.stats : meter.measure(o.model.reconstruct());
     o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
 
     const ModelFigures figures{o.stats.dof_rmse, o.stats.rmse_cm, o.stats.mean_cm, o.stats.max_cm, o.stats.p99_cm};

@@ -1,5 +1,6 @@
 #include "mocapdb/compression/rank_search.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -9,25 +10,25 @@
 namespace mocapdb::compression {
 namespace {
 
-// Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `ok`.
-template <class Measure>
-RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter, Measure ok) {
+// Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `ok` (ok(model):
+// whether it meets the target). Only the chosen model's errors are measured in full.
+template <class Accept>
+RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter, Accept ok) {
     RankSearchResult best;
     const tensor::Dims3 dims = tensor::dims_of(p.x);
     const auto evaluate = [&](const tensor::Ranks& ranks) {
         RankSearchResult r;
         r.model = hosvd_model(p, ranks);
-        r.stats = meter.measure(r.model.reconstruct());
-        r.target_met = ok(r);
+        r.target_met = ok(r.model);
         return r;
     };
-    // Full ranks first: they reproduce the data (up to rounding), so the target is reachable.
-    best = evaluate({dims[0], dims[1], dims[2]});
-    int evaluations = 1;
-    if (!best.target_met) {
-        best.evaluations = evaluations;
-        return best;
-    }
+    // Full ranks reproduce the data (up to rounding), so the target is reachable: the bisection
+    // assumes it and measures them only when no probe met the target (they are the largest model,
+    // so any probe that meets the target is preferred to them). The sample rank of a D x T x N
+    // tensor is at most D T, so min(N, D T) sample columns are already full.
+    const tensor::Ranks full{dims[0], dims[1], std::min(dims[2], dims[0] * dims[1])};
+    bool found = false;
+    int evaluations = 0;
     double lo = std::log(1e-7), hi = 0.0;  // lo: known to meet (or assumed: finer than full-rank rounding)
     tensor::Ranks last{-1, -1, -1};
     bool last_ok = false;
@@ -44,11 +45,17 @@ RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter
         last_ok = r.target_met;
         if (r.target_met) {
             lo = mid;
-            if (r.model.tucker.parameter_count() <= best.model.tucker.parameter_count()) best = std::move(r);
+            if (!found || r.model.tucker.parameter_count() <= best.model.tucker.parameter_count()) best = std::move(r);
+            found = true;
         } else {
             hi = mid;
         }
     }
+    if (!found) {
+        best = evaluate(full);
+        ++evaluations;
+    }
+    best.stats = meter.measure(best.model.reconstruct());
     best.evaluations = evaluations;
     return best;
 }
@@ -77,16 +84,17 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const eval::Jo
     if (!(max_cm > 0.0) || !std::isfinite(max_cm))
         throw InvalidArgument("search_ranks_for_max_error: the target must be a finite number of cm > 0, got " +
                               std::to_string(max_cm));
-    return bisect(p, meter, [&](const RankSearchResult& r) { return r.stats.max_cm <= max_cm; });
+    // Same decision as measure(...).max_cm <= max_cm, stopping at the first joint beyond the target.
+    return bisect(p, meter, [&](const SetModel& m) { return !meter.exceeds(m.reconstruct(), max_cm); });
 }
 
 RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const eval::JointErrorMeter& meter, double rmse) {
     if (!(rmse >= 0.0) || !std::isfinite(rmse))
         throw InvalidArgument("search_ranks_for_rmse: the target must be finite and >= 0, got " + std::to_string(rmse));
     const double count = static_cast<double>(p.x.size());
-    return bisect(p, meter, [&](const RankSearchResult& r) {
+    return bisect(p, meter, [&](const SetModel& m) {
         // ||X - X_hat||^2 = ||X||^2 - ||G||^2 for HOSVD-type models; measured from the fit.
-        const double error = r.model.tucker.data_norm * (1.0 - r.model.tucker.fit);
+        const double error = m.tucker.data_norm * (1.0 - m.tucker.fit);
         return error / std::sqrt(count) <= rmse;
     });
 }

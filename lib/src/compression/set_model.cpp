@@ -45,7 +45,16 @@ Tensor3 from_weighted_centred(const Tensor3& x, const VecX& mean, const VecX& we
     return a;
 }
 
-Tensor3 SetModel::reconstruct() const { return from_weighted_centred(tucker.reconstruct(), mean, weight); }
+Tensor3 SetModel::reconstruct() const {
+    // In place: one D x T x N tensor at a time (issue #16: sets of 10 000 windows).
+    Tensor3 a = tucker.reconstruct();
+    check_dof_vector(a, mean, "mean");
+    check_dof_vector(a, weight, "weight");
+    const Eigen::Index d = a.dimension(0), columns = a.dimension(1) * a.dimension(2);
+    Eigen::Map<MatX> m(a.data(), d, columns);
+    m = (m.array().colwise() / weight.array()).matrix().colwise() + mean;
+    return a;
+}
 
 Tensor3 SetModel::reconstruct(const tensor::Ranks& lod) const {
     return from_weighted_centred(tucker.reconstruct(lod), mean, weight);

@@ -95,6 +95,20 @@ JointErrorStats JointErrorMeter::measure(const Tensor3& approx) const {
     return s;
 }
 
+bool JointErrorMeter::exceeds(const Tensor3& approx, double max_cm) const {
+    check_same_shape(reference_, approx);
+    const Eigen::Index samples = reference_.dimension(2), frames = reference_.dimension(1);
+    const auto joints = static_cast<Eigen::Index>(skeleton_->size());
+    for (Eigen::Index n = 0; n < samples; ++n) {
+        const MatX p = pose_joint_positions(*skeleton_, sample_slice(approx, n));
+        const MatX& r = reference_positions_[static_cast<std::size_t>(n)];
+        for (Eigen::Index f = 0; f < frames; ++f)
+            for (Eigen::Index j = 0; j < joints; ++j)
+                if ((p.block<3, 1>(3 * j, f) - r.block<3, 1>(3 * j, f)).norm() > max_cm) return true;
+    }
+    return false;
+}
+
 MatX JointErrorMeter::max_error_per_frame(const Tensor3& approx) const {
     check_same_shape(reference_, approx);
     const Eigen::Index samples = reference_.dimension(2), frames = reference_.dimension(1);

@@ -21,6 +21,7 @@ double fit_from(double squared_norm_a, double squared_norm_core) {
 // Leading r left singular vectors of y_(mode), from its Gram matrix.
 MatX leading_basis(const Tensor3& y, int mode, Eigen::Index r) {
     VecX ev;
+    if (mode == 2) return sample_mode_basis(y, r, ev);  // no N by N Gram when N is the larger side
     const MatX u = gram_eigenbasis(mode_gram(y, mode), ev);
     return u.leftCols(r);
 }

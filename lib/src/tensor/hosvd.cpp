@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
+#include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
@@ -26,7 +30,163 @@ double fit_from(double squared_norm_a, double squared_norm_core) {
     return 1.0 - std::sqrt(std::max(0.0, 1.0 - squared_norm_core / squared_norm_a));
 }
 
+// gram_eigenbasis's sign convention: each column's largest-magnitude entry positive.
+void make_signs_canonical(MatX& u) {
+    for (Eigen::Index j = 0; j < u.cols(); ++j) {
+        Eigen::Index imax = 0;
+        u.col(j).cwiseAbs().maxCoeff(&imax);
+        if (u(imax, j) < 0.0) u.col(j) = -u.col(j);
+    }
+}
+
+// Orthonormal columns from nearly orthonormal ones, keeping the nested spans (column j stays in the
+// span of columns 0..j): two Cholesky-QR passes, Householder QR if the Gram is not positive definite.
+void reorthonormalize(MatX& v) {
+    for (int pass = 0; pass < 2; ++pass) {
+        MatX g = MatX::Zero(v.cols(), v.cols());
+        g.selfadjointView<Eigen::Lower>().rankUpdate(v.transpose());
+        const Eigen::LLT<MatX, Eigen::Lower> llt(g);
+        if (llt.info() != Eigen::Success) {
+            const Eigen::HouseholderQR<MatX> qr(v);
+            MatX q = qr.householderQ() * MatX::Identity(v.rows(), v.cols());
+            for (Eigen::Index j = 0; j < v.cols(); ++j)
+                if (q.col(j).dot(v.col(j)) < 0.0) q.col(j) = -q.col(j);
+            v = std::move(q);
+            return;
+        }
+        llt.matrixU().solveInPlace<Eigen::OnTheRight>(v);  // v U^-1, U^T U = v^T v
+    }
+}
+
+// Eigenvalues below this fraction of the largest give no sample-basis column on the projected path:
+// M^T w / sigma would be rounding noise there (the dense path's vectors are not resolved either).
+constexpr double kKeptEigenvalue = 1e-14;
+// Energy (relative) that sample_mode_basis's randomized range may leave out.
+constexpr double kKeptEnergy = 1e-13;
+
+// Orthonormal q (L by k) and b = q^T m (k by N) with ||m - q b||^2 = ||m||^2 - ||b||^2 <= budget, by
+// the blocked randomized range finder with exact energy accounting (Halko, Martinsson, Tropp 2011;
+// Martinsson, Voronin 2016): blocks of m * Gaussian, orthogonalized against the columns found so far
+// and rank-revealed (column-pivoted QR), until the energy is accounted for or a probe finds nothing
+// new. Deterministic (fixed seed). Returns false when that needs
+// more than max_k columns (the data has no low numerical rank: the caller decomposes m m^T instead).
+bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Index max_k, MatX& q, MatX& b) {
+    const Eigen::Index l = m.rows(), n = m.cols(), block = 64;
+    std::mt19937_64 rng(16);
+    std::normal_distribution<double> gauss(0.0, 1.0);
+    const double total = m.squaredNorm();
+    std::vector<MatX> qs, bs;
+    Eigen::Index k = 0;
+    double captured = 0.0;
+    while (total - captured > budget) {
+        if (k + block > max_k) return false;
+        MatX omega(n, block);
+        for (Eigen::Index i = 0; i < omega.size(); ++i) omega.data()[i] = gauss(rng);
+        MatX y = m * omega;
+        const double y_norm = y.norm();
+        for (int pass = 0; pass < 2; ++pass)
+            for (const MatX& qi : qs) y.noalias() -= qi * (qi.transpose() * y);
+        Eigen::ColPivHouseholderQR<MatX> qr(y);
+        qr.setThreshold(1e-10 * y_norm / std::max(1e-300, y.norm()));
+        const Eigen::Index r = qr.rank();
+        // Nothing above 1e-10 of the probe's size is left: the range is exhausted (the rest of the
+        // missing energy is the rounding of the running sums).
+        if (r == 0) break;
+        MatX qi = qr.householderQ() * MatX::Identity(l, r);
+        for (const MatX& qj : qs) qi.noalias() -= qj * (qj.transpose() * qi);
+        const Eigen::HouseholderQR<MatX> clean(qi);
+        qi = clean.householderQ() * MatX::Identity(l, r);
+        MatX bi = qi.transpose() * m;
+        captured += bi.squaredNorm();
+        qs.push_back(std::move(qi));
+        bs.push_back(std::move(bi));
+        k += r;
+    }
+    q.resize(l, k);
+    b.resize(k, n);
+    Eigen::Index at = 0;
+    for (std::size_t i = 0; i < qs.size(); ++i) {
+        q.middleCols(at, qs[i].cols()) = qs[i];
+        b.middleRows(at, bs[i].rows()) = bs[i];
+        at += qs[i].cols();
+    }
+    return true;
+}
+
+// Right singular vectors of m (L by N) from the eigendecomposition of m m^T (L by L), or, when m's
+// energy lies in a subspace of dimension k <= L / 2 up to `budget`, of b b^T (k by k) with m ~ q b
+// (randomized_range): v_j = m^T w_j / sigma_j for the eigenvalues above kKeptEigenvalue * the
+// largest (at most min(N, L) columns). out_eigenvalues: N values, decreasing, zeros beyond.
+MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, VecX& out_eigenvalues) {
+    const Eigen::Index l = m.rows(), n = m.cols();
+    MatX q, b;
+    const bool reduced = l > 256 && randomized_range(m, budget, l / 2, q, b);
+    const Eigen::Index side = reduced ? b.rows() : l;
+    MatX c = MatX::Zero(side, side);
+    if (reduced) {
+        q.resize(0, 0);
+        c.selfadjointView<Eigen::Lower>().rankUpdate(b);
+    } else {
+        c.selfadjointView<Eigen::Lower>().rankUpdate(m);
+    }
+    VecX ev;
+    const MatX w = side > 0 ? gram_eigenbasis(c, ev) : MatX();  // reads the lower triangle
+    c.resize(0, 0);
+    const Eigen::Index top = std::min(side, n);
+    out_eigenvalues = VecX::Zero(n);
+    out_eigenvalues.head(top) = ev.head(top);
+    Eigen::Index kept = 0;
+    while (kept < top && ev(kept) > 0.0 && ev(kept) > kKeptEigenvalue * ev(0)) ++kept;
+    MatX v(n, kept);
+    if (kept == 0) return v;
+    if (reduced) v.noalias() = b.transpose() * w.leftCols(kept);
+    else v.noalias() = m.transpose() * w.leftCols(kept);
+    v *= ev.head(kept).cwiseSqrt().cwiseInverse().asDiagonal();
+    reorthonormalize(v);
+    make_signs_canonical(v);
+    return v;
+}
+
+// Smallest k whose discarded eigenvalues (tail of the decreasing ev) sum to <= budget (k >= 1).
+Eigen::Index kept_for_budget(const VecX& ev, double budget) {
+    Eigen::Index k = ev.size();
+    double tail = 0.0;
+    while (k > 1 && tail + ev(k - 1) <= budget) tail += ev(--k);
+    return k;
+}
+
 }  // namespace
+
+MatX sample_basis_columns(const Eigen::Ref<const MatX>& u, Eigen::Index rank) {
+    const Eigen::Index n = u.rows(), k = u.cols();
+    if (rank < 1 || rank > n || k > n) {
+        throw InvalidArgument("sample_basis_columns: the rank must be in [1, " + idx(n) + "] for a basis of " + idx(n) +
+                              " by " + idx(k) + ", got " + idx(rank));
+    }
+    if (rank <= k) return u.leftCols(rank);
+    MatX out(n, rank);
+    out.leftCols(k) = u;
+    if (k == 0) {
+        out = MatX::Identity(n, rank);
+        return out;
+    }
+    // Columns k..rank-1 of the orthogonal factor of u's Householder QR are orthogonal to span(u).
+    const Eigen::HouseholderQR<MatX> qr(u);
+    MatX e = MatX::Zero(n, rank - k);
+    for (Eigen::Index j = 0; j < rank - k; ++j) e(k + j, j) = 1.0;
+    out.rightCols(rank - k).noalias() = qr.householderQ() * e;
+    return out;
+}
+
+MatX sample_mode_basis(const Tensor3& b, Eigen::Index rank, VecX& out_eigenvalues) {
+    check_tensor(b, "sample_mode_basis");
+    const Eigen::Index l = b.dimension(0) * b.dimension(1), n = b.dimension(2);
+    if (rank < 1 || rank > n)
+        throw InvalidArgument("sample_mode_basis: the rank must be in [1, " + idx(n) + "], got " + idx(rank));
+    if (n <= l) return gram_eigenbasis(mode_gram(b, 2), out_eigenvalues).leftCols(rank);
+    const Eigen::Map<const MatX> m(b.data(), l, n);
+    return sample_basis_columns(right_basis_from_row_gram(m, kKeptEnergy * m.squaredNorm(), out_eigenvalues), rank);
+}
 
 // ---------------------------------------------------------------------------------------------------
 GramAccumulator::GramAccumulator(Eigen::Index dofs, Eigen::Index frames) : dofs_(dofs), frames_(frames) {
@@ -136,21 +296,51 @@ HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options) {
     if (options.chunk_samples < 1) {
         throw InvalidArgument("hosvd: options.chunk_samples must be >= 1, got " + idx(options.chunk_samples));
     }
+    if (!(options.projection_tolerance >= 0.0 && options.projection_tolerance < 1e-6)) {
+        throw InvalidArgument("hosvd: options.projection_tolerance must be in [0, 1e-6), got " +
+                              std::to_string(options.projection_tolerance));
+    }
     const Eigen::Index d = a.dimension(0), t = a.dimension(1), n = a.dimension(2);
     GramAccumulator acc(d, t);
     for (Eigen::Index k0 = 0; k0 < n; k0 += options.chunk_samples) {
         const Eigen::Index k = std::min(options.chunk_samples, n - k0);
         acc.add_slices(Eigen::Map<const MatX>(a.data() + k0 * d * t, d, t * k));
     }
-    const MatX g2 = mode_gram(a, 2);
-    return hosvd_bases_from_grams(acc.dof_gram(), acc.time_gram(), g2, acc.squared_norm());
+    if (options.sample_basis == SampleBasisMethod::Dense) {
+        const MatX g2 = mode_gram(a, 2);
+        return hosvd_bases_from_grams(acc.dof_gram(), acc.time_gram(), g2, acc.squared_norm());
+    }
+    HosvdBases b;
+    b.U[0] = gram_eigenbasis(acc.dof_gram(), b.spectra.squared_sv[0]);
+    b.U[1] = gram_eigenbasis(acc.time_gram(), b.spectra.squared_sv[1]);
+    b.spectra.dims = {d, t, n};
+    b.spectra.squared_norm = acc.squared_norm();
+    // The dof and time vectors that carry all but the tolerance of the energy (a quarter each; the
+    // randomized range of the projected samples may leave out the other half).
+    const double budget = 0.25 * options.projection_tolerance * acc.squared_norm();
+    const Eigen::Index k0 = kept_for_budget(b.spectra.squared_sv[0], budget);
+    const Eigen::Index k1 = kept_for_budget(b.spectra.squared_sv[1], budget);
+    if (options.sample_basis == SampleBasisMethod::Auto && n <= k0 * k1) {
+        b.U[2] = gram_eigenbasis(mode_gram(a, 2), b.spectra.squared_sv[2]);
+        return b;
+    }
+    if (k0 == d && k1 == t) {  // nothing to leave out: the samples as stored
+        b.U[2] = right_basis_from_row_gram(Eigen::Map<const MatX>(a.data(), d * t, n), 2.0 * budget,
+                                           b.spectra.squared_sv[2]);
+    } else {
+        const Tensor3 y = mode_product_transposed(mode_product_transposed(a, b.U[0].leftCols(k0), 0),
+                                                  b.U[1].leftCols(k1), 1);
+        b.U[2] = right_basis_from_row_gram(Eigen::Map<const MatX>(y.data(), k0 * k1, n), 2.0 * budget,
+                                           b.spectra.squared_sv[2]);
+    }
+    return b;
 }
 
 TuckerModel hosvd_from_bases(const Tensor3& a, const HosvdBases& bases, const Ranks& ranks) {
     const Dims3 dims = dims_of(a);
     check_ranks(dims, ranks, "hosvd");
     for (std::size_t n = 0; n < 3; ++n) {
-        if (bases.U[n].rows() != dims[n] || bases.U[n].cols() < ranks[n]) {
+        if (bases.U[n].rows() != dims[n] || (n < 2 && bases.U[n].cols() < ranks[n])) {
             throw InvalidArgument(std::string("hosvd_from_bases: the ") + mode_name(static_cast<int>(n)) +
                                   " basis must have " + idx(dims[n]) + " rows and >= " + idx(ranks[n]) +
                                   " columns, got " + idx(bases.U[n].rows()) + " by " + idx(bases.U[n].cols()));
@@ -160,7 +350,9 @@ TuckerModel hosvd_from_bases(const Tensor3& a, const HosvdBases& bases, const Ra
     m.method = TuckerMethod::Hosvd;
     m.status = TuckerStatus::Ok;
     m.ranks = ranks;
-    for (std::size_t n = 0; n < 3; ++n) m.U[n] = bases.U[n].leftCols(ranks[n]);
+    m.U[0] = bases.U[0].leftCols(ranks[0]);
+    m.U[1] = bases.U[1].leftCols(ranks[1]);
+    m.U[2] = sample_basis_columns(bases.U[2], ranks[2]);
     // Project the largest reductions first: the dof mode, then time, then sample.
     Tensor3 c = mode_product_transposed(a, m.U[0], 0);
     c = mode_product_transposed(c, m.U[1], 1);
@@ -197,9 +389,8 @@ TuckerModel st_hosvd(const Tensor3& a, const Ranks& ranks, const std::array<int,
     Tensor3 b = a;
     for (const int n : order) {
         VecX ev;
-        const MatX u = gram_eigenbasis(mode_gram(b, n), ev);
         const auto un = static_cast<std::size_t>(n);
-        m.U[un] = u.leftCols(ranks[un]);
+        m.U[un] = n == 2 ? sample_mode_basis(b, ranks[un], ev) : MatX(gram_eigenbasis(mode_gram(b, n), ev).leftCols(ranks[un]));
         discarded += ev.tail(ev.size() - ranks[un]).sum();
         b = mode_product_transposed(b, m.U[un], n);
     }

@@ -6,7 +6,8 @@
 // The candidates are the rank triples with the fewest parameters whose HOSVD bound is ≤ e·‖X‖ for a
 // relative error e (tensor::ranks_for_error_bound): one triple per e, so the search is a bisection
 // over e. The max joint error is not exactly monotone in e; the bisection keeps the best triple it
-// has measured that meets the target, so the result always meets it (full ranks reproduce the data).
+// has measured that meets the target, so the result always meets it (full ranks reproduce the data;
+// they are measured, and returned, only when no probe meets the target).
 #include <functional>
 
 #include "mocapdb/compression/set_model.hpp"
@@ -20,7 +21,7 @@ struct PreparedSet {
     Tensor3 x;                 ///< weighted_centred(poses, mean, weight)
     VecX mean;
     VecX weight;
-    tensor::HosvdBases bases;  ///< full eigenbases and spectra of x's mode Gram matrices
+    tensor::HosvdBases bases;  ///< eigenbases and spectra of x's mode Gram matrices (tensor::hosvd_bases)
 };
 
 PreparedSet prepare_set(const Tensor3& poses, const VecX& weight);

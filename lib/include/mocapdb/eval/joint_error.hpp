@@ -54,6 +54,10 @@ public:
     /// approx: same shape as the reference. Throws InvalidArgument on a shape mismatch or a
     /// non-finite value.
     JointErrorStats measure(const Tensor3& approx) const;
+    /// True as soon as one joint of one frame is more than max_cm from the reference (the errors
+    /// measure() computes: exceeds(a, e) == (measure(a).max_cm > e)), without keeping the errors:
+    /// a failed check usually stops within the first samples. Same requirements as measure().
+    bool exceeds(const Tensor3& approx, double max_cm) const;
     /// Per sample and frame: the largest joint error (cm), T by N. Same requirements as measure().
     MatX max_error_per_frame(const Tensor3& approx) const;
 

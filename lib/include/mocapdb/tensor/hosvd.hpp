@@ -10,6 +10,19 @@
 // larger than memory stream through one slice at a time. The sample Gram G_sample(n, m) = <S_n, S_m>
 // couples every pair of samples; in memory it is one product of the (D T) by N storage.
 //
+// Many samples (issue #16): the sample basis never needs an N by N matrix when N is larger than the
+// other side. With M the L by N matrix whose column n is sample n expressed in the leading k0 dof and
+// k1 time basis vectors (L = k0 k1; k0, k1 the smallest counts whose discarded dof and time energy
+// is <= projection_tolerance ||A||^2, so M M^T equals the sample Gram's nonzero part to rounding),
+// the sample basis is V = M^T W Sigma^-1 from the eigendecomposition W Sigma^2 W^T of the L by L
+// matrix M M^T (re-orthonormalized by two Cholesky-QR passes). When L > 256 and M's energy lies in
+// k <= L / 2 dimensions up to half the tolerance, a blocked randomized range finder with exact
+// energy accounting gives M ~ Q B (Q: L by k) and the k by k matrix B B^T replaces M M^T. Only the
+// columns that can carry energy are kept (at most min(N, L)); the spectrum is padded with zeros to
+// N values, and a rank above the kept columns gets an orthonormal completion (those directions
+// carry no energy). Memory O(N R + L^2) (O(N k + L k) on the randomized path), time O(L^2 N + L^3)
+// (O(L N k + k^3)) instead of O(N^2 L + N^3).
+//
 // Accuracy: eigenvalues of a Gram matrix carry absolute errors of about eps * sigma_1^2, so singular
 // values below about 1e-8 sigma_1 are not resolved (their bases are still orthonormal, and full-rank
 // reconstructions are exact to rounding).
@@ -61,15 +74,28 @@ private:
 /// mode: 0, 1 or 2. Returns I_mode by I_mode, symmetric. Throws InvalidArgument on bad arguments.
 MatX mode_gram(const Tensor3& a, int mode);
 
-/// Complete eigenbases of the three Gram matrices: everything a truncated HOSVD at any ranks needs.
+/// Eigenbases of the three Gram matrices: everything a truncated HOSVD at any ranks needs.
 struct HosvdBases {
-    std::array<MatX, 3> U;  ///< U[n]: I_n by I_n orthogonal, columns by decreasing eigenvalue
-    ModeSpectra spectra;    ///< the matching eigenvalues (squared singular values)
+    /// U[0]: D by D and U[1]: T by T orthogonal; U[2]: N by K with orthonormal columns, K = N from
+    /// the dense sample Gram, K <= min(N, L) from the projected path (the columns that can carry
+    /// energy; sample_basis_columns() completes it to any rank). Columns by decreasing eigenvalue.
+    std::array<MatX, 3> U;
+    ModeSpectra spectra;    ///< the matching eigenvalues (squared singular values), I_n values per mode
+};
+
+/// How hosvd_bases computes the sample basis.
+enum class SampleBasisMethod {
+    Auto,       ///< Projected when N > L (see the header comment), Dense otherwise
+    Dense,      ///< eigendecomposition of the N by N sample Gram
+    Projected,  ///< from the L by L Gram of the projected samples (any N)
 };
 
 struct HosvdOptions {
     /// Samples per chunk when accumulating the dof and time Gram matrices (>= 1).
     Eigen::Index chunk_samples = 16;
+    SampleBasisMethod sample_basis = SampleBasisMethod::Auto;
+    /// Projected path: dof and time energy left out of the projection, relative to ||A||^2 (>= 0, < 1e-6).
+    double projection_tolerance = 1e-13;
 };
 
 /// Eigendecomposition of symmetric Gram matrix g (I by I, lower triangle read). Returns the I by I
@@ -81,13 +107,26 @@ MatX gram_eigenbasis(const Eigen::Ref<const MatX>& g, VecX& out_eigenvalues);
 /// Throws InvalidArgument on bad arguments.
 HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options = {});
 
+/// Leading left singular vectors of the sample unfolding of b (I0 by I1 by N, finite): N by `rank`
+/// orthonormal columns, by decreasing singular value (each column's largest-magnitude entry
+/// positive). From the N by N Gram when N <= I0 I1, else from the I0 I1 by I0 I1 Gram of the other
+/// side and a projection (columns beyond the numerical rank completed orthonormally).
+/// out_eigenvalues: N squared singular values, decreasing (zeros beyond min(N, I0 I1)).
+/// 1 <= rank <= N. Throws InvalidArgument on bad arguments.
+MatX sample_mode_basis(const Tensor3& b, Eigen::Index rank, VecX& out_eigenvalues);
+
+/// The first `rank` columns of a sample basis u (N by K, orthonormal columns): u's own columns,
+/// then (rank > K) an orthonormal completion. 1 <= rank <= N. Throws InvalidArgument otherwise.
+MatX sample_basis_columns(const Eigen::Ref<const MatX>& u, Eigen::Index rank);
+
 /// Bases and spectra from Gram matrices accumulated elsewhere (for instance streamed).
 /// dof_gram: D by D; time_gram: T by T; sample_gram: N by N (all symmetric, lower triangles read);
 /// squared_norm: ||A||_F^2. Throws InvalidArgument on non-square inputs.
 HosvdBases hosvd_bases_from_grams(const Eigen::Ref<const MatX>& dof_gram, const Eigen::Ref<const MatX>& time_gram,
                                   const Eigen::Ref<const MatX>& sample_gram, double squared_norm);
 
-/// Truncated HOSVD from precomputed bases: U_n = first ranks[n] columns of bases.U[n],
+/// Truncated HOSVD from precomputed bases: U_n = first ranks[n] columns of bases.U[n] (the sample
+/// basis completed by sample_basis_columns when it has fewer),
 /// core = a x_0 U_0^T x_1 U_1^T x_2 U_2^T, error_bound = hosvd_error_bound(bases.spectra, ranks).
 /// a: D by T by N, the tensor the bases came from; 1 <= ranks[n] <= dims[n].
 /// Throws InvalidArgument on bad arguments.
