@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include "mini_json.hpp"
 #include "mocapdb/io/clip_file.hpp"
@@ -34,25 +33,6 @@ double max_position_error(const Clip& source, const Clip& decoded) {
         for (Eigen::Index j = 0; j < a.rows(); j += 3)
             worst = std::max(worst, (a.block<3, 1>(j, f) - b.block<3, 1>(j, f)).norm());
     return worst;
-}
-
-std::string violations_text(const ValidationReport& r) {
-    std::string out;
-    for (const Violation& v : r.violations) out += v.path + ": " + v.message + "\n";
-    return out;
-}
-
-void flip_bytes(const std::filesystem::path& file, std::uint64_t offset, std::size_t count) {
-    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
-    REQUIRE(f);
-    for (std::size_t k = 0; k < count; ++k) {
-        f.seekg(static_cast<std::streamoff>(offset + k));
-        char c = 0;
-        f.read(&c, 1);
-        c = static_cast<char>(~c);
-        f.seekp(static_cast<std::streamoff>(offset + k));
-        f.write(&c, 1);
-    }
 }
 
 }  // namespace
@@ -132,7 +112,7 @@ TEST_CASE("packed tier: shared clips of both folders packed at E = 1 and 0.5 thr
         }
         CHECK(static_cast<double>(frames) == j["frames"].number);
         const ValidationReport report = validate_database(db);
-        INFO(violations_text(report));
+        INFO(all_violations(report));
         CHECK(report.ok());
     }
 
@@ -199,12 +179,9 @@ TEST_CASE("packed tier: a corrupted packed dataset gives a checksum error naming
     CHECK_THROWS_WITH(db.load_clip_packed("walk"),
                       Catch::Contains("db.h5: /packed/g0/bytes: checksum mismatch in dataset /packed/g0/bytes"));
     const ValidationReport r = validate_database(file);
-    INFO(violations_text(r));
+    INFO(all_violations(r));
     CHECK_FALSE(r.ok());
-    const bool named = std::any_of(r.violations.begin(), r.violations.end(), [&](const Violation& v) {
-        return v.path == path && v.message.find("checksum mismatch in dataset /packed/g0/bytes") != std::string::npos;
-    });
-    CHECK(named);
+    CHECK(has_violation(r, path, "checksum mismatch in dataset /packed/g0/bytes"));
     if (!cli_path().empty()) {
         const CommandResult cli = run_cli("validate " + quoted(file.string()));
         INFO(cli.output);
@@ -251,7 +228,7 @@ TEST_CASE("packed tier: E <= 0 or NaN refused; empty and one-clip databases pack
     REQUIRE(tier);
     CHECK(tier->groups.empty());
     const ValidationReport er = validate_database(empty);
-    INFO(violations_text(er));
+    INFO(all_violations(er));
     CHECK(er.ok());
 
     // One clip.
@@ -273,6 +250,6 @@ TEST_CASE("packed tier: E <= 0 or NaN refused; empty and one-clip databases pack
     CHECK_THROWS_AS(db.load_clip_packed("solo", 150), InvalidArgument);
     CHECK_THROWS_AS(db.load_clip_packed("nobody"), StoreError);
     const ValidationReport r = validate_database(one);
-    INFO(violations_text(r));
+    INFO(all_violations(r));
     CHECK(r.ok());
 }
