@@ -14,28 +14,12 @@
 #include "mocapdb/store/pack.hpp"
 #include "mocapdb/store/storage_extents.hpp"
 #include "mocapdb/store/validate.hpp"
+#include "fk_error.hpp"
 #include "shared_data.hpp"
 #include "store_test_support.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::test;
-
-namespace {
-
-/// Max FK distance (cm) over every joint, end site and frame.
-double max_position_error(const Clip& source, const Clip& decoded) {
-    REQUIRE(decoded.frame_count() == source.frame_count());
-    const MatX a = joint_positions(source);
-    const MatX b = joint_positions(decoded);
-    REQUIRE(a.rows() == b.rows());
-    double worst = 0.0;
-    for (Eigen::Index f = 0; f < a.cols(); ++f)
-        for (Eigen::Index j = 0; j < a.rows(); j += 3)
-            worst = std::max(worst, (a.block<3, 1>(j, f) - b.block<3, 1>(j, f)).norm());
-    return worst;
-}
-
-}  // namespace
 
 TEST_CASE("packed tier: shared clips of both folders packed at E = 1 and 0.5 through the CLI decode within E",
           "[store][packed][shared]") {
