@@ -11,24 +11,14 @@
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 #include "mocapdb/procedural/walk.hpp"
+#include "fk_error.hpp"
 #include "shared_data.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::packing;
+using mocapdb::test::max_position_error;
 
 namespace {
-
-/// Max FK distance (cm) between a source clip and its decode, over every joint, end site and frame.
-double max_position_error(const Clip& source, const Clip& decoded) {
-    REQUIRE(decoded.frame_count() == source.frame_count());
-    const MatX a = joint_positions(source);
-    const MatX b = joint_positions(decoded);
-    double worst = 0.0;
-    for (Eigen::Index f = 0; f < a.cols(); ++f)
-        for (Eigen::Index j = 0; j < a.rows(); j += 3)
-            worst = std::max(worst, (a.block<3, 1>(j, f) - b.block<3, 1>(j, f)).norm());
-    return worst;
-}
 
 std::vector<Clip> procedural_walks() {
     std::vector<Clip> out;

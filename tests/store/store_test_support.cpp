@@ -8,12 +8,38 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/sha256.hpp"
 #include "shared_data.hpp"
 
 namespace mocapdb::test {
+
+std::string all_violations(const ValidationReport& r) {
+    std::string out;
+    for (const Violation& v : r.violations) out += v.path + ": " + v.message + "\n";
+    return out;
+}
+
+bool has_violation(const ValidationReport& r, const std::string& path, const std::string& text) {
+    for (const Violation& v : r.violations)
+        if (v.path == path && v.message.find(text) != std::string::npos) return true;
+    return false;
+}
+
+void flip_bytes(const std::filesystem::path& file, std::uint64_t offset, std::size_t count) {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    if (!f) throw std::runtime_error("flip_bytes: cannot open " + file.string());
+    for (std::size_t k = 0; k < count; ++k) {
+        f.seekg(static_cast<std::streamoff>(offset + k));
+        char c = 0;
+        f.read(&c, 1);
+        c = static_cast<char>(~c);
+        f.seekp(static_cast<std::streamoff>(offset + k));
+        f.write(&c, 1);
+    }
+}
 
 Clip synthetic_clip(std::size_t frames, std::size_t joints, unsigned seed, double frame_rate) {
     std::vector<Joint> js;

@@ -7,6 +7,7 @@
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/store/clip_record.hpp"
+#include "mocapdb/store/validate.hpp"
 #include "test_support.hpp"
 
 namespace mocapdb::test {
@@ -19,6 +20,13 @@ ClipSource synthetic_source(const std::string& file_name, const std::string& see
 /// An aligned set that fits `set` (N samples) for a skeleton with pose vectors of `dofs` values and
 /// `frames` aligned frames; values encode their position: tensor(d, t, s) = d + 10·t + 100·s.
 AlignedSet synthetic_aligned(std::size_t dofs, std::size_t frames, const MotionSet& set);
+
+/// Every violation as "PATH: MESSAGE" lines (for INFO).
+std::string all_violations(const ValidationReport& r);
+/// True when a violation at `path` contains `text`.
+bool has_violation(const ValidationReport& r, const std::string& path, const std::string& text);
+/// Inverts `count` bytes of a file from `offset` (corrupting a dataset's chunk in place).
+void flip_bytes(const std::filesystem::path& file, std::uint64_t offset, std::size_t count);
 
 /// The bytes of a file.
 std::string file_bytes(const std::filesystem::path& path);

@@ -20,31 +20,6 @@ std::string first_violation(const ValidationReport& r) {
     return r.violations.empty() ? std::string("(none)") : r.violations.front().path + ": " + r.violations.front().message;
 }
 
-bool has_violation(const ValidationReport& r, const std::string& path, const std::string& text) {
-    for (const Violation& v : r.violations)
-        if (v.path == path && v.message.find(text) != std::string::npos) return true;
-    return false;
-}
-
-std::string all_violations(const ValidationReport& r) {
-    std::string out;
-    for (const Violation& v : r.violations) out += v.path + ": " + v.message + "\n";
-    return out;
-}
-
-void flip_bytes(const std::filesystem::path& file, std::uint64_t offset, std::size_t count) {
-    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
-    REQUIRE(f);
-    for (std::size_t k = 0; k < count; ++k) {
-        f.seekg(static_cast<std::streamoff>(offset + k));
-        char c = 0;
-        f.read(&c, 1);
-        c = static_cast<char>(~c);
-        f.seekp(static_cast<std::streamoff>(offset + k));
-        f.write(&c, 1);
-    }
-}
-
 }  // namespace
 
 TEST_CASE("bad files: a newer format version is refused, saying so", "[store][bad]") {

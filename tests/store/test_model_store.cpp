@@ -90,18 +90,6 @@ void check_identical(const StoredModel& back, const compression::SetModel& m, co
     CHECK(back.figures.p99_cm == fig.p99_cm);
 }
 
-std::string all_violations(const ValidationReport& r) {
-    std::string out;
-    for (const Violation& v : r.violations) out += v.path + ": " + v.message + "\n";
-    return out;
-}
-
-bool has_violation(const ValidationReport& r, const std::string& path, const std::string& text) {
-    for (const Violation& v : r.violations)
-        if (v.path == path && v.message.find(text) != std::string::npos) return true;
-    return false;
-}
-
 // The StoreError of load_model on a fixture: its path and message.
 std::pair<std::string, std::string> load_error(const std::filesystem::path& file) {
     try {

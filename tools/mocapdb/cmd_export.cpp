@@ -24,6 +24,7 @@ struct ExportArgs {
     std::string set;
     long long sample = -1;
     bool from_model = false;
+    bool from_packed = false;
 };
 
 // Sample I of a set, from its aligned tensor or its stored model, back at its own timing.
@@ -72,7 +73,9 @@ void run_export(const ExportArgs& args) {
     }
     if (args.clip.empty()) throw InvalidArgument("give --clip ID, or --set S --sample I");
     if (!db.has_clip(args.clip)) throw InvalidArgument(args.file + ": no clip '" + args.clip + "' (see mocapdb info)");
-    const Clip clip = db.load_clip(args.clip);
+    const Clip clip = args.from_packed ? db.load_clip_packed(args.clip) : db.load_clip(args.clip);
+    if (args.from_packed && *format != ClipFormat::Bvh)
+        throw InvalidArgument(out.string() + ": a clip decoded from the packed tier is exported as .bvh");
     refuse_existing(out, args.force);
     if (*format == ClipFormat::Bvh) {
         BvhWriteOptions o;
@@ -80,8 +83,11 @@ void run_export(const ExportArgs& args) {
         // A BVH source is written back in its own length unit; other sources in centimetres.
         if (db.find_clip(args.clip)->source.format == "bvh") o.cm_per_unit = clip.skeleton->source_units().cm_per_unit;
         write_bvh(out, clip, o);
-        std::cout << "wrote " << out.string() << " (" << clip.frame_count() << " frames at " << clip.frame_rate
-                  << " Hz)\n";
+        std::cout << "wrote " << out.string() << " (" << clip.frame_count() << " frames at " << clip.frame_rate << " Hz";
+        if (args.from_packed)
+            std::cout << ", decoded from the packed tier: every joint within " << db.packed()->max_error_cm
+                      << " cm of the source";
+        std::cout << ")\n";
         return;
     }
     const std::string why = asf_incompatibility(*clip.skeleton);
@@ -115,6 +121,7 @@ void setup_export(CLI::App& app) {
         "  mocapdb export cmu.h5 --clip 16_15 -o 16_15.amc      (reread: mocapdb info 16_15.amc --asf 16_15.asf)\n"
         "  mocapdb export cmu.h5 --clip 02_01_60fps -o 02_01.bvh\n"
         "  mocapdb export cmu.h5 --set walks --sample 3 --from-model -o walk3.bvh\n"
+        "  mocapdb export cmu.h5 --clip 16_15 --from-packed -o 16_15_packed.bvh\n"
         "A set sample is written as BVH at its own timing (the alignment's warp undone) and in its own\n"
         "place in the world, from the aligned tensor or, with --from-model, from the stored Tucker model.");
     cmd->add_option("file", args->file, "database file")->required()->check(CLI::ExistingFile);
@@ -126,6 +133,9 @@ void setup_export(CLI::App& app) {
     set->needs(sample);
     sample->needs(set);
     from_model->needs(set);
+    auto* from_packed = cmd->add_flag("--from-packed", args->from_packed,
+                                      "decode the clip from the packed tier (mocapdb pack) instead of the lossless one");
+    from_packed->needs(clip);
     cmd->add_option("-o,--output", args->output, "output file: .bvh or .amc")->required();
     cmd->add_option("--asf-out", args->asf_output, "where to write the skeleton of an AMC export (default OUT.asf)");
     cmd->add_option("--precision", args->precision, "significant digits (default: BVH 9, AMC 10; 17 is lossless)")

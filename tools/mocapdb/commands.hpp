@@ -7,6 +7,7 @@ namespace mocapdb::cli {
 void setup_info(CLI::App& app);
 void setup_convert(CLI::App& app);
 void setup_import(CLI::App& app);
+void setup_pack(CLI::App& app);
 void setup_validate(CLI::App& app);
 void setup_export(CLI::App& app);
 void setup_variogram(CLI::App& app);

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <optional>
 
 #include "json_writer.hpp"
 #include "mocapdb/store/database.hpp"
@@ -9,8 +11,24 @@
 namespace mocapdb::cli {
 namespace {
 
+// The packed tier's entry of each clip (null when the clip is not in it).
+struct PackedEntry {
+    const PackedGroupRecord* group = nullptr;
+    const PackedClipRecord* clip = nullptr;
+};
+
+std::map<std::string, PackedEntry> packed_entries(const std::optional<PackedTierRecord>& tier) {
+    std::map<std::string, PackedEntry> out;
+    if (!tier) return out;
+    for (const PackedGroupRecord& g : tier->groups)
+        for (const PackedClipRecord& c : g.clips) out[c.id] = {&g, &c};
+    return out;
+}
+
 void print_json(const std::string& file, const Database& db, const std::vector<ClipRecord>& clips,
                 const std::vector<SetRecord>& sets) {
+    const std::optional<PackedTierRecord> tier = db.packed();
+    const auto entries = packed_entries(tier);
     JsonWriter j;
     std::size_t frames = 0;
     double seconds = 0.0;
@@ -45,6 +63,20 @@ void print_json(const std::string& file, const Database& db, const std::vector<C
         for (const std::string& l : c.source.labels) j.value(l);
         j.end_array();
         j.key("stored_bytes").value(static_cast<std::size_t>(c.stored_bytes));
+        j.key("tiers").begin_array().value("lossless");
+        const auto it = entries.find(c.id);
+        if (it != entries.end()) j.value("packed");
+        j.end_array();
+        j.key("lossless_bytes").value(static_cast<std::size_t>(c.stored_bytes));
+        if (it != entries.end()) {
+            j.key("packed_group").value(it->second.group->name);
+            j.key("packed_payload_bytes").value(static_cast<std::size_t>(it->second.clip->payload_bytes));
+            j.key("packed_max_cm").value(it->second.clip->max_cm);
+        } else {
+            j.key("packed_group").null();
+            j.key("packed_payload_bytes").null();
+            j.key("packed_max_cm").null();
+        }
         j.end_object();
     }
     j.end_array();
@@ -90,6 +122,33 @@ void print_json(const std::string& file, const Database& db, const std::vector<C
         j.end_object();
     }
     j.end_array();
+    if (tier) {
+        j.key("packed").begin_object();
+        j.key("max_error_cm").value(tier->max_error_cm);
+        j.key("bytes").value(static_cast<std::size_t>(tier->bytes));
+        j.key("clips").value(tier->clips);
+        j.key("frames").value(tier->frames);
+        j.key("max_cm").value(tier->max_cm);
+        j.key("p99_cm").value(tier->p99_cm);
+        j.key("rmse_cm").value(tier->rmse_cm);
+        j.key("groups").begin_array();
+        for (const PackedGroupRecord& g : tier->groups) {
+            j.begin_object();
+            j.key("name").value(g.name);
+            j.key("skeleton").value(g.skeleton);
+            j.key("frame_rate").value(g.frame_rate);
+            j.key("clips").value(g.clips.size());
+            j.key("frames").value(g.frames);
+            j.key("bytes").value(static_cast<std::size_t>(g.bytes));
+            j.key("stored_bytes").value(static_cast<std::size_t>(g.stored_bytes));
+            j.key("max_cm").value(g.max_cm);
+            j.end_object();
+        }
+        j.end_array();
+        j.end_object();
+    } else {
+        j.key("packed").null();
+    }
     j.end_object();
     std::cout << j.str();
 }
@@ -110,12 +169,29 @@ void print_text(const std::string& file, const Database& db, const std::vector<C
                 seconds, static_cast<double>(stored) / 1e6);
     std::printf("skeletons   %zu\n", db.skeletons().size());
     std::printf("sets        %zu\n", sets.size());
+    const std::optional<PackedTierRecord> tier = db.packed();
+    const auto entries = packed_entries(tier);
+    if (tier) {
+        std::printf("packed      %zu clips in %zu groups at max error %g cm: %.1f kB (max %.4f cm, p99 %.4f cm, RMSE %.4f cm)\n",
+                    tier->clips, tier->groups.size(), tier->max_error_cm, static_cast<double>(tier->bytes) / 1e3,
+                    tier->max_cm, tier->p99_cm, tier->rmse_cm);
+    } else {
+        std::printf("packed      none (mocapdb pack)\n");
+    }
     if (!clips.empty()) {
-        std::printf("\n%-24s %8s %8s %9s %9s  %-14s %s\n", "clip", "frames", "rate Hz", "seconds", "stored kB",
-                    "skeleton", "source");
-        for (const ClipRecord& c : clips)
-            std::printf("%-24s %8zu %8.6g %9.2f %9.1f  %-14s %s\n", c.id.c_str(), c.frames, c.frame_rate, c.duration(),
-                        static_cast<double>(c.stored_bytes) / 1e3, c.skeleton.c_str(), c.source.file_name.c_str());
+        std::printf("\n%-24s %8s %8s %9s %9s %9s  %-17s %-14s %s\n", "clip", "frames", "rate Hz", "seconds", "stored kB",
+                    "packed kB", "tiers", "skeleton", "source");
+        for (const ClipRecord& c : clips) {
+            const auto it = entries.find(c.id);
+            char packed_kb[32] = "-";
+            if (it != entries.end())
+                std::snprintf(packed_kb, sizeof packed_kb, "%.1f", static_cast<double>(it->second.clip->payload_bytes) / 1e3);
+            std::printf("%-24s %8zu %8.6g %9.2f %9.1f %9s  %-17s %-14s %s\n", c.id.c_str(), c.frames, c.frame_rate,
+                        c.duration(), static_cast<double>(c.stored_bytes) / 1e3, packed_kb,
+                        it != entries.end() ? "lossless+packed" : "lossless", c.skeleton.c_str(),
+                        c.source.file_name.c_str());
+        }
+        if (tier) std::printf("(packed kB: the clip's coded windows; each group's header and tables are shared)\n");
     }
     if (!sets.empty()) {
         std::printf("\n%-24s %8s %11s  %-24s %9s  %-16s %s\n", "set", "samples", "parameters",

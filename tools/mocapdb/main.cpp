@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     mocapdb::cli::setup_info(app);
     mocapdb::cli::setup_convert(app);
     mocapdb::cli::setup_import(app);
+    mocapdb::cli::setup_pack(app);
     mocapdb::cli::setup_validate(app);
     mocapdb::cli::setup_export(app);
     mocapdb::cli::setup_variogram(app);

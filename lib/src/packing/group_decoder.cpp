@@ -35,6 +35,13 @@ std::size_t GroupDecoder::window_count(std::size_t clip) const {
     return (model_->clips[clip].frames + window_length() - 1) / window_length();
 }
 
+std::size_t GroupDecoder::clip_payload_bytes(std::size_t clip) const {
+    const std::size_t first = static_cast<std::size_t>(model_->clips.at(clip).first_window);
+    std::size_t total = 0;
+    for (std::size_t w = 0, n = window_count(clip); w < n; ++w) total += model_->windows.at(first + w).size;
+    return total;
+}
+
 std::shared_ptr<const Skeleton> GroupDecoder::skeleton(std::size_t clip) const {
     check(clip);
     return model_->skeletons[model_->clips[clip].skeleton].skeleton;

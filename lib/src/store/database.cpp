@@ -9,6 +9,8 @@
 #include "layout.hpp"
 #include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "packed_codec.hpp"
 #include "root.hpp"
 #include "set_codec.hpp"
 #include "skeleton_codec.hpp"
@@ -84,6 +86,62 @@ Clip Database::load_clip(const std::string& id) const {
     clip.channels = store::read_clip_channels(f, id, clip.skeleton->channel_count());
     if (!clip.channels.allFinite())
         throw StoreError(f.name(), store::clip_channels_path(f, id), "expected finite values, found NaN or infinity");
+    return clip;
+}
+
+std::optional<std::pair<std::size_t, std::size_t>> PackedTierRecord::find(const std::string& clip) const {
+    for (std::size_t g = 0; g < groups.size(); ++g)
+        for (std::size_t i = 0; i < groups[g].clips.size(); ++i)
+            if (groups[g].clips[i].id == clip) return std::make_pair(g, i);
+    return std::nullopt;
+}
+
+std::optional<PackedTierRecord> Database::packed() const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    if (f.type_of(store::kPacked) == store::h5::ObjectType::None) return std::nullopt;
+    return store::read_packed_record(f);
+}
+
+Clip Database::load_clip_packed(const std::string& id, std::size_t begin, std::size_t end) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    const auto tier = packed();
+    if (!tier) throw StoreError(f.name(), store::kPacked, "no packed tier (run: mocapdb pack " + f.name() + " --max-error-cm E)");
+    const auto where = tier->find(id);
+    if (!where) throw StoreError(f.name(), store::kPacked, "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
+    const PackedGroupRecord& g = tier->groups[where->first];
+    const std::string path = store::packed_group_path(g.name) + "/bytes";
+    std::unique_ptr<packing::GroupDecoder> decoder;
+    try {
+        decoder = std::make_unique<packing::GroupDecoder>(store::read_packed_bytes(f, g.name));
+    } catch (const StoreError&) {
+        throw;
+    } catch (const Error& e) {
+        throw StoreError(f.name(), path, e.what());
+    }
+    const std::size_t k = where->second;
+    if (decoder->clip_count() != g.clips.size() || decoder->frame_count(k) != g.clips[k].frames)
+        throw StoreError(f.name(), path,
+                         "the bytes hold " + std::to_string(decoder->clip_count()) + " clips, clip " + std::to_string(k) +
+                             " of " + std::to_string(k < decoder->clip_count() ? decoder->frame_count(k) : 0) +
+                             " frames; expected " + std::to_string(g.clips.size()) + " clips, clip '" + id + "' of " +
+                             std::to_string(g.clips[k].frames) + " frames (" + store::packed_group_path(g.name) + "/clip_frames)");
+    const std::size_t frames = decoder->frame_count(k);
+    if (begin >= frames)
+        throw InvalidArgument("load_clip_packed: first frame " + std::to_string(begin) + " is beyond clip '" + id + "' (" +
+                              std::to_string(frames) + " frames)");
+    end = std::min(end, frames);
+    if (end <= begin) throw InvalidArgument("load_clip_packed: empty frame range");
+    Clip clip;
+    try {
+        clip.skeleton = decoder->skeleton(k);
+        clip.frame_rate = decoder->frame_rate();
+        clip.channels = decoder->decode_frames(k, begin, end);
+    } catch (const Error& e) {
+        throw StoreError(f.name(), path, e.what());
+    }
+    clip.name = id;
     return clip;
 }
 

@@ -11,6 +11,8 @@
 #include "layout.hpp"
 #include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "packed_codec.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
 #include "root.hpp"
@@ -286,6 +288,80 @@ void DatabaseWriter::put_model(const std::string& set_name, const compression::S
     store::write_model(f, set_name, model, figures);
 }
 
+void DatabaseWriter::put_packed(const PackedTierRecord& tier_in, const std::vector<std::vector<std::uint8_t>>& group_bytes) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    const std::string who = "packed tier";
+    if (tier_in.groups.size() != group_bytes.size())
+        throw InvalidArgument(who + ": " + std::to_string(tier_in.groups.size()) + " group records but " +
+                              std::to_string(group_bytes.size()) + " byte arrays");
+    if (!std::isfinite(tier_in.max_error_cm) || !(tier_in.max_error_cm > 0.0))
+        throw InvalidArgument(who + ": max_error_cm must be finite and > 0, found " + std::to_string(tier_in.max_error_cm));
+    auto check_figures = [&](const std::string& what, double max_cm, double p99_cm, double rmse_cm) {
+        for (double x : {max_cm, p99_cm, rmse_cm})
+            if (!std::isfinite(x) || x < 0.0)
+                throw InvalidArgument(what + ": error figures must be finite and >= 0, found " + std::to_string(x));
+    };
+    check_figures(who, tier_in.max_cm, tier_in.p99_cm, tier_in.rmse_cm);
+    PackedTierRecord tier = tier_in;
+    tier.bytes = 0;
+    tier.clips = 0;
+    tier.frames = 0;
+    std::unordered_map<std::string, std::size_t> seen;
+    for (std::size_t g = 0; g < tier.groups.size(); ++g) {
+        PackedGroupRecord& r = tier.groups[g];
+        r.name = "g" + std::to_string(g);
+        r.bytes = group_bytes[g].size();
+        r.stored_bytes = 0;
+        tier.bytes += r.bytes;
+        const std::string gw = who + " group " + std::to_string(g);
+        check_figures(gw, r.max_cm, r.p99_cm, r.rmse_cm);
+        if (r.clips.empty()) throw InvalidArgument(gw + ": no clips");
+        if (!s.view.load_skeleton(r.skeleton))  // StoreError when absent
+            throw InvalidArgument(gw + ": no skeleton '" + r.skeleton + "'");
+        std::unique_ptr<packing::GroupDecoder> decoder;
+        try {
+            decoder = std::make_unique<packing::GroupDecoder>(group_bytes[g]);
+        } catch (const Error& e) {
+            throw InvalidArgument(gw + ": the bytes do not parse: " + e.what());
+        }
+        if (decoder->clip_count() != r.clips.size() || decoder->frame_rate() != r.frame_rate)
+            throw InvalidArgument(gw + ": the bytes hold " + std::to_string(decoder->clip_count()) + " clips at " +
+                                  std::to_string(decoder->frame_rate()) + " Hz, the record " +
+                                  std::to_string(r.clips.size()) + " at " + std::to_string(r.frame_rate) + " Hz");
+        for (std::size_t i = 0; i < r.clips.size(); ++i) {
+            const PackedClipRecord& c = r.clips[i];
+            const auto record = s.view.find_clip(c.id);
+            if (!record) throw InvalidArgument(gw + ": clip '" + c.id + "' is not stored");
+            if (!seen.emplace(c.id, g).second) throw InvalidArgument(who + ": clip '" + c.id + "' appears twice");
+            if (record->frames != c.frames || decoder->frame_count(i) != c.frames)
+                throw InvalidArgument(gw + ": clip '" + c.id + "' has " + std::to_string(record->frames) +
+                                      " frames stored, " + std::to_string(c.frames) + " in the record and " +
+                                      std::to_string(decoder->frame_count(i)) + " in the bytes");
+            check_figures(gw + " clip '" + c.id + "'", c.max_cm, c.p99_cm, c.rmse_cm);
+        }
+        r.frames = 0;
+        for (const PackedClipRecord& c : r.clips) r.frames += c.frames;
+        tier.clips += r.clips.size();
+        tier.frames += r.frames;
+    }
+    if (f.exists(store::kPacked)) {
+        f.unlink(store::kPacked);
+        s.removed_objects = true;
+    }
+    store::write_packed(f, tier, group_bytes);
+}
+
+void DatabaseWriter::remove_packed() {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    if (!f.exists(store::kPacked)) throw StoreError(s.temp.string(), store::kPacked, "no packed tier");
+    f.unlink(store::kPacked);
+    s.removed_objects = true;
+}
+
 void DatabaseWriter::commit() {
     QuietScope quiet;
     Impl& s = *impl_;
@@ -301,6 +377,7 @@ void DatabaseWriter::commit() {
                 store::h5::File to = store::h5::File::create(compact);
                 store::write_root_attributes(to);
                 for (const std::string& top : {store::kSkeletons, store::kClips, store::kSets}) from.copy_to(to, top);
+                if (from.exists(store::kPacked)) from.copy_to(to, store::kPacked);
                 to.close();
                 from.close();
             } catch (...) {

@@ -13,11 +13,13 @@ namespace mocapdb::store {
 inline const std::string kSkeletons = "/skeletons";
 inline const std::string kClips = "/clips";
 inline const std::string kSets = "/sets";
+inline const std::string kPacked = "/packed";
 
 inline std::string skeleton_path(const std::string& id) { return kSkeletons + "/" + id; }
 inline std::string clip_path(const std::string& id) { return kClips + "/" + id; }
 inline std::string set_path(const std::string& name) { return kSets + "/" + name; }
 inline std::string aligned_path(const std::string& set) { return set_path(set) + "/aligned"; }
+inline std::string packed_group_path(const std::string& group) { return kPacked + "/" + group; }
 inline std::string model_path(const std::string& set) { return set_path(set) + "/model"; }
 
 /// "/a/b/c" -> {"a", "b", "c"}.

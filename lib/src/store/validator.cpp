@@ -13,6 +13,8 @@
 #include "h5/quiet.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "packed_codec.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/validate.hpp"
 #include "root.hpp"
@@ -387,6 +389,71 @@ private:
     }
 };
 
+// The packed tier: records readable, each clip packed once with its stored frame count, and each
+// group's bytes parse with the clip count, frame counts and rate the records give.
+void check_packed(const std::filesystem::path& file, const Database& db, const std::map<std::string, ClipRecord>& records,
+                  Validator& v) {
+    std::optional<PackedTierRecord> tier;
+    try {
+        tier = db.packed();
+    } catch (const StoreError& e) {
+        v.add(e.object_path().empty() ? store::kPacked : e.object_path(), e.message());
+        return;
+    }
+    if (!tier) return;
+    store::h5::File f = store::h5::File::open(file, false);
+    std::map<std::string, std::string> seen;
+    std::size_t clips = 0, frames = 0;
+    for (const PackedGroupRecord& g : tier->groups) {
+        const std::string gpath = store::packed_group_path(g.name);
+        std::size_t group_frames = 0;
+        for (const PackedClipRecord& c : g.clips) {
+            group_frames += c.frames;
+            const auto [it, fresh] = seen.emplace(c.id, gpath);
+            if (!fresh) v.add(gpath + "/clip", "clip '" + c.id + "' is packed in " + it->second + " too (expected once)");
+            const auto r = records.find(c.id);
+            if (r != records.end() && r->second.frames != c.frames)
+                v.add(gpath + "/clip_frames", "clip '" + c.id + "': expected " + std::to_string(r->second.frames) +
+                                                  " frames (as stored in /clips), found " + std::to_string(c.frames));
+        }
+        clips += g.clips.size();
+        frames += group_frames;
+        if (group_frames != g.frames)
+            v.add(gpath, "attribute 'frames': expected " + std::to_string(group_frames) + " (the sum of clip_frames), found " +
+                             std::to_string(g.frames));
+        const std::string bpath = gpath + "/bytes";
+        try {
+            const packing::GroupDecoder decoder(store::read_packed_bytes(f, g.name));
+            if (decoder.clip_count() != g.clips.size()) {
+                v.add(bpath, "the bytes hold " + std::to_string(decoder.clip_count()) + " clips, expected " +
+                                 std::to_string(g.clips.size()) + " (" + gpath + "/clip)");
+                continue;
+            }
+            if (decoder.frame_rate() != g.frame_rate)
+                v.add(bpath, "the bytes are at " + std::to_string(decoder.frame_rate()) + " Hz, expected " +
+                                 std::to_string(g.frame_rate) + " (attribute 'frame_rate' of " + gpath + ")");
+            for (std::size_t i = 0; i < g.clips.size(); ++i)
+                if (decoder.frame_count(i) != g.clips[i].frames)
+                    v.add(bpath, "clip " + std::to_string(i) + " ('" + g.clips[i].id + "') has " +
+                                     std::to_string(decoder.frame_count(i)) + " frames in the bytes, expected " +
+                                     std::to_string(g.clips[i].frames) + " (" + gpath + "/clip_frames)");
+        } catch (const StoreError& e) {
+            v.add(e.object_path().empty() ? bpath : e.object_path(), e.message());
+        } catch (const Error& e) {
+            v.add(bpath, std::string("the bytes do not parse: ") + e.what());
+        }
+    }
+    std::uint64_t bytes = 0;
+    for (const PackedGroupRecord& g : tier->groups) bytes += g.bytes;
+    if (bytes != tier->bytes)
+        v.add(store::kPacked, "attribute 'bytes': expected " + std::to_string(bytes) + " (the sum of the groups' bytes), found " +
+                                  std::to_string(tier->bytes));
+    if (clips != tier->clips)
+        v.add(store::kPacked, "attribute 'clips': expected " + std::to_string(clips) + ", found " + std::to_string(tier->clips));
+    if (frames != tier->frames)
+        v.add(store::kPacked, "attribute 'frames': expected " + std::to_string(frames) + ", found " + std::to_string(tier->frames));
+}
+
 // Content rules beyond the mirror, through the same loaders the library uses.
 void check_content(const std::filesystem::path& file, Validator& v) {
     Database db(file);
@@ -470,6 +537,7 @@ void check_content(const std::filesystem::path& file, Validator& v) {
             v.add(path, e.what());
         }
     }
+    check_packed(file, db, records, v);
 }
 
 }  // namespace

@@ -30,6 +30,8 @@ public:
     /// Frames per window (W); window w of a clip holds frames [w·W, min((w+1)·W, frames)).
     std::size_t window_length() const;
     std::size_t window_count(std::size_t clip) const;
+    /// Coded bytes of the clip's windows (payload only: the header and tables are shared).
+    std::size_t clip_payload_bytes(std::size_t clip) const;
     /// The clip's skeleton as decoded (offsets and axes rounded to float32).
     std::shared_ptr<const Skeleton> skeleton(std::size_t clip) const;
 

@@ -69,6 +69,41 @@ struct StoredModel {
     ModelFigures figures;
 };
 
+/// One clip of the packed tier (/packed/{group}, schemas/format-v3.md §9).
+struct PackedClipRecord {
+    std::string id;                   ///< clip id (the clip under /clips it was packed from)
+    std::size_t frames = 0;
+    std::uint64_t payload_bytes = 0;  ///< its windows' coded bytes (the group's header and tables are shared)
+    double max_cm = 0.0;              ///< FK joint-position errors against the source clip, every frame
+    double p99_cm = 0.0;
+    double rmse_cm = 0.0;
+};
+
+/// One group of the packed tier: clips of one skeleton topology and frame rate packed together.
+struct PackedGroupRecord {
+    std::string name;                 ///< link name under /packed ("g0", "g1", ...)
+    std::string skeleton;             ///< skeleton id of its first clip
+    double frame_rate = 0.0;          ///< Hz
+    std::uint64_t bytes = 0;          ///< the packed bytes: everything the decoder needs
+    std::uint64_t stored_bytes = 0;   ///< storage of the group's datasets in the file
+    std::size_t frames = 0;
+    double max_cm = 0.0, p99_cm = 0.0, rmse_cm = 0.0;
+    std::vector<PackedClipRecord> clips;  ///< in packing order (the decoder's clip index)
+};
+
+/// The packed tier (/packed): every clip packed at the time with FK error <= max_error_cm.
+struct PackedTierRecord {
+    double max_error_cm = 0.0;        ///< E, the bound
+    std::uint64_t bytes = 0;          ///< sum of the groups' bytes
+    std::size_t clips = 0;
+    std::size_t frames = 0;
+    double max_cm = 0.0, p99_cm = 0.0, rmse_cm = 0.0;  ///< over the whole collection
+    std::vector<PackedGroupRecord> groups;
+
+    /// The group and index of a clip; nullopt when the clip is not in the tier.
+    std::optional<std::pair<std::size_t, std::size_t>> find(const std::string& clip) const;
+};
+
 /// Outcome of DatabaseWriter::add_clip.
 struct AddClipResult {
     std::string id;      ///< the new clip's id, or the id of the identical clip already stored
@@ -110,6 +145,16 @@ public:
     /// Loads a clip (channels in cm and radians). Its skeleton is shared with every other clip of
     /// the same skeleton loaded through this view. StoreError when there is no such clip.
     Clip load_clip(const std::string& id) const;
+
+    /// The packed tier's records (no bytes read); nullopt when the file has no /packed.
+    std::optional<PackedTierRecord> packed() const;
+    /// Decodes frames [begin, min(end, frames)) of a clip from the packed tier alone (every joint
+    /// and end site within the tier's max_error_cm of the source, FK positions). The clip's skeleton
+    /// is the packed one (offsets rounded to float32; names, channels and source units as stored).
+    /// StoreError when the clip is not in the packed tier or the group is malformed, ChecksumError
+    /// when its bytes are corrupted, InvalidArgument when begin >= the clip's frames.
+    Clip load_clip_packed(const std::string& id, std::size_t begin = 0,
+                          std::size_t end = static_cast<std::size_t>(-1)) const;
 
     /// Skeleton ids, sorted.
     std::vector<std::string> skeletons() const;
@@ -193,6 +238,16 @@ public:
     /// figures >= 0).
     /// put_aligned and put_set(replace) drop a stored model (it described the old tensor).
     void put_model(const std::string& set, const compression::SetModel& model, const ModelFigures& figures);
+
+    /// Stores (replaces) the packed tier /packed: `tier` gives E, the collection's figures and per
+    /// group its skeleton, frame rate, figures and clips (name, bytes and stored_bytes are set here:
+    /// groups are named g0, g1, ... in order); `group_bytes[i]` is group i's packed bytes
+    /// (packing::pack_group). InvalidArgument unless the sizes agree, E and every figure are finite
+    /// (E > 0, figures >= 0), every clip is stored with the frames given and appears once, and each
+    /// group's bytes parse (packing::GroupDecoder) with the same clip count, frame counts and rate.
+    void put_packed(const PackedTierRecord& tier, const std::vector<std::vector<std::uint8_t>>& group_bytes);
+    /// Removes the packed tier. StoreError when there is none.
+    void remove_packed();
 
     /// Closes the temporary file, makes it durable and renames it over the target. Space freed by
     /// replaced sets is reclaimed here (the file is rewritten compactly). The session is finished

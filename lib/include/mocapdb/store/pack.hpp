@@ -1,0 +1,45 @@
+#pragma once
+// Packing a whole database into its error-bounded tier (/packed, schemas/format-v3.md §9): every
+// clip, grouped by skeleton topology and frame rate (packing::group_clips), each group packed with
+// packing::pack_group and stored through one DatabaseWriter session (atomic, writer lock).
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "mocapdb/core/progress.hpp"
+#include "mocapdb/store/database.hpp"
+
+namespace mocapdb {
+
+struct PackDatabaseOptions {
+    double max_error_cm = 1.0;  ///< E: max FK joint-position error (cm), > 0 and finite
+    int threads = 2;            ///< encoder threads (>= 1)
+    /// Replace an existing packed tier; without it a database that has one is refused (StoreError).
+    bool replace = false;
+    double wait_seconds = kWriterWaitSeconds;  ///< for another writing session on the file
+};
+
+struct PackDatabaseOutcome {
+    /// The tier as stored: E, bytes, the collection's and each group's figures (measured by decoding
+    /// the stored bytes and comparing FK positions with the source clips at every source frame).
+    PackedTierRecord tier;
+    std::vector<std::uint64_t> group_float32_bytes;  ///< per group: frames × channels × 4
+    std::vector<double> group_seconds;               ///< per group: encode + measurement, s
+    std::uint64_t float32_bytes = 0;  ///< the clips' channels as float32
+    double motion_seconds = 0.0;      ///< duration of the clips
+    bool replaced = false;            ///< an earlier packed tier was replaced
+    double replaced_max_error_cm = 0.0;
+    std::uint64_t file_bytes = 0;     ///< the database file after the commit
+    double seconds = 0.0;             ///< wall time
+};
+
+/// Packs every clip of the database at `db` and stores the result as its packed tier (committed).
+/// InvalidArgument for E <= 0 or not finite, threads < 1; IoError when `db` does not exist;
+/// StoreError when it is not a database or already has a packed tier and !options.replace;
+/// packing::PackingFailed when a window cannot meet the bound. An empty database gets an empty
+/// tier. `progress` counts source frames of the collection (done/total), item = the clip.
+/// Memory: one group's clips at a time.
+PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDatabaseOptions& options,
+                                  const ProgressCallback& progress = {});
+
+}  // namespace mocapdb

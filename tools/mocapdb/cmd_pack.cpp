@@ -1,0 +1,127 @@
+// mocapdb pack DB.h5 --max-error-cm E: store every clip in the database's error-bounded packed tier.
+#include <cstdio>
+
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "mocapdb/store/pack.hpp"
+#include "progress_bar.hpp"
+
+namespace mocapdb::cli {
+namespace {
+
+struct PackArgs {
+    std::string db;
+    double max_error_cm = 0.0;
+    int threads = 2;
+    bool json = false;
+    bool force = false;
+};
+
+double ratio(std::uint64_t reference, std::uint64_t bytes) {
+    return bytes > 0 ? static_cast<double>(reference) / static_cast<double>(bytes) : 0.0;
+}
+
+void write_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, std::size_t clips, std::size_t frames,
+                   double max_cm, double p99_cm, double rmse_cm) {
+    j.key("bytes").value(static_cast<std::size_t>(bytes));
+    j.key("float32_bytes").value(static_cast<std::size_t>(float32));
+    j.key("ratio_float32").value(ratio(float32, bytes));
+    j.key("clips").value(clips);
+    j.key("frames").value(frames);
+    j.key("max_cm").value(max_cm);
+    j.key("p99_cm").value(p99_cm);
+    j.key("rmse_cm").value(rmse_cm);
+}
+
+void print_json(const std::string& db, const PackDatabaseOutcome& o) {
+    const PackedTierRecord& t = o.tier;
+    JsonWriter j;
+    j.begin_object();
+    j.key("file").value(db);
+    j.key("max_error_cm").value(t.max_error_cm);
+    write_figures(j, t.bytes, o.float32_bytes, t.clips, t.frames, t.max_cm, t.p99_cm, t.rmse_cm);
+    j.key("motion_seconds").value(o.motion_seconds);
+    j.key("bytes_per_second").value(o.motion_seconds > 0 ? static_cast<double>(t.bytes) / o.motion_seconds : 0.0);
+    j.key("replaced").value(o.replaced);
+    j.key("file_bytes").value(static_cast<std::size_t>(o.file_bytes));
+    j.key("seconds").value(o.seconds);
+    j.key("groups").begin_array();
+    for (std::size_t g = 0; g < t.groups.size(); ++g) {
+        const PackedGroupRecord& r = t.groups[g];
+        j.begin_object();
+        j.key("name").value(r.name);
+        j.key("path").value("/packed/" + r.name);
+        j.key("skeleton").value(r.skeleton);
+        j.key("frame_rate").value(r.frame_rate);
+        write_figures(j, r.bytes, o.group_float32_bytes.at(g), r.clips.size(), r.frames, r.max_cm, r.p99_cm, r.rmse_cm);
+        j.key("seconds").value(o.group_seconds.at(g));
+        j.end_object();
+    }
+    j.end_array();
+    j.end_object();
+    std::fputs(j.str().c_str(), stdout);
+}
+
+void print_text(const std::string& db, const PackDatabaseOutcome& o) {
+    const PackedTierRecord& t = o.tier;
+    std::printf("packed %zu clips (%zu frames, %.1f s of motion) of %s at max error %g cm%s: %zu bytes, %.1f:1 against "
+                "float32 channels; max %.4f cm, p99 %.4f cm, RMSE %.4f cm; %.2f s; file now %.2f MB\n",
+                t.clips, t.frames, o.motion_seconds, db.c_str(), t.max_error_cm,
+                o.replaced ? " (replacing the earlier packed tier)" : "", static_cast<std::size_t>(t.bytes),
+                ratio(o.float32_bytes, t.bytes), t.max_cm, t.p99_cm, t.rmse_cm, o.seconds,
+                static_cast<double>(o.file_bytes) / 1e6);
+    if (t.groups.empty()) return;
+    std::printf("\n%-6s %-16s %8s %6s %9s %11s %8s %9s %9s %9s\n", "group", "skeleton", "rate Hz", "clips", "frames",
+                "bytes", "ratio", "max cm", "p99 cm", "rmse cm");
+    for (std::size_t g = 0; g < t.groups.size(); ++g) {
+        const PackedGroupRecord& r = t.groups[g];
+        std::printf("%-6s %-16s %8.6g %6zu %9zu %11zu %7.1f:1 %9.4f %9.4f %9.4f\n", r.name.c_str(), r.skeleton.c_str(),
+                    r.frame_rate, r.clips.size(), r.frames, static_cast<std::size_t>(r.bytes),
+                    ratio(o.group_float32_bytes.at(g), r.bytes), r.max_cm, r.p99_cm, r.rmse_cm);
+    }
+}
+
+void run_pack(const PackArgs& a) {
+    PackDatabaseOptions options;
+    options.max_error_cm = a.max_error_cm;
+    options.threads = a.threads;
+    options.replace = a.force;
+    PackDatabaseOutcome o;
+    {
+        ProgressBar bar("pack");
+        o = pack_database(a.db, options, bar.callback());
+    }
+    if (a.json) {
+        print_json(a.db, o);
+    } else {
+        print_text(a.db, o);
+    }
+}
+
+}  // namespace
+
+void setup_pack(CLI::App& app) {
+    auto a = std::make_shared<PackArgs>();
+    CLI::App* cmd = app.add_subcommand("pack", "Store every clip in the database's error-bounded packed tier (/packed)");
+    cmd->footer(
+        "Groups the clips by skeleton topology and frame rate, packs each group so that every joint and\n"
+        "end site of every source frame is within --max-error-cm of the source clip (forward kinematics,\n"
+        "world frame), and stores the groups under /packed (schemas/format-v3.md §9) in one atomic\n"
+        "session. The lossless clips stay; the figures are measured by decoding the stored bytes.\n"
+        "An existing packed tier is replaced only with --force.\n"
+        "JSON keys: file, max_error_cm, bytes (everything the decoder needs), float32_bytes,\n"
+        "ratio_float32, clips, frames, max_cm, p99_cm, rmse_cm, motion_seconds, bytes_per_second,\n"
+        "replaced, file_bytes, seconds, groups[] (name, path, skeleton, frame_rate and the same figures).\n"
+        "Examples:\n"
+        "  mocapdb pack cmu.h5 --max-error-cm 1\n"
+        "  mocapdb pack cmu.h5 --max-error-cm 0.5 --force --json\n"
+        "  mocapdb export cmu.h5 --clip 16_15 --from-packed -o 16_15.bvh");
+    cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--max-error-cm", a->max_error_cm, "E: bound on every joint's position error (cm, > 0)")->required();
+    cmd->add_option("--threads", a->threads, "encoder threads")->check(CLI::Range(1, 64));
+    cmd->add_flag("--json", a->json, "print one JSON object");
+    cmd->add_flag("--force", a->force, "replace an existing packed tier");
+    cmd->callback([a] { run_pack(*a); });
+}
+
+}  // namespace mocapdb::cli
