@@ -293,10 +293,11 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             const auto nw = static_cast<int>((e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W));
             Moments mo{MatX::Zero(D, D), MatX::Zero(W, W), 0};
             for (int w = 0; w < nw; ++w) {
+                ++mo.windows;
+                if (D == 0) continue;  // every dof constant: no moments (and Eigen's rankUpdate of an empty matrix is UB)
                 const MatX xw = window_of(x, w, W);
                 mo.dof.selfadjointView<Eigen::Lower>().rankUpdate(xw);
                 mo.time.selfadjointView<Eigen::Lower>().rankUpdate(xw.transpose());
-                ++mo.windows;
             }
             per_clip[i] = std::move(mo);
             units_done += static_cast<std::uint64_t>(nw);
