@@ -3,6 +3,7 @@
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/eval/joint_error.hpp"
 #include "mocapdb/store/database.hpp"
+#include "mocapdb/store/pack.hpp"
 #include "mocapdb/store/sha256.hpp"
 
 namespace mocapdb::test {
@@ -83,6 +84,10 @@ void write_reference_database(const std::filesystem::path& path) {
     w.put_aligned(r.set.name, r.aligned);
     w.put_model(r.set.name, r.model, r.figures);
     w.commit();
+    PackDatabaseOptions o;
+    o.max_error_cm = kReferencePackedErrorCm;
+    o.threads = 1;
+    pack_database(path, o);
 }
 
 }  // namespace mocapdb::test

@@ -1,7 +1,7 @@
 #pragma once
 // The tiny reference database of the current format version (3) kept in tests/data forever
 // (tests/data/reference-v3.h5, its `h5dump -H` in tests/data/reference-v3.h5dump.txt). Everything in
-// it is fixed here, so a test can rebuild it and compare. tests/data/reference-v2.h5 (version 2) holds
+// it is fixed here, so a test can rebuild it and compare. The version-3 file has a packed tier. tests/data/reference-v2.h5 (version 2) holds
 // the same content with float64 clip channels, tests/data/reference-v1.h5 (version 1) the same clip,
 // set and aligned set without the model.
 #include <filesystem>
@@ -27,7 +27,10 @@ struct ReferenceContent {
 };
 
 ReferenceContent reference_content();
-/// Writes the reference database (version 3, with the model) to `path` through DatabaseWriter.
+/// The bound of the reference file's packed tier (cm).
+inline constexpr double kReferencePackedErrorCm = 0.1;
+/// Writes the reference database (version 3, with the model and a packed tier at
+/// kReferencePackedErrorCm) to `path` through DatabaseWriter and pack_database.
 void write_reference_database(const std::filesystem::path& path);
 
 }  // namespace mocapdb::test

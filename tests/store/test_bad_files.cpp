@@ -31,7 +31,10 @@ TEST_CASE("bad files: a newer format version is refused, saying so", "[store][ba
     REQUIRE(r.violations.size() == 1);
     CHECK(r.violations[0].path == "/");
     CHECK(r.violations[0].message.find("newer than the version 3") != std::string::npos);
-    CHECK_THROWS_AS(DatabaseWriter(file), StoreError);
+    // A writer on a copy: its lock file (DB.h5.lock) must not land in the source tree.
+    TempDir dir("newer");
+    std::filesystem::copy_file(file, dir / "newer.h5");
+    CHECK_THROWS_AS(DatabaseWriter(dir / "newer.h5"), StoreError);
 }
 
 TEST_CASE("bad files: a foreign HDF5 file is refused", "[store][bad]") {

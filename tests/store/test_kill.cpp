@@ -1,5 +1,6 @@
 // Acceptance 5a: an import killed with SIGKILL at any moment leaves the previous database valid and
-// byte-identical; the temporary files of killed processes are removed by the next import.
+// byte-identical; the temporary files of killed processes are removed by the next import. The same
+// for `mocapdb pack` (issue 14, acceptance 5), first pack and replacing pack.
 #include <catch2/catch.hpp>
 
 #include <signal.h>
@@ -9,6 +10,8 @@
 #include <fcntl.h>
 
 #include <chrono>
+#include <string>
+#include <vector>
 #include <thread>
 
 #include "mocapdb/store/database.hpp"
@@ -29,17 +32,22 @@ std::size_t temp_files_of(const std::filesystem::path& target) {
     return n;
 }
 
-/// Starts `mocapdb import INPUT -o DB` and kills it with SIGKILL after `delay`. Returns true when
-/// the kill hit a running import (false: it had already finished by itself).
-bool import_and_kill(const std::filesystem::path& input, const std::filesystem::path& db, std::chrono::milliseconds delay) {
+/// Starts `mocapdb ARGS...` and kills it with SIGKILL after `delay`. Returns true when the kill hit
+/// a running process (false: it had already finished by itself).
+bool run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds delay) {
     const std::string cli = cli_path();
+    std::vector<char*> argv;
+    std::vector<std::string> storage = args;
+    storage.insert(storage.begin(), "mocapdb");
+    for (std::string& a : storage) argv.push_back(a.data());
+    argv.push_back(nullptr);
     const pid_t pid = ::fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
         const int null = ::open("/dev/null", O_WRONLY);
         ::dup2(null, STDOUT_FILENO);
         ::dup2(null, STDERR_FILENO);
-        ::execl(cli.c_str(), "mocapdb", "import", input.c_str(), "-o", db.c_str(), static_cast<char*>(nullptr));
+        ::execv(cli.c_str(), argv.data());
         ::_exit(127);
     }
     std::this_thread::sleep_for(delay);
@@ -47,6 +55,10 @@ bool import_and_kill(const std::filesystem::path& input, const std::filesystem::
     int status = 0;
     ::waitpid(pid, &status, 0);
     return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+}
+
+bool import_and_kill(const std::filesystem::path& input, const std::filesystem::path& db, std::chrono::milliseconds delay) {
+    return run_and_kill({"import", input.string(), "-o", db.string()}, delay);
 }
 
 }  // namespace
@@ -89,4 +101,46 @@ TEST_CASE("kill -9 during an import leaves the previous file valid and complete"
     CHECK(temp_files_of(db) == 0);
     CHECK(Database(db).clips().size() == 215);
     CHECK(validate_database(db).ok());
+}
+
+TEST_CASE("kill -9 during pack leaves the previous file valid and byte-identical", "[store][shared][packed][acceptance]") {
+    const auto bvh_dir = datasets_dir() / "cmu-walkrun-pfnn";
+    MOCAPDB_REQUIRE_SHARED(bvh_dir);
+    TempDir dir("kill-pack");
+    const auto db = dir / "walks.h5";
+    const CommandResult base = run_cli("import " + quoted(bvh_dir.string()) + " --fps 60 -o " + quoted(db.string()));
+    INFO(base.output);
+    REQUIRE(base.exit_code == 0);
+
+    // First pack (no tier yet), then a replacing pack over a tier at 1 cm.
+    for (const bool replacing : {false, true}) {
+        INFO((replacing ? "replacing pack" : "first pack"));
+        if (replacing) REQUIRE(run_cli("pack " + quoted(db.string()) + " --max-error-cm 1").exit_code == 0);
+        const std::string previous = sha256_hex(file_bytes(db));
+        std::size_t killed = 0;
+        for (const int ms : {30, 300, 700, 1200, 2000}) {
+            std::vector<std::string> args = {"pack", db.string(), "--max-error-cm", "0.5"};
+            if (replacing) args.push_back("--force");
+            const bool hit = run_and_kill(args, std::chrono::milliseconds(ms));
+            INFO("killed after " << ms << " ms: " << (hit ? "mid-pack" : "the pack had finished"));
+            if (!hit) break;  // it finished first: the file is the new database (checked below)
+            ++killed;
+            CHECK(sha256_hex(file_bytes(db)) == previous);
+        }
+        CHECK(killed >= 2);
+        const Database view(db);
+        CHECK(view.clips().size() == 33);
+        const auto tier = view.packed();
+        if (killed == 5) {
+            CHECK(tier.has_value() == replacing);
+            if (replacing) CHECK(tier->max_error_cm == 1.0);
+        }
+        CHECK(validate_database(db).ok());
+        if (!replacing && tier) {
+            // The last pack completed before its kill: start the replacing round from no tier.
+            DatabaseWriter w(db);
+            w.remove_packed();
+            w.commit();
+        }
+    }
 }

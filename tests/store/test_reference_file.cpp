@@ -19,6 +19,7 @@
 
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/validate.hpp"
+#include "fk_error.hpp"
 #include "reference_database.hpp"
 #include "shared_data.hpp"
 #include "store_test_support.hpp"
@@ -140,6 +141,12 @@ TEST_CASE("reference file: the committed file opens, loads and validates", "[sto
     const CommandResult r = run_command("h5dump -H -d /clips/tiny_walk/channels_packed " + quoted(kReference.string()));
     INFO(r.output);
     CHECK(r.output.find("H5T_STD_U8LE") != std::string::npos);
+    // Its packed tier decodes the clip within the bound.
+    const auto tier = db.packed();
+    REQUIRE(tier);
+    CHECK(tier->max_error_cm == kReferencePackedErrorCm);
+    CHECK(tier->clips == 1);
+    CHECK(max_position_error(db.load_clip("tiny_walk"), db.load_clip_packed("tiny_walk")) <= kReferencePackedErrorCm);
 }
 
 TEST_CASE("reference file: the version-2 file still opens, loads and validates", "[store][reference]") {

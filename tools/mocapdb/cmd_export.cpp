@@ -73,6 +73,10 @@ void run_export(const ExportArgs& args) {
     }
     if (args.clip.empty()) throw InvalidArgument("give --clip ID, or --set S --sample I");
     if (!db.has_clip(args.clip)) throw InvalidArgument(args.file + ": no clip '" + args.clip + "' (see mocapdb info)");
+    if (!args.from_packed && !db.find_clip(args.clip)->lossless)
+        throw InvalidArgument(args.file + ": clip '" + args.clip +
+                              "' has no lossless channels (dropped by mocapdb pack --drop-lossless); "
+                              "export --from-packed writes it as decoded from the packed tier");
     const Clip clip = args.from_packed ? db.load_clip_packed(args.clip) : db.load_clip(args.clip);
     if (args.from_packed && *format != ClipFormat::Bvh)
         throw InvalidArgument(out.string() + ": a clip decoded from the packed tier is exported as .bvh");

@@ -15,6 +15,8 @@ struct PackArgs {
     int threads = 2;
     bool json = false;
     bool force = false;
+    bool drop_lossless = false;
+    bool has_bound = false;  ///< --max-error-cm was given
 };
 
 double ratio(std::uint64_t reference, std::uint64_t bytes) {
@@ -43,6 +45,7 @@ void print_json(const std::string& db, const PackDatabaseOutcome& o) {
     j.key("motion_seconds").value(o.motion_seconds);
     j.key("bytes_per_second").value(o.motion_seconds > 0 ? static_cast<double>(t.bytes) / o.motion_seconds : 0.0);
     j.key("replaced").value(o.replaced);
+    j.key("dropped_lossless_clips").value(o.dropped_lossless);
     j.key("file_bytes").value(static_cast<std::size_t>(o.file_bytes));
     j.key("seconds").value(o.seconds);
     j.key("groups").begin_array();
@@ -70,6 +73,9 @@ void print_text(const std::string& db, const PackDatabaseOutcome& o) {
                 o.replaced ? " (replacing the earlier packed tier)" : "", static_cast<std::size_t>(t.bytes),
                 ratio(o.float32_bytes, t.bytes), t.max_cm, t.p99_cm, t.rmse_cm, o.seconds,
                 static_cast<double>(o.file_bytes) / 1e6);
+    if (o.dropped_lossless > 0)
+        std::printf("dropped the lossless channels of %zu clips: they are now stored within %g cm only\n",
+                    o.dropped_lossless, t.max_error_cm);
     if (t.groups.empty()) return;
     std::printf("\n%-6s %-16s %8s %6s %9s %11s %8s %9s %9s %9s\n", "group", "skeleton", "rate Hz", "clips", "frames",
                 "bytes", "ratio", "max cm", "p99 cm", "rmse cm");
@@ -82,7 +88,23 @@ void print_text(const std::string& db, const PackDatabaseOutcome& o) {
 }
 
 void run_pack(const PackArgs& a) {
+    if (!a.has_bound && a.drop_lossless) {  // no --max-error-cm: drop against the stored tier
+        const std::size_t dropped = drop_lossless_tier(a.db);
+        if (a.json) {
+            JsonWriter j;
+            j.begin_object();
+            j.key("file").value(a.db);
+            j.key("dropped_lossless_clips").value(dropped);
+            j.end_object();
+            std::fputs(j.str().c_str(), stdout);
+        } else {
+            std::printf("dropped the lossless channels of %zu clips of %s: they are now stored in the packed tier only\n",
+                        dropped, a.db.c_str());
+        }
+        return;
+    }
     PackDatabaseOptions options;
+    options.drop_lossless = a.drop_lossless;
     options.max_error_cm = a.max_error_cm;
     options.threads = a.threads;
     options.replace = a.force;
@@ -109,19 +131,31 @@ void setup_pack(CLI::App& app) {
         "world frame), and stores the groups under /packed (schemas/format-v3.md §9) in one atomic\n"
         "session. The lossless clips stay; the figures are measured by decoding the stored bytes.\n"
         "An existing packed tier is replaced only with --force.\n"
+        "--drop-lossless then removes the lossless channels of every packed clip, so the file is small;\n"
+        "those clips are afterwards decoded from the packed tier (within E), the tier can no longer be\n"
+        "replaced or removed, and export needs --from-packed for them. Without --max-error-cm it drops\n"
+        "against the tier already stored.\n"
         "JSON keys: file, max_error_cm, bytes (everything the decoder needs), float32_bytes,\n"
         "ratio_float32, clips, frames, max_cm, p99_cm, rmse_cm, motion_seconds, bytes_per_second,\n"
-        "replaced, file_bytes, seconds, groups[] (name, path, skeleton, frame_rate and the same figures).\n"
+        "replaced, dropped_lossless_clips, file_bytes, seconds, groups[] (name, path, skeleton, frame_rate and the same figures).\n"
         "Examples:\n"
         "  mocapdb pack cmu.h5 --max-error-cm 1\n"
         "  mocapdb pack cmu.h5 --max-error-cm 0.5 --force --json\n"
+        "  mocapdb pack cmu.h5 --max-error-cm 0.5 --drop-lossless\n"
         "  mocapdb export cmu.h5 --clip 16_15 --from-packed -o 16_15.bvh");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
-    cmd->add_option("--max-error-cm", a->max_error_cm, "E: bound on every joint's position error (cm, > 0)")->required();
+    auto* bound = cmd->add_option("--max-error-cm", a->max_error_cm, "E: bound on every joint's position error (cm, > 0)");
+    auto* drop = cmd->add_flag("--drop-lossless", a->drop_lossless,
+                               "remove the lossless channels of the packed clips (irreversible)");
+    cmd->callback([a, bound, drop] {
+        if (bound->count() == 0 && drop->count() == 0)
+            throw CLI::RequiredError("--max-error-cm (or --drop-lossless alone, to drop against the stored tier)");
+        a->has_bound = bound->count() > 0;
+        run_pack(*a);
+    });
     cmd->add_option("--threads", a->threads, "encoder threads")->check(CLI::Range(1, 64));
     cmd->add_flag("--json", a->json, "print one JSON object");
     cmd->add_flag("--force", a->force, "replace an existing packed tier");
-    cmd->callback([a] { run_pack(*a); });
 }
 
 }  // namespace mocapdb::cli

@@ -63,7 +63,8 @@ void print_json(const std::string& file, const Database& db, const std::vector<C
         for (const std::string& l : c.source.labels) j.value(l);
         j.end_array();
         j.key("stored_bytes").value(static_cast<std::size_t>(c.stored_bytes));
-        j.key("tiers").begin_array().value("lossless");
+        j.key("tiers").begin_array();
+        if (c.lossless) j.value("lossless");
         const auto it = entries.find(c.id);
         if (it != entries.end()) j.value("packed");
         j.end_array();
@@ -188,7 +189,7 @@ void print_text(const std::string& file, const Database& db, const std::vector<C
                 std::snprintf(packed_kb, sizeof packed_kb, "%.1f", static_cast<double>(it->second.clip->payload_bytes) / 1e3);
             std::printf("%-24s %8zu %8.6g %9.2f %9.1f %9s  %-17s %-14s %s\n", c.id.c_str(), c.frames, c.frame_rate,
                         c.duration(), static_cast<double>(c.stored_bytes) / 1e3, packed_kb,
-                        it != entries.end() ? "lossless+packed" : "lossless", c.skeleton.c_str(),
+                        !c.lossless ? "packed" : it != entries.end() ? "lossless+packed" : "lossless", c.skeleton.c_str(),
                         c.source.file_name.c_str());
         }
         if (tier) std::printf("(packed kB: the clip's coded windows; each group's header and tables are shared)\n");

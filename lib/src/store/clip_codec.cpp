@@ -62,16 +62,35 @@ void write_clip(h5::File& file, const std::string& id, const Clip& clip, const s
     file.write_ints_attribute(d, "section_bytes", {p.section_bytes.begin(), p.section_bytes.end()});
 }
 
+bool lossless_dropped(const h5::File& file, const std::string& id) {
+    const std::string g = clip_path(id);
+    return file.has_attribute(g, kLosslessAttribute) && file.read_string_attribute(g, kLosslessAttribute) == kLosslessDroppedValue;
+}
+
 std::string clip_channels_path(const h5::File& file, const std::string& id) {
     const std::string plain = clip_path(id) + "/channels";
     const std::string packed = clip_path(id) + "/" + kPackedChannels;
     const bool has_plain = file.type_of(plain) != h5::ObjectType::None;
     const bool has_packed = file.type_of(packed) != h5::ObjectType::None;
+    if (!has_plain && !has_packed && lossless_dropped(file, id))
+        throw StoreError(file.name(), clip_path(id),
+                         "the clip's lossless channels were dropped (mocapdb pack --drop-lossless); it is stored in the "
+                         "packed tier only");
     if (has_plain == has_packed)
         throw StoreError(file.name(), clip_path(id),
                          "expected one of the datasets '" + kPackedChannels + "' and 'channels', found " +
                              (has_plain ? "both" : "neither"));
     return has_packed ? packed : plain;
+}
+
+void drop_lossless_channels(h5::File& file, const std::string& id) {
+    const ClipRecord r = read_clip_record(file, id);
+    if (!r.lossless) throw StoreError(file.name(), clip_path(id), "the clip's lossless channels are already dropped");
+    const std::string g = clip_path(id);
+    file.unlink(clip_channels_path(file, id));
+    file.write_string_attribute(g, kLosslessAttribute, kLosslessDroppedValue);
+    file.write_int_attribute(g, "frames", static_cast<std::int64_t>(r.frames));
+    file.write_int_attribute(g, "channels", static_cast<std::int64_t>(r.channels));
 }
 
 ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
@@ -92,6 +111,19 @@ ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
     if (file.has_attribute(g, "subject")) r.source.subject = file.read_string_attribute(g, "subject");
     if (file.has_attribute(g, "description")) r.source.description = file.read_string_attribute(g, "description");
     if (file.has_attribute(g, "labels")) r.source.labels = file.read_strings_attribute(g, "labels");
+    if (lossless_dropped(file, id)) {
+        const std::int64_t frames = file.read_int_attribute(g, "frames");
+        const std::int64_t channels = file.read_int_attribute(g, "channels");
+        if (frames < 1 || channels < 1)
+            throw StoreError(file.name(), g, "attributes 'frames' and 'channels' of a clip without lossless channels: expected >= 1, found " +
+                                                 std::to_string(frames) + " and " + std::to_string(channels));
+        if (file.type_of(g + "/channels") != h5::ObjectType::None || file.type_of(g + "/" + kPackedChannels) != h5::ObjectType::None)
+            throw StoreError(file.name(), g, "attribute 'lossless' says \"dropped\" but a channel dataset is present");
+        r.frames = static_cast<std::size_t>(frames);
+        r.channels = static_cast<std::size_t>(channels);
+        r.lossless = false;
+        return r;
+    }
     const std::string packed = clip_channels_path(file, id);
     if (packed == g + "/" + kPackedChannels) {
         const h5::DatasetInfo info = file.dataset_info(packed);

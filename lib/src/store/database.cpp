@@ -83,6 +83,13 @@ Clip Database::load_clip(const std::string& id) const {
     clip.skeleton = load_skeleton(record.skeleton);
     clip.frame_rate = record.frame_rate;
     clip.name = id;
+    if (!record.lossless) {
+        // Only the packed tier holds it: its channels, with the clip's stored skeleton.
+        clip.channels = load_clip_packed(id).channels;
+        if (clip.channels.cols() != static_cast<Eigen::Index>(clip.skeleton->channel_count()))
+            throw StoreError(f.name(), store::clip_path(id), "the packed tier's channels do not match the clip's skeleton");
+        return clip;
+    }
     clip.channels = store::read_clip_channels(f, id, clip.skeleton->channel_count());
     if (!clip.channels.allFinite())
         throw StoreError(f.name(), store::clip_channels_path(f, id), "expected finite values, found NaN or infinity");

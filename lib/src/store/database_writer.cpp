@@ -288,11 +288,28 @@ void DatabaseWriter::put_model(const std::string& set_name, const compression::S
     store::write_model(f, set_name, model, figures);
 }
 
+namespace {
+
+// Refuses to replace or remove a packed tier that is the only copy of some clips.
+void refuse_if_only_copy(const Database& view, const std::string& file, const std::string& action) {
+    std::size_t dropped = 0;
+    std::string first;
+    for (const ClipRecord& r : view.clips())
+        if (!r.lossless && dropped++ == 0) first = r.id;
+    if (dropped > 0)
+        throw StoreError(file, store::kPacked,
+                         "the packed tier is the only copy of " + std::to_string(dropped) + " clip" + (dropped > 1 ? "s" : "") +
+                             " (first: '" + first + "'; their lossless channels were dropped); it cannot be " + action);
+}
+
+}  // namespace
+
 void DatabaseWriter::put_packed(const PackedTierRecord& tier_in, const std::vector<std::vector<std::uint8_t>>& group_bytes) {
     QuietScope quiet;
     Impl& s = *impl_;
     store::h5::File& f = s.f();
     const std::string who = "packed tier";
+    if (f.exists(store::kPacked)) refuse_if_only_copy(s.view, s.target.string(), "replaced");
     if (tier_in.groups.size() != group_bytes.size())
         throw InvalidArgument(who + ": " + std::to_string(tier_in.groups.size()) + " group records but " +
                               std::to_string(group_bytes.size()) + " byte arrays");
@@ -358,8 +375,28 @@ void DatabaseWriter::remove_packed() {
     Impl& s = *impl_;
     store::h5::File& f = s.f();
     if (!f.exists(store::kPacked)) throw StoreError(s.temp.string(), store::kPacked, "no packed tier");
+    refuse_if_only_copy(s.view, s.target.string(), "removed");
     f.unlink(store::kPacked);
     s.removed_objects = true;
+}
+
+std::size_t DatabaseWriter::drop_lossless() {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    const std::optional<PackedTierRecord> tier = s.view.packed();
+    if (!tier)
+        throw StoreError(s.target.string(), store::kPacked,
+                         "no packed tier: the lossless channels are the only copy of the clips (run mocapdb pack first)");
+    std::size_t dropped = 0;
+    for (const PackedGroupRecord& g : tier->groups)
+        for (const PackedClipRecord& c : g.clips) {
+            if (!store::read_clip_record(f, c.id).lossless) continue;
+            store::drop_lossless_channels(f, c.id);
+            ++dropped;
+        }
+    if (dropped > 0) s.removed_objects = true;
+    return dropped;
 }
 
 void DatabaseWriter::commit() {

@@ -3,7 +3,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
@@ -24,6 +27,28 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Cuts one group (clip indices in order) into runs of whole clips of about equal frames, none above
+// max_frames unless a single clip is.
+std::vector<std::vector<std::size_t>> split_by_frames(const std::vector<std::size_t>& members,
+                                                      const std::vector<ClipRecord>& records, std::size_t max_frames) {
+    std::uint64_t total = 0;
+    for (std::size_t i : members) total += records[i].frames;
+    const std::uint64_t parts = (total + max_frames - 1) / max_frames;
+    if (parts <= 1) return {members};
+    const std::uint64_t target = (total + parts - 1) / parts;
+    std::vector<std::vector<std::size_t>> out(1);
+    std::uint64_t frames = 0;
+    for (std::size_t i : members) {
+        if (!out.back().empty() && frames + records[i].frames > target) {
+            out.emplace_back();
+            frames = 0;
+        }
+        out.back().push_back(i);
+        frames += records[i].frames;
+    }
+    return out;
+}
+
 }  // namespace
 
 PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDatabaseOptions& options,
@@ -34,6 +59,7 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
         throw InvalidArgument("pack: --max-error-cm must be a finite number > 0 (the bound on every joint's error, cm), found " +
                               number(E));
     if (options.threads < 1) throw InvalidArgument("pack: threads must be >= 1, found " + std::to_string(options.threads));
+    if (options.max_group_frames < 1) throw InvalidArgument("pack: max_group_frames must be >= 1");
     std::error_code ec;
     if (!std::filesystem::exists(db, ec)) throw IoError(db.string() + ": no such file");
 
@@ -45,6 +71,11 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
             throw StoreError(db.string(), "/packed",
                              "the database already has a packed tier (max error " + number(old->max_error_cm) +
                                  " cm); replace it explicitly (mocapdb pack --force)");
+        for (const ClipRecord& r : view.clips())
+            if (!r.lossless)
+                throw StoreError(db.string(), "/packed",
+                                 "the packed tier is the only copy of clip '" + r.id +
+                                     "' (its lossless channels were dropped); it cannot be replaced");
         out.replaced = true;
         out.replaced_max_error_cm = old->max_error_cm;
     }
@@ -55,14 +86,20 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
     std::vector<Clip> heads(records.size());
     std::vector<const Clip*> head_ptrs;
     std::uint64_t total_frames = 0;
+    std::map<std::string, std::shared_ptr<const Skeleton>> skeletons;  // a few per collection
     for (std::size_t i = 0; i < records.size(); ++i) {
-        heads[i].skeleton = view.load_skeleton(records[i].skeleton);
+        auto& skeleton = skeletons[records[i].skeleton];
+        if (!skeleton) skeleton = view.load_skeleton(records[i].skeleton);
+        heads[i].skeleton = skeleton;
         heads[i].frame_rate = records[i].frame_rate;
         heads[i].name = records[i].id;
         head_ptrs.push_back(&heads[i]);
         total_frames += records[i].frames;
     }
-    const std::vector<std::vector<std::size_t>> groups = packing::group_clips(head_ptrs);
+    std::vector<std::vector<std::size_t>> groups;
+    for (const std::vector<std::size_t>& g : packing::group_clips(head_ptrs))
+        for (std::vector<std::size_t>& part : split_by_frames(g, records, options.max_group_frames))
+            groups.push_back(std::move(part));
 
     packing::PackOptions po;
     po.max_error_cm = E;
@@ -152,10 +189,20 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
     tier.rmse_cm = te.rmse_cm;
     writer.put_packed(tier, group_bytes);
     out.tier = writer.view().packed().value();  // names, bytes and counts as stored
+    if (options.drop_lossless) out.dropped_lossless = writer.drop_lossless();
     writer.commit();
     out.file_bytes = Database(db).file_size();
     out.seconds = seconds_since(start);
     return out;
+}
+
+std::size_t drop_lossless_tier(const std::filesystem::path& db, double wait_seconds) {
+    std::error_code ec;
+    if (!std::filesystem::exists(db, ec)) throw IoError(db.string() + ": no such file");
+    DatabaseWriter writer(db, DatabaseWriter::Mode::OpenOrCreate, wait_seconds);
+    const std::size_t dropped = writer.drop_lossless();
+    writer.commit();
+    return dropped;
 }
 
 }  // namespace mocapdb

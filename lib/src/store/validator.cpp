@@ -400,7 +400,16 @@ void check_packed(const std::filesystem::path& file, const Database& db, const s
         v.add(e.object_path().empty() ? store::kPacked : e.object_path(), e.message());
         return;
     }
-    if (!tier) return;
+    // A clip without lossless channels must be in the packed tier: it is its only copy.
+    auto check_dropped = [&](const std::map<std::string, std::string>& packed_clips) {
+        for (const auto& [id, r] : records)
+            if (!r.lossless && packed_clips.count(id) == 0)
+                v.add(store::clip_path(id), "the clip's lossless channels were dropped but it is not in /packed: its motion is lost");
+    };
+    if (!tier) {
+        check_dropped({});
+        return;
+    }
     store::h5::File f = store::h5::File::open(file, false);
     std::map<std::string, std::string> seen;
     std::size_t clips = 0, frames = 0;
@@ -443,6 +452,7 @@ void check_packed(const std::filesystem::path& file, const Database& db, const s
             v.add(bpath, std::string("the bytes do not parse: ") + e.what());
         }
     }
+    check_dropped(seen);
     std::uint64_t bytes = 0;
     for (const PackedGroupRecord& g : tier->groups) bytes += g.bytes;
     if (bytes != tier->bytes)

@@ -27,7 +27,10 @@ struct ClipRecord {
     std::size_t frames = 0;
     std::size_t channels = 0;
     double frame_rate = 0.0;         ///< Hz
-    std::uint64_t stored_bytes = 0;  ///< bytes the channel data takes in the file (compressed)
+    std::uint64_t stored_bytes = 0;  ///< bytes the lossless channel data takes in the file (compressed)
+    /// False when the lossless channels were dropped (mocapdb pack --drop-lossless): the clip is
+    /// then in the packed tier only, and Database::load_clip decodes it from there.
+    bool lossless = true;
 
     double duration() const noexcept {
         return frames > 0 && frame_rate > 0.0 ? static_cast<double>(frames - 1) / frame_rate : 0.0;

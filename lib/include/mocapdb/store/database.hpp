@@ -143,7 +143,10 @@ public:
     /// Id of the clip whose source file had this SHA-256; nullopt when none.
     std::optional<std::string> find_sha256(const std::string& sha256) const;
     /// Loads a clip (channels in cm and radians). Its skeleton is shared with every other clip of
-    /// the same skeleton loaded through this view. StoreError when there is no such clip.
+    /// the same skeleton loaded through this view. StoreError when there is no such clip. A clip
+    /// whose lossless channels were dropped (ClipRecord::lossless false) is decoded from the packed
+    /// tier (every joint within its max_error_cm, plus the float32 rounding of the packed offsets,
+    /// below 1e-4 cm), with the clip's stored skeleton.
     Clip load_clip(const std::string& id) const;
 
     /// The packed tier's records (no bytes read); nullopt when the file has no /packed.
@@ -245,9 +248,16 @@ public:
     /// (packing::pack_group). InvalidArgument unless the sizes agree, E and every figure are finite
     /// (E > 0, figures >= 0), every clip is stored with the frames given and appears once, and each
     /// group's bytes parse (packing::GroupDecoder) with the same clip count, frame counts and rate.
+    /// StoreError when an existing tier is the only copy of some clips (drop_lossless).
     void put_packed(const PackedTierRecord& tier, const std::vector<std::vector<std::uint8_t>>& group_bytes);
-    /// Removes the packed tier. StoreError when there is none.
+    /// Removes the packed tier. StoreError when there is none, or when it is the only copy of some
+    /// clips (drop_lossless).
     void remove_packed();
+    /// Removes the lossless channels of every clip in the packed tier (clips imported after the
+    /// tier was written keep theirs): the file then holds those clips only as packed, within the
+    /// tier's max_error_cm, and the tier can no longer be replaced or removed. Returns how many
+    /// clips were dropped now. StoreError when there is no packed tier. Irreversible once committed.
+    std::size_t drop_lossless();
 
     /// Closes the temporary file, makes it durable and renames it over the target. Space freed by
     /// replaced sets is reclaimed here (the file is rewritten compactly). The session is finished

@@ -1,7 +1,10 @@
 #pragma once
 // Packing a whole database into its error-bounded tier (/packed, schemas/format-v3.md §9): every
-// clip, grouped by skeleton topology and frame rate (packing::group_clips), each group packed with
-// packing::pack_group and stored through one DatabaseWriter session (atomic, writer lock).
+// clip, grouped by skeleton topology and frame rate (packing::group_clips) and cut into groups of at
+// most max_group_frames source frames (so memory is bounded by a group, not by the collection), each
+// group packed with packing::pack_group and stored through one DatabaseWriter session (atomic,
+// writer lock).
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <vector>
@@ -11,12 +14,22 @@
 
 namespace mocapdb {
 
+/// Source frames per packed group at most (about 36 minutes at 120 Hz; packing holds one group's
+/// clips, pose vectors and joint positions, about 1 kB per frame for a 31-joint rig).
+inline constexpr std::size_t kMaxPackedGroupFrames = std::size_t{1} << 18;
+
 struct PackDatabaseOptions {
     double max_error_cm = 1.0;  ///< E: max FK joint-position error (cm), > 0 and finite
     int threads = 2;            ///< encoder threads (>= 1)
     /// Replace an existing packed tier; without it a database that has one is refused (StoreError).
     bool replace = false;
     double wait_seconds = kWriterWaitSeconds;  ///< for another writing session on the file
+    /// A topology and rate with more frames is split into ceil(frames / max) groups of about equal
+    /// frames (whole clips; a single longer clip is a group of its own). >= 1.
+    std::size_t max_group_frames = kMaxPackedGroupFrames;
+    /// In the same session, remove the lossless channels of every packed clip
+    /// (DatabaseWriter::drop_lossless): the file keeps them only within E.
+    bool drop_lossless = false;
 };
 
 struct PackDatabaseOutcome {
@@ -27,6 +40,7 @@ struct PackDatabaseOutcome {
     std::vector<double> group_seconds;               ///< per group: encode + measurement, s
     std::uint64_t float32_bytes = 0;  ///< the clips' channels as float32
     double motion_seconds = 0.0;      ///< duration of the clips
+    std::size_t dropped_lossless = 0; ///< clips whose lossless channels were removed (drop_lossless)
     bool replaced = false;            ///< an earlier packed tier was replaced
     double replaced_max_error_cm = 0.0;
     std::uint64_t file_bytes = 0;     ///< the database file after the commit
@@ -35,11 +49,17 @@ struct PackDatabaseOutcome {
 
 /// Packs every clip of the database at `db` and stores the result as its packed tier (committed).
 /// InvalidArgument for E <= 0 or not finite, threads < 1; IoError when `db` does not exist;
-/// StoreError when it is not a database or already has a packed tier and !options.replace;
+/// StoreError when it is not a database or already has a packed tier and !options.replace (or that
+/// tier is the only copy of some clips: their lossless channels were dropped);
 /// packing::PackingFailed when a window cannot meet the bound. An empty database gets an empty
 /// tier. `progress` counts source frames of the collection (done/total), item = the clip.
-/// Memory: one group's clips at a time.
+/// Memory: one group's clips at a time (see max_group_frames).
 PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDatabaseOptions& options,
                                   const ProgressCallback& progress = {});
+
+/// Removes the lossless channels of every clip in the database's packed tier, in one committed
+/// session (DatabaseWriter::drop_lossless). Returns how many clips were dropped. IoError when `db`
+/// does not exist, StoreError when it has no packed tier.
+std::size_t drop_lossless_tier(const std::filesystem::path& db, double wait_seconds = kWriterWaitSeconds);
 
 }  // namespace mocapdb
