@@ -117,7 +117,7 @@ void setup_report(CLI::App& app) {
     collection_only(cmd->add_option("--threads", c->threads, "--collection: encoder threads")->check(CLI::Range(1, 64)));
     collection_only(cmd->add_option("--poses", c->poses, "--collection: random poses timed per E (default 20000)"));
     cmd->add_option("--csv", a->csv, "also write the table as CSV");
-    cmd->add_option("--svg", a->svg, "also write ratio against max error as an SVG chart");
+    cmd->add_option("--svg", a->svg, "also write an SVG chart (--set: ratio against max error; --collection: bytes against max error)");
     cmd->add_flag("--json", a->json, "print the table as JSON");
     cmd->add_flag("--force", a->force, "overwrite existing --csv/--svg files");
     cmd->callback([a, c, collection, cmd] {

@@ -259,7 +259,7 @@ std::string render_svg(const CollectionReportArgs& a, const CollectionReport& r,
                                {static_cast<double>(r.float32_bytes), static_cast<double>(r.float32_bytes)}});
     }
     spec.note = a.db + ": " + std::to_string(r.clips) + " clips, " + std::to_string(r.frames) + " frames, " +
-                std::to_string(r.groups) + " groups; lower is better";
+                std::to_string(r.groups) + (r.groups == 1 ? " group" : " groups") + "; lower is better";
     return render_line_plot(spec);
 }
 
@@ -267,9 +267,9 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
     std::string out;
     char line[512];
     std::snprintf(line, sizeof line,
-                  "%s: %zu clips, %zu frames, %.1f s of motion, %zu groups (skeleton topology x frame rate); "
+                  "%s: %zu clips, %zu frames, %.1f s of motion, %zu group%s (skeleton topology x frame rate); "
                   "float32 channels %llu bytes\n",
-                  a.db.c_str(), r.clips, r.frames, r.motion_seconds, r.groups,
+                  a.db.c_str(), r.clips, r.frames, r.motion_seconds, r.groups, r.groups == 1 ? "" : "s",
                   static_cast<unsigned long long>(r.float32_bytes));
     out += line;
     if (r.clips == 0) out += "the database has no clips: nothing to pack (every figure below is 0)\n";
