@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
+#include <string>
 #include <system_error>
 
 #include "mocapdb/codec/deflate.hpp"
