@@ -1,0 +1,57 @@
+#include "mocapdb/packing/measured_pack.hpp"
+
+#include <chrono>
+#include <string>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+
+namespace mocapdb::packing {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+MeasuredGroup pack_measured(const std::vector<const Clip*>& clips, const PackOptions& options,
+                            const std::vector<MatX>& source_positions, const ProgressCallback& progress) {
+    if (!source_positions.empty() && source_positions.size() != clips.size())
+        throw InvalidArgument("pack_measured: " + std::to_string(source_positions.size()) +
+                              " source position matrices for " + std::to_string(clips.size()) + " clips");
+    const double E = options.max_error_cm;
+    PackOptions attempt_options = options;
+    MeasuredGroup out;
+    for (int attempt = 0;; ++attempt) {
+        const auto t_pack = std::chrono::steady_clock::now();
+        out.packed = pack_group(clips, attempt_options, progress);  // validates E, W, threads
+        out.encode_seconds += seconds_since(t_pack);
+        out.attempts = attempt + 1;
+        const GroupDecoder decoder(out.packed.bytes);
+        out.clip_errors.clear();
+        out.errors = ErrorAccumulator(E);
+        out.decode_seconds = 0.0;
+        for (std::size_t k = 0; k < clips.size(); ++k) {
+            const auto t_decode = std::chrono::steady_clock::now();
+            const Clip decoded = decoder.decode_clip(k);
+            out.decode_seconds += seconds_since(t_decode);
+            ErrorAccumulator clip_errors(E);
+            if (source_positions.empty())
+                add_position_errors(joint_positions(*clips[k]), joint_positions(decoded), clip_errors);
+            else
+                add_position_errors(source_positions[k], joint_positions(decoded), clip_errors);
+            out.clip_errors.push_back(clip_errors.stats());
+            out.errors.merge(clip_errors);
+        }
+        const double excess = out.errors.stats().max_cm - E;
+        if (!(excess > 0.0)) return out;
+        if (attempt == 2)
+            throw Error("pack: the decoded group of '" + clips.front()->name + "' misses the bound by " +
+                        std::to_string(excess) + " cm after 3 attempts");
+        attempt_options.max_error_cm -= 2.0 * excess + 1e-9 * E;
+    }
+}
+
+}  // namespace mocapdb::packing
