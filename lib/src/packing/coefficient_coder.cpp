@@ -34,13 +34,12 @@ std::uint32_t gamma(Sink& sink, BitContext* prefix, BitContext* msb, std::uint32
     }
 }
 
+// `level` (size entries, zeroed by the caller): min(|q|, 2) by grid index.
 template <class Sink>
-void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& classes, const ScanGrid& grid,
-              std::int32_t* q) {
-    const auto size = classes.size();
-    const std::vector<std::uint32_t>& scan = *grid.scan;
+void traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, std::size_t size, const ScanGrid& grid,
+              std::int32_t* q, std::uint8_t* level) {
+    const std::uint32_t* scan = grid.scan->data();
     const auto rows = static_cast<std::uint32_t>(grid.rows);
-    std::vector<std::uint8_t> level(size, 0);  // min(|q|, 2) by grid index
     std::uint32_t length = 0;
     if constexpr (!Sink::kDecoding) {
         for (std::size_t i = size; i-- > 0;)
@@ -50,6 +49,7 @@ void traverse(Sink& sink, ContextSet& ctx, const std::vector<std::uint8_t>& clas
             }
     }
     length = gamma(sink, ctx.length(), nullptr, length + 1) - 1;
+    if constexpr (Sink::kDecoding) length = std::min<std::uint32_t>(length, static_cast<std::uint32_t>(size));
     int previous = 1;
     for (std::size_t i = 0; i < length; ++i) {
         const int cls = classes[i];
@@ -157,7 +157,8 @@ std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q
     EncodeSink sink;
     std::vector<std::int32_t> copy(q);
     copy.resize(classes.size(), 0);  // q may stop after its last nonzero
-    traverse(sink, contexts, classes, grid, copy.data());
+    std::vector<std::uint8_t> level(classes.size(), 0);
+    traverse(sink, contexts, classes.data(), classes.size(), grid, copy.data(), level.data());
     return sink.rc.finish();
 }
 
@@ -167,14 +168,22 @@ void count_coefficients(const std::vector<std::int32_t>& q, const std::vector<st
     CountSink sink{&counts, contexts.p.data()};
     std::vector<std::int32_t> copy(q);
     copy.resize(classes.size(), 0);
-    traverse(sink, contexts, classes, grid, copy.data());
+    std::vector<std::uint8_t> level(classes.size(), 0);
+    traverse(sink, contexts, classes.data(), classes.size(), grid, copy.data(), level.data());
 }
 
 void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::vector<std::uint8_t>& classes,
                          const ScanGrid& grid, ContextSet contexts, std::vector<std::int32_t>& out_q) {
-    DecodeSink sink{RangeDecoder(data, size)};
     out_q.resize(classes.size());
-    traverse(sink, contexts, classes, grid, out_q.data());
+    std::vector<std::uint8_t> level(classes.size(), 0);
+    decode_coefficients(data, size, classes.data(), classes.size(), grid, contexts, out_q.data(), level.data());
+}
+
+void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes, std::size_t count,
+                         const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q, std::uint8_t* level) {
+    DecodeSink sink{RangeDecoder(data, size)};
+    std::fill(level, level + count, std::uint8_t(0));
+    traverse(sink, contexts, classes, count, grid, out_q, level);
 }
 
 }  // namespace mocapdb::packing

@@ -8,9 +8,23 @@
 
 namespace mocapdb::packing {
 
+namespace {
+// Per-thread decode buffers: const methods stay thread-safe and allocate only on a thread's first use.
+detail::WindowScratch& thread_scratch() {
+    thread_local detail::WindowScratch scratch;
+    return scratch;
+}
+}  // namespace
+
 GroupDecoder::GroupDecoder(std::vector<std::uint8_t> bytes)
     : bytes_(std::move(bytes)), model_(std::make_unique<detail::GroupModel>()) {
     payload_ = model_->read_header(bytes_.data(), bytes_.size());
+    if (!model_->skeletons.empty()) channels_ = model_->skeletons.front().skeleton->channel_count();
+    // The classes depend only on the step: worked out once per step in use, not per decode.
+    classes_.resize(detail::kMaxStep + 1);
+    for (const detail::WindowEntry& e : model_->windows)
+        if (e.step != detail::kRawStep && classes_[e.step].empty())
+            position_classes(model_->levels, detail::step_of(e.step), classes_[e.step]);
 }
 GroupDecoder::~GroupDecoder() = default;
 GroupDecoder::GroupDecoder(GroupDecoder&&) noexcept = default;
@@ -23,6 +37,11 @@ std::size_t GroupDecoder::window_length() const { return static_cast<std::size_t
 void GroupDecoder::check(std::size_t clip) const {
     if (clip >= model_->clips.size())
         throw InvalidArgument("GroupDecoder: clip " + std::to_string(clip) + " of " + std::to_string(model_->clips.size()));
+}
+
+void GroupDecoder::check(std::size_t clip, std::size_t frame) const {
+    if (frame >= frame_count(clip))
+        throw InvalidArgument("GroupDecoder: frame " + std::to_string(frame) + " of " + std::to_string(frame_count(clip)));
 }
 
 std::size_t GroupDecoder::frame_count(std::size_t clip) const {
@@ -47,39 +66,49 @@ std::shared_ptr<const Skeleton> GroupDecoder::skeleton(std::size_t clip) const {
     return model_->skeletons[model_->clips[clip].skeleton].skeleton;
 }
 
-namespace {
-void decode_q(const detail::GroupModel& m, const std::uint8_t* payload, const detail::WindowEntry& e,
-              std::vector<std::int32_t>& out_q) {
-    std::vector<std::uint8_t> classes;
-    position_classes(m.levels, detail::step_of(e.step), classes);
-    decode_coefficients(payload + e.offset, e.size, classes, m.grid(), m.contexts, out_q);
+const detail::WindowEntry& GroupDecoder::entry(std::size_t clip, std::size_t window) const {
+    return model_->windows[model_->clips[clip].first_window + window];
 }
-}  // namespace
 
-void GroupDecoder::raw_rows(const detail::WindowEntry& e, int count, std::size_t channels, FrameMatrix& out) const {
-    const std::size_t values = static_cast<std::size_t>(count) * channels;
+int GroupDecoder::frames_in(std::size_t clip, std::size_t window) const {
+    const std::uint64_t W = window_length();
+    return static_cast<int>(std::min<std::uint64_t>(W, model_->clips[clip].frames - window * W));
+}
+
+void GroupDecoder::raw_rows(const detail::WindowEntry& e, int frames, std::size_t channels, int t0, int count,
+                            double* out) const {
+    const std::size_t values = static_cast<std::size_t>(frames) * channels;
     if (e.size != values * sizeof(double))
         throw Error("packed group: raw window of " + std::to_string(e.size) + " bytes, expected " +
                     std::to_string(values * sizeof(double)));
-    out.resize(count, static_cast<Eigen::Index>(channels));
-    std::memcpy(out.data(), bytes_.data() + payload_ + e.offset, values * sizeof(double));
+    std::memcpy(out, bytes_.data() + payload_ + e.offset + static_cast<std::size_t>(t0) * channels * sizeof(double),
+                static_cast<std::size_t>(count) * channels * sizeof(double));
+}
+
+void GroupDecoder::load_window(const detail::WindowEntry& e, detail::WindowScratch& s) const {
+    const detail::GroupModel& m = *model_;
+    m.prepare(s);
+    const std::vector<std::uint8_t>& classes = classes_[e.step];
+    s.contexts = m.contexts;  // every window starts from the trained probabilities
+    decode_coefficients(bytes_.data() + payload_ + e.offset, e.size, classes.data(), classes.size(), m.grid(),
+                        s.contexts, s.q.data(), s.level.data());
+    m.dequantize(e.step, s.q.data(), classes.size(), s);
 }
 
 FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) const {
     if (window >= window_count(clip))
         throw InvalidArgument("GroupDecoder: window " + std::to_string(window) + " of " +
                               std::to_string(window_count(clip)));
-    const detail::ClipEntry& c = model_->clips[clip];
-    const detail::WindowEntry& e = model_->windows[c.first_window + window];
-    const auto count = static_cast<int>(std::min<std::uint64_t>(window_length(), c.frames - window * window_length()));
-    FrameMatrix rows;
+    const detail::WindowEntry& e = entry(clip, window);
+    const int count = frames_in(clip, window);
+    FrameMatrix rows(count, static_cast<Eigen::Index>(channels_));
     if (e.step == detail::kRawStep) {
-        raw_rows(e, count, skeleton(clip)->channel_count(), rows);
+        raw_rows(e, count, channels_, 0, count, rows.data());
         return rows;
     }
-    std::vector<std::int32_t> q;
-    decode_q(*model_, bytes_.data() + payload_, e, q);
-    model_->reconstruct(c, e.step, q, count, rows);
+    detail::WindowScratch& s = thread_scratch();
+    load_window(e, s);
+    for (int t = 0; t < count; ++t) model_->frame_row(model_->clips[clip], s.g.data(), s.columns, t, s, rows.row(t).data());
     return rows;
 }
 
@@ -88,8 +117,7 @@ FrameMatrix GroupDecoder::decode_frames(std::size_t clip, std::size_t begin, std
     if (begin > end || end > frame_count(clip))
         throw InvalidArgument("GroupDecoder: frames [" + std::to_string(begin) + ", " + std::to_string(end) +
                               ") outside [0, " + std::to_string(frame_count(clip)) + ")");
-    const auto channels = static_cast<Eigen::Index>(skeleton(clip)->channel_count());
-    FrameMatrix out(static_cast<Eigen::Index>(end - begin), channels);
+    FrameMatrix out(static_cast<Eigen::Index>(end - begin), static_cast<Eigen::Index>(channels_));
     const std::size_t W = window_length();
     for (std::size_t w = begin / W; w * W < end; ++w) {
         const FrameMatrix rows = decode_window(clip, w);
@@ -110,22 +138,18 @@ Clip GroupDecoder::decode_clip(std::size_t clip) const {
 }
 
 void GroupDecoder::decode_pose(std::size_t clip, std::size_t frame, double* out_row) const {
-    if (frame >= frame_count(clip))
-        throw InvalidArgument("GroupDecoder: frame " + std::to_string(frame) + " of " + std::to_string(frame_count(clip)));
-    const detail::ClipEntry& c = model_->clips[clip];
+    check(clip, frame);
     const std::size_t W = window_length();
-    const detail::WindowEntry& e = model_->windows[c.first_window + frame / W];
+    const std::size_t w = frame / W;
+    const int t = static_cast<int>(frame % W);
+    const detail::WindowEntry& e = entry(clip, w);
     if (e.step == detail::kRawStep) {
-        FrameMatrix rows;
-        const auto count = static_cast<int>(std::min<std::uint64_t>(W, c.frames - (frame / W) * W));
-        raw_rows(e, count, skeleton(clip)->channel_count(), rows);
-        std::copy(rows.row(static_cast<Eigen::Index>(frame % W)).data(),
-                  rows.row(static_cast<Eigen::Index>(frame % W)).data() + rows.cols(), out_row);
+        raw_rows(e, frames_in(clip, w), channels_, t, 1, out_row);
         return;
     }
-    std::vector<std::int32_t> q;
-    decode_q(*model_, bytes_.data() + payload_, e, q);
-    model_->reconstruct_frame(c, e.step, q, static_cast<int>(frame % W), out_row);
+    detail::WindowScratch& s = thread_scratch();
+    load_window(e, s);
+    model_->frame_row(model_->clips[clip], s.g.data(), s.columns, t, s, out_row);
 }
 
 }  // namespace mocapdb::packing

@@ -57,48 +57,91 @@ MatX GroupModel::weighted_active(const Clip& clip, const SkeletonEntry& entry, c
     return out;
 }
 
-void GroupModel::to_rows(const ClipEntry& clip, const Eigen::Ref<const MatX>& x, FrameMatrix& out_rows) const {
-    const SkeletonEntry& entry = skeletons[clip.skeleton];
-    MatX p(dofs, x.cols());
-    for (int d = 0; d < dofs; ++d) p.row(d).setConstant(constant[static_cast<std::size_t>(d)]);
-    for (std::size_t i = 0; i < active.size(); ++i)
-        p.row(active[i]) = x.row(static_cast<Eigen::Index>(i)) / entry.weights[active[i]];
-    out_rows = from_pose_vectors(*entry.skeleton, p.topRows(pose_dofs), clip.canonical);
-    for (std::size_t e = 0; e < extra_columns.size(); ++e)
-        out_rows.col(extra_columns[e]) = p.row(pose_dofs + static_cast<Eigen::Index>(e)).transpose();
+void GroupModel::fold_constant_joints() {
+    std::vector<bool> varies(static_cast<std::size_t>(dofs), false);
+    for (int d : active) varies[static_cast<std::size_t>(d)] = true;
+    for (SkeletonEntry& e : skeletons) e.writer.fold_constants(varies, constant.data());
+}
+
+void GroupModel::prepare(WindowScratch& s) const {
+    const std::size_t da = active.size();
+    const std::size_t cells = da * static_cast<std::size_t>(window);
+    s.q.resize(cells);
+    s.level.resize(cells);
+    s.g.resize(cells);
+    s.y.resize(da);
+    s.x.resize(da);
+    s.p.resize(static_cast<std::size_t>(dofs));
+}
+
+void GroupModel::dequantize(int step_index, const std::int32_t* q, std::size_t n, WindowScratch& s) const {
+    const double step = step_of(step_index);
+    std::fill(s.g.begin(), s.g.end(), 0.0);
+    const std::size_t da = std::max<std::size_t>(1, active.size());
+    std::uint32_t last = 0;
+    n = std::min(n, scan.size());
+    for (std::size_t i = 0; i < n; ++i)
+        if (q[i] != 0) {
+            s.g[scan[i]] = q[i] * step;
+            last = std::max(last, scan[i]);
+        }
+    s.columns = n == 0 ? 0 : static_cast<int>(last / da) + 1;
 }
 
 namespace {
-MatX dequantize(const GroupModel& m, int step_index, const std::vector<std::int32_t>& q) {
-    const double step = step_of(step_index);
-    MatX g = MatX::Zero(static_cast<Eigen::Index>(m.active.size()), m.window);
-    const std::size_t n = std::min(q.size(), m.scan.size());
-    for (std::size_t i = 0; i < n; ++i)
-        if (q[i] != 0) g.data()[m.scan[i]] = q[i] * step;
-    return g;
+constexpr std::size_t kBlock = 16;  // four AVX2 registers of accumulators
+
+// out[i] = sum over c < columns of a[i + rows·c] · w[c·stride], i < rows. Each out[i] adds its terms
+// in ascending c, starting from +0: the same bits whether this runs vectorized or not, whatever
+// else is decoded (no FMA contraction: -ffp-contract=off). Blocks of kBlock rows accumulate in
+// registers.
+template <std::size_t N>
+void block_columns(const double* a, std::size_t rows, const double* w, std::size_t stride, std::size_t columns,
+                   double* out) {
+    double acc[N] = {};
+    for (std::size_t c = 0; c < columns; ++c) {
+        const double wc = w[c * stride];
+        const double* col = a + c * rows;
+        for (std::size_t b = 0; b < N; ++b) acc[b] += col[b] * wc;
+    }
+    std::copy(acc, acc + N, out);
+}
+
+void multiply_columns(const double* a, std::size_t rows, const double* w, std::size_t stride, std::size_t columns,
+                      double* out) {
+    std::size_t i = 0;
+    for (; i + kBlock <= rows; i += kBlock) block_columns<kBlock>(a + i, rows, w, stride, columns, out + i);
+    for (; i + 4 <= rows; i += 4) block_columns<4>(a + i, rows, w, stride, columns, out + i);
+    for (; i < rows; ++i) block_columns<1>(a + i, rows, w, stride, columns, out + i);
 }
 }  // namespace
 
-void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
-                             FrameMatrix& out_rows) const {
-    const MatX g = dequantize(*this, step_index, q);
-    MatX gv(g.rows(), count);
-    gv.noalias() = g * time_basis.topRows(count).transpose();
-    MatX x(g.rows(), count);
-    x.noalias() = dof_basis * gv;
-    to_rows(clip, x, out_rows);
+void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, int t, WindowScratch& s,
+                           double* row) const {
+    const std::size_t da = active.size();
+    const auto W = static_cast<std::size_t>(window);
+    double* y = s.y.data();
+    double* x = s.x.data();
+    // y = G v_t (v_t = row t of the time basis), then x = U y. Each output element sums its terms in
+    // ascending column order, in blocks of kBlock elements held in registers; the result does not
+    // depend on vectorization or on what else is decoded (no FMA contraction: -ffp-contract=off).
+    const double* v = time_basis.data() + t;
+    multiply_columns(g, da, v, W, static_cast<std::size_t>(columns), y);
+    multiply_columns(dof_basis.data(), da, y, 1, da, x);
+    const SkeletonEntry& entry = skeletons[clip.skeleton];
+    double* p = s.p.data();
+    std::copy(constant.begin(), constant.end(), p);
+    for (std::size_t i = 0; i < da; ++i) p[active[i]] = x[i] / entry.weights[active[i]];
+    entry.writer.write(p, clip.canonical, row);
+    for (std::size_t e = 0; e < extra_columns.size(); ++e) row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
 }
 
-void GroupModel::reconstruct_frame(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int t,
-                                   double* out_row) const {
-    const MatX g = dequantize(*this, step_index, q);
-    VecX gv(g.rows());
-    gv.noalias() = g * time_basis.row(t).transpose();
-    MatX x(g.rows(), 1);
-    x.col(0).noalias() = dof_basis * gv;
-    FrameMatrix rows;
-    to_rows(clip, x, rows);
-    std::copy(rows.data(), rows.data() + rows.cols(), out_row);
+void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
+                             WindowScratch& s, FrameMatrix& out_rows) const {
+    prepare(s);
+    dequantize(step_index, q.data(), q.size(), s);
+    out_rows.resize(count, static_cast<Eigen::Index>(skeletons[clip.skeleton].skeleton->channel_count()));
+    for (int t = 0; t < count; ++t) frame_row(clip, s.g.data(), s.columns, t, s, out_rows.row(t).data());
 }
 
 namespace {
@@ -149,6 +192,7 @@ SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extr
     SkeletonEntry e;
     e.skeleton = std::make_shared<const Skeleton>(std::move(joints), units, forward);
     e.weights = weights_of(*e.skeleton, pose_dofs, extra);
+    e.writer = ChannelWriter(*e.skeleton);
     return e;
 }
 
@@ -293,6 +337,7 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
         else
             constant[static_cast<std::size_t>(d)] = r.raw<double>();
     }
+    fold_constant_joints();
     const auto da = static_cast<Eigen::Index>(active.size());
     for (MatX* basis : {&dof_basis, &time_basis}) {
         const Eigen::Index n = basis == &dof_basis ? da : window;

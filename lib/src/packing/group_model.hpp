@@ -13,10 +13,14 @@
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/packing/coefficient_coder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
+#include "channel_writer.hpp"
 
 namespace mocapdb::packing::detail {
 
-constexpr std::uint8_t kFormatVersion = 1;
+/// 2: every frame is reconstructed on its own (fixed summation order, Euler angles unwrapped against
+/// zero), so one pose decodes to the same bits as its window. Version 1 bytes decode to different
+/// bits than their encoder verified and are refused.
+constexpr std::uint8_t kFormatVersion = 2;
 /// Weight of a translation dof (cm) relative to a rotation dof's lever weight (see weights_of).
 constexpr double kTranslationWeight = 3.0;
 /// Range (pose units: cm or rad) under which a dof counts as constant in the group.
@@ -34,6 +38,7 @@ constexpr std::uint8_t kRawStep = 255;
 struct SkeletonEntry {
     std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes
     VecX weights;                              ///< D weights (pose dofs, then extra position channels)
+    ChannelWriter writer;                      ///< pose vector -> channel row of `skeleton`
 };
 
 struct ClipEntry {
@@ -47,6 +52,16 @@ struct WindowEntry {
     std::uint8_t step = 0;
     std::uint64_t offset = 0;  ///< into the payload
     std::uint32_t size = 0;
+};
+
+/// Caller-owned buffers of one window's decode: sized on first use, then reused without allocating.
+struct WindowScratch {
+    std::vector<std::int32_t> q;    ///< quantized coefficients, scan order
+    std::vector<std::uint8_t> level;
+    std::vector<double> g;          ///< dequantized coefficients, Da by W, column-major
+    int columns = 0;                ///< time columns of g up to its last nonzero one
+    std::vector<double> y, x, p;    ///< one frame: G v_t (Da), U G v_t (Da), pose dofs (D)
+    ContextSet contexts;
 };
 
 struct GroupModel {
@@ -79,14 +94,21 @@ struct GroupModel {
     MatX dofs_of(const Clip& clip, const Canonicalization& canonical) const;
     /// Weighted active dofs (Da by F) of a clip whose skeleton is `entry`.
     MatX weighted_active(const Clip& clip, const SkeletonEntry& entry, const Canonicalization& canonical) const;
+    /// Once active and constant are known: joints whose pose dofs are all constant get their channels
+    /// computed once per skeleton (ChannelWriter::fold_constants) instead of in every frame.
+    void fold_constant_joints();
+    /// Sizes the scratch for this group.
+    void prepare(WindowScratch& s) const;
+    /// s.g and s.columns from quantized coefficients `q` (scan order; n may be short of Da·W).
+    void dequantize(int step_index, const std::int32_t* q, std::size_t n, WindowScratch& s) const;
+    /// Channel row of frame t (0 <= t < W) of a window's dequantized coefficients g: x = U (G v_t), summed in a
+    /// fixed order (time column, then dof basis column), then pose dofs -> channels. Every decode
+    /// path and the encoder's check go through here, so a frame has the same bits however decoded.
+    /// `g` and `columns` as dequantize leaves them in s (or a copy of them); s's frame buffers are used.
+    void frame_row(const ClipEntry& clip, const double* g, int columns, int t, WindowScratch& s, double* row) const;
     /// Channel rows of frames [0, count) of a window from its quantized coefficients (scan order).
     void reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
-                     FrameMatrix& out_rows) const;
-    /// One frame (index `t` in its window) into `out_row` (channel_count values).
-    void reconstruct_frame(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int t,
-                           double* out_row) const;
-    /// Channel rows from weighted active dofs (Da by n).
-    void to_rows(const ClipEntry& clip, const Eigen::Ref<const MatX>& x, FrameMatrix& out_rows) const;
+                     WindowScratch& s, FrameMatrix& out_rows) const;
 
     /// Header and tables (everything but the window payloads) and their parse.
     void write_header(std::vector<std::uint8_t>& out) const;

@@ -275,6 +275,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         else
             m.constant[static_cast<std::size_t>(d)] = 0.5 * (ranges[0].hi[d] + ranges[0].lo[d]);
     }
+    m.fold_constant_joints();
     const auto D = static_cast<Eigen::Index>(m.active.size());
 
     // Pass 0: the group's second moments along dofs and along time (ST-HOSVD at full rank).
@@ -365,6 +366,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             const auto nw = static_cast<int>((frames + W - 1) / W);
             GlobalPose pose;
             FrameMatrix rows;
+            detail::WindowScratch scratch;
             std::vector<std::int32_t> q(cells);
             std::vector<double> dist, best_dist;
             std::vector<int> ks(roundings.size(), k_start);
@@ -379,7 +381,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                 // holds every distance).
                 auto check = [&](int kk) -> bool {
                     ++st.probes;
-                    m.reconstruct(e, kk, q, count, rows);
+                    m.reconstruct(e, kk, q, count, scratch, rows);
                     dist.clear();
                     for (int t = 0; t < count; ++t) {
                         forward_kinematics(decoded_skeleton, rows.row(t).data(), pose);

@@ -69,42 +69,4 @@ RangeDecoder::RangeDecoder(const std::uint8_t* data, std::size_t size) : data_(d
     for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next();
 }
 
-int RangeDecoder::decode(BitContext& ctx) {
-    const std::uint32_t bound = (range_ >> kProbabilityBits) * ctx;
-    int bit;
-    if (code_ < bound) {
-        range_ = bound;
-        ctx = static_cast<BitContext>(ctx + ((kProbabilityOne - ctx) >> kAdaptShift));
-        bit = 0;
-    } else {
-        code_ -= bound;
-        range_ -= bound;
-        ctx = static_cast<BitContext>(ctx - (ctx >> kAdaptShift));
-        bit = 1;
-    }
-    while (range_ < kTop) {
-        range_ <<= 8;
-        code_ = (code_ << 8) | next();
-    }
-    return bit;
-}
-
-std::uint32_t RangeDecoder::decode_direct(int count) {
-    std::uint32_t value = 0;
-    while (count-- > 0) {
-        range_ >>= 1;
-        std::uint32_t bit = 0;
-        if (code_ >= range_) {
-            code_ -= range_;
-            bit = 1;
-        }
-        value = (value << 1) | bit;
-        while (range_ < kTop) {
-            range_ <<= 8;
-            code_ = (code_ << 8) | next();
-        }
-    }
-    return value;
-}
-
 }  // namespace mocapdb::packing

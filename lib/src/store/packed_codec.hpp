@@ -11,7 +11,7 @@
 namespace mocapdb::store {
 
 /// The `codec` attribute of /packed/{group}/bytes (packing::pack_group's format, version 1).
-inline const std::string kPackedGroupCodec = "mocapdb-packed-group-1";
+inline const std::string kPackedGroupCodec = "mocapdb-packed-group-2";
 
 /// Writes /packed (which must not exist) with `tier`'s figures and one group per entry; the groups'
 /// names are tier.groups[i].name.

@@ -80,5 +80,10 @@ void count_coefficients(const std::vector<std::int32_t>& q, const std::vector<st
 /// Decodes one window's coefficients (scan order) into out_q (resized to classes.size()).
 void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::vector<std::uint8_t>& classes,
                          const ScanGrid& grid, ContextSet contexts, std::vector<std::int32_t>& out_q);
+/// The same without allocating: `count` classes and out_q entries; `contexts` is the caller's copy
+/// of the initial probabilities and is adapted in place (spent afterwards); `level` is scratch of
+/// `count` bytes.
+void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes, std::size_t count,
+                         const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q, std::uint8_t* level);
 
 }  // namespace mocapdb::packing

@@ -1,7 +1,15 @@
 #pragma once
 // Decoding a packed group (packed_group.hpp): any clip, any frame range, one window at a time, or one
-// pose by random access. Immutable after construction; every const method is thread-safe (no caches,
-// scratch is per call).
+// pose by random access. Immutable after construction; every const method is thread-safe (no caches;
+// decode buffers are per thread, thread_local, allocated on a thread's first decode and reused).
+//
+// A frame decodes to the same bits by every path (decode_pose, decode_window, decode_frames,
+// decode_clip, PoseSampler): the bits the encoder verified against the bound.
+//
+// Cost of one pose (decode_pose, cold): its window's coefficients are range-decoded whole (every
+// time-basis vector spans the window), then only its frame is reconstructed and turned into channels.
+// For many poses from the same windows (playback, crowds) use a PoseSampler (pose_sampler.hpp),
+// which keeps decoded windows.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -14,7 +22,10 @@ namespace mocapdb::packing {
 namespace detail {
 struct GroupModel;
 struct WindowEntry;
+struct WindowScratch;
 }
+
+class PoseSampler;
 
 class GroupDecoder {
 public:
@@ -41,15 +52,28 @@ public:
     FrameMatrix decode_frames(std::size_t clip, std::size_t begin, std::size_t end) const;
     /// The whole clip (skeleton, rate, every frame).
     Clip decode_clip(std::size_t clip) const;
-    /// One frame's channel row into out_row (skeleton(clip)->channel_count() values).
+    /// One frame's channel row into out_row (skeleton(clip)->channel_count() values), the same bits
+    /// as that row of decode_window. InvalidArgument on a bad index; does not allocate after a
+    /// thread's first call (for a given group size).
     void decode_pose(std::size_t clip, std::size_t frame, double* out_row) const;
 
 private:
+    friend class PoseSampler;
     void check(std::size_t clip) const;
-    void raw_rows(const detail::WindowEntry& e, int count, std::size_t channels, FrameMatrix& out) const;
+    void check(std::size_t clip, std::size_t frame) const;
+    const detail::WindowEntry& entry(std::size_t clip, std::size_t window) const;
+    /// Frames of window `window` of the clip (W, fewer for the last window).
+    int frames_in(std::size_t clip, std::size_t window) const;
+    /// Raw windows: the stored rows of frames [t0, t0 + count) into out (row-major).
+    void raw_rows(const detail::WindowEntry& e, int frames, std::size_t channels, int t0, int count, double* out) const;
+    /// Coded windows: range-decodes and dequantizes into s.g / s.columns.
+    void load_window(const detail::WindowEntry& e, detail::WindowScratch& s) const;
     std::vector<std::uint8_t> bytes_;
     std::unique_ptr<detail::GroupModel> model_;
     std::size_t payload_ = 0;
+    std::size_t channels_ = 0;
+    /// Scan-position classes per step index, for the steps the window table uses (empty otherwise).
+    std::vector<std::vector<std::uint8_t>> classes_;
 };
 
 }  // namespace mocapdb::packing

@@ -43,11 +43,44 @@ class RangeDecoder {
 public:
     /// Decodes from `size` bytes at `data` (not copied: must outlive the decoder).
     RangeDecoder(const std::uint8_t* data, std::size_t size);
-    int decode(BitContext& ctx);
-    std::uint32_t decode_direct(int count);
+    // Inline: called once per coded decision, the decoder's inner loop.
+    int decode(BitContext& ctx) {
+        const std::uint32_t bound = (range_ >> kProbabilityBits) * ctx;
+        int bit;
+        if (code_ < bound) {
+            range_ = bound;
+            ctx = static_cast<BitContext>(ctx + ((kProbabilityOne - ctx) >> kAdaptShift));
+            bit = 0;
+        } else {
+            code_ -= bound;
+            range_ -= bound;
+            ctx = static_cast<BitContext>(ctx - (ctx >> kAdaptShift));
+            bit = 1;
+        }
+        normalize();
+        return bit;
+    }
+    std::uint32_t decode_direct(int count) {
+        std::uint32_t value = 0;
+        while (count-- > 0) {
+            range_ >>= 1;
+            const std::uint32_t bit = code_ >= range_ ? 1u : 0u;
+            code_ -= range_ & (0u - bit);
+            value = (value << 1) | bit;
+            normalize();
+        }
+        return value;
+    }
 
 private:
+    static constexpr std::uint32_t kTop = 1u << 24;
     std::uint8_t next() { return pos_ < size_ ? data_[pos_++] : std::uint8_t(0); }
+    void normalize() {
+        while (range_ < kTop) {
+            range_ <<= 8;
+            code_ = (code_ << 8) | next();
+        }
+    }
     const std::uint8_t* data_;
     std::size_t size_;
     std::size_t pos_ = 0;

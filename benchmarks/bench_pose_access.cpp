@@ -1,0 +1,208 @@
+// Pose access on a packed group (issue 14, acceptance 4: one decoded pose <= 2 µs on one thread for
+// a 31-joint skeleton): the packed collection codec's decode paths, timed on one thread.
+//
+//   bench_pose_access [--folder cmu-asfamc|cmu-walkrun-pfnn|all] [--errors 1,0.5,0.1] [--poses 20000]
+//                     [--repeats 3] [--crowd 100] [--ticks 480] [--cache DIR]
+//
+// Per folder (its largest group) and E, µs per pose, best of --repeats (median beside it):
+//   cold_us      GroupDecoder::decode_pose at random (clip, frame): range-decodes the pose's window
+//   window_us    decode_window of every window once, per frame decoded (streaming)
+//   play_us      PoseSampler, every frame of every clip in order (sequential playback)
+//   crowd_us     PoseSampler (capacity 128), --crowd clips at random start frames, each advanced one
+//                frame per tick for --ticks ticks, all sampled every tick (looping at clip ends)
+//   crowd4_us    the same advancing 4 frames per tick (120 Hz data shown at 30 Hz)
+//   hit rate     share of sampler requests whose window was already decoded
+// and whether the sampler's rows equal decode_pose's bit for bit on the first 2000 crowd poses.
+// --cache DIR keeps the packed bytes per (folder, E) between runs (packing ASF takes ~30 s); bytes of
+// an older packing version are packed again.
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_timing.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/io/clip_file.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/packing/pose_sampler.hpp"
+
+namespace fs = std::filesystem;
+using namespace mocapdb;
+using namespace mocapdb::bench;
+
+namespace {
+
+std::vector<Clip> read_folder(const std::string& name) {
+    const fs::path dir = fs::path(MOCAPDB_SHARED_DIR) / "datasets" / name;
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const auto ext = e.path().extension().string();
+        if (ext == ".amc" || ext == ".bvh") files.push_back(e.path());
+    }
+    std::sort(files.begin(), files.end());
+    std::vector<Clip> clips;
+    for (const auto& f : files) {
+        ClipReadOptions o;
+        if (f.extension() == ".bvh") o.frame_rate = 60.0;  // their Frame Time is wrong
+        Warnings warnings;
+        clips.push_back(read_clip(f, o, &warnings));
+        clips.back().name = f.stem().string();
+    }
+    return clips;
+}
+
+// The largest group of the folder packed at E (from the cache when it holds readable bytes).
+std::vector<std::uint8_t> packed_bytes(const std::string& folder, double E, const std::string& cache) {
+    fs::path file;
+    if (!cache.empty()) {
+        fs::create_directories(cache);
+        std::ostringstream name;
+        name << folder << "_E" << E << ".mdbp";
+        file = fs::path(cache) / name.str();
+        std::ifstream in(file, std::ios::binary);
+        if (in) {
+            std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            try {
+                packing::GroupDecoder check(bytes);
+                return bytes;
+            } catch (const Error&) {
+                // an older packing version: pack again
+            }
+        }
+    }
+    const std::vector<Clip> clips = read_folder(folder);
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : clips) ptrs.push_back(&c);
+    auto groups = packing::group_clips(ptrs);
+    std::sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+    std::vector<const Clip*> group;
+    for (std::size_t i : groups.front()) group.push_back(ptrs[i]);
+    packing::PackOptions options;
+    options.max_error_cm = E;
+    packing::PackedGroup packed = packing::pack_group(group, options);
+    if (!file.empty()) {
+        std::ofstream out(file, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(packed.bytes.data()), static_cast<std::streamsize>(packed.bytes.size()));
+    }
+    return std::move(packed.bytes);
+}
+
+struct Timing {
+    std::vector<double> us;
+    void add(double seconds, std::size_t poses) { us.push_back(seconds / static_cast<double>(poses) * 1e6); }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string folder = "all", cache;
+    std::vector<double> errors{1.0, 0.5, 0.1};
+    int poses = 20000, repeats = 3, crowd = 100, ticks = 480;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+        if (a == "--folder") folder = next();
+        else if (a == "--errors") {
+            errors.clear();
+            std::stringstream ss(next());
+            for (std::string t; std::getline(ss, t, ',');) errors.push_back(std::stod(t));
+        } else if (a == "--poses") poses = std::stoi(next());
+        else if (a == "--repeats") repeats = std::max(1, std::stoi(next()));
+        else if (a == "--crowd") crowd = std::max(1, std::stoi(next()));
+        else if (a == "--ticks") ticks = std::max(1, std::stoi(next()));
+        else if (a == "--cache") cache = next();
+        else {
+            std::fprintf(stderr, "unknown argument %s\n", a.c_str());
+            return 2;
+        }
+    }
+    const std::vector<std::string> folders =
+        folder == "all" ? std::vector<std::string>{"cmu-walkrun-pfnn", "cmu-asfamc"} : std::vector<std::string>{folder};
+    for (const auto& name : folders)
+        for (double E : errors) {
+            const packing::GroupDecoder decoder(packed_bytes(name, E, cache));
+            const std::size_t clips = decoder.clip_count();
+            const std::size_t channels = decoder.skeleton(0)->channel_count();
+            std::size_t frames = 0, windows = 0;
+            for (std::size_t k = 0; k < clips; ++k) {
+                frames += decoder.frame_count(k);
+                windows += decoder.window_count(k);
+            }
+            std::vector<double> row(channels), other(channels);
+            Timing cold, window, play, crowd1, crowd4;
+            double hit1 = 0, hit4 = 0;
+            bool identical = true;
+            for (int r = 0; r < repeats; ++r) {
+                {  // cold random access
+                    std::mt19937 rng(7);
+                    const auto t = Clock::now();
+                    for (int p = 0; p < poses; ++p) {
+                        const std::size_t k = rng() % clips;
+                        decoder.decode_pose(k, rng() % decoder.frame_count(k), row.data());
+                        g_sink = g_sink + row[0];
+                    }
+                    cold.add(seconds_since(t), static_cast<std::size_t>(poses));
+                }
+                {  // streaming, window by window
+                    const auto t = Clock::now();
+                    for (std::size_t k = 0; k < clips; ++k)
+                        for (std::size_t w = 0; w < decoder.window_count(k); ++w) g_sink = g_sink + decoder.decode_window(k, w)(0, 0);
+                    window.add(seconds_since(t), frames);
+                }
+                {  // sequential playback
+                    packing::PoseSampler sampler(decoder, 4);
+                    const auto t = Clock::now();
+                    for (std::size_t k = 0; k < clips; ++k)
+                        for (std::size_t f = 0; f < decoder.frame_count(k); ++f) g_sink = g_sink + sampler.pose(k, f)[0];
+                    play.add(seconds_since(t), frames);
+                }
+                for (int step : {1, 4}) {  // a crowd
+                    std::mt19937 rng(11);
+                    std::vector<std::size_t> clip(static_cast<std::size_t>(crowd)), frame(clip.size());
+                    for (std::size_t a = 0; a < clip.size(); ++a) {
+                        clip[a] = rng() % clips;
+                        frame[a] = rng() % decoder.frame_count(clip[a]);
+                    }
+                    packing::PoseSampler sampler(decoder, 128);
+                    const auto t = Clock::now();
+                    for (int tick = 0; tick < ticks; ++tick)
+                        for (std::size_t a = 0; a < clip.size(); ++a) {
+                            g_sink = g_sink + sampler.pose(clip[a], frame[a])[0];
+                            frame[a] = (frame[a] + static_cast<std::size_t>(step)) % decoder.frame_count(clip[a]);
+                        }
+                    (step == 1 ? crowd1 : crowd4).add(seconds_since(t), clip.size() * static_cast<std::size_t>(ticks));
+                    (step == 1 ? hit1 : hit4) =
+                        static_cast<double>(sampler.hits()) / static_cast<double>(sampler.hits() + sampler.misses());
+                    if (r == 0 && step == 1) {  // bit-identity with decode_pose (untimed)
+                        sampler.clear();
+                        std::mt19937 again(11);
+                        for (int p = 0; p < 2000; ++p) {
+                            const std::size_t k = again() % clips;
+                            const std::size_t f = again() % decoder.frame_count(k);
+                            for (std::size_t s = 0; s < 5 && f + s < decoder.frame_count(k); ++s) {
+                                decoder.decode_pose(k, f + s, row.data());
+                                sampler.pose(k, f + s, other.data());
+                                identical = identical && std::memcmp(row.data(), other.data(), channels * sizeof(double)) == 0;
+                            }
+                        }
+                    }
+                }
+            }
+            std::printf(
+                "folder=%s E=%g clips=%zu frames=%zu windows=%zu channels=%zu cold_us=%.2f (median %.2f) window_us=%.2f "
+                "(median %.2f) play_us=%.2f (median %.2f) crowd_us=%.2f (median %.2f, hit %.3f) crowd4_us=%.2f "
+                "(median %.2f, hit %.3f) sampler_equals_decode_pose=%d\n",
+                name.c_str(), E, clips, frames, windows, channels, best(cold.us), median(cold.us), best(window.us),
+                median(window.us), best(play.us), median(play.us), best(crowd1.us), median(crowd1.us), hit1,
+                best(crowd4.us), median(crowd4.us), hit4, identical ? 1 : 0);
+            std::fflush(stdout);
+        }
+    return 0;
+}

@@ -1,0 +1,61 @@
+#pragma once
+// Poses of a packed group for playback-style access: a per-thread cache of decoded windows.
+//
+// GroupDecoder::decode_pose range-decodes a pose's whole window every time (tens of µs); a sampler
+// keeps the last `capacity` windows it touched (their dequantized coefficients, least recently used
+// evicted) and turns a frame into its channel row once, on first request. Consecutive frames of a
+// clip, or many clips sampled at advancing times (a crowd), then pay the window's range decoding
+// once per W frames and one frame reconstruction per new frame; a repeated frame is a lookup.
+//
+// Contract: pose(clip, frame) gives the same bits as decoder.decode_pose(clip, frame) (and as that
+// row of decode_window). InvalidArgument on a bad clip or frame; mocapdb::Error on malformed bytes.
+// Ownership and threads: the sampler refers to `decoder` (which must outlive it and is only read)
+// and is NOT thread-safe: one sampler per thread, any number of samplers per decoder. Memory:
+// capacity x (Da x W + W x channels) doubles (about 32 kB per window for the 31-joint CMU ASF rig at
+// W = 32) plus 4 bytes per window of the group; allocated at construction, none per pose.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mocapdb/packing/group_decoder.hpp"
+
+namespace mocapdb::packing {
+
+class PoseSampler {
+public:
+    /// capacity: windows kept decoded (>= 1, InvalidArgument otherwise). Use at least the number of
+    /// clips sampled in turn (a crowd of 100 clips needs 100 or more, or every pose misses).
+    explicit PoseSampler(const GroupDecoder& decoder, std::size_t capacity = 128);
+    ~PoseSampler();
+    PoseSampler(PoseSampler&&) noexcept;
+    PoseSampler& operator=(PoseSampler&&) noexcept;
+
+    /// The frame's channel row (channel_count() values), valid until the next call on this sampler.
+    const double* pose(std::size_t clip, std::size_t frame);
+    /// The same, copied into out_row.
+    void pose(std::size_t clip, std::size_t frame, double* out_row);
+
+    std::size_t channel_count() const { return channels_; }
+    std::size_t capacity() const;
+    /// Requests whose window was already decoded / had to be decoded (since construction or clear()).
+    std::size_t hits() const { return hits_; }
+    std::size_t misses() const { return misses_; }
+    /// Forgets every decoded window (keeps the memory).
+    void clear();
+
+private:
+    struct Slot;
+    std::size_t fill(std::size_t clip, std::size_t window, std::uint64_t global);
+
+    const GroupDecoder* decoder_;
+    std::size_t channels_ = 0;
+    std::vector<Slot> slots_;
+    std::vector<std::int32_t> slot_of_;  ///< per window of the group: its slot, or -1
+    std::unique_ptr<detail::WindowScratch> scratch_;
+    std::uint64_t tick_ = 0;
+    std::size_t hits_ = 0;
+    std::size_t misses_ = 0;
+};
+
+}  // namespace mocapdb::packing

@@ -1,0 +1,104 @@
+#include "mocapdb/packing/pose_sampler.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "group_model.hpp"
+
+namespace mocapdb::packing {
+
+struct PoseSampler::Slot {
+    std::uint64_t window = std::numeric_limits<std::uint64_t>::max();  ///< index in the group, or none
+    std::size_t clip = 0;
+    std::vector<double> g;         ///< dequantized coefficients (coded windows)
+    int columns = 0;
+    std::vector<double> rows;      ///< W rows of channels, row-major
+    std::vector<std::uint8_t> done;  ///< per frame: rows holds it
+    std::uint64_t used = 0;        ///< tick of the last request (least recently used is evicted)
+};
+
+PoseSampler::PoseSampler(const GroupDecoder& decoder, std::size_t capacity)
+    : decoder_(&decoder), channels_(decoder.channels_), scratch_(std::make_unique<detail::WindowScratch>()) {
+    if (capacity == 0) throw InvalidArgument("PoseSampler: capacity must be at least 1 window");
+    const detail::GroupModel& m = *decoder.model_;
+    m.prepare(*scratch_);
+    const auto W = static_cast<std::size_t>(m.window);
+    slots_.resize(capacity);
+    for (Slot& s : slots_) {
+        s.g.resize(scratch_->g.size());
+        s.rows.resize(W * channels_);
+        s.done.assign(W, 0);
+    }
+    slot_of_.assign(m.windows.size(), -1);
+}
+
+PoseSampler::~PoseSampler() = default;
+PoseSampler::PoseSampler(PoseSampler&&) noexcept = default;
+PoseSampler& PoseSampler::operator=(PoseSampler&&) noexcept = default;
+
+std::size_t PoseSampler::capacity() const { return slots_.size(); }
+
+void PoseSampler::clear() {
+    for (Slot& s : slots_) {
+        if (s.window != std::numeric_limits<std::uint64_t>::max()) slot_of_[s.window] = -1;
+        s.window = std::numeric_limits<std::uint64_t>::max();
+        s.used = 0;
+    }
+    hits_ = misses_ = 0;
+}
+
+std::size_t PoseSampler::fill(std::size_t clip, std::size_t window, std::uint64_t global) {
+    // Least recently used slot (a linear scan: cheap beside the range decoding that follows).
+    std::size_t victim = 0;
+    for (std::size_t i = 1; i < slots_.size(); ++i)
+        if (slots_[i].used < slots_[victim].used) victim = i;
+    Slot& s = slots_[victim];
+    if (s.window != std::numeric_limits<std::uint64_t>::max()) slot_of_[s.window] = -1;
+    s.window = std::numeric_limits<std::uint64_t>::max();  // stays empty should decoding throw
+    std::fill(s.done.begin(), s.done.end(), std::uint8_t(0));
+    const detail::WindowEntry& e = decoder_->entry(clip, window);
+    if (e.step == detail::kRawStep) {
+        const int frames = decoder_->frames_in(clip, window);
+        decoder_->raw_rows(e, frames, channels_, 0, frames, s.rows.data());
+        std::fill(s.done.begin(), s.done.begin() + frames, std::uint8_t(1));
+    } else {
+        decoder_->load_window(e, *scratch_);
+        s.g.swap(scratch_->g);  // same size: no allocation, the scratch takes the old buffer
+        s.columns = scratch_->columns;
+    }
+    s.window = global;
+    s.clip = clip;
+    slot_of_[global] = static_cast<std::int32_t>(victim);
+    return victim;
+}
+
+const double* PoseSampler::pose(std::size_t clip, std::size_t frame) {
+    decoder_->check(clip, frame);
+    const detail::GroupModel& m = *decoder_->model_;
+    const auto W = static_cast<std::size_t>(m.window);
+    const std::size_t window = frame / W;
+    const std::size_t t = frame % W;
+    const std::uint64_t global = m.clips[clip].first_window + window;
+    std::int32_t index = slot_of_[global];
+    if (index < 0) {
+        index = static_cast<std::int32_t>(fill(clip, window, global));
+        ++misses_;
+    } else {
+        ++hits_;
+    }
+    Slot& s = slots_[static_cast<std::size_t>(index)];
+    s.used = ++tick_;
+    double* row = s.rows.data() + t * channels_;
+    if (!s.done[t]) {
+        m.frame_row(m.clips[clip], s.g.data(), s.columns, static_cast<int>(t), *scratch_, row);
+        s.done[t] = 1;
+    }
+    return row;
+}
+
+void PoseSampler::pose(std::size_t clip, std::size_t frame, double* out_row) {
+    const double* row = pose(clip, frame);
+    std::copy(row, row + channels_, out_row);
+}
+
+}  // namespace mocapdb::packing

@@ -1,0 +1,119 @@
+// One pose by random access and through a PoseSampler gives exactly the bits of its window's decode
+// (the bits the encoder verified against the bound), on both shared rigs at each E.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include "mocapdb/io/clip_file.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/packing/pose_sampler.hpp"
+#include "mocapdb/procedural/walk.hpp"
+#include "shared_data.hpp"
+
+using namespace mocapdb;
+using namespace mocapdb::packing;
+
+namespace {
+
+std::vector<Clip> read_cut(const std::string& folder, const std::vector<std::string>& stems, std::size_t frames) {
+    std::vector<Clip> out;
+    for (const auto& stem : stems) {
+        const auto dir = test::datasets_dir() / folder;
+        ClipReadOptions o;
+        std::filesystem::path path = dir / (stem + ".amc");
+        if (!std::filesystem::exists(path)) {
+            path = dir / (stem + ".bvh");
+            o.frame_rate = 60.0;
+        }
+        Clip c = read_clip(path, o);
+        out.push_back(c.frame_count() > frames ? slice(c, 0, frames) : c);
+    }
+    return out;
+}
+
+bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
+
+// Every frame of every clip: decode_pose and the sampler (fed in a scrambled order, small capacity so
+// that windows are evicted and decoded again) equal decode_window's row.
+void check_every_frame(const std::vector<Clip>& clips) {
+    std::vector<const Clip*> ptrs;
+    for (const Clip& c : clips) ptrs.push_back(&c);
+    for (double E : {1.0, 0.5, 0.1}) {
+        PackOptions options;
+        options.max_error_cm = E;
+        const GroupDecoder decoder(pack_group(ptrs, options).bytes);
+        PoseSampler sampler(decoder, 2);
+        const std::size_t channels = decoder.skeleton(0)->channel_count();
+        REQUIRE(sampler.channel_count() == channels);
+        std::vector<double> row(channels);
+        std::vector<std::pair<std::size_t, std::size_t>> order;
+        std::size_t mismatches = 0, sampler_mismatches = 0, frames = 0;
+        for (std::size_t k = 0; k < decoder.clip_count(); ++k)
+            for (std::size_t w = 0; w < decoder.window_count(k); ++w) {
+                const FrameMatrix window = decoder.decode_window(k, w);
+                for (Eigen::Index t = 0; t < window.rows(); ++t) {
+                    const std::size_t f = w * decoder.window_length() + static_cast<std::size_t>(t);
+                    decoder.decode_pose(k, f, row.data());
+                    if (!same_bits(row.data(), window.row(t).data(), channels)) ++mismatches;
+                    order.emplace_back(k, f);
+                    ++frames;
+                }
+            }
+        std::shuffle(order.begin(), order.end(), std::mt19937(5));
+        for (const auto& [k, f] : order) {
+            const FrameMatrix rows = decoder.decode_frames(k, f, f + 1);
+            if (!same_bits(sampler.pose(k, f), rows.data(), channels)) ++sampler_mismatches;
+        }
+        INFO("E " << E << ": " << frames << " frames");
+        CHECK(mismatches == 0);
+        CHECK(sampler_mismatches == 0);
+        CHECK(sampler.hits() + sampler.misses() == frames);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("decode_pose and PoseSampler equal decode_window bit for bit: PFNN rig", "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
+    check_every_frame(read_cut("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}, 300));
+}
+
+TEST_CASE("decode_pose and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    check_every_frame(read_cut("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
+}
+
+TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are refused", "[packing]") {
+    std::vector<Clip> clips;
+    for (double turn : {0.0, 90.0}) {
+        procedural::WalkOptions o;
+        o.frame_rate = 60.0;
+        o.cycles = 2;
+        clips.push_back(procedural::generate_walk({1.2, turn, 0.0}, o).clip);
+    }
+    const GroupDecoder decoder(pack_group({&clips[0], &clips[1]}, PackOptions{}).bytes);
+    CHECK_THROWS_AS(PoseSampler(decoder, 0), InvalidArgument);
+    PoseSampler sampler(decoder, 1);
+    CHECK(sampler.capacity() == 1);
+    const std::size_t frames = decoder.frame_count(0);
+    std::vector<double> row(sampler.channel_count()), expected(sampler.channel_count());
+    for (std::size_t f = 0; f < frames; ++f) {
+        sampler.pose(0, f, row.data());
+        decoder.decode_pose(0, f, expected.data());
+        CHECK(same_bits(row.data(), expected.data(), row.size()));
+    }
+    // One window decoded per W frames, every other pose a hit.
+    CHECK(sampler.misses() == decoder.window_count(0));
+    CHECK(sampler.hits() == frames - decoder.window_count(0));
+    CHECK_THROWS_AS(sampler.pose(0, frames), InvalidArgument);
+    CHECK_THROWS_AS(sampler.pose(2, 0), InvalidArgument);
+    sampler.clear();
+    CHECK(sampler.hits() + sampler.misses() == 0);
+    sampler.pose(1, 0, row.data());
+    decoder.decode_pose(1, 0, expected.data());
+    CHECK(same_bits(row.data(), expected.data(), row.size()));
+}
