@@ -1,7 +1,7 @@
 // Acceptance 6: the README's h5py snippet decodes a packed clip (schemas/format-v3.md §5.1) to the
 // library's values bit for bit (same sha256 of the float64 bytes), reads the tensor, the parameters
 // and the model of a database, and its reconstruction formula of the model (§8) gives back the
-// aligned tensor of the reference file (whose model is exact). It runs on the reference file with
+// aligned tensor of the reference file (whose model is exact); it lists the packed tier's groups. It runs on the reference file with
 // Debian's python3-h5py and python3-zstandard when installed; otherwise the same values are read
 // with h5dump.
 #include <catch2/catch.hpp>
@@ -40,6 +40,10 @@ TEST_CASE("README: the h5py snippet reads the tensor and the control parameters"
         CHECK(r.output.find("clip tiny_walk (frames, channels) = (4, 9) sha256 " + mocapdb::sha256_hex(bytes)) !=
               std::string::npos);
         CHECK(r.output.find("tensor (sample, time, dof) = (2, 3, 9) A(d=5, t=2, s=1) = 125.0") != std::string::npos);
+        // The packed tier's layout (the reference file has one at kReferencePackedErrorCm).
+        CHECK(r.output.find("packed E 0.1 bytes ") != std::string::npos);
+        CHECK(r.output.find("/packed/g0 tiny_walk 30.0 Hz ") != std::string::npos);
+        CHECK(r.output.find("mocapdb-packed-group-2 {'tiny_walk': ") != std::string::npos);
         const std::string model = "model ranks (1, 2, 2) max |A - A_hat| = ";
         const auto m = r.output.find(model);
         REQUIRE(m != std::string::npos);

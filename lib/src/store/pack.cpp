@@ -12,6 +12,7 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/error_stats.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/measured_pack.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 
 namespace mocapdb {
@@ -127,48 +128,30 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
                 progress(Progress{frames_before + static_cast<std::uint64_t>(share * static_cast<double>(group_frames)),
                                   total_frames, p.item});
             };
-        // The bound is checked on what is stored, decoded as a reader will, at every source frame.
-        // Should a position land above E after all (the encoder's own check and this one have been
-        // seen to differ by 4e-7 cm at E = 0.1), the group is packed again with E lowered by the excess.
-        packing::PackOptions group_options = po;
-        packing::PackedGroup packed;
+        // The bound is checked on what is stored, decoded as a reader will, at every source frame
+        // (pack_measured repacks below E should a decoded position land above it).
+        packing::MeasuredGroup measured = packing::pack_measured(ptrs, po, {}, group_progress);
+        const packing::GroupDecoder decoder(measured.packed.bytes);
         PackedGroupRecord r;
-        packing::ErrorAccumulator group_errors(E);
+        r.skeleton = records[members.front()].skeleton;
+        r.frame_rate = clips.front().frame_rate;
         std::uint64_t float32 = 0;
         double group_seconds = 0.0;
-        for (int attempt = 0;; ++attempt) {
-            packed = packing::pack_group(ptrs, group_options, group_progress);
-            const packing::GroupDecoder decoder(packed.bytes);
-            r = PackedGroupRecord();
-            r.skeleton = records[members.front()].skeleton;
-            r.frame_rate = clips.front().frame_rate;
-            group_errors = packing::ErrorAccumulator(E);
-            float32 = 0;
-            group_seconds = 0.0;
-            for (std::size_t k = 0; k < clips.size(); ++k) {
-                const Clip decoded = decoder.decode_clip(k);
-                packing::ErrorAccumulator clip_errors(E);
-                packing::add_position_errors(joint_positions(clips[k]), joint_positions(decoded), clip_errors);
-                const packing::ErrorStats e = clip_errors.stats();
-                PackedClipRecord c;
-                c.id = clips[k].name;
-                c.frames = clips[k].frame_count();
-                c.payload_bytes = decoder.clip_payload_bytes(k);
-                c.max_cm = e.max_cm;
-                c.p99_cm = e.p99_cm;
-                c.rmse_cm = e.rmse_cm;
-                r.clips.push_back(std::move(c));
-                group_errors.merge(clip_errors);
-                float32 += static_cast<std::uint64_t>(clips[k].channels.size()) * 4u;
-                group_seconds += clips[k].duration();
-            }
-            const double excess = group_errors.stats().max_cm - E;
-            if (!(excess > 0.0)) break;
-            if (attempt == 2)
-                throw Error("pack: the decoded group of '" + clips.front().name + "' misses the bound by " +
-                            std::to_string(excess) + " cm after 3 attempts");
-            group_options.max_error_cm -= 2.0 * excess + 1e-9 * E;
+        for (std::size_t k = 0; k < clips.size(); ++k) {
+            const packing::ErrorStats& e = measured.clip_errors[k];
+            PackedClipRecord c;
+            c.id = clips[k].name;
+            c.frames = clips[k].frame_count();
+            c.payload_bytes = decoder.clip_payload_bytes(k);
+            c.max_cm = e.max_cm;
+            c.p99_cm = e.p99_cm;
+            c.rmse_cm = e.rmse_cm;
+            r.clips.push_back(std::move(c));
+            float32 += static_cast<std::uint64_t>(clips[k].channels.size()) * 4u;
+            group_seconds += clips[k].duration();
         }
+        const packing::ErrorAccumulator& group_errors = measured.errors;
+        packing::PackedGroup& packed = measured.packed;
         out.motion_seconds += group_seconds;
         const packing::ErrorStats ge = group_errors.stats();
         r.max_cm = ge.max_cm;
