@@ -14,6 +14,7 @@
 #include "mocapdb/io/text_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/group_split.hpp"
 #include "mocapdb/packing/measured_pack.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 #include "mocapdb/store/sha256.hpp"
@@ -142,7 +143,13 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
         out.clip_names.push_back(stem.empty() ? r.id : stem);
     }
     out.lossless.float32_bytes = out.float32_bytes;
-    const std::vector<std::vector<std::size_t>> groups = packing::group_clips(head_ptrs);
+    std::vector<std::vector<std::size_t>> groups;  // as pack_database groups them
+    for (const std::vector<std::size_t>& g : packing::group_clips(head_ptrs)) {
+        std::vector<std::size_t> frames;
+        for (std::size_t i : g) frames.push_back(records[i].frames);
+        for (std::vector<std::size_t>& part : packing::split_by_frames(g, frames, packing::kMaxGroupFrames))
+            groups.push_back(std::move(part));
+    }
     out.groups = groups.size();
 
     const std::uint64_t total_work =

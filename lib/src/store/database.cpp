@@ -119,14 +119,18 @@ Clip Database::load_clip_packed(const std::string& id, std::size_t begin, std::s
     if (!where) throw StoreError(f.name(), store::kPacked, "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
     const PackedGroupRecord& g = tier->groups[where->first];
     const std::string path = store::packed_group_path(g.name) + "/bytes";
-    std::unique_ptr<packing::GroupDecoder> decoder;
-    try {
-        decoder = std::make_unique<packing::GroupDecoder>(store::read_packed_bytes(f, g.name));
-    } catch (const StoreError&) {
-        throw;
-    } catch (const Error& e) {
-        throw StoreError(f.name(), path, e.what());
+    if (impl_->decoder_group != g.name || !impl_->decoder) {
+        impl_->decoder.reset();
+        try {
+            impl_->decoder = std::make_shared<const packing::GroupDecoder>(store::read_packed_bytes(f, g.name));
+        } catch (const StoreError&) {
+            throw;
+        } catch (const Error& e) {
+            throw StoreError(f.name(), path, e.what());
+        }
+        impl_->decoder_group = g.name;
     }
+    const std::shared_ptr<const packing::GroupDecoder> decoder = impl_->decoder;
     const std::size_t k = where->second;
     if (decoder->clip_count() != g.clips.size() || decoder->frame_count(k) != g.clips[k].frames)
         throw StoreError(f.name(), path,

@@ -1,10 +1,12 @@
 #pragma once
-// State shared by Database and DatabaseWriter: the open file and the skeleton cache.
+// State shared by Database and DatabaseWriter: the open file, the skeleton cache and the decoder of
+// the packed group read last (clips are usually loaded group by group).
 #include <map>
 #include <memory>
 #include <string>
 
 #include "h5/file.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb {
@@ -15,6 +17,8 @@ struct Database::Impl {
     store::h5::File* file = nullptr;    // the file read (owned, or a writer's session file)
     int format_version = kDatabaseFormatVersion;  // the root attribute, as checked when opened
     mutable std::map<std::string, std::shared_ptr<const Skeleton>> skeletons;
+    mutable std::string decoder_group;  // /packed/{group} of `decoder`; cleared when /packed changes
+    mutable std::shared_ptr<const packing::GroupDecoder> decoder;
 
     const store::h5::File& f() const;
 };

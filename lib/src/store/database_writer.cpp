@@ -368,6 +368,7 @@ void DatabaseWriter::put_packed(const PackedTierRecord& tier_in, const std::vect
         s.removed_objects = true;
     }
     store::write_packed(f, tier, group_bytes);
+    s.view.impl_->decoder.reset();
 }
 
 void DatabaseWriter::remove_packed() {
@@ -376,6 +377,7 @@ void DatabaseWriter::remove_packed() {
     store::h5::File& f = s.f();
     if (!f.exists(store::kPacked)) throw StoreError(s.temp.string(), store::kPacked, "no packed tier");
     refuse_if_only_copy(s.view, s.target.string(), "removed");
+    s.view.impl_->decoder.reset();
     f.unlink(store::kPacked);
     s.removed_objects = true;
 }

@@ -12,6 +12,7 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/error_stats.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/group_split.hpp"
 #include "mocapdb/packing/measured_pack.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 
@@ -28,28 +29,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Cuts one group (clip indices in order) into runs of whole clips of about equal frames, none above
-// max_frames unless a single clip is.
-std::vector<std::vector<std::size_t>> split_by_frames(const std::vector<std::size_t>& members,
-                                                      const std::vector<ClipRecord>& records, std::size_t max_frames) {
-    std::uint64_t total = 0;
-    for (std::size_t i : members) total += records[i].frames;
-    const std::uint64_t parts = (total + max_frames - 1) / max_frames;
-    if (parts <= 1) return {members};
-    const std::uint64_t target = (total + parts - 1) / parts;
-    std::vector<std::vector<std::size_t>> out(1);
-    std::uint64_t frames = 0;
-    for (std::size_t i : members) {
-        if (!out.back().empty() && frames + records[i].frames > target) {
-            out.emplace_back();
-            frames = 0;
-        }
-        out.back().push_back(i);
-        frames += records[i].frames;
-    }
-    return out;
-}
-
 }  // namespace
 
 PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDatabaseOptions& options,
@@ -60,7 +39,6 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
         throw InvalidArgument("pack: --max-error-cm must be a finite number > 0 (the bound on every joint's error, cm), found " +
                               number(E));
     if (options.threads < 1) throw InvalidArgument("pack: threads must be >= 1, found " + std::to_string(options.threads));
-    if (options.max_group_frames < 1) throw InvalidArgument("pack: max_group_frames must be >= 1");
     std::error_code ec;
     if (!std::filesystem::exists(db, ec)) throw IoError(db.string() + ": no such file");
 
@@ -98,9 +76,12 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
         total_frames += records[i].frames;
     }
     std::vector<std::vector<std::size_t>> groups;
-    for (const std::vector<std::size_t>& g : packing::group_clips(head_ptrs))
-        for (std::vector<std::size_t>& part : split_by_frames(g, records, options.max_group_frames))
+    for (const std::vector<std::size_t>& g : packing::group_clips(head_ptrs)) {
+        std::vector<std::size_t> frames;
+        for (std::size_t i : g) frames.push_back(records[i].frames);
+        for (std::vector<std::size_t>& part : packing::split_by_frames(g, frames, options.max_group_frames))
             groups.push_back(std::move(part));
+    }
 
     packing::PackOptions po;
     po.max_error_cm = E;

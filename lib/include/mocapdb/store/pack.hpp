@@ -10,13 +10,10 @@
 #include <vector>
 
 #include "mocapdb/core/progress.hpp"
+#include "mocapdb/packing/group_split.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb {
-
-/// Source frames per packed group at most (about 36 minutes at 120 Hz; packing holds one group's
-/// clips, pose vectors and joint positions, about 1 kB per frame for a 31-joint rig).
-inline constexpr std::size_t kMaxPackedGroupFrames = std::size_t{1} << 18;
 
 struct PackDatabaseOptions {
     double max_error_cm = 1.0;  ///< E: max FK joint-position error (cm), > 0 and finite
@@ -25,8 +22,8 @@ struct PackDatabaseOptions {
     bool replace = false;
     double wait_seconds = kWriterWaitSeconds;  ///< for another writing session on the file
     /// A topology and rate with more frames is split into ceil(frames / max) groups of about equal
-    /// frames (whole clips; a single longer clip is a group of its own). >= 1.
-    std::size_t max_group_frames = kMaxPackedGroupFrames;
+    /// frames (whole clips; a single longer clip is a group of its own; packing::split_by_frames). >= 1.
+    std::size_t max_group_frames = packing::kMaxGroupFrames;
     /// In the same session, remove the lossless channels of every packed clip
     /// (DatabaseWriter::drop_lossless): the file keeps them only within E.
     bool drop_lossless = false;
