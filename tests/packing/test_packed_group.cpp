@@ -263,3 +263,73 @@ TEST_CASE("a window no step brings within the bound is stored as its source rows
     decoder.decode_pose(0, 35, row.data());
     CHECK(Eigen::Map<const VecX>(row.data(), static_cast<Eigen::Index>(row.size())) == clip.channels.row(35).transpose());
 }
+
+namespace {
+
+// A 100-joint rig (root + spine + 9 branches of 10 joints, the last of each with an end site; some
+// joints static, a few with 1 or 2 rotation channels) moving smoothly at `rate` for `seconds`.
+Clip hundred_joint_clip(double rate, double seconds, unsigned seed) {
+    std::vector<Joint> js;
+    Joint root;
+    root.name = "root";
+    root.channels = {ChannelType::Xposition, ChannelType::Yposition, ChannelType::Zposition,
+                     ChannelType::Zrotation, ChannelType::Xrotation, ChannelType::Yrotation};
+    root.offset = Vec3(0.0, 95.0, 0.0);
+    js.push_back(root);
+    for (int b = 0; b < 9; ++b) {
+        int parent = 0;
+        for (int k = 0; k < 11; ++k) {
+            Joint j;
+            j.name = "b" + std::to_string(b) + "_" + std::to_string(k);
+            j.parent = parent;
+            j.offset = Vec3(0.8 * (b - 4), k == 0 ? 3.0 : 4.0, 0.3 * k);
+            if (k == 10) {
+                j.end_site = true;
+            } else if (k % 4 == 3) {
+                j.channels = {ChannelType::Xrotation};  // hinge
+            } else if (k % 4 != 2) {
+                j.channels = {ChannelType::Zrotation, ChannelType::Xrotation, ChannelType::Yrotation};
+            }  // k % 4 == 2: static joint (no channels)
+            parent = static_cast<int>(js.size());
+            js.push_back(j);
+        }
+    }
+    Clip clip;
+    clip.skeleton = std::make_shared<const Skeleton>(js, SourceUnits{1.0, true});
+    clip.frame_rate = rate;
+    clip.name = "rig100";
+    const auto channels = static_cast<Eigen::Index>(clip.skeleton->channel_count());
+    clip.channels = FrameMatrix(static_cast<Eigen::Index>(std::lround(rate * seconds)), channels);
+    std::mt19937 gen(seed);
+    std::uniform_real_distribution<double> phase(0.0, 6.0), speed(0.5, 3.0);
+    for (Eigen::Index k = 0; k < channels; ++k) {
+        const double p = phase(gen), w = speed(gen);
+        for (Eigen::Index f = 0; f < clip.channels.rows(); ++f) {
+            const double t = static_cast<double>(f) / rate;
+            clip.channels(f, k) = k < 3 ? 15.0 * std::sin(w * t + p) + (k == 2 ? 80.0 * t : 0.0) : 0.5 * std::sin(w * t + p);
+        }
+    }
+    return clip;
+}
+
+}  // namespace
+
+TEST_CASE("packing meets the bound on a 100-joint rig at 24 Hz, clips of 1 s and 90 s", "[packing]") {
+    const Clip one = hundred_joint_clip(24.0, 1.0, 1);
+    const Clip longer = hundred_joint_clip(24.0, 90.0, 2);
+    REQUIRE(one.skeleton->joints().size() == 100);
+    std::vector<const Clip*> ptrs{&one, &longer};
+    REQUIRE(group_clips(ptrs).size() == 1);
+    for (double E : {1.0, 0.1}) {
+        PackOptions o;
+        o.max_error_cm = E;
+        const PackedGroup packed = pack_group(ptrs, o);
+        INFO("E " << E << ": " << packed.stats.bytes << " bytes for " << packed.stats.frames << " frames");
+        const GroupDecoder decoder(packed.bytes);
+        REQUIRE(decoder.clip_count() == 2);
+        CHECK(max_position_error(one, decoder.decode_clip(0)) <= E);
+        CHECK(max_position_error(longer, decoder.decode_clip(1)) <= E);
+        // Compact too: well below float32 channels.
+        CHECK(packed.stats.bytes * 4 < packed.stats.frames * packed.stats.channels * 4);
+    }
+}
