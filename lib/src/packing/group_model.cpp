@@ -118,6 +118,37 @@ void multiply_columns(const double* a, std::size_t rows, const double* w, std::s
 
 void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, int t, WindowScratch& s,
                            double* row) const {
+    frame_pose(clip, g, columns, t, s, s.p.data());
+    row_of(clip, s.p.data(), row);
+}
+
+void GroupModel::row_of(const ClipEntry& clip, const double* p, double* row) const {
+    const SkeletonEntry& entry = skeletons[clip.skeleton];
+    entry.writer.write(p, clip.canonical, row);
+    for (std::size_t e = 0; e < extra_columns.size(); ++e) row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
+}
+
+void GroupModel::local_of(const ClipEntry& clip, const double* p, LocalPose& out) const {
+    const SkeletonEntry& entry = skeletons[clip.skeleton];
+    out.rotations.resize(entry.writer.size());
+    out.translations.resize(entry.writer.size());
+    entry.writer.write_local(p, clip.canonical, out);
+    for (std::size_t e = 0; e < extra_columns.size(); ++e)
+        entry.writer.set_position(extra_columns[e], p[static_cast<std::size_t>(pose_dofs) + e], out);
+}
+
+void GroupModel::local_of_row(const ClipEntry& clip, const double* row, LocalPose& out) const {
+    const Skeleton& k = *skeletons[clip.skeleton].skeleton;
+    out.rotations.resize(k.size());
+    out.translations.resize(k.size());
+    for (std::size_t j = 0; j < k.size(); ++j) {
+        out.rotations[j] = k.local_rotation(j, row);
+        out.translations[j] = k.local_translation(j, row);
+    }
+}
+
+void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns, int t, WindowScratch& s,
+                            double* p) const {
     const std::size_t da = active.size();
     const auto W = static_cast<std::size_t>(window);
     double* y = s.y.data();
@@ -129,11 +160,8 @@ void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, 
     multiply_columns(g, da, v, W, static_cast<std::size_t>(columns), y);
     multiply_columns(dof_basis.data(), da, y, 1, da, x);
     const SkeletonEntry& entry = skeletons[clip.skeleton];
-    double* p = s.p.data();
     std::copy(constant.begin(), constant.end(), p);
     for (std::size_t i = 0; i < da; ++i) p[active[i]] = x[i] / entry.weights[active[i]];
-    entry.writer.write(p, clip.canonical, row);
-    for (std::size_t e = 0; e < extra_columns.size(); ++e) row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
 }
 
 void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,

@@ -35,6 +35,11 @@ public:
     const double* pose(std::size_t clip, std::size_t frame);
     /// The same, copied into out_row.
     void pose(std::size_t clip, std::size_t frame, double* out_row);
+    /// The frame's local joint transforms (LocalPose, group_decoder.hpp) into out (resized to the
+    /// skeleton's joints; no allocation once it has that size). Equal to decoder.decode_local_pose
+    /// bit for bit; its rotations are those of pose(clip, frame) to ~1e-15. Computed on every call
+    /// from the cached pose vector (one exp map per joint, no Euler angles); the row is not formed.
+    void local_pose(std::size_t clip, std::size_t frame, LocalPose& out);
 
     std::size_t channel_count() const { return channels_; }
     std::size_t capacity() const;
@@ -47,6 +52,10 @@ public:
 private:
     struct Slot;
     std::size_t fill(std::size_t clip, std::size_t window, std::uint64_t global);
+    /// The frame's slot (decoding its window on a miss); counts the hit or miss.
+    Slot& slot(std::size_t clip, std::size_t frame);
+    /// Frame t's dofs in slot s (a coded window), reconstructed on first use.
+    const double* dofs(Slot& s, std::size_t clip, std::size_t t);
 
     const GroupDecoder* decoder_;
     std::size_t channels_ = 0;
