@@ -108,7 +108,7 @@ FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) co
     }
     detail::WindowScratch& s = thread_scratch();
     load_window(e, s);
-    for (int t = 0; t < count; ++t) model_->frame_row(model_->clips[clip], s.g.data(), s.columns, t, s, rows.row(t).data());
+    for (int t = 0; t < count; ++t) model_->frame_row(model_->clips[clip], s.g.data(), s.columns, s.rows, t, s, rows.row(t).data());
     return rows;
 }
 
@@ -149,7 +149,7 @@ void GroupDecoder::decode_pose(std::size_t clip, std::size_t frame, double* out_
     }
     detail::WindowScratch& s = thread_scratch();
     load_window(e, s);
-    model_->frame_row(model_->clips[clip], s.g.data(), s.columns, t, s, out_row);
+    model_->frame_row(model_->clips[clip], s.g.data(), s.columns, s.rows, t, s, out_row);
 }
 
 void GroupDecoder::decode_local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const {
@@ -168,7 +168,7 @@ void GroupDecoder::decode_local_pose(std::size_t clip, std::size_t frame, LocalP
         return;
     }
     load_window(e, s);
-    model_->frame_pose(c, s.g.data(), s.columns, t, s, s.p.data());
+    model_->frame_pose(c, s.g.data(), s.columns, s.rows, t, s, s.p.data());
     model_->local_of(c, s.p.data(), out);
 }
 

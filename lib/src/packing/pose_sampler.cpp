@@ -12,6 +12,7 @@ struct PoseSampler::Slot {
     std::size_t clip = 0;
     std::vector<double> g;         ///< dequantized coefficients (coded windows)
     int columns = 0;
+    int dof_rows = 0;              ///< rows of g up to its last nonzero one
     std::vector<double> rows;      ///< W rows of channels, row-major
     std::vector<std::uint8_t> done;  ///< per frame: rows holds it
     std::vector<double> poses;     ///< W frames of dofs (D each), coded windows
@@ -73,6 +74,7 @@ std::size_t PoseSampler::fill(std::size_t clip, std::size_t window, std::uint64_
         decoder_->load_window(e, *scratch_);
         s.g.swap(scratch_->g);  // same size: no allocation, the scratch takes the old buffer
         s.columns = scratch_->columns;
+        s.dof_rows = scratch_->rows;
     }
     s.window = global;
     s.clip = clip;
@@ -102,7 +104,7 @@ const double* PoseSampler::dofs(Slot& s, std::size_t clip, std::size_t t) {
     const detail::GroupModel& m = *decoder_->model_;
     double* p = s.poses.data() + t * static_cast<std::size_t>(m.dofs);
     if (!s.posed[t]) {
-        m.frame_pose(m.clips[clip], s.g.data(), s.columns, static_cast<int>(t), *scratch_, p);
+        m.frame_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(t), *scratch_, p);
         s.posed[t] = 1;
     }
     return p;

@@ -11,8 +11,9 @@
 // row of decode_window). InvalidArgument on a bad clip or frame; mocapdb::Error on malformed bytes.
 // Ownership and threads: the sampler refers to `decoder` (which must outlive it and is only read)
 // and is NOT thread-safe: one sampler per thread, any number of samplers per decoder. Memory:
-// capacity x (Da x W + W x channels) doubles (about 32 kB per window for the 31-joint CMU ASF rig at
-// W = 32) plus 4 bytes per window of the group; allocated at construction, none per pose.
+// capacity x (Da x W + W x channels + W x D) doubles (about 56 kB per window for the 31-joint CMU ASF
+// rig at W = 32: coefficients, channel rows, and each frame's pose dofs, which rows and local poses
+// share) plus 4 bytes per window of the group; allocated at construction, none per pose.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
