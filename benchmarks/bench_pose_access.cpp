@@ -12,7 +12,10 @@
 //                frame per tick for --ticks ticks, all sampled every tick (looping at clip ends)
 //   crowd4_us    the same advancing 4 frames per tick (120 Hz data shown at 30 Hz)
 //   hit rate     share of sampler requests whose window was already decoded
-// and whether the sampler's rows equal decode_pose's bit for bit on the first 2000 crowd poses.
+// each for channel rows (decode_pose, PoseSampler::pose) and for local poses (decode_local_pose,
+// PoseSampler::local_pose: per joint a local rotation quaternion and translation); and, on 10000
+// poses from the crowd's clips, whether the sampler equals the decoder bit for bit (rows and local
+// poses) and the largest deviation of a local rotation from the row's (quaternion, up to sign).
 // --cache DIR keeps the packed bytes per (folder, E) between runs (packing ASF takes ~30 s); bytes of
 // an older packing version are packed again.
 #include <algorithm>
@@ -136,19 +139,29 @@ int main(int argc, char** argv) {
                 windows += decoder.window_count(k);
             }
             std::vector<double> row(channels), other(channels);
-            Timing cold, window, play, crowd1, crowd4;
+            packing::LocalPose local, local2;
+            // [0]: channel rows, [1]: local poses
+            Timing cold[2], window, play[2], crowd1[2], crowd4[2];
             double hit1 = 0, hit4 = 0;
             bool identical = true;
+            double rotation_error = 0.0;
+            auto consume = [&](const packing::LocalPose& p) { g_sink = g_sink + p.rotations[1].w() + p.translations[0].x(); };
             for (int r = 0; r < repeats; ++r) {
-                {  // cold random access
+                for (int kind = 0; kind < 2; ++kind) {  // cold random access
                     std::mt19937 rng(7);
                     const auto t = Clock::now();
                     for (int p = 0; p < poses; ++p) {
                         const std::size_t k = rng() % clips;
-                        decoder.decode_pose(k, rng() % decoder.frame_count(k), row.data());
-                        g_sink = g_sink + row[0];
+                        const std::size_t f = rng() % decoder.frame_count(k);
+                        if (kind == 0) {
+                            decoder.decode_pose(k, f, row.data());
+                            g_sink = g_sink + row[0];
+                        } else {
+                            decoder.decode_local_pose(k, f, local);
+                            consume(local);
+                        }
                     }
-                    cold.add(seconds_since(t), static_cast<std::size_t>(poses));
+                    cold[kind].add(seconds_since(t), static_cast<std::size_t>(poses));
                 }
                 {  // streaming, window by window
                     const auto t = Clock::now();
@@ -156,52 +169,81 @@ int main(int argc, char** argv) {
                         for (std::size_t w = 0; w < decoder.window_count(k); ++w) g_sink = g_sink + decoder.decode_window(k, w)(0, 0);
                     window.add(seconds_since(t), frames);
                 }
-                {  // sequential playback
+                for (int kind = 0; kind < 2; ++kind) {  // sequential playback
                     packing::PoseSampler sampler(decoder, 4);
                     const auto t = Clock::now();
                     for (std::size_t k = 0; k < clips; ++k)
-                        for (std::size_t f = 0; f < decoder.frame_count(k); ++f) g_sink = g_sink + sampler.pose(k, f)[0];
-                    play.add(seconds_since(t), frames);
-                }
-                for (int step : {1, 4}) {  // a crowd
-                    std::mt19937 rng(11);
-                    std::vector<std::size_t> clip(static_cast<std::size_t>(crowd)), frame(clip.size());
-                    for (std::size_t a = 0; a < clip.size(); ++a) {
-                        clip[a] = rng() % clips;
-                        frame[a] = rng() % decoder.frame_count(clip[a]);
-                    }
-                    packing::PoseSampler sampler(decoder, 128);
-                    const auto t = Clock::now();
-                    for (int tick = 0; tick < ticks; ++tick)
-                        for (std::size_t a = 0; a < clip.size(); ++a) {
-                            g_sink = g_sink + sampler.pose(clip[a], frame[a])[0];
-                            frame[a] = (frame[a] + static_cast<std::size_t>(step)) % decoder.frame_count(clip[a]);
+                        for (std::size_t f = 0; f < decoder.frame_count(k); ++f) {
+                            if (kind == 0) {
+                                g_sink = g_sink + sampler.pose(k, f)[0];
+                            } else {
+                                sampler.local_pose(k, f, local);
+                                consume(local);
+                            }
                         }
-                    (step == 1 ? crowd1 : crowd4).add(seconds_since(t), clip.size() * static_cast<std::size_t>(ticks));
-                    (step == 1 ? hit1 : hit4) =
-                        static_cast<double>(sampler.hits()) / static_cast<double>(sampler.hits() + sampler.misses());
-                    if (r == 0 && step == 1) {  // bit-identity with decode_pose (untimed)
-                        sampler.clear();
-                        std::mt19937 again(11);
-                        for (int p = 0; p < 2000; ++p) {
-                            const std::size_t k = again() % clips;
-                            const std::size_t f = again() % decoder.frame_count(k);
-                            for (std::size_t s = 0; s < 5 && f + s < decoder.frame_count(k); ++s) {
-                                decoder.decode_pose(k, f + s, row.data());
-                                sampler.pose(k, f + s, other.data());
-                                identical = identical && std::memcmp(row.data(), other.data(), channels * sizeof(double)) == 0;
+                    play[kind].add(seconds_since(t), frames);
+                }
+                for (int step : {1, 4})  // a crowd
+                    for (int kind = 0; kind < 2; ++kind) {
+                        std::mt19937 rng(11);
+                        std::vector<std::size_t> clip(static_cast<std::size_t>(crowd)), frame(clip.size());
+                        for (std::size_t a = 0; a < clip.size(); ++a) {
+                            clip[a] = rng() % clips;
+                            frame[a] = rng() % decoder.frame_count(clip[a]);
+                        }
+                        packing::PoseSampler sampler(decoder, 128);
+                        const auto t = Clock::now();
+                        for (int tick = 0; tick < ticks; ++tick)
+                            for (std::size_t a = 0; a < clip.size(); ++a) {
+                                if (kind == 0) {
+                                    g_sink = g_sink + sampler.pose(clip[a], frame[a])[0];
+                                } else {
+                                    sampler.local_pose(clip[a], frame[a], local);
+                                    consume(local);
+                                }
+                                frame[a] = (frame[a] + static_cast<std::size_t>(step)) % decoder.frame_count(clip[a]);
+                            }
+                        (step == 1 ? crowd1 : crowd4)[kind].add(seconds_since(t), clip.size() * static_cast<std::size_t>(ticks));
+                        (step == 1 ? hit1 : hit4) =
+                            static_cast<double>(sampler.hits()) / static_cast<double>(sampler.hits() + sampler.misses());
+                        if (r == 0 && step == 1 && kind == 0) {  // bit-identity with decode_pose (untimed)
+                            sampler.clear();
+                            const Skeleton& skeleton = *decoder.skeleton(0);
+                            std::mt19937 again(11);
+                            for (int p = 0; p < 2000; ++p) {
+                                const std::size_t k = again() % clips;
+                                const std::size_t f = again() % decoder.frame_count(k);
+                                for (std::size_t s = 0; s < 5 && f + s < decoder.frame_count(k); ++s) {
+                                    decoder.decode_pose(k, f + s, row.data());
+                                    sampler.pose(k, f + s, other.data());
+                                    identical = identical && std::memcmp(row.data(), other.data(), channels * sizeof(double)) == 0;
+                                    // Local poses: sampler == decoder bit for bit, rotations == the row's.
+                                    sampler.local_pose(k, f + s, local);
+                                    decoder.decode_local_pose(k, f + s, local2);
+                                    identical = identical &&
+                                                std::memcmp(local.rotations.data(), local2.rotations.data(), local.rotations.size() * sizeof(Quat)) == 0;
+                                    for (std::size_t j = 0; j < skeleton.size(); ++j) {
+                                        const Quat q = decoder.skeleton(k)->local_rotation(j, row.data());
+                                        const Quat& l = local.rotations[j];
+                                        rotation_error = std::max(rotation_error, std::min((q.coeffs() - l.coeffs()).norm(),
+                                                                                           (q.coeffs() + l.coeffs()).norm()));
+                                    }
+                                }
                             }
                         }
                     }
-                }
             }
             std::printf(
-                "folder=%s E=%g clips=%zu frames=%zu windows=%zu channels=%zu cold_us=%.2f (median %.2f) window_us=%.2f "
-                "(median %.2f) play_us=%.2f (median %.2f) crowd_us=%.2f (median %.2f, hit %.3f) crowd4_us=%.2f "
-                "(median %.2f, hit %.3f) sampler_equals_decode_pose=%d\n",
-                name.c_str(), E, clips, frames, windows, channels, best(cold.us), median(cold.us), best(window.us),
-                median(window.us), best(play.us), median(play.us), best(crowd1.us), median(crowd1.us), hit1,
-                best(crowd4.us), median(crowd4.us), hit4, identical ? 1 : 0);
+                "folder=%s E=%g clips=%zu frames=%zu windows=%zu channels=%zu joints=%zu | channel rows: cold_us=%.2f "
+                "(median %.2f) window_us=%.2f (median %.2f) play_us=%.2f (median %.2f) crowd_us=%.2f (median %.2f) "
+                "crowd4_us=%.2f (median %.2f) | local poses: cold_us=%.2f (median %.2f) play_us=%.2f (median %.2f) "
+                "crowd_us=%.2f (median %.2f) crowd4_us=%.2f (median %.2f) | hit %.3f / %.3f "
+                "sampler_equals_decoder=%d local_rotation_max_dev=%.1e\n",
+                name.c_str(), E, clips, frames, windows, channels, decoder.skeleton(0)->size(), best(cold[0].us),
+                median(cold[0].us), best(window.us), median(window.us), best(play[0].us), median(play[0].us),
+                best(crowd1[0].us), median(crowd1[0].us), best(crowd4[0].us), median(crowd4[0].us), best(cold[1].us),
+                median(cold[1].us), best(play[1].us), median(play[1].us), best(crowd1[1].us), median(crowd1[1].us),
+                best(crowd4[1].us), median(crowd4[1].us), hit1, hit4, identical ? 1 : 0, rotation_error);
             std::fflush(stdout);
         }
     return 0;

@@ -37,8 +37,34 @@ std::vector<Clip> read_cut(const std::string& folder, const std::vector<std::str
 
 bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
 
+bool same_bits(const LocalPose& a, const LocalPose& b) {
+    return a.rotations.size() == b.rotations.size() && a.translations.size() == b.translations.size() &&
+           std::memcmp(a.rotations.data(), b.rotations.data(), a.rotations.size() * sizeof(Quat)) == 0 &&
+           std::memcmp(a.translations.data(), b.translations.data(), a.translations.size() * sizeof(Vec3)) == 0;
+}
+
+// Largest distance of the local pose from the row's local transforms: rotations up to sign (quaternion
+// components), translations (cm, relative to 1 + |t|).
+struct LocalError {
+    double rotation = 0.0, translation = 0.0, unit = 0.0;
+    void add(const Skeleton& k, const double* row, const LocalPose& pose) {
+        REQUIRE(pose.rotations.size() == k.size());
+        REQUIRE(pose.translations.size() == k.size());
+        for (std::size_t j = 0; j < k.size(); ++j) {
+            const Quat q = k.local_rotation(j, row);
+            const Quat& p = pose.rotations[j];
+            rotation = std::max(rotation, std::min((q.coeffs() - p.coeffs()).norm(), (q.coeffs() + p.coeffs()).norm()));
+            unit = std::max(unit, std::abs(p.norm() - 1.0));
+            const Vec3 t = k.local_translation(j, row);
+            translation = std::max(translation, (t - pose.translations[j]).norm() / (1.0 + t.norm()));
+        }
+    }
+};
+
 // Every frame of every clip: decode_pose and the sampler (fed in a scrambled order, small capacity so
-// that windows are evicted and decoded again) equal decode_window's row.
+// that windows are evicted and decoded again) equal decode_window's row; decode_local_pose and the
+// sampler's local_pose agree bit for bit, and their rotations and translations are the row's local
+// transforms (Skeleton::local_rotation / local_translation) to 1e-12.
 void check_every_frame(const std::vector<Clip>& clips) {
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
@@ -51,7 +77,10 @@ void check_every_frame(const std::vector<Clip>& clips) {
         REQUIRE(sampler.channel_count() == channels);
         std::vector<double> row(channels);
         std::vector<std::pair<std::size_t, std::size_t>> order;
-        std::size_t mismatches = 0, sampler_mismatches = 0, frames = 0;
+        std::size_t mismatches = 0, sampler_mismatches = 0, frames = 0, local_mismatches = 0;
+        LocalPose local, sampled;
+        LocalError error;
+        const std::size_t first_window_frames = decoder.frame_count(0);
         for (std::size_t k = 0; k < decoder.clip_count(); ++k)
             for (std::size_t w = 0; w < decoder.window_count(k); ++w) {
                 const FrameMatrix window = decoder.decode_window(k, w);
@@ -59,6 +88,8 @@ void check_every_frame(const std::vector<Clip>& clips) {
                     const std::size_t f = w * decoder.window_length() + static_cast<std::size_t>(t);
                     decoder.decode_pose(k, f, row.data());
                     if (!same_bits(row.data(), window.row(t).data(), channels)) ++mismatches;
+                    decoder.decode_local_pose(k, f, local);
+                    error.add(*decoder.skeleton(k), row.data(), local);
                     order.emplace_back(k, f);
                     ++frames;
                 }
@@ -67,11 +98,29 @@ void check_every_frame(const std::vector<Clip>& clips) {
         for (const auto& [k, f] : order) {
             const FrameMatrix rows = decoder.decode_frames(k, f, f + 1);
             if (!same_bits(sampler.pose(k, f), rows.data(), channels)) ++sampler_mismatches;
+            // The sampler's local pose (frame f's dofs cached, or decoded for it now) is decode_local_pose's.
+            sampler.local_pose(k, f, sampled);
+            decoder.decode_local_pose(k, f, local);
+            if (!same_bits(sampled, local)) ++local_mismatches;
+        }
+        // Local poses through a fresh sampler (dofs computed for the local pose first).
+        PoseSampler fresh(decoder, 2);
+        for (std::size_t f = 0; f < first_window_frames; ++f) {
+            fresh.local_pose(0, f, sampled);
+            decoder.decode_local_pose(0, f, local);
+            if (!same_bits(sampled, local)) ++local_mismatches;
+            if (!same_bits(fresh.pose(0, f), decoder.decode_frames(0, f, f + 1).data(), channels)) ++sampler_mismatches;
         }
         INFO("E " << E << ": " << frames << " frames");
         CHECK(mismatches == 0);
         CHECK(sampler_mismatches == 0);
-        CHECK(sampler.hits() + sampler.misses() == frames);
+        CHECK(sampler.hits() + sampler.misses() == 2 * frames);
+        CHECK(local_mismatches == 0);
+        INFO("local pose vs the row's local transforms: rotation " << error.rotation << ", translation "
+                                                                  << error.translation << ", |q| - 1 " << error.unit);
+        CHECK(error.rotation < 1e-12);
+        CHECK(error.translation < 1e-12);
+        CHECK(error.unit < 1e-12);
     }
 }
 

@@ -47,7 +47,27 @@ ChannelWriter::ChannelWriter(const Skeleton& s) {
         r.parity = (r.axes[1] - r.axes[0] + 3) % 3 == 1 ? 1.0 : -1.0;
         r.axis = joint.axis;
         r.pose_row = layout.exp_map_row(j);
+        r.joint = static_cast<int>(j);
+        r.present = present;
+        for (int i = 0; i < 3; ++i)
+            if (present == 2 && r.cols[static_cast<std::size_t>(i)] < 0) r.missing = i;
+        if (r.single >= 0) r.twist_axis = joint.axis * Vec3::Unit(r.axes[static_cast<std::size_t>(r.single)]);
         joints_.push_back(r);
+    }
+    motion_root_ = m;
+    adds_ = s.position_channels() == PositionChannels::add_to_offset;
+    column_joint_.assign(s.channel_count(), -1);
+    column_axis_.assign(s.channel_count(), 0);
+    for (std::size_t j = 0; j < s.size(); ++j) {
+        rest_rotations_.push_back(s.local_rotation(j, rest_.data()));
+        rest_translations_.push_back(s.local_translation(j, rest_.data()));
+        offsets_.push_back(s.joint(j).offset);
+        for (int a = 0; a < 3; ++a) {
+            const int col = s.channel_column(j, static_cast<ChannelType>(a));
+            if (col < 0) continue;
+            column_joint_[static_cast<std::size_t>(col)] = static_cast<int>(j);
+            column_axis_[static_cast<std::size_t>(col)] = a;
+        }
     }
 }
 
@@ -58,11 +78,19 @@ double wrap(double a) { return a > kPi ? a - kTwoPi : a < -kPi ? a + kTwoPi : a;
 }  // namespace
 
 void ChannelWriter::write_rotation(const RotationJoint& j, const Quat& local, double* row) const {
+    double angles[3];
+    choose_angles(j, local, angles);
+    for (std::size_t n = 0; n < 3; ++n)
+        if (j.cols[n] >= 0) row[j.cols[n]] = angles[n];
+}
+
+void ChannelWriter::choose_angles(const RotationJoint& j, const Quat& local, double* out) {
     const Quat r = j.axis.conjugate() * local * j.axis;  // undo C · R · C⁻¹
     if (j.single >= 0) {
         // One channel: the twist about its axis (what is left off the axis has no channel anyway).
         const auto i = static_cast<std::size_t>(j.single);
-        row[j.cols[i]] = wrap(2.0 * std::atan2(r.vec()[j.axes[i]], r.w()));
+        out[0] = out[1] = out[2] = 0.0;
+        out[i] = wrap(2.0 * std::atan2(r.vec()[j.axes[i]], r.w()));
         return;
     }
     // R = R_i(a) R_j(b) R_k(c): R(i,k) = s·sin b, R(i,i) = cos b cos c, R(i,j) = -s cos b sin c,
@@ -89,8 +117,94 @@ void ChannelWriter::write_rotation(const RotationJoint& j, const Quat& local, do
         d2 += j.weights[n] * second[n] * second[n];
     }
     const double* angles = d1 <= d2 ? first : second;
+    std::copy(angles, angles + 3, out);
+}
+
+Quat ChannelWriter::euler_rotation(const RotationJoint& j, const double* angles) {
+    Quat r = Quat::Identity();
     for (std::size_t n = 0; n < 3; ++n)
-        if (j.cols[n] >= 0) row[j.cols[n]] = angles[n];
+        if (j.cols[n] >= 0) r = r * Eigen::AngleAxisd(angles[n], Vec3::Unit(j.axes[n]));
+    if (j.axis.w() != 1.0) r = j.axis * r * j.axis.conjugate();
+    return r;
+}
+
+namespace {
+// (cos θ/2, sin θ/2) of θ = atan2(y, x), without the atan2: the half-angle direction is (h + x, y)
+// (h = |(x, y)|), or equivalently (|y|, sign(y)·(h − x)) where x < 0 (no cancellation either way).
+void half_angle(double x, double y, double& c, double& s) {
+    const double h = std::sqrt(x * x + y * y);
+    if (h == 0.0) {
+        c = 1.0;
+        s = 0.0;
+        return;
+    }
+    const double a = x >= 0.0 ? h + x : h - x;
+    const double n = std::sqrt(a * a + y * y);
+    if (x >= 0.0) {
+        c = a / n;
+        s = y / n;
+    } else {
+        c = std::abs(y) / n;
+        s = std::copysign(a, y) / n;
+    }
+}
+}  // namespace
+
+Quat ChannelWriter::channel_rotation(const RotationJoint& j, const Quat& local) {
+    if (j.present == 3) return local;  // three Euler angles express any rotation: no projection
+    if (j.single >= 0) {
+        // The twist about C·axis: (w, (v·u) u), normalized (what choose_angles' one atan2 encodes).
+        const double w = local.w();
+        const double s = local.vec().dot(j.twist_axis);
+        const double n = std::sqrt(w * w + s * s);
+        if (n == 0.0) return Quat::Identity();
+        const Vec3 v = (s / n) * j.twist_axis;
+        return Quat(w / n, v.x(), v.y(), v.z());
+    }
+    double angles[3];
+    if (j.present == 2) {
+        // Two channels: the rotation of the two kept angles of the Euler family choose_angles picks,
+        // from their half-angle cosines and sines. Its family test (weighted angles nearest zero,
+        // the absent axis weighted 1e6) reduces to the sign of the absent angle's cosine unless that
+        // cosine is within 1e-5 of 0 (there, and in gimbal lock, the angles are formed as written).
+        const Quat r = j.axis.conjugate() * local * j.axis;
+        const Mat3 m = r.toRotationMatrix();
+        const int i = j.axes[0], k = j.axes[2], jj = j.axes[1];
+        const double s = j.parity;
+        const double cos_b = std::sqrt(m(i, i) * m(i, i) + m(i, jj) * m(i, jj));
+        if (cos_b > 1e-5) {
+            const double x[3] = {m(k, k), cos_b, m(i, i)};
+            const double y[3] = {-s * m(jj, k), s * m(i, k), -s * m(i, jj)};
+            const auto miss = static_cast<std::size_t>(j.missing);
+            const double h = std::sqrt(x[miss] * x[miss] + y[miss] * y[miss]);
+            const double cosine = h > 0.0 ? x[miss] / h : 1.0;
+            if (std::abs(cosine) > 1e-5) {
+                const bool second = cosine < 0.0;  // the family (a + π, π − b, c + π)
+                Quat q = Quat::Identity();
+                for (std::size_t n = 0; n < 3; ++n) {
+                    if (n == miss) continue;
+                    double c, sn;
+                    half_angle(x[n], y[n], c, sn);
+                    if (second) {
+                        const double c0 = c;
+                        if (n == 1) {  // (π − b)/2
+                            c = sn;
+                            sn = c0;
+                        } else {  // (θ + π)/2
+                            c = -sn;
+                            sn = c0;
+                        }
+                    }
+                    Quat f(c, 0.0, 0.0, 0.0);
+                    f.vec()[j.axes[n]] = sn;
+                    q = q * f;
+                }
+                return j.axis * q * j.axis.conjugate();
+            }
+        }
+    }
+    choose_angles(j, local, angles);
+    return euler_rotation(j, angles);
 }
 
 void ChannelWriter::fold_constants(const std::vector<bool>& varies, const double* pose) {
@@ -103,6 +217,10 @@ void ChannelWriter::fold_constants(const std::vector<bool>& varies, const double
         }
         const double* v = pose + d;
         write_rotation(joints_[k], exp_map(Vec3(v[0], v[1], v[2])), rest_.data());
+        double angles[3] = {0.0, 0.0, 0.0};
+        for (std::size_t n = 0; n < 3; ++n)
+            if (joints_[k].cols[n] >= 0) angles[n] = rest_[static_cast<std::size_t>(joints_[k].cols[n])];
+        rest_rotations_[static_cast<std::size_t>(joints_[k].joint)] = euler_rotation(joints_[k], angles);
     }
     joints_ = std::move(kept);
 }
@@ -119,6 +237,37 @@ void ChannelWriter::write(const double* pose, const Canonicalization& canonical,
         const double* v = pose + joints_[k].pose_row;
         write_rotation(joints_[k], exp_map(Vec3(v[0], v[1], v[2])), row);
     }
+}
+
+void ChannelWriter::write_local(const double* pose, const Canonicalization& canonical, LocalPose& out) const {
+    std::copy(rest_rotations_.begin(), rest_rotations_.end(), out.rotations.begin());
+    std::copy(rest_translations_.begin(), rest_translations_.end(), out.translations.begin());
+    // The motion root: as write() forms its channels, then as Skeleton::local_translation reads them.
+    const Vec3 local = above_inverse_ * (canonical.invert(Vec3(pose[0], pose[1], pose[2])) - above_position_);
+    Vec3& t = out.translations[motion_root_];
+    for (std::size_t a = 0; a < 3; ++a)
+        if (root_translation_[a] >= 0) {
+            const auto e = static_cast<Eigen::Index>(a);
+            const double value = local[e] - root_offset_[e];
+            t[e] = adds_ ? offsets_[motion_root_][e] + value : value;
+        }
+    if (root_rotates_) {
+        const Quat root_rotation = above_inverse_ * canonical.invert(swing_twist_exp(Vec3(pose[3], pose[4], pose[5])));
+        out.rotations[motion_root_] = channel_rotation(joints_.front(), root_rotation);
+    }
+    for (std::size_t k = 1; k < joints_.size(); ++k) {
+        const RotationJoint& j = joints_[k];
+        const double* v = pose + j.pose_row;
+        out.rotations[static_cast<std::size_t>(j.joint)] = channel_rotation(j, exp_map(Vec3(v[0], v[1], v[2])));
+    }
+}
+
+void ChannelWriter::set_position(int column, double value, LocalPose& out) const {
+    const int joint = column_joint_[static_cast<std::size_t>(column)];
+    if (joint < 0) return;
+    const auto j = static_cast<std::size_t>(joint);
+    const int a = column_axis_[static_cast<std::size_t>(column)];
+    out.translations[j][a] = adds_ ? offsets_[j][a] + value : value;
 }
 
 }  // namespace mocapdb::packing::detail

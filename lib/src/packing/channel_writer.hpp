@@ -16,6 +16,7 @@
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/motion/skeleton.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
 
 namespace mocapdb::packing::detail {
 
@@ -33,6 +34,17 @@ public:
     /// placed back in the world by `canonical`. Const: one writer serves any number of threads.
     void write(const double* pose, const Canonicalization& canonical, double* row) const;
 
+    /// The same frame as local joint transforms (LocalPose, group_decoder.hpp): every joint's rotation
+    /// equals, to rounding (~1e-15), Skeleton::local_rotation of the row write() gives (up to sign),
+    /// its translation Skeleton::local_translation; no Euler angles are formed (exp map -> quaternion,
+    /// projected onto the joint's channel axes where it has fewer than three). out must already hold
+    /// size() entries in both vectors (not resized here). Non-root position channels: set_position.
+    void write_local(const double* pose, const Canonicalization& canonical, LocalPose& out) const;
+    /// A non-root position channel (row column `column`) with value `value` into out's translations.
+    void set_position(int column, double value, LocalPose& out) const;
+    /// Joints of the skeleton (LocalPose sizes).
+    std::size_t size() const { return rest_rotations_.size(); }
+
 private:
     struct RotationJoint {
         std::array<int, 3> cols{};  ///< channel column of each Euler axis in order, -1 when absent
@@ -42,8 +54,18 @@ private:
         int single = -1;            ///< index (0..2) in the order of the only channel, when one
         Quat axis = Quat::Identity();
         int pose_row = 0;           ///< first of the joint's 3 values in the pose vector
+        int joint = 0;              ///< skeleton index
+        int present = 0;            ///< rotation channels (1..3; 0 for a motion root without any)
+        int missing = -1;           ///< with two channels: index (0..2) in the order of the absent axis
+        Vec3 twist_axis = Vec3::UnitX();  ///< with one channel: C · its axis (local frame)
     };
+    /// The Euler angles write_rotation writes (in the order's axis order; absent axes included).
+    static void choose_angles(const RotationJoint& j, const Quat& local, double* angles);
     void write_rotation(const RotationJoint& j, const Quat& local, double* row) const;
+    /// C · R(angles of the present channels) · C⁻¹, as Skeleton::local_rotation composes it.
+    static Quat euler_rotation(const RotationJoint& j, const double* angles);
+    /// The rotation of the channels write_rotation would write for `local`, without forming angles.
+    static Quat channel_rotation(const RotationJoint& j, const Quat& local);
 
     std::vector<double> rest_;             ///< channel row of the rest pose
     std::array<int, 3> root_translation_{-1, -1, -1};
@@ -52,6 +74,15 @@ private:
     Vec3 above_position_ = Vec3::Zero();
     bool root_rotates_ = false;
     std::vector<RotationJoint> joints_;    ///< motion root first (pose row 3), then the others
+    // LocalPose: rest transforms of every joint (folded constant joints at their constant rotation),
+    // the motion root's, and what a position channel column moves.
+    std::vector<Quat> rest_rotations_;
+    std::vector<Vec3> rest_translations_;
+    std::size_t motion_root_ = 0;
+    bool adds_ = true;                     ///< position channels add to the offset
+    std::vector<Vec3> offsets_;
+    std::vector<int> column_joint_;        ///< per row column: joint of a position channel, or -1
+    std::vector<int> column_axis_;
 };
 
 }  // namespace mocapdb::packing::detail

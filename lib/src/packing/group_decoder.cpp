@@ -108,7 +108,7 @@ FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) co
     }
     detail::WindowScratch& s = thread_scratch();
     load_window(e, s);
-    for (int t = 0; t < count; ++t) model_->frame_row(model_->clips[clip], s.g.data(), s.columns, t, s, rows.row(t).data());
+    for (int t = 0; t < count; ++t) model_->frame_row(model_->clips[clip], s.g.data(), s.columns, s.rows, t, s, rows.row(t).data());
     return rows;
 }
 
@@ -149,7 +149,27 @@ void GroupDecoder::decode_pose(std::size_t clip, std::size_t frame, double* out_
     }
     detail::WindowScratch& s = thread_scratch();
     load_window(e, s);
-    model_->frame_row(model_->clips[clip], s.g.data(), s.columns, t, s, out_row);
+    model_->frame_row(model_->clips[clip], s.g.data(), s.columns, s.rows, t, s, out_row);
+}
+
+void GroupDecoder::decode_local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const {
+    check(clip, frame);
+    const std::size_t W = window_length();
+    const std::size_t w = frame / W;
+    const int t = static_cast<int>(frame % W);
+    const detail::WindowEntry& e = entry(clip, w);
+    detail::WindowScratch& s = thread_scratch();
+    const detail::ClipEntry& c = model_->clips[clip];
+    if (e.step == detail::kRawStep) {
+        model_->prepare(s);
+        s.row.resize(channels_);
+        raw_rows(e, frames_in(clip, w), channels_, t, 1, s.row.data());
+        model_->local_of_row(c, s.row.data(), out);
+        return;
+    }
+    load_window(e, s);
+    model_->frame_pose(c, s.g.data(), s.columns, s.rows, t, s, s.p.data());
+    model_->local_of(c, s.p.data(), out);
 }
 
 }  // namespace mocapdb::packing

@@ -78,14 +78,18 @@ void GroupModel::dequantize(int step_index, const std::int32_t* q, std::size_t n
     const double step = step_of(step_index);
     std::fill(s.g.begin(), s.g.end(), 0.0);
     const std::size_t da = std::max<std::size_t>(1, active.size());
-    std::uint32_t last = 0;
+    std::uint32_t last = 0, last_row = 0;
+    bool any = false;
     n = std::min(n, scan.size());
     for (std::size_t i = 0; i < n; ++i)
         if (q[i] != 0) {
             s.g[scan[i]] = q[i] * step;
             last = std::max(last, scan[i]);
+            last_row = std::max(last_row, static_cast<std::uint32_t>(scan[i] % da));
+            any = true;
         }
     s.columns = n == 0 ? 0 : static_cast<int>(last / da) + 1;
+    s.rows = any ? static_cast<int>(last_row) + 1 : 0;
 }
 
 namespace {
@@ -96,28 +100,60 @@ constexpr std::size_t kBlock = 16;  // four AVX2 registers of accumulators
 // else is decoded (no FMA contraction: -ffp-contract=off). Blocks of kBlock rows accumulate in
 // registers.
 template <std::size_t N>
-void block_columns(const double* a, std::size_t rows, const double* w, std::size_t stride, std::size_t columns,
+void block_columns(const double* a, std::size_t ld, const double* w, std::size_t stride, std::size_t columns,
                    double* out) {
     double acc[N] = {};
     for (std::size_t c = 0; c < columns; ++c) {
         const double wc = w[c * stride];
-        const double* col = a + c * rows;
+        const double* col = a + c * ld;
         for (std::size_t b = 0; b < N; ++b) acc[b] += col[b] * wc;
     }
     std::copy(acc, acc + N, out);
 }
 
-void multiply_columns(const double* a, std::size_t rows, const double* w, std::size_t stride, std::size_t columns,
-                      double* out) {
+// a: `rows` rows of a column-major matrix with leading dimension ld.
+void multiply_columns(const double* a, std::size_t rows, std::size_t ld, const double* w, std::size_t stride,
+                      std::size_t columns, double* out) {
     std::size_t i = 0;
-    for (; i + kBlock <= rows; i += kBlock) block_columns<kBlock>(a + i, rows, w, stride, columns, out + i);
-    for (; i + 4 <= rows; i += 4) block_columns<4>(a + i, rows, w, stride, columns, out + i);
-    for (; i < rows; ++i) block_columns<1>(a + i, rows, w, stride, columns, out + i);
+    for (; i + kBlock <= rows; i += kBlock) block_columns<kBlock>(a + i, ld, w, stride, columns, out + i);
+    for (; i + 4 <= rows; i += 4) block_columns<4>(a + i, ld, w, stride, columns, out + i);
+    for (; i < rows; ++i) block_columns<1>(a + i, ld, w, stride, columns, out + i);
 }
 }  // namespace
 
-void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, int t, WindowScratch& s,
+void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s,
                            double* row) const {
+    frame_pose(clip, g, columns, rows, t, s, s.p.data());
+    row_of(clip, s.p.data(), row);
+}
+
+void GroupModel::row_of(const ClipEntry& clip, const double* p, double* row) const {
+    const SkeletonEntry& entry = skeletons[clip.skeleton];
+    entry.writer.write(p, clip.canonical, row);
+    for (std::size_t e = 0; e < extra_columns.size(); ++e) row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
+}
+
+void GroupModel::local_of(const ClipEntry& clip, const double* p, LocalPose& out) const {
+    const SkeletonEntry& entry = skeletons[clip.skeleton];
+    out.rotations.resize(entry.writer.size());
+    out.translations.resize(entry.writer.size());
+    entry.writer.write_local(p, clip.canonical, out);
+    for (std::size_t e = 0; e < extra_columns.size(); ++e)
+        entry.writer.set_position(extra_columns[e], p[static_cast<std::size_t>(pose_dofs) + e], out);
+}
+
+void GroupModel::local_of_row(const ClipEntry& clip, const double* row, LocalPose& out) const {
+    const Skeleton& k = *skeletons[clip.skeleton].skeleton;
+    out.rotations.resize(k.size());
+    out.translations.resize(k.size());
+    for (std::size_t j = 0; j < k.size(); ++j) {
+        out.rotations[j] = k.local_rotation(j, row);
+        out.translations[j] = k.local_translation(j, row);
+    }
+}
+
+void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s,
+                            double* p) const {
     const std::size_t da = active.size();
     const auto W = static_cast<std::size_t>(window);
     double* y = s.y.data();
@@ -126,14 +162,13 @@ void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, 
     // ascending column order, in blocks of kBlock elements held in registers; the result does not
     // depend on vectorization or on what else is decoded (no FMA contraction: -ffp-contract=off).
     const double* v = time_basis.data() + t;
-    multiply_columns(g, da, v, W, static_cast<std::size_t>(columns), y);
-    multiply_columns(dof_basis.data(), da, y, 1, da, x);
+    // Rows of g past `rows` are zero: so are those elements of y, and their terms in x are skipped.
+    const auto r = static_cast<std::size_t>(rows);
+    multiply_columns(g, r, da, v, W, static_cast<std::size_t>(columns), y);
+    multiply_columns(dof_basis.data(), da, da, y, 1, r, x);
     const SkeletonEntry& entry = skeletons[clip.skeleton];
-    double* p = s.p.data();
     std::copy(constant.begin(), constant.end(), p);
     for (std::size_t i = 0; i < da; ++i) p[active[i]] = x[i] / entry.weights[active[i]];
-    entry.writer.write(p, clip.canonical, row);
-    for (std::size_t e = 0; e < extra_columns.size(); ++e) row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
 }
 
 void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
@@ -141,7 +176,7 @@ void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::v
     prepare(s);
     dequantize(step_index, q.data(), q.size(), s);
     out_rows.resize(count, static_cast<Eigen::Index>(skeletons[clip.skeleton].skeleton->channel_count()));
-    for (int t = 0; t < count; ++t) frame_row(clip, s.g.data(), s.columns, t, s, out_rows.row(t).data());
+    for (int t = 0; t < count; ++t) frame_row(clip, s.g.data(), s.columns, s.rows, t, s, out_rows.row(t).data());
 }
 
 namespace {

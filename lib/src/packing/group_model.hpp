@@ -60,7 +60,9 @@ struct WindowScratch {
     std::vector<std::uint8_t> level;
     std::vector<double> g;          ///< dequantized coefficients, Da by W, column-major
     int columns = 0;                ///< time columns of g up to its last nonzero one
+    int rows = 0;                   ///< dof rows of g up to its last nonzero one
     std::vector<double> y, x, p;    ///< one frame: G v_t (Da), U G v_t (Da), pose dofs (D)
+    std::vector<double> row;        ///< one channel row (raw windows' local poses)
     ContextSet contexts;
 };
 
@@ -105,7 +107,18 @@ struct GroupModel {
     /// fixed order (time column, then dof basis column), then pose dofs -> channels. Every decode
     /// path and the encoder's check go through here, so a frame has the same bits however decoded.
     /// `g` and `columns` as dequantize leaves them in s (or a copy of them); s's frame buffers are used.
-    void frame_row(const ClipEntry& clip, const double* g, int columns, int t, WindowScratch& s, double* row) const;
+    /// `rows` (dequantize's s.rows): rows of g past it are zero, and so are their terms (skipped:
+    /// adding U·(+0) to a sum started at +0 never changes its bits).
+    void frame_row(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s, double* row) const;
+    /// The first half of frame_row: frame t's dofs (D values: pose vector, then extra position
+    /// channels, pose units) into p. frame_row is frame_pose then row_of.
+    void frame_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s, double* p) const;
+    /// The second half: the channel row of dofs p.
+    void row_of(const ClipEntry& clip, const double* p, double* row) const;
+    /// Local joint transforms of dofs p (out sized to the skeleton here).
+    void local_of(const ClipEntry& clip, const double* p, LocalPose& out) const;
+    /// Local joint transforms of a channel row (raw windows), straight from the skeleton.
+    void local_of_row(const ClipEntry& clip, const double* row, LocalPose& out) const;
     /// Channel rows of frames [0, count) of a window from its quantized coefficients (scan order).
     void reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
                      WindowScratch& s, FrameMatrix& out_rows) const;

@@ -12,9 +12,13 @@ struct PoseSampler::Slot {
     std::size_t clip = 0;
     std::vector<double> g;         ///< dequantized coefficients (coded windows)
     int columns = 0;
+    int dof_rows = 0;              ///< rows of g up to its last nonzero one
     std::vector<double> rows;      ///< W rows of channels, row-major
     std::vector<std::uint8_t> done;  ///< per frame: rows holds it
+    std::vector<double> poses;     ///< W frames of dofs (D each), coded windows
+    std::vector<std::uint8_t> posed;  ///< per frame: poses holds it
     std::uint64_t used = 0;        ///< tick of the last request (least recently used is evicted)
+    bool raw = false;              ///< a raw window: rows hold every frame, poses nothing
 };
 
 PoseSampler::PoseSampler(const GroupDecoder& decoder, std::size_t capacity)
@@ -28,6 +32,8 @@ PoseSampler::PoseSampler(const GroupDecoder& decoder, std::size_t capacity)
         s.g.resize(scratch_->g.size());
         s.rows.resize(W * channels_);
         s.done.assign(W, 0);
+        s.poses.resize(W * static_cast<std::size_t>(m.dofs));
+        s.posed.assign(W, 0);
     }
     slot_of_.assign(m.windows.size(), -1);
 }
@@ -56,15 +62,19 @@ std::size_t PoseSampler::fill(std::size_t clip, std::size_t window, std::uint64_
     if (s.window != std::numeric_limits<std::uint64_t>::max()) slot_of_[s.window] = -1;
     s.window = std::numeric_limits<std::uint64_t>::max();  // stays empty should decoding throw
     std::fill(s.done.begin(), s.done.end(), std::uint8_t(0));
+    std::fill(s.posed.begin(), s.posed.end(), std::uint8_t(0));
     const detail::WindowEntry& e = decoder_->entry(clip, window);
     if (e.step == detail::kRawStep) {
         const int frames = decoder_->frames_in(clip, window);
         decoder_->raw_rows(e, frames, channels_, 0, frames, s.rows.data());
         std::fill(s.done.begin(), s.done.begin() + frames, std::uint8_t(1));
+        s.raw = true;
     } else {
+        s.raw = false;
         decoder_->load_window(e, *scratch_);
         s.g.swap(scratch_->g);  // same size: no allocation, the scratch takes the old buffer
         s.columns = scratch_->columns;
+        s.dof_rows = scratch_->rows;
     }
     s.window = global;
     s.clip = clip;
@@ -72,12 +82,11 @@ std::size_t PoseSampler::fill(std::size_t clip, std::size_t window, std::uint64_
     return victim;
 }
 
-const double* PoseSampler::pose(std::size_t clip, std::size_t frame) {
+PoseSampler::Slot& PoseSampler::slot(std::size_t clip, std::size_t frame) {
     decoder_->check(clip, frame);
     const detail::GroupModel& m = *decoder_->model_;
     const auto W = static_cast<std::size_t>(m.window);
     const std::size_t window = frame / W;
-    const std::size_t t = frame % W;
     const std::uint64_t global = m.clips[clip].first_window + window;
     std::int32_t index = slot_of_[global];
     if (index < 0) {
@@ -88,12 +97,39 @@ const double* PoseSampler::pose(std::size_t clip, std::size_t frame) {
     }
     Slot& s = slots_[static_cast<std::size_t>(index)];
     s.used = ++tick_;
+    return s;
+}
+
+const double* PoseSampler::dofs(Slot& s, std::size_t clip, std::size_t t) {
+    const detail::GroupModel& m = *decoder_->model_;
+    double* p = s.poses.data() + t * static_cast<std::size_t>(m.dofs);
+    if (!s.posed[t]) {
+        m.frame_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(t), *scratch_, p);
+        s.posed[t] = 1;
+    }
+    return p;
+}
+
+const double* PoseSampler::pose(std::size_t clip, std::size_t frame) {
+    Slot& s = slot(clip, frame);
+    const detail::GroupModel& m = *decoder_->model_;
+    const std::size_t t = frame % static_cast<std::size_t>(m.window);
     double* row = s.rows.data() + t * channels_;
     if (!s.done[t]) {
-        m.frame_row(m.clips[clip], s.g.data(), s.columns, static_cast<int>(t), *scratch_, row);
+        m.row_of(m.clips[clip], dofs(s, clip, t), row);
         s.done[t] = 1;
     }
     return row;
+}
+
+void PoseSampler::local_pose(std::size_t clip, std::size_t frame, LocalPose& out) {
+    Slot& s = slot(clip, frame);
+    const detail::GroupModel& m = *decoder_->model_;
+    const std::size_t t = frame % static_cast<std::size_t>(m.window);
+    if (s.raw)
+        m.local_of_row(m.clips[clip], s.rows.data() + t * channels_, out);
+    else
+        m.local_of(m.clips[clip], dofs(s, clip, t), out);
 }
 
 void PoseSampler::pose(std::size_t clip, std::size_t frame, double* out_row) {

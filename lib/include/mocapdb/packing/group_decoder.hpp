@@ -27,6 +27,22 @@ struct WindowScratch;
 
 class PoseSampler;
 
+/// One frame as animation runtimes consume it (ACL, ozz-animation): per joint of the clip's skeleton
+/// (GroupDecoder::skeleton(clip)->joints() order, end sites included) the LOCAL transform forward
+/// kinematics composes: world_j = world_parent · (translations[j], rotations[j]).
+///   rotations[j]    unit quaternion equal (to ~1e-15, up to sign) to Skeleton::local_rotation of the
+///                   frame's channel row, i.e. C · R(Euler channels) · C⁻¹ with C the ASF bone axis
+///                   (identity for BVH), so FK of a LocalPose is FK of the row and the packed error
+///                   bound holds for it. Joints without rotation channels: their rest rotation.
+///   translations[j] Skeleton::local_translation of that row (cm): the offset, with the root's (motion
+///                   root's) and any moving position channels applied.
+/// Computed from the decoded pose vector (exp map -> quaternion, projected onto the channel axes for
+/// joints with one or two rotation channels), never through Euler angles.
+struct LocalPose {
+    std::vector<Quat> rotations;
+    std::vector<Vec3> translations;
+};
+
 class GroupDecoder {
 public:
     /// Parses the group's header; throws mocapdb::Error when the bytes are malformed or truncated.
@@ -56,6 +72,10 @@ public:
     /// as that row of decode_window. InvalidArgument on a bad index; does not allocate after a
     /// thread's first call (for a given group size).
     void decode_pose(std::size_t clip, std::size_t frame, double* out_row) const;
+    /// One frame's local joint transforms (LocalPose) into out, resized to the skeleton's joints
+    /// (no allocation once out has that size, after a thread's first decode). Same cost as
+    /// decode_pose (the window's range decoding dominates); InvalidArgument on a bad index.
+    void decode_local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const;
 
 private:
     friend class PoseSampler;

@@ -11,8 +11,9 @@
 // row of decode_window). InvalidArgument on a bad clip or frame; mocapdb::Error on malformed bytes.
 // Ownership and threads: the sampler refers to `decoder` (which must outlive it and is only read)
 // and is NOT thread-safe: one sampler per thread, any number of samplers per decoder. Memory:
-// capacity x (Da x W + W x channels) doubles (about 32 kB per window for the 31-joint CMU ASF rig at
-// W = 32) plus 4 bytes per window of the group; allocated at construction, none per pose.
+// capacity x (Da x W + W x channels + W x D) doubles (about 56 kB per window for the 31-joint CMU ASF
+// rig at W = 32: coefficients, channel rows, and each frame's pose dofs, which rows and local poses
+// share) plus 4 bytes per window of the group; allocated at construction, none per pose.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -35,6 +36,11 @@ public:
     const double* pose(std::size_t clip, std::size_t frame);
     /// The same, copied into out_row.
     void pose(std::size_t clip, std::size_t frame, double* out_row);
+    /// The frame's local joint transforms (LocalPose, group_decoder.hpp) into out (resized to the
+    /// skeleton's joints; no allocation once it has that size). Equal to decoder.decode_local_pose
+    /// bit for bit; its rotations are those of pose(clip, frame) to ~1e-15. Computed on every call
+    /// from the cached pose vector (one exp map per joint, no Euler angles); the row is not formed.
+    void local_pose(std::size_t clip, std::size_t frame, LocalPose& out);
 
     std::size_t channel_count() const { return channels_; }
     std::size_t capacity() const;
@@ -47,6 +53,10 @@ public:
 private:
     struct Slot;
     std::size_t fill(std::size_t clip, std::size_t window, std::uint64_t global);
+    /// The frame's slot (decoding its window on a miss); counts the hit or miss.
+    Slot& slot(std::size_t clip, std::size_t frame);
+    /// Frame t's dofs in slot s (a coded window), reconstructed on first use.
+    const double* dofs(Slot& s, std::size_t clip, std::size_t t);
 
     const GroupDecoder* decoder_;
     std::size_t channels_ = 0;
