@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bench_timing.hpp"
+#include "shared_folder.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
@@ -34,26 +35,6 @@ std::size_t probes_windows(const std::vector<packing::GroupDecoder>& decoders) {
     for (const auto& d : decoders)
         for (std::size_t k = 0; k < d.clip_count(); ++k) n += d.window_count(k);
     return n;
-}
-
-std::vector<Clip> read_folder(const std::string& name, std::size_t limit) {
-    const fs::path dir = fs::path(MOCAPDB_SHARED_DIR) / "datasets" / name;
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(dir)) {
-        const auto ext = e.path().extension().string();
-        if (ext == ".amc" || ext == ".bvh") files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    if (limit && files.size() > limit) files.resize(limit);
-    std::vector<Clip> clips;
-    for (const auto& f : files) {
-        ClipReadOptions o;
-        if (f.extension() == ".bvh") o.frame_rate = 60.0;  // their Frame Time is wrong
-        Warnings warnings;
-        clips.push_back(read_clip(f, o, &warnings));
-        clips.back().name = f.stem().string();
-    }
-    return clips;
 }
 
 }  // namespace
@@ -100,7 +81,7 @@ int main(int argc, char** argv) {
 
     for (const auto& name : folders) {
         const auto t_read = Clock::now();
-        const std::vector<Clip> clips = read_folder(name, limit);
+        const std::vector<Clip> clips = read_shared_folder(name, limit);
         const double read_s = seconds_since(t_read);
         std::vector<const Clip*> ptrs;
         for (const Clip& c : clips) ptrs.push_back(&c);

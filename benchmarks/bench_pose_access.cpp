@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "bench_timing.hpp"
+#include "shared_folder.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
@@ -41,25 +42,6 @@ using namespace mocapdb;
 using namespace mocapdb::bench;
 
 namespace {
-
-std::vector<Clip> read_folder(const std::string& name) {
-    const fs::path dir = fs::path(MOCAPDB_SHARED_DIR) / "datasets" / name;
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(dir)) {
-        const auto ext = e.path().extension().string();
-        if (ext == ".amc" || ext == ".bvh") files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    std::vector<Clip> clips;
-    for (const auto& f : files) {
-        ClipReadOptions o;
-        if (f.extension() == ".bvh") o.frame_rate = 60.0;  // their Frame Time is wrong
-        Warnings warnings;
-        clips.push_back(read_clip(f, o, &warnings));
-        clips.back().name = f.stem().string();
-    }
-    return clips;
-}
 
 // The largest group of the folder packed at E (from the cache when it holds readable bytes).
 std::vector<std::uint8_t> packed_bytes(const std::string& folder, double E, const std::string& cache) {
@@ -80,7 +62,7 @@ std::vector<std::uint8_t> packed_bytes(const std::string& folder, double E, cons
             }
         }
     }
-    const std::vector<Clip> clips = read_folder(folder);
+    const std::vector<Clip> clips = read_shared_folder(folder);
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
     auto groups = packing::group_clips(ptrs);

@@ -12,6 +12,7 @@
 #include "mocapdb/packing/packed_group.hpp"
 #include "mocapdb/procedural/walk.hpp"
 #include "fk_error.hpp"
+#include "shared_clips.hpp"
 #include "shared_data.hpp"
 
 using namespace mocapdb;
@@ -32,23 +33,6 @@ std::vector<Clip> procedural_walks() {
             c.name = "walk" + std::to_string(i++);
             out.push_back(std::move(c));
         }
-    return out;
-}
-
-std::vector<Clip> shared_clips(const std::string& folder, const std::vector<std::string>& stems) {
-    std::vector<Clip> out;
-    for (const auto& stem : stems) {
-        const auto dir = test::datasets_dir() / folder;
-        ClipReadOptions o;
-        std::filesystem::path path = dir / (stem + ".amc");
-        if (!std::filesystem::exists(path)) {
-            path = dir / (stem + ".bvh");
-            o.frame_rate = 60.0;
-        }
-        Clip c = read_clip(path, o);
-        c.name = stem;
-        out.push_back(std::move(c));
-    }
     return out;
 }
 
@@ -84,12 +68,12 @@ TEST_CASE("packing meets the bound on the procedural humanoid", "[packing]") {
 
 TEST_CASE("packing meets the bound on PFNN BVH clips", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
-    check_bound(shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}), 400);
+    check_bound(test::read_shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}), 400);
 }
 
 TEST_CASE("packing meets the bound on ASF/AMC clips", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
-    check_bound(shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}), 400);
+    check_bound(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}), 400);
 }
 
 TEST_CASE("a decoded window equals the same frames of a full decode; poses by random access", "[packing]") {

@@ -12,28 +12,13 @@
 #include "mocapdb/packing/packed_group.hpp"
 #include "mocapdb/packing/pose_sampler.hpp"
 #include "mocapdb/procedural/walk.hpp"
+#include "shared_clips.hpp"
 #include "shared_data.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::packing;
 
 namespace {
-
-std::vector<Clip> read_cut(const std::string& folder, const std::vector<std::string>& stems, std::size_t frames) {
-    std::vector<Clip> out;
-    for (const auto& stem : stems) {
-        const auto dir = test::datasets_dir() / folder;
-        ClipReadOptions o;
-        std::filesystem::path path = dir / (stem + ".amc");
-        if (!std::filesystem::exists(path)) {
-            path = dir / (stem + ".bvh");
-            o.frame_rate = 60.0;
-        }
-        Clip c = read_clip(path, o);
-        out.push_back(c.frame_count() > frames ? slice(c, 0, frames) : c);
-    }
-    return out;
-}
 
 bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
 
@@ -128,12 +113,12 @@ void check_every_frame(const std::vector<Clip>& clips) {
 
 TEST_CASE("decode_pose and PoseSampler equal decode_window bit for bit: PFNN rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
-    check_every_frame(read_cut("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}, 300));
+    check_every_frame(test::read_shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}, 300));
 }
 
 TEST_CASE("decode_pose and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
-    check_every_frame(read_cut("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
+    check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
 }
 
 TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are refused", "[packing]") {
