@@ -26,7 +26,7 @@ void expect_finite(const h5::File& file, const std::string& path, const std::vec
     const auto bad = std::find_if(values.begin(), values.end(), [](double x) { return !std::isfinite(x); });
     if (bad != values.end())
         throw StoreError(file.name(), path,
-                         "expected finite values, found " + std::to_string(*bad) + " at flat index " +
+                         "expected finite values, found " + std::to_string(*bad) + " at element " +
                              std::to_string(bad - values.begin()));
 }
 
