@@ -17,6 +17,7 @@
 #include "commands.hpp"
 #include "eval_report.hpp"
 #include "mocapdb/core/error.hpp"
+#include "progress_bar.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -269,7 +270,10 @@ void run_eval(const EvalArgs& a) {
             const auto t0 = Clock::now();
             eval::LooOptions lo;
             for (Eigen::Index i = 0; i < set.size(); i += sp.loo_stride) lo.samples.push_back(i);
-            r.loo = eval::leave_one_out(set, r.methods, lo);
+            {
+                ProgressBar bar("eval " + set.spec.name + ": leave-one-out");
+                r.loo = eval::leave_one_out(set, r.methods, lo, bar.callback());
+            }
             r.has_loo = true;
             r.loo_seconds = since(t0);
             say("[eval] %s: leave-one-out over %zu samples x %zu methods (%.1f s)\n", set.spec.name.c_str(),
@@ -278,7 +282,10 @@ void run_eval(const EvalArgs& a) {
         if (sp.constraint) {
             const auto t0 = Clock::now();
             r.constraint_options = plan.constraint;
-            r.constraint = eval::constraint_accuracy(set, r.methods, plan.constraint);
+            {
+                ProgressBar bar("eval " + set.spec.name + ": constraints");
+                r.constraint = eval::constraint_accuracy(set, r.methods, plan.constraint, bar.callback());
+            }
             r.has_constraint = true;
             say("[eval] %s: constraint accuracy on %lld grid points (%.1f s)\n", set.spec.name.c_str(),
                 static_cast<long long>(r.constraint.grid.rows()), since(t0));
@@ -286,7 +293,10 @@ void run_eval(const EvalArgs& a) {
         if (sp.reduction) {
             const auto t0 = Clock::now();
             r.reduction_options = plan.reduction;
-            r.reduction = eval::reduction_curve(set, plan.reduction);
+            {
+                ProgressBar bar("eval " + set.spec.name + ": reduction");
+                r.reduction = eval::reduction_curve(set, plan.reduction, bar.callback());
+            }
             r.has_reduction = true;
             say("[eval] %s: sample reduction, %lld of %lld kept at tau %.2f (%.1f s)\n", set.spec.name.c_str(),
                 static_cast<long long>(r.reduction.kept_at_tau), static_cast<long long>(set.size()), plan.reduction.tau,
@@ -300,7 +310,11 @@ void run_eval(const EvalArgs& a) {
             ro.hooi = plan.hooi && (plan.hooi_sets.empty() || std::find(plan.hooi_sets.begin(), plan.hooi_sets.end(),
                                                                                       set.spec.name) != plan.hooi_sets.end());
             r.compression_targets = plan.compression_targets;
-            r.compression = compression::rate_distortion(set.aligned.tensor, set.skeleton, ro);
+            {
+                ProgressBar bar("eval " + set.spec.name + ": compression");
+                ro.progress = bar.callback();
+                r.compression = compression::rate_distortion(set.aligned.tensor, set.skeleton, ro);
+            }
             r.has_compression = true;
             say("[eval] %s: compression report (%.1f s)\n", set.spec.name.c_str(), since(t0));
         }
@@ -312,7 +326,10 @@ void run_eval(const EvalArgs& a) {
         eval::RuntimeOptions ro = plan.runtime;
         for (Eigen::Index& s : ro.sizes) s = std::min(s, sets[k].size());
         ro.sizes.erase(std::unique(ro.sizes.begin(), ro.sizes.end()), ro.sizes.end());
-        results.runtime = eval::runtime_scaling(sets[k], results.sets[k].methods, ro);
+        {
+            ProgressBar bar("eval: runtime");
+            results.runtime = eval::runtime_scaling(sets[k], results.sets[k].methods, ro, bar.callback());
+        }
         results.runtime_set = plan.runtime_set;
         say("[eval] runtime against N on %s (%.1f s)\n", plan.runtime_set.c_str(), since(t0));
     }

@@ -10,6 +10,7 @@
 #include "json_writer.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "pipeline.hpp"
+#include "progress_bar.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -35,7 +36,10 @@ void run_report(const ReportArgs& a) {
     else if (a.sweep) options.max_cm = {10, 5, 2, 1, 0.5, 0.2, 0.1, 0.05};
     options.quantization_bits = a.bits;
     options.hooi = !a.no_hooi;
+    ProgressBar bar("report");
+    options.progress = bar.callback();
     const RateOutcome r = rate_report(c, options);
+    bar.clear();
 
     if (!a.csv.empty()) {
         const std::string text = rate_csv(r);

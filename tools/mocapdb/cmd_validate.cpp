@@ -6,6 +6,7 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "mocapdb/store/validate.hpp"
+#include "progress_bar.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -20,7 +21,12 @@ void run_validate(const ValidateArgs& args) {
     ValidateOptions options;
     options.max_violations = args.max;
     if (!args.schema.empty()) options.schema_json = read_text_file(args.schema);
-    const ValidationReport report = validate_database(args.file, options);
+    ValidationReport report;
+    {
+        ProgressBar bar("validate");
+        options.progress = bar.callback();
+        report = validate_database(args.file, options);
+    }
     const std::string what = report.format_version > 0
                                  ? "mocapdb format " + std::to_string(report.format_version) + " file"
                                  : std::string("mocapdb file");

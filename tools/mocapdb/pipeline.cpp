@@ -211,7 +211,11 @@ SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
     const auto ids = select_clips(db, db_path, a.clips);
     SetOutcome o;
     o.clips = ids.size();
-    o.set = build_motion_set(ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped);
+    {
+        ProgressBar bar("set create");
+        options.progress = bar.callback();
+        o.set = build_motion_set(ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped);
+    }
     for (const std::string& id : o.skipped)
         std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
     if (!a.params_csv.empty()) apply_params_csv(o.set, a.params_csv, db);
@@ -239,10 +243,14 @@ AlignOutcome align_set(const std::string& db_path, const AlignRequest& a) {
     const MotionSet set = db.load_set(a.set);
     std::vector<Clip> samples;
     AlignOutcome o;
-    for (const SampleRef& s : set.samples) {
-        const Clip clip = db.load_clip(s.clip);
-        o.labels.push_back(sample_label(s, clip.frame_count()));
-        samples.push_back(slice(clip, s.begin, s.end));
+    {
+        ProgressBar bar("align: read");
+        for (const SampleRef& s : set.samples) {
+            const Clip clip = db.load_clip(s.clip);
+            o.labels.push_back(sample_label(s, clip.frame_count()));
+            samples.push_back(slice(clip, s.begin, s.end));
+            bar.update({samples.size(), set.samples.size(), s.clip});
+        }
     }
     AlignOptions options;
     options.method = a.method;
@@ -253,7 +261,11 @@ AlignOutcome align_set(const std::string& db_path, const AlignRequest& a) {
             throw InvalidArgument("set '" + a.set + "' has no sample '" + a.reference + "' (see mocapdb set show)");
         options.reference = static_cast<std::size_t>(it - o.labels.begin());
     }
-    o.aligned = align_samples(samples, options);
+    {
+        ProgressBar bar("align");
+        options.progress = bar.callback();
+        o.aligned = align_samples(samples, options);
+    }
     o.distance = mean_alignment_distance(samples, o.aligned);
     DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
     writer.put_aligned(a.set, o.aligned);
@@ -304,14 +316,16 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
         chosen.target_met = true;
         o.criterion = "ranks " + ranks_text(r);
     } else if (a.rmse >= 0.0) {
-        chosen = compression::search_ranks_for_rmse(prepared, meter, a.rmse);
+        ProgressBar bar("compress");
+        chosen = compression::search_ranks_for_rmse(prepared, meter, a.rmse, bar.callback());
         o.criterion = "rmse <= " + std::to_string(a.rmse);
     } else if (a.ratio > 0.0) {
         chosen = compression::ranks_for_ratio(prepared, meter, a.ratio);
         o.criterion = "ratio >= " + std::to_string(a.ratio);
     } else {
         const double target = a.max_error_cm > 0.0 ? a.max_error_cm : 1.0;
-        chosen = compression::search_ranks_for_max_error(prepared, meter, target);
+        ProgressBar bar("compress");
+        chosen = compression::search_ranks_for_max_error(prepared, meter, target, bar.callback());
         std::ostringstream s;
         s << "max joint error <= " << target << " cm";
         o.criterion = s.str();

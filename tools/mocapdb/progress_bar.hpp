@@ -1,6 +1,7 @@
 #pragma once
-// A one-line progress bar on stderr, drawn only when stdout is a terminal (silent in pipes, scripts
-// and tests). Fed by the library's ProgressCallback.
+// A one-line progress bar on stderr, drawn only when both stdout and stderr are terminals (silent in
+// pipes, redirections, scripts and tests: stdout is never touched). Fed by the library's
+// ProgressCallback. Every command that can take over a second on real data draws one.
 #include <chrono>
 #include <string>
 

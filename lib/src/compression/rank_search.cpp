@@ -13,7 +13,8 @@ namespace {
 // Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `ok` (ok(model):
 // whether it meets the target). Only the chosen model's errors are measured in full.
 template <class Accept>
-RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter, Accept ok) {
+RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter, Accept ok,
+                        const ProgressCallback& progress) {
     RankSearchResult best;
     const tensor::Dims3 dims = tensor::dims_of(p.x);
     const auto evaluate = [&](const tensor::Ranks& ranks) {
@@ -32,7 +33,14 @@ RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter
     double lo = std::log(1e-7), hi = 0.0;  // lo: known to meet (or assumed: finer than full-rank rounding)
     tensor::Ranks last{-1, -1, -1};
     bool last_ok = false;
+    // Progress in bisection steps: the interval halves each step, so their number is known up front
+    // (plus one for measuring the chosen model).
+    const auto steps = static_cast<std::uint64_t>(std::min(28.0, std::ceil(std::log2((hi - lo) / 0.01))));
+    const auto report = [&](std::uint64_t done) {
+        if (progress) progress({done, steps + 1, "rank search"});
+    };
     for (int i = 0; i < 28 && hi - lo > 0.01; ++i) {
+        report(static_cast<std::uint64_t>(i));
         const double mid = 0.5 * (lo + hi);
         const tensor::Ranks ranks = tensor::ranks_for_error_bound(p.bases.spectra, std::exp(mid));
         if (ranks == last) {  // same triple as the previous probe: its answer is known
@@ -55,8 +63,10 @@ RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter
         best = evaluate(full);
         ++evaluations;
     }
+    report(steps);
     best.stats = meter.measure(best.model.reconstruct());
     best.evaluations = evaluations;
+    report(steps + 1);
     return best;
 }
 
@@ -80,15 +90,17 @@ SetModel hosvd_model(const PreparedSet& p, const tensor::Ranks& ranks) {
     return m;
 }
 
-RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const eval::JointErrorMeter& meter, double max_cm) {
+RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const eval::JointErrorMeter& meter, double max_cm,
+                                            const ProgressCallback& progress) {
     if (!(max_cm > 0.0) || !std::isfinite(max_cm))
         throw InvalidArgument("search_ranks_for_max_error: the target must be a finite number of cm > 0, got " +
                               std::to_string(max_cm));
     // Same decision as measure(...).max_cm <= max_cm, stopping at the first joint beyond the target.
-    return bisect(p, meter, [&](const SetModel& m) { return !meter.exceeds(m.reconstruct(), max_cm); });
+    return bisect(p, meter, [&](const SetModel& m) { return !meter.exceeds(m.reconstruct(), max_cm); }, progress);
 }
 
-RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const eval::JointErrorMeter& meter, double rmse) {
+RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const eval::JointErrorMeter& meter, double rmse,
+                                       const ProgressCallback& progress) {
     if (!(rmse >= 0.0) || !std::isfinite(rmse))
         throw InvalidArgument("search_ranks_for_rmse: the target must be finite and >= 0, got " + std::to_string(rmse));
     const double count = static_cast<double>(p.x.size());
@@ -96,7 +108,7 @@ RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const eval::JointEr
         // ||X - X_hat||^2 = ||X||^2 - ||G||^2 for HOSVD-type models; measured from the fit.
         const double error = m.tucker.data_norm * (1.0 - m.tucker.fit);
         return error / std::sqrt(count) <= rmse;
-    });
+    }, progress);
 }
 
 RankSearchResult ranks_for_ratio(const PreparedSet& p, const eval::JointErrorMeter& meter, double ratio) {

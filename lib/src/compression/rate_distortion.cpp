@@ -322,11 +322,16 @@ RateReport rate_distortion(const Tensor3& poses, std::shared_ptr<const Skeleton>
                     2 * kFloat32 * static_cast<std::uint64_t>(poses.dimension(0)),
                     poses.dimension(1) * poses.dimension(2)};
 
+    const std::uint64_t total = 2 + options.max_cm.size() * (options.hooi ? 7 : 6);
+    const auto emit = [&](const RateRow& r) {
+        report.rows.push_back(r);
+        if (options.progress) options.progress({report.rows.size(), total, r.method});
+    };
     {  // the paper's "full" row: the aligned poses as float32
         RateRow r = c.row("raw-float32", 0.0, report.raw_bytes);
         r.stats = meter.measure(codec::round_to_float32(poses));
         r.access = "pose";
-        report.rows.push_back(r);
+        emit(r);
     }
     {  // lossless float32 deflate of the poses
         const auto start = Clock::now();
@@ -336,24 +341,24 @@ RateReport rate_distortion(const Tensor3& poses, std::shared_ptr<const Skeleton>
         r.stats = meter.measure(codec::decode_float32_deflate(s.bytes));
         r.access = "stream";
         r.us_per_pose = stream_us_per_pose([&] { (void)codec::decode_float32_deflate(s.bytes); }, c.pose_count);
-        report.rows.push_back(r);
+        emit(r);
     }
     const auto pca_start = Clock::now();
     const codec::SamplePca pca(prepared.x);
     const double pca_seconds = seconds_since(pca_start);
     for (double target : options.max_cm) {
         const RateRow tucker = tucker_row(c, target);
-        report.rows.push_back(tucker);
-        if (options.hooi) report.rows.push_back(hooi_row(c, tucker, options.hooi_iterations));
-        report.rows.push_back(quantized_row(c, tucker, options.quantization_bits));
-        report.rows.push_back(tucker_residual_row(c, target, options.quantization_bits));
+        emit(tucker);
+        if (options.hooi) emit(hooi_row(c, tucker, options.hooi_iterations));
+        emit(quantized_row(c, tucker, options.quantization_bits));
+        emit(tucker_residual_row(c, target, options.quantization_bits));
         RateRow p = pca_row(c, pca, target);
         p.precompute_s = pca_seconds;
-        report.rows.push_back(p);
+        emit(p);
         RateRow pr = pca_residual_row(c, pca, target);
         pr.precompute_s += pca_seconds;
-        report.rows.push_back(pr);
-        report.rows.push_back(zfp_row(c, target));
+        emit(pr);
+        emit(zfp_row(c, target));
     }
     return report;
 }

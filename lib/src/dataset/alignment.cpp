@@ -77,6 +77,9 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
     out.warps.resize(frames, static_cast<Eigen::Index>(count));
     const double ref_last = static_cast<double>(samples[ref].frame_count() - 1);
     const VecX tau = uniform(frames, ref_last);  // reference frame shown at each aligned frame
+    const auto report = [&](std::size_t done, const char* what) {
+        if (options.progress) options.progress({done, 2 * count, what});
+    };
     if (options.method == "linear") {
         for (std::size_t n = 0; n < count; ++n)
             out.warps.col(static_cast<Eigen::Index>(n)) = uniform(frames, static_cast<double>(samples[n].frame_count() - 1));
@@ -92,8 +95,10 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
             const DtwPath path = dtw(cost, options.band);
             const VecX w = warp_from_path(path, cost.rows(), cost.cols());
             out.warps.col(static_cast<Eigen::Index>(n)) = interpolate(w, tau);
+            report(n + 1, "warp");
         }
     }
+    report(count, "warp");
 
     // Pose vectors; the reference's first pose fixes the exp-map branches for every sample.
     out.canonical.resize(count);
@@ -109,6 +114,7 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
             const VecX p = column_at(poses, out.warps(t, static_cast<Eigen::Index>(n)));
             for (Eigen::Index d = 0; d < dofs; ++d) out.tensor(d, t, static_cast<Eigen::Index>(n)) = p[d];
         }
+        report(count + n + 1, "poses");
     }
 
     // Per-dof mean and standard deviation over frames and samples.

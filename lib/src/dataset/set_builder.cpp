@@ -47,6 +47,7 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
         for (const std::string& u : e.units()) set.parameter_units.push_back(u);
     }
     std::vector<VecX> rows;
+    std::uint64_t done = 0;
     for (const std::string& id : clip_ids) {
         const Clip clip = load(id);
         std::vector<SampleRef> samples;
@@ -67,6 +68,7 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
             }
             set.samples.push_back(s);
         }
+        if (options.progress) options.progress({++done, clip_ids.size(), id});
     }
     if (set.samples.empty())
         throw InvalidArgument("motion set '" + options.name + "': the " + std::to_string(clip_ids.size()) +

@@ -99,6 +99,8 @@ DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode, d
             s.file = store::h5::File::create(s.temp);
             store::write_root(s.file);
         }
+        // What the session reads comes from the target's content: errors name the target.
+        s.file.set_name_in_errors(target.string());
         s.view.impl_->path = s.temp;
         s.view.impl_->file = &s.file;
         for (const ClipRecord& r : s.view.clips()) s.sha_to_clip.emplace(r.source.sha256, r.id);
@@ -204,7 +206,7 @@ void DatabaseWriter::remove_set(const std::string& name) {
     QuietScope quiet;
     Impl& s = *impl_;
     store::h5::File& f = s.f();
-    if (!s.view.has_set(name)) throw StoreError(s.temp.string(), store::set_path(name), "no such motion set");
+    if (!s.view.has_set(name)) throw StoreError(s.target.string(), store::set_path(name), "no such motion set");
     f.unlink(store::set_path(name));
     s.removed_objects = true;
 }
@@ -375,7 +377,7 @@ void DatabaseWriter::remove_packed() {
     QuietScope quiet;
     Impl& s = *impl_;
     store::h5::File& f = s.f();
-    if (!f.exists(store::kPacked)) throw StoreError(s.temp.string(), store::kPacked, "no packed tier");
+    if (!f.exists(store::kPacked)) throw StoreError(s.target.string(), store::kPacked, "no packed tier");
     refuse_if_only_copy(s.view, s.target.string(), "removed");
     s.view.impl_->decoder.reset();
     f.unlink(store::kPacked);

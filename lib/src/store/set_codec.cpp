@@ -1,6 +1,7 @@
 #include "set_codec.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "layout.hpp"
 #include "mocapdb/store/store_error.hpp"
@@ -17,6 +18,16 @@ namespace {
 void expect_shape(const h5::File& file, const std::string& path, const h5::Shape& expected, const std::string& why,
                   const h5::Shape& found) {
     if (found != expected) shape_error(file, path, expected, why, found);
+}
+
+// Every value finite: a NaN or infinity read from the file is damage, refused where it is read (so a
+// writing session that reads it publishes nothing).
+void expect_finite(const h5::File& file, const std::string& path, const std::vector<double>& values) {
+    const auto bad = std::find_if(values.begin(), values.end(), [](double x) { return !std::isfinite(x); });
+    if (bad != values.end())
+        throw StoreError(file.name(), path,
+                         "expected finite values, found " + std::to_string(*bad) + " at element " +
+                             std::to_string(bad - values.begin()));
 }
 
 }  // namespace
@@ -67,6 +78,7 @@ MotionSet read_set(const h5::File& file, const std::string& name) {
         shape_error(file, g + "/parameter_unit", {p}, "(one unit per parameter_name)", {set.parameter_units.size()});
     const auto params = file.read_array<double>(g + "/parameters", 2);
     expect_shape(file, g + "/parameters", {n, p}, "(samples by parameters)", params.shape);
+    expect_finite(file, g + "/parameters", params.data);
     set.parameters = from_c_order(params.data, static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(p));
     return set;
 }
@@ -102,6 +114,7 @@ AlignedSet read_aligned(const h5::File& file, const std::string& set) {
     const std::int64_t reference = file.read_int_attribute(g, "reference");
     const auto tensor = file.read_array<double>(g + "/tensor", 3);
     const std::uint64_t n = tensor.shape[0], t = tensor.shape[1], d = tensor.shape[2];
+    expect_finite(file, g + "/tensor", tensor.data);
     if (reference < 0 || static_cast<std::uint64_t>(reference) >= std::max<std::uint64_t>(n, 1))
         throw StoreError(file.name(), g,
                          "attribute 'reference': expected a sample index in [0, " + std::to_string(n) + "), found " +
@@ -112,6 +125,7 @@ AlignedSet read_aligned(const h5::File& file, const std::string& set) {
     const std::string why = "(tensor " + g + "/tensor is " + h5::shape_text(tensor.shape) + " = (sample, time, dof))";
     const auto warps = file.read_array<double>(g + "/warps", 2);
     expect_shape(file, g + "/warps", {n, t}, why, warps.shape);
+    expect_finite(file, g + "/warps", warps.data);
     a.warps = Eigen::Map<const MatX>(warps.data.data(), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
     const auto increments = file.read_array<double>(g + "/inverse_warp_increments", 2);
     expect_shape(file, g + "/inverse_warp_increments", {n, t - 1}, why, increments.shape);
@@ -122,14 +136,18 @@ AlignedSet read_aligned(const h5::File& file, const std::string& set) {
                          "expected warps[:, 1:] - warps[:, :-1], found values differing by up to " + std::to_string(mismatch));
     const auto mean = file.read_array<double>(g + "/mean", 1);
     expect_shape(file, g + "/mean", {d}, why, mean.shape);
+    expect_finite(file, g + "/mean", mean.data);
     a.mean = Eigen::Map<const VecX>(mean.data.data(), static_cast<Eigen::Index>(d));
     const auto scale = file.read_array<double>(g + "/scale", 1);
     expect_shape(file, g + "/scale", {d}, why, scale.shape);
+    expect_finite(file, g + "/scale", scale.data);
     a.scale = Eigen::Map<const VecX>(scale.data.data(), static_cast<Eigen::Index>(d));
     const auto translation = file.read_array<double>(g + "/canonical_translation", 2);
     expect_shape(file, g + "/canonical_translation", {n, 3}, why, translation.shape);
+    expect_finite(file, g + "/canonical_translation", translation.data);
     const auto yaw = file.read_array<double>(g + "/canonical_yaw", 1);
     expect_shape(file, g + "/canonical_yaw", {n}, why, yaw.shape);
+    expect_finite(file, g + "/canonical_yaw", yaw.data);
     for (std::size_t s = 0; s < n; ++s) {
         Canonicalization c;
         c.translation = Vec3(translation.data[3 * s], translation.data[3 * s + 1], translation.data[3 * s + 2]);

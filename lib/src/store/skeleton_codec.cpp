@@ -74,6 +74,11 @@ Skeleton read_skeleton(const h5::File& file, const std::string& id) {
     expect_rows(g + "/joint_parent", parents.shape, n, 0);
     const auto offsets = file.read_array<double>(g + "/joint_offset", 2);
     expect_rows(g + "/joint_offset", offsets.shape, n, 3);
+    for (std::size_t k = 0; k < offsets.data.size(); ++k)
+        if (!std::isfinite(offsets.data[k]))
+            throw StoreError(fname, g + "/joint_offset",
+                             "joint " + std::to_string(k / 3) + ": expected a finite offset, found " +
+                                 std::to_string(offsets.data[k]));
     const auto axes = file.read_array<double>(g + "/joint_axis", 2);
     expect_rows(g + "/joint_axis", axes.shape, n, 4);
     const auto orders = file.read_strings(g + "/joint_rotation_order");

@@ -40,8 +40,20 @@ public:
         : f_(file), schema_(schema), options_(options), report_(report) {}
 
     void run() {
+        if (options_.progress) {
+            try {
+                progress_total_ = 2 * f_.children(store::kClips).size();
+            } catch (const Error&) {
+                progress_total_ = 0;  // reported by visit()
+            }
+        }
         visit("/", {});
         check_required();
+    }
+
+    /// One clip checked (by the structure pass, then by the content pass).
+    void progress_step(const std::string& clip) {
+        if (options_.progress) options_.progress({++progress_done_, std::max(progress_total_, progress_done_), clip});
     }
 
     void add(const std::string& path, const std::string& message) {
@@ -57,6 +69,9 @@ private:
     const store::Schema& schema_;
     const ValidateOptions& options_;
     ValidationReport& report_;
+    const std::string clips_prefix_ = std::string(store::kClips) + "/";
+    std::uint64_t progress_done_ = 0;
+    std::uint64_t progress_total_ = 0;
     // symbol key -> (extent, where it was bound)
     std::map<std::string, std::pair<std::uint64_t, std::string>> symbols_;
     // pattern index -> concrete paths matched
@@ -126,6 +141,9 @@ private:
             }
             for (const std::string& name : names) visit(child(path, name), bindings);
         }
+        if (path.size() > clips_prefix_.size() && path.compare(0, clips_prefix_.size(), clips_prefix_) == 0 &&
+            path.find('/', clips_prefix_.size()) == std::string::npos)
+            progress_step(path.substr(clips_prefix_.size()));
     }
 
     void check_required() {
@@ -491,6 +509,7 @@ void check_content(const std::filesystem::path& file, Validator& v) {
         } catch (const Error& e) {
             v.add(path, e.what());
         }
+        v.progress_step(id);
     }
     for (const std::string& name : db.set_names()) {
         const std::string path = store::set_path(name);

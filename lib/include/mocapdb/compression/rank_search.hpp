@@ -11,6 +11,7 @@
 #include <functional>
 
 #include "mocapdb/compression/set_model.hpp"
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/eval/joint_error.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
 
@@ -37,12 +38,15 @@ struct RankSearchResult {
 };
 
 /// Smallest-bound ranks whose measured max joint error is ≤ max_cm (> 0). meter's reference must be
-/// the poses `prepared` was made from.
+/// the poses `prepared` was made from. `progress`: done = bisection steps taken, total = steps + 1
+/// (the last unit measures the chosen model).
 RankSearchResult search_ranks_for_max_error(const PreparedSet& prepared, const eval::JointErrorMeter& meter,
-                                            double max_cm);
+                                            double max_cm, const ProgressCallback& progress = {});
 
 /// Smallest-bound ranks whose measured RMSE of X (the weighted, centred tensor) is ≤ rmse (≥ 0).
-RankSearchResult search_ranks_for_rmse(const PreparedSet& prepared, const eval::JointErrorMeter& meter, double rmse);
+/// `progress` as for search_ranks_for_max_error.
+RankSearchResult search_ranks_for_rmse(const PreparedSet& prepared, const eval::JointErrorMeter& meter, double rmse,
+                                       const ProgressCallback& progress = {});
 
 /// The ranks with the smallest HOSVD bound among those with compression ratio ≥ ratio (> 0).
 RankSearchResult ranks_for_ratio(const PreparedSet& prepared, const eval::JointErrorMeter& meter, double ratio);

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/eval/joint_error.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
@@ -50,6 +51,9 @@ struct RateOptions {
     int quantization_bits = 12;               ///< tucker+residual: core and basis bits
     bool hooi = true;
     int hooi_iterations = 50;
+    /// Called after each row (done = rows finished, total = rows of the report, item = the method
+    /// just measured). May be empty.
+    ProgressCallback progress;
 };
 
 struct RateReport {

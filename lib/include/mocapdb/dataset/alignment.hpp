@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 
@@ -19,6 +20,9 @@ struct AlignOptions {
     std::optional<std::size_t> reference;
     /// DTW band: a path may stray this fraction of the length from the diagonal.
     double band = 0.5;
+    /// Called as samples are done: done counts warps found (one per sample) then pose tensors filled
+    /// (one per sample), total = 2 N; item = "warp" or "poses". May be empty.
+    ProgressCallback progress;
 };
 
 /// Aligns the samples (each already cut to its frame range, all on one skeleton) and builds the

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/dataset/segmentation.hpp"
@@ -22,6 +23,9 @@ struct SetBuildOptions {
     std::size_t window_hop = 0;     ///< Windows: frames between window starts
     /// Parameters measured per sample; may be empty when the caller supplies them (CSV).
     std::vector<ParameterExtractor> extractors;
+    /// Called after each clip (done = clips loaded and measured, total = clips, item = its id). May
+    /// be empty.
+    ProgressCallback progress;
 };
 
 /// Parses "none", "gait" or "window:LENGTH[:HOP]" (frames; HOP defaults to LENGTH) into `options`.

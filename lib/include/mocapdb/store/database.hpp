@@ -118,8 +118,9 @@ bool is_hdf5_file(const std::filesystem::path& path);
 /// Read view of a database file. Opening checks the root attributes (format = "mocapdb",
 /// format_version 1 or 2) and throws StoreError naming the file, the HDF5 path and the expected and
 /// found values for a file that is not HDF5, truncated, foreign, or of another version. Every load
-/// checks dtypes, shapes and checksums of what it reads and throws StoreError / ChecksumError naming
-/// the offending object. Not thread-safe (HDF5's serial build is not).
+/// checks dtypes, shapes and checksums of what it reads, and that floating-point values are finite
+/// (clip channels, skeleton offsets, set parameters, aligned forms, models), and throws StoreError /
+/// ChecksumError naming the offending object. Not thread-safe (HDF5's serial build is not).
 class Database {
 public:
     /// Opens `path` read-only.
@@ -189,6 +190,11 @@ private:
 };
 
 /// An atomic edit session on a database file (see the header comment for the guarantees).
+/// Damage is refused where it is read: the constructor loads every skeleton, view() loads and the
+/// put_* calls check what they read as Database does, and their errors name the target (not the
+/// temporary copy) and the object's path; the caller then drops the session, so nothing is
+/// published. Objects the session never reads are copied as they are, unchecked (validate_database
+/// reads everything): a write costs what it touches, not the whole file.
 class DatabaseWriter {
 public:
     enum class Mode {

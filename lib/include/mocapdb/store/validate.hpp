@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/core/progress.hpp"
+
 namespace mocapdb {
 
 struct Violation {
@@ -28,6 +30,10 @@ struct ValidateOptions {
     /// Schema mirror text (JSON) to check against; empty: the built-in mirror of the file's
     /// format_version (format-vN.json for a version-N file).
     std::string schema_json;
+    /// Called per clip checked: done counts clips of the structure pass then of the content pass,
+    /// total = 2 x the clips (item = the clip id). Sets, skeletons and the packed tier are checked
+    /// between and after, unreported. May be empty.
+    ProgressCallback progress;
 };
 
 /// Checks structure (every object against the schema: kinds, dtypes, ranks, dims names, shapes,

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mocapdb/store/storage_extents.hpp"
@@ -54,7 +55,11 @@ public:
     File(const File&) = delete;
     File& operator=(const File&) = delete;
 
+    /// The file name that errors about this file give (the path it was opened with, unless renamed).
     const std::string& name() const noexcept { return name_; }
+    /// Errors name `name` from now on: a writing session's temporary copy reports its target, the
+    /// file the user named.
+    void set_name_in_errors(std::string name) { name_ = std::move(name); }
     bool is_open() const noexcept { return id_ >= 0; }
     bool writable() const noexcept { return writable_; }
     /// Flushes and closes; throws on failure.

@@ -1,0 +1,31 @@
+# Damages one object of a mocapdb file in place, for the tests of refused writes
+# (tests/store/test_damaged_writes.cpp). Needs h5py.
+#   damage_dataset.py FILE nan PATH     sets the first value of float64 dataset PATH to NaN
+#                                       (rewritten through HDF5: its checksum stays valid)
+#   damage_dataset.py FILE nanclip CLIP replaces /clips/CLIP/channels_packed by float64 channels
+#                                       (format-v3 'channels') holding a NaN
+import sys
+
+import h5py
+import numpy as np
+
+file, mode, path = sys.argv[1:4]
+with h5py.File(file, "r+") as f:
+    if mode == "nan":
+        d = f[path]
+        a = d[...]
+        a.flat[0] = np.nan
+        d[...] = a
+    elif mode == "nanclip":
+        g = f["/clips/" + path]
+        packed = g["channels_packed"]
+        frames = int(packed.attrs["frames"])
+        channels = len(packed.attrs["channel_scale"])
+        del g["channels_packed"]
+        a = np.zeros((frames, channels))
+        a[frames // 2, channels - 1] = np.nan
+        d = g.create_dataset("channels", data=a, chunks=True, fletcher32=True, compression="gzip", shuffle=True)
+        d.attrs["dims"] = np.array(["frame", "channel"], dtype=h5py.string_dtype())
+        d.attrs["units"] = "cm|rad"
+    else:
+        sys.exit("unknown mode " + mode)
