@@ -2,7 +2,9 @@
 // speed of the written BVH match the requested ones), query, reliability map, reduce.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 
@@ -50,6 +52,11 @@ const WalkDb& walk_db() {
         return r;
     }();
     return w;
+}
+
+std::string file_text(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 std::string csv_of(const VecX& c) {
@@ -264,4 +271,36 @@ TEST_CASE("reduce reports the greedy reduction and --apply stores an aligned red
     r = run_cli("reduce " + w.db + " --set walks --tau 0.7 --apply --name small");
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Contains("exists"));
+}
+
+TEST_CASE("synth with the kernel compress stored writes the same BVH as fitting the kernel", "[cli][synthesis][shared]") {
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
+    const WalkDb& w = walk_db();
+    TempDir dir("synth-kernel");
+    const auto path = dir / "walks.h5";
+    std::filesystem::copy_file(w.path, path);
+    const std::string db = quoted(path.string());
+    const MatX p = Database(path).load_set("walks").parameters;
+    const std::string c = csv_of(0.5 * (p.row(0) + p.row(1)).transpose());
+    REQUIRE(Database(path).load_kernel_fit("walks").has_value());  // compress stored it
+
+    CommandResult r = run_cli("synth " + db + " --set walks --param " + c + " -o " + quoted((dir / "a.bvh").string()) +
+                              " --json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK(parse_json(r.out)["kernel_stored"].boolean);
+
+    // The same model stored again without its kernel: synth fits it and writes the same file.
+    {
+        DatabaseWriter writer(path);
+        const auto stored = writer.view().load_model("walks");
+        writer.put_model("walks", stored->model, stored->figures);
+        writer.commit();
+    }
+    REQUIRE_FALSE(Database(path).load_kernel_fit("walks").has_value());
+    r = run_cli("synth " + db + " --set walks --param " + c + " -o " + quoted((dir / "b.bvh").string()) + " --json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK_FALSE(parse_json(r.out)["kernel_stored"].boolean);
+    CHECK(file_text(dir / "a.bvh") == file_text(dir / "b.bvh"));
 }

@@ -42,8 +42,9 @@ TEST_CASE("schema: the compiled-in mirrors are schemas/format-v1.json to format-
 
 TEST_CASE("schema: every object and attribute of each mirror is specified in its format-vN.md", "[store][schema]") {
     // Objects per version: version 2 adds /sets/{set}/model and its six datasets, version 3
-    // /clips/{clip}/channels_packed and the packed tier (/packed, /packed/{group} and its 5 datasets).
-    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 44}};
+    // /clips/{clip}/channels_packed, the packed tier (/packed, /packed/{group} and its 5 datasets) and
+    // the synthesis kernel /sets/{set}/model/kernel.
+    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 45}};
     for (const auto& [version, path_count] : versions) {
         const std::string json = file_bytes(kSchemas / mirror_name(version));
         const std::string md = file_bytes(kSchemas / ("format-v" + std::to_string(version) + ".md"));
@@ -75,14 +76,16 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     }
     for (const std::string& path : v2)
         if (v1.count(path) == 0) CHECK(path.rfind("/sets/{set}/model", 0) == 0);
-    // Version 3 is version 2 plus the packed clip channels and the packed tier.
+    // Version 3 is version 2 plus the packed clip channels, the packed tier and the synthesis kernel.
     const auto v3 = matches(file_bytes(kSchemas / "format-v3.json"), "\"path\": \"([^\"]+)\"");
     for (const std::string& path : v2) {
         INFO(path);
         CHECK(v3.count(path) == 1);
     }
     for (const std::string& path : v3)
-        if (v2.count(path) == 0) CHECK((path == "/clips/{clip}/channels_packed" || path.rfind("/packed", 0) == 0));
+        if (v2.count(path) == 0)
+            CHECK((path == "/clips/{clip}/channels_packed" || path.rfind("/packed", 0) == 0 ||
+                   path == "/sets/{set}/model/kernel"));
 }
 
 TEST_CASE("schema: a custom mirror is honoured and a malformed one refused", "[store][schema]") {

@@ -430,3 +430,56 @@ TEST_CASE("folded coefficients equal the blend of the kriging weights", "[synthe
         if (model.kernel().status().exact()) CHECK(relative(folded, u_sample.row(4).transpose()) < 1e-10);
     }
 }
+
+TEST_CASE("a precomputed kernel gives exactly the synthesis of fitting it; other inputs' kernels are ignored",
+          "[synthesis][shared][kernel]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const Walks& w = walks();
+    const Eigen::Index n = w.aligned.samples();
+    const compression::SetModel sm =
+        compression::fit_set_model(w.aligned.tensor, w.weight, {20, 8, n - 2}, tensor::TuckerMethod::Hosvd);
+    const MotionModel fitted(sm, w.aligned, w.set, w.skeleton, 120.0);
+    CHECK_FALSE(fitted.report().kernel_precomputed);
+
+    // What compress stores is what the model fits.
+    KernelFit fit = fit_kernel(sm, w.aligned, w.set, {});
+    REQUIRE(fit.key != 0);
+    CHECK(fit.key == fitted.kernel_fit().key);
+    CHECK(fit.variogram.to_string() == fitted.report().model.to_string());
+    CHECK(fit.variogram.range == fitted.report().model.range);
+    CHECK(fit.exponent_loo_mse == fitted.report().exponent_loo_mse);
+
+    fit.exponent_loo_mse.resize(0);  // as read from a database
+    SynthesisOptions options;
+    options.kernel_fit = fit;
+    const MotionModel stored(sm, w.aligned, w.set, w.skeleton, 120.0, options);
+    CHECK(stored.report().kernel_precomputed);
+    // Identical doubles: poses, timing and reliability between the samples and at a sample.
+    const MatX queries = between_samples(w.set.parameters);
+    for (Eigen::Index k = 0; k < queries.rows(); k += 3) {
+        const VecX c = queries.row(k).transpose();
+        CHECK(stored.motion_poses(c) == fitted.motion_poses(c));
+        CHECK(stored.timing(c).warp == fitted.timing(c).warp);
+        CHECK(stored.reliability(c) == fitted.reliability(c));
+    }
+    const VecX c0 = w.set.parameters.row(0).transpose();
+    CHECK(stored.motion_poses(c0) == fitted.motion_poses(c0));
+
+    // Other inputs or options: another key, the kernel is fitted again (and differs).
+    MotionSet moved = w.set;
+    moved.parameters(0, 1) += 1.0;
+    const MotionModel other_set(sm, w.aligned, moved, w.skeleton, 120.0, options);
+    CHECK_FALSE(other_set.report().kernel_precomputed);
+    CHECK(other_set.kernel_fit().key != fit.key);
+    SynthesisOptions given_p = options;
+    given_p.exponent = 1.0;
+    const MotionModel other_options(sm, w.aligned, w.set, w.skeleton, 120.0, given_p);
+    CHECK_FALSE(other_options.report().kernel_precomputed);
+    const compression::SetModel smaller =
+        compression::fit_set_model(w.aligned.tensor, w.weight, {20, 8, n - 3}, tensor::TuckerMethod::Hosvd);
+    const MotionModel other_model(smaller, w.aligned, w.set, w.skeleton, 120.0, options);
+    CHECK_FALSE(other_model.report().kernel_precomputed);
+    // The naive model never uses one.
+    const NaiveMotionModel naive(w.aligned, w.set, w.skeleton, 120.0, w.weight, options);
+    CHECK_FALSE(naive.report().kernel_precomputed);
+}

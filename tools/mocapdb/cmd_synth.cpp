@@ -69,6 +69,7 @@ void run_synth(const SynthArgs& a) {
         j.key("clamped_increments").value(static_cast<long long>(timing.clamped));
         j.key("load_s").value(load_s);
         j.key("precompute_s").value(model->report().precompute_seconds);
+        j.key("kernel_stored").value(model->report().kernel_precomputed);
         j.key("synth_s").value(synth_s);
         j.key("output").value(a.out);
         j.end_object();

@@ -7,6 +7,7 @@
 #include "database_impl.hpp"
 #include "h5/quiet.hpp"
 #include "layout.hpp"
+#include "kernel_codec.hpp"
 #include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
@@ -243,6 +244,19 @@ std::optional<StoredModel> Database::load_model(const std::string& set) const {
     if (t != store::h5::ObjectType::Group)
         throw StoreError(f.name(), store::model_path(set), "expected a group of kind 'tucker_model', found another object");
     return store::read_model(f, set);
+}
+
+std::optional<synthesis::KernelFit> Database::load_kernel_fit(const std::string& set) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    if (f.type_of(store::model_path(set)) != store::h5::ObjectType::Group) return std::nullopt;
+    const std::string g = store::kernel_path(set);
+    const store::h5::ObjectType t = f.type_of(g);
+    if (t == store::h5::ObjectType::None) return std::nullopt;
+    if (t != store::h5::ObjectType::Group)
+        throw StoreError(f.name(), g, "expected a group of kind 'kernel_fit', found another object");
+    return store::read_kernel_fit(f, set);
 }
 
 std::uint64_t Database::file_size() const {

@@ -9,6 +9,7 @@
 #include "database_impl.hpp"
 #include "h5/quiet.hpp"
 #include "layout.hpp"
+#include "kernel_codec.hpp"
 #include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
@@ -288,6 +289,24 @@ void DatabaseWriter::put_model(const std::string& set_name, const compression::S
         s.removed_objects = true;
     }
     store::write_model(f, set_name, model, figures);
+}
+
+void DatabaseWriter::put_kernel_fit(const std::string& set_name, const synthesis::KernelFit& fit) {
+    QuietScope quiet;
+    Impl& s = *impl_;
+    store::h5::File& f = s.f();
+    const std::string who = "kernel fit of '" + set_name + "'";
+    if (!s.view.has_set(set_name))
+        throw InvalidArgument(who + ": motion set '" + set_name + "' is not stored (store the set first)");
+    if (f.type_of(store::model_path(set_name)) != store::h5::ObjectType::Group)
+        throw InvalidArgument(who + ": the set has no stored model (store the model first: the kernel belongs to it)");
+    store::check_kernel_fit(fit, who);
+    const std::string g = store::kernel_path(set_name);
+    if (f.exists(g)) {
+        f.unlink(g);
+        s.removed_objects = true;
+    }
+    store::write_kernel_fit(f, set_name, fit);
 }
 
 namespace {

@@ -21,6 +21,7 @@ inline std::string set_path(const std::string& name) { return kSets + "/" + name
 inline std::string aligned_path(const std::string& set) { return set_path(set) + "/aligned"; }
 inline std::string packed_group_path(const std::string& group) { return kPacked + "/" + group; }
 inline std::string model_path(const std::string& set) { return set_path(set) + "/model"; }
+inline std::string kernel_path(const std::string& set) { return model_path(set) + "/kernel"; }
 
 /// "/a/b/c" -> {"a", "b", "c"}.
 std::vector<std::string> split_path(const std::string& path);

@@ -540,6 +540,7 @@ void check_content(const std::filesystem::path& file, Validator& v) {
             // values, and that it has an aligned tensor at all.
             try {
                 db.load_model(name);
+                db.load_kernel_fit(name);
             } catch (const StoreError& e) {
                 v.add(e.object_path().empty() ? store::model_path(name) : e.object_path(), e.message());
             }

@@ -10,9 +10,9 @@ namespace {
 
 std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
 
-/// Rows G x_3 u_i (flattened core slices, N by R1 R2): their Euclidean distances are the core-slice
-/// distances ||G x_3 (u_i - u_j)||_F. Checks the model first.
-MatX core_slice_values(const compression::SetModel& model, const AlignedSet& aligned) {
+/// Checks the model against the aligned tensor; returns the key of its kernel inputs (kernel_fit.hpp).
+std::uint64_t checked_key(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
+                          const SynthesisOptions& options) {
     compression::check(model, "synthesis model");
     const tensor::Dims3 dims = model.tucker.dims();
     if (dims[0] != aligned.dofs() || dims[1] != aligned.frames() || dims[2] != aligned.samples()) {
@@ -20,17 +20,15 @@ MatX core_slice_values(const compression::SetModel& model, const AlignedSet& ali
                               " but the aligned tensor " + idx(aligned.dofs()) + "x" + idx(aligned.frames()) + "x" +
                               idx(aligned.samples()) + " (dofs x frames x samples): recompress the set");
     }
-    const tensor::Ranks& r = model.tucker.ranks;
-    const Eigen::Map<const MatX> c3(model.tucker.core.data(), r[0] * r[1], r[2]);
-    return model.tucker.U[2] * c3.transpose();
+    return kernel_key(model, set, options);
 }
 
 }  // namespace
 
 MotionModel::MotionModel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
                          std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options)
-    : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, core_slice_values(model, aligned), options,
-                     "synthesis model"),
+    : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, [&model] { return core_slice_values(model); },
+                     checked_key(model, aligned, set, options), options, "synthesis model"),
       model_(model),
       u_sample_(model.tucker.U[2]),
       inv_weight_(model.weight.cwiseInverse()) {
@@ -151,6 +149,12 @@ std::unique_ptr<MotionModel> load_motion_model(const Database& db, const std::st
                               name + ")");
     const auto record = db.find_clip(set.samples.front().clip);
     if (!record) throw InvalidArgument("set '" + name + "': clip '" + set.samples.front().clip + "' is missing");
+    if (!options.kernel_fit) {
+        SynthesisOptions with_fit = options;
+        with_fit.kernel_fit = db.load_kernel_fit(name);  // nullopt for models stored without one
+        return std::make_unique<MotionModel>(stored->model, *aligned, set, db.load_skeleton(record->skeleton),
+                                             record->frame_rate, with_fit);
+    }
     return std::make_unique<MotionModel>(stored->model, *aligned, set, db.load_skeleton(record->skeleton),
                                          record->frame_rate, options);
 }

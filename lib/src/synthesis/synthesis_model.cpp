@@ -33,7 +33,7 @@ double Timing::aligned_frame(double f) const {
 }
 
 SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
-                               double frame_rate, const Eigen::Ref<const MatX>& sample_values,
+                               double frame_rate, const std::function<MatX()>& sample_values, std::uint64_t key,
                                const SynthesisOptions& options, const char* where) {
     const auto start = std::chrono::steady_clock::now();
     validate(aligned);
@@ -52,8 +52,6 @@ SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, 
     }
     if (!(frame_rate > 0.0) || !std::isfinite(frame_rate))
         throw InvalidArgument(std::string(where) + ": frame rate must be positive and finite");
-    if (sample_values.rows() != n || !sample_values.allFinite())
-        throw InvalidArgument(std::string(where) + ": sample values must be N by S and finite");
     if (!(options.min_increment_fraction > 0.0 && options.min_increment_fraction <= 1.0))
         throw InvalidArgument(std::string(where) + ": min_increment_fraction must be in (0, 1]");
     if (!(options.max_increment_factor >= 1.0) || !std::isfinite(options.max_increment_factor))
@@ -74,34 +72,23 @@ SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, 
     }
     const MatX xc = scaling_.apply(coords_);
 
-    // Coefficient kernel: variogram on the distances between the samples' values (rows).
-    const MatX h = kriging::pairwise_distances(xc);
-    const MatX d = kriging::pairwise_distances(sample_values);
-    const kriging::ExperimentalVariogram ev = kriging::experimental_variogram(h, d, options.variogram);
-    const double h_half = std::max(0.5 * h.maxCoeff(), 1e-12);
-    kriging::VariogramModel model;
-    bool degenerate = !(d.maxCoeff() > 0.0);
-    if (!degenerate) {
-        if (options.exponent) {
-            const double p = *options.exponent;
-            if (!(p >= 0.0 && p <= 2.0)) throw InvalidArgument(std::string(where) + ": exponent p must be in [0, 2]");
-            const kriging::VariogramFit fit = kriging::fit_variogram(
-                ev, p == 0.0 ? kriging::VariogramFamily::Spherical : kriging::VariogramFamily::Stable, p == 0.0 ? 1.0 : p,
-                options.fit);
-            model = fit.model;
-            degenerate = fit.degenerate;
-        } else {
-            const kriging::ExponentSelection sel =
-                kriging::select_exponent(ev, xc, sample_values, options.kriging, options.fit);
-            model = sel.model();
-            degenerate = sel.fits[sel.best].degenerate;
-            report_.exponent_loo_mse = sel.loo_mse;
-        }
+    // Coefficient kernel: variogram on the distances between the samples' values (rows), or the
+    // precomputed one of the same inputs.
+    if (key != 0 && options.kernel_fit && options.kernel_fit->key == key) {
+        kernel_fit_ = *options.kernel_fit;
+        kernel_fit_.variogram.validate();
+        if (!(kernel_fit_.variogram.total_sill() > 0.0))
+            throw InvalidArgument(std::string(where) + ": the precomputed kernel's nugget + sill must be > 0");
+        report_.kernel_precomputed = true;
+    } else {
+        const MatX values = sample_values();
+        if (values.rows() != n || !values.allFinite())
+            throw InvalidArgument(std::string(where) + ": sample values must be N by S and finite");
+        kernel_fit_ = fit_coefficient_kernel(xc, values, options, where);
+        kernel_fit_.key = key;
     }
-    if (degenerate || !(model.total_sill() > 0.0)) {
-        // Samples without variation: any valid kernel gives the same (trend-only) prediction.
-        model = kriging::VariogramModel::from_paper_p(options.exponent.value_or(1.0), 0.0, 1.0, h_half);
-    }
+    const kriging::VariogramModel& model = kernel_fit_.variogram;
+    report_.exponent_loo_mse = kernel_fit_.exponent_loo_mse;
     kriging_ = kriging::Kriging::build(xc, model, options.kriging);
     report_.model = model;
     report_.status = kriging_.status();

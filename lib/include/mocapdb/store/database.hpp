@@ -28,6 +28,7 @@
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/store/clip_record.hpp"
 #include "mocapdb/store/store_error.hpp"
+#include "mocapdb/synthesis/kernel_fit.hpp"
 
 namespace mocapdb {
 
@@ -178,6 +179,11 @@ public:
     /// The set's Tucker model, or nullopt when none is stored. StoreError when there is no such set
     /// or the model is malformed (shapes disagreeing with the aligned tensor, non-finite values).
     std::optional<StoredModel> load_model(const std::string& set) const;
+    /// The model's precomputed coefficient kernel (/sets/{set}/model/kernel, synthesis/kernel_fit.hpp),
+    /// or nullopt when there is no model or it was stored without one. StoreError, naming the object,
+    /// when there is no such set or the group is malformed (bad key, family, non-finite or out-of-range
+    /// variogram parameters). Its exponent_loo_mse is empty (not stored).
+    std::optional<synthesis::KernelFit> load_kernel_fit(const std::string& set) const;
 
     /// Size of the file in bytes.
     std::uint64_t file_size() const;
@@ -247,6 +253,11 @@ public:
     /// figures >= 0).
     /// put_aligned and put_set(replace) drop a stored model (it described the old tensor).
     void put_model(const std::string& set, const compression::SetModel& model, const ModelFigures& figures);
+    /// Stores (replaces) the precomputed coefficient kernel of the set's stored model
+    /// (synthesis::fit_kernel of that model). InvalidArgument when the set has no model, the key is 0,
+    /// or the variogram is invalid (or nugget + sill = 0); exponent_loo_mse is not stored. It goes
+    /// with the model: put_model, put_aligned and put_set(replace) drop it.
+    void put_kernel_fit(const std::string& set, const synthesis::KernelFit& fit);
 
     /// Stores (replaces) the packed tier /packed: `tier` gives E, the collection's figures and per
     /// group its skeleton, frame rate, figures and clips (name, bytes and stored_bytes are set here:

@@ -48,6 +48,7 @@
 // at once, each with its own Workspace / BatchWorkspace. pose(), coefficients() and
 // pose_from_coefficients() do not allocate once the workspace has been used for a query of the same
 // model and level.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -64,6 +65,7 @@
 #include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/motion/skeleton.hpp"
+#include "mocapdb/synthesis/kernel_fit.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
 namespace mocapdb::synthesis {
@@ -90,15 +92,20 @@ struct SynthesisOptions {
     double min_increment_fraction = 0.05;
     /// Upper clamp of a kriged inverse-warp increment, as a multiple (>= 1) of the largest sample increment.
     double max_increment_factor = 4.0;
+    /// Compressed model only: a precomputed coefficient kernel (kernel_fit.hpp; load_motion_model reads
+    /// the stored one). Used when its key equals kernel_key of the model's inputs and these options,
+    /// ignored otherwise (the kernel is then fitted as without it). The naive model ignores it.
+    std::optional<KernelFit> kernel_fit;
 };
 
 /// What was built (for reports and the CLI).
 struct SynthesisReport {
     kriging::VariogramModel model;         ///< coefficient kernel's variogram
     kriging::KrigingStatus status;         ///< its factorization
-    Eigen::VectorXd exponent_loo_mse;      ///< LOO MSE per grid exponent (empty when p was given)
+    Eigen::VectorXd exponent_loo_mse;      ///< LOO MSE per grid exponent (empty when p was given or the kernel precomputed)
     double timing_exponent = 0.0;          ///< p of the timing kernel (Shared: the coefficient kernel's)
     double precompute_seconds = 0.0;       ///< construction time of the two kriging kernels
+    bool kernel_precomputed = false;       ///< the coefficient kernel's variogram came from options.kernel_fit
 };
 
 /// The synthesized timing of one motion.
@@ -157,6 +164,9 @@ public:
     double frame_rate() const { return frame_rate_; }
     const SynthesisReport& report() const { return report_; }
     const kriging::Kriging& kernel() const { return kriging_; }
+    /// The coefficient kernel's variogram and LOO MSE, with the key of the model's inputs (0 for the
+    /// naive model): what `compress` stores (kernel_fit.hpp).
+    const KernelFit& kernel_fit() const { return kernel_fit_; }
 
     /// Number of levels of detail (>= 1; level 0 = full). The naive model has one.
     virtual Eigen::Index levels() const = 0;
@@ -204,11 +214,12 @@ public:
 
 protected:
     /// Common construction: parameters, scaling, the timing kernel and the coefficient kernel whose
-    /// variogram and leave-one-out use the Euclidean distances between the rows of `sample_values`
-    /// (N by anything).
+    /// variogram and leave-one-out use the Euclidean distances between the rows of `sample_values()`
+    /// (N by anything; called only when the variogram is fitted here). key: kernel_key of the inputs
+    /// (0: never use options.kernel_fit); when options.kernel_fit has this key its variogram is used.
     SynthesisModel(const AlignedSet& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
-                   double frame_rate, const Eigen::Ref<const MatX>& sample_values, const SynthesisOptions& options,
-                   const char* where);
+                   double frame_rate, const std::function<MatX()>& sample_values, std::uint64_t key,
+                   const SynthesisOptions& options, const char* where);
 
     /// Coefficients from kriging weights (N) into out (S).
     virtual void coefficients_from_weights(const Eigen::Ref<const VecX>& w, Eigen::Ref<VecX> out) const = 0;
@@ -225,6 +236,7 @@ protected:
     MatX coords_;
     kriging::ControlScaling scaling_;
     kriging::Kriging kriging_;
+    KernelFit kernel_fit_;
     /// When not empty (set by the derived model): the coefficient vectors folded into the kriging
     /// operator, used by coefficients() and poses() instead of weights + coefficients_from_weights.
     kriging::KrigingPredictor folded_;

@@ -1,0 +1,76 @@
+#pragma once
+// The coefficient kernel's variogram of a compressed synthesis model, fitted once and stored (issue #16).
+//
+// Building a synthesis model (synthesis_model.hpp) chooses the variogram of its coefficient kernel:
+// pairwise distances between the N samples' core slices (N^2 R1 R2), the experimental variogram, and
+// the closed-form leave-one-out over the paper's exponent grid (11 kriging systems, N^3 and N^2 R1 R2
+// each). At N = 645 that is ~30 s, against well under a second for the rest of the model. The result
+// is a handful of numbers (the VariogramModel) that depend only on the model's inputs, so `compress`
+// stores them beside the Tucker model (/sets/{set}/model/kernel, schemas/format-v3.md §8.1) and
+// load_motion_model hands them to the model, which then only builds the kriging system from them.
+// The variogram is stored bit for bit, so a model built from a stored fit is identical to one that
+// fitted it (same doubles in, same operations).
+//
+// The key: a 64-bit digest of everything the fit depends on (the options that shape the kernel and
+// the bytes of the set's parameters, the sample basis and the core, kernel_key below). A fit whose key
+// differs from the model's inputs is ignored and the kernel is fitted again, so a stale or foreign fit
+// can slow a model down but never change it.
+//
+// Thread safety: plain data and pure functions.
+#include <cstdint>
+#include <string>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/kriging/variogram_model.hpp"
+
+namespace mocapdb {
+struct AlignedSet;
+struct MotionSet;
+namespace compression {
+struct SetModel;
+}
+}  // namespace mocapdb
+
+namespace mocapdb::synthesis {
+
+struct SynthesisOptions;
+
+/// The chosen variogram of a coefficient kernel, with the key of the inputs it was chosen for.
+struct KernelFit {
+    std::uint64_t key = 0;                ///< kernel_key of the inputs (0: none)
+    kriging::VariogramModel variogram;    ///< the model Kriging::build is given (valid, total sill > 0)
+    /// LOO MSE per grid exponent; empty when p was given, and in a fit read from a database (not stored).
+    Eigen::VectorXd exponent_loo_mse;
+};
+
+/// The digest of a compressed model's kernel inputs (see the header comment), never 0. Let
+/// mix(h, x) = ((h XOR x) * 0x100000001b3 mod 2^64) XOR (that >> 29) over 64-bit words x; starting
+/// from h = 0xcbf29ce484222325, fold: the bytes of kernel_options_text(options) (one word per byte),
+/// N, P, R1, R2, R3, then the IEEE-754 bit patterns of set.parameters (row after row, the file's
+/// (N, P) C order), of model.tucker.U[2] (row after row, the file's (N, R3) sample_basis) and of the
+/// core (the library's column-major order, the file's (R3, R2, R1) core). Cost: one pass over the core.
+std::uint64_t kernel_key(const compression::SetModel& model, const MotionSet& set, const SynthesisOptions& options);
+
+/// The options that shape the coefficient kernel as text (exponent, scaling, variogram, fit and
+/// kriging options; %.17g for numbers); part of the key.
+std::string kernel_options_text(const SynthesisOptions& options);
+
+/// Rows G x_3 u_i of the model (flattened core slices, N by R1 R2): their Euclidean distances are the
+/// core-slice distances ||G x_3 (u_i - u_j)||_F the coefficient kernel's variogram is estimated on.
+/// The model must pass compression::check.
+MatX core_slice_values(const compression::SetModel& model);
+
+/// The coefficient kernel's variogram from the normalized control parameters xc (N by P) and the
+/// samples' values (N by S, finite): options.exponent or leave-one-out over the paper's grid, then
+/// nugget, sill and range; a placeholder model for samples without variation. Key left 0.
+/// InvalidArgument (prefixed with `where`) for an exponent outside [0, 2].
+KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
+                                 const SynthesisOptions& options, const char* where);
+
+/// What `compress` stores: the fit MotionModel(model, aligned, set, ..., options) would make, with its
+/// key, without building the rest of the model. InvalidArgument when the model does not describe
+/// `aligned` or the set has fewer than 2 samples.
+KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
+                     const SynthesisOptions& options);
+
+}  // namespace mocapdb::synthesis

@@ -1,0 +1,189 @@
+// The precomputed synthesis kernel /sets/{set}/model/kernel (issue #16, format-v3.md §8.1): round trip
+// (bit-identical variogram), it goes with the model (put_model, put_aligned, put_set drop it), refusals
+// when writing, and a corrupted stored kernel refused when reading, naming the group (by load_kernel_fit,
+// by the validator and by load_motion_model, which does not silently refit).
+#include <catch2/catch.hpp>
+
+#include <limits>
+#include <random>
+
+#include "../../lib/src/store/h5/file.hpp"  // internal: to write a malformed group the library refuses to write
+#include "mocapdb/compression/dof_weights.hpp"
+#include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/store/validate.hpp"
+#include "mocapdb/synthesis/motion_model.hpp"
+#include "store_test_support.hpp"
+
+using namespace mocapdb;
+using namespace mocapdb::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const std::string kKernel = "/sets/walks/model/kernel";
+
+// A database with a clip, a 6-sample set with 2 parameters, its aligned form (full multilinear rank)
+// and a model.
+struct KernelFixture {
+    Clip clip = synthetic_clip(60, 3, 11);
+    MotionSet set;
+    AlignedSet aligned;
+    compression::SetModel model;
+
+    KernelFixture() {
+        set.name = "walks";
+        for (std::size_t i = 0; i < 6; ++i) set.samples.push_back({"walk", 5 * i, 5 * i + 20});
+        set.parameter_names = {"speed", "turn"};
+        set.parameter_units = {"cm/s", "rad"};
+        set.parameters = MatX(6, 2);
+        set.parameters << 100, 0.1, 110, -0.2, 120, 0.3, 130, 0.0, 105, 0.25, 125, -0.1;
+        set.parameter_source = "csv:test";
+        aligned = synthetic_aligned(PoseLayout(*clip.skeleton).dof_count(), 12, set);
+        std::mt19937 gen(3);
+        std::normal_distribution<double> noise(0.0, 1.0);
+        for (Eigen::Index i = 0; i < aligned.tensor.size(); ++i) aligned.tensor.data()[i] += noise(gen);
+        model = compression::fit_set_model(aligned.tensor, compression::position_error_weights(*clip.skeleton),
+                                           {6, 5, 5}, tensor::TuckerMethod::Hosvd);
+    }
+    void write(const std::filesystem::path& path, bool with_kernel) const {
+        DatabaseWriter w(path);
+        w.add_clip(clip, synthetic_source("walk.bvh", "w"));
+        w.put_set(set, false);
+        w.put_aligned(set.name, aligned);
+        w.put_model(set.name, model, {});
+        if (with_kernel) w.put_kernel_fit(set.name, synthesis::fit_kernel(model, aligned, set, {}));
+        w.commit();
+    }
+};
+
+// Replaces the stored kernel group by one with the given attributes (what another writer might leave).
+void write_raw_kernel(const std::filesystem::path& path, const std::string& key, const std::string& family,
+                      double sill) {
+    store::h5::File f = store::h5::File::open(path, true);
+    if (f.exists(kKernel)) f.unlink(kKernel);
+    f.create_group(kKernel, "kernel_fit");
+    f.write_string_attribute(kKernel, "key", key);
+    f.write_string_attribute(kKernel, "family", family);
+    f.write_double_attribute(kKernel, "exponent", 1.4);
+    f.write_double_attribute(kKernel, "nugget", 0.0);
+    f.write_double_attribute(kKernel, "sill", sill);
+    f.write_double_attribute(kKernel, "range", 2.0);
+    f.close();
+}
+
+std::pair<std::string, std::string> kernel_error(const std::filesystem::path& path) {
+    try {
+        Database(path).load_kernel_fit("walks");
+    } catch (const StoreError& e) {
+        return {e.object_path(), e.message()};
+    }
+    return {"(no error)", ""};
+}
+
+}  // namespace
+
+TEST_CASE("kernel: put_kernel_fit round-trips the variogram bit for bit; it goes with the model", "[store][kernel]") {
+    TempDir dir("kernel-roundtrip");
+    const auto path = dir / "db.h5";
+    const KernelFixture fx;
+    fx.write(path, false);
+    CHECK_FALSE(Database(path).load_kernel_fit("walks").has_value());  // a model stored without one
+
+    const synthesis::KernelFit fit = synthesis::fit_kernel(fx.model, fx.aligned, fx.set, {});
+    REQUIRE(fit.key != 0);
+    REQUIRE(fit.exponent_loo_mse.size() == 11);
+    {
+        DatabaseWriter w(path);
+        w.put_kernel_fit("walks", fit);
+        w.put_kernel_fit("walks", fit);  // replaces
+        w.commit();
+    }
+    const auto back = Database(path).load_kernel_fit("walks");
+    REQUIRE(back.has_value());
+    CHECK(back->key == fit.key);
+    CHECK(back->variogram.family == fit.variogram.family);
+    CHECK(back->variogram.exponent == fit.variogram.exponent);
+    CHECK(back->variogram.nugget == fit.variogram.nugget);
+    CHECK(back->variogram.sill == fit.variogram.sill);
+    CHECK(back->variogram.range == fit.variogram.range);
+    CHECK(back->exponent_loo_mse.size() == 0);  // not stored
+    const ValidationReport report = validate_database(path);
+    INFO(all_violations(report));
+    CHECK(report.ok());
+
+    // A stored model uses it: the same variogram, no refit.
+    const auto loaded = synthesis::load_motion_model(Database(path), "walks");
+    CHECK(loaded->report().kernel_precomputed);
+    CHECK(loaded->kernel_fit().key == fit.key);
+
+    {
+        DatabaseWriter w(path);
+        w.put_model("walks", fx.model, {});  // a new model: the old kernel described the old one
+        CHECK_FALSE(w.view().load_kernel_fit("walks").has_value());
+        w.put_kernel_fit("walks", fit);
+        w.put_aligned("walks", fx.aligned);  // drops the model and its kernel
+        CHECK_FALSE(w.view().load_kernel_fit("walks").has_value());
+        CHECK_THROWS_WITH(w.put_kernel_fit("walks", fit), Contains("the set has no stored model"));
+        CHECK_THROWS_AS(w.view().load_kernel_fit("nope"), StoreError);
+    }
+}
+
+TEST_CASE("kernel: put_kernel_fit refuses a fit without a key or with an invalid variogram", "[store][kernel]") {
+    TempDir dir("kernel-refuse");
+    const auto path = dir / "db.h5";
+    const KernelFixture fx;
+    fx.write(path, false);
+    const synthesis::KernelFit good = synthesis::fit_kernel(fx.model, fx.aligned, fx.set, {});
+    DatabaseWriter w(path);
+    synthesis::KernelFit bad = good;
+    bad.key = 0;
+    CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("no key"));
+    bad = good;
+    bad.variogram.sill = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("sill"));
+    bad = good;
+    bad.variogram.nugget = 0.0;
+    bad.variogram.sill = 0.0;
+    CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("nugget + sill must be > 0"));
+}
+
+TEST_CASE("kernel: a corrupted stored kernel is refused naming its group", "[store][kernel]") {
+    TempDir dir("kernel-corrupt");
+    const auto path = dir / "db.h5";
+    const KernelFixture fx;
+    fx.write(path, true);
+    const synthesis::KernelFit fit = *Database(path).load_kernel_fit("walks");
+    char key[20];
+    std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(fit.key));
+
+    write_raw_kernel(path, key, "stable", std::numeric_limits<double>::quiet_NaN());
+    auto e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("sill"));
+    // Synthesis refuses the file rather than silently refitting.
+    CHECK_THROWS_WITH(synthesis::load_motion_model(Database(path), "walks"), Contains(kKernel));
+    const ValidationReport report = validate_database(path);
+    CHECK(has_violation(report, kKernel, "sill"));
+
+    write_raw_kernel(path, key, "stable", -1.0);
+    CHECK(kernel_error(path).first == kKernel);
+    write_raw_kernel(path, key, "gaussian", 1.0);
+    e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("family"));
+    write_raw_kernel(path, "12345", "stable", 1.0);
+    e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("16 lowercase hexadecimal digits"));
+    write_raw_kernel(path, "0000000000000000", "stable", 1.0);
+    CHECK(kernel_error(path).first == kKernel);
+
+    // A well-formed kernel of other inputs (another key) is ignored: the model fits its own.
+    write_raw_kernel(path, "00000000000000ab", "stable", 1.0);
+    REQUIRE(kernel_error(path).first == "(no error)");
+    const auto loaded = synthesis::load_motion_model(Database(path), "walks");
+    CHECK_FALSE(loaded->report().kernel_precomputed);
+    CHECK(loaded->kernel_fit().key == fit.key);
+    CHECK(loaded->kernel_fit().variogram.sill == fit.variogram.sill);
+}
