@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <iostream>
 #include <map>
 #include <set>
@@ -350,14 +351,19 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
     o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
 
     // The synthesis kernel's variogram, fitted once here so that `synth` need not (#16; kernel_fit.hpp).
+    // Its leave-one-out choice is O(N^3) in the samples: above kStoredKernelMaxSamples compress does
+    // not pay it, and synth fits at load as for a model without a stored kernel.
     const auto kernel_start = Clock::now();
-    const synthesis::KernelFit kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
+    std::optional<synthesis::KernelFit> kernel;
+    if (c.set.samples.size() <= synthesis::kStoredKernelMaxSamples)
+        kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
+    o.kernel_stored = kernel.has_value();
     o.kernel_s = seconds_since(kernel_start);
 
     const ModelFigures figures{o.stats.dof_rmse, o.stats.rmse_cm, o.stats.mean_cm, o.stats.max_cm, o.stats.p99_cm};
     DatabaseWriter writer(db, DatabaseWriter::Mode::OpenOrCreate);
     writer.put_model(a.set, o.model, figures);
-    writer.put_kernel_fit(a.set, kernel);
+    if (kernel) writer.put_kernel_fit(a.set, *kernel);
     writer.commit();
     for (const SetRecord& r : Database(db).sets())
         if (r.name == a.set) o.stored_bytes = r.model_stored_bytes;
@@ -378,14 +384,15 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                   "model in file %llu bytes\n"
                   "  relative error %.3g (HOSVD bound %.3g); joint error: rmse %.3f cm, mean %.3f cm, p99 %.3f cm, "
                   "max %.3f cm (sample %lld, frame %lld, %s)\n"
-                  "  rank search %.2f s, decomposition %.3f s, synthesis kernel %.2f s, %.3f us per pose; %.2f s in all\n",
+                  "  rank search %.2f s, decomposition %.3f s, synthesis kernel %.2f s%s, %.3f us per pose; %.2f s in all\n",
                   set.c_str(), o.criterion.c_str(), ranks_text(o.dims).c_str(), ranks_text(t.ranks).c_str(),
                   tensor::to_string(t.method), o.target_met ? "" : " (target NOT met: closest ranks)",
                   static_cast<unsigned long long>(o.bytes), static_cast<unsigned long long>(o.raw_bytes), o.ratio(),
                   static_cast<unsigned long long>(o.stored_bytes), 1.0 - t.fit, t.error_bound / t.data_norm,
                   o.stats.rmse_cm, o.stats.mean_cm, o.stats.p99_cm, o.stats.max_cm,
                   static_cast<long long>(o.stats.worst.sample), static_cast<long long>(o.stats.worst.frame),
-                  o.stats.worst.joint.c_str(), o.search_s, o.fit_s, o.kernel_s, o.us_per_pose, o.total_s);
+                  o.stats.worst.joint.c_str(), o.search_s, o.fit_s, o.kernel_s,
+                  o.kernel_stored ? "" : " (not stored: more than 1000 samples; synth fits it at load)", o.us_per_pose, o.total_s);
     return buffer;
 }
 
@@ -412,6 +419,7 @@ void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
     j.key("search_s").value(o.search_s);
     j.key("precompute_s").value(o.fit_s);
     j.key("kernel_s").value(o.kernel_s);
+    j.key("kernel_stored").value(o.kernel_stored);
     j.key("us_per_pose").value(o.us_per_pose);
     j.key("total_s").value(o.total_s);
 }

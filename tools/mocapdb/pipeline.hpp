@@ -113,6 +113,7 @@ struct CompressOutcome {
     std::uint64_t stored_bytes = 0;  ///< the model in the file
     double search_s = 0.0, fit_s = 0.0, total_s = 0.0;
     double kernel_s = 0.0;  ///< fitting the synthesis kernel's variogram stored with the model
+    bool kernel_stored = false;  ///< false above synthesis::kStoredKernelMaxSamples samples
 
     double ratio() const { return static_cast<double>(raw_bytes) / static_cast<double>(bytes); }
 };

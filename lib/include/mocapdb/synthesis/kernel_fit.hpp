@@ -17,6 +17,7 @@
 // can slow a model down but never change it.
 //
 // Thread safety: plain data and pure functions.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -66,6 +67,10 @@ MatX core_slice_values(const compression::SetModel& model);
 /// InvalidArgument (prefixed with `where`) for an exponent outside [0, 2].
 KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                  const SynthesisOptions& options, const char* where);
+
+/// Sets with more samples get no stored kernel from `compress` (the leave-one-out choice is O(N^3):
+/// about 20 s of CPU at N = 645 here); synthesis then fits it at load, as before.
+inline constexpr std::size_t kStoredKernelMaxSamples = 1000;
 
 /// What `compress` stores: the fit MotionModel(model, aligned, set, ..., options) would make, with its
 /// key, without building the rest of the model. InvalidArgument when the model does not describe
