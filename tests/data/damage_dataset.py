@@ -4,12 +4,15 @@
 #                                       (rewritten through HDF5: its checksum stays valid)
 #   damage_dataset.py FILE nanclip CLIP replaces /clips/CLIP/channels_packed by float64 channels
 #                                       (format-v3 'channels') holding a NaN
+#   damage_dataset.py FILE attrs PATH NAME:T=VALUE ...
+#                                       sets attributes of object PATH: T is s (string) or f (float64)
 import sys
 
 import h5py
 import numpy as np
 
 file, mode, path = sys.argv[1:4]
+assignments = sys.argv[4:]
 with h5py.File(file, "r+") as f:
     if mode == "nan":
         d = f[path]
@@ -27,5 +30,10 @@ with h5py.File(file, "r+") as f:
         d = g.create_dataset("channels", data=a, chunks=True, fletcher32=True, compression="gzip", shuffle=True)
         d.attrs["dims"] = np.array(["frame", "channel"], dtype=h5py.string_dtype())
         d.attrs["units"] = "cm|rad"
+    elif mode == "attrs":
+        for a in assignments:
+            name, value = a.split("=", 1)
+            name, kind = name.split(":")
+            f[path].attrs[name] = float(value) if kind == "f" else value
     else:
         sys.exit("unknown mode " + mode)

@@ -4,15 +4,16 @@
 // by the validator and by load_motion_model, which does not silently refit).
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <limits>
 #include <random>
 
-#include "../../lib/src/store/h5/file.hpp"  // internal: to write a malformed group the library refuses to write
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/validate.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
+#include "shared_data.hpp"
 #include "store_test_support.hpp"
 
 using namespace mocapdb;
@@ -57,19 +58,18 @@ struct KernelFixture {
     }
 };
 
-// Replaces the stored kernel group by one with the given attributes (what another writer might leave).
+// Rewrites the stored kernel's attributes (what another writer might leave), with h5py
+// (tests/data/damage_dataset.py).
 void write_raw_kernel(const std::filesystem::path& path, const std::string& key, const std::string& family,
                       double sill) {
-    store::h5::File f = store::h5::File::open(path, true);
-    if (f.exists(kKernel)) f.unlink(kKernel);
-    f.create_group(kKernel, "kernel_fit");
-    f.write_string_attribute(kKernel, "key", key);
-    f.write_string_attribute(kKernel, "family", family);
-    f.write_double_attribute(kKernel, "exponent", 1.4);
-    f.write_double_attribute(kKernel, "nugget", 0.0);
-    f.write_double_attribute(kKernel, "sill", sill);
-    f.write_double_attribute(kKernel, "range", 2.0);
-    f.close();
+    char sill_text[64];
+    std::snprintf(sill_text, sizeof sill_text, "%.17g", sill);
+    const CommandResult r = run_command("/usr/bin/python3 " + quoted((test_data_dir() / "damage_dataset.py").string()) +
+                                        " " + quoted(path.string()) + " attrs " + kKernel + " key:s=" + key +
+                                        " family:s=" + family + " exponent:f=1.4 nugget:f=0 sill:f=" + sill_text +
+                                        " range:f=2");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);  // python3-h5py is installed by scripts/setup.sh
 }
 
 std::pair<std::string, std::string> kernel_error(const std::filesystem::path& path) {
