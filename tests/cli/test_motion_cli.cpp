@@ -81,4 +81,15 @@ TEST_CASE("bad input gives one line naming the file, never a crash", "[cli]") {
     r = run_cli("info " + quoted((dir / "missing.bvh").string()));
     CHECK(r.exit_code != 0);
     CHECK(r.output.find("Segmentation") == std::string::npos);
+    // "Frames: 0" with a data row (found by the BVH fuzzer): read with a warning, no height, no crash.
+    const std::string zero = (test_data_dir().parent_path() / "fuzz" / "corpus" / "bvh" / "zero_frames_with_data.bvh").string();
+    r = run_cli("info " + quoted(zero) + " --json");
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    CHECK(parse_json(r.out)["frames"].number == 0);
+    CHECK(parse_json(r.out)["figure_height_cm"].kind == Json::Null);
+    CHECK_THAT(r.err, Contains("data rows beyond the 0 declared"));
+    r = run_cli("info " + quoted(zero));
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("height      - (no frames)"));
 }

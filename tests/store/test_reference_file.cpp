@@ -6,7 +6,8 @@
 // - tests/data/reference-v1.h5 (version 1, no model): still opens, loads and validates, and a writing
 //   session on it (or on the version-2 file) publishes a version-3 file with the same content.
 // The packed clip's byte count is zstd's (Debian 12: libzstd 1.5.4); another zstd may compress the
-// same payload to another size, which shows here as a changed dataset size in the dump.
+// same payload to another size, which shows here as a changed dataset size in the dump. The packed
+// tier's byte count is compared without its size (without_packed_size).
 // To regenerate reference-v3 after an intended format change (with a new format version and a
 // CHANGELOG entry; then rename the constants below to the new version):
 //   MOCAPDB_UPDATE_REFERENCE=1 build/tests/test_store "[reference]"
@@ -110,6 +111,14 @@ void check_file_with_model(const std::filesystem::path& file, int version) {
     CHECK(core.output.find("DATASPACE  SIMPLE { ( 2, 2, 1 ) / ( 2, 2, 1 ) }") != std::string::npos);
 }
 
+// The packed group's byte count depends on the compiler's floating point (each window's step is
+// the coarsest that meets E, decided by comparisons that a last-bit difference can flip: gcc -O3 and
+// clang -O2 with sanitizers give different counts), so it is left out of the comparison.
+std::string without_packed_size(const std::string& dump) {
+    static const std::regex size(R"((DATASET "bytes" \{\s+DATATYPE\s+H5T_STD_U8LE\s+DATASPACE\s+SIMPLE \{ \( )\d+( \) / \( )\d+)");
+    return std::regex_replace(dump, size, "$1B$2B");
+}
+
 }  // namespace
 
 TEST_CASE("reference file: rebuilding it gives the committed h5dump -H", "[store][reference]") {
@@ -125,7 +134,8 @@ TEST_CASE("reference file: rebuilding it gives the committed h5dump -H", "[store
     REQUIRE(std::filesystem::exists(kReferenceDump));
     std::string committed = file_bytes(kReferenceDump);
     committed = committed.substr(committed.find('\n') + 1);
-    CHECK(dump == committed);
+    CHECK(without_packed_size(dump) == without_packed_size(committed));
+    CHECK(without_packed_size(committed) != committed);  // the packed tier is there
 }
 
 TEST_CASE("reference file: the committed file opens, loads and validates", "[store][reference]") {

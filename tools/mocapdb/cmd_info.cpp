@@ -28,7 +28,10 @@ void print_json(const std::string& file, const Clip& clip) {
     j.key("frame_rate").value(clip.frame_rate);
     j.key("duration").value(clip.duration());
     j.key("channels").value(s.channel_count());
-    j.key("figure_height_cm").value(figure_height(s, clip.frame(0)));
+    if (clip.frame_count() > 0)
+        j.key("figure_height_cm").value(figure_height(s, clip.frame(0)));
+    else
+        j.key("figure_height_cm").null();  // no frame to measure
     j.key("root").value(s.joint(0).name);
     j.key("motion_root").value(s.joint(s.motion_root()).name);
     j.key("position_channels").value(to_string(s.position_channels()));
@@ -77,7 +80,10 @@ void print_text(const std::string& file, const Clip& clip, bool tree) {
     std::printf("joints      %zu (%zu end sites), root '%s'", s.size(), end_sites, s.joint(0).name.c_str());
     if (s.motion_root() != 0) std::printf(", body carried by '%s'", s.joint(s.motion_root()).name.c_str());
     std::printf("\n");
-    std::printf("height      %.1f cm (frame 0, lowest to highest joint)\n", figure_height(s, clip.frame(0)));
+    if (clip.frame_count() > 0)
+        std::printf("height      %.1f cm (frame 0, lowest to highest joint)\n", figure_height(s, clip.frame(0)));
+    else
+        std::printf("height      - (no frames)\n");
     std::printf("channels    %zu per frame\n", s.channel_count());
     std::printf("frames      %zu\n", clip.frame_count());
     std::printf("frame rate  %.6g Hz\n", clip.frame_rate);
@@ -119,7 +125,8 @@ void setup_info(CLI::App& app) {
             return;
         }
         const Clip clip = load_clip(args->file, args->clip, std::cerr);
-        const std::string tall = figure_height_warning(figure_height(*clip.skeleton, clip.frame(0)));
+        const std::string tall =
+            clip.frame_count() > 0 ? figure_height_warning(figure_height(*clip.skeleton, clip.frame(0))) : std::string();
         if (!tall.empty()) std::cerr << "mocapdb: warning: " << args->file << ": " << tall << "\n";
         if (args->json) {
             print_json(args->file, clip);

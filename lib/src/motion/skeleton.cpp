@@ -100,6 +100,8 @@ Skeleton Skeleton::with_motion_root(std::size_t motion_root) const {
 }
 
 std::size_t find_motion_root(const Skeleton& s, const FrameMatrix& channels) {
+    // No frames: nothing moves, and an empty matrix has no columns to look at (its data is null).
+    if (channels.rows() == 0) return 0;
     std::vector<std::vector<std::size_t>> children(s.size());
     for (std::size_t i = 1; i < s.size(); ++i)
         if (!s.joint(i).end_site) children[static_cast<std::size_t>(s.joint(i).parent)].push_back(i);
@@ -110,7 +112,7 @@ std::size_t find_motion_root(const Skeleton& s, const FrameMatrix& channels) {
             const double rest = is_rotation(c) ? 0.0 : s.rest_position_value(j, channel_axis(c));
             const double tolerance = is_rotation(c) ? 1e-9 : 1e-6;
             const auto column = channels.col(static_cast<Eigen::Index>(s.first_channel(j) + k));
-            if (column.size() > 0 && (column.array() - rest).abs().maxCoeff() > tolerance) return false;
+            if ((column.array() - rest).abs().maxCoeff() > tolerance) return false;
         }
         return true;
     };
