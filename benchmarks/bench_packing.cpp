@@ -49,11 +49,8 @@ int main(int argc, char** argv) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
         if (a == "--folder") folder = next();
-        else if (a == "--errors") {
-            errors.clear();
-            std::stringstream ss(next());
-            for (std::string t; std::getline(ss, t, ',');) errors.push_back(std::stod(t));
-        } else if (a == "--window") options.window = std::stoi(next());
+        else if (a == "--errors") errors = parse_doubles(next());
+        else if (a == "--window") options.window = std::stoi(next());
         else if (a == "--rounding") options.rounding = std::stod(next());
         else if (a == "--threads") options.threads = std::stoi(next());
         else if (a == "--limit") limit = std::stoul(next());

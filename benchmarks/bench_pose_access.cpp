@@ -94,11 +94,8 @@ int main(int argc, char** argv) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
         if (a == "--folder") folder = next();
-        else if (a == "--errors") {
-            errors.clear();
-            std::stringstream ss(next());
-            for (std::string t; std::getline(ss, t, ',');) errors.push_back(std::stod(t));
-        } else if (a == "--poses") poses = std::stoi(next());
+        else if (a == "--errors") errors = parse_doubles(next());
+        else if (a == "--poses") poses = std::stoi(next());
         else if (a == "--repeats") repeats = std::max(1, std::stoi(next()));
         else if (a == "--crowd") crowd = std::max(1, std::stoi(next()));
         else if (a == "--ticks") ticks = std::max(1, std::stoi(next()));

@@ -3,6 +3,8 @@
 // the best (least disturbed) of several repeats, and the median beside it where useful.
 #include <algorithm>
 #include <chrono>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace mocapdb::bench {
@@ -31,6 +33,14 @@ double best_of(int repeats, F fn) {
 }
 
 /// Written by benchmarks so the compiler cannot drop the measured work.
+/// "1,0.5,0.1" -> {1, 0.5, 0.1} (std::invalid_argument on a bad number).
+inline std::vector<double> parse_doubles(const std::string& text) {
+    std::vector<double> out;
+    std::stringstream ss(text);
+    for (std::string t; std::getline(ss, t, ',');) out.push_back(std::stod(t));
+    return out;
+}
+
 inline volatile double g_sink = 0.0;
 
 }  // namespace mocapdb::bench
