@@ -28,7 +28,7 @@ std::string build_runs_db(const TempDir& dir) {
     CommandResult r = run_cli("import" + files + " -o " + db);
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    r = run_cli("set create " + db + " --name runs --clips '16_*' --extract turn speed");
+    r = run_cli("set create " + db + " --name runs --clips '16_*' --segment none --extract turn speed");  // whole clips
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     r = run_cli("align " + db + " --set runs --frames 40");

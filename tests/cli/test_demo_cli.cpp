@@ -160,7 +160,7 @@ TEST_CASE("demo --data: six of subject 16's walks (ASF/AMC)", "[cli][demo][share
         std::filesystem::create_symlink(cmu / (std::string(t) + ".amc"), data / (std::string(t) + ".amc"));
     const DemoRun d = run_demo(dir / "out", "--quick --data " + quoted(data.string()));
     CHECK(d.report["mode"].text == "data");
-    CHECK(d.report["set"]["samples"].number == 6.0);
+    CHECK(d.report["set"]["samples"].number >= 6.0);  // gait cycles by default: one or more per walk
     CHECK(d.report["set"]["parameter_source"].text == "extract:turn,speed");
     // Between the samples (6 walks only) the measured turn is within 0.05 rad and the speed within 12 %
     // of the request (measured on 2026-11-22: 0.00 rad and 7.3 % at worst).

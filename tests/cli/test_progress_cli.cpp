@@ -124,8 +124,8 @@ TEST_CASE("progress: off a terminal the commands print exactly what they printed
         CHECK(r.out.find('\r') == std::string::npos);
         CHECK(!r.out.empty());
     }
-    r = run_cli("set create " + db + " --name walks2 --clips '16_*' --extract speed turn");
-    CHECK(r.out == "set 'walks2': 6 samples from 6 clips, 2 parameters (extract:speed,turn)\n");
+    r = run_cli("set create " + db + " --name walks2 --clips '16_*' --segment none --extract speed turn");
+    CHECK(r.out == "set 'walks2': 6 samples (whole clips) from 6 clips, 2 parameters (extract:speed,turn)\n");
 }
 
 TEST_CASE("progress: on a terminal a bar is drawn on stderr and the result line is the same", "[cli][progress][shared]") {
@@ -139,10 +139,10 @@ TEST_CASE("progress: on a terminal a bar is drawn on stderr and the result line 
     const std::string db = quoted((dir / "walks.h5").string());
     REQUIRE(run_cli("import" + walk_files(15, 20) + " -o " + db).exit_code == 0);
     // script(1) runs the command on a pseudo-terminal (stdout and stderr both) and copies it out.
-    const std::string command = quoted(cli_path()) + " set create " + db + " --name walks --clips '16_*' --extract speed";
+    const std::string command = quoted(cli_path()) + " set create " + db + " --name walks --clips '16_*' --segment none --extract speed";
     const CommandResult r = run_command("script -qec " + quoted(command) + " /dev/null");
     INFO(r.output);
     CHECK(r.exit_code == 0);
     CHECK(r.out.find("set create [") != std::string::npos);  // the bar (then erased with \r)
-    CHECK(r.out.find("set 'walks': 6 samples from 6 clips, 1 parameters (extract:speed)") != std::string::npos);
+    CHECK(r.out.find("set 'walks': 6 samples (whole clips) from 6 clips, 1 parameters (extract:speed)") != std::string::npos);
 }

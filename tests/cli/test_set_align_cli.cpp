@@ -27,10 +27,22 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
 
-    r = run_cli("set create " + db + " --name walks --clips '16_1[1-9]' '16_2?' '16_3[0-4]' 16_47 --extract turn speed");
+    // By default locomotion is cut into gait cycles (16_33 stops after one step: it has none).
+    r = run_cli("set create " + db + " --name cycles --clips '16_1[1-9]' '16_2?' '16_3[0-4]' 16_47 --extract turn speed");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    CHECK_THAT(r.output, Contains("25 samples"));
+    CHECK_THAT(r.output, Contains("(gait cycles, chosen because most clips have a gait cycle"));
+    CHECK_THAT(r.output, Contains("clip '16_33' yields no sample (auto) and is left out"));
+    r = run_cli("set show " + db + " cycles --json");
+    REQUIRE(r.exit_code == 0);
+    CHECK(parse_json(r.out)["samples"].items.size() > 25);
+    r = run_cli("set create " + db + " --name middle --clips '16_1[1-9]' '16_2?' '16_3[0-4]' 16_47 --segment gait:1 --extract turn speed");
+    CHECK_THAT(r.output, Contains("24 samples (gait cycles) from 25 clips"));
+
+    r = run_cli("set create " + db + " --name walks --clips '16_1[1-9]' '16_2?' '16_3[0-4]' 16_47 --segment none --extract turn speed");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.output, Contains("25 samples (whole clips) from 25 clips"));
 
     r = run_cli("set show " + db + " walks --json");
     REQUIRE(r.exit_code == 0);
@@ -59,7 +71,7 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.output, Contains("params.csv") && Contains("no row for sample '16_13'"));
     // #16: a set of one sample, or of samples that all share one parameter vector, is refused at creation.
-    r = run_cli("set create " + db + " --name one --clips 16_11 --extract turn speed");
+    r = run_cli("set create " + db + " --name one --clips 16_11 --segment none --extract turn speed");
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Contains("motion set 'one': 1 sample; a set needs at least 2"));
     std::ofstream(dir / "same.csv") << "sample,target[cm]\n16_11,10\n16_12,10\n16_13,10\n";
@@ -82,7 +94,7 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     r = run_cli("set list " + db + " --json");
     REQUIRE(r.exit_code == 0);
     const Json list = parse_json(r.out);
-    REQUIRE(list.items.size() == 2);
+    REQUIRE(list.items.size() == 4);  // cycles, middle, walks, two
 
     // The stored tensor and parameters read back through the library.
     const Database database(dir.path() / "walks.h5");

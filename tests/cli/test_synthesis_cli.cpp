@@ -41,7 +41,7 @@ const WalkDb& walk_db() {
         files += " " + quoted((datasets_dir() / "cmu-asfamc" / "16_47.amc").string());
         const std::vector<std::string> steps{
             "import" + files + " -o " + r.db,
-            "set create " + r.db + " --name walks --clips '16_*' --extract turn speed",
+            "set create " + r.db + " --name walks --clips '16_*' --segment none --extract turn speed",  // 25 whole clips
             "align " + r.db + " --set walks --frames 60",
             "compress " + r.db + " --set walks --max-error-cm 1",
         };

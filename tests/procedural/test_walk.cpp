@@ -79,7 +79,7 @@ TEST_CASE("walk: planted feet do not slide during the contacts the detector find
 TEST_CASE("walk: gait cycles are found and last one generated period", "[procedural]") {
     const WalkMotion m = generate_walk({1.3, 30.0, 0.0});
     GaitCycleOptions o;
-    o.contacts.feet = humanoid_feet();
+    o.feet = humanoid_feet();
     const auto cycles = gait_cycles(m.clip, "walk", o);
     INFO("cycle " << m.cycle_s << " s, stride " << m.stride_m << " m, " << cycles.size() << " cycles found");
     REQUIRE(cycles.size() >= 2);

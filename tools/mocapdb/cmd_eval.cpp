@@ -70,6 +70,8 @@ eval::EvalSetSpec walks_spec(Eigen::Index frames) {
     s.description = "subject 16 walks: straight, veering and 90-degree turns at two speeds, plus slow walks (speed x turn grid)";
     s.clips = clip_range("16", 11, 34);
     s.clips.push_back("16_47");
+    s.gait_cycles = true;  // phase-consistent samples: one gait cycle per clip
+    s.max_cycles_per_clip = 1;
     s.extractors = {"turn", "speed"};
     s.frames = frames;
     return s;
@@ -109,6 +111,8 @@ Plan make_plan(const EvalArgs& a) {
         s.name = "runs16";
         s.description = "subject 16 runs/jogs: straight, veering and 90-degree turns (speed x turn grid)";
         s.clips = clip_range("16", 36, 56, {47});
+        s.gait_cycles = true;
+        s.max_cycles_per_clip = 1;
         s.extractors = {"turn", "speed"};
         s.frames = 40;
         p.sets.push_back({s, true, 1, true, false, true});

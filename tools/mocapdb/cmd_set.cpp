@@ -18,7 +18,7 @@ struct CreateArgs {
     std::vector<std::string> clips;
     std::string params_csv;
     std::vector<std::string> extract;
-    std::string segment = "none";
+    std::string segment = "auto";
     std::string feet;
     bool replace = false;
 };
@@ -98,20 +98,23 @@ void setup_set(CLI::App& app) {
     create->footer(
         "Examples:\n"
         "  mocapdb set create db.h5 --name walks --clips '16_1[1-9]' '16_2?' 16_30 --extract turn speed\n"
-        "  mocapdb set create db.h5 --name cycles --clips '105_0[1-8]' --segment gait --extract speed turn\n"
+        "  mocapdb set create db.h5 --name walks1 --clips '16_1[1-9]' --segment gait:1 --extract speed turn\n"
+        "  mocapdb set create db.h5 --name jumps --clips '16_0[5-9]' --segment none --extract jump\n"
         "  mocapdb set create db.h5 --name reach --clips 'reach_*' --params targets.csv\n"
         "Extractors: displacement (dx, dz cm), turn (rad), speed (cm/s), jump (cm), reach:JOINT@FRAME (cm;\n"
         "FRAME = offset, end or P%); definitions in lib/include/mocapdb/dataset/param_extractors.hpp.\n"
-        "Segmentation: none (whole clips), gait (touch-down to touch-down of the first foot),\n"
-        "window:LENGTH[:HOP] (frames). Params CSV: header 'sample,name[unit],...', one row per sample\n"
+        "Segmentation: auto (default: gait cycles when parameters are extracted and at least 80 % of the\n"
+        "clips have one, else whole clips), none (whole clips), gait[:N] (gait cycles from one forward pass of the left\n"
+        "foot past the right to the next, so every sample starts at the same phase; at most N per clip,\n"
+        "evenly spread, 1 = the middle one), window:LENGTH[:HOP] (frames). Params CSV: header 'sample,name[unit],...', one row per sample\n"
         "labelled CLIP (whole clip) or CLIP:BEGIN-END.");
     create->add_option("db", c->db, "database file")->required();
     create->add_option("--name", c->name, "set name")->required();
     create->add_option("--clips", c->clips, "clip ids or shell patterns (quoted), in sample order")->required();
     create->add_option("--params", c->params_csv, "control parameters from a CSV")->check(CLI::ExistingFile);
     create->add_option("--extract", c->extract, "control parameters measured from the motion");
-    create->add_option("--segment", c->segment, "none | gait | window:LENGTH[:HOP]");
-    create->add_option("--feet", c->feet, "foot joints for contacts, e.g. ltoes,rtoes (default: found by name)");
+    create->add_option("--segment", c->segment, "auto | none | gait[:N] | window:LENGTH[:HOP] (default auto)");
+    create->add_option("--feet", c->feet, "left,right foot joints for gait cycles and contacts, e.g. ltoes,rtoes (default: found by name)");
     create->add_flag("--force,--replace", c->replace, "replace an existing set of that name");
     create->callback([c] { run_create(*c); });
 

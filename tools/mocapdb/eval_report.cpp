@@ -15,6 +15,14 @@
 namespace mocapdb::cli {
 namespace {
 
+// How a set's samples were cut, for the data table.
+std::string cycles_note(const eval::EvalSetSpec& spec) {
+    if (!spec.gait_cycles) return "";
+    if (spec.max_cycles_per_clip == 1) return " (one gait cycle per clip, the middle one: every sample starts at the same phase)";
+    if (spec.max_cycles_per_clip == 0) return " (every gait cycle of each clip)";
+    return " (at most " + std::to_string(spec.max_cycles_per_clip) + " gait cycles per clip, evenly spread)";
+}
+
 std::string fmt(double v, int digits = 3) {
     if (!std::isfinite(v)) return "n/a";
     char buf[48];
@@ -789,7 +797,7 @@ std::string report_md(const EvalResults& e) {
             for (const auto& c : s.skipped) clips += " " + c;
             clips += ")";
         }
-        t.rows.push_back({"`" + s.spec.name + "`", s.spec.description + (s.spec.gait_cycles ? " (at most " + std::to_string(s.spec.max_cycles_per_clip) + " cycles per clip, evenly spread)" : ""),
+        t.rows.push_back({"`" + s.spec.name + "`", s.spec.description + cycles_note(s.spec),
                           clips, std::to_string(s.size()), std::to_string(s.aligned.frames()), std::to_string(s.aligned.dofs()),
                           params_text(s), s.skeleton_source, fixed(r.build_seconds, 1)});
     }

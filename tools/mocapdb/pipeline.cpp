@@ -203,21 +203,23 @@ SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
     if (db.clips().empty()) throw InvalidArgument(db_path + ": the database holds no clips; import some first");
     if (db.has_set(a.name) && !a.replace)
         throw InvalidArgument(db_path + ": set '" + a.name + "' exists; pass --force to replace it");
+    SetOutcome o;
     SetBuildOptions options;
     options.name = a.name;
     parse_segmentation(a.segment, options);
-    if (!a.feet.empty()) options.gait.contacts.feet = split_names(a.feet, "--feet");
+    o.auto_segmentation = options.segmentation == Segmentation::Auto;
+    if (!a.feet.empty()) options.gait.feet = split_names(a.feet, "--feet");
     for (const std::string& spec : a.extract) {
         options.extractors.push_back(ParameterExtractor::parse(spec));
-        if (!a.feet.empty()) options.extractors.back().contacts.feet = options.gait.contacts.feet;
+        if (!a.feet.empty()) options.extractors.back().contacts.feet = options.gait.feet;
     }
     const auto ids = select_clips(db, db_path, a.clips);
-    SetOutcome o;
     o.clips = ids.size();
     {
         ProgressBar bar("set create");
         options.progress = bar.callback();
-        o.set = build_motion_set(ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped);
+        o.set = build_motion_set(ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped,
+                                 &o.segmentation);
     }
     for (const std::string& id : o.skipped)
         std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
@@ -230,9 +232,17 @@ SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
 }
 
 std::string describe_set(const SetOutcome& o) {
-    char line[512];
-    std::snprintf(line, sizeof line, "set '%s': %zu samples from %zu clips, %zu parameters (%s)\n", o.set.name.c_str(),
-                  o.set.samples.size(), o.clips, o.set.parameter_names.size(),
+    const char* kind = "whole clips";
+    if (o.segmentation == Segmentation::GaitCycles) kind = "gait cycles";
+    if (o.segmentation == Segmentation::Windows) kind = "windows";
+    std::string how = kind;
+    if (o.auto_segmentation)
+        how += o.segmentation == Segmentation::GaitCycles
+                   ? ", chosen because most clips have a gait cycle; --segment none for whole clips"
+                   : ", chosen because fewer than 80 % of the clips have a gait cycle or no parameters are measured";
+    char line[640];
+    std::snprintf(line, sizeof line, "set '%s': %zu samples (%s) from %zu clips, %zu parameters (%s)\n", o.set.name.c_str(),
+                  o.set.samples.size(), how.c_str(), o.clips, o.set.parameter_names.size(),
                   o.set.parameter_source.empty() ? "none" : o.set.parameter_source.c_str());
     return line;
 }

@@ -16,6 +16,7 @@
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
+#include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/eval/joint_error.hpp"
 #include "mocapdb/store/import.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
@@ -50,7 +51,7 @@ struct SetRequest {
     std::vector<std::string> clips;      ///< clip ids or fnmatch patterns, in sample order
     std::string params_csv;              ///< parameters from a CSV ...
     std::vector<std::string> extract;    ///< ... or measured by these extractors (not both)
-    std::string segment = "none";
+    std::string segment = "auto";
     std::string feet;
     bool replace = false;
 };
@@ -59,13 +60,15 @@ struct SetOutcome {
     MotionSet set;
     std::size_t clips = 0;              ///< clips selected
     std::vector<std::string> skipped;   ///< clips that gave no sample
+    Segmentation segmentation = Segmentation::WholeClips;  ///< what the samples are (auto resolved)
+    bool auto_segmentation = false;     ///< the request left the choice to the data
 };
 
 /// Builds the set from the database's clips and stores it (committed). Warnings for skipped clips go
 /// to stderr.
 SetOutcome create_set(const std::string& db, const SetRequest& request);
 
-/// "set 'NAME': N samples from C clips, P parameters (SOURCE)\n".
+/// "set 'NAME': N samples (KIND) from C clips, P parameters (SOURCE)\n".
 std::string describe_set(const SetOutcome& o);
 
 // ---- align --------------------------------------------------------------------------------------

@@ -1,21 +1,42 @@
 #include "mocapdb/dataset/segmentation.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/gait_phase.hpp"
 
 namespace mocapdb {
 
 std::vector<SampleRef> gait_cycles(const Clip& clip, const std::string& clip_id, const GaitCycleOptions& options) {
     if (!(options.min_seconds > 0 && options.max_seconds >= options.min_seconds))
         throw InvalidArgument("gait cycles: need 0 < min_seconds <= max_seconds");
-    const auto contact = foot_contacts(clip, options.contacts);
-    std::vector<std::size_t> touchdowns;
-    for (Eigen::Index f = 1; f < contact.cols(); ++f)
-        if (contact(0, f) && !contact(0, f - 1)) touchdowns.push_back(static_cast<std::size_t>(f));
+    const std::vector<std::size_t> passes = left_foot_passes(forward_foot_separation(clip, options.feet));
+    if (passes.size() < 2) return {};
+    std::vector<std::size_t> lengths;
+    for (std::size_t k = 0; k + 1 < passes.size(); ++k) lengths.push_back(passes[k + 1] - passes[k]);
+    std::vector<std::size_t> sorted = lengths;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = static_cast<double>(sorted[sorted.size() / 2]);
     std::vector<SampleRef> out;
-    for (std::size_t k = 0; k + 1 < touchdowns.size(); ++k) {
-        const double seconds = static_cast<double>(touchdowns[k + 1] - touchdowns[k]) / clip.frame_rate;
+    for (std::size_t k = 0; k < lengths.size(); ++k) {
+        const double frames = static_cast<double>(lengths[k]);
+        const double seconds = frames / clip.frame_rate;
         if (seconds < options.min_seconds || seconds > options.max_seconds) continue;
-        out.push_back({clip_id, touchdowns[k], touchdowns[k + 1] + 1});
+        // A missed pass (a stop, a turn on the spot) joins two cycles; a spurious one halves one.
+        if (frames > 1.5 * median || frames < median / 1.5) continue;
+        out.push_back({clip_id, passes[k], passes[k + 1] + 1});
+    }
+    return spread_evenly(out, options.max_per_clip);
+}
+
+std::vector<SampleRef> spread_evenly(const std::vector<SampleRef>& all, std::size_t keep) {
+    if (keep == 0 || all.size() <= keep) return all;
+    if (keep == 1) return {all[(all.size() - 1) / 2]};
+    std::vector<SampleRef> out;
+    for (std::size_t k = 0; k < keep; ++k) {
+        const double pos = static_cast<double>(k) * static_cast<double>(all.size() - 1) / static_cast<double>(keep - 1);
+        out.push_back(all[static_cast<std::size_t>(std::lround(pos))]);
     }
     return out;
 }

@@ -14,17 +14,20 @@ std::size_t parse_count(const std::string& text, const std::string& spec) {
         used = 0;
     }
     if (used != text.size() || value < 1)
-        throw InvalidArgument("segmentation '" + spec + "': '" + text + "' is not a positive frame count");
+        throw InvalidArgument("segmentation '" + spec + "': '" + text + "' is not a positive count");
     return static_cast<std::size_t>(value);
 }
 
 }  // namespace
 
 void parse_segmentation(const std::string& spec, SetBuildOptions& options) {
-    if (spec.empty() || spec == "none") {
+    if (spec == "auto") {
+        options.segmentation = Segmentation::Auto;
+    } else if (spec.empty() || spec == "none") {
         options.segmentation = Segmentation::WholeClips;
-    } else if (spec == "gait") {
+    } else if (spec == "gait" || spec.rfind("gait:", 0) == 0) {
         options.segmentation = Segmentation::GaitCycles;
+        options.gait.max_per_clip = spec == "gait" ? 0 : parse_count(spec.substr(5), spec);
     } else if (spec.rfind("window:", 0) == 0) {
         const std::string rest = spec.substr(7);
         const auto colon = rest.find(':');
@@ -33,25 +36,22 @@ void parse_segmentation(const std::string& spec, SetBuildOptions& options) {
         options.window_hop = colon == std::string::npos ? options.window_length : parse_count(rest.substr(colon + 1), spec);
         if (options.window_length < 2) throw InvalidArgument("segmentation '" + spec + "': windows need at least 2 frames");
     } else {
-        throw InvalidArgument("unknown segmentation '" + spec + "' (expected none, gait or window:LENGTH[:HOP])");
+        throw InvalidArgument("unknown segmentation '" + spec + "' (expected auto, none, gait[:N] or window:LENGTH[:HOP])");
     }
 }
 
-MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipLoader& load,
-                           const SetBuildOptions& options, std::vector<std::string>* out_skipped) {
-    if (clip_ids.empty()) throw InvalidArgument("motion set '" + options.name + "': no clips selected");
-    MotionSet set;
-    set.name = options.name;
-    for (const ParameterExtractor& e : options.extractors) {
-        for (const std::string& n : e.names()) set.parameter_names.push_back(n);
-        for (const std::string& u : e.units()) set.parameter_units.push_back(u);
-    }
-    std::vector<VecX> rows;
+namespace {
+
+// The set's samples and parameters over every clip with a resolved segmentation (not Auto).
+void collect_samples(const std::vector<std::string>& clip_ids, const ClipLoader& load, const SetBuildOptions& options,
+                     Segmentation segmentation, MotionSet& set, std::vector<VecX>& rows,
+                     std::vector<std::string>* out_skipped) {
     std::uint64_t done = 0;
     for (const std::string& id : clip_ids) {
         const Clip clip = load(id);
         std::vector<SampleRef> samples;
-        switch (options.segmentation) {
+        switch (segmentation) {
+            case Segmentation::Auto:  // resolved by the caller
             case Segmentation::WholeClips: samples = {{id, 0, clip.frame_count()}}; break;
             case Segmentation::GaitCycles: samples = gait_cycles(clip, id, options.gait); break;
             case Segmentation::Windows:
@@ -70,6 +70,48 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
         }
         if (options.progress) options.progress({++done, clip_ids.size(), id});
     }
+}
+
+}  // namespace
+
+MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipLoader& load,
+                           const SetBuildOptions& options, std::vector<std::string>* out_skipped, Segmentation* out_used) {
+    if (clip_ids.empty()) throw InvalidArgument("motion set '" + options.name + "': no clips selected");
+    MotionSet set;
+    set.name = options.name;
+    for (const ParameterExtractor& e : options.extractors) {
+        for (const std::string& n : e.names()) set.parameter_names.push_back(n);
+        for (const std::string& u : e.units()) set.parameter_units.push_back(u);
+    }
+    std::vector<VecX> rows;
+    Segmentation used = options.segmentation;
+    if (used == Segmentation::Auto) {
+        used = Segmentation::WholeClips;
+        // Locomotion is told by the feet: gait cycles when most clips have one (the others, e.g. a
+        // walk that stops after one step, are left out and listed, as with explicit gait cycles).
+        if (!options.extractors.empty()) {
+            std::vector<std::string> without_cycle;
+            bool cycles = false;
+            try {
+                collect_samples(clip_ids, load, options, Segmentation::GaitCycles, set, rows, &without_cycle);
+                cycles = static_cast<double>(without_cycle.size()) <= (1.0 - kAutoGaitShare) * static_cast<double>(clip_ids.size());
+            } catch (const InvalidArgument&) {
+                cycles = false;  // no feet found by name, or a cycle's parameters undefined: whole clips
+            }
+            if (cycles) {
+                used = Segmentation::GaitCycles;
+                if (out_skipped) *out_skipped = without_cycle;
+            }
+        }
+        if (used == Segmentation::WholeClips) {
+            set.samples.clear();
+            rows.clear();
+            collect_samples(clip_ids, load, options, used, set, rows, nullptr);
+        }
+    } else {
+        collect_samples(clip_ids, load, options, used, set, rows, out_skipped);
+    }
+    if (out_used) *out_used = used;
     if (set.samples.empty())
         throw InvalidArgument("motion set '" + options.name + "': the " + std::to_string(clip_ids.size()) +
                               " selected clips yield no sample");

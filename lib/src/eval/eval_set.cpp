@@ -22,17 +22,6 @@ void check_compatible(const Skeleton& a, const Skeleton& b, const std::string& w
                               ": its skeleton's joints or channels differ from the set's first skeleton");
 }
 
-std::vector<SampleRef> spread(const std::vector<SampleRef>& all, std::size_t keep) {
-    if (keep == 0 || all.size() <= keep) return all;
-    std::vector<SampleRef> out;
-    for (std::size_t k = 0; k < keep; ++k) {
-        const double pos = keep == 1 ? 0.0 : static_cast<double>(k) * static_cast<double>(all.size() - 1) /
-                                                 static_cast<double>(keep - 1);
-        out.push_back(all[static_cast<std::size_t>(std::lround(pos))]);
-    }
-    return out;
-}
-
 }  // namespace
 
 EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu_dir) {
@@ -61,7 +50,9 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
         }
         std::vector<SampleRef> refs;
         if (spec.gait_cycles) {
-            refs = spread(gait_cycles(clip, id, GaitCycleOptions{}), spec.max_cycles_per_clip);
+            GaitCycleOptions gait;
+            gait.max_per_clip = spec.max_cycles_per_clip;
+            refs = gait_cycles(clip, id, gait);
         } else {
             refs.push_back({id, 0, clip.frame_count()});
         }

@@ -13,12 +13,17 @@
 
 namespace mocapdb {
 
-enum class Segmentation { WholeClips, GaitCycles, Windows };
+/// Auto: gait cycles when the parameters are measured (extractors given) and at least kAutoGaitShare
+/// of the selected clips have a gait cycle (locomotion: samples then start and end at the same phase,
+/// so aligned frames never blend left-foot-forward with right-foot-forward poses; clips without a
+/// cycle are skipped); whole clips otherwise.
+enum class Segmentation { Auto, WholeClips, GaitCycles, Windows };
+inline constexpr double kAutoGaitShare = 0.8;
 
 struct SetBuildOptions {
     std::string name;
     Segmentation segmentation = Segmentation::WholeClips;
-    GaitCycleOptions gait;          ///< GaitCycles
+    GaitCycleOptions gait;          ///< GaitCycles, Auto
     std::size_t window_length = 0;  ///< Windows: frames per sample
     std::size_t window_hop = 0;     ///< Windows: frames between window starts
     /// Parameters measured per sample; may be empty when the caller supplies them (CSV).
@@ -28,7 +33,8 @@ struct SetBuildOptions {
     ProgressCallback progress;
 };
 
-/// Parses "none", "gait" or "window:LENGTH[:HOP]" (frames; HOP defaults to LENGTH) into `options`.
+/// Parses "auto", "none", "gait[:N]" (at most N cycles per clip, evenly spread; 1 = the middle one) or
+/// "window:LENGTH[:HOP]" (frames; HOP defaults to LENGTH) into `options`. InvalidArgument otherwise.
 void parse_segmentation(const std::string& spec, SetBuildOptions& options);
 
 /// Loads one clip at a time (the set builder never holds more than one).
@@ -38,9 +44,10 @@ using ClipLoader = std::function<Clip(const std::string& clip_id)>;
 /// parameters (N by P; P = 0 without extractors). Clips that yield no sample (too short for a gait
 /// cycle or a window) are skipped and listed in `out_skipped` when given. InvalidArgument when no
 /// sample at all results, or an extractor's quantity is undefined for a sample (the message names
-/// clip and frames).
+/// clip and frames). `out_used` (when given) receives the segmentation used (Auto resolved).
 MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipLoader& load,
-                           const SetBuildOptions& options, std::vector<std::string>* out_skipped = nullptr);
+                           const SetBuildOptions& options, std::vector<std::string>* out_skipped = nullptr,
+                           Segmentation* out_used = nullptr);
 
 /// "CLIP" for a sample covering its whole clip of `clip_frames` frames, else "CLIP:BEGIN-END".
 std::string sample_label(const SampleRef& sample, std::size_t clip_frames);
