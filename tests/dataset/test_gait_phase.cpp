@@ -2,6 +2,7 @@
 // finding) and the procedural walk.
 #include <catch2/catch.hpp>
 
+#include "mocapdb/dataset/alignment.hpp"
 #include "mocapdb/dataset/gait_phase.hpp"
 #include "mocapdb/dataset/segmentation.hpp"
 #include "mocapdb/io/clip_file.hpp"
@@ -52,11 +53,13 @@ TEST_CASE("gait cycles of subject 16 start at one phase", "[segment][shared]") {
     ids.push_back("16_47");
     for (const auto& r : clips(36, 56, 47)) ids.push_back(r);
     std::vector<std::pair<VecX, SampleRef>> whole, cycles;
+    std::vector<Clip> walk_clips, walk_cycles;  // the walks (16_11..16_34, 16_47) for the phase check
     std::size_t without_cycle = 0;
     for (const std::string& id : ids) {
         const Clip clip = read_clip(test::datasets_dir() / "cmu-asfamc" / (id + ".amc"));
         const VecX separation = forward_foot_separation(clip);
         whole.push_back({separation, {id, 0, clip.frame_count()}});
+        const bool walk = id <= "16_34" || id == "16_47";
         GaitCycleOptions middle;
         middle.max_per_clip = 1;
         const auto found = gait_cycles(clip, id, middle);
@@ -72,6 +75,10 @@ TEST_CASE("gait cycles of subject 16 start at one phase", "[segment][shared]") {
         const double seconds = static_cast<double>(c.frame_count() - 1) / clip.frame_rate;
         CHECK((seconds > 0.3 && seconds < 1.6));
         CHECK(right_foot_leads(separation, c) == 1);
+        if (walk) {
+            walk_clips.push_back(clip);
+            walk_cycles.push_back(slice(clip, c.begin, c.end));
+        }
         // The middle one of all the clip's cycles.
         const auto all = gait_cycles(clip, id);
         CHECK(c.begin == all[(all.size() - 1) / 2].begin);
@@ -93,6 +100,18 @@ TEST_CASE("gait cycles of subject 16 start at one phase", "[segment][shared]") {
     INFO("least agreement on the forward foot: cycles " << worst_cycle << ", whole clips " << worst_whole);
     CHECK(worst_cycle >= 0.9);
     CHECK(worst_whole < 0.75);
+
+    // The phase check `align` prints, on DTW-aligned walks: whole clips blend the feet at the ends.
+    AlignOptions align;
+    align.frames = 40;
+    const VecX whole_agreement = forward_foot_agreement(walk_clips, align_samples(walk_clips, align));
+    const VecX cycle_agreement = forward_foot_agreement(walk_cycles, align_samples(walk_cycles, align));
+    REQUIRE(whole_agreement.size() == 40);
+    REQUIRE(cycle_agreement.size() == 40);
+    INFO("phase check, lowest share: whole walks " << whole_agreement.minCoeff() << ", cycles " << cycle_agreement.minCoeff());
+    CHECK(whole_agreement.minCoeff() < 0.7);
+    CHECK(cycle_agreement.minCoeff() >= 0.85);
+    CHECK(cycle_agreement.mean() >= 0.97);
 }
 
 TEST_CASE("gait cycles of subject 105's long walk are single strides", "[segment][shared]") {

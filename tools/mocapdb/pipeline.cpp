@@ -16,6 +16,7 @@
 #include "mocapdb/compression/rank_search.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/alignment.hpp"
+#include "mocapdb/dataset/gait_phase.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
@@ -280,6 +281,7 @@ AlignOutcome align_set(const std::string& db_path, const AlignRequest& a) {
         o.aligned = align_samples(samples, options);
     }
     o.distance = mean_alignment_distance(samples, o.aligned);
+    o.phase_agreement = forward_foot_agreement(samples, o.aligned);
     DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
     writer.put_aligned(a.set, o.aligned);
     writer.commit();
@@ -295,7 +297,27 @@ std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
                   set.c_str(), o.aligned.method.c_str(), o.labels[o.aligned.reference].c_str(),
                   static_cast<long long>(o.aligned.dofs()), static_cast<long long>(o.aligned.frames()),
                   static_cast<long long>(o.aligned.samples()), o.distance, o.seconds);
-    return line;
+    std::string out = line;
+    const VecX& share = o.phase_agreement;
+    if (share.size() == 0) return out;
+    Eigen::Index lowest = 0;
+    share.minCoeff(&lowest);
+    std::snprintf(line, sizeof line, "phase check: the same foot ahead in %.0f %% of the samples on average, %.0f %% at worst (aligned frame %lld)\n",
+                  100.0 * share.mean(), 100.0 * share[lowest], static_cast<long long>(lowest));
+    out += line;
+    std::string ranges;
+    for (Eigen::Index t = 0; t < share.size(); ++t) {
+        if (share[t] >= 0.8) continue;
+        Eigen::Index end = t;
+        while (end + 1 < share.size() && share[end + 1] < 0.8) ++end;
+        ranges += (ranges.empty() ? "" : ", ") + std::to_string(t) + (end > t ? "-" + std::to_string(end) : "");
+        t = end;
+    }
+    if (!ranges.empty())
+        out += "mocapdb: warning: aligned frames " + ranges +
+               " blend left-foot-forward with right-foot-forward poses (below 80 %); for locomotion, samples "
+               "that start at one gait phase avoid it (set create --segment gait)\n";
+    return out;
 }
 
 // ---- compress -----------------------------------------------------------------------------------

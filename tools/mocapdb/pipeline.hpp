@@ -84,12 +84,15 @@ struct AlignOutcome {
     AlignedSet aligned;
     std::vector<std::string> labels;  ///< sample labels
     double distance = 0.0;            ///< mean pose distance to the reference, cm
+    VecX phase_agreement;             ///< forward_foot_agreement per aligned frame; empty: not locomotion
     double seconds = 0.0;
 };
 
 /// Aligns the set's samples and stores the tensor (committed).
 AlignOutcome align_set(const std::string& db, const AlignRequest& request);
 
+/// The alignment line, then (locomotion) the phase check: mean and lowest share of samples with the
+/// same forward foot, and the aligned frame ranges below 80 %.
 std::string describe_alignment(const std::string& set, const AlignOutcome& o);
 
 // ---- compress -----------------------------------------------------------------------------------
