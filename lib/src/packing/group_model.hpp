@@ -39,6 +39,7 @@ struct SkeletonEntry {
     std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes
     VecX weights;                              ///< D weights (pose dofs, then extra position channels)
     ChannelWriter writer;                      ///< pose vector -> channel row of `skeleton`
+    std::vector<double> active_weights;        ///< weights[active[i]] (set with the active dofs)
 };
 
 struct ClipEntry {
@@ -62,9 +63,14 @@ struct WindowScratch {
     int columns = 0;                ///< time columns of g up to its last nonzero one
     int rows = 0;                   ///< dof rows of g up to its last nonzero one
     std::vector<double> y, x, p;    ///< one frame: G v_t (Da), U G v_t (Da), pose dofs (D)
+    std::vector<double> yb, xb;     ///< kFrameBlock frames of y and x (frames_pose), Da each
     std::vector<double> row;        ///< one channel row (raw windows' local poses)
     ContextSet contexts;
 };
+
+/// Frames frames_pose reconstructs together (register-blocked over frames: the coefficients and
+/// the dof basis are read once per block instead of once per frame).
+constexpr int kFrameBlock = 4;
 
 struct GroupModel {
     double frame_rate = 0.0;
@@ -113,6 +119,13 @@ struct GroupModel {
     /// The first half of frame_row: frame t's dofs (D values: pose vector, then extra position
     /// channels, pose units) into p. frame_row is frame_pose then row_of.
     void frame_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s, double* p) const;
+    /// frame_pose of the kFrameBlock frames t0, t0 + 1, ... (t0 + kFrameBlock <= W) into p (D values
+    /// per frame, one frame after the other): the same bits per frame as frame_pose, about half the
+    /// time per frame.
+    void frames_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t0, WindowScratch& s,
+                     double* p) const;
+    /// The weighted active dofs x (Da, divided in place) into their places in p.
+    void unweight(double* x, const SkeletonEntry& entry, double* p) const;
     /// The second half: the channel row of dofs p.
     void row_of(const ClipEntry& clip, const double* p, double* row) const;
     /// Local joint transforms of dofs p (out sized to the skeleton here).

@@ -104,8 +104,17 @@ const double* PoseSampler::dofs(Slot& s, std::size_t clip, std::size_t t) {
     const detail::GroupModel& m = *decoder_->model_;
     double* p = s.poses.data() + t * static_cast<std::size_t>(m.dofs);
     if (!s.posed[t]) {
-        m.frame_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(t), *scratch_, p);
-        s.posed[t] = 1;
+        const auto W = static_cast<std::size_t>(m.window);
+        const auto B = static_cast<std::size_t>(detail::kFrameBlock);
+        // Sequential access (the previous frame was asked for): the next B frames together, cheaper
+        // per frame; otherwise (random access, frame skipping) this frame alone.
+        if (t > 0 && s.posed[t - 1] && t + B <= W && std::find(&s.posed[t], &s.posed[t] + B, 1) == &s.posed[t] + B) {
+            m.frames_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(t), *scratch_, p);
+            std::fill(&s.posed[t], &s.posed[t] + B, std::uint8_t(1));
+        } else {
+            m.frame_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(t), *scratch_, p);
+            s.posed[t] = 1;
+        }
     }
     return p;
 }
