@@ -39,6 +39,8 @@ void GroupModel::build_scan() {
     std::stable_sort(scan.begin(), scan.end(), [&](std::uint32_t i, std::uint32_t j) { return raw[i] > raw[j]; });
     for (std::size_t i = 0; i < scan.size(); ++i) sigma[i] = raw[scan[i]];
     levels = class_levels(sigma);
+    scan_row.resize(scan.size());
+    for (std::size_t i = 0; i < scan.size(); ++i) scan_row[i] = static_cast<std::uint16_t>(scan[i] % std::max<std::size_t>(1, d));
 }
 
 MatX GroupModel::dofs_of(const Clip& clip, const Canonicalization& canonical) const {
@@ -83,20 +85,22 @@ void GroupModel::prepare(WindowScratch& s) const {
 
 void GroupModel::dequantize(int step_index, const std::int32_t* q, std::size_t n, WindowScratch& s) const {
     const double step = step_of(step_index);
-    std::fill(s.g.begin(), s.g.end(), 0.0);
     const std::size_t da = std::max<std::size_t>(1, active.size());
-    std::uint32_t last = 0, last_row = 0;
-    bool any = false;
     n = std::min(n, scan.size());
+    const bool none = n == 0;
+    while (n > 0 && q[n - 1] == 0) --n;  // the decoder's zeros after the coded length
+    std::uint32_t last = 0;
+    std::uint16_t last_row = 0;
     for (std::size_t i = 0; i < n; ++i)
         if (q[i] != 0) {
-            s.g[scan[i]] = q[i] * step;
             last = std::max(last, scan[i]);
-            last_row = std::max(last_row, static_cast<std::uint32_t>(scan[i] % da));
-            any = true;
+            last_row = std::max(last_row, scan_row[i]);
         }
-    s.columns = n == 0 ? 0 : static_cast<int>(last / da) + 1;
-    s.rows = any ? static_cast<int>(last_row) + 1 : 0;
+    s.columns = none ? 0 : static_cast<int>(last / da) + 1;  // as ever (1 for an all-zero window)
+    s.rows = n == 0 ? 0 : static_cast<int>(last_row) + 1;
+    std::fill(s.g.begin(), s.g.begin() + static_cast<std::ptrdiff_t>(da * static_cast<std::size_t>(s.columns)), 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+        if (q[i] != 0) s.g[scan[i]] = q[i] * step;
 }
 
 namespace {
@@ -159,14 +163,18 @@ void block_frames(const double* a, std::size_t ld, const double* w, std::size_t 
         for (std::size_t v = 0; v < V; ++v) std::memcpy(out + f * out_ld + 4 * v, &acc[f][v], sizeof(Lane4));
 }
 
-// The last rows % 4 rows, one at a time.
-void row_frames(const double* a, std::size_t ld, const double* w, std::size_t stride, std::size_t fstride,
-                std::size_t columns, double* out, std::size_t out_ld) {
-    for (std::size_t f = 0; f < static_cast<std::size_t>(kFrameBlock); ++f) {
-        double acc = 0.0;
-        for (std::size_t c = 0; c < columns; ++c) acc += a[c * ld] * w[c * stride + f * fstride];
-        out[f * out_ld] = acc;
-    }
+// The last rows % 4 (< 4) rows: every (row, frame) sum its own chain, all advanced together.
+void rest_frames(const double* a, std::size_t rest, std::size_t ld, const double* w, std::size_t stride,
+                 std::size_t fstride, std::size_t columns, double* out, std::size_t out_ld) {
+    constexpr std::size_t B = kFrameBlock;
+    double acc[3][B] = {};
+    for (std::size_t c = 0; c < columns; ++c)
+        for (std::size_t f = 0; f < B; ++f) {
+            const double wc = w[c * stride + f * fstride];
+            for (std::size_t i = 0; i < rest; ++i) acc[i][f] += a[i + c * ld] * wc;
+        }
+    for (std::size_t f = 0; f < B; ++f)
+        for (std::size_t i = 0; i < rest; ++i) out[i + f * out_ld] = acc[i][f];
 }
 
 void multiply_frames(const double* a, std::size_t rows, std::size_t ld, const double* w, std::size_t stride,
@@ -174,7 +182,7 @@ void multiply_frames(const double* a, std::size_t rows, std::size_t ld, const do
     std::size_t i = 0;
     for (; i + 8 <= rows; i += 8) block_frames<2>(a + i, ld, w, stride, fstride, columns, out + i, out_ld);
     for (; i + 4 <= rows; i += 4) block_frames<1>(a + i, ld, w, stride, fstride, columns, out + i, out_ld);
-    for (; i < rows; ++i) row_frames(a + i, ld, w, stride, fstride, columns, out + i, out_ld);
+    if (i < rows) rest_frames(a + i, rows - i, ld, w, stride, fstride, columns, out + i, out_ld);
 }
 }  // namespace
 

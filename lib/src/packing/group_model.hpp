@@ -88,6 +88,7 @@ struct GroupModel {
     std::vector<float> dof_energy;   ///< Da, eigenvalues of the dof second moment per window, descending
     std::vector<float> time_energy;  ///< W
     std::vector<std::uint32_t> scan;  ///< scan position -> r1 + D * r2
+    std::vector<std::uint16_t> scan_row;  ///< scan position -> r1 (dequantize, without a division)
     std::vector<float> sigma;         ///< expected RMS per scan position
     std::vector<double> levels;       ///< class_levels(sigma)
     ContextSet contexts;
@@ -107,7 +108,9 @@ struct GroupModel {
     void fold_constant_joints();
     /// Sizes the scratch for this group.
     void prepare(WindowScratch& s) const;
-    /// s.g and s.columns from quantized coefficients `q` (scan order; n may be short of Da·W).
+    /// s.g, s.columns and s.rows from quantized coefficients `q` (scan order; n may be short of Da·W,
+    /// the rest are zero). Only the first s.columns columns of s.g are written (zeros included): the
+    /// frame products read no further.
     void dequantize(int step_index, const std::int32_t* q, std::size_t n, WindowScratch& s) const;
     /// Channel row of frame t (0 <= t < W) of a window's dequantized coefficients g: x = U (G v_t), summed in a
     /// fixed order (time column, then dof basis column), then pose dofs -> channels. Every decode
