@@ -89,18 +89,19 @@ void GroupModel::dequantize(int step_index, const std::int32_t* q, std::size_t n
     n = std::min(n, scan.size());
     const bool none = n == 0;
     while (n > 0 && q[n - 1] == 0) --n;  // the decoder's zeros after the coded length
-    std::uint32_t last = 0;
-    std::uint16_t last_row = 0;
-    for (std::size_t i = 0; i < n; ++i)
-        if (q[i] != 0) {
-            last = std::max(last, scan[i]);
-            last_row = std::max(last_row, scan_row[i]);
-        }
+    // Branch-free passes: whether a coefficient is zero is unpredictable (a branch per pass cost
+    // more than the rest of the pass).
+    std::uint32_t last = 0, last_row = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t keep = q[i] != 0 ? ~0u : 0u;
+        last = std::max(last, scan[i] & keep);
+        last_row = std::max(last_row, static_cast<std::uint32_t>(scan_row[i]) & keep);
+    }
     s.columns = none ? 0 : static_cast<int>(last / da) + 1;  // as ever (1 for an all-zero window)
     s.rows = n == 0 ? 0 : static_cast<int>(last_row) + 1;
     std::fill(s.g.begin(), s.g.begin() + static_cast<std::ptrdiff_t>(da * static_cast<std::size_t>(s.columns)), 0.0);
-    for (std::size_t i = 0; i < n; ++i)
-        if (q[i] != 0) s.g[scan[i]] = q[i] * step;
+    // Zeros too (+0, as the clearing wrote; a zero past the cleared columns is never read).
+    for (std::size_t i = 0; i < n; ++i) s.g[scan[i]] = q[i] * step;
 }
 
 namespace {
