@@ -2,7 +2,7 @@
 // a 31-joint skeleton): the packed collection codec's decode paths, timed on one thread.
 //
 //   bench_pose_access [--folder cmu-asfamc|cmu-walkrun-pfnn|all] [--errors 1,0.5,0.1] [--poses 20000]
-//                     [--repeats 3] [--crowd 100] [--ticks 480] [--cache DIR]
+//                     [--repeats 3] [--crowd 100] [--ticks 480] [--cache DIR] [--clock wall|cpu]
 //
 // Per folder (its largest group) and E, µs per pose, best of --repeats (median beside it):
 //   cold_us      GroupDecoder::decode_pose at random (clip, frame): range-decodes the pose's window
@@ -17,7 +17,8 @@
 // poses from the crowd's clips, whether the sampler equals the decoder bit for bit (rows and local
 // poses) and the largest deviation of a local rotation from the row's (quaternion, up to sign).
 // --cache DIR keeps the packed bytes per (folder, E) between runs (packing ASF takes ~30 s); bytes of
-// an older packing version are packed again.
+// an older packing version are packed again. --clock cpu times with the thread's CPU clock instead of
+// wall time (a loaded machine then inflates figures less; the default is wall).
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -87,7 +88,7 @@ struct Timing {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string folder = "all", cache;
+    std::string folder = "all", cache, clock = "wall";
     std::vector<double> errors{1.0, 0.5, 0.1};
     int poses = 20000, repeats = 3, crowd = 100, ticks = 480;
     for (int i = 1; i < argc; ++i) {
@@ -100,11 +101,18 @@ int main(int argc, char** argv) {
         else if (a == "--crowd") crowd = std::max(1, std::stoi(next()));
         else if (a == "--ticks") ticks = std::max(1, std::stoi(next()));
         else if (a == "--cache") cache = next();
+        else if (a == "--clock") clock = next();
         else {
             std::fprintf(stderr, "unknown argument %s\n", a.c_str());
             return 2;
         }
     }
+    if (clock != "wall" && clock != "cpu") {
+        std::fprintf(stderr, "--clock wall|cpu\n");
+        return 2;
+    }
+    const bool cpu = clock == "cpu";
+    auto now = [cpu] { return cpu ? thread_cpu_seconds() : wall_seconds(); };
     const std::vector<std::string> folders =
         folder == "all" ? std::vector<std::string>{"cmu-walkrun-pfnn", "cmu-asfamc"} : std::vector<std::string>{folder};
     for (const auto& name : folders)
@@ -128,7 +136,7 @@ int main(int argc, char** argv) {
             for (int r = 0; r < repeats; ++r) {
                 for (int kind = 0; kind < 2; ++kind) {  // cold random access
                     std::mt19937 rng(7);
-                    const auto t = Clock::now();
+                    const double t = now();
                     for (int p = 0; p < poses; ++p) {
                         const std::size_t k = rng() % clips;
                         const std::size_t f = rng() % decoder.frame_count(k);
@@ -140,17 +148,17 @@ int main(int argc, char** argv) {
                             consume(local);
                         }
                     }
-                    cold[kind].add(seconds_since(t), static_cast<std::size_t>(poses));
+                    cold[kind].add(now() - t, static_cast<std::size_t>(poses));
                 }
                 {  // streaming, window by window
-                    const auto t = Clock::now();
+                    const double t = now();
                     for (std::size_t k = 0; k < clips; ++k)
                         for (std::size_t w = 0; w < decoder.window_count(k); ++w) g_sink = g_sink + decoder.decode_window(k, w)(0, 0);
-                    window.add(seconds_since(t), frames);
+                    window.add(now() - t, frames);
                 }
                 for (int kind = 0; kind < 2; ++kind) {  // sequential playback
                     packing::PoseSampler sampler(decoder, 4);
-                    const auto t = Clock::now();
+                    const double t = now();
                     for (std::size_t k = 0; k < clips; ++k)
                         for (std::size_t f = 0; f < decoder.frame_count(k); ++f) {
                             if (kind == 0) {
@@ -160,7 +168,7 @@ int main(int argc, char** argv) {
                                 consume(local);
                             }
                         }
-                    play[kind].add(seconds_since(t), frames);
+                    play[kind].add(now() - t, frames);
                 }
                 for (int step : {1, 4})  // a crowd
                     for (int kind = 0; kind < 2; ++kind) {
@@ -171,7 +179,7 @@ int main(int argc, char** argv) {
                             frame[a] = rng() % decoder.frame_count(clip[a]);
                         }
                         packing::PoseSampler sampler(decoder, 128);
-                        const auto t = Clock::now();
+                        const double t = now();
                         for (int tick = 0; tick < ticks; ++tick)
                             for (std::size_t a = 0; a < clip.size(); ++a) {
                                 if (kind == 0) {
@@ -182,7 +190,7 @@ int main(int argc, char** argv) {
                                 }
                                 frame[a] = (frame[a] + static_cast<std::size_t>(step)) % decoder.frame_count(clip[a]);
                             }
-                        (step == 1 ? crowd1 : crowd4)[kind].add(seconds_since(t), clip.size() * static_cast<std::size_t>(ticks));
+                        (step == 1 ? crowd1 : crowd4)[kind].add(now() - t, clip.size() * static_cast<std::size_t>(ticks));
                         (step == 1 ? hit1 : hit4) =
                             static_cast<double>(sampler.hits()) / static_cast<double>(sampler.hits() + sampler.misses());
                         if (r == 0 && step == 1 && kind == 0) {  // bit-identity with decode_pose (untimed)
@@ -213,12 +221,12 @@ int main(int argc, char** argv) {
                     }
             }
             std::printf(
-                "folder=%s E=%g clips=%zu frames=%zu windows=%zu channels=%zu joints=%zu | channel rows: cold_us=%.2f "
+                "clock=%s folder=%s E=%g clips=%zu frames=%zu windows=%zu channels=%zu joints=%zu | channel rows: cold_us=%.2f "
                 "(median %.2f) window_us=%.2f (median %.2f) play_us=%.2f (median %.2f) crowd_us=%.2f (median %.2f) "
                 "crowd4_us=%.2f (median %.2f) | local poses: cold_us=%.2f (median %.2f) play_us=%.2f (median %.2f) "
                 "crowd_us=%.2f (median %.2f) crowd4_us=%.2f (median %.2f) | hit %.3f / %.3f "
                 "sampler_equals_decoder=%d local_rotation_max_dev=%.1e\n",
-                name.c_str(), E, clips, frames, windows, channels, decoder.skeleton(0)->size(), best(cold[0].us),
+                clock.c_str(), name.c_str(), E, clips, frames, windows, channels, decoder.skeleton(0)->size(), best(cold[0].us),
                 median(cold[0].us), best(window.us), median(window.us), best(play[0].us), median(play[0].us),
                 best(crowd1[0].us), median(crowd1[0].us), best(crowd4[0].us), median(crowd4[0].us), best(cold[1].us),
                 median(cold[1].us), best(play[1].us), median(play[1].us), best(crowd1[1].us), median(crowd1[1].us),

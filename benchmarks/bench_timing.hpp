@@ -3,6 +3,7 @@
 // the best (least disturbed) of several repeats, and the median beside it where useful.
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,6 +13,16 @@ namespace mocapdb::bench {
 using Clock = std::chrono::steady_clock;
 
 inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// CPU seconds of the calling thread (CLOCK_THREAD_CPUTIME_ID): unlike wall time, not inflated by
+/// other processes taking the core (cache sharing with them still shows).
+inline double thread_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+inline double wall_seconds() { return std::chrono::duration<double>(Clock::now().time_since_epoch()).count(); }
 
 inline double best(std::vector<double> v) { return *std::min_element(v.begin(), v.end()); }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "exp_map_batch.hpp"
 #include "mocapdb/motion/rotation.hpp"
 
 namespace mocapdb::packing::detail {
@@ -255,10 +256,23 @@ void ChannelWriter::write_local(const double* pose, const Canonicalization& cano
         const Quat root_rotation = above_inverse_ * canonical.invert(swing_twist_exp(Vec3(pose[3], pose[4], pose[5])));
         out.rotations[motion_root_] = channel_rotation(joints_.front(), root_rotation);
     }
-    for (std::size_t k = 1; k < joints_.size(); ++k) {
-        const RotationJoint& j = joints_[k];
-        const double* v = pose + j.pose_row;
-        out.rotations[static_cast<std::size_t>(j.joint)] = channel_rotation(j, exp_map(Vec3(v[0], v[1], v[2])));
+    // The joints' exp maps in chunks (exp_maps: polynomial sincos, not libm's; ~1e-16 from exp_map).
+    constexpr std::size_t kChunk = 16;
+    double x[kChunk], y[kChunk], z[kChunk];
+    Quat q[kChunk];
+    for (std::size_t k0 = 1; k0 < joints_.size(); k0 += kChunk) {
+        const std::size_t n = std::min(kChunk, joints_.size() - k0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const double* v = pose + joints_[k0 + i].pose_row;
+            x[i] = v[0];
+            y[i] = v[1];
+            z[i] = v[2];
+        }
+        exp_maps(x, y, z, n, q);
+        for (std::size_t i = 0; i < n; ++i) {
+            const RotationJoint& j = joints_[k0 + i];
+            out.rotations[static_cast<std::size_t>(j.joint)] = channel_rotation(j, q[i]);
+        }
     }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <string>
 
@@ -38,6 +39,8 @@ void GroupModel::build_scan() {
     std::stable_sort(scan.begin(), scan.end(), [&](std::uint32_t i, std::uint32_t j) { return raw[i] > raw[j]; });
     for (std::size_t i = 0; i < scan.size(); ++i) sigma[i] = raw[scan[i]];
     levels = class_levels(sigma);
+    scan_row.resize(scan.size());
+    for (std::size_t i = 0; i < scan.size(); ++i) scan_row[i] = static_cast<std::uint16_t>(scan[i] % std::max<std::size_t>(1, d));
 }
 
 MatX GroupModel::dofs_of(const Clip& clip, const Canonicalization& canonical) const {
@@ -60,7 +63,11 @@ MatX GroupModel::weighted_active(const Clip& clip, const SkeletonEntry& entry, c
 void GroupModel::fold_constant_joints() {
     std::vector<bool> varies(static_cast<std::size_t>(dofs), false);
     for (int d : active) varies[static_cast<std::size_t>(d)] = true;
-    for (SkeletonEntry& e : skeletons) e.writer.fold_constants(varies, constant.data());
+    for (SkeletonEntry& e : skeletons) {
+        e.writer.fold_constants(varies, constant.data());
+        e.active_weights.resize(active.size());
+        for (std::size_t i = 0; i < active.size(); ++i) e.active_weights[i] = e.weights[active[i]];
+    }
 }
 
 void GroupModel::prepare(WindowScratch& s) const {
@@ -71,25 +78,30 @@ void GroupModel::prepare(WindowScratch& s) const {
     s.g.resize(cells);
     s.y.resize(da);
     s.x.resize(da);
+    s.yb.resize(da * kFrameBlock);
+    s.xb.resize(da * kFrameBlock);
     s.p.resize(static_cast<std::size_t>(dofs));
 }
 
 void GroupModel::dequantize(int step_index, const std::int32_t* q, std::size_t n, WindowScratch& s) const {
     const double step = step_of(step_index);
-    std::fill(s.g.begin(), s.g.end(), 0.0);
     const std::size_t da = std::max<std::size_t>(1, active.size());
-    std::uint32_t last = 0, last_row = 0;
-    bool any = false;
     n = std::min(n, scan.size());
-    for (std::size_t i = 0; i < n; ++i)
-        if (q[i] != 0) {
-            s.g[scan[i]] = q[i] * step;
-            last = std::max(last, scan[i]);
-            last_row = std::max(last_row, static_cast<std::uint32_t>(scan[i] % da));
-            any = true;
-        }
-    s.columns = n == 0 ? 0 : static_cast<int>(last / da) + 1;
-    s.rows = any ? static_cast<int>(last_row) + 1 : 0;
+    const bool none = n == 0;
+    while (n > 0 && q[n - 1] == 0) --n;  // the decoder's zeros after the coded length
+    // Branch-free passes: whether a coefficient is zero is unpredictable (a branch per pass cost
+    // more than the rest of the pass).
+    std::uint32_t last = 0, last_row = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t keep = q[i] != 0 ? ~0u : 0u;
+        last = std::max(last, scan[i] & keep);
+        last_row = std::max(last_row, static_cast<std::uint32_t>(scan_row[i]) & keep);
+    }
+    s.columns = none ? 0 : static_cast<int>(last / da) + 1;  // as ever (1 for an all-zero window)
+    s.rows = n == 0 ? 0 : static_cast<int>(last_row) + 1;
+    std::fill(s.g.begin(), s.g.begin() + static_cast<std::ptrdiff_t>(da * static_cast<std::size_t>(s.columns)), 0.0);
+    // Zeros too (+0, as the clearing wrote; a zero past the cleared columns is never read).
+    for (std::size_t i = 0; i < n; ++i) s.g[scan[i]] = q[i] * step;
 }
 
 namespace {
@@ -119,7 +131,87 @@ void multiply_columns(const double* a, std::size_t rows, std::size_t ld, const d
     for (; i + 4 <= rows; i += 4) block_columns<4>(a + i, ld, w, stride, columns, out + i);
     for (; i < rows; ++i) block_columns<1>(a + i, ld, w, stride, columns, out + i);
 }
+// multiply_columns for kFrameBlock weight vectors at once: out[i + out_ld·f] = sum over c of
+// a[i + ld·c] · w[c·stride + f·fstride], each element summed as multiply_columns sums it (ascending
+// c from +0, no contraction), so the same bits; the columns of `a` are loaded once for all frames.
+// Written with vector types (the compiler's own vectorization of this nest spilled to the stack).
+typedef double Lane4 __attribute__((vector_size(32)));
+
+inline Lane4 load4(const double* p) {
+    Lane4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+template <std::size_t V>  // V lanes of 4 rows
+void block_frames(const double* a, std::size_t ld, const double* w, std::size_t stride, std::size_t fstride,
+                  std::size_t columns, double* out, std::size_t out_ld) {
+    constexpr std::size_t B = kFrameBlock;
+    Lane4 acc[B][V];
+    for (std::size_t f = 0; f < B; ++f)
+        for (std::size_t v = 0; v < V; ++v) acc[f][v] = Lane4{0.0, 0.0, 0.0, 0.0};
+    for (std::size_t c = 0; c < columns; ++c) {
+        const double* col = a + c * ld;
+        Lane4 x[V];
+        for (std::size_t v = 0; v < V; ++v) x[v] = load4(col + 4 * v);
+        for (std::size_t f = 0; f < B; ++f) {
+            const double wc = w[c * stride + f * fstride];
+            const Lane4 wv{wc, wc, wc, wc};
+            for (std::size_t v = 0; v < V; ++v) acc[f][v] += x[v] * wv;
+        }
+    }
+    for (std::size_t f = 0; f < B; ++f)
+        for (std::size_t v = 0; v < V; ++v) std::memcpy(out + f * out_ld + 4 * v, &acc[f][v], sizeof(Lane4));
+}
+
+// The last rows % 4 (< 4) rows: every (row, frame) sum its own chain, all advanced together.
+void rest_frames(const double* a, std::size_t rest, std::size_t ld, const double* w, std::size_t stride,
+                 std::size_t fstride, std::size_t columns, double* out, std::size_t out_ld) {
+    constexpr std::size_t B = kFrameBlock;
+    double acc[3][B] = {};
+    for (std::size_t c = 0; c < columns; ++c)
+        for (std::size_t f = 0; f < B; ++f) {
+            const double wc = w[c * stride + f * fstride];
+            for (std::size_t i = 0; i < rest; ++i) acc[i][f] += a[i + c * ld] * wc;
+        }
+    for (std::size_t f = 0; f < B; ++f)
+        for (std::size_t i = 0; i < rest; ++i) out[i + f * out_ld] = acc[i][f];
+}
+
+void multiply_frames(const double* a, std::size_t rows, std::size_t ld, const double* w, std::size_t stride,
+                     std::size_t fstride, std::size_t columns, double* out, std::size_t out_ld) {
+    std::size_t i = 0;
+    for (; i + 8 <= rows; i += 8) block_frames<2>(a + i, ld, w, stride, fstride, columns, out + i, out_ld);
+    for (; i + 4 <= rows; i += 4) block_frames<1>(a + i, ld, w, stride, fstride, columns, out + i, out_ld);
+    if (i < rows) rest_frames(a + i, rows - i, ld, w, stride, fstride, columns, out + i, out_ld);
+}
 }  // namespace
+
+void GroupModel::unweight(double* x, const SkeletonEntry& entry, double* p) const {
+    const std::size_t da = active.size();
+    const double* w = entry.active_weights.data();
+    for (std::size_t i = 0; i < da; ++i) x[i] = x[i] / w[i];  // contiguous: vector divisions, same bits
+    for (std::size_t i = 0; i < da; ++i) p[active[i]] = x[i];
+}
+
+void GroupModel::frames_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t0, WindowScratch& s,
+                             double* p) const {
+    const std::size_t da = active.size();
+    const auto W = static_cast<std::size_t>(window);
+    const auto r = static_cast<std::size_t>(rows);
+    // As frame_pose, for frames t0.. at once: Y = G [v_t0 ...] (rows r of each y; the rest are
+    // zero and unused), then X = U Y.
+    multiply_frames(g, r, da, time_basis.data() + t0, W, 1, static_cast<std::size_t>(columns), s.yb.data(), da);
+    multiply_frames(dof_basis.data(), da, da, s.yb.data(), 1, da, r, s.xb.data(), da);
+    const SkeletonEntry& entry = skeletons[clip.skeleton];
+    const auto D = static_cast<std::size_t>(dofs);
+    for (std::size_t f = 0; f < static_cast<std::size_t>(kFrameBlock); ++f) {
+        double* pf = p + f * D;
+        double* x = s.xb.data() + f * da;
+        std::copy(constant.begin(), constant.end(), pf);
+        unweight(x, entry, pf);
+    }
+}
 
 void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s,
                            double* row) const {
@@ -168,7 +260,7 @@ void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns,
     multiply_columns(dof_basis.data(), da, da, y, 1, r, x);
     const SkeletonEntry& entry = skeletons[clip.skeleton];
     std::copy(constant.begin(), constant.end(), p);
-    for (std::size_t i = 0; i < da; ++i) p[active[i]] = x[i] / entry.weights[active[i]];
+    unweight(x, entry, p);
 }
 
 void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,

@@ -39,6 +39,7 @@ struct SkeletonEntry {
     std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes
     VecX weights;                              ///< D weights (pose dofs, then extra position channels)
     ChannelWriter writer;                      ///< pose vector -> channel row of `skeleton`
+    std::vector<double> active_weights;        ///< weights[active[i]] (set with the active dofs)
 };
 
 struct ClipEntry {
@@ -62,9 +63,14 @@ struct WindowScratch {
     int columns = 0;                ///< time columns of g up to its last nonzero one
     int rows = 0;                   ///< dof rows of g up to its last nonzero one
     std::vector<double> y, x, p;    ///< one frame: G v_t (Da), U G v_t (Da), pose dofs (D)
+    std::vector<double> yb, xb;     ///< kFrameBlock frames of y and x (frames_pose), Da each
     std::vector<double> row;        ///< one channel row (raw windows' local poses)
     ContextSet contexts;
 };
+
+/// Frames frames_pose reconstructs together (register-blocked over frames: the coefficients and
+/// the dof basis are read once per block instead of once per frame).
+constexpr int kFrameBlock = 4;
 
 struct GroupModel {
     double frame_rate = 0.0;
@@ -82,6 +88,7 @@ struct GroupModel {
     std::vector<float> dof_energy;   ///< Da, eigenvalues of the dof second moment per window, descending
     std::vector<float> time_energy;  ///< W
     std::vector<std::uint32_t> scan;  ///< scan position -> r1 + D * r2
+    std::vector<std::uint16_t> scan_row;  ///< scan position -> r1 (dequantize, without a division)
     std::vector<float> sigma;         ///< expected RMS per scan position
     std::vector<double> levels;       ///< class_levels(sigma)
     ContextSet contexts;
@@ -101,7 +108,9 @@ struct GroupModel {
     void fold_constant_joints();
     /// Sizes the scratch for this group.
     void prepare(WindowScratch& s) const;
-    /// s.g and s.columns from quantized coefficients `q` (scan order; n may be short of Da·W).
+    /// s.g, s.columns and s.rows from quantized coefficients `q` (scan order; n may be short of Da·W,
+    /// the rest are zero). Only the first s.columns columns of s.g are written (zeros included): the
+    /// frame products read no further.
     void dequantize(int step_index, const std::int32_t* q, std::size_t n, WindowScratch& s) const;
     /// Channel row of frame t (0 <= t < W) of a window's dequantized coefficients g: x = U (G v_t), summed in a
     /// fixed order (time column, then dof basis column), then pose dofs -> channels. Every decode
@@ -113,6 +122,13 @@ struct GroupModel {
     /// The first half of frame_row: frame t's dofs (D values: pose vector, then extra position
     /// channels, pose units) into p. frame_row is frame_pose then row_of.
     void frame_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s, double* p) const;
+    /// frame_pose of the kFrameBlock frames t0, t0 + 1, ... (t0 + kFrameBlock <= W) into p (D values
+    /// per frame, one frame after the other): the same bits per frame as frame_pose, about half the
+    /// time per frame.
+    void frames_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t0, WindowScratch& s,
+                     double* p) const;
+    /// The weighted active dofs x (Da, divided in place) into their places in p.
+    void unweight(double* x, const SkeletonEntry& entry, double* p) const;
     /// The second half: the channel row of dofs p.
     void row_of(const ClipEntry& clip, const double* p, double* row) const;
     /// Local joint transforms of dofs p (out sized to the skeleton here).

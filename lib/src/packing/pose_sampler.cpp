@@ -104,8 +104,24 @@ const double* PoseSampler::dofs(Slot& s, std::size_t clip, std::size_t t) {
     const detail::GroupModel& m = *decoder_->model_;
     double* p = s.poses.data() + t * static_cast<std::size_t>(m.dofs);
     if (!s.posed[t]) {
-        m.frame_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(t), *scratch_, p);
-        s.posed[t] = 1;
+        const auto W = static_cast<std::size_t>(m.window);
+        const auto B = static_cast<std::size_t>(detail::kFrameBlock);
+        // Sequential access (the previous frame was asked for): the rest of the window, kFrameBlock
+        // frames at a time while they fit (cheaper per frame, and the window's coefficients are read
+        // while still in cache: in a crowd, other clips' windows evict them between this clip's
+        // frames); otherwise (random access, frame skipping) this frame alone.
+        const bool sequential = t > 0 && s.posed[t - 1];
+        std::size_t u = t;
+        for (; sequential && u + B <= W && !s.posed[u]; u += B) {
+            if (std::find(&s.posed[u], &s.posed[u] + B, 1) != &s.posed[u] + B) break;
+            m.frames_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(u), *scratch_,
+                          s.poses.data() + u * static_cast<std::size_t>(m.dofs));
+            std::fill(&s.posed[u], &s.posed[u] + B, std::uint8_t(1));
+        }
+        if (u == t) {
+            m.frame_pose(m.clips[clip], s.g.data(), s.columns, s.dof_rows, static_cast<int>(t), *scratch_, p);
+            s.posed[t] = 1;
+        }
     }
     return p;
 }

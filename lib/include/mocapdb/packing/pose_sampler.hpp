@@ -5,7 +5,10 @@
 // keeps the last `capacity` windows it touched (their dequantized coefficients, least recently used
 // evicted) and turns a frame into its channel row once, on first request. Consecutive frames of a
 // clip, or many clips sampled at advancing times (a crowd), then pay the window's range decoding
-// once per W frames and one frame reconstruction per new frame; a repeated frame is a lookup.
+// once per W frames and one frame reconstruction per new frame; a repeated frame is a lookup. A
+// request for the frame after one already reconstructed (sequential access) reconstructs the rest of
+// the window, four frames per blocked product (cheaper per frame, and the window's coefficients are
+// read once while cached); any other request reconstructs its frame alone.
 //
 // Contract: pose(clip, frame) gives the same bits as decoder.decode_pose(clip, frame) (and as that
 // row of decode_window). InvalidArgument on a bad clip or frame; mocapdb::Error on malformed bytes.
