@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/dataset/phase_check.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/eval/joint_error.hpp"
 #include "mocapdb/store/import.hpp"
@@ -65,7 +67,8 @@ struct SetOutcome {
 /// to stderr.
 SetOutcome create_set(const std::string& db, const SetRequest& request);
 
-/// "set 'NAME': N samples from C clips, P parameters (SOURCE)\n".
+/// "set 'NAME': N samples from C clips, P parameters (SOURCE)\n", then, when dropouts were
+/// repaired, "repaired solver dropouts in K clips (R joint runs of up to F frames): CLIPS; ...\n".
 std::string describe_set(const SetOutcome& o);
 
 // ---- align --------------------------------------------------------------------------------------
@@ -82,11 +85,16 @@ struct AlignOutcome {
     std::vector<std::string> labels;  ///< sample labels
     double distance = 0.0;            ///< mean pose distance to the reference, cm
     double seconds = 0.0;
+    /// Forward-foot agreement per aligned frame (phase_check.hpp); empty when the skeleton's feet are
+    /// not found (not a legged figure, or names default_feet does not know).
+    std::optional<PhaseCheck> phase;
 };
 
 /// Aligns the set's samples and stores the tensor (committed).
 AlignOutcome align_set(const std::string& db, const AlignRequest& request);
 
+/// The alignment line, then (with a phase check) "phase check (same forward foot per aligned frame):
+/// min M %, mean A %[; below 80 % at aligned frames a-b, ...]".
 std::string describe_alignment(const std::string& set, const AlignOutcome& o);
 
 // ---- compress -----------------------------------------------------------------------------------
