@@ -22,7 +22,8 @@ std::vector<std::pair<Eigen::Index, Eigen::Index>> PhaseCheck::below(double thre
     return out;
 }
 
-PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& aligned, const std::vector<std::string>& feet) {
+PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& aligned, const std::vector<std::string>& feet,
+                       double passing_cm) {
     if (samples.empty() || static_cast<Eigen::Index>(samples.size()) != aligned.samples())
         throw InvalidArgument("check_phase: " + std::to_string(samples.size()) + " samples for an aligned set of " +
                               std::to_string(aligned.samples()));
@@ -49,13 +50,15 @@ PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& align
             const Vec3 dir = Eigen::AngleAxisd(heading[f], Vec3::UnitY()) * rest;
             const Vec3 ahead = p.block<3, 1>(3 * static_cast<Eigen::Index>(foot[0]), f) -
                                p.block<3, 1>(3 * static_cast<Eigen::Index>(foot[1]), f);
-            out.forward(t, i) = ahead.dot(dir) > 0.0 ? 1 : -1;
+            const double along = ahead.dot(dir);
+            out.forward(t, i) = along > passing_cm ? 1 : along < -passing_cm ? -1 : 0;
         }
     }
     out.share.resize(frames);
     for (Eigen::Index t = 0; t < frames; ++t) {
         const Eigen::Index left = (out.forward.row(t).array() > 0).count();
-        out.share[t] = static_cast<double>(std::max(left, n - left)) / static_cast<double>(n);
+        const Eigen::Index right = (out.forward.row(t).array() < 0).count();
+        out.share[t] = left + right == 0 ? 1.0 : static_cast<double>(std::max(left, right)) / static_cast<double>(left + right);
     }
     out.min = out.share.minCoeff();
     out.mean = out.share.mean();

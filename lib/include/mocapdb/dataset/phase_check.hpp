@@ -5,8 +5,10 @@
 // them is then wrong.
 //
 // At aligned frame t, sample n is read at its warped frame (rounded) and its forward foot is the one
-// whose joint lies further along the root's heading ((p_left − p_right) · heading > 0: left). The share
-// at t is the larger of the left and right counts over N. Feet default to default_feet(skeleton)
+// whose joint lies further along the root's heading ((p_left − p_right) · heading > 0: left). While
+// the feet pass each other (less than `passing_cm` apart along the heading) a sample has no forward
+// foot and is left out at that frame. The share at t is the larger of the left and right counts over
+// the samples that have one (1 when none has). Feet default to default_feet(skeleton)
 // (foot_contacts.hpp).
 //
 // Pure function. InvalidArgument when the samples and the aligned set disagree in count, or the feet
@@ -22,7 +24,7 @@ namespace mocapdb {
 
 struct PhaseCheck {
     std::vector<std::string> feet;  ///< left, right
-    /// T by N: +1 when sample n has its left foot forward at aligned frame t, −1 right.
+    /// T by N: +1 when sample n has its left foot forward at aligned frame t, −1 right, 0 passing.
     Eigen::MatrixXi forward;
     VecX share;  ///< T: share of samples with the majority's forward foot (0.5 .. 1)
     double min = 0.0, mean = 0.0;
@@ -33,6 +35,6 @@ struct PhaseCheck {
 
 /// `samples` as given to align_samples (each cut to its frames, dropouts repaired).
 PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& aligned,
-                       const std::vector<std::string>& feet = {});
+                       const std::vector<std::string>& feet = {}, double passing_cm = 10.0);
 
 }  // namespace mocapdb
