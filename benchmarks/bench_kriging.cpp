@@ -50,12 +50,6 @@ std::vector<std::vector<double>> per_query_seconds(const std::vector<const Inter
 
 
 // CPU time of the calling thread (excludes the time other processes of the shared machine had the core).
-double thread_cpu_seconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 Eigen::MatrixXd uniform(Eigen::Index n, Eigen::Index p, unsigned seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> ud(0.0, 1.0);

@@ -125,7 +125,9 @@ TEST_CASE("progress: off a terminal the commands print exactly what they printed
         CHECK(!r.out.empty());
     }
     r = run_cli("set create " + db + " --name walks2 --clips '16_*' --segment none --extract speed turn");
-    CHECK(r.out == "set 'walks2': 6 samples (whole clips) from 6 clips, 2 parameters (extract:speed,turn)\n");
+    CHECK(r.out == "set 'walks2': 6 samples (whole clips) from 6 clips, 2 parameters (extract:speed,turn)\n"
+                   "repaired solver dropouts in 1 clip (6 joint runs of up to 7 frames): 16_15; 'mocapdb set show' lists "
+                   "them\n");
 }
 
 TEST_CASE("progress: on a terminal a bar is drawn on stderr and the result line is the same", "[cli][progress][shared]") {

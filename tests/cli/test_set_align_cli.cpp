@@ -43,6 +43,13 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     CHECK_THAT(r.output, Contains("25 samples (whole clips) from 25 clips"));
+    // Issue #15: the dropout clips are named at creation and listed by set show, never silently repaired.
+    CHECK_THAT(r.out, Contains("repaired solver dropouts in 4 clips (21 joint runs of up to 7 frames): 16_15, 16_23, "
+                               "16_28, 16_33"));
+    r = run_cli("set show " + db + " walks");
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("16_15                lhumerus, lradius, lwrist 0-1; lhand, lfingers, lthumb 0-6\n"));
+    CHECK_THAT(r.out, Contains("16_33                lhand, lfingers, lthumb 0-1\n"));
 
     r = run_cli("set show " + db + " walks --json");
     REQUIRE(r.exit_code == 0);
@@ -52,6 +59,12 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     CHECK(set["parameters"][1]["unit"].text == "cm/s");
     CHECK(set["samples"][0]["label"].text == "16_11");
     CHECK(set["aligned"].boolean == false);
+    CHECK(set["dropouts_checked"].boolean == true);
+    REQUIRE(set["repairs"].items.size() == 21);
+    CHECK(set["repairs"][0]["clip"].text == "16_15");
+    CHECK(set["repairs"][0]["joint"].text == "lhumerus");
+    CHECK(set["repairs"][0]["begin"].number == 0);
+    CHECK(set["repairs"][0]["end"].number == 2);
 
     // A second set of the same name needs --force; a pattern that matches nothing is an error.
     r = run_cli("set create " + db + " --name walks --clips 16_11 --extract turn");

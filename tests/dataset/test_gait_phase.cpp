@@ -4,6 +4,7 @@
 
 #include "mocapdb/dataset/alignment.hpp"
 #include "mocapdb/dataset/gait_phase.hpp"
+#include "mocapdb/dataset/phase_check.hpp"
 #include "mocapdb/dataset/segmentation.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "shared_data.hpp"
@@ -104,8 +105,8 @@ TEST_CASE("gait cycles of subject 16 start at one phase", "[segment][shared]") {
     // The phase check `align` prints, on DTW-aligned walks: whole clips blend the feet at the ends.
     AlignOptions align;
     align.frames = 40;
-    const VecX whole_agreement = forward_foot_agreement(walk_clips, align_samples(walk_clips, align));
-    const VecX cycle_agreement = forward_foot_agreement(walk_cycles, align_samples(walk_cycles, align));
+    const VecX whole_agreement = check_phase(walk_clips, align_samples(walk_clips, align)).share;
+    const VecX cycle_agreement = check_phase(walk_cycles, align_samples(walk_cycles, align)).share;
     REQUIRE(whole_agreement.size() == 40);
     REQUIRE(cycle_agreement.size() == 40);
     INFO("phase check, lowest share: whole walks " << whole_agreement.minCoeff() << ", cycles " << cycle_agreement.minCoeff());

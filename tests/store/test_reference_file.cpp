@@ -64,6 +64,8 @@ void check_common_content(const Database& db) {
     const MotionSet set = db.load_set("tiny_set");
     CHECK(set.parameters == expected.set.parameters);
     CHECK(set.samples.size() == 2);
+    CHECK(!set.dropouts_checked);  // no /sets/tiny_set/repairs: taken as stored
+    CHECK(set.repairs.empty());
     const auto aligned = db.load_aligned("tiny_set");
     REQUIRE(aligned.has_value());
     CHECK(max_abs_diff(aligned->tensor, expected.aligned.tensor) == 0.0);

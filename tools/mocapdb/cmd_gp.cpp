@@ -18,6 +18,7 @@
 #include "progress_bar.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/core/keep_freed_memory.hpp"
+#include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/gp/experiment.hpp"
 #include "mocapdb/gp/motion_data.hpp"
 #include "mocapdb/io/bvh.hpp"
@@ -80,8 +81,9 @@ void load_children(const GpArgs& a, std::vector<Clip>& clips, std::vector<std::s
         if (a.db.empty()) throw InvalidArgument("--set needs a database file");
         const Database db(a.db);
         const MotionSet set = db.load_set(a.set);
-        for (const SampleRef& s : set.samples) {
-            clips.push_back(slice(db.load_clip(s.clip), s.begin, s.end));
+        for (std::size_t i = 0; i < set.samples.size(); ++i) {
+            const SampleRef& s = set.samples[i];
+            clips.push_back(sample_frames(set, i, db.load_clip(s.clip)));  // with the set's dropout repairs
             names.push_back(s.clip + ":" + std::to_string(s.begin) + "-" + std::to_string(s.end));
         }
     } else {

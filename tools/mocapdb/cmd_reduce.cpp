@@ -1,5 +1,6 @@
 // mocapdb reduce: greedy sample reduction by leave-one-out reliability (the geostatistical paper
 // Section 5.2), as a report, optionally writing the reduced set (stored and aligned like the original).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -55,13 +56,19 @@ void run_reduce(const ReduceArgs& a) {
             reduced.samples.push_back(set.samples[static_cast<std::size_t>(r.kept[k])]);
             reduced.parameters.row(static_cast<Eigen::Index>(k)) = set.parameters.row(r.kept[k]);
         }
+        // Repair records only of the clips the reduced set still uses.
+        reduced.repairs.clear();
+        for (const RepairedFrames& x : set.repairs)
+            if (std::any_of(reduced.samples.begin(), reduced.samples.end(), [&](const SampleRef& s) { return s.clip == x.clip; }))
+                reduced.repairs.push_back(x);
         // parameter_source keeps saying how the values were obtained (synth re-measures with it).
         // Align like the original (method and frames; the reference is the reduced set's median sample).
         const auto original = db.load_aligned(a.set);
         std::optional<AlignedSet> aligned;
         if (original) {
             std::vector<Clip> clips;
-            for (const SampleRef& s : reduced.samples) clips.push_back(slice(db.load_clip(s.clip), s.begin, s.end));
+            for (std::size_t k = 0; k < reduced.samples.size(); ++k)
+                clips.push_back(sample_frames(reduced, k, db.load_clip(reduced.samples[k].clip)));
             AlignOptions ao;
             ao.method = original->method;
             ao.frames = original->frames();

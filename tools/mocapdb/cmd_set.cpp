@@ -1,10 +1,12 @@
 // mocapdb set create|list|show: motion sets (samples + control parameters) in a database.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/dropout_repair.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/store/database.hpp"
 #include "pipeline.hpp"
@@ -65,6 +67,11 @@ void print_set(const Database& db, const std::string& name, bool json) {
             for (Eigen::Index p = 0; p < set.parameters.cols(); ++p) j.value(set.parameters(static_cast<Eigen::Index>(i), p));
             j.end_array().end_object();
         }
+        j.end_array();
+        j.key("dropouts_checked").value(set.dropouts_checked);
+        j.key("repairs").begin_array();
+        for (const RepairedFrames& r : set.repairs)
+            j.begin_object().key("clip").value(r.clip).key("joint").value(r.joint).key("begin").value(r.begin).key("end").value(r.end).end_object();
         j.end_array().end_object();
         std::cout << j.str();
         return;
@@ -85,6 +92,19 @@ void print_set(const Database& db, const std::string& name, bool json) {
         for (Eigen::Index p = 0; p < set.parameters.cols(); ++p) std::printf(" %14.4f", set.parameters(static_cast<Eigen::Index>(i), p));
         std::printf("\n");
     }
+    if (!set.dropouts_checked) {
+        std::printf("dropouts: not checked (set stored before the check; 'set create --force' rebuilds it)\n");
+        return;
+    }
+    if (set.repairs.empty()) {
+        std::printf("dropouts: none found\n");
+        return;
+    }
+    std::vector<std::string> clips;
+    for (const RepairedFrames& r : set.repairs)
+        if (std::find(clips.begin(), clips.end(), r.clip) == clips.end()) clips.push_back(r.clip);
+    std::printf("repaired dropouts (joint rotations interpolated from the clean frames; frames 0-based, inclusive):\n");
+    for (const std::string& c : clips) std::printf("  %-20s %s\n", c.c_str(), describe_repairs(c, set.repairs).c_str());
 }
 
 }  // namespace
@@ -167,7 +187,8 @@ void setup_set(CLI::App& app) {
     show->add_option("db", *show_db, "database file")->required()->check(CLI::ExistingFile);
     show->add_option("name", *show_name, "set name")->required();
     show->add_flag("--json", *show_json,
-                   "print JSON: {name, parameter_source, parameters:[{name,unit}], aligned, samples:[{label,clip,begin,end,values}]}");
+                   "print JSON: {name, parameter_source, parameters:[{name,unit}], aligned, samples:[{label,clip,begin,end,values}],\n"
+                   "dropouts_checked, repairs:[{clip,joint,begin,end}]} (repaired solver dropouts, frames [begin, end))");
     show->callback([show_db, show_name, show_json] { print_set(Database(*show_db), *show_name, *show_json); });
 }
 

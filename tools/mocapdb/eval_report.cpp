@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "json_writer.hpp"
+#include "mocapdb/dataset/dropout_repair.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "svg_plot.hpp"
 
@@ -366,6 +367,10 @@ std::string results_json(const EvalResults& e) {
         for (const auto& c : s.clip_ids) j.value(c);
         j.end_array();
         j.key("samples").value(static_cast<long long>(s.size()));
+        j.key("repairs").begin_array();
+        for (const RepairedFrames& x : s.set.repairs)
+            j.begin_object().key("clip").value(x.clip).key("joint").value(x.joint).key("begin").value(x.begin).key("end").value(x.end).end_object();
+        j.end_array();
         j.key("frames").value(static_cast<long long>(s.aligned.frames()));
         j.key("dofs").value(static_cast<long long>(s.aligned.dofs()));
         j.key("build_seconds").value(r.build_seconds);
@@ -808,6 +813,21 @@ std::string report_md(const EvalResults& e) {
       << "\nA set has one skeleton: the first clip's (column *skeleton*). Clips of other subjects (the `jumps` set: "
          "subjects 13, 16, 105) are replayed on it (same CMU joints and channels; their parameters were measured on their "
          "own skeletons before the swap), so their joint positions use subject 13's bone lengths.\n\n";
+    // Issue #15: solver dropouts are repaired before segmentation and alignment, and named here.
+    {
+        std::string repaired;
+        for (const SetResults& r : e.sets) {
+            const eval::EvalSet& s = *r.set;
+            for (const auto& c : s.clip_ids) {
+                const std::string d = describe_repairs(c, s.set.repairs);
+                if (!d.empty()) repaired += std::string(repaired.empty() ? "" : "; ") + "`" + s.spec.name + "` " + c + ": " + d;
+            }
+        }
+        o << "Solver dropouts (a joint's rotation channels exactly 0 for a few frames while it moves elsewhere; "
+             "lib/include/mocapdb/dataset/dropout_repair.hpp) repaired by interpolation from the clean frames before "
+             "segmentation and alignment (frames 0-based, inclusive): "
+          << (repaired.empty() ? std::string("none found") : repaired) << ".\n\n";
+    }
 
     // Methods
     o << "Methods (lib/include/mocapdb/eval/synthesis_method.hpp): *per-pose kriging* (one kernel per aligned frame on the "

@@ -16,7 +16,6 @@
 #include "mocapdb/compression/rank_search.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/alignment.hpp"
-#include "mocapdb/dataset/gait_phase.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
@@ -245,7 +244,21 @@ std::string describe_set(const SetOutcome& o) {
     std::snprintf(line, sizeof line, "set '%s': %zu samples (%s) from %zu clips, %zu parameters (%s)\n", o.set.name.c_str(),
                   o.set.samples.size(), how.c_str(), o.clips, o.set.parameter_names.size(),
                   o.set.parameter_source.empty() ? "none" : o.set.parameter_source.c_str());
-    return line;
+    std::string out = line;
+    // Repairs are never silent: one line naming the clips (set show lists joints and frames).
+    std::vector<std::string> clips;
+    for (const RepairedFrames& r : o.set.repairs)
+        if (std::find(clips.begin(), clips.end(), r.clip) == clips.end()) clips.push_back(r.clip);
+    if (!clips.empty()) {
+        std::string names;
+        for (const std::string& c : clips) names += (names.empty() ? "" : ", ") + c;
+        std::size_t frames = 0;
+        for (const RepairedFrames& r : o.set.repairs) frames = std::max(frames, r.end - r.begin);
+        out += "repaired solver dropouts in " + std::to_string(clips.size()) + " clip" + (clips.size() == 1 ? "" : "s") +
+               " (" + std::to_string(o.set.repairs.size()) + " joint runs of up to " + std::to_string(frames) +
+               " frames): " + names + "; 'mocapdb set show' lists them\n";
+    }
+    return out;
 }
 
 // ---- align --------------------------------------------------------------------------------------
@@ -262,7 +275,7 @@ AlignOutcome align_set(const std::string& db_path, const AlignRequest& a) {
         for (const SampleRef& s : set.samples) {
             const Clip clip = db.load_clip(s.clip);
             o.labels.push_back(sample_label(s, clip.frame_count()));
-            samples.push_back(slice(clip, s.begin, s.end));
+            samples.push_back(sample_frames(set, samples.size(), clip));  // with the set's dropout repairs
             bar.update({samples.size(), set.samples.size(), s.clip});
         }
     }
@@ -281,7 +294,11 @@ AlignOutcome align_set(const std::string& db_path, const AlignRequest& a) {
         o.aligned = align_samples(samples, options);
     }
     o.distance = mean_alignment_distance(samples, o.aligned);
-    o.phase_agreement = forward_foot_agreement(samples, o.aligned);
+    try {
+        o.phase = check_phase(samples, o.aligned);
+    } catch (const InvalidArgument&) {
+        // No feet to compare (not a legged figure): no phase check.
+    }
     DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
     writer.put_aligned(a.set, o.aligned);
     writer.commit();
@@ -298,25 +315,19 @@ std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
                   static_cast<long long>(o.aligned.dofs()), static_cast<long long>(o.aligned.frames()),
                   static_cast<long long>(o.aligned.samples()), o.distance, o.seconds);
     std::string out = line;
-    const VecX& share = o.phase_agreement;
-    if (share.size() == 0) return out;
-    Eigen::Index lowest = 0;
-    share.minCoeff(&lowest);
-    std::snprintf(line, sizeof line, "phase check: the same foot ahead in %.0f %% of the samples on average, %.0f %% at worst (aligned frame %lld)\n",
-                  100.0 * share.mean(), 100.0 * share[lowest], static_cast<long long>(lowest));
-    out += line;
-    std::string ranges;
-    for (Eigen::Index t = 0; t < share.size(); ++t) {
-        if (share[t] >= 0.8) continue;
-        Eigen::Index end = t;
-        while (end + 1 < share.size() && share[end + 1] < 0.8) ++end;
-        ranges += (ranges.empty() ? "" : ", ") + std::to_string(t) + (end > t ? "-" + std::to_string(end) : "");
-        t = end;
+    if (o.phase) {
+        std::snprintf(line, sizeof line, "phase check (same forward foot per aligned frame, %s/%s): min %.0f %%, mean %.0f %%",
+                      o.phase->feet[0].c_str(), o.phase->feet[1].c_str(), 100.0 * o.phase->min, 100.0 * o.phase->mean);
+        out += line;
+        const auto low = o.phase->below(0.8);
+        std::string ranges;
+        for (const auto& [a, b] : low)
+            ranges += (ranges.empty() ? "" : ", ") + std::to_string(a) + (a == b ? "" : "-" + std::to_string(b));
+        out += low.empty() ? std::string("; no aligned frame below 80 %\n")
+                           : "; below 80 % at aligned frames " + ranges +
+                                 " (left-foot-forward and right-foot-forward poses blend there; for locomotion, samples "
+                                 "that start at one gait phase avoid it: set create --segment gait)\n";
     }
-    if (!ranges.empty())
-        out += "mocapdb: warning: aligned frames " + ranges +
-               " blend left-foot-forward with right-foot-forward poses (below 80 %); for locomotion, samples "
-               "that start at one gait phase avoid it (set create --segment gait)\n";
     return out;
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/dataset/phase_check.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/eval/joint_error.hpp"
@@ -68,7 +70,8 @@ struct SetOutcome {
 /// to stderr.
 SetOutcome create_set(const std::string& db, const SetRequest& request);
 
-/// "set 'NAME': N samples (KIND) from C clips, P parameters (SOURCE)\n".
+/// "set 'NAME': N samples (KIND) from C clips, P parameters (SOURCE)\n", then, when dropouts were
+/// repaired, "repaired solver dropouts in K clips (R joint runs of up to F frames): CLIPS; ...\n".
 std::string describe_set(const SetOutcome& o);
 
 // ---- align --------------------------------------------------------------------------------------
@@ -84,15 +87,17 @@ struct AlignOutcome {
     AlignedSet aligned;
     std::vector<std::string> labels;  ///< sample labels
     double distance = 0.0;            ///< mean pose distance to the reference, cm
-    VecX phase_agreement;             ///< forward_foot_agreement per aligned frame; empty: not locomotion
     double seconds = 0.0;
+    /// Forward-foot agreement per aligned frame (phase_check.hpp); empty when the skeleton's feet are
+    /// not found (not a legged figure, or names default_feet does not know).
+    std::optional<PhaseCheck> phase;
 };
 
 /// Aligns the set's samples and stores the tensor (committed).
 AlignOutcome align_set(const std::string& db, const AlignRequest& request);
 
-/// The alignment line, then (locomotion) the phase check: mean and lowest share of samples with the
-/// same forward foot, and the aligned frame ranges below 80 %.
+/// The alignment line, then (with a phase check) "phase check (same forward foot per aligned frame):
+/// min M %, mean A %[; below 80 % at aligned frames a-b, ...]".
 std::string describe_alignment(const std::string& set, const AlignOutcome& o);
 
 // ---- compress -----------------------------------------------------------------------------------

@@ -52,6 +52,11 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
     if (options.method != "dtw" && options.method != "linear")
         throw InvalidArgument("align: method must be 'dtw' or 'linear', found '" + options.method + "'");
     if (options.frames < 2) throw InvalidArgument("align: at least 2 aligned frames are needed");
+    if (options.canonical != "travel" && options.canonical != "first-frame")
+        throw InvalidArgument("align: canonical must be 'travel' or 'first-frame', found '" + options.canonical + "'");
+    const auto canonical_of = [&](const Clip& c) {
+        return options.canonical == "travel" ? travel_canonicalization(c, options.travel).canonical : canonicalization_of(c);
+    };
     // Beyond a few times the longest sample, more aligned frames only interpolate, and the tensor
     // (D x T x N doubles) grows without bound.
     std::size_t longest = 0;
@@ -102,13 +107,13 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
 
     // Pose vectors; the reference's first pose fixes the exp-map branches for every sample.
     out.canonical.resize(count);
-    out.canonical[ref] = canonicalization_of(samples[ref]);
+    out.canonical[ref] = canonical_of(samples[ref]);
     const MatX ref_poses = to_pose_vectors(samples[ref], out.canonical[ref]);
     const VecX branch = ref_poses.col(0);
     const Eigen::Index dofs = ref_poses.rows();
     out.tensor.resize(dofs, frames, static_cast<Eigen::Index>(count));
     for (std::size_t n = 0; n < count; ++n) {
-        if (n != ref) out.canonical[n] = canonicalization_of(samples[n]);
+        if (n != ref) out.canonical[n] = canonical_of(samples[n]);
         const MatX poses = n == ref ? ref_poses : to_pose_vectors(samples[n], out.canonical[n], branch);
         for (Eigen::Index t = 0; t < frames; ++t) {
             const VecX p = column_at(poses, out.warps(t, static_cast<Eigen::Index>(n)));

@@ -83,40 +83,4 @@ std::vector<std::size_t> left_foot_passes(const VecX& separation, double min_swi
     return passes;
 }
 
-namespace {
-constexpr double kStepCm = 20.0;  // a foot this far ahead of the other is taking steps
-}  // namespace
-
-VecX forward_foot_agreement(const std::vector<Clip>& samples, const AlignedSet& aligned,
-                            const std::vector<std::string>& feet, double level_cm) {
-    const Eigen::Index n = aligned.samples(), frames = aligned.frames();
-    if (static_cast<Eigen::Index>(samples.size()) != n)
-        throw InvalidArgument("phase check: " + std::to_string(samples.size()) + " samples for an aligned set of " +
-                              std::to_string(n));
-    std::vector<VecX> lead;
-    bool alternate = false;
-    for (const Clip& clip : samples) {
-        try {
-            lead.push_back(forward_foot_separation(clip, feet));
-        } catch (const InvalidArgument&) {
-            return {};  // no feet by name: not a question this check can answer
-        }
-        // Each foot a step ahead at some time (a gait cycle or more; a jump's landing stagger is less).
-        alternate = alternate || (lead.back().maxCoeff() > kStepCm && lead.back().minCoeff() < -kStepCm);
-    }
-    if (!alternate) return {};
-    VecX share = VecX::Ones(frames);
-    for (Eigen::Index t = 0; t < frames; ++t) {
-        int left = 0, right = 0;
-        for (Eigen::Index i = 0; i < n; ++i) {
-            const VecX& d = lead[static_cast<std::size_t>(i)];
-            const auto f = std::clamp<Eigen::Index>(static_cast<Eigen::Index>(std::lround(aligned.warps(t, i))), 0, d.size() - 1);
-            if (d[f] > level_cm) ++left;
-            else if (d[f] < -level_cm) ++right;
-        }
-        if (left + right > 0) share[t] = static_cast<double>(std::max(left, right)) / static_cast<double>(left + right);
-    }
-    return share;
-}
-
 }  // namespace mocapdb

@@ -48,7 +48,12 @@ void collect_samples(const std::vector<std::string>& clip_ids, const ClipLoader&
                      std::vector<std::string>* out_skipped) {
     std::uint64_t done = 0;
     for (const std::string& id : clip_ids) {
-        const Clip clip = load(id);
+        Clip clip = load(id);
+        std::vector<DropoutRun> dropouts;
+        if (options.repair_dropouts) {
+            dropouts = detect_dropouts(clip, options.dropout);
+            repair_dropouts(clip, dropouts);
+        }
         std::vector<SampleRef> samples;
         switch (segmentation) {
             case Segmentation::Auto:  // resolved by the caller
@@ -59,6 +64,8 @@ void collect_samples(const std::vector<std::string>& clip_ids, const ClipLoader&
                 break;
         }
         if (samples.empty() && out_skipped) out_skipped->push_back(id);
+        if (!samples.empty())
+            for (RepairedFrames& r : repair_records(id, dropouts)) set.repairs.push_back(std::move(r));
         for (const SampleRef& s : samples) {
             try {
                 rows.push_back(extract_parameters(clip, s.begin, s.end, options.extractors));
@@ -83,6 +90,7 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
         for (const std::string& n : e.names()) set.parameter_names.push_back(n);
         for (const std::string& u : e.units()) set.parameter_units.push_back(u);
     }
+    set.dropouts_checked = options.repair_dropouts;
     std::vector<VecX> rows;
     Segmentation used = options.segmentation;
     if (used == Segmentation::Auto) {
@@ -105,6 +113,7 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
         }
         if (used == Segmentation::WholeClips) {
             set.samples.clear();
+            set.repairs.clear();
             rows.clear();
             collect_samples(clip_ids, load, options, used, set, rows, nullptr);
         }
@@ -124,6 +133,18 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
             set.parameter_source += (k ? "," : "") + options.extractors[k].spec();
     }
     return set;
+}
+
+Clip sample_frames(const MotionSet& set, std::size_t index, const Clip& clip) {
+    if (index >= set.samples.size())
+        throw InvalidArgument("motion set '" + set.name + "': sample " + std::to_string(index) + " out of range (" +
+                              std::to_string(set.samples.size()) + " samples)");
+    const SampleRef& s = set.samples[index];
+    if (s.end > clip.frame_count() || s.begin >= s.end)
+        throw InvalidArgument("motion set '" + set.name + "': sample " + std::to_string(index) + " (" + s.clip +
+                              " frames [" + std::to_string(s.begin) + ", " + std::to_string(s.end) +
+                              ")) lies beyond the clip's " + std::to_string(clip.frame_count()) + " frames");
+    return slice(with_repairs(clip, s.clip, set.repairs), s.begin, s.end);
 }
 
 std::string sample_label(const SampleRef& sample, std::size_t clip_frames) {

@@ -5,6 +5,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/alignment.hpp"
+#include "mocapdb/dataset/dropout_repair.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/io/clip_file.hpp"
 
@@ -35,12 +36,17 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
         for (const std::string& n : e.names()) out.set.parameter_names.push_back(n);
         for (const std::string& u : e.units()) out.set.parameter_units.push_back(u);
     }
+    out.set.dropouts_checked = true;
     out.set.parameter_source = "extract:";
     for (std::size_t k = 0; k < spec.extractors.size(); ++k) out.set.parameter_source += (k ? "," : "") + spec.extractors[k];
     std::vector<VecX> rows;
     for (const std::string& id : spec.clips) {
         const std::filesystem::path path = cmu_dir / (id + ".amc");
-        const Clip clip = read_clip(path);
+        Clip clip = read_clip(path);
+        // Solver dropouts repaired before segmentation and measurement, as set building does; the
+        // runs are kept in set.repairs so that reports can name them.
+        const std::vector<DropoutRun> dropouts = detect_dropouts(clip);
+        repair_dropouts(clip, dropouts);
         if (!out.skeleton) {
             out.skeleton = clip.skeleton;
             out.frame_rate = clip.frame_rate;
@@ -61,6 +67,7 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
             continue;
         }
         out.clip_ids.push_back(id);
+        for (RepairedFrames& r : repair_records(id, dropouts)) out.set.repairs.push_back(std::move(r));
         for (const SampleRef& r : refs) {
             rows.push_back(extract_parameters(clip, r.begin, r.end, out.extractors));
             Clip s = slice(clip, r.begin, r.end);
@@ -80,6 +87,11 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
     AlignOptions ao;
     ao.method = "dtw";
     ao.frames = spec.frames;
+    // The first frame's heading, not the travel frame (align's default): with travel-framed walks the
+    // per-pose kriging no longer reproduces a training sample exactly (1.6 cm at 16_15 in
+    // test_eval_blocks), a fragility of its per-frame kernels (issue #15 item 4) to fix before the
+    // evaluation switches.
+    ao.canonical = "first-frame";
     out.aligned = align_samples(out.samples, ao);
     return out;
 }
@@ -105,6 +117,8 @@ EvalSet subset(const EvalSet& set, const std::vector<Eigen::Index>& keep) {
     out.set.parameter_names = set.set.parameter_names;
     out.set.parameter_units = set.set.parameter_units;
     out.set.parameter_source = set.set.parameter_source;
+    out.set.dropouts_checked = set.set.dropouts_checked;
+    out.set.repairs = set.set.repairs;  // samples keep their repaired frames
     const Eigen::Index m = static_cast<Eigen::Index>(keep.size());
     out.set.parameters.resize(m, set.set.parameters.cols());
     const AlignedSet& a = set.aligned;

@@ -194,6 +194,13 @@ void DatabaseWriter::put_set(const MotionSet& set, bool replace) {
                                   clip->skeleton + "', whose structure differs from sample 0's '" + skeleton +
                                   "' (a set's samples share one skeleton structure)");
     }
+    for (const RepairedFrames& r : set.repairs) {
+        const auto clip = s.view.find_clip(r.clip);
+        if (!clip || r.begin >= r.end || r.end > clip->frames)
+            throw InvalidArgument(who + ": a repair record names frames [" + std::to_string(r.begin) + ", " +
+                                  std::to_string(r.end) + ") of clip '" + r.clip + "', which " +
+                                  (clip ? "has " + std::to_string(clip->frames) + " frames" : std::string("is not stored")));
+    }
     const std::string g = store::set_path(set.name);
     if (f.exists(g)) {
         if (!replace) throw InvalidArgument(who + " already exists (replace it explicitly)");

@@ -19,6 +19,7 @@ inline std::string skeleton_path(const std::string& id) { return kSkeletons + "/
 inline std::string clip_path(const std::string& id) { return kClips + "/" + id; }
 inline std::string set_path(const std::string& name) { return kSets + "/" + name; }
 inline std::string aligned_path(const std::string& set) { return set_path(set) + "/aligned"; }
+inline std::string repairs_path(const std::string& set) { return set_path(set) + "/repairs"; }
 inline std::string packed_group_path(const std::string& group) { return kPacked + "/" + group; }
 inline std::string model_path(const std::string& set) { return set_path(set) + "/model"; }
 inline std::string kernel_path(const std::string& set) { return model_path(set) + "/kernel"; }

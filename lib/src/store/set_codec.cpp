@@ -51,6 +51,26 @@ void write_set(h5::File& file, const MotionSet& set) {
     const std::vector<double> parameters = to_c_order(set.parameters);
     file.write_array(g + "/parameters", parameters.data(), {n, static_cast<std::uint64_t>(set.parameters.cols())},
                      {"sample", "parameter"}, "parameter_unit");
+    if (set.dropouts_checked) {
+        // The dropout check's outcome (format-v3.md §6.1); the datasets only when something was repaired.
+        const std::string r = repairs_path(set.name);
+        file.create_group(r, "dropout_repairs");
+        file.write_int_attribute(r, "runs", static_cast<std::int64_t>(set.repairs.size()));
+        if (!set.repairs.empty()) {
+            std::vector<std::string> clip, joint;
+            std::vector<std::int64_t> range;
+            for (const RepairedFrames& x : set.repairs) {
+                clip.push_back(x.clip);
+                joint.push_back(x.joint);
+                range.push_back(static_cast<std::int64_t>(x.begin));
+                range.push_back(static_cast<std::int64_t>(x.end));
+            }
+            file.write_strings(r + "/clip", clip, "run", "");
+            file.write_strings(r + "/joint", joint, "run", "");
+            file.write_array(r + "/frames", range.data(), {static_cast<std::uint64_t>(set.repairs.size()), 2},
+                             {"run", "range"}, "frame");
+        }
+    }
 }
 
 MotionSet read_set(const h5::File& file, const std::string& name) {
@@ -80,6 +100,31 @@ MotionSet read_set(const h5::File& file, const std::string& name) {
     expect_shape(file, g + "/parameters", {n, p}, "(samples by parameters)", params.shape);
     expect_finite(file, g + "/parameters", params.data);
     set.parameters = from_c_order(params.data, static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(p));
+    // Sets stored before the dropout check have no repairs group: taken as stored, unrepaired.
+    const std::string r = repairs_path(name);
+    if (file.type_of(r) == h5::ObjectType::Group) {
+        set.dropouts_checked = true;
+        const std::int64_t runs = file.read_int_attribute(r, "runs");
+        if (runs < 0) throw StoreError(file.name(), r, "attribute 'runs': expected >= 0, found " + std::to_string(runs));
+        if (runs > 0) {
+            const auto clip = file.read_strings(r + "/clip");
+            const auto joint = file.read_strings(r + "/joint");
+            const auto range = file.read_array<std::int64_t>(r + "/frames", 2);
+            const auto count = static_cast<std::uint64_t>(runs);
+            const std::string why = "(attribute 'runs' = " + std::to_string(runs) + ")";
+            if (clip.size() != count) shape_error(file, r + "/clip", {count}, why, {clip.size()});
+            if (joint.size() != count) shape_error(file, r + "/joint", {count}, why, {joint.size()});
+            expect_shape(file, r + "/frames", {count, 2}, why, range.shape);
+            for (std::size_t i = 0; i < count; ++i) {
+                const std::int64_t b = range.data[2 * i], e = range.data[2 * i + 1];
+                if (b < 0 || e <= b)
+                    throw StoreError(file.name(), r + "/frames",
+                                     "run " + std::to_string(i) + ": expected 0 <= begin < end, found [" +
+                                         std::to_string(b) + ", " + std::to_string(e) + ")");
+                set.repairs.push_back({clip[i], joint[i], static_cast<std::size_t>(b), static_cast<std::size_t>(e)});
+            }
+        }
+    }
     return set;
 }
 

@@ -6,6 +6,7 @@
 
 #include "mocapdb/core/progress.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
+#include "mocapdb/dataset/travel_frame.hpp"
 #include "mocapdb/motion/clip.hpp"
 
 namespace mocapdb {
@@ -20,6 +21,11 @@ struct AlignOptions {
     std::optional<std::size_t> reference;
     /// DTW band: a path may stray this fraction of the length from the diagonal.
     double band = 0.5;
+    /// How each sample is turned into its canonical frame: "travel" (its initial direction of
+    /// travel along +Z, the first frame's heading for samples that do not travel; travel_frame.hpp)
+    /// or "first-frame" (the first frame's heading, canonicalization_of).
+    std::string canonical = "travel";
+    TravelFrameOptions travel;
     /// Called as samples are done: done counts warps found (one per sample) then pose tensors filled
     /// (one per sample), total = 2 N; item = "warp" or "poses". May be empty.
     ProgressCallback progress;
@@ -29,7 +35,7 @@ struct AlignOptions {
 /// tensor. dtw: each sample is warped onto the reference with the pose distance of
 /// pose_distance.hpp; the reference timeline is resampled uniformly to T frames. linear: every
 /// sample is resampled uniformly to T frames. Pose vectors are interpolated linearly at the warped
-/// (fractional) frames; each sample is canonicalized by its own first frame, and exp-map branches are
+/// (fractional) frames; each sample is canonicalized by itself (options.canonical), and exp-map branches are
 /// chosen nearest the reference's first pose so they agree across samples. mean/scale are the
 /// per-dof mean and standard deviation over all frames and samples (scale 1 where a dof is constant).
 AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& options = {});

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "mocapdb/core/types.hpp"
-#include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 
 namespace mocapdb {
@@ -26,15 +25,5 @@ VecX forward_foot_separation(const Clip& clip, const std::vector<std::string>& f
 /// least half as fast as at the confirmed passes. No passes when the feet never swing apart by more
 /// than min_swing_cm (standing, jumping with the feet together).
 std::vector<std::size_t> left_foot_passes(const VecX& separation, double min_swing_cm = 5.0);
-
-/// The phase check of an aligned set: per aligned frame (T), the share of samples that have the same
-/// foot ahead as most of them, counting only samples whose feet are more than `level_cm` apart
-/// along the heading there (1 when none is). Near 1 everywhere when the samples are at one phase at
-/// every aligned frame; about 0.5 where left-foot-forward poses meet right-foot-forward ones.
-/// `samples` as given to align_samples (N clips); feet as in forward_foot_separation. Empty when in
-/// no sample each foot leads by more than 20 cm at some frame (not locomotion), or no foot pair is
-/// found by name.
-VecX forward_foot_agreement(const std::vector<Clip>& samples, const AlignedSet& aligned,
-                            const std::vector<std::string>& feet = {}, double level_cm = 5.0);
 
 }  // namespace mocapdb

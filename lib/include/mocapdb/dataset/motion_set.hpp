@@ -16,6 +16,15 @@ struct SampleRef {
     std::size_t frame_count() const noexcept { return end - begin; }
 };
 
+/// Frames of a stored clip whose joint was repaired when the set's samples were taken from it (a
+/// solver dropout, see dropout_repair.hpp): joint `joint` at clip frames [begin, end).
+struct RepairedFrames {
+    std::string clip;
+    std::string joint;
+    std::size_t begin = 0;
+    std::size_t end = 0;
+};
+
 struct MotionSet {
     std::string name;
     std::vector<SampleRef> samples;                 ///< N samples
@@ -23,6 +32,12 @@ struct MotionSet {
     std::vector<std::string> parameter_units;       ///< P units ("cm", "rad", "cm/s", "" ...)
     MatX parameters;                                ///< N by P control parameters
     std::string parameter_source;                   ///< how they were obtained ("csv:FILE", "extract:...")
+    /// True when the clips were checked for dropouts as the set was built (sets stored before that
+    /// check existed read as false and are taken as stored, unrepaired).
+    bool dropouts_checked = false;
+    /// The repaired runs of the set's clips (with dropouts_checked; clip order, then joint, frame).
+    /// Samples are the clips' frames with these repairs applied (with_repairs, dropout_repair.hpp).
+    std::vector<RepairedFrames> repairs;
 };
 
 /// Throws InvalidArgument unless: a non-empty name, at least one sample, every sample has at least

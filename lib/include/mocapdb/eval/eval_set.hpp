@@ -47,8 +47,8 @@ struct EvalSet {
     Eigen::Index size() const { return static_cast<Eigen::Index>(samples.size()); }
 };
 
-/// Reads the clips from `cmu_dir` (NN_MM.amc with NN.asf beside it), builds samples and parameters and
-/// aligns them (dtw, reference = median-length sample). Throws IoError / ParseError for unreadable
+/// Reads the clips from `cmu_dir` (NN_MM.amc with NN.asf beside it), repairs their solver dropouts
+/// (dropout_repair.hpp; recorded in set.repairs), builds samples and parameters and aligns them (dtw, reference = median-length sample). Throws IoError / ParseError for unreadable
 /// files, InvalidArgument for incompatible skeletons, undefined parameters or fewer than 3 samples.
 EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu_dir);
 
