@@ -102,6 +102,10 @@ DemoRun run_demo(const std::filesystem::path& out, const std::string& arguments,
     }
     REQUIRE(outside >= 0.0);  // the demo always synthesizes one motion outside the samples
     if (rho_order) CHECK(worst_inside > outside);
+    // Issue #15: the request outside the samples (one sampled range beyond them: 2.8 standard
+    // deviations for 5 evenly spaced values, more for fewer) is flagged: rho <= 0.5 and a warning on the synthesis line.
+    CHECK(outside <= 0.5);
+    CHECK_THAT(r.out, Contains("warning: reliability below 0.5"));
     return d;
 }
 
@@ -110,10 +114,9 @@ DemoRun run_demo(const std::filesystem::path& out, const std::string& arguments,
 TEST_CASE("demo: procedural reaches, through the whole pipeline", "[cli][demo]") {
     TempDir dir("demo-cli");
     const std::filesystem::path out = dir / "out";
-    // No rho ordering here: on the reach grid the kernel's leave-one-out picks p = 2 and the fitted range
-    // is about four times the samples' spread, so rho stays at 1 (to 1e-5) well beyond the samples; the
-    // walks below and the CMU walks show the ordering.
-    const DemoRun d = run_demo(out, "--quick", false);
+    // rho falls outside the samples here too (it used to stay at 1: a p = 2 variogram of the raw values with
+    // a range four times the samples' spread; issue #15).
+    const DemoRun d = run_demo(out, "--quick");
     CHECK(d.report["mode"].text == "procedural-reach");
     CHECK(std::filesystem::exists(out / "samples" / "params.csv"));
     const Json& params = d.report["set"]["parameters"];
