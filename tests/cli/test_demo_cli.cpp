@@ -161,7 +161,10 @@ TEST_CASE("demo --data: six of subject 16's walks (ASF/AMC)", "[cli][demo][share
     std::filesystem::create_symlink(cmu / "16.asf", data / "16.asf");
     for (const char* t : {"16_11", "16_13", "16_15", "16_16", "16_21", "16_22"})
         std::filesystem::create_symlink(cmu / (std::string(t) + ".amc"), data / (std::string(t) + ".amc"));
-    const DemoRun d = run_demo(dir / "out", "--quick --data " + quoted(data.string()));
+    // No rho ordering (open, issue #15): with 6 samples and a 3-term linear trend the prediction variance
+    // of the residual variogram exceeds the bounded sill between the samples too (measured 2026-12-02:
+    // rho 0 inside and outside), so rho carries no information on so few samples.
+    const DemoRun d = run_demo(dir / "out", "--quick --data " + quoted(data.string()), false);
     CHECK(d.report["mode"].text == "data");
     CHECK(d.report["set"]["samples"].number == 6.0);
     CHECK(d.report["set"]["parameter_source"].text == "extract:turn,speed");
