@@ -108,7 +108,9 @@ TEST_CASE("synth between the samples: the BVH's measured turn and speed match th
         const double e_turn = std::abs(m(0) - c(0)), e_speed = std::abs(m(1) - c(1));
         INFO("target turn " << c(0) << " rad, speed " << c(1) << " cm/s; measured " << m(0) << ", " << m(1));
         CHECK(e_turn <= 0.02);            // rad (1.1 degrees)
-        CHECK(e_speed <= 0.05 * c(1));    // 5 % of the speed
+        // 10 % of the speed (measured 2026-12-02 with the residual variogram and filtered kriging of issue
+        // #15: mean 3.4 %, max 7.8 %; before, exact interpolation of a raw-value variogram: max under 5 %).
+        CHECK(e_speed <= 0.10 * c(1));
         // The paper's separate timing kernel, for the record (not asserted).
         const std::string out_s = (w.dir->path() / ("separate_" + std::to_string(i) + ".bvh")).string();
         const CommandResult rs = run_cli("synth " + w.db + " --set walks --param " + csv_of(c) + " -o " + quoted(out_s) +
@@ -166,18 +168,22 @@ TEST_CASE("query prints a synthesized pose; at a sample it is the sample's pose"
     const Database db(w.path);
     const MatX p = db.load_set("walks").parameters;
     const AlignedSet aligned = *db.load_aligned("walks");
-    // The naive model interpolates the aligned tensor exactly at a sample.
+    // The naive model at a sample: filtered kriging (issue #15) treats the walks' nugget (about a fifth of
+    // the total sill here: dropout glitches and gait-phase scatter) as noise, so the pose is near the
+    // sample's, not equal to it, and rho is below 1 (1 - nugget share at most). Measured 2026-12-02:
+    // rho 0.80, largest pose-vector difference 24 (cm, the root's position; radians elsewhere).
     CommandResult r = run_cli("query " + w.db + " --set walks --param " + csv_of(p.row(4).transpose()) +
                               " --frame 10 --naive --json");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     Json j = parse_json(r.out);
-    CHECK(j["reliability"].number == Approx(1.0).margin(1e-9));
+    CHECK(j["reliability"].number > 0.5);
+    CHECK(j["reliability"].number < 1.0);
     REQUIRE(static_cast<Eigen::Index>(j["pose_vector"].items.size()) == aligned.dofs());
     double worst = 0.0;
     for (Eigen::Index k = 0; k < aligned.dofs(); ++k)
         worst = std::max(worst, std::abs(j["pose_vector"][static_cast<std::size_t>(k)].number - aligned.tensor(k, 10, 4)));
-    CHECK(worst < 1e-7);
+    CHECK(worst < 40.0);
     CHECK(j["channels"].items.size() > 10);
 
     r = run_cli("query " + w.db + " --set walks --param " + csv_of(p.colwise().mean().transpose()) +
@@ -238,9 +244,10 @@ TEST_CASE("reliability map: SVG with samples marked, CSV of the grid", "[cli][sy
 TEST_CASE("reduce reports the greedy reduction and --apply stores an aligned reduced set", "[cli][synthesis][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
     const WalkDb& w = walk_db();
-    // tau 0.7: the walks' kernel has a nugget (about a tenth of the sill), so leave-one-out reliabilities
-    // stay below ~0.85 and the paper's 0.85 removes nothing here.
-    CommandResult r = run_cli("reduce " + w.db + " --set walks --tau 0.7 --json");
+    // tau 0.3: the walks' residual variogram has a large nugget (about a fifth of the total sill) and a
+    // range bounded by the largest lag, so leave-one-out reliabilities stay below ~0.4 (measured
+    // 2026-12-02: 0.37 at most) and the paper's 0.85 removes nothing here.
+    CommandResult r = run_cli("reduce " + w.db + " --set walks --tau 0.3 --json");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     const Json j = parse_json(r.out);
@@ -248,10 +255,10 @@ TEST_CASE("reduce reports the greedy reduction and --apply stores an aligned red
     CHECK(kept + j["removed"].items.size() == 25);
     CHECK(!j["removed"].items.empty());
     CHECK(kept >= 4);
-    for (const Json& e : j["removed"].items) CHECK(e["reliability"].number >= 0.7);
-    if (j["stopped_on_threshold"].boolean) CHECK(j["max_reliability"].items.back().number < 0.7);
+    for (const Json& e : j["removed"].items) CHECK(e["reliability"].number >= 0.3);
+    if (j["stopped_on_threshold"].boolean) CHECK(j["max_reliability"].items.back().number < 0.3);
 
-    r = run_cli("reduce " + w.db + " --set walks --tau 0.7 --apply --name small");
+    r = run_cli("reduce " + w.db + " --set walks --tau 0.3 --apply --name small");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     CHECK_THAT(r.out, Contains("'small' stored and aligned"));
@@ -268,7 +275,7 @@ TEST_CASE("reduce reports the greedy reduction and --apply stores an aligned red
     CHECK(r.exit_code == 0);
     CHECK(db.load_set("small").parameter_source == db.load_set("walks").parameter_source);
     // Existing name without --force.
-    r = run_cli("reduce " + w.db + " --set walks --tau 0.7 --apply --name small");
+    r = run_cli("reduce " + w.db + " --set walks --tau 0.3 --apply --name small");
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Contains("exists"));
 }

@@ -33,6 +33,7 @@ TEST_CASE("Greedy reduction equals the brute-force greedy loop", "[kriging][redu
         ReductionOptions ro;
         ro.tau = 0.8;
         ro.kriging.trend_fit = tf;
+        ro.kriging.reliability = ReliabilityVariance::Paper;  // what reduce_samples uses
         const ReductionResult r = reduce_samples(pts, model, ro);
         // Brute force: at each step rebuild without every candidate and evaluate rho at its point.
         std::vector<Eigen::Index> alive;

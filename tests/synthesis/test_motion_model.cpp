@@ -69,6 +69,14 @@ const Walks& walks() {
 
 tensor::Ranks full_ranks(const AlignedSet& a) { return {a.dofs(), a.frames(), a.samples()}; }
 
+// Exact interpolation (the nugget a jump at the samples, not noise): the algebra these tests pin.
+// The default filters the nugget (test_continuity.cpp).
+SynthesisOptions exact_options() {
+    SynthesisOptions o;
+    o.kriging.filter_nugget = false;
+    return o;
+}
+
 double relative(const VecX& a, const VecX& b) { return (a - b).norm() / std::max(b.norm(), 1e-300); }
 
 VecX pose_of(const Tensor3& t, Eigen::Index frame, Eigen::Index sample) {
@@ -105,7 +113,7 @@ TEST_CASE("synthesis at a sample's parameters reproduces the model's reconstruct
     const Eigen::Index n = w.aligned.samples(), t_count = w.aligned.frames();
     const compression::SetModel sm =
         compression::fit_set_model(w.aligned.tensor, w.weight, {20, 8, n - 2}, tensor::TuckerMethod::Hosvd);
-    SynthesisOptions options;
+    SynthesisOptions options = exact_options();
     options.levels = {{10, 4, 5}};
     const MotionModel model(sm, w.aligned, w.set, w.skeleton, 120.0, options);
     REQUIRE(model.coefficient_size() == n - 2);
@@ -144,8 +152,8 @@ TEST_CASE("at full ranks the synthesis reproduces the aligned samples and agrees
     const Eigen::Index n = w.aligned.samples(), t_count = w.aligned.frames();
     const compression::SetModel sm =
         compression::fit_set_model(w.aligned.tensor, w.weight, full_ranks(w.aligned), tensor::TuckerMethod::Hosvd);
-    const MotionModel model(sm, w.aligned, w.set, w.skeleton, 120.0);
-    const NaiveMotionModel naive(w.aligned, w.set, w.skeleton, 120.0, w.weight);
+    const MotionModel model(sm, w.aligned, w.set, w.skeleton, 120.0, exact_options());
+    const NaiveMotionModel naive(w.aligned, w.set, w.skeleton, 120.0, w.weight, exact_options());
     CHECK(std::string(naive.kind()) == "naive");
     CHECK(model.report().model.paper_p() == naive.report().model.paper_p());
 
@@ -219,7 +227,7 @@ TEST_CASE("synthesized poses vary smoothly with the control parameters", "[synth
 TEST_CASE("reliability is 1 at the samples and falls off away from them", "[synthesis][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const Walks& w = walks();
-    const NaiveMotionModel model(w.aligned, w.set, w.skeleton, 120.0, w.weight);
+    const NaiveMotionModel model(w.aligned, w.set, w.skeleton, 120.0, w.weight, exact_options());
     const VecX at_samples = model.reliability_batch(w.set.parameters);
     CHECK((at_samples.array() - 1.0).abs().maxCoeff() < 1e-9);
     const MatX mid = between_samples(w.set.parameters);
@@ -352,7 +360,7 @@ TEST_CASE("synthesis models reject bad queries and inputs", "[synthesis][shared]
 TEST_CASE("timing kernels: the separate kernel interpolates too; the shared one keeps the speed", "[synthesis][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const Walks& w = walks();
-    SynthesisOptions separate;
+    SynthesisOptions separate = exact_options();
     separate.timing_kernel = SynthesisOptions::TimingKernel::Separate;
     const NaiveMotionModel a(w.aligned, w.set, w.skeleton, 120.0, w.weight, separate);
     const NaiveMotionModel b(w.aligned, w.set, w.skeleton, 120.0, w.weight);
@@ -383,7 +391,10 @@ TEST_CASE("timing kernels: the separate kernel interpolates too; the shared one 
 #ifdef MOCAPDB_SANITIZED_BUILD
     CHECK(worst[1] <= 0.2);  // 8 walks at 16 aligned frames: a coarse timeline
 #else
-    CHECK(worst[1] <= 0.08);
+    // Measured 2026-12-02: shared mean 2.0 %, max 10.3 % (separate 2.4 %, 9.1 %) with the residual variogram
+    // of issue #15; before it (raw-value variogram, exponents down to 0.2) mean 2.4 %, max 5.9 %.
+    CHECK(err[1] <= 0.03);
+    CHECK(worst[1] <= 0.12);
 #endif
     CHECK(turn_worst <= 0.05);
 }
@@ -395,7 +406,7 @@ TEST_CASE("folded coefficients equal the blend of the kriging weights", "[synthe
     const compression::SetModel sm =
         compression::fit_set_model(w.aligned.tensor, w.weight, {20, 8, n - 2}, tensor::TuckerMethod::Hosvd);
     for (const double p : {0.0, 1.0, 1.4, 2.0}) {
-        SynthesisOptions options;
+        SynthesisOptions options = exact_options();
         options.exponent = p;
         const MotionModel model(sm, w.aligned, w.set, w.skeleton, 120.0, options);
         const MatX& u_sample = model.set_model().tucker.U[2];  // N by R3

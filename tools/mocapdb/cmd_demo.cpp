@@ -387,7 +387,9 @@ void run_demo(const DemoArgs& a) {
                     s.measured.size() == s.outcome.requested.size() ? values_text(s.measured, units).c_str() : "-");
         std::printf("%-20s rho %.4f, %zu frames (%.2f s), synthesized in %.4f s; %s%s\n", "", s.outcome.reliability,
                     s.outcome.clip.frame_count(), s.outcome.clip.duration(), s.outcome.seconds, s.label.c_str(),
-                    s.outcome.reliability < 0.5 ? " (low reliability: far from the samples)" : "");
+                    s.outcome.reliability < kLowReliability
+                        ? "\n                     warning: reliability below 0.5: far from the samples, extrapolated"
+                        : "");
         results.push_back(std::move(s));
     }
 

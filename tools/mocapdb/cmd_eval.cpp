@@ -181,6 +181,7 @@ std::vector<eval::MethodSpec> methods_for(const eval::EvalSet& set, const Plan& 
     m.push_back({MethodKind::NaiveKriging, "naive kriging", {0, 0, 0}, {}});
     m.push_back({MethodKind::Rbf, "rbf", {0, 0, 0}, {}});
     m.push_back({MethodKind::NearestNeighbour, "nn-blend k=3", {0, 0, 0}, {}});
+    m.push_back({MethodKind::TrendOnly, "trend only", {0, 0, 0}, {}});
     return m;
 }
 

@@ -34,6 +34,8 @@ void run_query(const QueryArgs& a) {
     const VecX pose = model->pose(c, a.frame, level);
     const double rho = model->reliability(c);
     const Skeleton& sk = *model->skeleton();
+    const std::vector<std::string> warnings = synthesis_warnings(*model, rho);
+    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
     JsonWriter j;
     j.begin_object();
@@ -41,6 +43,9 @@ void run_query(const QueryArgs& a) {
     j.key("model").value(model->kind());
     j.key("frame").value(a.frame);
     j.key("reliability").value(rho);
+    j.key("warnings").begin_array();
+    for (const std::string& w : warnings) j.value(w);
+    j.end_array();
     if (a.joints) {
         const MatX p = eval::pose_joint_positions(sk, pose);
         j.key("unit").value("cm");

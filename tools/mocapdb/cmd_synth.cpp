@@ -44,6 +44,8 @@ void run_synth(const SynthArgs& a) {
     const double rho = o.reliability;
     const double synth_s = o.seconds;
     const tensor::Ranks ranks = model->level_ranks(level);
+    const std::vector<std::string> warnings = synthesis_warnings(*model, rho);
+    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     if (a.json) {
         JsonWriter j;
         j.begin_object();
@@ -63,6 +65,9 @@ void run_synth(const SynthArgs& a) {
         }
         j.end_array();
         j.key("reliability").value(rho);
+        j.key("warnings").begin_array();
+        for (const std::string& w : warnings) j.value(w);
+        j.end_array();
         j.key("frames").value(static_cast<long long>(clip.frame_count()));
         j.key("frame_rate").value(clip.frame_rate);
         j.key("duration_s").value(clip.duration());
@@ -92,8 +97,6 @@ void run_synth(const SynthArgs& a) {
         std::printf("\n");
     }
     std::printf("  time: load + precompute %.3f s, synthesis %.4f s\n", load_s, synth_s);
-    if (rho < 0.5)
-        std::printf("  note: reliability below 0.5: the parameters are far from the samples (see mocapdb reliability)\n");
 }
 
 }  // namespace

@@ -402,6 +402,11 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
         kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
     o.kernel_stored = kernel.has_value();
     o.kernel_s = seconds_since(kernel_start);
+    if (kernel) {
+        o.kernel_variogram = kernel->variogram.to_string();
+        o.kernel_status = kriging::to_string(kernel->status);
+        o.kernel_warning = synthesis::fit_status_warning(*kernel);
+    }
 
     const ModelFigures figures{o.stats.dof_rmse, o.stats.rmse_cm, o.stats.mean_cm, o.stats.max_cm, o.stats.p99_cm};
     DatabaseWriter writer(db, DatabaseWriter::Mode::OpenOrCreate);
@@ -436,7 +441,10 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                   static_cast<long long>(o.stats.worst.sample), static_cast<long long>(o.stats.worst.frame),
                   o.stats.worst.joint.c_str(), o.search_s, o.fit_s, o.kernel_s,
                   o.kernel_stored ? "" : " (not stored: more than 1000 samples; synth fits it at load)", o.us_per_pose, o.total_s);
-    return buffer;
+    std::string text = buffer;
+    if (o.kernel_stored) text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status + ")\n";
+    if (!o.kernel_warning.empty()) text += "  warning: " + o.kernel_warning + "\n";
+    return text;
 }
 
 void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
@@ -463,6 +471,10 @@ void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
     j.key("precompute_s").value(o.fit_s);
     j.key("kernel_s").value(o.kernel_s);
     j.key("kernel_stored").value(o.kernel_stored);
+    if (o.kernel_stored) {
+        j.key("kernel_variogram").value(o.kernel_variogram);
+        j.key("kernel_status").value(o.kernel_status);
+    }
     j.key("us_per_pose").value(o.us_per_pose);
     j.key("total_s").value(o.total_s);
 }

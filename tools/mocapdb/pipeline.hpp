@@ -125,6 +125,9 @@ struct CompressOutcome {
     double search_s = 0.0, fit_s = 0.0, total_s = 0.0;
     double kernel_s = 0.0;  ///< fitting the synthesis kernel's variogram stored with the model
     bool kernel_stored = false;  ///< false above synthesis::kStoredKernelMaxSamples samples
+    std::string kernel_variogram;  ///< the stored kernel's variogram (empty when not stored)
+    std::string kernel_status = "ok";  ///< its fit status (kriging::to_string(FitStatus))
+    std::string kernel_warning;    ///< synthesis::fit_status_warning, "" when the fit is clean
 
     double ratio() const { return static_cast<double>(raw_bytes) / static_cast<double>(bytes); }
 };

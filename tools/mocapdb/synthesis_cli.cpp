@@ -1,6 +1,7 @@
 #include "synthesis_cli.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -76,6 +77,30 @@ Eigen::Index parameter_index(const std::vector<std::string>& names, const std::s
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
     throw InvalidArgument(option + ": the set has no parameter '" + name + "' (parameters: " + list + ")");
+}
+
+}  // namespace mocapdb::cli
+
+namespace mocapdb::cli {
+
+std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& model, double rho) {
+    std::vector<std::string> out;
+    if (rho < kLowReliability) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "reliability %.3f < %.1f: the parameters are far from the samples; the motion is extrapolated "
+                      "and may not meet them (see mocapdb reliability)",
+                      rho, kLowReliability);
+        out.emplace_back(buf);
+    }
+    const std::string fit = synthesis::fit_status_warning(model.kernel_fit());
+    if (!fit.empty()) out.push_back(fit);
+    const kriging::KrigingStatus& st = model.report().status;
+    if (st.factorization == kriging::FactorizationStatus::Regularized)
+        out.emplace_back("singular kriging system: the covariance matrix was regularized (eigenvalues clamped)");
+    else if (st.factorization == kriging::FactorizationStatus::Jittered && st.jitter > 1e-8 * model.report().model.total_sill())
+        out.emplace_back("near-singular kriging system: a jitter was added to its diagonal");
+    return out;
 }
 
 }  // namespace mocapdb::cli

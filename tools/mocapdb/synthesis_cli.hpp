@@ -28,6 +28,13 @@ std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& 
                                                                 const std::string& lod,
                                                                 const std::string& timing = "shared");
 
+/// Below this reliability synth and query warn (issue #15): the motion is extrapolated.
+inline constexpr double kLowReliability = 0.5;
+
+/// The warnings a synthesis at reliability rho deserves: rho < kLowReliability, and a coefficient kernel whose
+/// variogram fit or factorization is not clean (fit status, jitter, regularization). One line each.
+std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& model, double rho);
+
 /// Index of a parameter by name (InvalidArgument listing the names otherwise).
 Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name, const std::string& option);
 

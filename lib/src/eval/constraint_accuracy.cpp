@@ -70,6 +70,21 @@ ConstraintResult constraint_accuracy(const EvalSet& set, const std::vector<Metho
     const VecX weight = compression::position_error_weights(*set.skeleton);
     const synthesis::NaiveMotionModel reference(set.aligned, set.set, set.skeleton, set.frame_rate, weight);
     out.reliability = reference.reliability_batch(out.grid);
+    {
+        const Eigen::Index p = set.set.parameters.cols();
+        const VecX lo = set.set.parameters.colwise().minCoeff().transpose();
+        const VecX hi = set.set.parameters.colwise().maxCoeff().transpose();
+        out.outside_3sd.resize(2 * p, p);
+        for (Eigen::Index k = 0; k < p; ++k) {
+            VecX c = 0.5 * (lo + hi);
+            c(k) = hi(k) + 3.0 * scaling.scale(k);
+            out.outside_3sd.row(2 * k) = c.transpose();
+            c(k) = lo(k) - 3.0 * scaling.scale(k);
+            out.outside_3sd.row(2 * k + 1) = c.transpose();
+        }
+        out.rho_outside_3sd = reference.reliability_batch(out.outside_3sd).maxCoeff();
+        out.loo_mean_z2 = reference.report().loo_mean_z2;
+    }
     const Eigen::Index q_count = out.grid.rows();
     SynthesizedMotion motion;
     std::uint64_t done = 0;
@@ -94,13 +109,17 @@ ConstraintResult constraint_accuracy(const EvalSet& set, const std::vector<Metho
                 ++r.failures;
             }
         }
-        for (double t : options.thresholds) r.regions.push_back(region(r, out.grid, out.reliability, t));
-        r.all = region(r, out.grid, out.reliability, -1.0);
+        r.reliability = synth->reliability_batch(out.grid);
+        r.own_reliability = r.reliability.size() == q_count;
+        if (!r.own_reliability) r.reliability = out.reliability;
+        if (r.own_reliability) r.rho_outside_3sd = synth->reliability_batch(out.outside_3sd).maxCoeff();
+        for (double t : options.thresholds) r.regions.push_back(region(r, out.grid, r.reliability, t));
+        r.all = region(r, out.grid, r.reliability, -1.0);
         r.all.threshold = 0.0;
         std::vector<double> rho, err;
         for (Eigen::Index q = 0; q < q_count; ++q)
             if (r.valid[static_cast<std::size_t>(q)]) {
-                rho.push_back(out.reliability(q));
+                rho.push_back(r.reliability(q));
                 err.push_back(r.error(q));
             }
         r.pearson = pearson(Eigen::Map<const VecX>(rho.data(), static_cast<Eigen::Index>(rho.size())),

@@ -11,6 +11,7 @@
 #include "mocapdb/dataset/unwarp.hpp"
 #include "mocapdb/eval/joint_error.hpp"
 #include "mocapdb/kriging/motion_kriging.hpp"
+#include "mocapdb/kriging/trend.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/synthesis/naive_motion_model.hpp"
 
@@ -81,6 +82,33 @@ private:
     kriging::MotionKriging timing_;
 };
 
+// The linear trend alone: one OLS hyperplane per element of the motion rows and of the increments.
+class TrendSynthesizer final : public Synthesizer {
+public:
+    explicit TrendSynthesizer(const EvalSet& s)
+        : clamp_(s.aligned),
+          scaling_(kriging::ControlScaling::from_data(s.set.parameters)),
+          basis_(kriging::TrendBasis::build(scaling_.apply(s.set.parameters), kriging::TrendKind::Linear)),
+          motion_(kriging::fit_trend_ols(basis_, sample_rows(s.aligned)).coefficients),
+          timing_(kriging::fit_trend_ols(basis_, clamp_.increments).coefficients),
+          dofs_(s.aligned.dofs()),
+          frames_(s.aligned.frames()) {}
+    void synthesize(const Eigen::Ref<const VecX>& c, SynthesizedMotion& out) const override {
+        const MatX cn = scaling_.apply(c.transpose());
+        const VecX flat = kriging::evaluate_trend(basis_, motion_, cn).row(0).transpose();
+        out.aligned = Eigen::Map<const MatX>(flat.data(), dofs_, frames_);
+        out.warp = clamp_.warp(kriging::evaluate_trend(basis_, timing_, cn).row(0).transpose());
+    }
+
+private:
+    IncrementClamp clamp_;
+    kriging::ControlScaling scaling_;
+    kriging::TrendBasis basis_;
+    MatX motion_;  // K by D T
+    MatX timing_;  // K by T - 1
+    Eigen::Index dofs_, frames_;
+};
+
 class ModelSynthesizer final : public Synthesizer {
 public:
     explicit ModelSynthesizer(std::unique_ptr<synthesis::SynthesisModel> model) : model_(std::move(model)) {}
@@ -96,6 +124,7 @@ public:
         }
         out.warp = model_->timing(c).warp;
     }
+    VecX reliability_batch(const Eigen::Ref<const MatX>& c) const override { return model_->reliability_batch(c); }
 
 private:
     std::unique_ptr<synthesis::SynthesisModel> model_;
@@ -136,6 +165,7 @@ const char* to_string(MethodKind kind) {
         case MethodKind::NaiveKriging: return "naive kriging";
         case MethodKind::Rbf: return "RBF (Rose et al.)";
         case MethodKind::NearestNeighbour: return "nearest-neighbour blend";
+        case MethodKind::TrendOnly: return "linear trend only";
     }
     return "?";
 }
@@ -199,6 +229,7 @@ std::unique_ptr<Synthesizer> build_synthesizer(const MethodSpec& m, const EvalSe
             break;
         }
         case MethodKind::NearestNeighbour: out = std::make_unique<NeighbourSynthesizer>(m, s); break;
+        case MethodKind::TrendOnly: out = std::make_unique<TrendSynthesizer>(s); break;
     }
     out->build_seconds = seconds_since(start);
     return out;

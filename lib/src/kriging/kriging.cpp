@@ -16,6 +16,8 @@ namespace mocapdb::kriging {
 
 const char* to_string(TrendFit fit) { return fit == TrendFit::OLS ? "ols" : "gls"; }
 
+const char* to_string(ReliabilityVariance v) { return v == ReliabilityVariance::Paper ? "paper" : "prediction"; }
+
 const char* to_string(FactorizationStatus status) {
     switch (status) {
         case FactorizationStatus::Ok: return "ok";
@@ -93,6 +95,8 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
 
     Kriging k;
     k.model_ = model;
+    k.query_model_ = model;
+    if (options.filter_nugget) k.query_model_.nugget = 0.0;
     k.options_ = options;
 
     // Duplicates grouped (merged or kept) and the trend basis over the resulting points.
@@ -191,11 +195,11 @@ void Kriging::weights_from_rhs(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eig
 }
 
 void Kriging::gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const {
-    detail::gamma_vector(points_, model_, c, out);
+    detail::gamma_vector(points_, query_model_, c, out);
 }
 
 void Kriging::gamma_block(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out) const {
-    detail::gamma_block(points_, model_, queries, out);
+    detail::gamma_block(points_, query_model_, queries, out);
 }
 
 void Kriging::solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const Eigen::Ref<const Eigen::MatrixXd>& g,
@@ -328,12 +332,14 @@ KrigingBatch Kriging::estimate_batch(const Eigen::Ref<const Eigen::MatrixXd>& qu
         gamma_block(queries.middleRows(q0, nb), gamma);
         const Eigen::MatrixXd g = basis_.evaluate_batch(queries.middleRows(q0, nb));
         solve_block(gamma, g, kernel, w);
-        if (ols) {
-            // 2 w^T gamma - w^T Gamma w.
+        if (ols || options_.filter_nugget) {
+            // 2 w^T gamma - w^T Gamma w (+ the nugget when gamma is the filtered one: the error variance of
+            // the noise-free signal; valid for any weights that sum to one).
             aux.resize(m, nb);
             aux.noalias() = gamma_ * w;
             out.variance.segment(q0, nb) = 2.0 * (w.array() * gamma.array()).colwise().sum().transpose() -
                                            (w.array() * aux.array()).colwise().sum().transpose();
+            if (options_.filter_nugget) out.variance.segment(q0, nb).array() += model_.nugget;
         } else {
             // sigma^2 = b^T gamma + mu^T g,  mu = S^-1 g - s e1 + V^T gamma.
             aux.resize(kernel_trend_size_, nb);
@@ -352,7 +358,8 @@ KrigingBatch Kriging::estimate_batch(const Eigen::Ref<const Eigen::MatrixXd>& qu
     }
     out.variance = out.variance.cwiseMax(0.0);
     out.paper_variance = out.paper_variance.cwiseMax(0.0);
-    out.reliability = (1.0 - out.paper_variance.array() / model_.total_sill()).cwiseMax(0.0).cwiseMin(1.0).matrix();
+    const Eigen::VectorXd& v = options_.reliability == ReliabilityVariance::Paper ? out.paper_variance : out.variance;
+    out.reliability = (1.0 - v.array() / model_.total_sill()).cwiseMax(0.0).cwiseMin(1.0).matrix();
     return out;
 }
 
@@ -448,8 +455,13 @@ Eigen::VectorXd Kriging::leave_one_out_reliability() const {
     Eigen::VectorXd rho_unique(m);
     for (Eigen::Index u = 0; u < m; ++u) {
         const double dii = kernel_inverse_(u, u);
-        const double gw = gamma_.col(u).dot(kernel_inverse_.col(u));
-        const double sigma2 = dii > 0.0 ? std::max(-gw / dii, 0.0) : model_.total_sill();
+        double sigma2 = model_.total_sill();
+        if (dii > 0.0 && options_.reliability == ReliabilityVariance::Paper) {
+            const double gw = gamma_.col(u).dot(kernel_inverse_.col(u));
+            sigma2 = std::max(-gw / dii, 0.0);
+        } else if (dii > 0.0) {
+            sigma2 = std::max(1.0 / dii - (options_.filter_nugget ? model_.nugget : 0.0), 0.0);
+        }
         rho_unique(u) = std::clamp(1.0 - sigma2 / model_.total_sill(), 0.0, 1.0);
     }
     Eigen::VectorXd rho(n);

@@ -18,7 +18,7 @@ KrigingPredictor KrigingPredictor::build(const Kriging& kriging, const Eigen::Re
     }
     if (!values.allFinite()) throw InvalidArgument("KrigingPredictor::build: values must be finite");
     KrigingPredictor kp;
-    kp.model_ = kriging.model_;
+    kp.model_ = kriging.query_model_;  // the query vectors (filtered: without the nugget)
     kp.basis_ = kriging.basis_;
     kp.points_ = kriging.points_;
     kp.num_samples_ = n;

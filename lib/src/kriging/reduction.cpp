@@ -16,6 +16,7 @@ ReductionResult reduce_samples(const Eigen::Ref<const Eigen::MatrixXd>& coords, 
     if (options.min_samples < 0) throw InvalidArgument("reduce_samples: min_samples must be >= 0");
     KrigingOptions ko = options.kriging;
     ko.duplicates = DuplicatePolicy::Merge;
+    ko.reliability = ReliabilityVariance::Paper;  // the downdates below compute the paper's sigma^2
     const Kriging k = Kriging::build(coords, model, ko);
     ReductionResult out;
     out.status = k.status();

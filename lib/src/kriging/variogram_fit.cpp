@@ -22,6 +22,17 @@ const char* to_string(FitWeighting weighting) {
     return "unknown";
 }
 
+const char* to_string(FitStatus status) {
+    switch (status) {
+        case FitStatus::Ok: return "ok";
+        case FitStatus::RangeAtBound: return "range at bound";
+        case FitStatus::SillAtBound: return "sill at bound";
+        case FitStatus::PureNugget: return "pure nugget";
+        case FitStatus::Degenerate: return "degenerate";
+    }
+    return "unknown";
+}
+
 std::vector<double> paper_exponent_grid() {
     std::vector<double> g;
     for (int k = 0; k <= 10; ++k) g.push_back(0.2 * k);
@@ -84,7 +95,20 @@ struct Problem {
     Eigen::VectorXd fixed_w;  // for the fixed-weight modes
     double floor_value;
     bool fit_nugget;
+    double min_nugget = 0.0;
+    double max_total = 0.0;  // 0: none
     double tau_min, tau_max;
+
+    // Projection of (theta0, theta1) onto the feasible set.
+    Eigen::Vector2d project(double a, double b) const {
+        a = fit_nugget ? std::max(a, min_nugget) : min_nugget;
+        b = std::max(b, 0.0);
+        if (max_total > 0.0) {
+            a = std::min(a, max_total);
+            b = std::min(b, max_total - a);
+        }
+        return {a, b};
+    }
 
     // Residuals r (m) and Jacobian J (m by 3) at x = (theta0, theta1, tau).
     double evaluate(const Eigen::Vector3d& x, Eigen::VectorXd& r, Eigen::MatrixXd* jac) const {
@@ -131,16 +155,25 @@ struct Problem {
             return (w.array() * (bins.y.array() - a - b * f.array()).square()).sum();
         };
         std::vector<Eigen::Vector2d> cands;
-        cands.emplace_back(0.0, 0.0);
-        if (swff > 0.0) cands.emplace_back(0.0, std::max(0.0, swfy / swff));
+        cands.push_back(project(0.0, 0.0));
+        if (swff > 0.0) cands.push_back(project(min_nugget, (swfy - min_nugget * swf) / swff));
         if (fit_nugget) {
-            if (sw > 0.0) cands.emplace_back(std::max(0.0, swy / sw), 0.0);
+            if (sw > 0.0) cands.push_back(project(swy / sw, 0.0));
             const double det = sw * swff - swf * swf;
             if (std::abs(det) > 1e-14 * sw * swff) {
                 const double a = (swff * swy - swf * swfy) / det;
                 const double b = (sw * swfy - swf * swy) / det;
-                if (a >= 0.0 && b >= 0.0) cands.emplace_back(a, b);
+                if (a >= min_nugget && b >= 0.0) cands.push_back(project(a, b));
             }
+        }
+        if (max_total > 0.0) {
+            // On the cap a + b = max_total: one-variable least squares in a.
+            const double den = sw - 2.0 * swf + swff;  // sum w (1 - f)^2
+            if (den > 0.0) {
+                const double a = (swy - swfy - max_total * (swf - swff)) / den;
+                cands.push_back(project(a, max_total - std::max(a, min_nugget)));
+            }
+            cands.push_back(project(min_nugget, max_total));
         }
         Eigen::Vector2d best = cands.front();
         double bc = cost(best(0), best(1));
@@ -155,8 +188,9 @@ struct Problem {
     }
 
     Eigen::Vector3d clip(Eigen::Vector3d x) const {
-        x(0) = fit_nugget ? std::max(x(0), 0.0) : 0.0;
-        x(1) = std::max(x(1), 0.0);
+        const Eigen::Vector2d ab = project(x(0), x(1));
+        x(0) = ab(0);
+        x(1) = ab(1);
         x(2) = std::clamp(x(2), tau_min, tau_max);
         return x;
     }
@@ -177,8 +211,15 @@ struct Problem {
             const double tiny = 1e-12;
             for (int j = 0; j < 3; ++j) {
                 bool at_lower = false, at_upper = false;
-                if (j == 0) at_lower = !fit_nugget || x(0) <= 0.0;
-                if (j == 1) at_lower = x(1) <= 0.0;
+                const bool capped = max_total > 0.0 && x(0) + x(1) >= max_total * (1.0 - 1e-12);
+                if (j == 0) {
+                    at_lower = !fit_nugget || x(0) <= min_nugget;
+                    at_upper = capped;
+                }
+                if (j == 1) {
+                    at_lower = x(1) <= 0.0;
+                    at_upper = capped;
+                }
                 if (j == 2) {
                     at_lower = x(2) <= tau_min + tiny;
                     at_upper = x(2) >= tau_max - tiny;
@@ -267,6 +308,12 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
         throw InvalidArgument("fit_variogram: need 0 < range_min_factor < range_max_factor");
     }
     if (options.max_iterations < 1) throw InvalidArgument("fit_variogram: max_iterations must be >= 1");
+    if (!(options.min_nugget >= 0.0) || !std::isfinite(options.min_nugget) || !(options.max_total_sill >= 0.0) ||
+        !std::isfinite(options.max_total_sill) ||
+        (options.max_total_sill > 0.0 && options.min_nugget >= options.max_total_sill)) {
+        throw InvalidArgument("fit_variogram: need finite min_nugget >= 0, max_total_sill >= 0 and, with a cap, "
+                              "min_nugget < max_total_sill");
+    }
     if (options.weighting == FitWeighting::CressieFixed && !options.start) {
         throw InvalidArgument("fit_variogram: CressieFixed weighting needs options.start (the model the weights come from)");
     }
@@ -278,6 +325,8 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
     pr.p = family == VariogramFamily::Stable ? exponent : 1.0;
     pr.weighting = options.weighting;
     pr.fit_nugget = options.fit_nugget;
+    pr.min_nugget = options.min_nugget;
+    pr.max_total = options.max_total_sill;
     VariogramFit out;
     out.bins_used = static_cast<int>(pr.bins.h.size());
     const double ymax = pr.bins.y.size() > 0 ? pr.bins.y.maxCoeff() : 0.0;
@@ -293,6 +342,7 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
     };
     if (!(ymax > 0.0) || !(href > 0.0)) {
         out.degenerate = true;
+        out.status = FitStatus::Degenerate;
         out.model = make_model(0.0, 0.0, href > 0.0 ? href : 1.0);
         out.converged = true;
         return out;
@@ -361,6 +411,16 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
         }
     }
     out.objective = best_f;
+    const double total = out.model.total_sill();
+    if (!(total > 0.0)) {
+        out.status = FitStatus::Degenerate;
+    } else if (out.model.sill <= 1e-6 * total) {
+        out.status = FitStatus::PureNugget;
+    } else if (pr.max_total > 0.0 && total >= pr.max_total * (1.0 - 1e-6)) {
+        out.status = FitStatus::SillAtBound;
+    } else if (std::log(out.model.range) >= pr.tau_max - 1e-6) {
+        out.status = FitStatus::RangeAtBound;
+    }
     return out;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "mocapdb/compression/set_model.hpp"
@@ -10,6 +11,8 @@
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/kriging/variogram.hpp"
+#include "mocapdb/kriging/kriging.hpp"
+#include "mocapdb/kriging/trend.hpp"
 #include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
 
@@ -52,7 +55,7 @@ std::string model_text(const kriging::VariogramModel& m) {
 }  // namespace
 
 std::string kernel_options_text(const SynthesisOptions& o) {
-    std::string s = "coefficient-kernel-1";
+    std::string s = "coefficient-kernel-2";
     s += ";exponent=" + (o.exponent ? number_text(*o.exponent) : std::string("loo"));
     s += ";scaling=";
     if (o.scaling) {
@@ -70,9 +73,15 @@ std::string kernel_options_text(const SynthesisOptions& o) {
          number_text(f.gamma_floor) + "," + number_text(f.range_min_factor) + "," + number_text(f.range_max_factor) +
          "," + std::to_string(f.max_iterations);
     const kriging::KrigingOptions& k = o.kriging;
+    s += "," + number_text(f.min_nugget) + "," + number_text(f.max_total_sill);
     s += ";kriging=" + std::to_string(static_cast<int>(k.trend)) + "," + std::to_string(static_cast<int>(k.trend_fit)) +
          "," + std::to_string(static_cast<int>(k.duplicates)) + "," + number_text(k.duplicate_tolerance) + "," +
-         number_text(k.min_rcond) + "," + number_text(k.max_jitter) + "," + number_text(k.trend_rank_tolerance);
+         number_text(k.min_rcond) + "," + number_text(k.max_jitter) + "," + number_text(k.trend_rank_tolerance) + "," +
+         (k.filter_nugget ? "1" : "0") + "," + std::to_string(static_cast<int>(k.reliability));
+    s += ";grid=";
+    for (const double p : o.exponent_grid) s += number_text(p) + ",";
+    s += ";bounds=" + number_text(o.max_range_factor) + "," + number_text(o.max_sill_factor) + "," +
+         number_text(o.gaussian_nugget_fraction);
     return s;
 }
 
@@ -96,38 +105,124 @@ MatX core_slice_values(const compression::SetModel& model) {
     return model.tucker.U[2] * c3.transpose();
 }
 
+std::string fit_status_warning(const KernelFit& fit) {
+    switch (fit.status) {
+        case kriging::FitStatus::Ok: return "";
+        case kriging::FitStatus::RangeAtBound:
+            return "variogram range at its bound (the largest lag): the residual variogram has not levelled off "
+                   "within the samples' spread";
+        case kriging::FitStatus::SillAtBound:
+            return "variogram sill at its bound (twice the residual variance): the residual variogram still rises "
+                   "at the largest lag";
+        case kriging::FitStatus::PureNugget:
+            return "pure-nugget variogram: the trend residuals show no spatial correlation (kriging reduces to "
+                   "the linear trend)";
+        case kriging::FitStatus::Degenerate:
+            return "degenerate variogram: the samples do not vary about their trend (placeholder kernel)";
+    }
+    return "";
+}
+
 KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                  const SynthesisOptions& options, const char* where) {
+    if (options.exponent_grid.empty()) throw InvalidArgument(std::string(where) + ": the exponent grid is empty");
+    for (const double p : options.exponent_grid)
+        if (!(p >= 0.0 && p <= 2.0)) throw InvalidArgument(std::string(where) + ": grid exponents must be in [0, 2]");
+    if (!(options.max_range_factor > 0.0) || !(options.max_sill_factor > 0.0) ||
+        !(options.gaussian_nugget_fraction >= 0.0 && options.gaussian_nugget_fraction < 1.0))
+        throw InvalidArgument(std::string(where) + ": need max_range_factor > 0, max_sill_factor > 0 and "
+                              "gaussian_nugget_fraction in [0, 1)");
+    // Residuals of the trend the kriging will remove (gstat: variogram(z ~ x + y)), so that a variogram
+    // rising as h^2 because of the drift is not taken for spatial correlation.
+    const kriging::TrendBasis basis =
+        kriging::TrendBasis::build(xc, options.kriging.trend, options.kriging.trend_rank_tolerance);
+    const MatX residuals = kriging::fit_trend_ols(basis, sample_values).residuals;
+    const Eigen::Index n = xc.rows();
+    const double dof = static_cast<double>(std::max<Eigen::Index>(n - basis.size(), 1));
+    const double residual_variance = residuals.squaredNorm() / dof;
+
     const MatX h = kriging::pairwise_distances(xc);
-    const MatX d = kriging::pairwise_distances(sample_values);
+    const MatX d = kriging::pairwise_distances(residuals);
     const kriging::ExperimentalVariogram ev = kriging::experimental_variogram(h, d, options.variogram);
     const double h_half = std::max(0.5 * h.maxCoeff(), 1e-12);
     KernelFit out;
+    out.residual_variance = residual_variance;
     kriging::VariogramModel model;
-    bool degenerate = !(d.maxCoeff() > 0.0);
+    bool degenerate = !(d.maxCoeff() > 0.0) || !(residual_variance > 0.0);
+    kriging::FitStatus status = kriging::FitStatus::Ok;
+    kriging::VariogramFitOptions fo = options.fit;
+    fo.range_max_factor = std::min(fo.range_max_factor, options.max_range_factor);
+    if (!(fo.range_min_factor < fo.range_max_factor)) fo.range_min_factor = 1e-3 * fo.range_max_factor;
+    fo.max_total_sill = options.max_sill_factor * residual_variance;
+    const auto fit_one = [&](double p) {
+        kriging::VariogramFitOptions f = fo;
+        if (p == 2.0) f.min_nugget = std::max(f.min_nugget, options.gaussian_nugget_fraction * residual_variance);
+        return kriging::fit_variogram(ev, p == 0.0 ? kriging::VariogramFamily::Spherical : kriging::VariogramFamily::Stable,
+                                      p == 0.0 ? 1.0 : p, f);
+    };
     if (!degenerate) {
         if (options.exponent) {
             const double p = *options.exponent;
             if (!(p >= 0.0 && p <= 2.0)) throw InvalidArgument(std::string(where) + ": exponent p must be in [0, 2]");
-            const kriging::VariogramFit fit = kriging::fit_variogram(
-                ev, p == 0.0 ? kriging::VariogramFamily::Spherical : kriging::VariogramFamily::Stable, p == 0.0 ? 1.0 : p,
-                options.fit);
+            const kriging::VariogramFit fit = fit_one(p);
             model = fit.model;
             degenerate = fit.degenerate;
+            status = fit.status;
         } else {
-            const kriging::ExponentSelection sel =
-                kriging::select_exponent(ev, xc, sample_values, options.kriging, options.fit);
-            model = sel.model();
-            degenerate = sel.fits[sel.best].degenerate;
-            out.exponent_loo_mse = sel.loo_mse;
+            // Leave-one-out over the grid (select_exponent's loop, with the per-p nugget bound of p = 2).
+            Eigen::VectorXd mse = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(options.exponent_grid.size()),
+                                                            std::numeric_limits<double>::infinity());
+            double best = std::numeric_limits<double>::infinity();
+            for (std::size_t k = 0; k < options.exponent_grid.size(); ++k) {
+                const kriging::VariogramFit fit = fit_one(options.exponent_grid[k]);
+                if (fit.degenerate || !(fit.model.total_sill() > 0.0)) continue;
+                const kriging::Kriging kr = kriging::Kriging::build(xc, fit.model, options.kriging);
+                const double e = kr.leave_one_out(sample_values).mse;
+                if (!std::isfinite(e)) continue;
+                mse(static_cast<Eigen::Index>(k)) = e;
+                if (e < best) {
+                    best = e;
+                    model = fit.model;
+                    status = fit.status;
+                }
+            }
+            degenerate = !std::isfinite(best);
+            out.exponent_loo_mse = mse;
         }
     }
     if (degenerate || !(model.total_sill() > 0.0)) {
-        // Samples without variation: any valid kernel gives the same (trend-only) prediction.
+        // Samples without variation about the trend: any valid kernel gives the same (trend-only) prediction.
         model = kriging::VariogramModel::from_paper_p(options.exponent.value_or(1.0), 0.0, 1.0, h_half);
+        status = kriging::FitStatus::Degenerate;
+    } else {
+        const kriging::LooResult loo = kriging::Kriging::build(xc, model, options.kriging).leave_one_out(sample_values);
+        out.loo_mean_z2 = loo.zscore.squaredNorm() / static_cast<double>(loo.zscore.rows());
     }
     out.variogram = model;
+    out.status = status;
     return out;
+}
+
+kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
+                                             const kriging::VariogramModel& variogram, const SynthesisOptions& options) {
+    const kriging::TrendBasis basis =
+        kriging::TrendBasis::build(xc, options.kriging.trend, options.kriging.trend_rank_tolerance);
+    const MatX residuals = kriging::fit_trend_ols(basis, sample_values).residuals;
+    const double dof = static_cast<double>(std::max<Eigen::Index>(xc.rows() - basis.size(), 1));
+    const double residual_variance = residuals.squaredNorm() / dof;
+    const double total = variogram.total_sill();
+    if (!(residual_variance > 0.0) || !(total > 0.0)) return kriging::FitStatus::Degenerate;
+    if (variogram.sill <= 1e-6 * total) return kriging::FitStatus::PureNugget;
+    if (total >= options.max_sill_factor * residual_variance * (1.0 - 1e-6)) return kriging::FitStatus::SillAtBound;
+    // The largest lag: the mean distance of the last non-empty bin (the bins depend on the distances only).
+    const MatX h = kriging::pairwise_distances(xc);
+    const kriging::ExperimentalVariogram ev = kriging::experimental_variogram(h, h, options.variogram);
+    double h_ref = 0.0;
+    for (Eigen::Index u = 0; u < ev.dist.size(); ++u)
+        if (ev.npairs[static_cast<std::size_t>(u)] > 0) h_ref = std::max(h_ref, ev.dist(u));
+    const double bound = std::min(options.fit.range_max_factor, options.max_range_factor) * h_ref;
+    if (h_ref > 0.0 && variogram.range >= bound * (1.0 - 1e-6)) return kriging::FitStatus::RangeAtBound;
+    return kriging::FitStatus::Ok;
 }
 
 KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,

@@ -80,6 +80,11 @@ SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, 
         if (!(kernel_fit_.variogram.total_sill() > 0.0))
             throw InvalidArgument(std::string(where) + ": the precomputed kernel's nugget + sill must be > 0");
         report_.kernel_precomputed = true;
+        // The status is not stored: recompute it from the bounds (cheap; no refit), so that a degenerate
+        // fit is reported after loading too.
+        const MatX values = sample_values();
+        if (values.rows() == n && values.allFinite())
+            kernel_fit_.status = assess_coefficient_kernel(xc, values, kernel_fit_.variogram, options);
     } else {
         const MatX values = sample_values();
         if (values.rows() != n || !values.allFinite())
@@ -92,6 +97,8 @@ SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, 
     kriging_ = kriging::Kriging::build(xc, model, options.kriging);
     report_.model = model;
     report_.status = kriging_.status();
+    report_.fit_status = kernel_fit_.status;
+    report_.loo_mean_z2 = kernel_fit_.loo_mean_z2;
 
     // Timing kernel on the inverse-warp increments.
     const MatX inc = aligned.inverse_warp_increments();  // T - 1 by N

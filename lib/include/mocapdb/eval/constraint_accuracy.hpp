@@ -10,6 +10,7 @@
 //
 // A grid point whose achieved parameter is undefined (e.g. a synthesized jump without a flight phase) is
 // a failure: counted per method, excluded from the statistics, never a NaN.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,12 +44,22 @@ struct ConstraintMethodResult {
     RegionStats all;           ///< over every valid grid point (threshold 0)
     double pearson = 0.0;      ///< corr(rho, error) over valid points (0 when undefined)
     double seconds = 0.0;      ///< build + synthesis + measurement
+    /// Q: the rho the regions and pearson use: the method's own (Synthesizer::reliability_batch, its own
+    /// kernel) when it has one, else ConstraintResult::reliability.
+    VecX reliability;
+    bool own_reliability = false;  ///< reliability is the method's own
+    /// The largest own rho at the 2P points 3 standard deviations outside the samples' box (from the box's
+    /// centre along each axis, both sides; issue #15: must be <= 0.5); NaN without an own rho.
+    double rho_outside_3sd = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct ConstraintResult {
     MatX grid;          ///< Q by P requested parameters
-    VecX reliability;   ///< Q: rho(c)
+    VecX reliability;   ///< Q: rho(c) of the reference kernel (naive kriging on all samples)
     VecX scale;         ///< P: per-axis normalization (standard deviation of the samples)
+    MatX outside_3sd;   ///< 2P by P: the points 3 standard deviations outside the box (see rho_outside_3sd)
+    double rho_outside_3sd = 0.0;  ///< the reference kernel's largest rho there
+    double loo_mean_z2 = 0.0;      ///< the reference kernel's leave-one-out mean z^2 (synthesis::KernelFit)
     std::vector<ConstraintMethodResult> methods;
 };
 

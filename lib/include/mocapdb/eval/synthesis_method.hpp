@@ -13,6 +13,9 @@
 //   Rbf                MotionKriging with InterpolationMethod::Rbf: Rose et al.'s linear + cubic B-spline
 //                      radial basis, one interpolator for every column.
 //   NearestNeighbour   eval::NearestNeighbourBlend over the k nearest samples in normalized c.
+//   TrendOnly          the linear trend alone (issue #15): per element of the motion (and of the timing),
+//                      the least-squares hyperplane in the normalized parameters, no kriging of the
+//                      residuals; the baseline every kriging method must beat ("gain over trend-only").
 // Timing: Tucker and naive use their own kriged inverse-warp increments (shared kernel); the
 // MotionKriging methods krige the increments with a per-set kernel of the same method (Kriging or Rbf);
 // nearest neighbour blends them with its weights. Increments are clamped to [0.05 mean, 4 max] of the
@@ -27,14 +30,16 @@
 
 namespace mocapdb::eval {
 
-enum class MethodKind { PerPoseKriging, PerElementKriging, TuckerKriging, NaiveKriging, Rbf, NearestNeighbour };
+enum class MethodKind { PerPoseKriging, PerElementKriging, TuckerKriging, NaiveKriging, Rbf, NearestNeighbour, TrendOnly };
 
 struct MethodSpec {
     MethodKind kind = MethodKind::PerPoseKriging;
     std::string name;                   ///< label in reports (e.g. "tucker-1cm")
     tensor::Ranks ranks{0, 0, 0};       ///< TuckerKriging: (R1, R2, R3), R3 clamped to the training size
     NearestNeighbourOptions nn;         ///< NearestNeighbour
-    bool is_kriging() const { return kind != MethodKind::Rbf && kind != MethodKind::NearestNeighbour; }
+    bool is_kriging() const {
+        return kind != MethodKind::Rbf && kind != MethodKind::NearestNeighbour && kind != MethodKind::TrendOnly;
+    }
 };
 
 const char* to_string(MethodKind kind);
@@ -49,6 +54,9 @@ public:
     virtual ~Synthesizer() = default;
     /// c: P values in the set's units. Thread-safe (immutable).
     virtual void synthesize(const Eigen::Ref<const VecX>& c, SynthesizedMotion& out) const = 0;
+    /// The method's own reliability rho at Q parameter points (Q by P, set's units), computed with its own
+    /// kernel; empty (size 0) for methods without one (RBF, nearest neighbour, trend only).
+    virtual VecX reliability_batch(const Eigen::Ref<const MatX>& /*c*/) const { return VecX(); }
     double build_seconds = 0.0;  ///< wall time of the construction (variograms, trends, factorizations, Tucker)
 };
 

@@ -27,9 +27,21 @@
 //       2 w^T gamma(c) - w^T Gamma w. For ordinary kriging and GLS this is the standard kriging
 //       variance (computed as w^T gamma(c) + mu^T g(c) with the Lagrange multipliers mu), the number gstat
 //       reports as var1.var; for OLS it is the variance of the paper's detrend-then-krige predictor.
-//   paper_variance sigma^2(c) = sum_i b_i gamma(|c - c_i|) (Appendix B; no Lagrange term), and the
-//   reliability rho(c) = 1 - sigma^2(c) / (theta0 + theta1), clipped to [0, 1] (rho(c_i) = 1, rho -> 0
-//       far from the samples).
+//   paper_variance sigma^2(c) = sum_i b_i gamma(|c - c_i|) (Appendix B; no Lagrange term; it goes
+//       negative when extrapolating a trend, and is then clipped at 0), and the
+//   reliability rho(c) = 1 - V(c) / (theta0 + theta1), clipped to [0, 1] (rho(c_i) = 1, rho -> 0 far from
+//       the samples), where V is `variance` (ReliabilityVariance::Prediction, the default: the predictor's
+//       own error variance, with the trend terms, never negative: it grows when the trend is
+//       extrapolated) or the paper's sigma^2 (ReliabilityVariance::Paper, what reduction.hpp uses).
+//
+// Filtered kriging (KrigingOptions::filter_nugget, issue #15): the nugget is measurement noise, not a
+// discontinuity of the signal. The system keeps it (covariance nugget + sill on the diagonal), but the
+// query's variogram vector uses the continuous part sill * shape(h) only, so the predictor smooths the
+// samples instead of interpolating them and w(c) is continuous in c (no jump when c moves off a sample).
+// (Adding a constant to gamma(c) does not change the weights, so this equals covariance-form kriging
+// with c(h) = sill (1 - shape(h)).) `variance` is then the error variance of the noise-free signal,
+//   2 w^T gamma_s(c) + nugget - w^T Gamma w,
+// and leave_one_out is unchanged (the left-out point is never one of the others).
 //
 // Numerical robustness (all reported in KrigingStatus, never thrown):
 //   * the system is solved in covariance form C = covariance(|c_i - c_j|) (symmetric positive definite
@@ -86,6 +98,14 @@ enum class FactorizationStatus {
 const char* to_string(TrendFit fit);
 const char* to_string(FactorizationStatus status);
 
+/// Which variance the reliability rho = 1 - V / total sill is computed from (see the header comment).
+enum class ReliabilityVariance {
+    Prediction,  ///< the predictor's error variance (`variance`, universal kriging with the trend terms).
+    Paper,       ///< the paper's sigma^2 = sum b_i gamma_i (Appendix B; clipped at 0 when it goes negative).
+};
+
+const char* to_string(ReliabilityVariance v);
+
 struct KrigingOptions {
     TrendKind trend = TrendKind::Linear;
     TrendFit trend_fit = TrendFit::OLS;
@@ -96,6 +116,9 @@ struct KrigingOptions {
     double min_rcond = 1e-10;
     double max_jitter = 1e-3;            ///< > 0: largest jitter tried, relative to the total sill.
     double trend_rank_tolerance = 1e-10; ///< see TrendBasis::build.
+    /// Filtered kriging: the nugget is noise (see the header comment). false = exact interpolation.
+    bool filter_nugget = false;
+    ReliabilityVariance reliability = ReliabilityVariance::Prediction;
 };
 
 struct KrigingStatus {
@@ -176,6 +199,8 @@ public:
     LooResult leave_one_out(const Eigen::Ref<const Eigen::MatrixXd>& values) const;
     /// Reliability rho(c_i) of every sample computed without it (paper Section 5.2): N. A sample with a
     /// merged duplicate has reliability 1.
+    /// With ReliabilityVariance::Prediction this is 1 - V_i / total sill with V_i the variance of the
+    /// left-out prediction (for OLS: of the ordinary kriging of the residuals; filtered: minus the nugget).
     Eigen::VectorXd leave_one_out_reliability() const;
 
     const VariogramModel& model() const { return model_; }
@@ -194,6 +219,7 @@ public:
 private:
     friend class KrigingPredictor;  // folds sample values into weight_operator() (kriging_predictor.hpp)
 
+    // gamma of the query (the continuous part only when filtering the nugget): out M.
     void gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const;
     void gamma_block(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out) const;
     // From gamma (M by Q) and trend basis values (K by Q): kernel b (M by Q) and weights w (M by Q).
@@ -207,6 +233,7 @@ private:
                           Eigen::MatrixXd& scratch) const;
 
     VariogramModel model_;
+    VariogramModel query_model_;   // model_, or model_ without its nugget when filtering (query vectors)
     KrigingOptions options_;
     KrigingStatus status_;
     TrendBasis basis_;             // over the unique points

@@ -20,7 +20,9 @@ namespace mocapdb::kriging {
 struct ReductionOptions {
     double tau = 0.85;              ///< stop when max_i rho_{-i}(c_i) < tau; in [0, 1].
     Eigen::Index min_samples = 0;   ///< never go below this many samples (0 = trend size + 1). >= 0.
-    KrigingOptions kriging;         ///< kernel used for the reliabilities (OLS -> the paper's OK kernel).
+    /// Kernel used for the reliabilities (OLS -> the paper's OK kernel). The reliability is always the
+    /// paper's (ReliabilityVariance::Paper, whatever `kriging.reliability` says): its rank-one downdates.
+    KrigingOptions kriging;
 };
 
 struct ReductionResult {

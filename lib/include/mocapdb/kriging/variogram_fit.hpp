@@ -48,7 +48,25 @@ struct VariogramFitOptions {
     double range_min_factor = 1e-3; ///< > 0.
     double range_max_factor = 1e2;  ///< > range_min_factor.
     int max_iterations = 500;       ///< LM iterations per start point (>= 1).
+    /// >= 0: lower bound of the nugget (with fit_nugget false the nugget is fixed at this value). A Gaussian
+    /// (p = 2) model needs one: without a nugget its kriging system is numerically singular.
+    double min_nugget = 0.0;
+    /// >= 0, 0 = none: upper bound of nugget + sill (e.g. tied to the variance of the trend residuals, so
+    /// that a variogram rising as h^2 over the lags cannot run to an arbitrary sill).
+    double max_total_sill = 0.0;
 };
+
+/// What a fit is worth (issue #15, like gstat's "singular model" / "no convergence" warnings). A fit that is
+/// not Ok is still a valid model, but the caller must report the status, never use it silently.
+enum class FitStatus {
+    Ok,
+    RangeAtBound,  ///< the range sits on range_max_factor * h_ref: the lags do not show where the sill is reached
+    SillAtBound,   ///< nugget + sill sits on max_total_sill
+    PureNugget,    ///< sill ~ 0: no spatial correlation (the kernel reduces to the trend)
+    Degenerate,    ///< no usable bins or all gammabar are 0: the model is a placeholder
+};
+
+const char* to_string(FitStatus status);
 
 struct VariogramFit {
     VariogramModel model;
@@ -57,6 +75,7 @@ struct VariogramFit {
     bool converged = false;   ///< LM stopped on its tolerance (not on the iteration limit).
     int bins_used = 0;        ///< non-empty bins.
     bool degenerate = false;  ///< all gammabar are 0 (or no bins): the model is a zero-sill placeholder.
+    FitStatus status = FitStatus::Ok;
 };
 
 /// Fits nugget, sill and range of the given family / exponent (exponent ignored for Spherical).

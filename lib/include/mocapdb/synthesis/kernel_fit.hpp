@@ -19,9 +19,11 @@
 // Thread safety: plain data and pure functions.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "mocapdb/core/types.hpp"
+#include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/kriging/variogram_model.hpp"
 
 namespace mocapdb {
@@ -42,7 +44,18 @@ struct KernelFit {
     kriging::VariogramModel variogram;    ///< the model Kriging::build is given (valid, total sill > 0)
     /// LOO MSE per grid exponent; empty when p was given, and in a fit read from a database (not stored).
     Eigen::VectorXd exponent_loo_mse;
+    /// Status of the variogram fit (not stored: a fit read from a database says Ok; `compress` reports it).
+    kriging::FitStatus status = kriging::FitStatus::Ok;
+    /// Variance of the linear-trend residuals the variogram was fitted to (not stored; 0 when read).
+    double residual_variance = 0.0;
+    /// Leave-one-out check of the prediction variance (not stored; NaN when read or degenerate): the mean
+    /// over samples of z_i^2 = |s_i - s_-i|^2 / V_i (the squared residual summed over the values, since the
+    /// sill is the sum of their variances). Near 1 when the variance is calibrated.
+    double loo_mean_z2 = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// Message for a fit status that is not Ok (what the CLI prints as a warning), "" for Ok.
+std::string fit_status_warning(const KernelFit& fit);
 
 /// The digest of a compressed model's kernel inputs (see the header comment), never 0. Let
 /// mix(h, x) = ((h XOR x) * 0x100000001b3 mod 2^64) XOR (that >> 29) over 64-bit words x; starting
@@ -62,11 +75,21 @@ std::string kernel_options_text(const SynthesisOptions& options);
 MatX core_slice_values(const compression::SetModel& model);
 
 /// The coefficient kernel's variogram from the normalized control parameters xc (N by P) and the
-/// samples' values (N by S, finite): options.exponent or leave-one-out over the paper's grid, then
-/// nugget, sill and range; a placeholder model for samples without variation. Key left 0.
+/// samples' values (N by S, finite), fitted as gstat's variogram(z ~ x + y) (issue #15): the
+/// experimental variogram of the residuals of the linear trend (OLS; the raw values with
+/// TrendKind::None), range <= options.max_range_factor * the largest lag, nugget + sill <=
+/// options.max_sill_factor * the residual variance, a nugget >= options.gaussian_nugget_fraction * that
+/// variance for p = 2; p = options.exponent or the leave-one-out choice over options.exponent_grid; a
+/// placeholder model (status Degenerate) for samples without variation. Key left 0.
 /// InvalidArgument (prefixed with `where`) for an exponent outside [0, 2].
 KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                  const SynthesisOptions& options, const char* where);
+
+/// The status fit_coefficient_kernel would report for `variogram` on these inputs, recomputed from the
+/// bounds (largest lag, residual variance) without refitting: for a kernel read from a database, whose
+/// status is not stored. Cost: the trend residuals and the control-space distances (no kriging system).
+kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
+                                             const kriging::VariogramModel& variogram, const SynthesisOptions& options);
 
 /// Sets with more samples get no stored kernel from `compress` (the leave-one-out choice is O(N^3):
 /// about 20 s of CPU at N = 645 here); synthesis then fits it at load, as before.

@@ -80,9 +80,37 @@ struct SynthesisOptions {
     /// Timing kernel (see the header comment): Shared = the coefficient kernel's weights blend the
     /// increments too; Separate = a second per-set kriging of the increments (the paper's Section 3.5).
     enum class TimingKernel { Shared, Separate } timing_kernel = TimingKernel::Shared;
-    kriging::VariogramOptions variogram;
+    /// The experimental variogram of the coefficient kernel, estimated on the trend residuals (issue #15).
+    /// Matheron by default: the Cressie-Hawkins constant 0.457 assumes scalar Gaussian differences, and for
+    /// a distance between many-dimensional vectors it overstates gamma by up to 1 / 0.457 = 2.2.
+    kriging::VariogramOptions variogram = matheron_variogram();
+    /// Fit options; fit_coefficient_kernel adds the bounds below (range, total sill, nugget of p = 2).
     kriging::VariogramFitOptions fit;
-    kriging::KrigingOptions kriging;  ///< trend Linear + OLS (the paper) by default
+    /// Kriging options: trend Linear + OLS (the paper); the nugget filtered (measurement noise, so that
+    /// synthesis is continuous in c), rho from the prediction variance.
+    kriging::KrigingOptions kriging = filtered_kriging();
+    /// Candidate exponents of the leave-one-out choice (paper convention, 0 = spherical). Default: 0 and
+    /// 1.0, 1.2, ..., 2.0: a stable model with p < 1 rises as h^p with an infinite slope at 0, so a tiny
+    /// step away from a sample moves the weights by (h / range)^p (0.16 at h = 1e-4 range for p = 0.2).
+    std::vector<double> exponent_grid = {0.0, 1.0, 1.2, 1.4, 1.6, 1.8, 2.0};
+    /// Upper bound of the range, as a multiple of the largest lag of the experimental variogram.
+    double max_range_factor = 1.0;
+    /// Upper bound of nugget + sill, as a multiple of the residual variance (sum over values of the
+    /// residual variances of the linear trend, divided by N - K).
+    double max_sill_factor = 2.0;
+    /// Smallest nugget of a Gaussian (p = 2) model, as a fraction of the residual variance.
+    double gaussian_nugget_fraction = 0.01;
+
+    static kriging::VariogramOptions matheron_variogram() {
+        kriging::VariogramOptions v;
+        v.estimator = kriging::VariogramEstimator::Matheron;
+        return v;
+    }
+    static kriging::KrigingOptions filtered_kriging() {
+        kriging::KrigingOptions k;
+        k.filter_nugget = true;
+        return k;
+    }
     /// Normalization of the control parameters; empty = per-axis mean / standard deviation of the samples.
     std::optional<kriging::ControlScaling> scaling;
     /// Compressed model only: extra level-of-detail ranks (1 <= r_n <= the model's ranks); level 0 is
@@ -102,6 +130,8 @@ struct SynthesisOptions {
 struct SynthesisReport {
     kriging::VariogramModel model;         ///< coefficient kernel's variogram
     kriging::KrigingStatus status;         ///< its factorization
+    kriging::FitStatus fit_status = kriging::FitStatus::Ok;  ///< of the variogram fit (recomputed when precomputed)
+    double loo_mean_z2 = 0.0;  ///< KernelFit::loo_mean_z2 (NaN when the kernel was precomputed)
     Eigen::VectorXd exponent_loo_mse;      ///< LOO MSE per grid exponent (empty when p was given or the kernel precomputed)
     double timing_exponent = 0.0;          ///< p of the timing kernel (Shared: the coefficient kernel's)
     double precompute_seconds = 0.0;       ///< construction time of the two kriging kernels
