@@ -32,16 +32,16 @@ clips=$("$cli" info "$work/base.h5" --json | /usr/bin/python3 -c 'import json,sy
 
 timed() {  # $1 = label, then the command
   local label=$1; shift
-  /usr/bin/time -o "$work/time.txt" -f "%e %U %M" "$@" >/dev/null 2>"$work/stderr.txt" ||
+  /usr/bin/time -o "$work/time.txt" -f "%e %U %S %M" "$@" >/dev/null 2>"$work/stderr.txt" ||
     { echo "store_scale.sh: $label failed:" >&2; cat "$work/stderr.txt" >&2; exit 1; }
-  read -r wall user rss <"$work/time.txt"
-  printf '| %s | %s | %s | %s |\n' "$label" "$wall" "$user" "$((rss / 1024))"
+  read -r wall user sys rss <"$work/time.txt"
+  printf "| %s | %s | %s | %s | %s |\n" "$label" "$wall" "$user" "$sys" "$((rss / 1024))"
 }
 
 echo "database: $work/base.h5 ($clips clips, $(du -m "$work/base.h5" | cut -f1) MB); $(date -u '+%F %H:%M UTC'); load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
-echo '| operation | wall s | user s | peak RSS MB |'
-echo '|---|---:|---:|---:|'
+echo "| operation | wall s | user s | sys s | peak RSS MB |"
+echo "|---|---:|---:|---:|---:|"
 db="$work/copy.h5"
 cp "$work/base.h5" "$db"
 timed "append one clip (import)" "$cli" import "$work/one" -o "$db"
