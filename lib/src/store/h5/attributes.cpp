@@ -31,8 +31,22 @@ struct ReadAll {
     std::string error;
 };
 
-herr_t read_one(hid_t loc, const char* name, const H5A_info_t* /*info*/, void* data) {
+herr_t read_one_or_throw(hid_t loc, const char* name, ReadAll* r);
+
+// H5Aiterate callback: no exception may cross HDF5's C frames, so they end the iteration as an error.
+herr_t read_one(hid_t loc, const char* name, const H5A_info_t* /*info*/, void* data) noexcept {
     auto* r = static_cast<ReadAll*>(data);
+    try {
+        return read_one_or_throw(loc, name, r);
+    } catch (const std::exception& e) {
+        r->error = std::string("cannot read attribute '") + name + "': " + e.what();
+    } catch (...) {
+        r->error = std::string("cannot read attribute '") + name + "'";
+    }
+    return -1;
+}
+
+herr_t read_one_or_throw(hid_t loc, const char* name, ReadAll* r) {
     Attributes& out = *r->out;
     Handle a(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
     if (!a.valid()) {
