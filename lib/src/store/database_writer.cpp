@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <unordered_map>
 
 #include "clip_codec.hpp"
@@ -32,11 +33,23 @@ struct DatabaseWriter::Impl {
     std::filesystem::path temp;
     store::h5::File file;
     Database view{std::make_unique<Database::Impl>()};
-    std::unordered_map<std::string, std::string> sha_to_clip;
+    // Source hash -> clip id, built on first use (only sessions that add clips need it) from one
+    // attribute per clip, and kept up to date by add_clip.
+    std::optional<std::unordered_map<std::string, std::string>> sha_to_clip_;
     std::vector<std::pair<std::string, std::shared_ptr<const Skeleton>>> skeletons;  // id, structure
     bool finished = false;
     bool removed_objects = false;  // space to reclaim at commit
 
+    std::unordered_map<std::string, std::string>& sha_to_clip() {
+        if (!sha_to_clip_) {
+            QuietScope quiet;
+            std::unordered_map<std::string, std::string> m;
+            for (const std::string& id : f().children(store::kClips))
+                m.emplace(file.read_string_attribute(store::clip_path(id), "source_sha256"), id);
+            sha_to_clip_ = std::move(m);
+        }
+        return *sha_to_clip_;
+    }
     store::h5::File& f() {
         if (finished) throw StoreError(target.string(), "", "the writing session is already committed");
         return file;
@@ -104,7 +117,6 @@ DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode, d
         s.file.set_name_in_errors(target.string());
         s.view.impl_->path = s.temp;
         s.view.impl_->file = &s.file;
-        for (const ClipRecord& r : s.view.clips()) s.sha_to_clip.emplace(r.source.sha256, r.id);
         for (const std::string& id : s.view.skeletons()) s.skeletons.emplace_back(id, s.view.load_skeleton(id));
     } catch (...) {
         s.discard();
@@ -124,8 +136,9 @@ const std::filesystem::path& DatabaseWriter::temp_path() const noexcept { return
 const Database& DatabaseWriter::view() const { return impl_->view; }
 
 std::optional<std::string> DatabaseWriter::find_sha256(const std::string& sha256) const {
-    const auto it = impl_->sha_to_clip.find(sha256);
-    if (it == impl_->sha_to_clip.end()) return std::nullopt;
+    const auto& m = impl_->sha_to_clip();
+    const auto it = m.find(sha256);
+    if (it == m.end()) return std::nullopt;
     return it->second;
 }
 
@@ -141,7 +154,7 @@ AddClipResult DatabaseWriter::add_clip(const Clip& clip, const ClipSource& sourc
         throw InvalidArgument(who + ": sha256 must be 64 lowercase hex digits, found '" + source.sha256 + "'");
     if (source.format != "bvh" && source.format != "amc")
         throw InvalidArgument(who + ": source format must be \"bvh\" or \"amc\", found \"" + source.format + "\"");
-    if (const auto it = s.sha_to_clip.find(source.sha256); it != s.sha_to_clip.end())
+    if (const auto it = s.sha_to_clip().find(source.sha256); it != s.sha_to_clip().end())
         return {it->second, false, "skipped: duplicate sha256 of clip " + it->second};
 
     const std::string stem = std::filesystem::path(source.file_name).stem().string();
@@ -165,7 +178,7 @@ AddClipResult DatabaseWriter::add_clip(const Clip& clip, const ClipSource& sourc
         s.skeletons.emplace_back(skeleton_id, clip.skeleton);
     }
     store::write_clip(f, id, clip, skeleton_id, source);
-    s.sha_to_clip.emplace(source.sha256, id);
+    s.sha_to_clip().emplace(source.sha256, id);
     return {id, true, "added as " + id};
 }
 

@@ -90,6 +90,15 @@ std::uint64_t File::size() const {
     return bytes;
 }
 
+namespace {
+
+herr_t collect_link_name(hid_t /*group*/, const char* name, const H5L_info_t* /*info*/, void* data) {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+    return 0;
+}
+
+}  // namespace
+
 ObjectType File::type_of(const std::string& path) const {
     if (path == "/") return ObjectType::Group;
     std::string prefix;
@@ -144,15 +153,11 @@ std::vector<std::string> File::children(const std::string& group) const {
     check(H5Gget_info(g.get(), &info), name_, group, "cannot read the group's links");
     std::vector<std::string> names;
     names.reserve(info.nlinks);
-    for (hsize_t i = 0; i < info.nlinks; ++i) {
-        const ssize_t n = H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-        if (n < 0) fail_call(name_, group, "cannot read a link name");
-        std::string name(static_cast<std::size_t>(n), '\0');
-        check(H5Lget_name_by_idx(g.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size() + 1,
-                                 H5P_DEFAULT),
-              name_, group, "cannot read a link name");
-        names.push_back(std::move(name));
-    }
+    // One iteration: H5Lget_name_by_idx on a group with dense link storage (more than 8 links) builds
+    // and sorts the whole link table on every call, O(n^2 log n) for n links (3 000 clips: seconds).
+    hsize_t idx = 0;
+    check(H5Literate(g.get(), H5_INDEX_NAME, H5_ITER_INC, &idx, collect_link_name, &names), name_, group,
+          "cannot read the group's link names");
     return names;
 }
 

@@ -41,6 +41,23 @@ struct AttributeInfo {
 
 enum class ObjectType { None, Group, Dataset, Other };
 
+/// Every attribute of one object, read with the object opened once (a clip record's dozen
+/// attributes cost one path lookup instead of a dozen): scalar strings, one-dimensional string
+/// lists, scalar int64 and float64 values; `info` holds every attribute's dtype and shape (the
+/// other kinds are described there and not read).
+struct Attributes {
+    std::string path;  ///< the object's path
+    ObjectType type = ObjectType::None;
+    std::vector<std::pair<std::string, AttributeInfo>> info;
+    std::vector<std::pair<std::string, std::string>> strings;
+    std::vector<std::pair<std::string, std::vector<std::string>>> string_lists;
+    std::vector<std::pair<std::string, std::int64_t>> ints;
+    std::vector<std::pair<std::string, double>> doubles;
+
+    bool has(const std::string& name) const;
+    const AttributeInfo* find_info(const std::string& name) const;
+};
+
 class File {
 public:
     /// Opens an existing file (read-only or read-write).
@@ -79,6 +96,13 @@ public:
 
     // Attributes of the object at `path`.
     std::vector<std::string> attribute_names(const std::string& path) const;
+    /// All attributes of the object at `path` (StoreError when there is none); see Attributes.
+    Attributes read_attributes(const std::string& path) const;
+    /// The checked accessors of Attributes, with the messages of read_string_attribute and friends.
+    std::string string_attribute(const Attributes& a, const std::string& name) const;
+    std::vector<std::string> strings_attribute(const Attributes& a, const std::string& name) const;
+    std::int64_t int_attribute(const Attributes& a, const std::string& name) const;
+    double double_attribute(const Attributes& a, const std::string& name) const;
     bool has_attribute(const std::string& path, const std::string& name) const;
     AttributeInfo attribute_info(const std::string& path, const std::string& name) const;
     /// Scalar variable-length string attribute.
