@@ -5,6 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/dataset/alignment.hpp"
+#include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "shared_data.hpp"
 
@@ -30,6 +33,34 @@ inline std::vector<Clip> read_shared_clips(const std::string& folder, const std:
         out.push_back(std::move(c));
     }
     return out;
+}
+
+/// Whole clips of subject 16 (cmu-asfamc/16_TRIAL.amc) as a set "walks" with measured turn and
+/// speed, DTW-aligned to `frames` frames.
+struct Subject16Set {
+    std::vector<Clip> clips;
+    MotionSet set;
+    AlignedSet aligned;
+};
+
+inline Subject16Set subject16_set(const std::vector<int>& trials, Eigen::Index frames) {
+    Subject16Set r;
+    const std::vector<ParameterExtractor> extractors{ParameterExtractor::parse("turn"), ParameterExtractor::parse("speed")};
+    r.set.name = "walks";
+    r.set.parameter_names = {"turn", "speed"};
+    r.set.parameter_units = {"rad", "cm/s"};
+    r.set.parameters.resize(static_cast<Eigen::Index>(trials.size()), 2);
+    for (std::size_t i = 0; i < trials.size(); ++i) {
+        const std::string id = "16_" + std::to_string(trials[i]);
+        r.clips.push_back(read_clip(datasets_dir() / "cmu-asfamc" / (id + ".amc")));
+        r.set.samples.push_back({id, 0, r.clips.back().frame_count()});
+        r.set.parameters.row(static_cast<Eigen::Index>(i)) =
+            extract_parameters(r.clips.back(), 0, r.clips.back().frame_count(), extractors).transpose();
+    }
+    AlignOptions options;
+    options.frames = frames;
+    r.aligned = align_samples(r.clips, options);
+    return r;
 }
 
 }  // namespace mocapdb::test

@@ -18,8 +18,10 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/procedural/humanoid.hpp"
 #include "mocapdb/procedural/parametric_set.hpp"
+#include "mocapdb/procedural/reach.hpp"
 #include "mocapdb/synthesis/kernel_fit.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
+#include "shared_clips.hpp"
 #include "shared_data.hpp"
 #include "test_support.hpp"
 
@@ -37,22 +39,10 @@ struct Samples {
 
 Samples cmu_walks() {
     Samples r;
-    const std::vector<int> trials{11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 47};
-    const std::vector<ParameterExtractor> ex{ParameterExtractor::parse("turn"), ParameterExtractor::parse("speed")};
-    r.set.name = "walks";
-    r.set.parameter_names = {"turn", "speed"};
-    r.set.parameter_units = {"rad", "cm/s"};
-    r.set.parameters.resize(static_cast<Eigen::Index>(trials.size()), 2);
-    for (std::size_t i = 0; i < trials.size(); ++i) {
-        const std::string id = "16_" + std::to_string(trials[i]);
-        r.clips.push_back(read_clip(test::datasets_dir() / "cmu-asfamc" / (id + ".amc")));
-        r.set.samples.push_back({id, 0, r.clips.back().frame_count()});
-        r.set.parameters.row(static_cast<Eigen::Index>(i)) =
-            extract_parameters(r.clips.back(), 0, r.clips.back().frame_count(), ex).transpose();
-    }
-    AlignOptions o;
-    o.frames = 20;
-    r.aligned = align_samples(r.clips, o);
+    test::Subject16Set w = test::subject16_set({11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 47}, 20);
+    r.clips = std::move(w.clips);
+    r.set = std::move(w.set);
+    r.aligned = std::move(w.aligned);
     r.skeleton = r.clips.front().skeleton;
     return r;
 }
@@ -134,28 +124,12 @@ void check_continuity(const Samples& s, const char* what) {
     CHECK(mean_z2 < 3.0);
 }
 
-// The reach target the synthesized motion reaches (as the demo measures it): the right hand's end site
-// at the hold (the slowest frame where the hand is >= 80 % of its largest excursion), as bearing (deg)
-// and height (cm).
+// The reach target the synthesized motion reaches (as the demo measures it), as bearing (deg) and
+// height (cm).
 Eigen::Vector2d reached(const Clip& clip) {
-    const auto hand = clip.skeleton->find(procedural::HumanoidNames::right_hand_end);
-    REQUIRE(hand);
-    const MatX p = joint_positions(clip);
-    const Eigen::Index row = 3 * static_cast<Eigen::Index>(*hand);
-    const Vec3 start = p.block<3, 1>(row, 0);
-    double farthest = 0.0;
-    for (Eigen::Index f = 0; f < p.cols(); ++f) farthest = std::max(farthest, (p.block<3, 1>(row, f) - start).norm());
-    Eigen::Index hold = 0;
-    double slowest = 1e300;
-    for (Eigen::Index f = 1; f + 1 < p.cols(); ++f) {
-        if ((p.block<3, 1>(row, f) - start).norm() < 0.8 * farthest) continue;
-        const double speed = (p.block<3, 1>(row, f + 1) - p.block<3, 1>(row, f - 1)).norm();
-        if (speed < slowest) {
-            slowest = speed;
-            hold = f;
-        }
-    }
-    const Vec3 h = p.block<3, 1>(row, hold);
+    const std::optional<Vec3> hold = procedural::reach_hold_point(clip);
+    REQUIRE(hold);
+    const Vec3& h = *hold;
     return {std::atan2(h.x(), h.z()) * 180.0 / kPi, h.y()};
 }
 

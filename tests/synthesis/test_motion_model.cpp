@@ -17,6 +17,7 @@
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/synthesis/naive_motion_model.hpp"
+#include "shared_clips.hpp"
 #include "shared_data.hpp"
 #include "test_support.hpp"
 
@@ -44,22 +45,10 @@ const Walks& walks() {
         const std::vector<int> trials{11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 47};
         const Eigen::Index frames = 24;
 #endif
-        const std::vector<ParameterExtractor> extractors{ParameterExtractor::parse("turn"),
-                                                         ParameterExtractor::parse("speed")};
-        r.set.name = "walks";
-        r.set.parameter_names = {"turn", "speed"};
-        r.set.parameter_units = {"rad", "cm/s"};
-        r.set.parameters.resize(static_cast<Eigen::Index>(trials.size()), 2);
-        for (std::size_t i = 0; i < trials.size(); ++i) {
-            const std::string id = "16_" + std::to_string(trials[i]);
-            r.clips.push_back(read_clip(test::datasets_dir() / "cmu-asfamc" / (id + ".amc")));
-            r.set.samples.push_back({id, 0, r.clips.back().frame_count()});
-            r.set.parameters.row(static_cast<Eigen::Index>(i)) =
-                extract_parameters(r.clips.back(), 0, r.clips.back().frame_count(), extractors).transpose();
-        }
-        AlignOptions options;
-        options.frames = frames;
-        r.aligned = align_samples(r.clips, options);
+        test::Subject16Set loaded = test::subject16_set(trials, frames);
+        r.clips = std::move(loaded.clips);
+        r.set = std::move(loaded.set);
+        r.aligned = std::move(loaded.aligned);
         r.skeleton = r.clips.front().skeleton;
         r.weight = compression::position_error_weights(*r.skeleton);
         return r;

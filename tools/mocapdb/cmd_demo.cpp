@@ -21,6 +21,7 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/procedural/humanoid.hpp"
 #include "mocapdb/procedural/parametric_set.hpp"
+#include "mocapdb/procedural/reach.hpp"
 #include "pipeline.hpp"
 #include "svg_heatmap.hpp"
 #include "synthesis_cli.hpp"
@@ -66,31 +67,13 @@ struct DemoSynthesis {
 // What the parameters of a synthesized motion are measured with.
 enum class Measure { None, Extractors, ReachTarget };
 
-// The reach's target as reached by the synthesized motion: the right hand's end site at the frame of
-// the hold (the slowest frame among those where the hand is at least 80 % of its largest distance from
-// where it started), as bearing around the vertical axis through the origin (deg, + = left), height
+// The reach's target as reached by the synthesized motion (procedural::reach_hold_point), as bearing around the vertical axis through the origin (deg, + = left), height
 // above the floor (cm) and horizontal distance from that axis (cm): the generator's angle, height and
 // distance.
 VecX measure_reach_target(const Clip& clip, const std::vector<std::string>& names) {
-    const auto hand = clip.skeleton->find(procedural::HumanoidNames::right_hand_end);
-    if (!hand || clip.frame_count() < 3) return {};
-    const MatX p = joint_positions(clip);
-    const Eigen::Index row = 3 * static_cast<Eigen::Index>(*hand);
-    const Eigen::Index frames = p.cols();
-    const Vec3 start = p.block<3, 1>(row, 0);
-    double farthest = 0.0;
-    for (Eigen::Index f = 0; f < frames; ++f) farthest = std::max(farthest, (p.block<3, 1>(row, f) - start).norm());
-    Eigen::Index hold = 0;
-    double slowest = std::numeric_limits<double>::infinity();
-    for (Eigen::Index f = 1; f + 1 < frames; ++f) {
-        if ((p.block<3, 1>(row, f) - start).norm() < 0.8 * farthest) continue;
-        const double speed = (p.block<3, 1>(row, f + 1) - p.block<3, 1>(row, f - 1)).norm();
-        if (speed < slowest) {
-            slowest = speed;
-            hold = f;
-        }
-    }
-    const Vec3 h = p.block<3, 1>(row, hold);
+    const std::optional<Vec3> hold = procedural::reach_hold_point(clip);
+    if (!hold) return {};
+    const Vec3& h = *hold;
     VecX out(static_cast<Eigen::Index>(names.size()));
     for (std::size_t k = 0; k < names.size(); ++k) {
         const auto i = static_cast<Eigen::Index>(k);

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/procedural/humanoid.hpp"
 #include "mocapdb/procedural/two_bone_ik.hpp"
 #include "rig.hpp"
 
@@ -259,6 +262,27 @@ ReachMotion generate_reach(const ReachParams& params, const ReachOptions& o) {
         encoder.encode(pose, m.clip.channels.row(static_cast<Eigen::Index>(f)).data());
     }
     return m;
+}
+
+std::optional<Vec3> reach_hold_point(const Clip& clip) {
+    const auto hand = clip.skeleton ? clip.skeleton->find(HumanoidNames::right_hand_end) : std::nullopt;
+    if (!hand || clip.frame_count() < 3) return std::nullopt;
+    const MatX p = joint_positions(clip);
+    const Eigen::Index row = 3 * static_cast<Eigen::Index>(*hand);
+    const Vec3 start = p.block<3, 1>(row, 0);
+    double farthest = 0.0;
+    for (Eigen::Index f = 0; f < p.cols(); ++f) farthest = std::max(farthest, (p.block<3, 1>(row, f) - start).norm());
+    Eigen::Index hold = 0;
+    double slowest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index f = 1; f + 1 < p.cols(); ++f) {
+        if ((p.block<3, 1>(row, f) - start).norm() < 0.8 * farthest) continue;
+        const double speed = (p.block<3, 1>(row, f + 1) - p.block<3, 1>(row, f - 1)).norm();
+        if (speed < slowest) {
+            slowest = speed;
+            hold = f;
+        }
+    }
+    return Vec3(p.block<3, 1>(row, hold));
 }
 
 }  // namespace mocapdb::procedural

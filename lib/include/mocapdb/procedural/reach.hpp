@@ -19,6 +19,7 @@
 // Exactness: at every frame in [contact_frame, release_frame] the right hand's end site (FK of the
 // generated channels) is on the target up to floating-point rounding (tests: ≤ 1e-6 cm).
 #include <cstddef>
+#include <optional>
 
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/clip.hpp"
@@ -57,5 +58,11 @@ Vec3 reach_target(const ReachParams& params);
 
 /// Generates the reach. Deterministic. InvalidArgument for out-of-range or unreachable targets.
 ReachMotion generate_reach(const ReachParams& params, const ReachOptions& options = {});
+
+/// Where a reach (generated or synthesized) holds: the world position (cm) of the humanoid's right
+/// hand end site at the slowest frame among those where it is at least 80 % of its largest distance
+/// from where it started. nullopt when the skeleton has no such end site or the clip has fewer than
+/// 3 frames.
+std::optional<Vec3> reach_hold_point(const Clip& clip);
 
 }  // namespace mocapdb::procedural
