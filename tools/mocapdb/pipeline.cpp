@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <iostream>
@@ -236,10 +237,12 @@ std::string describe_set(const SetOutcome& o) {
     if (o.segmentation == Segmentation::GaitCycles) kind = "gait cycles";
     if (o.segmentation == Segmentation::Windows) kind = "windows";
     std::string how = kind;
-    if (o.auto_segmentation)
+    if (o.auto_segmentation) {
+        const std::string share = std::to_string(static_cast<int>(std::lround(100.0 * kAutoGaitShare))) + " %";
         how += o.segmentation == Segmentation::GaitCycles
                    ? ", chosen because most clips have a gait cycle; --segment none for whole clips"
-                   : ", chosen because fewer than 80 % of the clips have a gait cycle or no parameters are measured";
+                   : ", chosen because fewer than " + share + " of the clips have a gait cycle or no parameters are measured";
+    }
     char line[640];
     std::snprintf(line, sizeof line, "set '%s': %zu samples (%s) from %zu clips, %zu parameters (%s)\n", o.set.name.c_str(),
                   o.set.samples.size(), how.c_str(), o.clips, o.set.parameter_names.size(),
