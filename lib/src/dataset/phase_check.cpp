@@ -5,7 +5,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/foot_contacts.hpp"
-#include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/dataset/gait_phase.hpp"
 
 namespace mocapdb {
 
@@ -31,27 +31,15 @@ PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& align
     const Skeleton& s = *samples.front().skeleton;
     out.feet = feet.empty() ? default_feet(s) : feet;
     if (out.feet.size() != 2) throw InvalidArgument("check_phase: expected two feet (left, right)");
-    std::size_t foot[2];
-    for (int k = 0; k < 2; ++k) {
-        const auto j = s.find(out.feet[static_cast<std::size_t>(k)]);
-        if (!j) throw InvalidArgument("check_phase: the skeleton has no joint '" + out.feet[static_cast<std::size_t>(k)] + "'");
-        foot[k] = *j;
-    }
     const Eigen::Index frames = aligned.frames(), n = aligned.samples();
     out.forward.resize(frames, n);
     for (Eigen::Index i = 0; i < n; ++i) {
         const Clip& c = samples[static_cast<std::size_t>(i)];
-        const MatX p = joint_positions(c);
-        const VecX heading = root_headings(c);
-        const Vec3& rest = c.skeleton->forward();
+        const VecX lead = forward_foot_separation(c, out.feet);  // left ahead of right, cm
         for (Eigen::Index t = 0; t < frames; ++t) {
             const auto f = static_cast<Eigen::Index>(
                 std::clamp(std::lround(aligned.warps(t, i)), 0L, static_cast<long>(c.frame_count()) - 1));
-            const Vec3 dir = Eigen::AngleAxisd(heading[f], Vec3::UnitY()) * rest;
-            const Vec3 ahead = p.block<3, 1>(3 * static_cast<Eigen::Index>(foot[0]), f) -
-                               p.block<3, 1>(3 * static_cast<Eigen::Index>(foot[1]), f);
-            const double along = ahead.dot(dir);
-            out.forward(t, i) = along > passing_cm ? 1 : along < -passing_cm ? -1 : 0;
+            out.forward(t, i) = lead[f] > passing_cm ? 1 : lead[f] < -passing_cm ? -1 : 0;
         }
     }
     out.share.resize(frames);
