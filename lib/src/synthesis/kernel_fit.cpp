@@ -1,6 +1,9 @@
 #include "mocapdb/synthesis/kernel_fit.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include <Eigen/QR>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -50,6 +53,17 @@ std::string number_text(double v) {
 std::string model_text(const kriging::VariogramModel& m) {
     return std::string(kriging::to_string(m.family)) + "," + number_text(m.exponent) + "," + number_text(m.nugget) +
            "," + number_text(m.sill) + "," + number_text(m.range);
+}
+
+// Values with the same per-sample leave-one-out residual norms, in at most N columns: V = C Q^T with Q's
+// columns orthonormal (thin QR of V^T), so (M V) row i has the norm of (M C) row i for any N x N matrix M,
+// and leave-one-out kriging predicts every column by such a row mixing. For S = R1 R2 >> N values per
+// sample this turns the grid's N^2 S products into N^3 (one QR, N^2 S, up front).
+MatX same_residual_norms(const Eigen::Ref<const MatX>& values) {
+    if (values.cols() <= values.rows()) return values;
+    const Eigen::HouseholderQR<MatX> qr(values.transpose());
+    const MatX r = qr.matrixQR().topRows(values.rows()).triangularView<Eigen::Upper>();
+    return r.transpose();
 }
 
 }  // namespace
@@ -169,7 +183,10 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
             degenerate = fit.degenerate;
             status = fit.status;
         } else {
-            // Leave-one-out over the grid (select_exponent's loop, with the per-p nugget bound of p = 2).
+            // Leave-one-out over the grid (select_exponent's loop, with the per-p nugget bound of p = 2), on
+            // the values reduced to at most N columns with the same per-sample residual norms.
+            const MatX compact = same_residual_norms(sample_values);
+            const double scale = static_cast<double>(compact.cols()) / static_cast<double>(sample_values.cols());
             Eigen::VectorXd mse = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(options.exponent_grid.size()),
                                                             std::numeric_limits<double>::infinity());
             double best = std::numeric_limits<double>::infinity();
@@ -177,7 +194,7 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
                 const kriging::VariogramFit fit = fit_one(options.exponent_grid[k]);
                 if (fit.degenerate || !(fit.model.total_sill() > 0.0)) continue;
                 const kriging::Kriging kr = kriging::Kriging::build(xc, fit.model, options.kriging);
-                const double e = kr.leave_one_out(sample_values).mse;
+                const double e = kr.leave_one_out(compact).mse * scale;
                 if (!std::isfinite(e)) continue;
                 mse(static_cast<Eigen::Index>(k)) = e;
                 if (e < best) {
