@@ -83,6 +83,27 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     r = run_cli("set create " + db + " --name three --clips 16_11 16_12 16_13 --params " + quoted(csv));
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.output, Contains("params.csv") && Contains("no row for sample '16_13'"));
+    // #15: periodic parameters: a CSV column marked with --periodic (bearing extracted is periodic by itself).
+    std::ofstream(dir / "bearing.csv") << "sample,heading[deg]\n16_11,350\n16_12,10\n16_13,20\n";
+    r = run_cli("set create " + db + " --name around --clips 16_11 16_12 16_13 --params " +
+                quoted((dir / "bearing.csv").string()) + " --periodic heading=360");
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    r = run_cli("set show " + db + " around");
+    CHECK_THAT(r.out, Contains("periodic: heading, period 360 deg"));
+    r = run_cli("set show " + db + " around --json");
+    CHECK(parse_json(r.out)["parameters"][0]["period"].number == 360.0);
+    r = run_cli("set create " + db + " --name x --clips 16_11 16_12 --params " + quoted(csv) + " --periodic bearing=360");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("no parameter 'bearing' to make periodic (its parameters: target)"));
+    r = run_cli("set create " + db + " --name x --clips 16_11 16_12 --params " + quoted(csv) + " --periodic target=");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("--periodic 'target=': expected NAME=PERIOD"));
+    r = run_cli("set create " + db + " --name x --clips 16_11 16_12 --segment none --extract bearing");
+    CHECK(r.exit_code == 0);
+    r = run_cli("set show " + db + " x");
+    CHECK_THAT(r.out, Contains("periodic: bearing, period 6.28319 rad"));
+
     // #16: a set of one sample, or of samples that all share one parameter vector, is refused at creation.
     r = run_cli("set create " + db + " --name one --clips 16_11 --segment none --extract turn speed");
     CHECK(r.exit_code == 1);
@@ -107,7 +128,7 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     r = run_cli("set list " + db + " --json");
     REQUIRE(r.exit_code == 0);
     const Json list = parse_json(r.out);
-    REQUIRE(list.items.size() == 4);  // cycles, middle, walks, two
+    REQUIRE(list.items.size() == 6);  // around, cycles, middle, walks, two, x
 
     // The stored tensor and parameters read back through the library.
     const Database database(dir.path() / "walks.h5");

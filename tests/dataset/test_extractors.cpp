@@ -82,6 +82,32 @@ TEST_CASE("turn, speed and displacement match SOURCE.txt's measurements of subje
     CHECK(fast_min > slow_max + 20);
 }
 
+TEST_CASE("bearing: the direction of travel of subject 16's walks follows their turn", "[extract][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const auto ex = extractors({"turn", "bearing"});
+    CHECK(ex[1].periods() == std::vector<double>{2.0 * kPi});
+    CHECK(ex[0].periods() == std::vector<double>{0.0});
+    for (int t = 11; t <= 34; ++t) {
+        const std::string trial = "16_" + std::to_string(t);
+        const Clip clip = load_amc(trial);
+        const VecX v = extract_parameters(clip, 0, clip.frame_count(), ex);
+        INFO(trial << ": turn " << v[0] << " rad, bearing " << v[1] << " rad");
+        CHECK(std::abs(v[1]) <= kPi);
+        if (std::abs(v[0]) < 0.2) {
+            CHECK(std::abs(v[1]) < 0.15);  // straight walks travel straight ahead
+        } else {
+            // On a turn the net travel points between the start heading and the end heading.
+            CHECK(v[1] / v[0] > 0.0);
+            CHECK(v[1] / v[0] < 1.0);
+        }
+    }
+    // A clip that does not travel has no direction of travel.
+    Clip still = slice(load_amc("16_15"), 0, 3);
+    still.channels.row(1) = still.channels.row(0);
+    still.channels.row(2) = still.channels.row(0);
+    CHECK_THROWS_WITH(extract_parameters(still, 0, 3, ex), Contains("too little for a bearing"));
+}
+
 TEST_CASE("jump length of forward jumps follows the clips' net travel", "[extract][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const auto table = measured_table();

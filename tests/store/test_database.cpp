@@ -224,6 +224,34 @@ TEST_CASE("store: motion sets and aligned sets round-trip and the tensor is stor
     CHECK(validate_database(db_path).ok());
 }
 
+TEST_CASE("store: periodic parameters round-trip; sets without them store no parameter_period", "[store]") {
+    TempDir dir("periodic");
+    const auto db_path = dir / "db.h5";
+    const Clip clip = synthetic_clip(40, 3, 7);
+    MotionSet periodic = two_sample_set("walk");
+    periodic.name = "bearings";
+    set_parameter_period(periodic, "turn", 2.0 * kPi);
+    CHECK_THROWS_WITH(set_parameter_period(periodic, "bearing", 360.0), Catch::Contains("no parameter 'bearing'") &&
+                                                                           Catch::Contains("speed, turn"));
+    CHECK_THROWS_WITH(set_parameter_period(periodic, "turn", -1.0), Catch::Contains("must be finite and > 0"));
+    {
+        DatabaseWriter w(db_path);
+        w.add_clip(clip, synthetic_source("walk.bvh", "w"));
+        w.put_set(two_sample_set("walk"), false);
+        w.put_set(periodic, false);
+        w.commit();
+    }
+    const Database db(db_path);
+    CHECK(db.load_set("walks").parameter_periods.size() == 0);
+    const MotionSet back = db.load_set("bearings");
+    REQUIRE(back.parameter_periods.size() == 2);
+    CHECK(back.parameter_periods(0) == 0.0);
+    CHECK(back.parameter_periods(1) == 2.0 * kPi);
+    const CommandResult ls = run_command("h5ls " + quoted(db_path.string() + "/sets/walks"));
+    CHECK(ls.output.find("parameter_period") == std::string::npos);
+    CHECK(validate_database(db_path).ok());
+}
+
 TEST_CASE("store: put_set and put_aligned refuse sets that do not fit the stored clips", "[store]") {
     TempDir dir("badsets");
     const auto db_path = dir / "db.h5";

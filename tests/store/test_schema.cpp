@@ -43,9 +43,9 @@ TEST_CASE("schema: the compiled-in mirrors are schemas/format-v1.json to format-
 TEST_CASE("schema: every object and attribute of each mirror is specified in its format-vN.md", "[store][schema]") {
     // Objects per version: version 2 adds /sets/{set}/model and its six datasets, version 3
     // /clips/{clip}/channels_packed, the packed tier (/packed, /packed/{group} and its 5 datasets),
-    // the synthesis kernel /sets/{set}/model/kernel and the repaired dropouts /sets/{set}/repairs
-    // with its 3 datasets.
-    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 49}};
+    // the synthesis kernel /sets/{set}/model/kernel, the repaired dropouts /sets/{set}/repairs
+    // with its 3 datasets and the periodic parameters' /sets/{set}/parameter_period.
+    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 50}};
     for (const auto& [version, path_count] : versions) {
         const std::string json = file_bytes(kSchemas / mirror_name(version));
         const std::string md = file_bytes(kSchemas / ("format-v" + std::to_string(version) + ".md"));
@@ -77,8 +77,8 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     }
     for (const std::string& path : v2)
         if (v1.count(path) == 0) CHECK(path.rfind("/sets/{set}/model", 0) == 0);
-    // Version 3 is version 2 plus the packed clip channels, the packed tier, the synthesis kernel and
-    // the repaired dropouts.
+    // Version 3 is version 2 plus the packed clip channels, the packed tier, the synthesis kernel, the
+    // repaired dropouts and the parameter periods.
     const auto v3 = matches(file_bytes(kSchemas / "format-v3.json"), "\"path\": \"([^\"]+)\"");
     for (const std::string& path : v2) {
         INFO(path);
@@ -87,7 +87,8 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     for (const std::string& path : v3)
         if (v2.count(path) == 0)
             CHECK((path == "/clips/{clip}/channels_packed" || path.rfind("/packed", 0) == 0 ||
-                   path == "/sets/{set}/model/kernel" || path.rfind("/sets/{set}/repairs", 0) == 0));
+                   path == "/sets/{set}/model/kernel" || path.rfind("/sets/{set}/repairs", 0) == 0 ||
+                   path == "/sets/{set}/parameter_period"));
 }
 
 TEST_CASE("schema: a custom mirror is honoured and a malformed one refused", "[store][schema]") {

@@ -20,6 +20,7 @@ struct CreateArgs {
     std::vector<std::string> clips;
     std::string params_csv;
     std::vector<std::string> extract;
+    std::vector<std::string> periodic;
     std::string segment = "auto";
     std::string feet;
     bool replace = false;
@@ -31,6 +32,7 @@ void run_create(const CreateArgs& a) {
     r.clips = a.clips;
     r.params_csv = a.params_csv;
     r.extract = a.extract;
+    r.periodic = a.periodic;
     r.segment = a.segment;
     r.feet = a.feet;
     r.replace = a.replace;
@@ -49,7 +51,11 @@ void print_set(const Database& db, const std::string& name, bool json) {
         j.key("parameter_source").value(set.parameter_source);
         j.key("parameters").begin_array();
         for (std::size_t p = 0; p < set.parameter_names.size(); ++p)
-            j.begin_object().key("name").value(set.parameter_names[p]).key("unit").value(set.parameter_units[p]).end_object();
+        {
+            j.begin_object().key("name").value(set.parameter_names[p]).key("unit").value(set.parameter_units[p]);
+            if (set.parameter_periods.size() != 0) j.key("period").value(set.parameter_periods(static_cast<Eigen::Index>(p)));
+            j.end_object();
+        }
         j.end_array();
         j.key("aligned").value(aligned.has_value());
         if (aligned) {
@@ -92,6 +98,11 @@ void print_set(const Database& db, const std::string& name, bool json) {
         for (Eigen::Index p = 0; p < set.parameters.cols(); ++p) std::printf(" %14.4f", set.parameters(static_cast<Eigen::Index>(i), p));
         std::printf("\n");
     }
+    for (Eigen::Index p = 0; p < set.parameter_periods.size(); ++p) {
+        if (!(set.parameter_periods(p) > 0.0)) continue;
+        std::printf("periodic: %s, period %g %s\n", set.parameter_names[static_cast<std::size_t>(p)].c_str(),
+                    set.parameter_periods(p), set.parameter_units[static_cast<std::size_t>(p)].c_str());
+    }
     if (!set.dropouts_checked) {
         std::printf("dropouts: not checked (set stored before the check; 'set create --force' rebuilds it)\n");
         return;
@@ -120,6 +131,7 @@ void setup_set(CLI::App& app) {
         "  mocapdb set create db.h5 --name walks --clips '16_1[1-9]' '16_2?' 16_30 --extract turn speed\n"
         "  mocapdb set create db.h5 --name walks1 --clips '16_1[1-9]' --segment gait:1 --extract speed turn\n"
         "  mocapdb set create db.h5 --name jumps --clips '16_0[5-9]' --segment none --extract jump\n"
+        "  mocapdb set create db.h5 --name dirs --clips 'strafe_*' --segment gait:1 --extract bearing speed\n"
         "  mocapdb set create db.h5 --name reach --clips 'reach_*' --params targets.csv\n"
         "Extractors: displacement (dx, dz cm), turn (rad), speed (cm/s), jump (cm), reach:JOINT@FRAME (cm;\n"
         "FRAME = offset, end or P%); definitions in lib/include/mocapdb/dataset/param_extractors.hpp.\n"
@@ -133,6 +145,7 @@ void setup_set(CLI::App& app) {
     create->add_option("--clips", c->clips, "clip ids or shell patterns (quoted), in sample order")->required();
     create->add_option("--params", c->params_csv, "control parameters from a CSV")->check(CLI::ExistingFile);
     create->add_option("--extract", c->extract, "control parameters measured from the motion");
+    create->add_option("--periodic", c->periodic, "NAME=PERIOD: a periodic parameter (e.g. bearing=360 for degrees); 'bearing' extracted is periodic by itself");
     create->add_option("--segment", c->segment, "auto | none | gait[:N] | window:LENGTH[:HOP] (default auto)");
     create->add_option("--feet", c->feet, "left,right foot joints for gait cycles and contacts, e.g. ltoes,rtoes (default: found by name)");
     create->add_flag("--force,--replace", c->replace, "replace an existing set of that name");

@@ -75,6 +75,7 @@ void apply_params_csv(MotionSet& set, const std::string& file, const Database& d
     std::vector<std::string> names(csv.header.begin() + 1, csv.header.end());
     set.parameter_names.clear();
     set.parameter_units.clear();
+    set.parameter_periods.resize(0);
     for (const std::string& h : names) {
         const auto [n, u] = name_and_unit(h);
         set.parameter_names.push_back(n);
@@ -225,6 +226,19 @@ SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
     for (const std::string& id : o.skipped)
         std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
     if (!a.params_csv.empty()) apply_params_csv(o.set, a.params_csv, db);
+    for (const std::string& spec : a.periodic) {
+        const auto eq = spec.find('=');
+        double period = 0.0;
+        std::size_t used = 0;
+        try {
+            if (eq != std::string::npos && eq > 0) period = std::stod(spec.substr(eq + 1), &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (eq == std::string::npos || eq == 0 || used == 0 || eq + 1 + used != spec.size())
+            throw InvalidArgument("--periodic '" + spec + "': expected NAME=PERIOD, e.g. bearing=360");
+        set_parameter_period(o.set, spec.substr(0, eq), period);
+    }
     validate(o.set);
     check_distinguishable(o.set);
     writer.put_set(o.set, a.replace);

@@ -53,6 +53,7 @@ struct SetRequest {
     std::vector<std::string> clips;      ///< clip ids or fnmatch patterns, in sample order
     std::string params_csv;              ///< parameters from a CSV ...
     std::vector<std::string> extract;    ///< ... or measured by these extractors (not both)
+    std::vector<std::string> periodic;   ///< "NAME=PERIOD": periodic parameters (bearing is by itself)
     std::string segment = "auto";
     std::string feet;
     bool replace = false;

@@ -1,5 +1,8 @@
 #include "mocapdb/dataset/motion_set.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb {
@@ -26,6 +29,27 @@ void validate(const MotionSet& set) {
                               std::to_string(set.parameters.cols()) + ", expected " + std::to_string(n) + " by " +
                               std::to_string(p) + " (samples by parameters)");
     if (!set.parameters.allFinite()) throw InvalidArgument(who + ": non-finite control parameter");
+    if (set.parameter_periods.size() != 0 &&
+        (set.parameter_periods.size() != p || !set.parameter_periods.allFinite() || (set.parameter_periods.array() < 0.0).any()))
+        throw InvalidArgument(who + ": parameter periods must be empty or " + std::to_string(p) +
+                              " finite values >= 0 (0 = not periodic)");
+}
+
+void set_parameter_period(MotionSet& set, const std::string& name, double period) {
+    const std::string who = "motion set '" + set.name + "'";
+    if (!(period >= 0.0) || !std::isfinite(period))
+        throw InvalidArgument(who + ": the period of parameter '" + name + "' must be finite and > 0 (0 = not periodic)");
+    const auto it = std::find(set.parameter_names.begin(), set.parameter_names.end(), name);
+    if (it == set.parameter_names.end()) {
+        std::string names;
+        for (const std::string& n : set.parameter_names) names += (names.empty() ? "" : ", ") + n;
+        throw InvalidArgument(who + ": no parameter '" + name + "' to make periodic (its parameters: " +
+                              (names.empty() ? "none" : names) + ")");
+    }
+    const auto p = static_cast<Eigen::Index>(set.parameter_names.size());
+    if (set.parameter_periods.size() != p) set.parameter_periods = VecX::Zero(p);
+    set.parameter_periods(static_cast<Eigen::Index>(it - set.parameter_names.begin())) = period;
+    if (!(set.parameter_periods.array() > 0.0).any()) set.parameter_periods.resize(0);
 }
 
 void check_distinguishable(const MotionSet& set) {

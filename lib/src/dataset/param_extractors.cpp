@@ -64,6 +64,7 @@ ParameterExtractor ParameterExtractor::parse(const std::string& spec) {
     else if (spec == "turn") e.kind = ParameterKind::Turn;
     else if (spec == "speed") e.kind = ParameterKind::Speed;
     else if (spec == "jump") e.kind = ParameterKind::Jump;
+    else if (spec == "bearing") e.kind = ParameterKind::Bearing;
     else if (spec.rfind("reach:", 0) == 0) {
         const std::string rest = spec.substr(6);
         const auto at = rest.find('@');
@@ -73,7 +74,7 @@ ParameterExtractor ParameterExtractor::parse(const std::string& spec) {
         e.joint = rest.substr(0, at);
         e.at = rest.substr(at + 1);
     } else {
-        throw InvalidArgument("unknown extractor '" + spec + "' (expected displacement, turn, speed, jump or reach:JOINT@FRAME)");
+        throw InvalidArgument("unknown extractor '" + spec + "' (expected displacement, turn, speed, jump, bearing or reach:JOINT@FRAME)");
     }
     return e;
 }
@@ -84,6 +85,7 @@ std::string ParameterExtractor::spec() const {
         case ParameterKind::Turn: return "turn";
         case ParameterKind::Speed: return "speed";
         case ParameterKind::Jump: return "jump";
+        case ParameterKind::Bearing: return "bearing";
         case ParameterKind::Reach: return "reach:" + joint + "@" + at;
     }
     return {};
@@ -95,6 +97,7 @@ std::vector<std::string> ParameterExtractor::names() const {
         case ParameterKind::Turn: return {"turn"};
         case ParameterKind::Speed: return {"speed"};
         case ParameterKind::Jump: return {"jump"};
+        case ParameterKind::Bearing: return {"bearing"};
         case ParameterKind::Reach: return {joint + "_x", joint + "_y", joint + "_z"};
     }
     return {};
@@ -106,9 +109,16 @@ std::vector<std::string> ParameterExtractor::units() const {
         case ParameterKind::Turn: return {"rad"};
         case ParameterKind::Speed: return {"cm/s"};
         case ParameterKind::Jump: return {"cm"};
+        case ParameterKind::Bearing: return {"rad"};
         case ParameterKind::Reach: return {"cm", "cm", "cm"};
     }
     return {};
+}
+
+std::vector<double> ParameterExtractor::periods() const {
+    std::vector<double> out(names().size(), 0.0);
+    if (kind == ParameterKind::Bearing) out[0] = 2.0 * std::acos(-1.0);
+    return out;
 }
 
 VecX extract_parameters(const Clip& clip, std::size_t begin, std::size_t end,
@@ -151,6 +161,17 @@ VecX extract_parameters(const Clip& clip, std::size_t begin, std::size_t end,
                 break;
             }
             case ParameterKind::Jump: values.push_back(jump_length(clip, begin, end, e.contacts, root)); break;
+            case ParameterKind::Bearing: {
+                Vec3 d = root.col(last) - root.col(b);
+                d.y() = 0.0;
+                if (!(d.norm() >= 1.0))
+                    throw InvalidArgument("clip '" + clip.name + "' frames [" + std::to_string(begin) + ", " +
+                                          std::to_string(end) + "): the root travels " + std::to_string(d.norm()) +
+                                          " cm, too little for a bearing (direction of travel)");
+                const Vec3 local = rotate_about_y(d, -heading[b]);
+                values.push_back(std::atan2(local.x(), local.z()));
+                break;
+            }
         }
     }
     return Eigen::Map<const VecX>(values.data(), static_cast<Eigen::Index>(values.size()));

@@ -1,5 +1,7 @@
 #include "mocapdb/dataset/set_builder.hpp"
 
+#include <algorithm>
+
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb {
@@ -86,10 +88,14 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
     if (clip_ids.empty()) throw InvalidArgument("motion set '" + options.name + "': no clips selected");
     MotionSet set;
     set.name = options.name;
+    std::vector<double> periods;
     for (const ParameterExtractor& e : options.extractors) {
         for (const std::string& n : e.names()) set.parameter_names.push_back(n);
         for (const std::string& u : e.units()) set.parameter_units.push_back(u);
+        for (const double t : e.periods()) periods.push_back(t);
     }
+    if (std::any_of(periods.begin(), periods.end(), [](double t) { return t > 0.0; }))
+        set.parameter_periods = Eigen::Map<const VecX>(periods.data(), static_cast<Eigen::Index>(periods.size()));
     set.dropouts_checked = options.repair_dropouts;
     std::vector<VecX> rows;
     Segmentation used = options.segmentation;

@@ -249,7 +249,8 @@ void MotionKriging::predict(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::R
         throw InvalidArgument("MotionKriging::predict: c must have P = " + std::to_string(dimension()) +
                               " entries and out_values " + std::to_string(num_columns()));
     }
-    const Eigen::VectorXd cn = ((c - scaling_.offset).array() / scaling_.scale.array()).matrix();
+    Eigen::VectorXd cn;
+    scaling_.apply_point(c, cn);
     QueryWorkspace ws;
     Eigen::VectorXd w(num_samples());
     for (std::size_t k = 0; k < kernels_.size(); ++k) {

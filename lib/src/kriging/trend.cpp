@@ -110,15 +110,43 @@ Eigen::MatrixXd evaluate_trend(const TrendBasis& basis, const Eigen::Ref<const E
     return out;
 }
 
-ControlScaling ControlScaling::from_data(const Eigen::Ref<const Eigen::MatrixXd>& coords) {
+double wrap_to_half_period(double x, double period) {
+    const double r = x - period * std::floor(x / period + 0.5);
+    return r >= 0.5 * period ? r - period : r;
+}
+
+ControlScaling ControlScaling::from_data(const Eigen::Ref<const Eigen::MatrixXd>& coords,
+                                         const Eigen::Ref<const Eigen::VectorXd>& periods) {
     if (coords.rows() < 1 || coords.cols() < 1 || !coords.allFinite()) {
         throw InvalidArgument("ControlScaling::from_data: coords must be a finite N by P matrix with N, P >= 1");
     }
+    if (periods.size() != 0 && periods.size() != coords.cols())
+        throw InvalidArgument("ControlScaling::from_data: periods must be empty or have P = " +
+                              std::to_string(coords.cols()) + " entries");
+    if (!periods.allFinite() || (periods.array() < 0.0).any())
+        throw InvalidArgument("ControlScaling::from_data: periods must be finite and >= 0");
     ControlScaling s;
     s.offset = coords.colwise().mean().transpose();
     s.scale.resize(coords.cols());
+    if ((periods.array() > 0.0).any()) s.period = periods;
     for (Eigen::Index k = 0; k < coords.cols(); ++k) {
-        const double sd = std::sqrt((coords.col(k).array() - s.offset(k)).square().mean());
+        double sd;
+        if (s.period.size() != 0 && s.period(k) > 0.0) {
+            const double t = s.period(k);
+            const double two_pi = 2.0 * std::acos(-1.0);
+            const Eigen::ArrayXd angle = coords.col(k).array() * (two_pi / t);
+            const double c = angle.cos().mean(), sn = angle.sin().mean();
+            // The circular mean (any value when the angles cancel out; the first sample's then).
+            s.offset(k) = std::hypot(c, sn) > 1e-12 ? std::atan2(sn, c) * t / two_pi : coords(0, k);
+            double sum = 0.0;
+            for (Eigen::Index i = 0; i < coords.rows(); ++i) {
+                const double d = wrap_to_half_period(coords(i, k) - s.offset(k), t);
+                sum += d * d;
+            }
+            sd = std::sqrt(sum / static_cast<double>(coords.rows()));
+        } else {
+            sd = std::sqrt((coords.col(k).array() - s.offset(k)).square().mean());
+        }
         s.scale(k) = sd > 0.0 ? sd : 1.0;
     }
     return s;
@@ -139,13 +167,60 @@ void ControlScaling::validate(Eigen::Index dimension) const {
     if (!offset.allFinite() || !(scale.array() > 0.0).all() || !scale.allFinite()) {
         throw InvalidArgument("ControlScaling: offsets must be finite and scales finite and > 0");
     }
+    if (period.size() != 0 && (period.size() != dimension || !period.allFinite() || (period.array() < 0.0).any()))
+        throw InvalidArgument("ControlScaling: periods must be empty or P = " + std::to_string(dimension) +
+                              " finite values >= 0");
+}
+
+bool ControlScaling::has_periodic_axis() const { return period.size() != 0 && (period.array() > 0.0).any(); }
+
+Eigen::Index ControlScaling::embedded_dimension() const {
+    return offset.size() + (period.size() != 0 ? static_cast<Eigen::Index>((period.array() > 0.0).count()) : 0);
 }
 
 Eigen::MatrixXd ControlScaling::apply(const Eigen::Ref<const Eigen::MatrixXd>& coords) const {
     validate(coords.cols());
-    Eigen::MatrixXd out = (coords.rowwise() - offset.transpose());
-    out.array().rowwise() /= scale.transpose().array();
+    if (!has_periodic_axis()) {
+        Eigen::MatrixXd out = (coords.rowwise() - offset.transpose());
+        out.array().rowwise() /= scale.transpose().array();
+        return out;
+    }
+    const double two_pi = 2.0 * std::acos(-1.0);
+    Eigen::MatrixXd out(coords.rows(), embedded_dimension());
+    Eigen::Index col = 0;
+    for (Eigen::Index k = 0; k < coords.cols(); ++k) {
+        if (period(k) > 0.0) {
+            const double radius = period(k) / (two_pi * scale(k));
+            const Eigen::ArrayXd angle = (coords.col(k).array() - offset(k)) * (two_pi / period(k));
+            out.col(col++) = radius * angle.cos();
+            out.col(col++) = radius * angle.sin();
+        } else {
+            out.col(col++) = (coords.col(k).array() - offset(k)) / scale(k);
+        }
+    }
     return out;
+}
+
+void ControlScaling::apply_point(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::VectorXd& out) const {
+    if (c.size() != offset.size())
+        throw InvalidArgument("ControlScaling: a point must have P = " + std::to_string(offset.size()) + " entries");
+    if (out.size() != embedded_dimension()) out.resize(embedded_dimension());
+    if (!has_periodic_axis()) {
+        out = ((c - offset).array() / scale.array()).matrix();
+        return;
+    }
+    const double two_pi = 2.0 * std::acos(-1.0);
+    Eigen::Index col = 0;
+    for (Eigen::Index k = 0; k < c.size(); ++k) {
+        if (period(k) > 0.0) {
+            const double radius = period(k) / (two_pi * scale(k));
+            const double angle = (c(k) - offset(k)) * (two_pi / period(k));
+            out(col++) = radius * std::cos(angle);
+            out(col++) = radius * std::sin(angle);
+        } else {
+            out(col++) = (c(k) - offset(k)) / scale(k);
+        }
+    }
 }
 
 }  // namespace mocapdb::kriging

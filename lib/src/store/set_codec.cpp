@@ -51,6 +51,12 @@ void write_set(h5::File& file, const MotionSet& set) {
     const std::vector<double> parameters = to_c_order(set.parameters);
     file.write_array(g + "/parameters", parameters.data(), {n, static_cast<std::uint64_t>(set.parameters.cols())},
                      {"sample", "parameter"}, "parameter_unit");
+    if (set.parameter_periods.size() != 0 && (set.parameter_periods.array() > 0.0).any()) {
+        // Periodic parameters (format-v3.md §6); absent = every parameter linear.
+        const std::vector<double> periods(set.parameter_periods.data(), set.parameter_periods.data() + set.parameter_periods.size());
+        file.write_array(g + "/parameter_period", periods.data(), {static_cast<std::uint64_t>(periods.size())},
+                         {"parameter"}, "parameter_unit");
+    }
     if (set.dropouts_checked) {
         // The dropout check's outcome (format-v3.md §6.1); the datasets only when something was repaired.
         const std::string r = repairs_path(set.name);
@@ -100,6 +106,17 @@ MotionSet read_set(const h5::File& file, const std::string& name) {
     expect_shape(file, g + "/parameters", {n, p}, "(samples by parameters)", params.shape);
     expect_finite(file, g + "/parameters", params.data);
     set.parameters = from_c_order(params.data, static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(p));
+    if (file.type_of(g + "/parameter_period") == h5::ObjectType::Dataset) {
+        const auto periods = file.read_array<double>(g + "/parameter_period", 1);
+        expect_shape(file, g + "/parameter_period", {p}, "(one period per parameter_name)", periods.shape);
+        expect_finite(file, g + "/parameter_period", periods.data);
+        for (std::size_t k = 0; k < periods.data.size(); ++k)
+            if (periods.data[k] < 0.0)
+                throw StoreError(file.name(), g + "/parameter_period",
+                                 "parameter " + std::to_string(k) + ": expected a period >= 0 (0 = not periodic), found " +
+                                     std::to_string(periods.data[k]));
+        set.parameter_periods = Eigen::Map<const VecX>(periods.data.data(), static_cast<Eigen::Index>(p));
+    }
     // Sets stored before the dropout check have no repairs group: taken as stored, unrepaired.
     const std::string r = repairs_path(name);
     if (file.type_of(r) == h5::ObjectType::Group) {

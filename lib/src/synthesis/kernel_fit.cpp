@@ -76,6 +76,10 @@ std::string kernel_options_text(const SynthesisOptions& o) {
         for (Eigen::Index k = 0; k < o.scaling->offset.size(); ++k) s += number_text(o.scaling->offset(k)) + ",";
         s += "/";
         for (Eigen::Index k = 0; k < o.scaling->scale.size(); ++k) s += number_text(o.scaling->scale(k)) + ",";
+        if (o.scaling->period.size() != 0) {
+            s += "/";
+            for (Eigen::Index k = 0; k < o.scaling->period.size(); ++k) s += number_text(o.scaling->period(k)) + ",";
+        }
     } else {
         s += "data";
     }
@@ -110,6 +114,8 @@ std::uint64_t kernel_key(const compression::SetModel& model, const MotionSet& se
     d.rows(t.U[2]);
     const double* core = t.core.data();
     for (Eigen::Index i = 0; i < t.core.size(); ++i) d.number(core[i]);
+    // Periodic parameters change the control-space distances (sets without them keep their keys).
+    for (Eigen::Index k = 0; k < set.parameter_periods.size(); ++k) d.number(set.parameter_periods(k));
     return d.h == 0 ? 1 : d.h;
 }
 
@@ -260,8 +266,9 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     if (options.scaling) {
         options.scaling->validate(set.parameters.cols());
         scaling = *options.scaling;
+        if (scaling.period.size() == 0) scaling.period = set.parameter_periods;
     } else {
-        scaling = kriging::ControlScaling::from_data(set.parameters);
+        scaling = kriging::ControlScaling::from_data(set.parameters, set.parameter_periods);
     }
     KernelFit fit = fit_coefficient_kernel(scaling.apply(set.parameters), core_slice_values(model), options, where);
     fit.key = kernel_key(model, set, options);

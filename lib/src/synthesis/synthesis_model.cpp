@@ -67,8 +67,9 @@ SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, 
     if (options.scaling) {
         options.scaling->validate(coords_.cols());
         scaling_ = *options.scaling;
+        if (scaling_.period.size() == 0) scaling_.period = set.parameter_periods;  // the set's periodic axes
     } else {
-        scaling_ = kriging::ControlScaling::from_data(coords_);
+        scaling_ = kriging::ControlScaling::from_data(coords_, set.parameter_periods);
     }
     const MatX xc = scaling_.apply(coords_);
 
@@ -142,8 +143,7 @@ void SynthesisModel::normalize(const Eigen::Ref<const VecX>& c, VecX& out, const
                               idx(c.size()));
     }
     if (!c.allFinite()) throw InvalidArgument(std::string(where) + ": c must be finite");
-    if (out.size() != c.size()) out.resize(c.size());
-    out = ((c - scaling_.offset).array() / scaling_.scale.array()).matrix();
+    scaling_.apply_point(c, out);
 }
 
 void SynthesisModel::weights(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, Workspace& ws) const {
@@ -190,9 +190,13 @@ void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref
                               " and finite, got " + idx(C.rows()) + "x" + idx(C.cols()));
     }
     const Eigen::Index q = C.rows();
-    if (ws.c_normalized.rows() != q || ws.c_normalized.cols() != parameters()) ws.c_normalized.resize(q, parameters());
-    ws.c_normalized = ((C.rowwise() - scaling_.offset.transpose()).array().rowwise() /
-                       scaling_.scale.transpose().array()).matrix();
+    if (scaling_.has_periodic_axis()) {
+        ws.c_normalized = scaling_.apply(C);
+    } else {
+        if (ws.c_normalized.rows() != q || ws.c_normalized.cols() != parameters()) ws.c_normalized.resize(q, parameters());
+        ws.c_normalized = ((C.rowwise() - scaling_.offset.transpose()).array().rowwise() /
+                           scaling_.scale.transpose().array()).matrix();
+    }
     if (!folded_.empty()) {
         if (ws.coefficients.rows() != coefficient_size() || ws.coefficients.cols() != q)
             ws.coefficients.resize(coefficient_size(), q);

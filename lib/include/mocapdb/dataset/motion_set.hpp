@@ -31,6 +31,10 @@ struct MotionSet {
     std::vector<std::string> parameter_names;       ///< P names
     std::vector<std::string> parameter_units;       ///< P units ("cm", "rad", "cm/s", "" ...)
     MatX parameters;                                ///< N by P control parameters
+    /// Periods of periodic parameters (e.g. 2 pi for a bearing in rad), 0 for a linear one: P values, or
+    /// empty when every parameter is linear. Kriging measures distances along a periodic axis on a
+    /// circle (kriging/trend.hpp ControlScaling), so c and c + period are the same request.
+    VecX parameter_periods;
     std::string parameter_source;                   ///< how they were obtained ("csv:FILE", "extract:...")
     /// True when the clips were checked for dropouts as the set was built (sets stored before that
     /// check existed read as false and are taken as stored, unrepaired).
@@ -41,8 +45,13 @@ struct MotionSet {
 };
 
 /// Throws InvalidArgument unless: a non-empty name, at least one sample, every sample has at least
-/// two frames, the parameter matrix is N by P with P names and P units, all finite.
+/// two frames, the parameter matrix is N by P with P names and P units, all finite; parameter_periods
+/// empty or P finite values >= 0.
 void validate(const MotionSet& set);
+
+/// Marks parameter `name` periodic with `period` (> 0, finite; in the parameter's unit), or linear with 0.
+/// InvalidArgument naming the set's parameters when there is no such parameter, or for a bad period.
+void set_parameter_period(MotionSet& set, const std::string& name, double period);
 
 /// Throws InvalidArgument, saying why, when the set cannot serve to tell motions apart by their
 /// parameters: fewer than 2 samples, or (with parameters) every sample at the same parameter vector

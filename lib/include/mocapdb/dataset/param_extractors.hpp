@@ -11,6 +11,9 @@
 //   reach:J@F     J_x, J_y, J_z [cm]: position of joint J at frame begin+F minus the root position
 //                 at that frame, rotated by −ψ at that frame (x left, y up, z forward). F is a frame
 //                 offset, or "end" for the last frame, or "P%" for a fraction of the sample.
+//   bearing       [rad]: direction of travel, atan2(dx, dz) of `displacement` (0 = straight ahead of the
+//                 start heading, + = to the left, in (-pi, pi]); periodic with period 2 pi. Undefined when
+//                 the root travels less than 1 cm.
 //   jump          [cm]: horizontal root travel between take-off and landing of the longest flight
 //                 (the longest run of frames in which no foot is in contact, foot_contacts.hpp):
 //                 ‖(p(landing) − p(takeoff))_xz‖, take-off = the last contact frame before the
@@ -24,7 +27,7 @@
 
 namespace mocapdb {
 
-enum class ParameterKind { Displacement, Turn, Speed, Reach, Jump };
+enum class ParameterKind { Displacement, Turn, Speed, Reach, Jump, Bearing };
 
 struct ParameterExtractor {
     ParameterKind kind = ParameterKind::Turn;
@@ -32,13 +35,15 @@ struct ParameterExtractor {
     std::string at;        ///< Reach: "F", "end" or "P%"
     FootContactOptions contacts;  ///< Jump
 
-    /// Parses "displacement", "turn", "speed", "jump", "reach:JOINT@F". InvalidArgument otherwise.
+    /// Parses "displacement", "turn", "speed", "jump", "bearing", "reach:JOINT@F". InvalidArgument otherwise.
     static ParameterExtractor parse(const std::string& spec);
     /// The spec this extractor parses from (parse(e.spec()) == e).
     std::string spec() const;
     /// Names and units of the columns this extractor produces (displacement 2, reach 3, others 1).
     std::vector<std::string> names() const;
     std::vector<std::string> units() const;
+    /// Period of each column (2 pi for bearing), 0 for a linear one.
+    std::vector<double> periods() const;
 };
 
 /// Values of every extractor, in order, for frames [begin, end) of the clip. InvalidArgument when a

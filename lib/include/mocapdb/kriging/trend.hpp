@@ -77,20 +77,40 @@ Eigen::MatrixXd evaluate_trend(const TrendBasis& basis, const Eigen::Ref<const E
 /// Per-axis normalization of control parameters, c_normalized = (c - offset) / scale.
 /// The motion pipeline normalizes so that every axis contributes comparably to distances (the paper
 /// requires normalized parameters for intrinsic stationarity); users may override the scales.
+///
+/// Periodic axes (issue #15: a bearing, period 2 pi rad or 360 deg): such an axis becomes two coordinates,
+/// the point at angle 2 pi (c - offset) / period on a circle of radius period / (2 pi scale). Distances
+/// along it are chords, so c and c + period coincide, and two values delta apart are
+/// (period / (pi scale)) sin(pi delta / period) ~ delta / scale apart for small delta, as on a linear
+/// axis. The kriging then works in embedded_dimension() coordinates (its linear trend in cos and sin of
+/// the angle). Thread safety: plain data.
 struct ControlScaling {
     Eigen::VectorXd offset;  ///< P
     Eigen::VectorXd scale;   ///< P, all > 0
+    Eigen::VectorXd period;  ///< P periods (0 = a linear axis), or empty: every axis linear
 
     /// offset = per-axis mean, scale = per-axis population standard deviation; an axis with zero spread
-    /// keeps scale 1. coords: N by P.
-    static ControlScaling from_data(const Eigen::Ref<const Eigen::MatrixXd>& coords);
+    /// keeps scale 1. coords: N by P. periods: empty or P values >= 0 (0 = linear); on a periodic axis
+    /// offset = the circular mean and scale = the root mean square of the deviations from it, each
+    /// wrapped into [-period / 2, period / 2).
+    static ControlScaling from_data(const Eigen::Ref<const Eigen::MatrixXd>& coords,
+                                    const Eigen::Ref<const Eigen::VectorXd>& periods = Eigen::VectorXd());
     /// offset = 0, scale = 1 (identity).
     static ControlScaling identity(Eigen::Index dimension);
 
-    /// Throws InvalidArgument unless sizes agree and every scale is finite and > 0.
+    /// Throws InvalidArgument unless sizes agree, every scale is finite and > 0 and every period finite
+    /// and >= 0.
     void validate(Eigen::Index dimension) const;
-    /// coords: M by P; returns M by P.
+    bool has_periodic_axis() const;
+    /// Coordinates after apply(): P plus one per periodic axis.
+    Eigen::Index embedded_dimension() const;
+    /// coords: M by P; returns M by embedded_dimension() (M by P when no axis is periodic).
     Eigen::MatrixXd apply(const Eigen::Ref<const Eigen::MatrixXd>& coords) const;
+    /// One point c (P values) into out (resized to embedded_dimension(); no allocation when it has that size).
+    void apply_point(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::VectorXd& out) const;
 };
+
+/// x wrapped into [-period / 2, period / 2) (period > 0).
+double wrap_to_half_period(double x, double period);
 
 }  // namespace mocapdb::kriging

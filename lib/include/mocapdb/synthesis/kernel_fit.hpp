@@ -62,7 +62,8 @@ std::string fit_status_warning(const KernelFit& fit);
 /// from h = 0xcbf29ce484222325, fold: the bytes of kernel_options_text(options) (one word per byte),
 /// N, P, R1, R2, R3, then the IEEE-754 bit patterns of set.parameters (row after row, the file's
 /// (N, P) C order), of model.tucker.U[2] (row after row, the file's (N, R3) sample_basis) and of the
-/// core (the library's column-major order, the file's (R3, R2, R1) core). Cost: one pass over the core.
+/// core (the library's column-major order, the file's (R3, R2, R1) core), then, for a set with periodic
+/// parameters, the bit patterns of set.parameter_periods. Cost: one pass over the core.
 std::uint64_t kernel_key(const compression::SetModel& model, const MotionSet& set, const SynthesisOptions& options);
 
 /// The options that shape the coefficient kernel as text (exponent, scaling, variogram, fit and
