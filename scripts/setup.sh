@@ -13,6 +13,7 @@ packages=(
   libzfp-dev zlib1g-dev      # compression baselines (zfp) and entropy coding (deflate)
   libzstd-dev                # the lossless tier of the clips; the packing module compares with it
   libssl-dev                 # SHA-256 of the imported source files (OpenSSL's libcrypto)
+  nlohmann-json3-dev         # JSON: the schema mirror, --json output, the tests' JSON checks
   python3-zstandard          # the README's h5py snippet decodes a clip with it
   liblbfgspp-dev             # L-BFGS for the Gaussian-process hyperparameters
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build

@@ -1,109 +1,101 @@
 #include "json_writer.hpp"
 
-#include <charconv>
 #include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace mocapdb::cli {
 
-std::string json_escape(std::string_view text) {
-    std::string out = "\"";
-    for (const char ch : text) {
-        const auto c = static_cast<unsigned char>(ch);
-        switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\r': out += "\\r"; break;
-            case '\t': out += "\\t"; break;
-            default:
-                if (c < 0x20) {
-                    static const char hex[] = "0123456789abcdef";
-                    out += "\\u00";
-                    out += hex[c >> 4];
-                    out += hex[c & 15];
-                } else {
-                    out += static_cast<char>(c);
-                }
-        }
-    }
-    return out + "\"";
-}
+struct JsonWriter::Document {
+    nlohmann::ordered_json root;
+    std::vector<nlohmann::ordered_json*> open;  // containers begun and not yet ended, innermost last
+    std::string pending_key;
+    bool has_key = false;
+    bool started = false;
 
-void JsonWriter::separate() {
-    if (after_key_) {
-        after_key_ = false;
-        return;
+    // Places v in the innermost open container (under the pending key in an object), or as the root.
+    nlohmann::ordered_json& put(nlohmann::ordered_json v) {
+        if (open.empty()) {
+            if (started) throw std::logic_error("JsonWriter: a second top-level value");
+            started = true;
+            root = std::move(v);
+            return root;
+        }
+        nlohmann::ordered_json& parent = *open.back();
+        if (parent.is_object()) {
+            if (!has_key) throw std::logic_error("JsonWriter: an object member without a key");
+            has_key = false;
+            parent[pending_key] = std::move(v);
+            return parent[pending_key];
+        }
+        parent.push_back(std::move(v));
+        return parent.back();
     }
-    if (!first_.empty()) {
-        if (!first_.back()) out_ += ",";
-        first_.back() = false;
-    }
-}
+};
+
+JsonWriter::JsonWriter() : doc_(std::make_unique<Document>()) {}
+JsonWriter::~JsonWriter() = default;
 
 JsonWriter& JsonWriter::begin_object() {
-    separate();
-    out_ += "{";
-    first_.push_back(true);
+    doc_->open.push_back(&doc_->put(nlohmann::ordered_json::object()));
     return *this;
 }
 
 JsonWriter& JsonWriter::end_object() {
-    first_.pop_back();
-    out_ += "}";
+    doc_->open.pop_back();
     return *this;
 }
 
 JsonWriter& JsonWriter::begin_array() {
-    separate();
-    out_ += "[";
-    first_.push_back(true);
+    doc_->open.push_back(&doc_->put(nlohmann::ordered_json::array()));
     return *this;
 }
 
 JsonWriter& JsonWriter::end_array() {
-    first_.pop_back();
-    out_ += "]";
+    doc_->open.pop_back();
     return *this;
 }
 
 JsonWriter& JsonWriter::key(std::string_view name) {
-    separate();
-    out_ += json_escape(name) + ":";
-    after_key_ = true;
+    doc_->pending_key = std::string(name);
+    doc_->has_key = true;
     return *this;
 }
 
 JsonWriter& JsonWriter::value(std::string_view text) {
-    separate();
-    out_ += json_escape(text);
+    doc_->put(std::string(text));
     return *this;
 }
 
 JsonWriter& JsonWriter::value(double number) {
     if (!std::isfinite(number)) return null();
-    separate();
-    char buffer[32];
-    const auto r = std::to_chars(buffer, buffer + sizeof buffer, number);
-    out_.append(buffer, r.ptr);
+    // A whole number keeps the form it had before nlohmann ("120", not "120.0"); -0 stays a double.
+    if (number == std::floor(number) && std::abs(number) < 9007199254740992.0 && !(number == 0.0 && std::signbit(number)))
+        doc_->put(static_cast<long long>(number));
+    else
+        doc_->put(number);
     return *this;
 }
 
 JsonWriter& JsonWriter::value(long long number) {
-    separate();
-    out_ += std::to_string(number);
+    doc_->put(number);
     return *this;
 }
 
 JsonWriter& JsonWriter::value(bool flag) {
-    separate();
-    out_ += flag ? "true" : "false";
+    doc_->put(flag);
     return *this;
 }
 
 JsonWriter& JsonWriter::null() {
-    separate();
-    out_ += "null";
+    doc_->put(nullptr);
     return *this;
+}
+
+std::string JsonWriter::str() const {
+    return doc_->root.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace mocapdb::cli

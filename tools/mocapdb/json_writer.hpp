@@ -1,14 +1,21 @@
 #pragma once
-// Minimal JSON output for --json: stable key order as written, numbers with round-trip precision,
-// non-finite numbers written as null (JSON has no NaN) so output always parses.
+// --json output: a document built in the order written (keys keep that order) and serialized by
+// nlohmann::json (Debian nlohmann-json3-dev). Numbers round-trip; a whole double below 2^53 is written
+// without a fraction ("120", as before); non-finite numbers are written as null (JSON has no NaN) so the
+// output always parses; strings that are not valid UTF-8 get U+FFFD for the bad bytes.
+#include <memory>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace mocapdb::cli {
 
 class JsonWriter {
 public:
+    JsonWriter();
+    ~JsonWriter();
+    JsonWriter(const JsonWriter&) = delete;
+    JsonWriter& operator=(const JsonWriter&) = delete;
+
     JsonWriter& begin_object();
     JsonWriter& end_object();
     JsonWriter& begin_array();
@@ -23,16 +30,12 @@ public:
     JsonWriter& value(bool flag);
     JsonWriter& null();
 
-    /// The document, followed by a newline.
-    std::string str() const { return out_ + "\n"; }
+    /// The document, compact, followed by a newline.
+    std::string str() const;
 
 private:
-    void separate();
-    std::string out_;
-    std::vector<bool> first_;  // per open container: no element written yet
-    bool after_key_ = false;
+    struct Document;  // the nlohmann tree and the path to the open container
+    std::unique_ptr<Document> doc_;
 };
-
-std::string json_escape(std::string_view text);
 
 }  // namespace mocapdb::cli

@@ -1,179 +1,63 @@
+// The schema mirror's JSON, parsed by nlohmann::json (Debian nlohmann-json3-dev) into the JsonValue tree
+// the schema code walks (objects keep their key order).
 #include "json_value.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <charconv>
-#include <cstdio>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
 
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb::store {
 namespace {
 
-class Parser {
-public:
-    Parser(std::string_view text, const std::string& source) : t_(text), source_(source) {}
+using Ordered = nlohmann::ordered_json;
 
-    JsonValue document() {
-        JsonValue v = value(0);
-        skip();
-        if (i_ != t_.size()) fail("unexpected text after the JSON value");
-        return v;
-    }
-
-private:
-    std::string_view t_;
-    const std::string& source_;
-    std::size_t i_ = 0;
-
-    [[noreturn]] void fail(const std::string& message) const {
-        std::size_t line = 1, col = 1;
-        for (std::size_t k = 0; k < i_ && k < t_.size(); ++k) {
-            if (t_[k] == '\n') {
-                ++line;
-                col = 1;
-            } else {
-                ++col;
-            }
-        }
-        throw ParseError(source_, line, col, message);
-    }
-
-    void skip() {
-        while (i_ < t_.size() && (t_[i_] == ' ' || t_[i_] == '\t' || t_[i_] == '\n' || t_[i_] == '\r')) ++i_;
-    }
-
-    void expect(char c) {
-        skip();
-        if (i_ >= t_.size() || t_[i_] != c) fail(std::string("expected '") + c + "'");
-        ++i_;
-    }
-
-    bool literal(std::string_view word) {
-        if (t_.substr(i_, word.size()) != word) return false;
-        i_ += word.size();
-        return true;
-    }
-
-    JsonValue value(int depth) {
-        if (depth > 64) fail("nesting deeper than 64 levels");
-        skip();
-        if (i_ >= t_.size()) fail("unexpected end of text (expected a value)");
-        JsonValue v;
-        const char c = t_[i_];
-        if (c == '{') {
-            ++i_;
-            v.type = JsonValue::Type::Object;
-            skip();
-            if (i_ < t_.size() && t_[i_] == '}') {
-                ++i_;
-                return v;
-            }
-            for (;;) {
-                skip();
-                if (i_ >= t_.size() || t_[i_] != '"') fail("expected a quoted member name");
-                std::string key = string_literal();
-                expect(':');
-                v.object.emplace_back(std::move(key), value(depth + 1));
-                skip();
-                if (i_ < t_.size() && t_[i_] == ',') {
-                    ++i_;
-                    continue;
-                }
-                expect('}');
-                return v;
-            }
-        }
-        if (c == '[') {
-            ++i_;
-            v.type = JsonValue::Type::Array;
-            skip();
-            if (i_ < t_.size() && t_[i_] == ']') {
-                ++i_;
-                return v;
-            }
-            for (;;) {
-                v.array.push_back(value(depth + 1));
-                skip();
-                if (i_ < t_.size() && t_[i_] == ',') {
-                    ++i_;
-                    continue;
-                }
-                expect(']');
-                return v;
-            }
-        }
-        if (c == '"') {
+// The tree, at most 64 levels deep (the conversion recurses per level; nlohmann's parser does not).
+JsonValue from_nlohmann(const Ordered& j, const std::string& source, int depth = 0) {
+    if (depth > 64) throw ParseError(source, 0, 0, "nesting deeper than 64 levels");
+    JsonValue v;
+    switch (j.type()) {
+        case Ordered::value_t::boolean:
+            v.type = JsonValue::Type::Bool;
+            v.boolean = j.get<bool>();
+            break;
+        case Ordered::value_t::number_integer:
+        case Ordered::value_t::number_unsigned:
+        case Ordered::value_t::number_float:
+            v.type = JsonValue::Type::Number;
+            v.number = j.get<double>();
+            break;
+        case Ordered::value_t::string:
             v.type = JsonValue::Type::String;
-            v.string = string_literal();
-            return v;
-        }
-        if (literal("true")) {
-            v.type = JsonValue::Type::Bool;
-            v.boolean = true;
-            return v;
-        }
-        if (literal("false")) {
-            v.type = JsonValue::Type::Bool;
-            return v;
-        }
-        if (literal("null")) return v;
-        std::size_t end = i_;
-        while (end < t_.size() && (std::isdigit(static_cast<unsigned char>(t_[end])) || t_[end] == '-' ||
-                                   t_[end] == '+' || t_[end] == '.' || t_[end] == 'e' || t_[end] == 'E'))
-            ++end;
-        const auto [ptr, ec] = std::from_chars(t_.data() + i_, t_.data() + end, v.number);
-        if (end == i_ || ec != std::errc() || ptr != t_.data() + end) fail("expected a value");
-        v.type = JsonValue::Type::Number;
-        i_ = end;
-        return v;
+            v.string = j.get<std::string>();
+            break;
+        case Ordered::value_t::array:
+            v.type = JsonValue::Type::Array;
+            for (const auto& e : j) v.array.push_back(from_nlohmann(e, source, depth + 1));
+            break;
+        case Ordered::value_t::object:
+            v.type = JsonValue::Type::Object;
+            for (auto it = j.begin(); it != j.end(); ++it) v.object.emplace_back(it.key(), from_nlohmann(it.value(), source, depth + 1));
+            break;
+        default: break;  // null (and discarded / binary values, which the text cannot hold)
     }
+    return v;
+}
 
-    std::string string_literal() {
-        ++i_;  // opening quote
-        std::string out;
-        for (;;) {
-            if (i_ >= t_.size()) fail("unterminated string");
-            const char c = t_[i_++];
-            if (c == '"') return out;
-            if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
-            if (c != '\\') {
-                out += c;
-                continue;
-            }
-            if (i_ >= t_.size()) fail("unterminated escape");
-            const char e = t_[i_++];
-            switch (e) {
-                case '"': out += '"'; break;
-                case '\\': out += '\\'; break;
-                case '/': out += '/'; break;
-                case 'b': out += '\b'; break;
-                case 'f': out += '\f'; break;
-                case 'n': out += '\n'; break;
-                case 'r': out += '\r'; break;
-                case 't': out += '\t'; break;
-                case 'u': {
-                    unsigned code = 0;
-                    const auto [ptr, ec] = std::from_chars(t_.data() + i_, t_.data() + std::min(i_ + 4, t_.size()), code, 16);
-                    if (ec != std::errc() || ptr != t_.data() + i_ + 4) fail("expected four hex digits after \\u");
-                    i_ += 4;
-                    if (code < 0x80) {
-                        out += static_cast<char>(code);
-                    } else if (code < 0x800) {
-                        out += static_cast<char>(0xC0 | (code >> 6));
-                        out += static_cast<char>(0x80 | (code & 0x3F));
-                    } else {
-                        out += static_cast<char>(0xE0 | (code >> 12));
-                        out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-                        out += static_cast<char>(0x80 | (code & 0x3F));
-                    }
-                    break;
-                }
-                default: fail(std::string("unknown escape \\") + e);
-            }
+// 1-based line and column of byte offset `at` (nlohmann reports the offset just past the error).
+std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t at) {
+    std::size_t line = 1, col = 1;
+    for (std::size_t k = 0; k < at && k < text.size(); ++k) {
+        if (text[k] == '\n') {
+            ++line;
+            col = 1;
+        } else {
+            ++col;
         }
     }
-};
+    return {line, col};
+}
 
 }  // namespace
 
@@ -184,15 +68,16 @@ const JsonValue* JsonValue::get(std::string_view key) const {
 }
 
 std::string JsonValue::dump() const {
+    // Scalars as nlohmann writes them (a whole number without a fraction, as the mirror writes it);
+    // arrays and objects with ", " / ": " between their parts, for messages.
     switch (type) {
         case Type::Null: return "null";
         case Type::Bool: return boolean ? "true" : "false";
-        case Type::Number: {
-            char buffer[32];
-            const auto r = std::to_chars(buffer, buffer + sizeof buffer, number);
-            return std::string(buffer, r.ptr);
-        }
-        case Type::String: return "\"" + string + "\"";
+        case Type::Number:
+            if (std::isfinite(number) && number == std::floor(number) && std::abs(number) < 9.0e15)
+                return Ordered(static_cast<long long>(number)).dump();
+            return Ordered(number).dump();
+        case Type::String: return Ordered(string).dump(-1, ' ', false, Ordered::error_handler_t::replace);
         case Type::Array: {
             std::string out = "[";
             for (std::size_t k = 0; k < array.size(); ++k) out += (k ? ", " : "") + array[k].dump();
@@ -201,13 +86,26 @@ std::string JsonValue::dump() const {
         case Type::Object: {
             std::string out = "{";
             for (std::size_t k = 0; k < object.size(); ++k)
-                out += (k ? ", \"" : "\"") + object[k].first + "\": " + object[k].second.dump();
+                out += (k ? ", " : "") + Ordered(object[k].first).dump(-1, ' ', false, Ordered::error_handler_t::replace) +
+                       ": " + object[k].second.dump();
             return out + "}";
         }
     }
     return "null";
 }
 
-JsonValue parse_json(std::string_view text, const std::string& source) { return Parser(text, source).document(); }
+JsonValue parse_json(std::string_view text, const std::string& source) {
+    Ordered tree;
+    try {
+        tree = Ordered::parse(text.begin(), text.end());
+    } catch (const Ordered::parse_error& e) {
+        const auto [line, col] = line_and_column(text, e.byte > 0 ? e.byte - 1 : 0);
+        // nlohmann's message starts "[json.exception.parse_error.101] parse error at line L, column C: ".
+        std::string what = e.what();
+        const auto colon = what.find(": ");
+        throw ParseError(source, line, col, colon == std::string::npos ? what : what.substr(colon + 2));
+    }
+    return from_nlohmann(tree, source);
+}
 
 }  // namespace mocapdb::store

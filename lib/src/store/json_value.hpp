@@ -1,5 +1,5 @@
 #pragma once
-// A small JSON reader for the schema mirror (objects keep their key order).
+// The schema mirror as a JSON tree (objects keep their key order); parsed by nlohmann::json.
 #include <string>
 #include <string_view>
 #include <utility>
@@ -22,7 +22,7 @@ struct JsonValue {
     std::string dump() const;
 };
 
-/// Parses JSON text (RFC 8259; \u escapes of the Basic Multilingual Plane). ParseError with line and
+/// Parses JSON text (RFC 8259, by nlohmann::json; at most 64 levels of nesting). ParseError with line and
 /// column on malformed input; `source` names the text.
 JsonValue parse_json(std::string_view text, const std::string& source);
 
