@@ -1,7 +1,7 @@
 // Codec baselines on subject 16's walks (shared CMU, DTW-aligned to 100 frames): bytes at equal max
 // joint-position error, and encode/decode speed. Prints one `key value` line per figure.
 //   bench_codec [repeats]
-// Error in cm: eval::JointErrorMeter (FK of every joint, frame and sample). Per-dof tolerances for
+// Error in cm: compression::JointErrorMeter (FK of every joint, frame and sample). Per-dof tolerances for
 // a guaranteed E cm: eps_d = E / w_d with w = compression::position_error_weights(skeleton).
 #include <cmath>
 #include <cstdio>
@@ -15,7 +15,7 @@
 #include "mocapdb/codec/zfp_codec.hpp"
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/dataset/alignment.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/io/clip_file.hpp"
 
 using namespace mocapdb;
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     const AlignedSet aligned = align_samples(clips, AlignOptions{});
     const Tensor3& a = aligned.tensor;
     const Eigen::Index D = a.dimension(0), T = a.dimension(1), N = a.dimension(2);
-    const eval::JointErrorMeter meter(clips[0].skeleton, a);
+    const compression::JointErrorMeter meter(clips[0].skeleton, a);
     const VecX w = compression::position_error_weights(*clips[0].skeleton);
     auto max_cm = [&](const Tensor3& x) { return meter.measure(x).max_cm; };
     const std::size_t raw = static_cast<std::size_t>(4 * a.size());

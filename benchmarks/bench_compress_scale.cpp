@@ -29,7 +29,7 @@
 #include "mocapdb/compression/rank_search.hpp"
 #include "mocapdb/compression/rate_distortion.hpp"
 #include "mocapdb/compression/set_model.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 
@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     const auto start = Clock::now();
     auto t = Clock::now();
     const VecX weight = compression::position_error_weights(*skeleton);
-    const eval::JointErrorMeter meter(skeleton, poses);
+    const compression::JointErrorMeter meter(skeleton, poses);
     std::printf("meter_s %.2f\n", seconds_since(t));
     t = Clock::now();
     const compression::PreparedSet prepared = compression::prepare_set(poses, weight);
@@ -127,10 +127,10 @@ int main(int argc, char** argv) {
     const compression::SetModel model = compression::fit_set_model(poses, weight, r, tensor::TuckerMethod::Hosvd);
     std::printf("fit_s %.2f\n", seconds_since(t));
     t = Clock::now();
-    const eval::JointErrorStats stats = meter.measure(model.reconstruct());
+    const compression::JointErrorStats stats = meter.measure(model.reconstruct());
 #else
     const compression::SetModel& model = chosen.model;  // compress --method hosvd since #16
-    const eval::JointErrorStats stats = chosen.stats;
+    const compression::JointErrorStats stats = chosen.stats;
     std::printf("fit_s %.2f\n", seconds_since(t));
     t = Clock::now();
 #endif

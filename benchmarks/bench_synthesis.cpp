@@ -25,7 +25,7 @@
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/alignment.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/synthesis/naive_motion_model.hpp"
@@ -254,8 +254,8 @@ int main(int argc, char** argv) {
         model->pose(C.row(q).transpose(), times(q), ql.col(q), ws, 1);
         naive->pose(C.row(q).transpose(), times(q), qn.col(q), ws);
     }
-    const MatX jc = eval::pose_joint_positions(*b.skeleton, qc), jl = eval::pose_joint_positions(*b.skeleton, ql),
-               jn = eval::pose_joint_positions(*b.skeleton, qn);
+    const MatX jc = compression::pose_joint_positions(*b.skeleton, qc), jl = compression::pose_joint_positions(*b.skeleton, ql),
+               jn = compression::pose_joint_positions(*b.skeleton, qn);
     const auto joint_rmse = [&](const MatX& a) {
         double s = 0.0, mx = 0.0;
         for (Eigen::Index q = 0; q < a.cols(); ++q)

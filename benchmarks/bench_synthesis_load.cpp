@@ -1,5 +1,5 @@
 // Loading a stored synthesis model (issue #16: `synth` on a 645-sample set spent 19-29 s per call
-// refitting its kernel): the steps of synthesis::load_motion_model, timed one by one, with the kernel
+// refitting its kernel): the steps of workflow::load_motion_model, timed one by one, with the kernel
 // stored by `compress` (the default path) and without it (the variogram refitted, as before #16),
 // then the first motion. Wall time and process CPU time per step (the machine is shared: CPU time is
 // the steadier figure); best of `repeats`. Prints one `key value` line per figure.

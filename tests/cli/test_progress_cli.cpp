@@ -87,7 +87,7 @@ TEST_CASE("progress: set building, alignment, rank search and validation report 
     Recorder searched;
     const compression::PreparedSet prepared =
         compression::prepare_set(a.tensor, compression::position_error_weights(*samples.front().skeleton));
-    const eval::JointErrorMeter meter(samples.front().skeleton, a.tensor);
+    const compression::JointErrorMeter meter(samples.front().skeleton, a.tensor);
     compression::search_ranks_for_max_error(prepared, meter, 1.0, searched.callback());
     REQUIRE(!searched.reports.empty());
     searched.check_complete(searched.reports.back().total);

@@ -7,7 +7,7 @@
 #include "mocapdb/compression/rank_search.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/alignment.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
@@ -44,7 +44,7 @@ TEST_CASE("joint positions of pose vectors equal forward kinematics of the clip"
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const Clip clip = read_clip(test::datasets_dir() / "cmu-asfamc" / "16_15.amc");
     const Canonicalization canonical = canonicalization_of(clip);
-    const MatX positions = eval::pose_joint_positions(*clip.skeleton, to_pose_vectors(clip, canonical));
+    const MatX positions = compression::pose_joint_positions(*clip.skeleton, to_pose_vectors(clip, canonical));
     const MatX world = joint_positions(clip);
     double worst = 0.0;
     for (Eigen::Index f = 0; f < world.cols(); ++f)
@@ -58,8 +58,8 @@ TEST_CASE("joint positions of pose vectors equal forward kinematics of the clip"
 TEST_CASE("joint error meter: zero for the reference, exact for a rigid shift", "[eval][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const AlignedSet a = walks(3, 20);
-    const eval::JointErrorMeter meter(skeleton_of("cmu-asfamc/16_15.amc"), a.tensor);
-    const eval::JointErrorStats same = meter.measure(a.tensor);
+    const compression::JointErrorMeter meter(skeleton_of("cmu-asfamc/16_15.amc"), a.tensor);
+    const compression::JointErrorStats same = meter.measure(a.tensor);
     CHECK(same.max_cm == 0.0);
     CHECK(same.dof_rmse == 0.0);
     CHECK(same.positions == 20 * 3 * static_cast<Eigen::Index>(meter.skeleton().size()));
@@ -67,7 +67,7 @@ TEST_CASE("joint error meter: zero for the reference, exact for a rigid shift", 
     Tensor3 shifted = a.tensor;
     for (Eigen::Index t = 0; t < 20; ++t)
         for (Eigen::Index n = 0; n < 3; ++n) shifted(0, t, n) += 1.5;  // root x + 1.5 cm moves every joint 1.5 cm
-    const eval::JointErrorStats s = meter.measure(shifted);
+    const compression::JointErrorStats s = meter.measure(shifted);
     CHECK(s.max_cm == Approx(1.5).epsilon(1e-9));
     CHECK(s.mean_cm == Approx(1.5).epsilon(1e-9));
     CHECK(s.rmse_cm == Approx(1.5).epsilon(1e-9));
@@ -98,7 +98,7 @@ TEST_CASE("position-error weights bound every joint's error", "[compression][sha
 
     Tensor3 reference(poses.rows(), poses.cols(), 1);
     std::copy(poses.data(), poses.data() + poses.size(), reference.data());
-    const eval::JointErrorMeter meter(clip.skeleton, reference);
+    const compression::JointErrorMeter meter(clip.skeleton, reference);
     std::mt19937 rng(7);
     std::uniform_int_distribution<int> sign(0, 1);
     for (const double e : {0.1, 1.0, 5.0}) {
@@ -107,7 +107,7 @@ TEST_CASE("position-error weights bound every joint's error", "[compression][sha
             const Eigen::Index d = i % poses.rows();
             noisy.data()[i] += (sign(rng) ? e : -e) / w[d];  // |ΔX| = e on every value: the worst case
         }
-        const eval::JointErrorStats s = meter.measure(noisy);
+        const compression::JointErrorStats s = meter.measure(noisy);
         INFO("E = " << e << " cm: measured max " << s.max_cm << " cm at " << s.worst.joint);
         CHECK(s.max_cm <= e);
         CHECK(s.max_cm > 0.05 * e);  // and the weights are not absurdly conservative
@@ -128,7 +128,7 @@ TEST_CASE("set model: full ranks reproduce the poses, truncation meets the searc
         CHECK(max_abs_difference(full.reconstruct(), a.tensor) <= 1e-10 * norm);
     }
 
-    const eval::JointErrorMeter meter(skeleton, a.tensor);
+    const compression::JointErrorMeter meter(skeleton, a.tensor);
     const compression::PreparedSet prepared = compression::prepare_set(a.tensor, w);
     for (const double target : {2.0, 0.5}) {
         const auto r = compression::search_ranks_for_max_error(prepared, meter, target);
@@ -168,7 +168,7 @@ TEST_CASE("rank search: projected sample basis gives the dense path's ranks and 
     const AlignedSet aligned = walks(6, 30);
     for (const Tensor3* poses : std::initializer_list<const Tensor3*>{&aligned.tensor, &windows}) {
         const tensor::Dims3 dims = tensor::dims_of(*poses);
-        const eval::JointErrorMeter meter(skeleton, *poses);
+        const compression::JointErrorMeter meter(skeleton, *poses);
         compression::PreparedSet dense = compression::prepare_set(*poses, w);
         compression::PreparedSet projected = dense;
         tensor::HosvdOptions o;

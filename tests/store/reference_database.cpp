@@ -1,7 +1,7 @@
 #include "reference_database.hpp"
 
 #include "mocapdb/compression/dof_weights.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/pack.hpp"
 #include "mocapdb/store/sha256.hpp"
@@ -71,7 +71,7 @@ ReferenceContent reference_content() {
 
     r.model = compression::fit_set_model(a.tensor, compression::position_error_weights(*r.clip.skeleton), {1, 2, 2},
                                          tensor::TuckerMethod::Hosvd);
-    const eval::JointErrorStats e = eval::JointErrorMeter(r.clip.skeleton, a.tensor).measure(r.model.reconstruct());
+    const compression::JointErrorStats e = compression::JointErrorMeter(r.clip.skeleton, a.tensor).measure(r.model.reconstruct());
     r.figures = {e.dof_rmse, e.rmse_cm, e.mean_cm, e.max_cm, e.p99_cm};
     return r;
 }

@@ -13,6 +13,7 @@
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/validate.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
+#include "mocapdb/workflow/load_model.hpp"
 #include "shared_data.hpp"
 #include "store_test_support.hpp"
 
@@ -114,7 +115,7 @@ TEST_CASE("kernel: put_kernel_fit round-trips the variogram bit for bit; it goes
     CHECK(report.ok());
 
     // A stored model uses it: the same variogram, no refit.
-    const auto loaded = synthesis::load_motion_model(Database(path), "walks");
+    const auto loaded = workflow::load_motion_model(Database(path), "walks");
     CHECK(loaded->report().kernel_precomputed);
     CHECK(loaded->kernel_fit().key == fit.key);
 
@@ -163,7 +164,7 @@ TEST_CASE("kernel: a corrupted stored kernel is refused naming its group", "[sto
     CHECK(e.first == kKernel);
     CHECK_THAT(e.second, Contains("sill"));
     // Synthesis refuses the file rather than silently refitting.
-    CHECK_THROWS_WITH(synthesis::load_motion_model(Database(path), "walks"), Contains(kKernel));
+    CHECK_THROWS_WITH(workflow::load_motion_model(Database(path), "walks"), Contains(kKernel));
     const ValidationReport report = validate_database(path);
     CHECK(has_violation(report, kKernel, "sill"));
 
@@ -183,7 +184,7 @@ TEST_CASE("kernel: a corrupted stored kernel is refused naming its group", "[sto
     // A well-formed kernel of other inputs (another key) is ignored: the model fits its own.
     write_raw_kernel(path, "00000000000000ab", "stable", 1.0);
     REQUIRE(kernel_error(path).first == "(no error)");
-    const auto loaded = synthesis::load_motion_model(Database(path), "walks");
+    const auto loaded = workflow::load_motion_model(Database(path), "walks");
     CHECK_FALSE(loaded->report().kernel_precomputed);
     CHECK(loaded->kernel_fit().key == fit.key);
     CHECK(loaded->kernel_fit().variogram.sill == fit.variogram.sill);

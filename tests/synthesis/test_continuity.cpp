@@ -13,7 +13,7 @@
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/alignment.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/procedural/humanoid.hpp"
@@ -79,8 +79,8 @@ double largest_jump(const MotionModel& m, const VecX& c, const VecX& dc) {
     for (Eigen::Index t = 0; t < m.frames(); ++t) {
         m.pose(c, static_cast<double>(t), a, ws);
         m.pose(c + dc, static_cast<double>(t), b, ws);
-        const MatX pa = eval::pose_joint_positions(*m.skeleton(), a);
-        const MatX pb = eval::pose_joint_positions(*m.skeleton(), b);
+        const MatX pa = compression::pose_joint_positions(*m.skeleton(), a);
+        const MatX pb = compression::pose_joint_positions(*m.skeleton(), b);
         for (Eigen::Index j = 0; j + 2 < pa.rows(); j += 3)
             worst = std::max(worst, (pa.middleRows(j, 3) - pb.middleRows(j, 3)).norm());
     }

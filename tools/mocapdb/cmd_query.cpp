@@ -4,7 +4,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "synthesis_cli.hpp"
 
@@ -47,7 +47,7 @@ void run_query(const QueryArgs& a) {
     for (const std::string& w : warnings) j.value(w);
     j.end_array();
     if (a.joints) {
-        const MatX p = eval::pose_joint_positions(sk, pose);
+        const MatX p = compression::pose_joint_positions(sk, pose);
         j.key("unit").value("cm");
         j.key("joints").begin_array();
         for (std::size_t k = 0; k < sk.size(); ++k) {
@@ -84,7 +84,7 @@ void run_query(const QueryArgs& a) {
     }
     std::printf("pose of '%s' at frame %g (%s model), reliability %.3f:\n", a.set.c_str(), a.frame, model->kind(), rho);
     if (a.joints) {
-        const MatX p = eval::pose_joint_positions(sk, pose);
+        const MatX p = compression::pose_joint_positions(sk, pose);
         for (std::size_t k = 0; k < sk.size(); ++k) {
             const auto r = static_cast<Eigen::Index>(3 * k);
             std::printf("  %-16s %10.3f %10.3f %10.3f cm\n", sk.joint(k).name.c_str(), p(r, 0), p(r + 1, 0), p(r + 2, 0));

@@ -119,7 +119,7 @@ std::string target_text(double t) {
 }
 
 // The joint-error figures of a JointErrorStats, as keys of the current JSON object.
-void write_joint_error_json(JsonWriter& j, const eval::JointErrorStats& e) {
+void write_joint_error_json(JsonWriter& j, const compression::JointErrorStats& e) {
     j.key("dof_rmse").value(e.dof_rmse);
     j.key("rmse_cm").value(e.rmse_cm);
     j.key("mean_cm").value(e.mean_cm);
@@ -359,7 +359,7 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
     const SetContext c = load_set_context(Database(db), a.set);
     const Tensor3& poses = c.aligned.tensor;
     const VecX weight = compression::position_error_weights(*c.skeleton);
-    const eval::JointErrorMeter meter(c.skeleton, poses);
+    const compression::JointErrorMeter meter(c.skeleton, poses);
     const compression::PreparedSet prepared = compression::prepare_set(poses, weight);
 
     CompressOutcome o;

@@ -19,7 +19,7 @@
 #include "mocapdb/dataset/phase_check.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/store/import.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
 #include "set_context.hpp"
@@ -118,7 +118,7 @@ struct CompressOutcome {
     bool target_met = false;
     tensor::Dims3 dims{0, 0, 0};
     compression::SetModel model;
-    eval::JointErrorStats stats;
+    compression::JointErrorStats stats;
     double us_per_pose = 0.0;
     std::uint64_t raw_bytes = 0;     ///< aligned tensor as float32
     std::uint64_t bytes = 0;         ///< float32 model + side information

@@ -8,6 +8,7 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/synthesis/naive_motion_model.hpp"
+#include "mocapdb/workflow/load_model.hpp"
 
 namespace mocapdb::cli {
 
@@ -65,10 +66,10 @@ std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& 
     else if (timing != "shared") throw InvalidArgument("--timing: expected shared or separate, got '" + timing + "'");
     if (naive) {
         if (!lod.empty()) throw InvalidArgument("--lod applies to the compressed model only (not with --naive)");
-        return synthesis::load_naive_motion_model(db, set, options);
+        return workflow::load_naive_motion_model(db, set, options);
     }
     if (!lod.empty()) options.levels.push_back(parse_ranks(lod, "--lod"));
-    return synthesis::load_motion_model(db, set, options);
+    return workflow::load_motion_model(db, set, options);
 }
 
 Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name, const std::string& option) {

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/dataset/foot_contacts.hpp"
+#include "mocapdb/motion/root_trajectory.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 
 namespace mocapdb {

@@ -13,7 +13,7 @@ namespace {
 // Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `ok` (ok(model):
 // whether it meets the target). Only the chosen model's errors are measured in full.
 template <class Accept>
-RankSearchResult bisect(const PreparedSet& p, const eval::JointErrorMeter& meter, Accept ok,
+RankSearchResult bisect(const PreparedSet& p, const compression::JointErrorMeter& meter, Accept ok,
                         const ProgressCallback& progress) {
     RankSearchResult best;
     const tensor::Dims3 dims = tensor::dims_of(p.x);
@@ -90,7 +90,7 @@ SetModel hosvd_model(const PreparedSet& p, const tensor::Ranks& ranks) {
     return m;
 }
 
-RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const eval::JointErrorMeter& meter, double max_cm,
+RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compression::JointErrorMeter& meter, double max_cm,
                                             const ProgressCallback& progress) {
     if (!(max_cm > 0.0) || !std::isfinite(max_cm))
         throw InvalidArgument("search_ranks_for_max_error: the target must be a finite number of cm > 0, got " +
@@ -99,7 +99,7 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const eval::Jo
     return bisect(p, meter, [&](const SetModel& m) { return !meter.exceeds(m.reconstruct(), max_cm); }, progress);
 }
 
-RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const eval::JointErrorMeter& meter, double rmse,
+RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::JointErrorMeter& meter, double rmse,
                                        const ProgressCallback& progress) {
     if (!(rmse >= 0.0) || !std::isfinite(rmse))
         throw InvalidArgument("search_ranks_for_rmse: the target must be finite and >= 0, got " + std::to_string(rmse));
@@ -111,7 +111,7 @@ RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const eval::JointEr
     }, progress);
 }
 
-RankSearchResult ranks_for_ratio(const PreparedSet& p, const eval::JointErrorMeter& meter, double ratio) {
+RankSearchResult ranks_for_ratio(const PreparedSet& p, const compression::JointErrorMeter& meter, double ratio) {
     if (!(ratio > 0.0) || !std::isfinite(ratio))
         throw InvalidArgument("ranks_for_ratio: the target ratio must be finite and > 0, got " + std::to_string(ratio));
     RankSearchResult r;

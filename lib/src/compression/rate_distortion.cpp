@@ -58,7 +58,7 @@ double stream_us_per_pose(Decode decode, Eigen::Index poses) {
 struct Context {
     const Tensor3& poses;
     const PreparedSet& prepared;
-    const eval::JointErrorMeter& meter;
+    const compression::JointErrorMeter& meter;
     std::uint64_t raw_bytes;
     std::uint64_t side_bytes;
     std::uint64_t mean_weight_bytes;  // float32 mean and weight per dof
@@ -157,7 +157,7 @@ RateRow best_with_residual(const Context& c, const std::string& method, double t
             const auto encode_start = Clock::now();
             const codec::ResidualEncoding enc = codec::encode_residual(residual, s * target);
             const double encode_seconds = seconds_since(encode_start);
-            const eval::JointErrorStats stats = c.meter.measure(c.poses_of(add(cand.x_hat, enc.decoded)));
+            const compression::JointErrorStats stats = c.meter.measure(c.poses_of(add(cand.x_hat, enc.decoded)));
             const bool ok = stats.max_cm <= target;
             if (i == 0 && !ok) break;  // even the bounded step failed (channel projection): skip the candidate
             if (i > 0) (ok ? lo : hi) = 0.5 * (lo + hi);
@@ -229,7 +229,7 @@ RateRow pca_row(const Context& c, const codec::SamplePca& pca, double target) {
     // Linear scan: with float32 storage the error need not fall monotonically with k.
     RateRow best;
     for (Eigen::Index k = 0; k <= pca.max_components(); ++k) {
-        const eval::JointErrorStats s = c.meter.measure(c.poses_of(pca.reconstruct(k)));
+        const compression::JointErrorStats s = c.meter.measure(c.poses_of(pca.reconstruct(k)));
         if (s.max_cm > target && k < pca.max_components()) continue;
         best = c.row("pca", target, pca.stored_bytes(k));
         best.ranks = {static_cast<long long>(k)};
@@ -252,7 +252,7 @@ RateRow zfp_row(const Context& c, double target) {
         const auto start = Clock::now();
         const codec::EncodedStream s = codec::zfp_encode(c.prepared.x, tol);
         const double seconds = seconds_since(start);
-        const eval::JointErrorStats stats = c.meter.measure(c.poses_of(codec::zfp_decode(s.bytes)));
+        const compression::JointErrorStats stats = c.meter.measure(c.poses_of(codec::zfp_decode(s.bytes)));
         if (stats.max_cm <= target) {
             lo = 0.5 * (lo + hi);
             if (!found || s.payload_bytes() + c.mean_weight_bytes + c.side_bytes < best.bytes) {
@@ -312,7 +312,7 @@ RateReport rate_distortion(const Tensor3& poses, std::shared_ptr<const Skeleton>
     report.side_bytes = side_info_bytes(poses.dimension(1), poses.dimension(2), options.parameters);
 
     const VecX weight = position_error_weights(*skeleton);
-    const eval::JointErrorMeter meter(skeleton, poses);
+    const compression::JointErrorMeter meter(skeleton, poses);
     const PreparedSet prepared = prepare_set(poses, weight);
     const Context c{poses,
                     prepared,

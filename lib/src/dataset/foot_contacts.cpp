@@ -100,25 +100,4 @@ Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& cl
     return contact;
 }
 
-MatX root_positions(const Clip& clip) {
-    validate(clip);
-    MatX out(3, static_cast<Eigen::Index>(clip.frame_count()));
-    for (std::size_t f = 0; f < clip.frame_count(); ++f)
-        out.col(static_cast<Eigen::Index>(f)) = motion_root_transform(*clip.skeleton, clip.frame(f)).position;
-    return out;
-}
-
-VecX root_headings(const Clip& clip) {
-    validate(clip);
-    const Skeleton& s = *clip.skeleton;
-    VecX out(static_cast<Eigen::Index>(clip.frame_count()));
-    double previous = 0.0;
-    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
-        double h = heading_of(motion_root_transform(s, clip.frame(f)).orientation, s.forward());
-        if (f > 0) h -= 2.0 * kPi * std::round((h - previous) / (2.0 * kPi));
-        out[static_cast<Eigen::Index>(f)] = previous = h;
-    }
-    return out;
-}
-
 }  // namespace mocapdb

@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 
 namespace mocapdb::eval {
 
@@ -18,8 +18,8 @@ MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& 
             qb.row(r).setZero();
         }
     }
-    const MatX a = pose_joint_positions(skeleton, qa);
-    const MatX b = pose_joint_positions(skeleton, qb);
+    const MatX a = compression::pose_joint_positions(skeleton, qa);
+    const MatX b = compression::pose_joint_positions(skeleton, qb);
     const Eigen::Index joints = a.rows() / 3;
     MatX out(a.cols(), 3);
     for (Eigen::Index t = 0; t < a.cols(); ++t) {

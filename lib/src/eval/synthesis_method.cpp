@@ -9,7 +9,7 @@
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/unwarp.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/kriging/motion_kriging.hpp"
 #include "mocapdb/kriging/trend.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
@@ -182,7 +182,7 @@ MatX pose_signal(const EvalSet& s) {
         q.row(0).setZero();
         q.row(2).setZero();
         q.row(4).setZero();
-        return pose_joint_positions(*s.skeleton, q);
+        return compression::pose_joint_positions(*s.skeleton, q);
     };
     const MatX ref = positions(0);
     const Eigen::Index joints = ref.rows() / 3;
@@ -198,7 +198,7 @@ MatX pose_signal(const EvalSet& s) {
 tensor::Ranks ranks_for_max_error(const EvalSet& set, double max_cm) {
     const VecX weight = compression::position_error_weights(*set.skeleton);
     const compression::PreparedSet prepared = compression::prepare_set(set.aligned.tensor, weight);
-    const JointErrorMeter meter(set.skeleton, set.aligned.tensor);
+    const compression::JointErrorMeter meter(set.skeleton, set.aligned.tensor);
     return compression::search_ranks_for_max_error(prepared, meter, max_cm).model.tucker.ranks;
 }
 

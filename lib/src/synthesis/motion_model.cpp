@@ -3,7 +3,6 @@
 #include <string>
 
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/store/database.hpp"
 
 namespace mocapdb::synthesis {
 namespace {
@@ -133,30 +132,6 @@ void MotionModel::poses_from_coefficients(const Eigen::Ref<const MatX>& coeffici
     ws.frame_matrix = inv_weight_.asDiagonal() * ws.frame_matrix;
     out.noalias() = ws.frame_matrix * coefficients.topRows(r[2]);
     out.colwise() += model_.mean;
-}
-
-std::unique_ptr<MotionModel> load_motion_model(const Database& db, const std::string& name,
-                                               const SynthesisOptions& options) {
-    const MotionSet set = db.load_set(name);
-    const auto aligned = db.load_aligned(name);
-    if (!aligned)
-        throw InvalidArgument("set '" + name + "' in " + db.path().string() + " is not aligned (run: mocapdb align " +
-                              db.path().string() + " --set " + name + ")");
-    const auto stored = db.load_model(name);
-    if (!stored)
-        throw InvalidArgument("set '" + name + "' in " + db.path().string() +
-                              " has no compressed model (run: mocapdb compress " + db.path().string() + " --set " +
-                              name + ")");
-    const auto record = db.find_clip(set.samples.front().clip);
-    if (!record) throw InvalidArgument("set '" + name + "': clip '" + set.samples.front().clip + "' is missing");
-    if (!options.kernel_fit) {
-        SynthesisOptions with_fit = options;
-        with_fit.kernel_fit = db.load_kernel_fit(name);  // nullopt for models stored without one
-        return std::make_unique<MotionModel>(stored->model, *aligned, set, db.load_skeleton(record->skeleton),
-                                             record->frame_rate, with_fit);
-    }
-    return std::make_unique<MotionModel>(stored->model, *aligned, set, db.load_skeleton(record->skeleton),
-                                         record->frame_rate, options);
 }
 
 }  // namespace mocapdb::synthesis

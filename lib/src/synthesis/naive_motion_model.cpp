@@ -5,7 +5,6 @@
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/store/database.hpp"
 
 namespace mocapdb::synthesis {
 namespace {
@@ -86,20 +85,6 @@ void NaiveMotionModel::poses_from_coefficients(const Eigen::Ref<const MatX>& coe
         out *= (1.0 - a);
         out.noalias() += a * (frames_by_sample_.middleCols(t1 * n, n) * coefficients);
     }
-}
-
-std::unique_ptr<NaiveMotionModel> load_naive_motion_model(const Database& db, const std::string& name,
-                                                          const SynthesisOptions& options) {
-    const MotionSet set = db.load_set(name);
-    const auto aligned = db.load_aligned(name);
-    if (!aligned)
-        throw InvalidArgument("set '" + name + "' in " + db.path().string() + " is not aligned (run: mocapdb align " +
-                              db.path().string() + " --set " + name + ")");
-    const auto record = db.find_clip(set.samples.front().clip);
-    if (!record) throw InvalidArgument("set '" + name + "': clip '" + set.samples.front().clip + "' is missing");
-    auto skeleton = db.load_skeleton(record->skeleton);
-    const VecX weight = compression::position_error_weights(*skeleton);
-    return std::make_unique<NaiveMotionModel>(*aligned, set, std::move(skeleton), record->frame_rate, weight, options);
 }
 
 }  // namespace mocapdb::synthesis

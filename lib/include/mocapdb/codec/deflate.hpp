@@ -6,7 +6,7 @@
 #include <string>
 
 #include "mocapdb/codec/encoded_stream.hpp"
-#include "mocapdb/dataset/aligned_set.hpp"  // Tensor3
+#include "mocapdb/tensor/tensor3.hpp"
 
 namespace mocapdb::codec {
 

@@ -11,7 +11,7 @@
 #include <cstddef>
 
 #include "mocapdb/core/types.hpp"
-#include "mocapdb/dataset/aligned_set.hpp"  // Tensor3
+#include "mocapdb/tensor/tensor3.hpp"
 
 namespace mocapdb::codec {
 

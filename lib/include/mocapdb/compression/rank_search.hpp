@@ -12,7 +12,7 @@
 
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/progress.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
 
 namespace mocapdb::compression {
@@ -32,7 +32,7 @@ SetModel hosvd_model(const PreparedSet& prepared, const tensor::Ranks& ranks);
 
 struct RankSearchResult {
     SetModel model;                 ///< HOSVD at the chosen ranks
-    eval::JointErrorStats stats;    ///< measured for model
+    compression::JointErrorStats stats;    ///< measured for model
     bool target_met = false;
     int evaluations = 0;            ///< models reconstructed and measured
 };
@@ -40,15 +40,15 @@ struct RankSearchResult {
 /// Smallest-bound ranks whose measured max joint error is ≤ max_cm (> 0). meter's reference must be
 /// the poses `prepared` was made from. `progress`: done = bisection steps taken, total = steps + 1
 /// (the last unit measures the chosen model).
-RankSearchResult search_ranks_for_max_error(const PreparedSet& prepared, const eval::JointErrorMeter& meter,
+RankSearchResult search_ranks_for_max_error(const PreparedSet& prepared, const compression::JointErrorMeter& meter,
                                             double max_cm, const ProgressCallback& progress = {});
 
 /// Smallest-bound ranks whose measured RMSE of X (the weighted, centred tensor) is ≤ rmse (≥ 0).
 /// `progress` as for search_ranks_for_max_error.
-RankSearchResult search_ranks_for_rmse(const PreparedSet& prepared, const eval::JointErrorMeter& meter, double rmse,
+RankSearchResult search_ranks_for_rmse(const PreparedSet& prepared, const compression::JointErrorMeter& meter, double rmse,
                                        const ProgressCallback& progress = {});
 
 /// The ranks with the smallest HOSVD bound among those with compression ratio ≥ ratio (> 0).
-RankSearchResult ranks_for_ratio(const PreparedSet& prepared, const eval::JointErrorMeter& meter, double ratio);
+RankSearchResult ranks_for_ratio(const PreparedSet& prepared, const compression::JointErrorMeter& meter, double ratio);
 
 }  // namespace mocapdb::compression

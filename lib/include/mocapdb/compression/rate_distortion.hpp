@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "mocapdb/core/progress.hpp"
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
 namespace mocapdb::compression {
@@ -38,7 +38,7 @@ struct RateRow {
     double setting = 0.0;            ///< zfp tolerance, residual step (in X units), quantization bits
     std::uint64_t bytes = 0;         ///< payload + side information
     double ratio = 0.0;              ///< raw aligned float32 bytes / bytes
-    eval::JointErrorStats stats;
+    compression::JointErrorStats stats;
     double precompute_s = 0.0;       ///< fitting / encoding at the chosen setting
     double us_per_pose = 0.0;
     std::string access;              ///< "pose" or "stream" (see the header comment)

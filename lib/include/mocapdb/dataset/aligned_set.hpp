@@ -4,14 +4,11 @@
 #include <string>
 #include <vector>
 
-#include <unsupported/Eigen/CXX11/Tensor>
-
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/tensor/tensor3.hpp"
 
 namespace mocapdb {
-
-using Tensor3 = Eigen::Tensor<double, 3>;  // column-major (dof, time, sample)
 
 struct AlignedSet {
     std::string method;         ///< "dtw" or "linear"

@@ -6,6 +6,7 @@
 
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/clip.hpp"
+#include "mocapdb/motion/root_trajectory.hpp"  // root_positions, root_headings (used with the contacts)
 
 namespace mocapdb {
 
@@ -27,10 +28,5 @@ std::vector<std::string> default_feet(const Skeleton& skeleton);
 /// Contact flags: feet by frames (1 = in contact). The floor level of each foot is the 5th
 /// percentile of its height over the clip, so a few glitchy frames do not move it.
 Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& clip, const FootContactOptions& options);
-
-/// Global positions of the motion root (Skeleton::motion_root(); 3 by F, cm) and its headings (F, radians about +Y, unwrapped along time; 0
-/// when facing the skeleton's rest forward direction).
-MatX root_positions(const Clip& clip);
-VecX root_headings(const Clip& clip);
 
 }  // namespace mocapdb

@@ -7,7 +7,7 @@
 // each). At N = 645 that is ~30 s, against well under a second for the rest of the model. The result
 // is a handful of numbers (the VariogramModel) that depend only on the model's inputs, so `compress`
 // stores them beside the Tucker model (/sets/{set}/model/kernel, schemas/format-v3.md §8.1) and
-// load_motion_model hands them to the model, which then only builds the kriging system from them.
+// workflow::load_motion_model hands them to the model, which then only builds the kriging system from them.
 // The variogram is stored bit for bit, so a model built from a stored fit is identical to one that
 // fitted it (same doubles in, same operations).
 //

@@ -16,7 +16,6 @@
 #include "mocapdb/synthesis/synthesis_model.hpp"
 
 namespace mocapdb {
-class Database;
 }
 
 namespace mocapdb::synthesis {
@@ -52,12 +51,5 @@ private:
     std::vector<tensor::Ranks> level_ranks_;
     std::vector<tensor::PoseEvaluator> evaluators_;
 };
-
-/// The set's stored model (`mocapdb compress`), aligned form, parameters, skeleton and frame rate from
-/// the database, and (unless options.kernel_fit is set) the model's stored kernel fit
-/// (Database::load_kernel_fit; used when its key matches, kernel_fit.hpp). InvalidArgument naming the
-/// command to run when the set is not aligned or has no model; StoreError for a malformed stored kernel.
-std::unique_ptr<MotionModel> load_motion_model(const Database& db, const std::string& set,
-                                               const SynthesisOptions& options = {});
 
 }  // namespace mocapdb::synthesis

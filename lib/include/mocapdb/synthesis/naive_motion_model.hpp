@@ -11,7 +11,6 @@
 #include "mocapdb/synthesis/synthesis_model.hpp"
 
 namespace mocapdb {
-class Database;
 }
 
 namespace mocapdb::synthesis {
@@ -40,10 +39,5 @@ private:
 
     MatX frames_by_sample_;  ///< D by (T N): block t (columns t N .. t N + N - 1) = A(:, t, :)
 };
-
-/// The set's aligned form, parameters, skeleton and frame rate from the database, with
-/// compression::position_error_weights of the skeleton. InvalidArgument when the set is not aligned.
-std::unique_ptr<NaiveMotionModel> load_naive_motion_model(const Database& db, const std::string& set,
-                                                          const SynthesisOptions& options = {});
 
 }  // namespace mocapdb::synthesis

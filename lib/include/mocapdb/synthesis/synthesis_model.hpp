@@ -120,7 +120,7 @@ struct SynthesisOptions {
     double min_increment_fraction = 0.05;
     /// Upper clamp of a kriged inverse-warp increment, as a multiple (>= 1) of the largest sample increment.
     double max_increment_factor = 4.0;
-    /// Compressed model only: a precomputed coefficient kernel (kernel_fit.hpp; load_motion_model reads
+    /// Compressed model only: a precomputed coefficient kernel (kernel_fit.hpp; workflow::load_motion_model reads
     /// the stored one). Used when its key equals kernel_key of the model's inputs and these options,
     /// ignored otherwise (the kernel is then fitted as without it). The naive model ignores it.
     std::optional<KernelFit> kernel_fit;

@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 
 #include "mocapdb/core/types.hpp"
-#include "mocapdb/dataset/aligned_set.hpp"  // Tensor3
+#include "mocapdb/tensor/tensor3.hpp"
 
 namespace mocapdb::tensor {
 

@@ -1,4 +1,4 @@
-#include "mocapdb/eval/joint_error.hpp"
+#include "mocapdb/compression/joint_error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 
-namespace mocapdb::eval {
+namespace mocapdb::compression {
 namespace {
 
 MatX sample_slice(const Tensor3& a, Eigen::Index n) {
@@ -124,4 +124,4 @@ MatX JointErrorMeter::max_error_per_frame(const Tensor3& approx) const {
     return out;
 }
 
-}  // namespace mocapdb::eval
+}  // namespace mocapdb::compression

@@ -16,7 +16,7 @@
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/motion/skeleton.hpp"
 
-namespace mocapdb::eval {
+namespace mocapdb::compression {
 
 /// Where the largest joint-position error occurred.
 struct WorstJoint {
@@ -67,4 +67,4 @@ private:
     std::vector<MatX> reference_positions_;  ///< per sample: 3J by T
 };
 
-}  // namespace mocapdb::eval
+}  // namespace mocapdb::compression

@@ -1,0 +1,50 @@
+# The library's module graph, checked on every build (issue #17): a module (a folder of
+# lib/include/mocapdb and lib/src) may include only the modules listed before it below, so the
+# dependencies form no cycle. An upward include fails the build, naming the file and the rule.
+# Run: cmake -DLIB_DIR=<repo>/lib -P cmake/module_graph.cmake
+set(MOCAPDB_MODULE_ORDER
+    core motion io kriging tensor gp procedural align dataset codec compression packing synthesis store
+    workflow eval)
+
+if(NOT LIB_DIR)
+  message(FATAL_ERROR "module_graph.cmake: pass -DLIB_DIR=<repo>/lib")
+endif()
+
+set(violations "")
+set(seen_modules "")
+foreach(module IN LISTS MOCAPDB_MODULE_ORDER)
+  list(APPEND seen_modules ${module})
+  file(GLOB_RECURSE files "${LIB_DIR}/include/mocapdb/${module}/*" "${LIB_DIR}/src/${module}/*")
+  foreach(file IN LISTS files)
+    file(STRINGS "${file}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"mocapdb/[a-z_]+/")
+    foreach(line IN LISTS includes)
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"mocapdb/([a-z_]+)/.*$" "\\1" target "${line}")
+      list(FIND seen_modules ${target} allowed)
+      if(allowed EQUAL -1)
+        file(RELATIVE_PATH rel "${LIB_DIR}/.." "${file}")
+        list(FIND MOCAPDB_MODULE_ORDER ${target} known)
+        if(known EQUAL -1)
+          string(APPEND violations "  ${rel}: includes mocapdb/${target}/, which is not a module of cmake/module_graph.cmake\n")
+        else()
+          string(APPEND violations "  ${rel}: module '${module}' includes mocapdb/${target}/, a module above it (a cycle or an upward dependency)\n")
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+
+# Every module folder must be in the order.
+file(GLOB dirs LIST_DIRECTORIES true RELATIVE "${LIB_DIR}/src" "${LIB_DIR}/src/*")
+foreach(dir IN LISTS dirs)
+  if(IS_DIRECTORY "${LIB_DIR}/src/${dir}")
+    list(FIND MOCAPDB_MODULE_ORDER ${dir} known)
+    if(known EQUAL -1)
+      string(APPEND violations "  lib/src/${dir}: a module missing from MOCAPDB_MODULE_ORDER in cmake/module_graph.cmake\n")
+    endif()
+  endif()
+endforeach()
+
+if(violations)
+  string(REPLACE ";" " " order "${MOCAPDB_MODULE_ORDER}")
+  message(FATAL_ERROR "module graph: a module may include only the modules before it in: ${order}\n${violations}")
+endif()

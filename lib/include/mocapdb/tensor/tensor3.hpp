@@ -1,0 +1,9 @@
+#pragma once
+// The third-order tensor type of the Tucker, codec and alignment modules.
+#include <unsupported/Eigen/CXX11/Tensor>
+
+namespace mocapdb {
+
+using Tensor3 = Eigen::Tensor<double, 3>;  // column-major; for a motion set (dof, time, sample)
+
+}  // namespace mocapdb
