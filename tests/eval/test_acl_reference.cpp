@@ -169,13 +169,13 @@ TEST_CASE("ACL reference: a malformed table is an error naming the file, line an
     const Bad bads[] = {
         {header + good + "x,02_02,0.1,ok,31,7,38,96,abc,120,131712,23597,5.5,0.1,0.08,0.03,0.1,0.01,0.06,1.1,\"\",\"\"\n",
          ":3:9:", "column 'frames': expected a whole number, found 'abc'"},
-        {header + good + "x,02_02,0.1,ok,31,7\n", ":3:", "expected 22 cells (as the header), found 6"},
+        {header + good + "x,02_02,0.1,ok,31,7\n", ":3:", "expected 22 comma-separated cells (as in the header), found 6"},
         {header + raw + good + "x,02_02,0.1,ok,31,7,38,96,343,120,1,2,5.5,-0.1,0.08,0.03,0.1,0.01,0.06,1.1,\"\",\"\"\n",
          ":4:14:", "column 'max_cm': expected a number >= 0, found '-0.1'"},
         {header + "x,02_02,0.1,ok,31,7,38,96,343,120,1,2,5.5,0.1,0.08,0.03,0.1,0.01,0.06,1.1,\"open,\n", ":2:",
          "expected a closing quote"},
         {"clip,precision,bytes\n02_01,0.1,5\n", ":1:", "expected a header naming column 'precision_cm'"},
-        {"", ":1:", "expected a header line"},
+        {"", ":1:", "expected a header row"},
     };
     for (const Bad& b : bads) {
         const auto file = dir / "bad.csv";

@@ -1,6 +1,6 @@
 #pragma once
-// Minimal reader for the R-written reference CSVs (header row, quoted strings, numbers) used by the
-// kriging tests. Test-only: the CLI has its own reader with located error messages.
+// The R-written reference CSVs of the kriging tests (header row, quoted strings, numbers), read by the
+// library's CsvTable, with lookups by column name.
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +10,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "mocapdb/io/csv_table.hpp"
 
 namespace mocapdb::test {
 
@@ -47,40 +49,9 @@ struct CsvTable {
     Eigen::MatrixXd matrix(const std::vector<std::string>& names) const { return matrix(names, select("", "")); }
 };
 
-inline std::vector<std::string> split_csv_line(const std::string& line) {
-    std::vector<std::string> out;
-    std::string cur;
-    bool quoted = false;
-    for (char ch : line) {
-        if (ch == '"') {
-            quoted = !quoted;
-        } else if (ch == ',' && !quoted) {
-            out.push_back(cur);
-            cur.clear();
-        } else if (ch != '\r') {
-            cur.push_back(ch);
-        }
-    }
-    out.push_back(cur);
-    return out;
-}
-
 inline CsvTable read_csv(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error("cannot open " + path.string());
-    CsvTable t;
-    std::string line;
-    bool first = true;
-    while (std::getline(in, line)) {
-        if (line.empty() || line == "\r") continue;
-        if (first) {
-            t.header = split_csv_line(line);
-            first = false;
-        } else {
-            t.rows.push_back(split_csv_line(line));
-        }
-    }
-    return t;
+    const mocapdb::CsvTable csv = mocapdb::CsvTable::read(path);
+    return CsvTable{csv.header, csv.cells};
 }
 
 inline double rel_err(double a, double b) {

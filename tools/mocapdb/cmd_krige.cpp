@@ -7,7 +7,8 @@
 #include "json_writer.hpp"
 #include "kriging_cli.hpp"
 #include "mocapdb/core/error.hpp"
-#include "numeric_csv.hpp"
+#include "mocapdb/io/csv_table.hpp"
+#include "option_lists.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -70,7 +71,7 @@ void setup_krige(CLI::App& app) {
             }
             vm = fit_outcome->fit.model;
         }
-        const NumericCsv qcsv = NumericCsv::read(args->query);
+        const CsvTable qcsv = CsvTable::read(args->query);
         Eigen::MatrixXd queries = qcsv.columns(split_names(t.coords, "--coords"));
         if (data.scaling) queries = data.scaling->apply(queries);
         const kriging::Kriging k = kriging::Kriging::build(data.coords, vm, kriging_options(t));

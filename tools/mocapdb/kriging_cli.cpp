@@ -5,7 +5,8 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/kriging/trend.hpp"
-#include "numeric_csv.hpp"
+#include "mocapdb/io/csv_table.hpp"
+#include "option_lists.hpp"
 
 namespace mocapdb::cli {
 
@@ -31,7 +32,7 @@ void add_table_options(CLI::App& cmd, TableKrigingArgs& t) {
 }
 
 TableData load_table(const TableKrigingArgs& args) {
-    const NumericCsv csv = NumericCsv::read(args.data);
+    const CsvTable csv = CsvTable::read(args.data);
     TableData d;
     d.coords = csv.columns(split_names(args.coords, "--coords"));
     d.values = csv.columns({args.value}).col(0);

@@ -22,7 +22,8 @@
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/synthesis/kernel_fit.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
-#include "numeric_csv.hpp"
+#include "mocapdb/io/csv_table.hpp"
+#include "option_lists.hpp"
 #include "progress_bar.hpp"
 #include "svg_plot.hpp"
 
@@ -69,7 +70,7 @@ std::pair<std::string, std::string> name_and_unit(const std::string& header) {
 // Fills the set's parameters from a CSV: first column the sample label, then one column per
 // parameter, headers "name" or "name[unit]".
 void apply_params_csv(MotionSet& set, const std::string& file, const Database& db) {
-    const NumericCsv csv = NumericCsv::read(file);
+    const CsvTable csv = CsvTable::read(file);
     if (csv.header.size() < 2)
         throw ParseError(file, 1, 0, "expected a header 'sample,p1[,p2...]' with at least one parameter column");
     std::vector<std::string> names(csv.header.begin() + 1, csv.header.end());

@@ -8,40 +8,13 @@
 #include <set>
 
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/io/text_file.hpp"
+#include "mocapdb/io/csv_table.hpp"
 
 namespace mocapdb::eval {
 namespace {
 
 const char* const kRequired[] = {"clip", "precision_cm", "status", "joints", "end_sites",
                                  "frames", "acl_bytes", "max_cm", "rmse_cm"};
-
-// Splits one CSV line into cells (quotes as RFC 4180; a cell never spans lines in these tables).
-std::vector<std::string> split_line(const std::string& file, std::size_t line_no, const std::string& line) {
-    std::vector<std::string> cells(1);
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-                cells.back() += '"';
-                ++i;
-            } else if (c == '"') {
-                quoted = false;
-            } else {
-                cells.back() += c;
-            }
-        } else if (c == '"') {
-            quoted = true;
-        } else if (c == ',') {
-            cells.emplace_back();
-        } else {
-            cells.back() += c;
-        }
-    }
-    if (quoted) throw ParseError(file, line_no, 0, "expected a closing quote before the end of the line");
-    return cells;
-}
 
 std::string shown(const std::string& cell) { return cell.empty() ? "an empty cell" : "'" + cell + "'"; }
 
@@ -69,37 +42,20 @@ std::uint64_t whole_cell(const std::string& file, std::size_t line, std::size_t 
 
 AclTable read_acl_table(const std::filesystem::path& path) {
     const std::string file = path.string();
-    const std::string text = read_text_file(path);
+    const CsvTable csv = CsvTable::read(path);
     AclTable table;
     table.files.push_back(path);
     std::map<std::string, std::size_t> column;
-    std::size_t header_cells = 0;
-    std::size_t line_no = 0;
-    std::size_t start = 0;
-    while (start < text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string::npos) end = text.size();
-        std::string line = text.substr(start, end - start);
-        start = end + 1;
-        ++line_no;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.empty()) continue;
-        const std::vector<std::string> cells = split_line(file, line_no, line);
-        if (column.empty()) {
-            for (std::size_t i = 0; i < cells.size(); ++i) column.emplace(cells[i], i);
-            for (const char* name : kRequired)
-                if (!column.count(name))
-                    throw ParseError(file, line_no, 0,
-                                     std::string("expected a header naming column '") + name +
-                                         "' (a per-clip ACL table: clip, precision_cm, status, joints, end_sites, "
-                                         "frames, acl_bytes, max_cm, rmse_cm, ...)");
-            header_cells = cells.size();
-            continue;
-        }
-        if (cells.size() != header_cells)
-            throw ParseError(file, line_no, 0,
-                             "expected " + std::to_string(header_cells) + " cells (as the header), found " +
-                                 std::to_string(cells.size()));
+    for (std::size_t i = 0; i < csv.header.size(); ++i) column.emplace(csv.header[i], i);
+    for (const char* name : kRequired)
+        if (!column.count(name))
+            throw ParseError(file, 1, 0,
+                             std::string("expected a header naming column '") + name +
+                                 "' (a per-clip ACL table: clip, precision_cm, status, joints, end_sites, "
+                                 "frames, acl_bytes, max_cm, rmse_cm, ...)");
+    for (std::size_t row = 0; row < csv.cells.size(); ++row) {
+        const std::vector<std::string>& cells = csv.cells[row];
+        const std::size_t line_no = csv.line_of_row[row];
         auto cell = [&](const char* name) -> const std::string& { return cells[column.at(name)]; };
         auto col = [&](const char* name) { return column.at(name) + 1; };
         if (cell("status") != "ok" || cell("precision_cm") == "raw") {
@@ -127,7 +83,6 @@ AclTable read_acl_table(const std::filesystem::path& path) {
                                                    std::to_string(r.joints + r.end_sites) + " positions per frame");
         table.rows.push_back(std::move(r));
     }
-    if (column.empty()) throw ParseError(file, 1, 0, "expected a header line (a per-clip ACL table), found an empty file");
     return table;
 }
 
