@@ -32,7 +32,7 @@ TEST_CASE("manifest: malformed input names the line and column", "[store][manife
                       Catch::Contains("m.csv:1:6: unknown manifest column 'colour'"));
     CHECK_THROWS_WITH(Manifest::parse("subject\n16\n", "m.csv"), Catch::Contains("no 'file' column"));
     CHECK_THROWS_WITH(Manifest::parse("file,subject\na.amc\n", "m.csv"),
-                      Catch::Contains("m.csv:2: expected 2 fields (as in the header), found 1"));
+                      Catch::Contains("m.csv:2: expected 2 comma-separated cells (as in the header), found 1"));
     CHECK_THROWS_WITH(Manifest::parse("file\na.amc\na.amc\n", "m.csv"),
                       Catch::Contains("m.csv:3:1: file 'a.amc' is listed twice (first on line 2)"));
     CHECK_THROWS_WITH(Manifest::parse("file,fps\na.amc,fast\n", "m.csv"),

@@ -72,6 +72,7 @@ void setup_krige(CLI::App& app) {
             vm = fit_outcome->fit.model;
         }
         const CsvTable qcsv = CsvTable::read(args->query);
+        qcsv.require_data_rows();
         Eigen::MatrixXd queries = qcsv.columns(split_names(t.coords, "--coords"));
         if (data.scaling) queries = data.scaling->apply(queries);
         const kriging::Kriging k = kriging::Kriging::build(data.coords, vm, kriging_options(t));

@@ -33,6 +33,7 @@ void add_table_options(CLI::App& cmd, TableKrigingArgs& t) {
 
 TableData load_table(const TableKrigingArgs& args) {
     const CsvTable csv = CsvTable::read(args.data);
+    csv.require_data_rows();
     TableData d;
     d.coords = csv.columns(split_names(args.coords, "--coords"));
     d.values = csv.columns({args.value}).col(0);

@@ -71,6 +71,7 @@ std::pair<std::string, std::string> name_and_unit(const std::string& header) {
 // parameter, headers "name" or "name[unit]".
 void apply_params_csv(MotionSet& set, const std::string& file, const Database& db) {
     const CsvTable csv = CsvTable::read(file);
+    csv.require_data_rows();
     if (csv.header.size() < 2)
         throw ParseError(file, 1, 0, "expected a header 'sample,p1[,p2...]' with at least one parameter column");
     std::vector<std::string> names(csv.header.begin() + 1, csv.header.end());

@@ -43,6 +43,7 @@ std::uint64_t whole_cell(const std::string& file, std::size_t line, std::size_t 
 AclTable read_acl_table(const std::filesystem::path& path) {
     const std::string file = path.string();
     const CsvTable csv = CsvTable::read(path);
+    csv.require_data_rows();
     AclTable table;
     table.files.push_back(path);
     std::map<std::string, std::size_t> column;

@@ -17,36 +17,68 @@ std::string trim(const std::string& s) {
     return s.substr(b, e - b + 1);
 }
 
-// Splits one line; quoted cells may contain commas; "" inside quotes is a quote.
-std::vector<std::string> split_line(std::string_view line, const std::string& file, std::size_t lineno) {
-    std::vector<std::string> out;
-    std::string cur;
-    bool quoted = false;
-    for (std::size_t k = 0; k < line.size(); ++k) {
-        const char ch = line[k];
-        if (quoted) {
-            if (ch == '"') {
-                if (k + 1 < line.size() && line[k + 1] == '"') {
-                    cur.push_back('"');
-                    ++k;
-                } else {
-                    quoted = false;
+struct Row {
+    std::size_t line = 0;
+    std::vector<std::string> cells;
+    std::vector<std::size_t> columns;  // 1-based column of each cell's start
+};
+
+// RFC 4180 rows; quoted cells may hold commas, quotes ("") and line breaks. Blank rows are dropped.
+std::vector<Row> split_rows(std::string_view text, const std::string& source) {
+    std::vector<Row> rows;
+    std::size_t i = 0, line = 1, line_start = 0;
+    if (text.substr(0, 3) == "\xEF\xBB\xBF") i = line_start = 3;  // UTF-8 byte order mark
+    while (i < text.size()) {
+        Row row;
+        row.line = line;
+        for (;;) {
+            std::string cell;
+            row.columns.push_back(i - line_start + 1);
+            std::size_t j = i;  // spaces before an opening quote are allowed
+            while (j < text.size() && (text[j] == ' ' || text[j] == '\t')) ++j;
+            if (j < text.size() && text[j] == '"') {
+                i = j;
+                const std::size_t open_line = line, open_col = i - line_start + 1;
+                ++i;
+                for (;;) {
+                    if (i >= text.size())
+                        throw ParseError(source, open_line, open_col, "unterminated quoted field (expected a closing quote)");
+                    if (text[i] == '"') {
+                        if (i + 1 < text.size() && text[i + 1] == '"') {
+                            cell += '"';
+                            i += 2;
+                            continue;
+                        }
+                        ++i;
+                        break;
+                    }
+                    if (text[i] == '\n') {
+                        ++line;
+                        line_start = i + 1;
+                    }
+                    cell += text[i++];
                 }
+                while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
+                if (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r')
+                    throw ParseError(source, line, i - line_start + 1, "expected ',' or end of line after a quoted field");
             } else {
-                cur.push_back(ch);
+                while (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r') cell += text[i++];
             }
-        } else if (ch == '"') {
-            quoted = true;
-        } else if (ch == ',') {
-            out.push_back(trim(cur));
-            cur.clear();
-        } else {
-            cur.push_back(ch);
+            row.cells.push_back(trim(cell));
+            if (i < text.size() && text[i] == ',') {
+                ++i;
+                continue;
+            }
+            break;
         }
+        if (i < text.size() && text[i] == '\r') ++i;
+        if (i < text.size() && text[i] == '\n') ++i;
+        ++line;
+        line_start = i;
+        const bool blank = row.cells.size() == 1 && row.cells[0].empty();
+        if (!blank) rows.push_back(std::move(row));
     }
-    if (quoted) throw ParseError(file, lineno, line.size(), "unterminated quoted cell (expected a closing quote before the end of the line)");
-    out.push_back(trim(cur));
-    return out;
+    return rows;
 }
 
 }  // namespace
@@ -54,32 +86,28 @@ std::vector<std::string> split_line(std::string_view line, const std::string& fi
 CsvTable CsvTable::read(const std::filesystem::path& file) { return parse(read_text_file(file), file.string()); }
 
 CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
+    std::vector<Row> rows = split_rows(text, source);
+    if (rows.empty()) throw ParseError(source, 1, 0, "expected a header row with column names, found an empty file");
     CsvTable t;
     t.file = source;
-    std::size_t lineno = 0, start = 0;
-    while (start < text.size()) {
-        std::size_t end = text.find('\n', start);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view line = text.substr(start, end - start);
-        start = end + 1;
-        ++lineno;
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        if (trim(std::string(line)).empty()) continue;
-        std::vector<std::string> cells = split_line(line, source, lineno);
-        if (t.header.empty()) {
-            t.header = std::move(cells);
-            continue;
-        }
-        if (cells.size() != t.header.size())
-            throw ParseError(source, lineno, 0,
+    t.header = std::move(rows.front().cells);
+    t.header_line = rows.front().line;
+    t.header_columns = std::move(rows.front().columns);
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        if (rows[r].cells.size() != t.header.size())
+            throw ParseError(source, rows[r].line, 0,
                              "expected " + std::to_string(t.header.size()) + " comma-separated cells (as in the header), found " +
-                                 std::to_string(cells.size()));
-        t.cells.push_back(std::move(cells));
-        t.line_of_row.push_back(lineno);
+                                 std::to_string(rows[r].cells.size()));
+        t.cells.push_back(std::move(rows[r].cells));
+        t.line_of_row.push_back(rows[r].line);
+        t.column_of_cell.push_back(std::move(rows[r].columns));
     }
-    if (t.header.empty()) throw ParseError(source, 1, 0, "expected a header row with column names, found an empty file");
-    if (t.cells.empty()) throw ParseError(source, lineno + 1, 0, "expected at least one data row after the header, found none");
     return t;
+}
+
+void CsvTable::require_data_rows() const {
+    if (cells.empty())
+        throw ParseError(file, header_line + 1, 0, "expected at least one data row after the header, found none");
 }
 
 long CsvTable::find_column(const std::string& name) const {
@@ -93,7 +121,7 @@ std::size_t CsvTable::column(const std::string& name) const {
     if (k < 0) {
         std::string list;
         for (const auto& h : header) list += (list.empty() ? "" : ", ") + h;
-        throw ParseError(file, 1, 0, "expected a column named '" + name + "', found columns: " + list);
+        throw ParseError(file, header_line, 0, "expected a column named '" + name + "', found columns: " + list);
     }
     return static_cast<std::size_t>(k);
 }
@@ -109,7 +137,7 @@ Eigen::MatrixXd CsvTable::columns(const std::vector<std::string>& names) const {
             errno = 0;
             const double v = std::strtod(cell.c_str(), &end);
             if (cell.empty() || end != cell.c_str() + cell.size() || !std::isfinite(v)) {
-                throw ParseError(file, line_of_row[r], 0,
+                throw ParseError(file, line_of_row[r], column_of_cell[r][idx[c]],
                                  "field " + std::to_string(idx[c] + 1) + " (column '" + names[c] +
                                      "'): expected a finite number, found '" + cell + "'");
             }

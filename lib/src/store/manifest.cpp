@@ -5,69 +5,11 @@
 #include <cmath>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/io/csv_table.hpp"
 #include "mocapdb/io/text_file.hpp"
 
 namespace mocapdb {
 namespace {
-
-struct Row {
-    std::size_t line = 0;
-    std::vector<std::string> fields;
-    std::vector<std::size_t> columns;  // 1-based column of each field's start
-};
-
-// RFC 4180 fields; quoted fields may hold commas, quotes ("") and line breaks.
-std::vector<Row> split_csv(std::string_view text, const std::string& source) {
-    std::vector<Row> rows;
-    std::size_t i = 0, line = 1, line_start = 0;
-    if (text.substr(0, 3) == "\xEF\xBB\xBF") i = line_start = 3;  // UTF-8 byte order mark
-    while (i < text.size()) {
-        Row row;
-        row.line = line;
-        for (;;) {
-            std::string field;
-            row.columns.push_back(i - line_start + 1);
-            if (i < text.size() && text[i] == '"') {
-                const std::size_t open_line = line, open_col = i - line_start + 1;
-                ++i;
-                for (;;) {
-                    if (i >= text.size()) throw ParseError(source, open_line, open_col, "unterminated quoted field");
-                    if (text[i] == '"') {
-                        if (i + 1 < text.size() && text[i + 1] == '"') {
-                            field += '"';
-                            i += 2;
-                            continue;
-                        }
-                        ++i;
-                        break;
-                    }
-                    if (text[i] == '\n') {
-                        ++line;
-                        line_start = i + 1;
-                    }
-                    field += text[i++];
-                }
-                if (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r')
-                    throw ParseError(source, line, i - line_start + 1, "expected ',' or end of line after a quoted field");
-            } else {
-                while (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r') field += text[i++];
-            }
-            row.fields.push_back(std::move(field));
-            if (i < text.size() && text[i] == ',') {
-                ++i;
-                continue;
-            }
-            break;
-        }
-        if (i < text.size() && text[i] == '\r') ++i;
-        if (i < text.size() && text[i] == '\n') ++i;
-        ++line;
-        line_start = i;
-        const bool blank = row.fields.size() == 1 && row.fields[0].find_first_not_of(" \t") == std::string::npos;
-        if (!blank) rows.push_back(std::move(row));
-    }
-    return rows;
-}
 
 std::string trim(const std::string& s) {
     const auto b = s.find_first_not_of(" \t");
@@ -79,14 +21,14 @@ std::string trim(const std::string& s) {
 }  // namespace
 
 Manifest Manifest::parse(std::string_view text, const std::string& source_name) {
-    const std::vector<Row> rows = split_csv(text, source_name);
-    if (rows.empty()) throw ParseError(source_name, 1, 0, "empty manifest (expected a header row with a 'file' column)");
+    if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
+        throw ParseError(source_name, 1, 0, "empty manifest (expected a header row with a 'file' column)");
+    const CsvTable csv = CsvTable::parse(text, source_name);
     enum Column { File, Subject, Description, Labels, Fps };
     std::vector<Column> columns;
     int file_column = -1;
-    const Row& header = rows.front();
-    for (std::size_t c = 0; c < header.fields.size(); ++c) {
-        const std::string name = trim(header.fields[c]);
+    for (std::size_t c = 0; c < csv.header.size(); ++c) {
+        const std::string& name = csv.header[c];
         Column col;
         if (name == "file") {
             col = File;
@@ -100,27 +42,26 @@ Manifest Manifest::parse(std::string_view text, const std::string& source_name) 
         } else if (name == "fps") {
             col = Fps;
         } else {
-            throw ParseError(source_name, header.line, header.columns[c],
+            throw ParseError(source_name, csv.header_line, csv.header_columns[c],
                              "unknown manifest column '" + name + "' (expected file, subject, description, labels, fps)");
         }
         for (const Column seen : columns)
-            if (seen == col) throw ParseError(source_name, header.line, header.columns[c], "column '" + name + "' appears twice");
+            if (seen == col)
+                throw ParseError(source_name, csv.header_line, csv.header_columns[c], "column '" + name + "' appears twice");
         columns.push_back(col);
     }
-    if (file_column < 0) throw ParseError(source_name, header.line, 1, "the header has no 'file' column");
+    if (file_column < 0) throw ParseError(source_name, csv.header_line, 1, "the header has no 'file' column");
 
     Manifest m;
     std::unordered_map<std::string, std::size_t> first_line;
-    for (std::size_t r = 1; r < rows.size(); ++r) {
-        const Row& row = rows[r];
-        if (row.fields.size() != columns.size())
-            throw ParseError(source_name, row.line, 0,
-                             "expected " + std::to_string(columns.size()) + " fields (as in the header), found " +
-                                 std::to_string(row.fields.size()));
+    for (std::size_t r = 0; r < csv.cells.size(); ++r) {
+        const std::vector<std::string>& fields = csv.cells[r];
+        const std::size_t line = csv.line_of_row[r];
+        const std::vector<std::size_t>& at = csv.column_of_cell[r];
         ManifestEntry e;
         std::string file;
         for (std::size_t c = 0; c < columns.size(); ++c) {
-            const std::string value = trim(row.fields[c]);
+            const std::string& value = fields[c];
             switch (columns[c]) {
                 case File: file = value; break;
                 case Subject: e.subject = value; break;
@@ -141,18 +82,18 @@ Manifest Manifest::parse(std::string_view text, const std::string& source_name) 
                     double fps = 0.0;
                     const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), fps);
                     if (ec != std::errc() || ptr != value.data() + value.size() || !(fps > 0.0) || !std::isfinite(fps))
-                        throw ParseError(source_name, row.line, row.columns[c],
+                        throw ParseError(source_name, line, at[c],
                                          "expected a positive frame rate in Hz, found '" + value + "'");
                     e.frame_rate = fps;
                     break;
                 }
             }
         }
-        if (file.empty()) throw ParseError(source_name, row.line, row.columns[static_cast<std::size_t>(file_column)], "empty 'file' field");
+        if (file.empty()) throw ParseError(source_name, line, at[static_cast<std::size_t>(file_column)], "empty 'file' field");
         if (const auto it = first_line.find(file); it != first_line.end())
-            throw ParseError(source_name, row.line, row.columns[static_cast<std::size_t>(file_column)],
+            throw ParseError(source_name, line, at[static_cast<std::size_t>(file_column)],
                              "file '" + file + "' is listed twice (first on line " + std::to_string(it->second) + ")");
-        first_line.emplace(file, row.line);
+        first_line.emplace(file, line);
         m.entries_.emplace(file, std::move(e));
     }
     return m;
