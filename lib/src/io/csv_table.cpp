@@ -10,12 +10,6 @@
 namespace mocapdb {
 namespace {
 
-std::string trim(const std::string& s) {
-    const auto b = s.find_first_not_of(" \t");
-    if (b == std::string::npos) return "";
-    const auto e = s.find_last_not_of(" \t");
-    return s.substr(b, e - b + 1);
-}
 
 struct Row {
     std::size_t line = 0;
@@ -64,7 +58,7 @@ std::vector<Row> split_rows(std::string_view text, const std::string& source) {
             } else {
                 while (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r') cell += text[i++];
             }
-            row.cells.push_back(trim(cell));
+            row.cells.push_back(trim_blanks(cell));
             if (i < text.size() && text[i] == ',') {
                 ++i;
                 continue;
@@ -82,6 +76,13 @@ std::vector<Row> split_rows(std::string_view text, const std::string& source) {
 }
 
 }  // namespace
+
+std::string trim_blanks(std::string_view text) {
+    const auto b = text.find_first_not_of(" \t");
+    if (b == std::string_view::npos) return "";
+    const auto e = text.find_last_not_of(" \t");
+    return std::string(text.substr(b, e - b + 1));
+}
 
 CsvTable CsvTable::read(const std::filesystem::path& file) { return parse(read_text_file(file), file.string()); }
 

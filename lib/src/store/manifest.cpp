@@ -9,16 +9,6 @@
 #include "mocapdb/io/text_file.hpp"
 
 namespace mocapdb {
-namespace {
-
-std::string trim(const std::string& s) {
-    const auto b = s.find_first_not_of(" \t");
-    if (b == std::string::npos) return "";
-    const auto e = s.find_last_not_of(" \t");
-    return s.substr(b, e - b + 1);
-}
-
-}  // namespace
 
 Manifest Manifest::parse(std::string_view text, const std::string& source_name) {
     if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
@@ -71,7 +61,7 @@ Manifest Manifest::parse(std::string_view text, const std::string& source_name) 
                     while (start <= value.size()) {
                         std::size_t end = value.find(';', start);
                         if (end == std::string::npos) end = value.size();
-                        const std::string label = trim(value.substr(start, end - start));
+                        const std::string label = trim_blanks(value.substr(start, end - start));
                         if (!label.empty()) e.labels.push_back(label);
                         start = end + 1;
                     }

@@ -43,4 +43,7 @@ struct CsvTable {
     Eigen::MatrixXd columns(const std::vector<std::string>& names) const;
 };
 
+/// `text` without the spaces and tabs at its ends (how CSV cells and comma-separated lists are trimmed).
+std::string trim_blanks(std::string_view text);
+
 }  // namespace mocapdb
