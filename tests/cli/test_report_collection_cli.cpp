@@ -155,7 +155,7 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
     const CommandResult refused = run_cli("report " + quoted(db) + " --collection --reference " + quoted(bad.string()));
     CHECK(refused.exit_code == 1);
     CHECK(refused.err.find(bad.string() + ":2:") != std::string::npos);
-    CHECK(refused.err.find("expected 22 cells") != std::string::npos);
+    CHECK(refused.err.find("expected 22 comma-separated cells") != std::string::npos);
     CHECK(std::count(refused.err.begin(), refused.err.end(), '\n') == 1);
 
     // A reference without these clips: no comparison, said so.

@@ -1,7 +1,5 @@
 #include "pipeline.hpp"
 
-#include <fnmatch.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +21,7 @@
 #include "mocapdb/synthesis/kernel_fit.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
 #include "mocapdb/io/csv_table.hpp"
+#include "mocapdb/workflow/set_creation.hpp"
 #include "option_lists.hpp"
 #include "progress_bar.hpp"
 #include "svg_plot.hpp"
@@ -40,65 +39,6 @@ std::string megabytes(std::uint64_t bytes) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.1f MB", static_cast<double>(bytes) / 1e6);
     return buffer;
-}
-
-// Clip ids matching the patterns, in pattern order (ids sorted within a pattern), each once.
-std::vector<std::string> select_clips(const Database& db, const std::string& db_name,
-                                      const std::vector<std::string>& patterns) {
-    const auto records = db.clips();
-    std::vector<std::string> out;
-    std::set<std::string> seen;
-    for (const std::string& pattern : patterns) {
-        bool matched = false;
-        for (const ClipRecord& r : records) {
-            if (fnmatch(pattern.c_str(), r.id.c_str(), 0) != 0) continue;
-            matched = true;
-            if (seen.insert(r.id).second) out.push_back(r.id);
-        }
-        if (!matched) throw InvalidArgument(db_name + ": no clip matches '" + pattern + "' (mocapdb info " + db_name + " lists them)");
-    }
-    return out;
-}
-
-// Splits "NAME[UNIT]" into name and unit.
-std::pair<std::string, std::string> name_and_unit(const std::string& header) {
-    const auto open = header.find('[');
-    if (open == std::string::npos || header.back() != ']') return {header, ""};
-    return {header.substr(0, open), header.substr(open + 1, header.size() - open - 2)};
-}
-
-// Fills the set's parameters from a CSV: first column the sample label, then one column per
-// parameter, headers "name" or "name[unit]".
-void apply_params_csv(MotionSet& set, const std::string& file, const Database& db) {
-    const CsvTable csv = CsvTable::read(file);
-    csv.require_data_rows();
-    if (csv.header.size() < 2)
-        throw ParseError(file, 1, 0, "expected a header 'sample,p1[,p2...]' with at least one parameter column");
-    std::vector<std::string> names(csv.header.begin() + 1, csv.header.end());
-    set.parameter_names.clear();
-    set.parameter_units.clear();
-    set.parameter_periods.resize(0);
-    for (const std::string& h : names) {
-        const auto [n, u] = name_and_unit(h);
-        set.parameter_names.push_back(n);
-        set.parameter_units.push_back(u);
-    }
-    const MatX values = csv.columns(names);
-    std::map<std::string, Eigen::Index> row_of;
-    for (std::size_t r = 0; r < csv.cells.size(); ++r) {
-        if (!row_of.emplace(csv.cells[r][0], static_cast<Eigen::Index>(r)).second)
-            throw ParseError(file, csv.line_of_row[r], 1, "sample '" + csv.cells[r][0] + "' appears twice");
-    }
-    set.parameters.resize(static_cast<Eigen::Index>(set.samples.size()), static_cast<Eigen::Index>(names.size()));
-    for (std::size_t i = 0; i < set.samples.size(); ++i) {
-        const SampleRef& s = set.samples[i];
-        const std::string label = sample_label(s, db.find_clip(s.clip)->frames);
-        auto it = row_of.find(label);
-        if (it == row_of.end())
-            throw ParseError(file, 0, 0, "no row for sample '" + label + "' (first column: sample labels as 'CLIP' or 'CLIP:BEGIN-END')");
-        set.parameters.row(static_cast<Eigen::Index>(i)) = values.row(it->second);
-    }
-    set.parameter_source = "csv:" + std::filesystem::path(file).filename().string();
 }
 
 tensor::TuckerMethod method_of(const std::string& name) {
@@ -201,33 +141,13 @@ std::string describe_import(const std::filesystem::path& db, const ImportOutcome
 // ---- set create ---------------------------------------------------------------------------------
 
 SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
-    if (!a.params_csv.empty() && !a.extract.empty()) throw InvalidArgument("give either --params or --extract, not both");
-    DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
-    const Database& db = writer.view();
-    if (db.clips().empty()) throw InvalidArgument(db_path + ": the database holds no clips; import some first");
-    if (db.has_set(a.name) && !a.replace)
-        throw InvalidArgument(db_path + ": set '" + a.name + "' exists; pass --force to replace it");
-    SetOutcome o;
-    SetBuildOptions options;
-    options.name = a.name;
-    parse_segmentation(a.segment, options);
-    o.auto_segmentation = options.segmentation == Segmentation::Auto;
-    if (!a.feet.empty()) options.gait.feet = split_names(a.feet, "--feet");
-    for (const std::string& spec : a.extract) {
-        options.extractors.push_back(ParameterExtractor::parse(spec));
-        if (!a.feet.empty()) options.extractors.back().contacts.feet = options.gait.feet;
-    }
-    const auto ids = select_clips(db, db_path, a.clips);
-    o.clips = ids.size();
-    {
-        ProgressBar bar("set create");
-        options.progress = bar.callback();
-        o.set = build_motion_set(ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped,
-                                 &o.segmentation);
-    }
-    for (const std::string& id : o.skipped)
-        std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
-    if (!a.params_csv.empty()) apply_params_csv(o.set, a.params_csv, db);
+    workflow::SetRequest r;
+    r.name = a.name;
+    r.clips = a.clips;
+    r.params_csv = a.params_csv;
+    r.extract = a.extract;
+    r.segment = a.segment;
+    if (!a.feet.empty()) r.feet = split_names(a.feet, "--feet");
     for (const std::string& spec : a.periodic) {
         const auto eq = spec.find('=');
         double period = 0.0;
@@ -239,12 +159,15 @@ SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
         }
         if (eq == std::string::npos || eq == 0 || used == 0 || eq + 1 + used != spec.size())
             throw InvalidArgument("--periodic '" + spec + "': expected NAME=PERIOD, e.g. bearing=360");
-        set_parameter_period(o.set, spec.substr(0, eq), period);
+        r.periodic.emplace_back(spec.substr(0, eq), period);
     }
-    validate(o.set);
-    check_distinguishable(o.set);
-    writer.put_set(o.set, a.replace);
-    writer.commit();
+    r.replace = a.replace;
+    ProgressBar bar("set create");
+    r.progress = bar.callback();
+    SetOutcome o = workflow::create_set(db_path, r);
+    bar.clear();
+    for (const std::string& id : o.skipped)
+        std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
     return o;
 }
 

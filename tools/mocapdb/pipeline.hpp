@@ -22,6 +22,7 @@
 #include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/store/import.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
+#include "mocapdb/workflow/set_creation.hpp"
 #include "set_context.hpp"
 #include "svg_heatmap.hpp"
 
@@ -59,16 +60,9 @@ struct SetRequest {
     bool replace = false;
 };
 
-struct SetOutcome {
-    MotionSet set;
-    std::size_t clips = 0;              ///< clips selected
-    std::vector<std::string> skipped;   ///< clips that gave no sample
-    Segmentation segmentation = Segmentation::WholeClips;  ///< what the samples are (auto resolved)
-    bool auto_segmentation = false;     ///< the request left the choice to the data
-};
+using SetOutcome = workflow::SetOutcome;
 
-/// Builds the set from the database's clips and stores it (committed). Warnings for skipped clips go
-/// to stderr.
+/// workflow::create_set with a progress bar; warnings for skipped clips go to stderr.
 SetOutcome create_set(const std::string& db, const SetRequest& request);
 
 /// "set 'NAME': N samples (KIND) from C clips, P parameters (SOURCE)\n", then, when dropouts were
