@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/QR>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
+
+#include <Eigen/QR>
 
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/error.hpp"
