@@ -30,22 +30,10 @@ using namespace mocapdb::synthesis;
 
 namespace {
 
-struct Samples {
-    std::vector<Clip> clips;
-    MotionSet set;
-    AlignedSet aligned;
-    std::shared_ptr<const Skeleton> skeleton;
-};
+// Clips, their set and its aligned form (the skeleton: the first clip's).
+using Samples = test::Subject16Set;
 
-Samples cmu_walks() {
-    Samples r;
-    test::Subject16Set w = test::subject16_set({11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 47}, 20);
-    r.clips = std::move(w.clips);
-    r.set = std::move(w.set);
-    r.aligned = std::move(w.aligned);
-    r.skeleton = r.clips.front().skeleton;
-    return r;
-}
+Samples cmu_walks() { return test::subject16_set({11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 47}, 20); }
 
 Samples reaches() {
     procedural::ReachGrid grid;  // bearing -90..90 deg x height 60..160 cm, 5 x 3
@@ -60,15 +48,15 @@ Samples reaches() {
     AlignOptions o;
     o.frames = 20;
     r.aligned = align_samples(r.clips, o);
-    r.skeleton = r.clips.front().skeleton;
     return r;
 }
 
 std::unique_ptr<MotionModel> model_of(const Samples& s) {
-    const VecX weight = compression::position_error_weights(*s.skeleton);
+    const auto skeleton = s.clips.front().skeleton;
+    const VecX weight = compression::position_error_weights(*skeleton);
     const compression::SetModel sm = compression::fit_set_model(
         s.aligned.tensor, weight, {s.aligned.dofs(), s.aligned.frames(), s.aligned.samples()}, tensor::TuckerMethod::Hosvd);
-    return std::make_unique<MotionModel>(sm, s.aligned, s.set, s.skeleton, 120.0);
+    return std::make_unique<MotionModel>(sm, s.aligned, s.set, skeleton, 120.0);
 }
 
 // Largest joint displacement (cm) over the aligned frames between the motions at c and c + dc.

@@ -117,7 +117,7 @@ std::vector<std::string> ParameterExtractor::units() const {
 
 std::vector<double> ParameterExtractor::periods() const {
     std::vector<double> out(names().size(), 0.0);
-    if (kind == ParameterKind::Bearing) out[0] = 2.0 * std::acos(-1.0);
+    if (kind == ParameterKind::Bearing) out[0] = 2.0 * kPi;
     return out;
 }
 

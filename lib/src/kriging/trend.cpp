@@ -6,6 +6,7 @@
 #include <Eigen/SVD>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/types.hpp"
 
 namespace mocapdb::kriging {
 
@@ -133,7 +134,7 @@ ControlScaling ControlScaling::from_data(const Eigen::Ref<const Eigen::MatrixXd>
         double sd;
         if (s.period.size() != 0 && s.period(k) > 0.0) {
             const double t = s.period(k);
-            const double two_pi = 2.0 * std::acos(-1.0);
+            const double two_pi = 2.0 * kPi;
             const Eigen::ArrayXd angle = coords.col(k).array() * (two_pi / t);
             const double c = angle.cos().mean(), sn = angle.sin().mean();
             // The circular mean (any value when the angles cancel out; the first sample's then).
@@ -185,7 +186,7 @@ Eigen::MatrixXd ControlScaling::apply(const Eigen::Ref<const Eigen::MatrixXd>& c
         out.array().rowwise() /= scale.transpose().array();
         return out;
     }
-    const double two_pi = 2.0 * std::acos(-1.0);
+    const double two_pi = 2.0 * kPi;
     Eigen::MatrixXd out(coords.rows(), embedded_dimension());
     Eigen::Index col = 0;
     for (Eigen::Index k = 0; k < coords.cols(); ++k) {
@@ -204,23 +205,12 @@ Eigen::MatrixXd ControlScaling::apply(const Eigen::Ref<const Eigen::MatrixXd>& c
 void ControlScaling::apply_point(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::VectorXd& out) const {
     if (c.size() != offset.size())
         throw InvalidArgument("ControlScaling: a point must have P = " + std::to_string(offset.size()) + " entries");
-    if (out.size() != embedded_dimension()) out.resize(embedded_dimension());
     if (!has_periodic_axis()) {
+        if (out.size() != c.size()) out.resize(c.size());
         out = ((c - offset).array() / scale.array()).matrix();
         return;
     }
-    const double two_pi = 2.0 * std::acos(-1.0);
-    Eigen::Index col = 0;
-    for (Eigen::Index k = 0; k < c.size(); ++k) {
-        if (period(k) > 0.0) {
-            const double radius = period(k) / (two_pi * scale(k));
-            const double angle = (c(k) - offset(k)) * (two_pi / period(k));
-            out(col++) = radius * std::cos(angle);
-            out(col++) = radius * std::sin(angle);
-        } else {
-            out(col++) = (c(k) - offset(k)) / scale(k);
-        }
-    }
+    out = apply(c.transpose()).transpose();  // the same operations as a batch, so the same bits
 }
 
 }  // namespace mocapdb::kriging
