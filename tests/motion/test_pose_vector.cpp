@@ -99,6 +99,34 @@ TEST_CASE("channels -> pose vectors -> channels is exact and continuous", "[pose
     CHECK((back - clip.channels).cwiseAbs().maxCoeff() < 1e-8);
 }
 
+TEST_CASE("pose vectors and FK from local transforms equal those from channel rows", "[pose]") {
+    const Clip clip = test_clip(90);
+    const Skeleton& s = *clip.skeleton;
+    const PoseLayout layout(s);
+    const MatX expected = to_pose_vectors(clip, canonicalization_of(clip));
+    std::vector<Quat> rotations(s.size());
+    std::vector<Vec3> translations(s.size());
+    Canonicalization c;
+    VecX near = VecX::Zero(12), column(12);
+    GlobalPose from_row, from_local;
+    for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+        for (std::size_t j = 0; j < s.size(); ++j) {
+            rotations[j] = s.local_rotation(j, clip.frame(f));
+            translations[j] = s.local_translation(j, clip.frame(f));
+        }
+        if (f == 0) c = canonicalization_of(local_root_transform(s, rotations, translations), s.forward());
+        pose_vector_from_local(s, layout, rotations, translations, c, near, column);
+        REQUIRE((column - expected.col(static_cast<Eigen::Index>(f))).cwiseAbs().maxCoeff() == 0.0);
+        near = column;
+        forward_kinematics(s, clip.frame(f), from_row);
+        forward_kinematics(s, rotations, translations, from_local);
+        for (std::size_t j = 0; j < s.size(); ++j) REQUIRE(from_row.positions[j] == from_local.positions[j]);
+    }
+    rotations.pop_back();
+    CHECK_THROWS_AS(forward_kinematics(s, rotations, translations, from_local), InvalidArgument);
+    CHECK_THROWS_AS(pose_vector_from_local(s, layout, rotations, translations, c, near, column), InvalidArgument);
+}
+
 TEST_CASE("pose-vector functions refuse mismatched shapes", "[pose]") {
     const Clip clip = test_clip(5);
     const Canonicalization c = canonicalization_of(clip);

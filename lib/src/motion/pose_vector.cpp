@@ -60,15 +60,48 @@ double heading_of(const Quat& orientation, const Vec3& forward) {
     return std::atan2(f.x(), f.z()) - rest;
 }
 
+Canonicalization canonicalization_of(const JointTransform& first_root, const Vec3& forward) {
+    Canonicalization c;
+    c.translation = Vec3(first_root.position.x(), 0.0, first_root.position.z());
+    c.yaw = heading_of(first_root.orientation, forward);
+    return c;
+}
+
 Canonicalization canonicalization_of(const Clip& clip) {
     validate(clip);
-    Canonicalization c;
-    if (clip.frame_count() == 0) return c;
+    if (clip.frame_count() == 0) return Canonicalization{};
     const Skeleton& s = *clip.skeleton;
-    const JointTransform root = motion_root_transform(s, clip.frame(0));
-    c.translation = Vec3(root.position.x(), 0.0, root.position.z());
-    c.yaw = heading_of(root.orientation, s.forward());
-    return c;
+    return canonicalization_of(motion_root_transform(s, clip.frame(0)), s.forward());
+}
+
+namespace {
+
+/// One frame's pose vector: the root's canonical position and heading-relative orientation, then each
+/// rotating joint's exp map, branches nearest `near`. local_rotation(j) gives joint j's local rotation.
+template <class LocalRotation>
+void pose_vector_of_frame(const PoseLayout& layout, const JointTransform& root, const LocalRotation& local_rotation,
+                          const Canonicalization& canonical, const Eigen::Ref<const VecX>& near, Eigen::Ref<VecX> out) {
+    out.head<3>() = canonical.apply(root.position);
+    out.segment<3>(3) = swing_twist_log(canonical.apply(root.orientation), near.segment<3>(3));
+    for (std::size_t k = 1; k < layout.rotation_joints().size(); ++k) {
+        const std::size_t j = layout.rotation_joints()[k];
+        const Eigen::Index r = layout.exp_map_row(j);
+        out.segment<3>(r) = log_map_near(local_rotation(j), near.segment<3>(r));
+    }
+}
+
+}  // namespace
+
+void pose_vector_from_local(const Skeleton& skeleton, const PoseLayout& layout, const std::vector<Quat>& rotations,
+                            const std::vector<Vec3>& translations, const Canonicalization& canonical,
+                            const Eigen::Ref<const VecX>& near, Eigen::Ref<VecX> out) {
+    const auto dofs = static_cast<Eigen::Index>(layout.dof_count());
+    if (rotations.size() != skeleton.size() || translations.size() != skeleton.size() || near.size() != dofs ||
+        out.size() != dofs)
+        throw InvalidArgument("pose_vector_from_local: expected " + std::to_string(skeleton.size()) +
+                              " local transforms and pose vectors of " + std::to_string(dofs) + " values");
+    pose_vector_of_frame(layout, local_root_transform(skeleton, rotations, translations),
+                         [&](std::size_t j) { return rotations[j]; }, canonical, near, out);
 }
 
 MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const VecX& reference) {
@@ -84,14 +117,8 @@ MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const 
     VecX near = reference.size() ? reference : VecX::Zero(dofs);
     for (Eigen::Index f = 0; f < frames; ++f) {
         const double* row = clip.frame(static_cast<std::size_t>(f));
-        const JointTransform root = motion_root_transform(s, row);
-        out.col(f).head<3>() = canonical.apply(root.position);
-        out.col(f).segment<3>(3) = swing_twist_log(canonical.apply(root.orientation), near.segment<3>(3));
-        for (std::size_t k = 1; k < layout.rotation_joints().size(); ++k) {
-            const std::size_t j = layout.rotation_joints()[k];
-            const Eigen::Index r = layout.exp_map_row(j);
-            out.col(f).segment<3>(r) = log_map_near(s.local_rotation(j, row), near.segment<3>(r));
-        }
+        pose_vector_of_frame(layout, motion_root_transform(s, row), [&](std::size_t j) { return s.local_rotation(j, row); },
+                             canonical, near, out.col(f));
         near = out.col(f);
     }
     return out;

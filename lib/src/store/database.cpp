@@ -111,6 +111,23 @@ std::optional<PackedTierRecord> Database::packed() const {
     return store::read_packed_record(f);
 }
 
+std::shared_ptr<const packing::GroupDecoder> Database::packed_group_decoder(const std::string& group) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    if (impl_->decoder_group == group && impl_->decoder) return impl_->decoder;
+    store::check_link_name(group, "packed group name");
+    impl_->decoder.reset();
+    try {
+        impl_->decoder = std::make_shared<const packing::GroupDecoder>(store::read_packed_bytes(f, group));
+    } catch (const StoreError&) {
+        throw;
+    } catch (const Error& e) {
+        throw StoreError(f.name(), store::packed_group_path(group) + "/bytes", e.what());
+    }
+    impl_->decoder_group = group;
+    return impl_->decoder;
+}
+
 Clip Database::load_clip_packed(const std::string& id, std::size_t begin, std::size_t end) const {
     QuietScope quiet;
     const auto& f = impl_->f();
@@ -120,18 +137,7 @@ Clip Database::load_clip_packed(const std::string& id, std::size_t begin, std::s
     if (!where) throw StoreError(f.name(), store::kPacked, "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
     const PackedGroupRecord& g = tier->groups[where->first];
     const std::string path = store::packed_group_path(g.name) + "/bytes";
-    if (impl_->decoder_group != g.name || !impl_->decoder) {
-        impl_->decoder.reset();
-        try {
-            impl_->decoder = std::make_shared<const packing::GroupDecoder>(store::read_packed_bytes(f, g.name));
-        } catch (const StoreError&) {
-            throw;
-        } catch (const Error& e) {
-            throw StoreError(f.name(), path, e.what());
-        }
-        impl_->decoder_group = g.name;
-    }
-    const std::shared_ptr<const packing::GroupDecoder> decoder = impl_->decoder;
+    const std::shared_ptr<const packing::GroupDecoder> decoder = packed_group_decoder(g.name);
     const std::size_t k = where->second;
     if (decoder->clip_count() != g.clips.size() || decoder->frame_count(k) != g.clips[k].frames)
         throw StoreError(f.name(), path,

@@ -28,6 +28,16 @@ struct JointTransform {
 /// along motion_root_chain(), so a static ROOT above a moving Hips is accounted for.
 JointTransform motion_root_transform(const Skeleton& skeleton, const double* row);
 
+/// The same from every joint's local transform (indexed like skeleton.joints(); rotations[j] and
+/// translations[j] as Skeleton::local_rotation / local_translation give them for a row).
+JointTransform local_root_transform(const Skeleton& skeleton, const std::vector<Quat>& rotations,
+                                    const std::vector<Vec3>& translations);
+
+/// Global pose from every joint's local transform (as above): world_j = world_parent · local_j.
+/// Allocation-free when out_pose already has skeleton.size() entries.
+void forward_kinematics(const Skeleton& skeleton, const std::vector<Quat>& rotations, const std::vector<Vec3>& translations,
+                        GlobalPose& out_pose);
+
 /// Global joint positions of every frame: a 3·J by F matrix (rows 3j..3j+2 hold joint j).
 MatX joint_positions(const Clip& clip);
 

@@ -26,6 +26,7 @@
 
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/clip.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
 
 namespace mocapdb {
 
@@ -62,11 +63,21 @@ double heading_of(const Quat& orientation, const Vec3& forward);
 
 /// The canonicalization defined by the clip's first frame.
 Canonicalization canonicalization_of(const Clip& clip);
+/// The same from the first frame's motion-root world transform and the skeleton's forward direction.
+Canonicalization canonicalization_of(const JointTransform& first_root, const Vec3& forward);
 
 /// Pose vectors of every frame: D by F. `reference` (D values, may be empty) is the vector the first
 /// frame's exp maps are chosen nearest to; empty means the principal branch.
 MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const VecX& reference = VecX());
 
+/// One frame's pose vector (D values into out) from its joints' local transforms (indexed like
+/// skeleton.joints(), as forward kinematics composes them: Skeleton::local_rotation and
+/// local_translation of a frame row), exp-map branches nearest `near` (D values): the column
+/// to_pose_vectors gives for that row. For decoders that hold rotations rather than Euler channels
+/// (packing::LocalPose). InvalidArgument on wrong sizes.
+void pose_vector_from_local(const Skeleton& skeleton, const PoseLayout& layout, const std::vector<Quat>& rotations,
+                            const std::vector<Vec3>& translations, const Canonicalization& canonical,
+                            const Eigen::Ref<const VecX>& near, Eigen::Ref<VecX> out);
 /// Channel rows from pose vectors (D by F): the exact inverse of to_pose_vectors for rotations the
 /// joint's channels can express (others are projected: missing axes are dropped). Euler angles are
 /// unwrapped against the previous frame; the first frame against `first_near` (a frame row, may be

@@ -32,6 +32,10 @@
 
 namespace mocapdb {
 
+namespace packing {
+class GroupDecoder;
+}
+
 /// The file format version this library writes. It reads every version from 1 to this one (a version
 /// only adds optional objects); a writing session on an older file upgrades its format_version.
 constexpr int kDatabaseFormatVersion = 3;
@@ -160,6 +164,12 @@ public:
     /// when its bytes are corrupted, InvalidArgument when begin >= the clip's frames.
     Clip load_clip_packed(const std::string& id, std::size_t begin = 0,
                           std::size_t end = static_cast<std::size_t>(-1)) const;
+
+    /// The decoder of one packed group (PackedGroupRecord::name, "g0", ...), its bytes read and parsed
+    /// once and kept until another group is asked for. The decoder does not refer to the database:
+    /// hold the pointer to keep it. Its clip k is the group record's clips[k]. StoreError when there is
+    /// no such group or its bytes are malformed (naming the dataset), ChecksumError when corrupted.
+    std::shared_ptr<const packing::GroupDecoder> packed_group_decoder(const std::string& group) const;
 
     /// Skeleton ids, sorted.
     std::vector<std::string> skeletons() const;

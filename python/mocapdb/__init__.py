@@ -1,0 +1,59 @@
+"""mocapdb from Python: motion capture databases, clips as numpy arrays, synthesis and training windows.
+
+    import mocapdb
+    db = mocapdb.open("walks.h5")
+    clip = db.clip("16_11")                 # channels (F, C), cm and radians
+    xyz = clip.joint_positions()            # (F, J, 3) cm, every joint and end site
+    model = db.synthesis_model("walks")     # kriging of the set's Tucker model
+    poses = model.poses(C, t=20.0)          # (Q, D) for Q characters at once
+    for batch in db.sampler(length=64, batch=32, seed=1):   # (32, 64, D), endless
+        ...
+
+Arrays are float64 and frames come first. Errors are mocapdb.Error subclasses carrying the library's
+one-line messages (InvalidArgument and ParseError are ValueErrors, IoError is an OSError).
+"""
+
+from ._core import (  # noqa: F401  (the public names)
+    ChecksumError,
+    Clip,
+    ClipInfo,
+    Database,
+    Error,
+    InvalidArgument,
+    IoError,
+    MotionSet,
+    PackedClip,
+    PackedGroup,
+    PackedTier,
+    ParseError,
+    Sample,
+    SetInfo,
+    Skeleton,
+    StoreError,
+    SynthesisModel,
+    WindowSampler,
+    collection_report,
+    create_set,
+    pack,
+    read_clip,
+    write_bvh,
+)
+
+
+def open(path):  # noqa: A001  (mocapdb.open mirrors the built-in on purpose)
+    """Opens a database file read-only: a Database (also a context manager that closes it)."""
+    return Database(path)
+
+
+def _sampler(self, length=64, batch=32, seed=0, values="pose_vectors", clips=None, source="auto", cache_clips=256):
+    """A WindowSampler of this database: random windows of `length` frames, `batch` per batch.
+
+    values: 'pose_vectors' (D per frame) or 'joint_positions' (3 J per frame); clips: ids or fnmatch
+    patterns (default: every clip; one rig and frame rate); source: 'auto', 'packed' or 'lossless'.
+    The same seed gives the same batches.
+    """
+    return WindowSampler(self, length=length, batch=batch, seed=seed, values=values, clips=clips, source=source,
+                         cache_clips=cache_clips)
+
+
+Database.sampler = _sampler

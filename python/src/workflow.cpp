@@ -1,0 +1,162 @@
+// The workflow steps (the CLI's import, set create, align, compress, pack, report) as functions on a
+// database path. Each commits atomically and returns a dict whose keys are those of the matching
+// `mocapdb ... --json` output, so scripts can move between the two.
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <map>
+#include <optional>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "mocapdb/store/collection_report.hpp"
+#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/set_creation.hpp"
+
+namespace mocapdb::python {
+namespace {
+
+const char* segmentation_name(Segmentation s) {
+    switch (s) {
+        case Segmentation::GaitCycles: return "gait_cycles";
+        case Segmentation::Windows: return "windows";
+        case Segmentation::Auto: return "auto";
+        case Segmentation::WholeClips: break;
+    }
+    return "whole_clips";
+}
+
+py::dict create_set(const std::filesystem::path& db, const std::string& name, const std::vector<std::string>& clips,
+                    std::optional<std::vector<std::string>> extract, std::optional<std::filesystem::path> params_csv,
+                    std::optional<std::map<std::string, double>> periodic, const std::string& segment,
+                    std::optional<std::vector<std::string>> feet, bool replace) {
+    workflow::SetRequest r;
+    r.name = name;
+    r.clips = clips;
+    if (extract) r.extract = *extract;
+    if (params_csv) r.params_csv = *params_csv;
+    if (periodic)
+        for (const auto& [p, period] : *periodic) r.periodic.emplace_back(p, period);
+    r.segment = segment;
+    if (feet) r.feet = *feet;
+    r.replace = replace;
+    workflow::SetOutcome o;
+    {
+        py::gil_scoped_release release;
+        o = workflow::create_set(db, r);
+    }
+    py::dict d;
+    d["set"] = o.set.name;
+    d["samples"] = o.set.samples.size();
+    d["clips"] = o.clips;
+    d["skipped"] = o.skipped;
+    d["segmentation"] = segmentation_name(o.segmentation);
+    d["parameter_names"] = o.set.parameter_names;
+    d["parameters"] = copy_rows(o.set.parameters);
+    d["repaired_runs"] = o.set.repairs.size();
+    return d;
+}
+
+py::dict pack(const std::filesystem::path& db, double max_error_cm, int threads, bool replace, bool drop_lossless) {
+    PackDatabaseOptions options;
+    options.max_error_cm = max_error_cm;
+    options.threads = threads;
+    options.replace = replace;
+    options.drop_lossless = drop_lossless;
+    PackDatabaseOutcome o;
+    {
+        py::gil_scoped_release release;
+        o = pack_database(db, options);
+    }
+    const PackedTierRecord& t = o.tier;
+    py::dict d;
+    d["file"] = db.string();
+    d["max_error_cm"] = t.max_error_cm;
+    d["bytes"] = t.bytes;
+    d["float32_bytes"] = o.float32_bytes;
+    d["ratio_float32"] = t.bytes > 0 ? static_cast<double>(o.float32_bytes) / static_cast<double>(t.bytes) : 0.0;
+    d["clips"] = t.clips;
+    d["frames"] = t.frames;
+    d["max_cm"] = t.max_cm;
+    d["p99_cm"] = t.p99_cm;
+    d["rmse_cm"] = t.rmse_cm;
+    d["motion_seconds"] = o.motion_seconds;
+    d["replaced"] = o.replaced;
+    d["dropped_lossless_clips"] = o.dropped_lossless;
+    d["file_bytes"] = o.file_bytes;
+    d["seconds"] = o.seconds;
+    d["tier"] = t;
+    return d;
+}
+
+py::dict packed_figures(const PackedFigures& f) {
+    py::dict d;
+    d["clips"] = f.clips;
+    d["frames"] = f.frames;
+    d["bytes"] = f.bytes;
+    d["float32_bytes"] = f.float32_bytes;
+    d["ratio_float32"] = f.ratio_float32();
+    d["max_cm"] = f.max_cm;
+    d["p99_cm"] = f.p99_cm;
+    d["rmse_cm"] = f.rmse_cm;
+    return d;
+}
+
+py::dict collection_report_dict(const std::filesystem::path& path, const std::vector<double>& max_error_cm, int threads,
+                                const std::vector<std::filesystem::path>& source_dirs) {
+    CollectionReportOptions options;
+    options.max_error_cm = max_error_cm;
+    options.threads = threads;
+    options.random_poses = 0;
+    options.source_dirs = source_dirs;
+    const Database db(path);
+    CollectionReport r;
+    {
+        py::gil_scoped_release release;
+        r = collection_report(db, options);
+    }
+    py::dict d;
+    d["clips"] = r.clips;
+    d["frames"] = r.frames;
+    d["groups"] = r.groups;
+    d["motion_seconds"] = r.motion_seconds;
+    d["float32_bytes"] = r.float32_bytes;
+    py::dict lossless;
+    lossless["bytes"] = r.lossless.bytes;
+    lossless["float32_bytes"] = r.lossless.float32_bytes;
+    lossless["ratio_float32"] = r.lossless.ratio_float32();
+    if (r.lossless.gzip_available) lossless["gzip_bytes"] = r.lossless.gzip_bytes;
+    d["lossless"] = lossless;
+    py::list targets;
+    for (const TargetFigures& t : r.targets) {
+        py::dict target = packed_figures(t.total);
+        target["max_error_cm"] = t.max_error_cm;
+        targets.append(target);
+    }
+    d["targets"] = targets;
+    return d;
+}
+
+}  // namespace
+
+void bind_workflow(py::module_& m) {
+    m.def("create_set", &create_set, py::arg("db"), py::arg("name"), py::arg("clips"), py::arg("extract") = py::none(),
+          py::arg("params_csv") = py::none(), py::arg("periodic") = py::none(), py::arg("segment") = "auto",
+          py::arg("feet") = py::none(), py::arg("replace") = false,
+          "`mocapdb set create`: a motion set of the stored clips matching `clips` (ids or fnmatch patterns), "
+          "its parameters measured by the `extract` extractors (e.g. ['turn', 'speed']) or read from `params_csv`; "
+          "periodic: {name: period}; segment: 'auto', 'none', 'gait[:N]' or 'window:LENGTH[:HOP]'. Committed. Returns "
+          "{'set', 'samples', 'clips', 'skipped', 'segmentation', 'parameter_names', 'parameters', 'repaired_runs'}.");
+    m.def("pack", &pack, py::arg("db"), py::arg("max_error_cm") = 1.0, py::arg("threads") = 2, py::arg("replace") = false,
+          py::arg("drop_lossless") = false,
+          "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm), stored as the packed tier "
+          "(committed). Returns the keys of `mocapdb pack --json` (bytes, max_cm, p99_cm, rmse_cm, clips, frames, ...) "
+          "and 'tier', the PackedTier.");
+    m.def("collection_report", &collection_report_dict, py::arg("db"), py::arg("max_error_cm") = std::vector<double>{1.0, 0.5, 0.1},
+          py::arg("threads") = 2, py::arg("source_dirs") = std::vector<std::filesystem::path>{},
+          "`mocapdb report` on a whole collection (nothing is stored): the lossless tier's bytes and, per bound E, "
+          "the packed bytes and measured errors. Returns {'clips', 'frames', 'groups', 'motion_seconds', "
+          "'float32_bytes', 'lossless': {...}, 'targets': [{'max_error_cm', 'bytes', 'max_cm', ...}]}.");
+}
+
+}  // namespace mocapdb::python

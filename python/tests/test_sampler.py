@@ -1,0 +1,74 @@
+"""Training windows: reproducible by seed, equal to the clips they come from, one rig per sampler."""
+import numpy as np
+import pytest
+
+import mocapdb
+from conftest import run_cli
+
+
+def test_same_seed_same_batches(test_db):
+    with mocapdb.open(test_db) as db:
+        a = db.sampler(length=64, batch=16, seed=11)
+        b = db.sampler(length=64, batch=16, seed=11)
+        c = db.sampler(length=64, batch=16, seed=12)
+        first = [a.next() for _ in range(3)]
+        again = [b.next() for _ in range(3)]
+        other = c.next()
+    assert a.from_packed  # the test database has a packed tier holding every clip
+    assert first[0].shape == (16, 64, a.values_per_frame)
+    for x, y in zip(first, again):
+        assert np.array_equal(x, y)
+    assert not np.array_equal(first[0], other)
+    assert not np.array_equal(first[0], first[1])
+
+
+def test_windows_are_the_clips_in_their_canonical_frame(test_db):
+    with mocapdb.open(test_db) as db:
+        packed = db.sampler(length=48, batch=8, seed=5)
+        lossless = db.sampler(length=48, batch=8, seed=5, source="lossless")
+        batch, windows = packed.next_with_windows()
+        exact, same_windows = lossless.next_with_windows()
+        assert windows == same_windows  # the draw does not depend on the source
+        for k, (name, begin) in enumerate(windows):
+            end = begin + 48
+            assert 0 <= begin and end <= db.clip(name, tier="packed").frames
+            assert np.allclose(batch[k], db.clip(name, tier="packed", begin=begin, end=end).pose_vectors(), rtol=0, atol=1e-9)
+            assert np.array_equal(exact[k], db.clip(name).slice(begin, end).pose_vectors())
+            assert np.array_equal(packed.window(name, begin), batch[k])
+        assert not lossless.from_packed
+
+
+def test_joint_positions_match_the_pose_vectors(test_db):
+    with mocapdb.open(test_db) as db:
+        poses = db.sampler(length=32, batch=4, seed=2, source="lossless")
+        points = db.sampler(length=32, batch=4, seed=2, source="lossless", values="joint_positions")
+        skeleton = db.skeleton(db.clips()[0].skeleton)
+        p, windows = poses.next_with_windows()
+        x = points.next()
+    assert x.shape == (4, 32, 3 * len(skeleton))
+    assert points.joint_names == skeleton.joint_names
+    for k in range(4):
+        clip = mocapdb.Clip(skeleton, skeleton.channels_from_pose_vectors(p[k]), poses.frame_rate)
+        assert np.abs(clip.joint_positions().reshape(32, -1) - x[k]).max() < 1e-6
+        # Canonical: the window's first frame has its root above the origin.
+        assert abs(p[k, 0, 0]) < 1e-9 and abs(p[k, 0, 2]) < 1e-9
+
+
+def test_one_rig_per_sampler(cli, shared, tmp_path):
+    bvh = sorted((shared / "datasets" / "cmu-walkrun-pfnn").glob("*.bvh"))[0]
+    amc = shared / "datasets" / "cmu-asfamc" / "16_11.amc"
+    db_path = tmp_path / "mixed.h5"
+    run_cli(cli, "import", amc, bvh, "-o", db_path)
+    with mocapdb.open(db_path) as db:
+        with pytest.raises(mocapdb.InvalidArgument, match="select clips of one"):
+            db.sampler(length=16)
+        only_asf = db.sampler(length=16, batch=2, clips=["16_*"])
+        assert only_asf.clips == ["16_11"] and not only_asf.from_packed
+        with pytest.raises(mocapdb.InvalidArgument, match="not in the packed tier"):
+            db.sampler(length=16, source="packed", clips=["16_*"])
+        with pytest.raises(mocapdb.InvalidArgument, match="no clip matches"):
+            db.sampler(clips=["nothing*"])
+        with pytest.raises(mocapdb.InvalidArgument, match="frames"):
+            db.sampler(length=10**6, clips=["16_*"])
+        with pytest.raises(mocapdb.InvalidArgument):
+            db.sampler(values="angles")

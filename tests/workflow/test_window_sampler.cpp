@@ -1,0 +1,125 @@
+// The training-window sampler (workflow/window_sampler.hpp, issue #17) in-process: reproducible by
+// seed, windows equal to the clips' frames in their canonical frame from either tier, one rig only.
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/store/import.hpp"
+#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/window_sampler.hpp"
+#include "shared_data.hpp"
+#include "test_support.hpp"
+
+using namespace mocapdb;
+using namespace mocapdb::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+/// Pose vectors (L x D, C order) of frames [begin, begin + L) of a clip, in their canonical frame.
+std::vector<double> window_of(const Clip& clip, std::size_t begin, std::size_t length) {
+    const Clip part = slice(clip, begin, begin + length);
+    const MatX poses = to_pose_vectors(part, canonicalization_of(part));
+    return std::vector<double>(poses.data(), poses.data() + poses.size());
+}
+
+}  // namespace
+
+TEST_CASE("workflow: windows from subject 16's walks, lossless and packed", "[workflow][shared]") {
+    const auto amc = datasets_dir() / "cmu-asfamc";
+    MOCAPDB_REQUIRE_SHARED(amc);
+    TempDir dir("workflow_windows");
+    const auto db_path = dir / "walks.h5";
+    {
+        DatabaseWriter w(db_path, DatabaseWriter::Mode::OpenOrCreate);
+        import_files(w, {amc / "16_11.amc", amc / "16_12.amc", amc / "16_13.amc"}, ImportOptions{});
+        w.commit();
+    }
+    const std::size_t L = 40, B = 6;
+    workflow::WindowSamplerOptions o;
+    o.length = L;
+    o.batch = B;
+    o.seed = 9;
+
+    SECTION("lossless: the same seed gives the same windows, equal to the clips' frames") {
+        const Database db(db_path);
+        workflow::WindowSampler a(db, o), b(db, o);
+        CHECK_FALSE(a.from_packed());  // no packed tier yet
+        const std::size_t V = a.values_per_frame();
+        CHECK(V == PoseLayout(*db.load_skeleton(db.clips()[0].skeleton)).dof_count());
+        std::vector<double> x(B * L * V), y(B * L * V);
+        std::vector<workflow::WindowRef> refs(B);
+        a.next(x.data(), refs.data());
+        b.next(y.data());
+        CHECK(x == y);
+        std::uint64_t windows = 0;
+        for (const auto& r : db.clips()) windows += r.frames - L + 1;
+        CHECK(a.window_count() == windows);
+        for (std::size_t k = 0; k < B; ++k) {
+            const Clip clip = db.load_clip(a.clip_ids()[refs[k].clip]);
+            const std::vector<double> expected = window_of(clip, refs[k].begin, L);
+            CHECK(std::vector<double>(x.begin() + static_cast<std::ptrdiff_t>(k * L * V),
+                                      x.begin() + static_cast<std::ptrdiff_t>((k + 1) * L * V)) == expected);
+        }
+        a.next(x.data());
+        CHECK(x != y);  // the stream moves on
+
+        workflow::WindowSamplerOptions joints = o;
+        joints.values = workflow::WindowValues::JointPositions;
+        workflow::WindowSampler p(db, joints);
+        CHECK(p.values_per_frame() == 3 * p.joint_names().size());
+        std::vector<double> xyz(B * L * p.values_per_frame());
+        p.next(xyz.data());
+        // Canonical: the motion root starts above the origin, and nothing is far from it.
+        for (std::size_t k = 0; k < B; ++k) CHECK(xyz[k * L * p.values_per_frame() + 1] > 50.0);
+    }
+
+    SECTION("packed: every joint within the tier's bound of the lossless window") {
+        PackDatabaseOptions pack;
+        pack.max_error_cm = 0.5;
+        pack_database(db_path, pack);
+        const Database db(db_path);
+        workflow::WindowSamplerOptions lossless = o, packed = o;
+        lossless.values = packed.values = workflow::WindowValues::JointPositions;
+        lossless.source = workflow::WindowSource::Lossless;
+        workflow::WindowSampler a(db, packed), b(db, lossless);
+        CHECK(a.from_packed());
+        std::vector<double> x(B * L * a.values_per_frame()), y(x.size());
+        std::vector<workflow::WindowRef> ra(B), rb(B);
+        a.next(x.data(), ra.data());
+        b.next(y.data(), rb.data());
+        for (std::size_t k = 0; k < B; ++k) CHECK((ra[k].clip == rb[k].clip && ra[k].begin == rb[k].begin));
+        // Each window is in its own canonical frame, which the packed root defines within the bound
+        // too: allow its heading's effect over a window's reach (a few cm), far below a real mismatch.
+        double worst = 0.0;
+        for (std::size_t i = 0; i < x.size(); i += 3) {
+            const double dx = x[i] - y[i], dy = x[i + 1] - y[i + 1], dz = x[i + 2] - y[i + 2];
+            worst = std::max(worst, std::sqrt(dx * dx + dy * dy + dz * dz));
+        }
+        CHECK(worst > 0.0);
+        CHECK(worst < 3.0);
+    }
+
+    SECTION("errors name what is wrong") {
+        const Database db(db_path);
+        workflow::WindowSamplerOptions bad = o;
+        bad.length = 100000;
+        CHECK_THROWS_WITH(workflow::WindowSampler(db, bad), Contains("none of the 3 selected clips has 100000 frames"));
+        bad = o;
+        bad.clips = {"17_*"};
+        CHECK_THROWS_WITH(workflow::WindowSampler(db, bad), Contains("no clip matches '17_*'"));
+        bad = o;
+        bad.source = workflow::WindowSource::Packed;
+        CHECK_THROWS_WITH(workflow::WindowSampler(db, bad), Contains("is not in the packed tier"));
+        bad = o;
+        bad.batch = 0;
+        CHECK_THROWS_AS(workflow::WindowSampler(db, bad), InvalidArgument);
+        workflow::WindowSampler s(db, o);
+        std::vector<double> out(L * s.values_per_frame());
+        CHECK_THROWS_WITH(s.window({0, 10000}, out.data()), Contains("beyond clip"));
+    }
+}
