@@ -21,28 +21,28 @@ void bind_records(py::module_& m) {
     py::class_<ClipRecord>(m, "ClipInfo", "A stored clip's record (no motion read).")
         .def_readonly("name", &ClipRecord::id, "The clip id (the source file's stem, made unique).")
         .def_readonly("skeleton", &ClipRecord::skeleton, "Skeleton id.")
-        .def_readonly("frames", &ClipRecord::frames)
-        .def_readonly("channels", &ClipRecord::channels)
+        .def_readonly("frames", &ClipRecord::frames, "F, frames of the clip.")
+        .def_readonly("channels", &ClipRecord::channels, "C, channels per frame.")
         .def_readonly("frame_rate", &ClipRecord::frame_rate, "Hz.")
         .def_property_readonly("duration", &ClipRecord::duration, "Seconds from the first to the last frame.")
         .def_readonly("stored_bytes", &ClipRecord::stored_bytes, "Bytes of its lossless channels in the file.")
         .def_readonly("lossless", &ClipRecord::lossless, "False when only the packed tier holds it (pack --drop-lossless).")
-        .def_property_readonly("source_file", [](const ClipRecord& r) { return r.source.file_name; })
+        .def_property_readonly("source_file", [](const ClipRecord& r) { return r.source.file_name; }, "The source file's name (no folders).")
         .def_property_readonly("format", [](const ClipRecord& r) { return r.source.format; }, "'bvh' or 'amc'.")
         .def_property_readonly("sha256", [](const ClipRecord& r) { return r.source.sha256; }, "Of the source file's bytes.")
-        .def_property_readonly("subject", [](const ClipRecord& r) { return r.source.subject; })
-        .def_property_readonly("description", [](const ClipRecord& r) { return r.source.description; })
-        .def_property_readonly("labels", [](const ClipRecord& r) { return r.source.labels; })
+        .def_property_readonly("subject", [](const ClipRecord& r) { return r.source.subject; }, "From the import manifest (empty without).")
+        .def_property_readonly("description", [](const ClipRecord& r) { return r.source.description; }, "From the import manifest.")
+        .def_property_readonly("labels", [](const ClipRecord& r) { return r.source.labels; }, "From the import manifest.")
         .def("__repr__", [](const ClipRecord& r) {
             return "<mocapdb.ClipInfo '" + r.id + "' " + std::to_string(r.frames) + " frames at " + std::to_string(r.frame_rate) + " Hz>";
         });
 
     py::class_<SetRecord>(m, "SetInfo", "A motion set's record.")
-        .def_readonly("name", &SetRecord::name)
+        .def_readonly("name", &SetRecord::name, "The set's name.")
         .def_readonly("samples", &SetRecord::samples, "N.")
-        .def_readonly("parameter_names", &SetRecord::parameter_names)
+        .def_readonly("parameter_names", &SetRecord::parameter_names, "The P control parameters.")
         .def_readonly("parameter_source", &SetRecord::parameter_source, "'extract:turn,speed', 'csv:FILE', ...")
-        .def_readonly("aligned", &SetRecord::aligned)
+        .def_readonly("aligned", &SetRecord::aligned, "The samples are time-aligned (mocapdb align).")
         .def_property_readonly(
             "tensor_shape",
             [](const SetRecord& s) { return py::make_tuple(s.tensor_shape[0], s.tensor_shape[1], s.tensor_shape[2]); },
@@ -57,48 +57,48 @@ void bind_records(py::module_& m) {
         });
 
     py::class_<SampleRef>(m, "Sample", "One sample of a motion set: frames [begin, end) of a clip.")
-        .def_readonly("clip", &SampleRef::clip)
-        .def_readonly("begin", &SampleRef::begin)
-        .def_readonly("end", &SampleRef::end)
+        .def_readonly("clip", &SampleRef::clip, "The clip's name.")
+        .def_readonly("begin", &SampleRef::begin, "First frame.")
+        .def_readonly("end", &SampleRef::end, "One past the last frame.")
         .def("__repr__", [](const SampleRef& s) {
             return "<mocapdb.Sample " + s.clip + "[" + std::to_string(s.begin) + ":" + std::to_string(s.end) + "]>";
         });
 
     py::class_<MotionSet>(m, "MotionSet", "A motion set: samples with control parameters.")
-        .def_readonly("name", &MotionSet::name)
-        .def_readonly("samples", &MotionSet::samples)
-        .def_readonly("parameter_names", &MotionSet::parameter_names)
-        .def_readonly("parameter_units", &MotionSet::parameter_units)
-        .def_readonly("parameter_source", &MotionSet::parameter_source)
+        .def_readonly("name", &MotionSet::name, "The set's name.")
+        .def_readonly("samples", &MotionSet::samples, "The N Samples, in order.")
+        .def_readonly("parameter_names", &MotionSet::parameter_names, "The P control parameters.")
+        .def_readonly("parameter_units", &MotionSet::parameter_units, "Their units ('rad', 'cm/s', ...).")
+        .def_readonly("parameter_source", &MotionSet::parameter_source, "How they were obtained ('extract:turn,speed', 'csv:FILE').")
         .def_property_readonly("parameters", [](const MotionSet& s) { return copy_rows(s.parameters); },
                                "(N, P) control parameters of the samples.");
 
     py::class_<PackedClipRecord>(m, "PackedClip", "A clip of the packed tier and its measured errors (cm).")
-        .def_readonly("name", &PackedClipRecord::id)
-        .def_readonly("frames", &PackedClipRecord::frames)
-        .def_readonly("payload_bytes", &PackedClipRecord::payload_bytes)
-        .def_readonly("max_cm", &PackedClipRecord::max_cm)
-        .def_readonly("p99_cm", &PackedClipRecord::p99_cm)
-        .def_readonly("rmse_cm", &PackedClipRecord::rmse_cm);
+        .def_readonly("name", &PackedClipRecord::id, "The clip's name.")
+        .def_readonly("frames", &PackedClipRecord::frames, "F.")
+        .def_readonly("payload_bytes", &PackedClipRecord::payload_bytes, "Its windows' coded bytes (the group's tables are shared).")
+        .def_readonly("max_cm", &PackedClipRecord::max_cm, "Max FK joint error against the source, every frame.")
+        .def_readonly("p99_cm", &PackedClipRecord::p99_cm, "99th percentile of the joint errors.")
+        .def_readonly("rmse_cm", &PackedClipRecord::rmse_cm, "Root mean square joint error.");
     py::class_<PackedGroupRecord>(m, "PackedGroup", "Clips of one rig and frame rate packed together.")
-        .def_readonly("name", &PackedGroupRecord::name)
-        .def_readonly("skeleton", &PackedGroupRecord::skeleton)
-        .def_readonly("frame_rate", &PackedGroupRecord::frame_rate)
+        .def_readonly("name", &PackedGroupRecord::name, "Its name under /packed ('g0', ...).")
+        .def_readonly("skeleton", &PackedGroupRecord::skeleton, "Skeleton id of its first clip.")
+        .def_readonly("frame_rate", &PackedGroupRecord::frame_rate, "Hz.")
         .def_readonly("bytes", &PackedGroupRecord::bytes, "Everything its decoder needs.")
-        .def_readonly("frames", &PackedGroupRecord::frames)
-        .def_readonly("max_cm", &PackedGroupRecord::max_cm)
-        .def_readonly("p99_cm", &PackedGroupRecord::p99_cm)
-        .def_readonly("rmse_cm", &PackedGroupRecord::rmse_cm)
-        .def_readonly("clips", &PackedGroupRecord::clips);
+        .def_readonly("frames", &PackedGroupRecord::frames, "Frames of its clips.")
+        .def_readonly("max_cm", &PackedGroupRecord::max_cm, "Max FK joint error over its clips.")
+        .def_readonly("p99_cm", &PackedGroupRecord::p99_cm, "99th percentile.")
+        .def_readonly("rmse_cm", &PackedGroupRecord::rmse_cm, "Root mean square.")
+        .def_readonly("clips", &PackedGroupRecord::clips, "Its PackedClips in packing order.");
     py::class_<PackedTierRecord>(m, "PackedTier", "The packed tier: every clip within max_error_cm (FK, every joint, cm).")
         .def_readonly("max_error_cm", &PackedTierRecord::max_error_cm, "E, the bound.")
-        .def_readonly("bytes", &PackedTierRecord::bytes)
-        .def_readonly("clips", &PackedTierRecord::clips)
-        .def_readonly("frames", &PackedTierRecord::frames)
-        .def_readonly("max_cm", &PackedTierRecord::max_cm)
-        .def_readonly("p99_cm", &PackedTierRecord::p99_cm)
-        .def_readonly("rmse_cm", &PackedTierRecord::rmse_cm)
-        .def_readonly("groups", &PackedTierRecord::groups)
+        .def_readonly("bytes", &PackedTierRecord::bytes, "Sum of the groups' bytes.")
+        .def_readonly("clips", &PackedTierRecord::clips, "Clips in the tier.")
+        .def_readonly("frames", &PackedTierRecord::frames, "Their frames.")
+        .def_readonly("max_cm", &PackedTierRecord::max_cm, "Max FK joint error over the collection (<= max_error_cm).")
+        .def_readonly("p99_cm", &PackedTierRecord::p99_cm, "99th percentile.")
+        .def_readonly("rmse_cm", &PackedTierRecord::rmse_cm, "Root mean square.")
+        .def_readonly("groups", &PackedTierRecord::groups, "Its PackedGroups.")
         .def("__repr__", [](const PackedTierRecord& t) {
             return "<mocapdb.PackedTier " + std::to_string(t.clips) + " clips, " + std::to_string(t.bytes) + " bytes, max " +
                    std::to_string(t.max_cm) + " cm>";
@@ -141,8 +141,8 @@ void bind_database(py::module_& m) {
                  return h;
              }),
              py::arg("path"), "Opens a database read-only; StoreError for a file that is not one, IoError when missing.")
-        .def_property_readonly("path", [](const DatabaseHandle& h) { return h.path; })
-        .def_property_readonly("format_version", [](const DatabaseHandle& h) { return h.get().format_version(); })
+        .def_property_readonly("path", [](const DatabaseHandle& h) { return h.path; }, "The file.")
+        .def_property_readonly("format_version", [](const DatabaseHandle& h) { return h.get().format_version(); }, "The file format's version (schemas/).")
         .def_property_readonly("file_size", [](const DatabaseHandle& h) { return h.get().file_size(); }, "Bytes.")
         .def("clips", [](const DatabaseHandle& h) { return h.get().clips(); }, "Every stored clip's ClipInfo, sorted by name.")
         .def("clip", &load_clip, py::arg("name"), py::arg("tier") = "lossless", py::arg("begin") = 0,

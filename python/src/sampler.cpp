@@ -114,7 +114,7 @@ void bind_sampler(py::module_& m) {
                                "Names of the clips windows are drawn from (those with at least L frames).")
         .def_property_readonly("window_count", [](const SamplerHandle& h) { return h.sampler->window_count(); },
                                "Distinct windows: sum over clips of F - L + 1.")
-        .def_property_readonly("frame_rate", [](const SamplerHandle& h) { return h.sampler->frame_rate(); })
+        .def_property_readonly("frame_rate", [](const SamplerHandle& h) { return h.sampler->frame_rate(); }, "Hz of the clips.")
         .def_property_readonly("from_packed", [](const SamplerHandle& h) { return h.sampler->from_packed(); },
                                "True when decoding from the packed tier.")
         .def_property_readonly("joint_names", [](const SamplerHandle& h) { return h.sampler->joint_names(); },

@@ -1,0 +1,31 @@
+"""Every public function, method and property of the package has a docstring."""
+import inspect
+
+import mocapdb
+
+
+def public_members():
+    for name in mocapdb.__all__ if hasattr(mocapdb, "__all__") else dir(mocapdb):
+        if name.startswith("_"):
+            continue
+        obj = getattr(mocapdb, name)
+        if inspect.ismodule(obj):
+            continue
+        yield name, obj
+        if inspect.isclass(obj) and not issubclass(obj, BaseException):
+            for member, value in vars(obj).items():
+                if member.startswith("_") and member not in ("__init__",):
+                    continue
+                yield f"{name}.{member}", value
+
+
+def test_every_public_name_is_documented():
+    missing = []
+    for name, obj in public_members():
+        doc = getattr(obj, "__doc__", None)
+        # pybind11 writes the signature as the first docstring line; a description must follow it.
+        lines = [l for l in (doc or "").strip().splitlines() if l.strip()]
+        described = [l for l in lines if not l.lstrip().startswith(name.split(".")[-1] + "(") and "->" not in l]
+        if not described:
+            missing.append(name)
+    assert not missing, f"without a docstring: {missing}"
