@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "mocapdb/core/error.hpp"
@@ -160,12 +161,15 @@ std::string describe_set(const SetOutcome& o) {
 
 AlignOutcome align_set(const std::string& db_path, AlignRequest request) {
     ProgressBar read_bar("align: read");
-    ProgressBar bar("align");
     request.read_progress = read_bar.callback();
-    if (const ProgressCallback draw = bar.callback())
-        request.progress = [&read_bar, draw](const Progress& p) {
-            read_bar.clear();  // reading is done
-            draw(p);
+    std::optional<ProgressBar> bar;  // started when reading is done, so that its clock counts the alignment
+    if (read_bar.enabled())
+        request.progress = [&](const Progress& p) {
+            if (!bar) {
+                read_bar.clear();
+                bar.emplace("align");
+            }
+            bar->update(p);
         };
     return workflow::align_set(db_path, request);
 }
