@@ -8,7 +8,7 @@
 // comparable samples, as `mocapdb set` groups them, rather than every kind of motion at once.
 // Prints one `key value` line per figure.
 //   bench_compress_scale [windows=10000] [distinct=windows] [frames=60] [max_error_cm=1]
-// Steps timed (tools/mocapdb/pipeline.cpp, compress_set, without the database read and write):
+// Steps timed (lib/src/workflow/set_compression.cpp, workflow::compress_set, without the database read and write):
 // JointErrorMeter, prepare_set (HOSVD bases), search_ranks_for_max_error, the HOSVD at the chosen
 // ranks and its errors (since #16 compress --method hosvd keeps the search's model and errors; build
 // with -DMOCAPDB_BENCH_REFIT for fit_set_model and a second measure, the steps before),
@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
     clips.clear();
     clips.shrink_to_fit();
 
-    // The steps of compress_set (tools/mocapdb/pipeline.cpp), target --max-error-cm.
+    // The steps of workflow::compress_set (lib/src/workflow/set_compression.cpp), target --max-error-cm.
     const auto start = Clock::now();
     auto t = Clock::now();
     const VecX weight = compression::position_error_weights(*skeleton);

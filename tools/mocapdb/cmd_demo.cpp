@@ -22,6 +22,11 @@
 #include "mocapdb/procedural/humanoid.hpp"
 #include "mocapdb/procedural/parametric_set.hpp"
 #include "mocapdb/procedural/reach.hpp"
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/workflow/aligned_set_data.hpp"
+#include "mocapdb/workflow/reliability_map.hpp"
+#include "mocapdb/workflow/set_rate_report.hpp"
+#include "mocapdb/workflow/synthesis_step.hpp"
 #include "pipeline.hpp"
 #include "svg_heatmap.hpp"
 #include "synthesis_cli.hpp"
@@ -59,7 +64,7 @@ void progress(const std::string& line) {
 struct DemoSynthesis {
     std::string label;     // "between samples" / "outside the samples" / "requested"
     bool inside = true;    // within the samples' bounding box
-    SynthOutcome outcome;
+    workflow::SynthOutcome outcome;
     VecX measured;         // by the set's extractors, or the reach target measurement
     fs::path file;
 };
@@ -269,8 +274,8 @@ void run_demo(const DemoArgs& a) {
     targets.insert(a.max_error_cm);
     rate_options.hooi = !a.quick;
     rate_options.max_cm.assign(targets.rbegin(), targets.rend());
-    const SetContext context = load_set_context(Database(db), set_name);
-    const RateOutcome rate = rate_report(context, rate_options);
+    const workflow::AlignedSetData context = workflow::load_aligned_set(Database(db), set_name);
+    const RateOutcome rate = workflow::rate_report(context, rate_options);
     const double rd_s = seconds_since(rd_start);
     const std::string rd_svg = rate_svg(set_name, rate);
     write_file_atomically(out / "rate_distortion.svg", [&](std::ostream& o) { o << rd_svg; });
@@ -318,7 +323,7 @@ void run_demo(const DemoArgs& a) {
     }
     Measure measure = Measure::None;
     std::string measured_what = "nothing (the set's parameters were neither extracted nor reach targets)";
-    std::vector<ParameterExtractor> extractors = source_extractors(set.parameter_source);
+    std::vector<ParameterExtractor> extractors = workflow::source_extractors(set.parameter_source);
     std::string extractor_names = set.parameter_source;
     if (extractors.empty()) {  // parameters from a CSV named like extractors (the walks' speed, turn)
         try {
@@ -357,7 +362,7 @@ void run_demo(const DemoArgs& a) {
         DemoSynthesis s;
         s.label = requests[q].second;
         s.inside = inside_box(samples, requests[q].first);
-        s.outcome = synthesize(*model, set, requests[q].first);
+        s.outcome = workflow::synthesize(*model, set, requests[q].first);
         if (measure == Measure::Extractors && s.outcome.clip.frame_count() >= 2)
             s.measured = extract_parameters(s.outcome.clip, 0, s.outcome.clip.frame_count(), extractors);
         else if (measure == Measure::ReachTarget) s.measured = measure_reach_target(s.outcome.clip, names);
@@ -378,7 +383,8 @@ void run_demo(const DemoArgs& a) {
 
     // 8. The reliability map over the first two parameters (padded beyond the samples).
     bool have_map = false;
-    ReliabilityMap map;
+    workflow::ReliabilityMap map;
+    HeatMapSpec map_spec;
     if (model->parameters() >= 2) {
         const auto padded = [&](Eigen::Index axis) {  // the samples and every synthesized point, with a margin
             double lo = samples.col(axis).minCoeff(), hi = samples.col(axis).maxCoeff();
@@ -387,12 +393,13 @@ void run_demo(const DemoArgs& a) {
                 hi = std::max(hi, r.first(axis));
             }
             const double pad = 0.15 * std::max(hi - lo, 1e-6);
-            return SliceAxis{axis, lo - pad, hi + pad, 41};
+            return workflow::SliceAxis{axis, lo - pad, hi + pad, 41};
         };
-        const SliceAxis gx = padded(0), gy = padded(1);
+        const workflow::SliceAxis gx = padded(0), gy = padded(1);
         const VecX base = samples.colwise().mean().transpose();
-        map = reliability_map(*model, set_name, gx, gy, base);
-        const std::string svg = render_heat_map(map.spec);
+        map = workflow::reliability_map(*model, gx, gy, base);
+        map_spec = reliability_heat_map(*model, set_name, gx, gy, base, map);
+        const std::string svg = render_heat_map(map_spec);
         write_file_atomically(out / "reliability.svg", [&](std::ostream& o) { o << svg; });
         have_map = true;
     }
@@ -456,8 +463,8 @@ void run_demo(const DemoArgs& a) {
         j.key("reliability_map").begin_object();
         j.key("file").value("reliability.svg");
         j.key("x").value(names[0]).key("y").value(names[1]);
-        j.key("x_range").begin_array().value(map.spec.x_lo).value(map.spec.x_hi).end_array();
-        j.key("y_range").begin_array().value(map.spec.y_lo).value(map.spec.y_hi).end_array();
+        j.key("x_range").begin_array().value(map_spec.x_lo).value(map_spec.x_hi).end_array();
+        j.key("y_range").begin_array().value(map_spec.y_lo).value(map_spec.y_hi).end_array();
         j.key("cells").value(static_cast<long long>(map.rho.size()));
         j.key("min").value(map.rho.minCoeff()).key("mean").value(map.rho.mean()).key("max").value(map.rho.maxCoeff());
         j.key("fraction_ge_0_85").value(map.fraction_trusted).end_object();

@@ -9,7 +9,7 @@
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/store/database.hpp"
-#include "set_context.hpp"
+#include "mocapdb/workflow/aligned_set_data.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -29,7 +29,7 @@ struct ExportArgs {
 
 // Sample I of a set, from its aligned tensor or its stored model, back at its own timing.
 Clip sample_clip(const Database& db, const ExportArgs& args) {
-    const SetContext c = load_set_context(db, args.set);
+    const workflow::AlignedSetData c = workflow::load_aligned_set(db, args.set);
     const Eigen::Index n_samples = c.aligned.samples();
     if (args.sample < 0 || args.sample >= n_samples)
         throw InvalidArgument("--sample " + std::to_string(args.sample) + ": set '" + args.set + "' has samples 0.." +

@@ -9,6 +9,7 @@
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/text_file.hpp"
+#include "mocapdb/workflow/reliability_map.hpp"
 #include "pipeline.hpp"
 #include "svg_heatmap.hpp"
 #include "synthesis_cli.hpp"
@@ -36,11 +37,11 @@ double number(const std::string& text, const std::string& what) {
     return v;
 }
 
-SliceAxis parse_axis(const std::string& spec, const std::vector<std::string>& names) {
+workflow::SliceAxis parse_axis(const std::string& spec, const std::vector<std::string>& names) {
     const std::string usage = "--grid: expected AXIS=LO:HI:N (N >= 2), got '" + spec + "'";
     const auto eq = spec.rfind('=');
     if (eq == std::string::npos) throw InvalidArgument(usage);
-    SliceAxis g;
+    workflow::SliceAxis g;
     g.axis = parameter_index(names, spec.substr(0, eq), "--grid");
     std::vector<std::string> parts;
     std::stringstream in(spec.substr(eq + 1));
@@ -64,8 +65,8 @@ void run_reliability(const ReliabilityArgs& a) {
     const auto comma = a.grid.find(',');
     if (comma == std::string::npos)
         throw InvalidArgument("--grid: expected two axes AXIS=LO:HI:N,AXIS=LO:HI:N, got '" + a.grid + "'");
-    const SliceAxis gx = parse_axis(a.grid.substr(0, comma), names);
-    const SliceAxis gy = parse_axis(a.grid.substr(comma + 1), names);
+    const workflow::SliceAxis gx = parse_axis(a.grid.substr(0, comma), names);
+    const workflow::SliceAxis gy = parse_axis(a.grid.substr(comma + 1), names);
     if (gx.axis == gy.axis) throw InvalidArgument("--grid: the two axes must differ");
     // The other axes: fixed by --fix, else at the samples' mean.
     VecX base = model->sample_parameters().colwise().mean().transpose();
@@ -76,8 +77,8 @@ void run_reliability(const ReliabilityArgs& a) {
         if (k == gx.axis || k == gy.axis) throw InvalidArgument("--fix: '" + names[static_cast<std::size_t>(k)] + "' is a grid axis");
         base(k) = number(f.substr(eq + 1), "--fix " + names[static_cast<std::size_t>(k)]);
     }
-    const ReliabilityMap m = reliability_map(*model, a.set, gx, gy, base);
-    const HeatMapSpec& spec = m.spec;
+    const workflow::ReliabilityMap m = workflow::reliability_map(*model, gx, gy, base);
+    const HeatMapSpec spec = reliability_heat_map(*model, a.set, gx, gy, base, m);
     const MatX& queries = m.queries;
     const VecX& rho = m.rho;
     const std::string svg = render_heat_map(spec);

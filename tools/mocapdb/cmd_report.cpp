@@ -9,6 +9,9 @@
 #include "output_files.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/io/text_file.hpp"
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/workflow/aligned_set_data.hpp"
+#include "mocapdb/workflow/set_rate_report.hpp"
 #include "pipeline.hpp"
 #include "progress_bar.hpp"
 
@@ -30,7 +33,7 @@ struct ReportArgs {
 
 void run_report(const ReportArgs& a) {
     refuse_existing({a.csv, a.svg}, a.force);
-    const SetContext c = load_set_context(Database(a.db), a.set);
+    const workflow::AlignedSetData c = workflow::load_aligned_set(Database(a.db), a.set);
     compression::RateOptions options;
     if (!a.targets.empty()) options.max_cm = a.targets;
     else if (a.sweep) options.max_cm = {10, 5, 2, 1, 0.5, 0.2, 0.1, 0.05};
@@ -38,7 +41,7 @@ void run_report(const ReportArgs& a) {
     options.hooi = !a.no_hooi;
     ProgressBar bar("report");
     options.progress = bar.callback();
-    const RateOutcome r = rate_report(c, options);
+    const RateOutcome r = workflow::rate_report(c, options);
     bar.clear();
 
     if (!a.csv.empty()) {

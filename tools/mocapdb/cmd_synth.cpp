@@ -7,6 +7,7 @@
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
+#include "mocapdb/workflow/synthesis_step.hpp"
 #include "pipeline.hpp"
 #include "synthesis_cli.hpp"
 
@@ -36,7 +37,7 @@ void run_synth(const SynthArgs& a) {
     const double load_s = std::chrono::duration<double>(Clock::now() - t0).count();
     const Eigen::Index level = a.lod.empty() ? 0 : 1;
 
-    const SynthOutcome o = synthesize(*model, set, c, level);
+    const workflow::SynthOutcome o = workflow::synthesize(*model, set, c, level);
     write_bvh(a.out, o.clip);
     const Clip& clip = o.clip;
     const synthesis::Timing& timing = o.timing;

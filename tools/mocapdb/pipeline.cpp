@@ -1,39 +1,19 @@
 #include "pipeline.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <iostream>
-#include <map>
-#include <set>
+#include <optional>
 #include <sstream>
 
-#include "mocapdb/compression/byte_accounting.hpp"
-#include "mocapdb/compression/dof_weights.hpp"
-#include "mocapdb/compression/rank_search.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/dataset/alignment.hpp"
-#include "mocapdb/dataset/set_builder.hpp"
-#include "mocapdb/motion/pose_vector.hpp"
-#include "mocapdb/store/database.hpp"
-#include "mocapdb/synthesis/kernel_fit.hpp"
-#include "mocapdb/synthesis/synthesis_model.hpp"
-#include "mocapdb/io/csv_table.hpp"
-#include "mocapdb/workflow/set_creation.hpp"
 #include "option_lists.hpp"
 #include "progress_bar.hpp"
 #include "svg_plot.hpp"
 
 namespace mocapdb::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string megabytes(std::uint64_t bytes) {
     char buffer[32];
@@ -82,46 +62,20 @@ constexpr std::size_t kListedDuplicates = 10;
 
 ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<std::filesystem::path>& inputs,
                            const ImportOptions& options, bool force, std::ostream& notes) {
-    namespace fs = std::filesystem;
-    const std::vector<fs::path> files = collect_clip_files(inputs);
-    if (files.empty()) throw InvalidArgument("no .bvh or .amc files found in the given inputs");
     ImportOutcome o;
-    std::error_code ec;
-    o.existed = fs::exists(db, ec);
-    const auto mode = force ? DatabaseWriter::Mode::Create : DatabaseWriter::Mode::OpenOrCreate;
-    std::unique_ptr<DatabaseWriter> writer;
-    try {
-        writer = std::make_unique<DatabaseWriter>(db, mode);
-    } catch (const StoreError& e) {
-        throw StoreError(e.file(), e.object_path(),
-                         e.message() + " (import appends to a mocapdb database; --force replaces the file with a new one)");
+    {
+        ProgressBar bar("import");
+        o = workflow::import_clips(db, inputs, options, force, bar.callback());
     }
-    const auto start = Clock::now();
-    ProgressBar bar("import");
-    std::vector<std::string> duplicates;
-    o.summary = import_files(*writer, files, options, bar.callback(), [&](const ImportedFile& f) {
-        if (f.warnings.empty() && f.error.empty() && f.result.added) return;
-        bar.clear();
-        for (const Warning& w : f.warnings) std::cerr << "mocapdb: warning: " << w.to_string() << "\n";
-        if (!f.error.empty()) {
-            std::cerr << "mocapdb: error: " << f.error << "\n";
-        } else if (!f.result.added) {
-            duplicates.push_back(f.file.string() + ": " + f.result.message);
-        }
-    });
-    bar.clear();
+    for (const workflow::ImportMessage& m : o.messages)
+        std::cerr << "mocapdb: " << (m.kind == workflow::ImportMessage::Kind::Error ? "error: " : "warning: ") << m.text
+                  << "\n";
     // A few duplicates are listed; thousands (re-importing a folder) are counted.
-    if (duplicates.size() <= kListedDuplicates) {
-        for (const std::string& d : duplicates) notes << d << "\n";
+    if (o.not_added.size() <= kListedDuplicates) {
+        for (const std::string& d : o.not_added) notes << d << "\n";
     } else {
-        notes << duplicates.size() << " files skipped: already stored (same sha256)\n";
+        notes << o.not_added.size() << " files skipped: already stored (same sha256)\n";
     }
-    if (o.summary.added > 0 || !o.existed || force) writer->commit();
-    writer.reset();
-    o.seconds = seconds_since(start);
-    const Database view(db);
-    o.clips_in_db = view.clips().size();
-    o.file_bytes = view.file_size();
     return o;
 }
 
@@ -205,47 +159,19 @@ std::string describe_set(const SetOutcome& o) {
 
 // ---- align --------------------------------------------------------------------------------------
 
-AlignOutcome align_set(const std::string& db_path, const AlignRequest& a) {
-    const auto start = Clock::now();
-    // Read from the published file (errors name it), write in a session only once aligned.
-    const Database db(db_path);
-    const MotionSet set = db.load_set(a.set);
-    std::vector<Clip> samples;
-    AlignOutcome o;
-    {
-        ProgressBar bar("align: read");
-        for (const SampleRef& s : set.samples) {
-            const Clip clip = db.load_clip(s.clip);
-            o.labels.push_back(sample_label(s, clip.frame_count()));
-            samples.push_back(sample_frames(set, samples.size(), clip));  // with the set's dropout repairs
-            bar.update({samples.size(), set.samples.size(), s.clip});
-        }
-    }
-    AlignOptions options;
-    options.method = a.method;
-    options.frames = static_cast<Eigen::Index>(a.frames);
-    if (!a.reference.empty()) {
-        const auto it = std::find(o.labels.begin(), o.labels.end(), a.reference);
-        if (it == o.labels.end())
-            throw InvalidArgument("set '" + a.set + "' has no sample '" + a.reference + "' (see mocapdb set show)");
-        options.reference = static_cast<std::size_t>(it - o.labels.begin());
-    }
-    {
-        ProgressBar bar("align");
-        options.progress = bar.callback();
-        o.aligned = align_samples(samples, options);
-    }
-    o.distance = mean_alignment_distance(samples, o.aligned);
-    try {
-        o.phase = check_phase(samples, o.aligned);
-    } catch (const InvalidArgument&) {
-        // No feet to compare (not a legged figure): no phase check.
-    }
-    DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
-    writer.put_aligned(a.set, o.aligned);
-    writer.commit();
-    o.seconds = seconds_since(start);
-    return o;
+AlignOutcome align_set(const std::string& db_path, AlignRequest request) {
+    ProgressBar read_bar("align: read");
+    request.read_progress = read_bar.callback();
+    std::optional<ProgressBar> bar;  // started when reading is done, so that its clock counts the alignment
+    if (read_bar.enabled())
+        request.progress = [&](const Progress& p) {
+            if (!bar) {
+                read_bar.clear();
+                bar.emplace("align");
+            }
+            bar->update(p);
+        };
+    return workflow::align_set(db_path, request);
 }
 
 std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
@@ -280,89 +206,20 @@ std::string ranks_text(const tensor::Ranks& r) {
 }
 
 CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
-    const auto start = Clock::now();
-    const SetContext c = load_set_context(Database(db), a.set);
-    const Tensor3& poses = c.aligned.tensor;
-    const VecX weight = compression::position_error_weights(*c.skeleton);
-    const compression::JointErrorMeter meter(c.skeleton, poses);
-    const compression::PreparedSet prepared = compression::prepare_set(poses, weight);
-
-    CompressOutcome o;
-    o.dims = tensor::dims_of(poses);
-    compression::RankSearchResult chosen;
+    workflow::CompressRequest r;
+    r.set = a.set;
     if (!a.ranks.empty()) {
         if (a.ranks.size() != 3) throw InvalidArgument("--ranks: expected three ranks R1,R2,R3");
-        tensor::Ranks r{};
-        for (std::size_t n = 0; n < 3; ++n) {
-            if (a.ranks[n] < 1 || a.ranks[n] > o.dims[n])
-                throw InvalidArgument("--ranks: rank " + std::to_string(n + 1) + " must be in [1, " +
-                                      std::to_string(o.dims[n]) + "] for a tensor of " + ranks_text(o.dims) +
-                                      " (dofs x frames x samples)");
-            r[n] = a.ranks[n];
-        }
-        chosen.model = compression::hosvd_model(prepared, r);
-        chosen.target_met = true;
-        o.criterion = "ranks " + ranks_text(r);
-    } else if (a.rmse >= 0.0) {
-        ProgressBar bar("compress");
-        chosen = compression::search_ranks_for_rmse(prepared, meter, a.rmse, bar.callback());
-        o.criterion = "rmse <= " + std::to_string(a.rmse);
-    } else if (a.ratio > 0.0) {
-        chosen = compression::ranks_for_ratio(prepared, meter, a.ratio);
-        o.criterion = "ratio >= " + std::to_string(a.ratio);
-    } else {
-        const double target = a.max_error_cm > 0.0 ? a.max_error_cm : 1.0;
-        ProgressBar bar("compress");
-        chosen = compression::search_ranks_for_max_error(prepared, meter, target, bar.callback());
-        std::ostringstream s;
-        s << "max joint error <= " << target << " cm";
-        o.criterion = s.str();
+        r.ranks = tensor::Ranks{a.ranks[0], a.ranks[1], a.ranks[2]};
     }
-    o.target_met = chosen.target_met;
-    o.search_s = seconds_since(start);
-
-    // The chosen ranks, decomposed with the requested method. HOSVD is the search's own model (the
-    // model fit_set_model would compute from the same bases) with its measured errors: no second
-    // pass over the set (#16).
-    const auto fit_start = Clock::now();
-    tensor::HooiOptions hooi;
-    hooi.max_iterations = a.max_iterations;
-    const tensor::TuckerMethod method = method_of(a.method);
-    const bool reuse = method == tensor::TuckerMethod::Hosvd;
-    o.model = reuse ? chosen.model
-                    : compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, method, hooi);
-    o.fit_s = seconds_since(fit_start);
-    o.stats = reuse && chosen.stats.positions > 0 ? chosen.stats : meter.measure(o.model.reconstruct());
-    o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
-
-    // The synthesis kernel's variogram, fitted once here so that `synth` need not (#16; kernel_fit.hpp).
-    // Its leave-one-out choice is O(N^3) in the samples: above kStoredKernelMaxSamples compress does
-    // not pay it, and synth fits at load as for a model without a stored kernel.
-    const auto kernel_start = Clock::now();
-    std::optional<synthesis::KernelFit> kernel;
-    if (c.set.samples.size() <= synthesis::kStoredKernelMaxSamples)
-        kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
-    o.kernel_stored = kernel.has_value();
-    o.kernel_s = seconds_since(kernel_start);
-    if (kernel) {
-        o.kernel_variogram = kernel->variogram.to_string();
-        o.kernel_status = kriging::to_string(kernel->status);
-        o.kernel_warning = synthesis::fit_status_warning(*kernel);
-    }
-
-    const ModelFigures figures{o.stats.dof_rmse, o.stats.rmse_cm, o.stats.mean_cm, o.stats.max_cm, o.stats.p99_cm};
-    DatabaseWriter writer(db, DatabaseWriter::Mode::OpenOrCreate);
-    writer.put_model(a.set, o.model, figures);
-    if (kernel) writer.put_kernel_fit(a.set, *kernel);
-    writer.commit();
-    for (const SetRecord& r : Database(db).sets())
-        if (r.name == a.set) o.stored_bytes = r.model_stored_bytes;
-
-    o.raw_bytes = compression::aligned_float32_bytes(poses);
-    o.bytes = compression::tucker_float32_bytes(o.model) +
-              compression::side_info_bytes(poses.dimension(1), poses.dimension(2), c.set.parameters.cols());
-    o.total_s = seconds_since(start);
-    return o;
+    r.max_error_cm = a.max_error_cm;
+    r.rmse = a.rmse;
+    r.ratio = a.ratio;
+    r.method = method_of(a.method);
+    r.max_iterations = a.max_iterations;
+    ProgressBar bar("compress");
+    r.progress = bar.callback();
+    return workflow::compress_set(db, r);
 }
 
 std::string describe_compression(const std::string& set, const CompressOutcome& o) {
@@ -422,16 +279,6 @@ void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
 }
 
 // ---- rate-distortion report ---------------------------------------------------------------------
-
-RateOutcome rate_report(const SetContext& c, compression::RateOptions options) {
-    options.parameters = c.set.parameters.cols();
-    RateOutcome r;
-    r.report = compression::rate_distortion(c.aligned.tensor, c.skeleton, options);
-    r.clip_bytes = 4 * c.clip_channel_values;
-    r.seconds = c.seconds_of_motion;
-    r.joints = PoseLayout(*c.skeleton).rotation_joints().size();
-    return r;
-}
 
 std::string rate_table_text(const std::string& set, const RateOutcome& o) {
     const compression::RateReport& r = o.report;
@@ -522,67 +369,18 @@ void write_rate_rows_json(JsonWriter& j, const RateOutcome& o) {
     j.end_array();
 }
 
-// ---- synthesis ----------------------------------------------------------------------------------
-
-std::vector<ParameterExtractor> source_extractors(const std::string& source) {
-    std::vector<ParameterExtractor> ex;
-    const std::string prefix = "extract:";
-    if (source.compare(0, prefix.size(), prefix) != 0) return ex;
-    const std::string rest = source.substr(prefix.size());
-    std::size_t start = 0;
-    while (start <= rest.size()) {
-        const std::size_t comma = rest.find(',', start);
-        const std::string spec = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        if (!spec.empty()) ex.push_back(ParameterExtractor::parse(spec));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    return ex;
-}
-
-SynthOutcome synthesize(const synthesis::SynthesisModel& model, const MotionSet& set, const VecX& c,
-                        Eigen::Index level) {
-    SynthOutcome o;
-    o.requested = c;
-    const auto start = Clock::now();
-    o.timing = model.timing(c);
-    o.clip = model.motion(c, level);
-    o.reliability = model.reliability(c);
-    o.seconds = seconds_since(start);
-    // Measured parameters of the result, when the set's were measured by extractors.
-    const std::vector<ParameterExtractor> ex = source_extractors(set.parameter_source);
-    if (!ex.empty() && o.clip.frame_count() >= 2) {
-        o.measured = extract_parameters(o.clip, 0, o.clip.frame_count(), ex);
-        if (o.measured.size() != c.size()) o.measured.resize(0);
-    }
-    return o;
-}
-
 // ---- reliability map ----------------------------------------------------------------------------
 
-ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const std::string& set, const SliceAxis& gx,
-                               const SliceAxis& gy, const VecX& base) {
+HeatMapSpec reliability_heat_map(const synthesis::SynthesisModel& model, const std::string& set,
+                                 const workflow::SliceAxis& gx, const workflow::SliceAxis& gy, const VecX& base,
+                                 const workflow::ReliabilityMap& m) {
     const auto& names = model.parameter_names();
     const auto& units = model.parameter_units();
-    ReliabilityMap m;
-    m.queries.resize(gx.count * gy.count, model.parameters());
-    for (Eigen::Index j = 0; j < gy.count; ++j)
-        for (Eigen::Index i = 0; i < gx.count; ++i) {
-            VecX c = base;
-            c(gx.axis) = gx.at(i);
-            c(gy.axis) = gy.at(j);
-            m.queries.row(j * gx.count + i) = c.transpose();
-        }
-    m.rho = model.reliability_batch(m.queries);
-    MatX map(gy.count, gx.count);
-    for (Eigen::Index j = 0; j < gy.count; ++j)
-        for (Eigen::Index i = 0; i < gx.count; ++i) map(j, i) = m.rho(j * gx.count + i);
-
     const auto axis_label = [&](Eigen::Index k) {
         const std::string& u = units[static_cast<std::size_t>(k)];
         return names[static_cast<std::size_t>(k)] + (u.empty() ? "" : " [" + u + "]");
     };
-    HeatMapSpec& spec = m.spec;
+    HeatMapSpec spec;
     spec.title = "Reliability of synthesis: set '" + set + "' (" + model.kind() + " model)";
     spec.x_label = axis_label(gx.axis);
     spec.y_label = axis_label(gy.axis);
@@ -591,7 +389,7 @@ ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const std
     spec.x_hi = gx.hi;
     spec.y_lo = gy.lo;
     spec.y_hi = gy.hi;
-    spec.values = map;
+    spec.values = m.values;
     spec.value_lo = 0.0;
     spec.value_hi = 1.0;
     const MatX& sp = model.sample_parameters();
@@ -611,8 +409,7 @@ ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const std
             }
         spec.note = "slice at " + fixed;
     }
-    m.fraction_trusted = (m.rho.array() >= 0.85).cast<double>().mean();
-    return m;
+    return spec;
 }
 
 }  // namespace mocapdb::cli

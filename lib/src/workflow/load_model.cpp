@@ -2,35 +2,9 @@
 
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/workflow/aligned_set_data.hpp"
 
 namespace mocapdb::workflow {
-namespace {
-
-// What every synthesis model needs from the database: the set, its aligned form, its skeleton and
-// frame rate (those of the first sample's clip).
-struct AlignedSetData {
-    MotionSet set;
-    AlignedSet aligned;
-    std::shared_ptr<const Skeleton> skeleton;
-    double frame_rate = 0.0;
-};
-
-AlignedSetData load_aligned_set(const Database& db, const std::string& name) {
-    AlignedSetData d;
-    d.set = db.load_set(name);
-    auto aligned = db.load_aligned(name);
-    if (!aligned)
-        throw InvalidArgument("set '" + name + "' in " + db.path().string() + " is not aligned (run: mocapdb align " +
-                              db.path().string() + " --set " + name + ")");
-    d.aligned = std::move(*aligned);
-    const auto record = db.find_clip(d.set.samples.front().clip);
-    if (!record) throw InvalidArgument("set '" + name + "': clip '" + d.set.samples.front().clip + "' is missing");
-    d.skeleton = db.load_skeleton(record->skeleton);
-    d.frame_rate = record->frame_rate;
-    return d;
-}
-
-}  // namespace
 
 std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, const std::string& name,
                                                           const synthesis::SynthesisOptions& options) {

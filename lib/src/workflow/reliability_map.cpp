@@ -1,0 +1,24 @@
+#include "mocapdb/workflow/reliability_map.hpp"
+
+namespace mocapdb::workflow {
+
+ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const SliceAxis& gx, const SliceAxis& gy,
+                               const VecX& base) {
+    ReliabilityMap m;
+    m.queries.resize(gx.count * gy.count, model.parameters());
+    for (Eigen::Index j = 0; j < gy.count; ++j)
+        for (Eigen::Index i = 0; i < gx.count; ++i) {
+            VecX c = base;
+            c(gx.axis) = gx.at(i);
+            c(gy.axis) = gy.at(j);
+            m.queries.row(j * gx.count + i) = c.transpose();
+        }
+    m.rho = model.reliability_batch(m.queries);
+    m.values.resize(gy.count, gx.count);
+    for (Eigen::Index j = 0; j < gy.count; ++j)
+        for (Eigen::Index i = 0; i < gx.count; ++i) m.values(j, i) = m.rho(j * gx.count + i);
+    m.fraction_trusted = (m.rho.array() >= kTrustedReliability).cast<double>().mean();
+    return m;
+}
+
+}  // namespace mocapdb::workflow

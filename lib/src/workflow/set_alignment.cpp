@@ -1,0 +1,50 @@
+#include "mocapdb/workflow/set_alignment.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/alignment.hpp"
+#include "mocapdb/dataset/set_builder.hpp"
+#include "mocapdb/store/database.hpp"
+
+namespace mocapdb::workflow {
+
+AlignOutcome align_set(const std::filesystem::path& db_path, const AlignRequest& a) {
+    const auto start = std::chrono::steady_clock::now();
+    // Read from the published file (errors name it), write in a session only once aligned.
+    const Database db(db_path);
+    const MotionSet set = db.load_set(a.set);
+    std::vector<Clip> samples;
+    AlignOutcome o;
+    for (const SampleRef& s : set.samples) {
+        const Clip clip = db.load_clip(s.clip);
+        o.labels.push_back(sample_label(s, clip.frame_count()));
+        samples.push_back(sample_frames(set, samples.size(), clip));  // with the set's dropout repairs
+        if (a.read_progress) a.read_progress({samples.size(), set.samples.size(), s.clip});
+    }
+    AlignOptions options;
+    options.method = a.method;
+    options.frames = a.frames;
+    if (!a.reference.empty()) {
+        const auto it = std::find(o.labels.begin(), o.labels.end(), a.reference);
+        if (it == o.labels.end())
+            throw InvalidArgument("set '" + a.set + "' has no sample '" + a.reference + "' (see mocapdb set show)");
+        options.reference = static_cast<std::size_t>(it - o.labels.begin());
+    }
+    options.progress = a.progress;
+    o.aligned = align_samples(samples, options);
+    o.distance = mean_alignment_distance(samples, o.aligned);
+    try {
+        o.phase = check_phase(samples, o.aligned);
+    } catch (const InvalidArgument&) {
+        // No feet to compare (not a legged figure): no phase check.
+    }
+    DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
+    writer.put_aligned(a.set, o.aligned);
+    writer.commit();
+    o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return o;
+}
+
+}  // namespace mocapdb::workflow

@@ -1,0 +1,109 @@
+#include "mocapdb/workflow/set_compression.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include "mocapdb/compression/byte_accounting.hpp"
+#include "mocapdb/compression/dof_weights.hpp"
+#include "mocapdb/compression/rank_search.hpp"
+#include "mocapdb/compression/rate_distortion.hpp"
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/synthesis/kernel_fit.hpp"
+#include "mocapdb/synthesis/synthesis_model.hpp"
+#include "mocapdb/workflow/aligned_set_data.hpp"
+
+namespace mocapdb::workflow {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::string ranks_text(const tensor::Ranks& r) {
+    return std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
+}
+
+}  // namespace
+
+CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequest& a) {
+    const auto start = Clock::now();
+    const AlignedSetData c = load_aligned_set(Database(db), a.set);
+    const Tensor3& poses = c.aligned.tensor;
+    const VecX weight = compression::position_error_weights(*c.skeleton);
+    const compression::JointErrorMeter meter(c.skeleton, poses);
+    const compression::PreparedSet prepared = compression::prepare_set(poses, weight);
+
+    CompressOutcome o;
+    o.dims = tensor::dims_of(poses);
+    compression::RankSearchResult chosen;
+    if (a.ranks) {
+        const tensor::Ranks& r = *a.ranks;
+        for (std::size_t n = 0; n < 3; ++n)
+            if (r[n] < 1 || r[n] > o.dims[n])
+                throw InvalidArgument("--ranks: rank " + std::to_string(n + 1) + " must be in [1, " +
+                                      std::to_string(o.dims[n]) + "] for a tensor of " + ranks_text(o.dims) +
+                                      " (dofs x frames x samples)");
+        chosen.model = compression::hosvd_model(prepared, r);
+        chosen.target_met = true;
+        o.criterion = "ranks " + ranks_text(r);
+    } else if (a.rmse >= 0.0) {
+        chosen = compression::search_ranks_for_rmse(prepared, meter, a.rmse, a.progress);
+        o.criterion = "rmse <= " + std::to_string(a.rmse);
+    } else if (a.ratio > 0.0) {
+        chosen = compression::ranks_for_ratio(prepared, meter, a.ratio);
+        o.criterion = "ratio >= " + std::to_string(a.ratio);
+    } else {
+        const double target = a.max_error_cm > 0.0 ? a.max_error_cm : 1.0;
+        chosen = compression::search_ranks_for_max_error(prepared, meter, target, a.progress);
+        std::ostringstream s;
+        s << "max joint error <= " << target << " cm";
+        o.criterion = s.str();
+    }
+    o.target_met = chosen.target_met;
+    o.search_s = seconds_since(start);
+
+    // The chosen ranks, decomposed with the requested method. HOSVD is the search's own model (the
+    // model fit_set_model would compute from the same bases) with its measured errors: no second
+    // pass over the set (#16).
+    const auto fit_start = Clock::now();
+    tensor::HooiOptions hooi;
+    hooi.max_iterations = a.max_iterations;
+    const bool reuse = a.method == tensor::TuckerMethod::Hosvd;
+    o.model = reuse ? chosen.model
+                    : compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, a.method, hooi);
+    o.fit_s = seconds_since(fit_start);
+    o.stats = reuse && chosen.stats.positions > 0 ? chosen.stats : meter.measure(o.model.reconstruct());
+    o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
+
+    // The synthesis kernel's variogram, fitted once here so that synthesis need not (#16; kernel_fit.hpp).
+    // Its leave-one-out choice is O(N^3) in the samples: above kStoredKernelMaxSamples it is not paid
+    // here, and the model fits it at load as for a model without a stored kernel.
+    const auto kernel_start = Clock::now();
+    std::optional<synthesis::KernelFit> kernel;
+    if (c.set.samples.size() <= synthesis::kStoredKernelMaxSamples)
+        kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
+    o.kernel_stored = kernel.has_value();
+    o.kernel_s = seconds_since(kernel_start);
+    if (kernel) {
+        o.kernel_variogram = kernel->variogram.to_string();
+        o.kernel_status = kriging::to_string(kernel->status);
+        o.kernel_warning = synthesis::fit_status_warning(*kernel);
+    }
+
+    const ModelFigures figures{o.stats.dof_rmse, o.stats.rmse_cm, o.stats.mean_cm, o.stats.max_cm, o.stats.p99_cm};
+    DatabaseWriter writer(db, DatabaseWriter::Mode::OpenOrCreate);
+    writer.put_model(a.set, o.model, figures);
+    if (kernel) writer.put_kernel_fit(a.set, *kernel);
+    writer.commit();
+    for (const SetRecord& r : Database(db).sets())
+        if (r.name == a.set) o.stored_bytes = r.model_stored_bytes;
+
+    o.raw_bytes = compression::aligned_float32_bytes(poses);
+    o.bytes = compression::tucker_float32_bytes(o.model) +
+              compression::side_info_bytes(poses.dimension(1), poses.dimension(2), c.set.parameters.cols());
+    o.total_s = seconds_since(start);
+    return o;
+}
+
+}  // namespace mocapdb::workflow
