@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <array>
 #include <map>
 #include <optional>
 
@@ -11,6 +12,9 @@
 #include "bindings.hpp"
 #include "mocapdb/store/collection_report.hpp"
 #include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/clip_import.hpp"
+#include "mocapdb/workflow/set_alignment.hpp"
+#include "mocapdb/workflow/set_compression.hpp"
 #include "mocapdb/workflow/set_creation.hpp"
 
 namespace mocapdb::python {
@@ -24,6 +28,41 @@ const char* segmentation_name(Segmentation s) {
         case Segmentation::WholeClips: break;
     }
     return "whole_clips";
+}
+
+py::dict import_files(const std::filesystem::path& db, const std::vector<std::filesystem::path>& inputs,
+                      std::optional<std::filesystem::path> asf, std::optional<double> frame_rate, bool strict,
+                      bool keep_going, bool force) {
+    ImportOptions options;
+    if (asf) options.asf = *asf;
+    options.frame_rate = frame_rate;
+    options.strict = strict;
+    options.keep_going = keep_going;
+    workflow::ImportOutcome o;
+    {
+        py::gil_scoped_release release;
+        o = workflow::import_clips(db, inputs, options, force);
+    }
+    // The readers' warnings reach Python as warnings, as read_clip's do.
+    for (const workflow::ImportMessage& m : o.messages)
+        if (m.kind == workflow::ImportMessage::Kind::Warning && PyErr_WarnEx(PyExc_UserWarning, m.text.c_str(), 1) != 0)
+            throw py::error_already_set();
+    py::dict d;
+    d["files"] = o.summary.files;
+    d["added"] = o.summary.added;
+    d["skipped"] = o.summary.skipped;
+    d["failed"] = o.summary.failed;
+    d["frames"] = o.summary.frames;
+    d["seconds_of_motion"] = o.summary.seconds;
+    d["clips_in_db"] = o.clips_in_db;
+    d["file_bytes"] = o.file_bytes;
+    d["seconds"] = o.seconds;
+    std::vector<std::string> errors;
+    for (const workflow::ImportMessage& m : o.messages)
+        if (m.kind == workflow::ImportMessage::Kind::Error) errors.push_back(m.text);
+    d["errors"] = errors;
+    d["not_added"] = o.not_added;
+    return d;
 }
 
 py::dict create_set(const std::filesystem::path& db, const std::string& name, const std::vector<std::string>& clips,
@@ -89,6 +128,79 @@ py::dict pack(const std::filesystem::path& db, double max_error_cm, int threads,
     return d;
 }
 
+py::dict align(const std::filesystem::path& db, const std::string& set, Eigen::Index frames, const std::string& method,
+               const std::string& reference) {
+    workflow::AlignRequest r;
+    r.set = set;
+    r.frames = frames;
+    r.method = method;
+    r.reference = reference;
+    workflow::AlignOutcome o;
+    {
+        py::gil_scoped_release release;
+        o = workflow::align_set(db, r);
+    }
+    py::dict d;
+    d["set"] = set;
+    d["samples"] = o.aligned.samples();
+    d["frames"] = o.aligned.frames();
+    d["dofs"] = o.aligned.dofs();
+    d["reference"] = o.aligned.reference;
+    d["mean_distance_cm"] = o.distance;
+    d["seconds"] = o.seconds;
+    d["labels"] = o.labels;
+    if (o.phase) {
+        d["phase_min"] = o.phase->min;
+        d["phase_mean"] = o.phase->mean;
+    }
+    return d;
+}
+
+tensor::TuckerMethod tucker_method(const std::string& name) {
+    if (name == "hosvd") return tensor::TuckerMethod::Hosvd;
+    if (name == "sthosvd") return tensor::TuckerMethod::StHosvd;
+    if (name == "hooi") return tensor::TuckerMethod::Hooi;
+    throw InvalidArgument("method: expected 'hosvd', 'sthosvd' or 'hooi', got '" + name + "'");
+}
+
+py::dict compress(const std::filesystem::path& db, const std::string& set, std::optional<std::array<Eigen::Index, 3>> ranks,
+                  double max_error_cm, std::optional<double> rmse, std::optional<double> ratio, const std::string& method,
+                  int max_iterations) {
+    workflow::CompressRequest r;
+    r.set = set;
+    r.ranks = ranks;
+    r.max_error_cm = max_error_cm;
+    r.rmse = rmse.value_or(-1.0);
+    r.ratio = ratio.value_or(0.0);
+    r.method = tucker_method(method);
+    r.max_iterations = max_iterations;
+    workflow::CompressOutcome o;
+    {
+        py::gil_scoped_release release;
+        o = workflow::compress_set(db, r);
+    }
+    const tensor::TuckerModel& t = o.model.tucker;
+    py::dict d;
+    d["set"] = set;
+    d["criterion"] = o.criterion;
+    d["target_met"] = o.target_met;
+    d["method"] = tensor::to_string(t.method);
+    d["dims"] = py::make_tuple(o.dims[0], o.dims[1], o.dims[2]);
+    d["ranks"] = py::make_tuple(t.ranks[0], t.ranks[1], t.ranks[2]);
+    d["raw_bytes"] = o.raw_bytes;
+    d["bytes"] = o.bytes;
+    d["ratio"] = o.ratio();
+    d["file_bytes"] = o.stored_bytes;
+    d["dof_rmse"] = o.stats.dof_rmse;
+    d["rmse_cm"] = o.stats.rmse_cm;
+    d["mean_cm"] = o.stats.mean_cm;
+    d["max_cm"] = o.stats.max_cm;
+    d["p99_cm"] = o.stats.p99_cm;
+    d["kernel_stored"] = o.kernel_stored;
+    d["total_s"] = o.total_s;
+    return d;
+}
+
 py::dict packed_figures(const PackedFigures& f) {
     py::dict d;
     d["clips"] = f.clips;
@@ -140,6 +252,14 @@ py::dict collection_report_dict(const std::filesystem::path& path, const std::ve
 }  // namespace
 
 void bind_workflow(py::module_& m) {
+    m.def("import_files", &import_files, py::arg("db"), py::arg("inputs"), py::arg("asf") = py::none(),
+          py::arg("frame_rate") = py::none(), py::arg("strict") = false, py::arg("keep_going") = false,
+          py::arg("force") = false,
+          "`mocapdb import`: the BVH and AMC files found under `inputs` (files or folders) stored losslessly in "
+          "`db` (appended; a new file when absent, or replaced when force=True); files already stored (same "
+          "SHA-256) are skipped. keep_going: a file that cannot be read is reported in 'errors' instead of "
+          "stopping everything. Readers' warnings become UserWarnings. Committed. Returns {'files', 'added', "
+          "'skipped', 'failed', 'frames', 'clips_in_db', 'file_bytes', 'errors', 'not_added', ...}.");
     m.def("create_set", &create_set, py::arg("db"), py::arg("name"), py::arg("clips"), py::arg("extract") = py::none(),
           py::arg("params_csv") = py::none(), py::arg("periodic") = py::none(), py::arg("segment") = "auto",
           py::arg("feet") = py::none(), py::arg("replace") = false,
@@ -147,6 +267,18 @@ void bind_workflow(py::module_& m) {
           "its parameters measured by the `extract` extractors (e.g. ['turn', 'speed']) or read from `params_csv`; "
           "periodic: {name: period}; segment: 'auto', 'none', 'gait[:N]' or 'window:LENGTH[:HOP]'. Committed. Returns "
           "{'set', 'samples', 'clips', 'skipped', 'segmentation', 'parameter_names', 'parameters', 'repaired_runs'}.");
+    m.def("align", &align, py::arg("db"), py::arg("set"), py::arg("frames") = 100, py::arg("method") = "dtw",
+          py::arg("reference") = "",
+          "`mocapdb align`: the set's samples time-aligned to `frames` aligned frames (method 'dtw' or 'linear'; "
+          "reference: a sample label, default the library's choice) and stored (committed). Returns {'samples', "
+          "'frames', 'dofs', 'reference', 'mean_distance_cm', 'labels', 'phase_min', 'phase_mean', ...}.");
+    m.def("compress", &compress, py::arg("db"), py::arg("set"), py::arg("ranks") = py::none(), py::arg("max_error_cm") = 0.0,
+          py::arg("rmse") = py::none(), py::arg("ratio") = py::none(), py::arg("method") = "hosvd",
+          py::arg("max_iterations") = 50,
+          "`mocapdb compress`: the aligned set's Tucker model at explicit ranks (R1, R2, R3), or the smallest "
+          "ranks meeting max_error_cm (default 1 cm), rmse or ratio; method 'hosvd', 'sthosvd' or 'hooi'. The model "
+          "and its synthesis kernel are stored (committed). Returns the keys of `mocapdb compress --json` "
+          "(criterion, target_met, ranks, bytes, ratio, max_cm, p99_cm, rmse_cm, ...).");
     m.def("pack", &pack, py::arg("db"), py::arg("max_error_cm") = 1.0, py::arg("threads") = 2, py::arg("replace") = false,
           py::arg("drop_lossless") = false,
           "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm), stored as the packed tier "

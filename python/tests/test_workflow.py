@@ -2,6 +2,7 @@
 import shutil
 
 import numpy as np
+import pytest
 
 import mocapdb
 from conftest import cli_json, run_cli
@@ -31,3 +32,49 @@ def test_pack_equals_the_cli(cli, db_copy, tmp_path):
     assert ours["tier"].max_error_cm == 0.5
     with mocapdb.open(db_copy) as db:
         assert db.packed().bytes == ours["bytes"]
+
+
+def test_import_align_compress_equal_the_cli(cli, shared, tmp_path):
+    """The whole chain from Python and from the CLI on the same clips gives the same database content."""
+    amc = shared / "datasets" / "cmu-asfamc"
+    files = [amc / f"16_{t}.amc" for t in range(11, 19)]
+    ours, theirs = tmp_path / "py.h5", tmp_path / "cli.h5"
+
+    imported = mocapdb.import_files(ours, files)
+    run_cli(cli, "import", *files, "-o", theirs)
+    assert imported["added"] == imported["clips_in_db"] == 8 and imported["skipped"] == 0
+    again = mocapdb.import_files(ours, files[:2])
+    assert again["added"] == 0 and again["skipped"] == 2 and len(again["not_added"]) == 2
+
+    mocapdb.create_set(ours, "walks", ["16_*"], extract=["turn", "speed"])
+    run_cli(cli, "set", "create", theirs, "--name", "walks", "--clips", "16_*", "--extract", "turn", "speed")
+    aligned = mocapdb.align(ours, "walks", frames=30)
+    run_cli(cli, "align", theirs, "--set", "walks", "--frames", "30")
+    compressed = mocapdb.compress(ours, "walks", max_error_cm=1.0)
+    cli_compressed = cli_json(cli, "compress", theirs, "--set", "walks", "--max-error-cm", "1")
+
+    assert aligned["frames"] == 30 and aligned["dofs"] == 90
+    for key in ("criterion", "target_met", "ranks", "bytes", "ratio", "max_cm", "p99_cm", "rmse_cm"):
+        value = list(compressed[key]) if isinstance(compressed[key], tuple) else compressed[key]
+        assert value == cli_compressed[key], key
+    assert compressed["max_cm"] <= 1.0
+    with mocapdb.open(ours) as a, mocapdb.open(theirs) as b:
+        assert [c.sha256 for c in a.clips()] == [c.sha256 for c in b.clips()]
+        info_a = [s for s in a.sets() if s.name == "walks"][0]
+        info_b = [s for s in b.sets() if s.name == "walks"][0]
+        assert info_a.tensor_shape == info_b.tensor_shape and info_a.model_ranks == info_b.model_ranks
+        c = a.set("walks").parameters.mean(axis=0)
+        assert np.array_equal(a.synthesis_model("walks").pose(c, 3.5), b.synthesis_model("walks").pose(c, 3.5))
+
+
+def test_workflow_errors(shared, tmp_path):
+    with pytest.raises(mocapdb.InvalidArgument, match="no .bvh or .amc files found"):
+        mocapdb.import_files(tmp_path / "x.h5", [tmp_path])
+    bad = tmp_path / "bad.bvh"
+    bad.write_text("HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n}\n")
+    with pytest.raises(mocapdb.ParseError):
+        mocapdb.import_files(tmp_path / "y.h5", [bad])
+    done = mocapdb.import_files(tmp_path / "z.h5", [bad, shared / "datasets" / "cmu-asfamc" / "16_11.amc"], keep_going=True)
+    assert done["added"] == 1 and done["failed"] == 1 and "bad.bvh" in done["errors"][0]
+    with pytest.raises(mocapdb.InvalidArgument):
+        mocapdb.compress(tmp_path / "z.h5", "walks", method="svd")
