@@ -130,3 +130,11 @@ def test_errors_are_exceptions_with_the_cli_message(cli, test_db, tmp_path):
     db.close()
     with pytest.raises(mocapdb.InvalidArgument, match="closed"):
         db.clips()
+
+
+def test_written_bvh_is_the_cli_export_byte_for_byte(cli, test_db, tmp_path):
+    ours, theirs = tmp_path / "py.bvh", tmp_path / "cli.bvh"
+    with mocapdb.open(test_db) as db:
+        db.clip("16_14").write_bvh(ours)
+    run_cli(cli, "export", test_db, "--clip", "16_14", "-o", theirs)
+    assert ours.read_bytes() == theirs.read_bytes()

@@ -78,3 +78,15 @@ def test_workflow_errors(shared, tmp_path):
     assert done["added"] == 1 and done["failed"] == 1 and "bad.bvh" in done["errors"][0]
     with pytest.raises(mocapdb.InvalidArgument):
         mocapdb.compress(tmp_path / "z.h5", "walks", method="svd")
+
+
+def test_collection_report_equals_the_cli(cli, test_db):
+    ours = mocapdb.collection_report(test_db, max_error_cm=[1.0])
+    theirs = cli_json(cli, "report", test_db, "--collection", "--max-error-cm", "1", "--poses", "0")
+    for key in ("clips", "frames", "groups", "float32_bytes"):
+        assert ours[key] == theirs[key], key
+    assert ours["lossless"]["bytes"] == theirs["lossless"]["bytes"]
+    [a], [b] = ours["targets"], theirs["targets"]
+    for key in ("max_error_cm", "bytes", "max_cm", "p99_cm", "rmse_cm", "clips", "frames"):
+        assert a[key] == b[key], key
+    assert a["max_cm"] <= 1.0

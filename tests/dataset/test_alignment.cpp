@@ -33,8 +33,8 @@ TEST_CASE("DTW recovers a known time warp", "[dtw]") {
     MatX cost(n, m);
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < m; ++j) cost(i, j) = std::abs(sample(0, i) - ref(0, j));
-    const DtwPath path = dtw(cost);
-    const VecX w = warp_from_path(path, n, m);
+    const align::DtwPath path = align::dtw(cost);
+    const VecX w = align::warp_from_path(path, n, m);
     double worst = 0;
     for (int j = 0; j < m; ++j) worst = std::max(worst, std::abs(w[j] - clock(j)));
     INFO("worst warp error " << worst << " frames");
@@ -95,8 +95,8 @@ TEST_CASE("gait cycles of subject 105's long walk", "[segment][shared]") {
 
 TEST_CASE("alignment refuses bad input", "[align]") {
     CHECK_THROWS_AS(align_samples({}), InvalidArgument);
-    CHECK_THROWS_AS(dtw(MatX(0, 3)), InvalidArgument);
+    CHECK_THROWS_AS(align::dtw(MatX(0, 3)), InvalidArgument);
     MatX c = MatX::Ones(3, 3);
     c(1, 1) = std::nan("");
-    CHECK_THROWS_AS(dtw(c), InvalidArgument);
+    CHECK_THROWS_AS(align::dtw(c), InvalidArgument);
 }

@@ -6,7 +6,7 @@
 
 #include "mocapdb/core/error.hpp"
 
-namespace mocapdb {
+namespace mocapdb::align {
 
 DtwPath dtw(const Eigen::Ref<const MatX>& cost, double band) {
     const Eigen::Index n = cost.rows(), m = cost.cols();
@@ -86,4 +86,4 @@ VecX interpolate(const Eigen::Ref<const VecX>& curve, const Eigen::Ref<const Vec
     return out;
 }
 
-}  // namespace mocapdb
+}  // namespace mocapdb::align

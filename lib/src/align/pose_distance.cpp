@@ -6,7 +6,7 @@
 #include "mocapdb/motion/root_trajectory.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 
-namespace mocapdb {
+namespace mocapdb::align {
 
 MatX pose_features(const Clip& clip) {
     MatX p = joint_positions(clip);
@@ -41,4 +41,4 @@ double pose_distance(const Eigen::Ref<const VecX>& a, const Eigen::Ref<const Vec
     return std::sqrt((a - b).squaredNorm() / static_cast<double>(a.size() / 3));
 }
 
-}  // namespace mocapdb
+}  // namespace mocapdb::align

@@ -89,17 +89,17 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
         for (std::size_t n = 0; n < count; ++n)
             out.warps.col(static_cast<Eigen::Index>(n)) = uniform(frames, static_cast<double>(samples[n].frame_count() - 1));
     } else {
-        const MatX ref_features = pose_features(samples[ref]);
+        const MatX ref_features = align::pose_features(samples[ref]);
         for (std::size_t n = 0; n < count; ++n) {
             if (n == ref) {
                 out.warps.col(static_cast<Eigen::Index>(n)) = tau;
                 continue;
             }
-            const MatX features = pose_features(samples[n]);
-            const MatX cost = pose_distance_matrix(features, ref_features);
-            const DtwPath path = dtw(cost, options.band);
-            const VecX w = warp_from_path(path, cost.rows(), cost.cols());
-            out.warps.col(static_cast<Eigen::Index>(n)) = interpolate(w, tau);
+            const MatX features = align::pose_features(samples[n]);
+            const MatX cost = align::pose_distance_matrix(features, ref_features);
+            const align::DtwPath path = align::dtw(cost, options.band);
+            const VecX w = align::warp_from_path(path, cost.rows(), cost.cols());
+            out.warps.col(static_cast<Eigen::Index>(n)) = align::interpolate(w, tau);
             report(n + 1, "warp");
         }
     }
@@ -138,14 +138,14 @@ double mean_alignment_distance(const std::vector<Clip>& samples, const AlignedSe
     if (static_cast<Eigen::Index>(samples.size()) != aligned.samples())
         throw InvalidArgument("mean_alignment_distance: sample count differs from the aligned set");
     const std::size_t ref = aligned.reference;
-    const MatX ref_features = pose_features(samples[ref]);
+    const MatX ref_features = align::pose_features(samples[ref]);
     double sum = 0.0;
     std::size_t terms = 0;
     for (std::size_t n = 0; n < samples.size(); ++n) {
         if (n == ref) continue;
-        const MatX features = pose_features(samples[n]);
+        const MatX features = align::pose_features(samples[n]);
         for (Eigen::Index t = 0; t < aligned.frames(); ++t) {
-            sum += pose_distance(column_at(features, aligned.warps(t, static_cast<Eigen::Index>(n))),
+            sum += align::pose_distance(column_at(features, aligned.warps(t, static_cast<Eigen::Index>(n))),
                                  column_at(ref_features, aligned.warps(t, static_cast<Eigen::Index>(ref))));
             ++terms;
         }

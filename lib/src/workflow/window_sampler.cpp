@@ -2,6 +2,7 @@
 #include "mocapdb/workflow/window_sampler.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <list>
 #include <map>
@@ -179,7 +180,8 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
             first = &r;
             rig = db.load_skeleton(r.skeleton);
         } else {
-            if (r.frame_rate != first->frame_rate)
+            // Frame Time text rounds (0.0333333 s): rates within 0.01 % are one rate.
+            if (std::abs(r.frame_rate - first->frame_rate) > 1e-4 * first->frame_rate)
                 throw InvalidArgument(name + ": clips '" + first->id + "' (" + std::to_string(first->frame_rate) + " Hz) and '" +
                                       r.id + "' (" + std::to_string(r.frame_rate) +
                                       " Hz) differ in frame rate; select clips of one rate (clip patterns)");

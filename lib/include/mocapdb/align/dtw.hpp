@@ -5,7 +5,7 @@
 
 #include "mocapdb/core/types.hpp"
 
-namespace mocapdb {
+namespace mocapdb::align {
 
 struct DtwPath {
     /// Matched (row, column) index pairs from (0, 0) to (rows − 1, cols − 1), each step advancing
@@ -26,4 +26,4 @@ VecX warp_from_path(const DtwPath& path, Eigen::Index rows, Eigen::Index cols, d
 /// Linear interpolation of a curve given at 0..n−1 at (fractional) positions x (clamped to the ends).
 VecX interpolate(const Eigen::Ref<const VecX>& curve, const Eigen::Ref<const VecX>& x);
 
-}  // namespace mocapdb
+}  // namespace mocapdb::align

@@ -9,7 +9,7 @@
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/clip.hpp"
 
-namespace mocapdb {
+namespace mocapdb::align {
 
 /// Pose features of every frame: 3·J by F (the heading-frame joint positions above).
 MatX pose_features(const Clip& clip);
@@ -21,4 +21,4 @@ MatX pose_distance_matrix(const Eigen::Ref<const MatX>& a, const Eigen::Ref<cons
 /// Distance of two single feature columns, cm.
 double pose_distance(const Eigen::Ref<const VecX>& a, const Eigen::Ref<const VecX>& b);
 
-}  // namespace mocapdb
+}  // namespace mocapdb::align

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "mocapdb/codec/encoded_stream.hpp"
-#include "mocapdb/tensor/tensor3.hpp"
+#include "mocapdb/core/tensor3.hpp"
 
 namespace mocapdb::codec {
 

@@ -11,7 +11,7 @@
 #include <cstddef>
 
 #include "mocapdb/core/types.hpp"
-#include "mocapdb/tensor/tensor3.hpp"
+#include "mocapdb/core/tensor3.hpp"
 
 namespace mocapdb::codec {
 

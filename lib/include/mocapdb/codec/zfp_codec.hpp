@@ -16,7 +16,7 @@
 
 #include "mocapdb/codec/encoded_stream.hpp"
 #include "mocapdb/core/types.hpp"
-#include "mocapdb/tensor/tensor3.hpp"
+#include "mocapdb/core/tensor3.hpp"
 
 namespace mocapdb::codec {
 

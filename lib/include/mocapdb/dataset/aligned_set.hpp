@@ -6,7 +6,7 @@
 
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
-#include "mocapdb/tensor/tensor3.hpp"
+#include "mocapdb/core/tensor3.hpp"
 
 namespace mocapdb {
 

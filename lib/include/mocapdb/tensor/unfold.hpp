@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 
 #include "mocapdb/core/types.hpp"
-#include "mocapdb/tensor/tensor3.hpp"
+#include "mocapdb/core/tensor3.hpp"
 
 namespace mocapdb::tensor {
 

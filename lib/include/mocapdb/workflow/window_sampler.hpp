@@ -72,6 +72,7 @@ public:
     const std::vector<std::string>& clip_ids() const;
     /// Windows to draw from: sum over clips of F - L + 1.
     std::uint64_t window_count() const;
+    /// The first selected clip's rate (the others are within 0.01 % of it).
     double frame_rate() const;
     /// True when the windows are decoded from the packed tier.
     bool from_packed() const;

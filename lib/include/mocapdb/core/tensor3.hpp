@@ -1,5 +1,5 @@
 #pragma once
-// The third-order tensor type of the Tucker, codec and alignment modules.
+// The third-order tensor type of aligned motion sets, shared by the tensor, codec, dataset and store modules.
 #include <unsupported/Eigen/CXX11/Tensor>
 
 namespace mocapdb {
