@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "arrays.hpp"
@@ -17,6 +18,7 @@ namespace {
 struct SamplerHandle {
     std::shared_ptr<const Database> db;  ///< kept open while the sampler lives
     std::unique_ptr<workflow::WindowSampler> sampler;
+    std::mutex busy;  ///< batches of one sampler from several threads take turns
 };
 
 workflow::WindowValues values_of(const std::string& text) {
@@ -30,6 +32,20 @@ workflow::WindowSource source_of(const std::string& text) {
     if (text == "packed") return workflow::WindowSource::Packed;
     if (text == "lossless") return workflow::WindowSource::Lossless;
     throw InvalidArgument("source: expected 'auto', 'packed' or 'lossless', got '" + text + "'");
+}
+
+/// The next batch into out (B x L x V) and refs (may be null). The packed path reads only the
+/// sampler's own decoders, so it runs without the GIL; the lossless path reads the (not thread-safe)
+/// database and keeps it.
+void next_batch(SamplerHandle& h, double* out, workflow::WindowRef* refs) {
+    if (h.sampler->from_packed()) {
+        py::gil_scoped_release release;
+        const std::lock_guard<std::mutex> lock(h.busy);
+        h.sampler->next(out, refs);
+    } else {
+        const std::lock_guard<std::mutex> lock(h.busy);
+        h.sampler->next(out, refs);
+    }
 }
 
 Array batch_array(const SamplerHandle& h, std::size_t windows) {
@@ -46,7 +62,8 @@ void bind_sampler(py::module_& m) {
         "or joint positions (V = 3 J, x y z per joint), each window in its own canonical frame (first frame's "
         "root at the origin facing +Z). Decoded from the packed tier when it holds every selected clip (within "
         "its max_error_cm), else from the lossless clips. The same database, options and seed give the same "
-        "batches. An iterator of batches; not thread-safe (one sampler per thread or process).")
+        "batches. An endless iterator of batches; one sampler per thread (from the packed tier a batch is "
+        "made without the GIL, so other threads run meanwhile).")
         .def(py::init([](const DatabaseHandle& db, std::size_t length, std::size_t batch, std::uint64_t seed,
                          const std::string& values, std::optional<std::vector<std::string>> clips, const std::string& source,
                          std::size_t cache_clips) {
@@ -74,8 +91,7 @@ void bind_sampler(py::module_& m) {
             "next",
             [](SamplerHandle& h) {
                 Array out = batch_array(h, h.sampler->options().batch);
-                double* data = out.mutable_data();
-                h.sampler->next(data);
+                next_batch(h, out.mutable_data(), nullptr);
                 return out;
             },
             "The next batch (B, L, V).")
@@ -85,7 +101,7 @@ void bind_sampler(py::module_& m) {
                 const std::size_t b = h.sampler->options().batch;
                 Array out = batch_array(h, b);
                 std::vector<workflow::WindowRef> refs(b);
-                h.sampler->next(out.mutable_data(), refs.data());
+                next_batch(h, out.mutable_data(), refs.data());
                 py::list windows;
                 for (const auto& r : refs) windows.append(py::make_tuple(h.sampler->clip_ids()[r.clip], r.begin));
                 return py::make_tuple(out, windows);
@@ -94,6 +110,7 @@ void bind_sampler(py::module_& m) {
         .def(
             "window",
             [](SamplerHandle& h, const std::string& clip, std::size_t begin) {
+                const std::lock_guard<std::mutex> lock(h.busy);
                 const auto& ids = h.sampler->clip_ids();
                 const auto it = std::find(ids.begin(), ids.end(), clip);
                 if (it == ids.end()) throw InvalidArgument("window: clip '" + clip + "' is not among the sampler's clips");
@@ -105,7 +122,7 @@ void bind_sampler(py::module_& m) {
         .def("__iter__", [](const std::shared_ptr<SamplerHandle>& h) { return h; })
         .def("__next__", [](SamplerHandle& h) {
             Array out = batch_array(h, h.sampler->options().batch);
-            h.sampler->next(out.mutable_data());
+            next_batch(h, out.mutable_data(), nullptr);
             return out;
         })
         .def_property_readonly("length", [](const SamplerHandle& h) { return h.sampler->options().length; }, "L.")

@@ -72,3 +72,30 @@ def test_one_rig_per_sampler(cli, shared, tmp_path):
             db.sampler(length=10**6, clips=["16_*"])
         with pytest.raises(mocapdb.InvalidArgument):
             db.sampler(values="angles")
+
+
+def test_threads_share_a_packed_sampler_safely(test_db):
+    """Batches from the packed tier run without the GIL; threads on one sampler take turns."""
+    import threading
+
+    with mocapdb.open(test_db) as db:
+        shared = db.sampler(length=32, batch=8, seed=4)
+        alone = db.sampler(length=32, batch=8, seed=4)
+        expected = [alone.next() for _ in range(8)]
+        got = []
+        lock = threading.Lock()
+
+        def work():
+            for _ in range(2):
+                batch = shared.next()
+                with lock:
+                    got.append(batch)
+
+        threads = [threading.Thread(target=work) for _ in range(4)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    assert len(got) == 8
+    # The same eight batches, in whatever order the threads took them.
+    assert sorted(b.tobytes() for b in got) == sorted(b.tobytes() for b in expected)

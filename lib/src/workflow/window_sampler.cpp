@@ -207,10 +207,15 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
     // The packed tier, when asked for or when it holds every selected clip.
     if (options.source != WindowSource::Lossless) {
         const auto tier = db.packed();
+        std::map<std::string, std::pair<std::size_t, std::size_t>> packed_at;  // clip -> (group, index)
+        if (tier)
+            for (std::size_t g = 0; g < tier->groups.size(); ++g)
+                for (std::size_t k = 0; k < tier->groups[g].clips.size(); ++k) packed_at.emplace(tier->groups[g].clips[k].id, std::make_pair(g, k));
         std::vector<std::optional<std::pair<std::size_t, std::size_t>>> where;
         bool all = tier.has_value();
         for (const SampledClip& c : m.clips) {
-            where.push_back(tier ? tier->find(c.id) : std::nullopt);
+            const auto it = packed_at.find(c.id);
+            where.push_back(it == packed_at.end() ? std::nullopt : std::make_optional(it->second));
             if (!where.back()) {
                 all = false;
                 if (options.source == WindowSource::Packed)
