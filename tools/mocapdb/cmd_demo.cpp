@@ -21,6 +21,7 @@
 #include "mocapdb/workflow/reliability_map.hpp"
 #include "mocapdb/workflow/set_rate_report.hpp"
 #include "mocapdb/workflow/synthesis_step.hpp"
+#include "mocapdb/workflow/synthesis_warnings.hpp"
 #include "pipeline.hpp"
 #include "svg_heatmap.hpp"
 #include "synthesis_cli.hpp"
@@ -261,7 +262,7 @@ void run_demo(const DemoArgs& a) {
                     s.measured.size() == s.outcome.requested.size() ? values_text(s.measured, units).c_str() : "-");
         std::printf("%-20s rho %.4f, %zu frames (%.2f s), synthesized in %.4f s; %s%s\n", "", s.outcome.reliability,
                     s.outcome.clip.frame_count(), s.outcome.clip.duration(), s.outcome.seconds, s.label.c_str(),
-                    s.outcome.reliability < kLowReliability
+                    workflow::is_low_reliability(s.outcome.reliability)
                         ? "\n                     warning: reliability below 0.5: far from the samples, extrapolated"
                         : "");
         results.push_back(std::move(s));
