@@ -38,7 +38,11 @@ TEST_CASE("workflow: the summary of a database, before and after packing", "[wor
 
     PackDatabaseOptions po;
     po.max_error_cm = 1.0;
-    pack_database(w.path, po);
+    const PackDatabaseOutcome po_out = pack_database(w.path, po);
+    CHECK(po_out.ratio_float32() == Approx(static_cast<double>(po_out.float32_bytes) / static_cast<double>(po_out.tier.bytes)));
+    CHECK(po_out.bytes_per_second() == Approx(static_cast<double>(po_out.tier.bytes) / po_out.motion_seconds));
+    REQUIRE(!po_out.tier.groups.empty());
+    CHECK(po_out.group_ratio_float32(0) > 1.0);
     const workflow::DatabaseSummary packed = workflow::summarize_database(w.path);
     REQUIRE(packed.packed.has_value());
     for (std::size_t i = 0; i < packed.clips.size(); ++i) {
