@@ -112,6 +112,8 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
             ++losses;
             CHECK(m.best_kriging.value - m.best.value > 0.05 * m.best_kriging.value);
             CHECK(m.best_kriging.value - m.best.value > tie_floor(m.metric));
+            CHECK(m.kriging_worse_percent == Approx(100.0 * (m.best_kriging.value - m.best.value) / m.best.value));
+            CHECK(m.kriging_worse_percent > 5.0);
         }
         if (m.outcome == Outcome::Tie) ++ties;
         if (m.metric == Metric::LooPoseMean) {

@@ -43,9 +43,9 @@ std::string fixed(double v, int decimals = 2) {
     return buf;
 }
 
-std::string percent(double worse, double better) {
-    if (!(better > 0.0)) return "";
-    return fixed(100.0 * (worse - better) / better, 0) + " %";
+std::string percent(double value) {
+    if (std::isnan(value)) return "";
+    return fixed(value, 0) + " %";
 }
 
 void put(const std::filesystem::path& path, const std::string& text) {
@@ -632,7 +632,7 @@ std::string losses_section(const EvalResults& e) {
                 case eval::Outcome::Loses:
                     o << "- **LOSES** " << t.name << ": " << v.best.method << " " << fmt(v.best.value) << unit
                       << " against the best kriging variant, " << v.best_kriging.method << ", " << fmt(v.best_kriging.value) << unit
-                      << " (" << percent(v.best_kriging.value, v.best.value) << " worse). " << why_text(r, v) << "\n";
+                      << " (" << percent(v.kriging_worse_percent) << " worse). " << why_text(r, v) << "\n";
                     break;
             }
         }

@@ -80,6 +80,8 @@ SetVerdicts judge_set(const SetResults& r, Verdicts& totals) {
         v.best = b->first;
         v.best_kriging = b->second;
         v.outcome = outcome_of(metric, v.best, v.best_kriging);
+        v.kriging_worse_percent =
+            v.best.value > 0.0 ? 100.0 * (v.best_kriging.value - v.best.value) / v.best.value : NAN;
         ++totals.comparisons;
         if (v.outcome == Outcome::Tie) ++totals.ties;
         if (v.outcome == Outcome::Loses) ++totals.losses;

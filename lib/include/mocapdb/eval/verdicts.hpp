@@ -65,6 +65,9 @@ struct MetricVerdict {
     /// LooPoseMean / LooMotionMean when a baseline is best: the split by sample position.
     std::optional<EdgeSplit> split;
     double threshold = 0.0;    ///< ConstraintReliableRmse: the rho threshold
+    /// How much worse the best kriging method is than the best method, in % of the best (NaN when the
+    /// best value is not positive).
+    double kriging_worse_percent = 0.0;
 };
 
 struct CompressionVerdict {
