@@ -167,6 +167,7 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
         CHECK(points >= 1);
     }
     CHECK(std::isnan(mean_or_nan(VecX())));
+    CHECK(reduction_at_tau(r) == ReductionAtTau::NoCurve);  // the plan ran no reduction
 }
 
 TEST_CASE("evaluation refuses a missing clip folder", "[eval]") {

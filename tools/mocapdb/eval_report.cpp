@@ -906,15 +906,14 @@ std::string report_md(const EvalResults& e) {
         o << "### " << s.spec.name << "\n\n"
           << "τ = " << fmt(r.reduction_options.tau) << " keeps **" << r.reduction.kept_at_tau << " of " << s.size()
           << "** samples";
-        if (!r.reduction.max_reliability.empty()) {
-            const double first = r.reduction.max_reliability.front();
-            if (first < r.reduction_options.tau)
-                o << ": the highest leave-one-out reliability of any sample is already " << fixed(first, 3) << " < τ, so "
-                  << "nothing is removed (the paper removes 40 of 69). With this set's fitted variogram no sample is "
-                  << "predicted reliably enough from the others; the curve below continues past τ to show what removal would cost";
-            else
-                o << " (the paper: 29 of 69)";
-        }
+        const eval::ReductionAtTau at_tau = eval::reduction_at_tau(r);
+        if (at_tau == eval::ReductionAtTau::NothingRemoved)
+            o << ": the highest leave-one-out reliability of any sample is already "
+              << fixed(r.reduction.max_reliability.front(), 3) << " < τ, so "
+              << "nothing is removed (the paper removes 40 of 69). With this set's fitted variogram no sample is "
+              << "predicted reliably enough from the others; the curve below continues past τ to show what removal would cost";
+        else if (at_tau == eval::ReductionAtTau::SomeRemoved)
+            o << " (the paper: 29 of 69)";
         o << ".\n\n";
         Table rt{{"kept", "max LOO ρ", "greedy pose mean cm", "random pose mean cm", "greedy motion mean cm", "greedy motion max cm", "random motion mean cm"}, {}};
         const bool rnd = r.reduction_options.random_orders > 0;

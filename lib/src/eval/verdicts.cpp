@@ -262,6 +262,12 @@ bool keeps_full_sample_rank(const MethodSpec& m, const EvalSet& s) {
     return m.kind == MethodKind::TuckerKriging && m.ranks[2] >= s.size() - 1;
 }
 
+ReductionAtTau reduction_at_tau(const SetResults& r) {
+    if (r.reduction.max_reliability.empty()) return ReductionAtTau::NoCurve;
+    return r.reduction.max_reliability.front() < r.reduction_options.tau ? ReductionAtTau::NothingRemoved
+                                                                         : ReductionAtTau::SomeRemoved;
+}
+
 double mean_or_nan(const VecX& values) { return values.size() ? values.mean() : NAN; }
 
 }  // namespace mocapdb::eval

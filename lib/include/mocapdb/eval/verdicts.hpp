@@ -125,6 +125,11 @@ std::pair<double, double> duration_range(const EvalSet& set);
 /// A Tucker method whose sample rank needs every sample direction (R3 >= N - 1).
 bool keeps_full_sample_rank(const MethodSpec& method, const EvalSet& set);
 
+/// Whether the greedy reduction removes anything at tau: no curve, nothing removed (already the first
+/// sample's leave-one-out reliability is below tau), or some samples removed.
+enum class ReductionAtTau { NoCurve, NothingRemoved, SomeRemoved };
+ReductionAtTau reduction_at_tau(const SetResults& results);
+
 /// Mean of a per-sample vector (NaN when empty), for the duration and skating columns.
 double mean_or_nan(const VecX& values);
 
