@@ -3,12 +3,9 @@
 // clips of a folder are used. Then: import, set, DTW alignment, compression to a max joint error, the
 // rate-distortion table, synthesis at new parameters (inside and outside the sampled region) with the
 // measured parameters and reliability of each result, the reliability map and the report files.
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <limits>
 #include <set>
 #include <sstream>
 
@@ -17,16 +14,14 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/text_file.hpp"
-#include "mocapdb/kriging/trend.hpp"
-#include "mocapdb/motion/forward_kinematics.hpp"
-#include "mocapdb/procedural/humanoid.hpp"
 #include "mocapdb/procedural/parametric_set.hpp"
-#include "mocapdb/procedural/reach.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
+#include "mocapdb/workflow/demo_queries.hpp"
 #include "mocapdb/workflow/reliability_map.hpp"
 #include "mocapdb/workflow/set_rate_report.hpp"
 #include "mocapdb/workflow/synthesis_step.hpp"
+#include "mocapdb/workflow/synthesis_warnings.hpp"
 #include "pipeline.hpp"
 #include "svg_heatmap.hpp"
 #include "synthesis_cli.hpp"
@@ -36,8 +31,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct DemoArgs {
     std::string data;
@@ -68,76 +61,6 @@ struct DemoSynthesis {
     VecX measured;         // by the set's extractors, or the reach target measurement
     fs::path file;
 };
-
-// What the parameters of a synthesized motion are measured with.
-enum class Measure { None, Extractors, ReachTarget };
-
-// The reach's target as reached by the synthesized motion (procedural::reach_hold_point), as bearing around the vertical axis through the origin (deg, + = left), height
-// above the floor (cm) and horizontal distance from that axis (cm): the generator's angle, height and
-// distance.
-VecX measure_reach_target(const Clip& clip, const std::vector<std::string>& names) {
-    const std::optional<Vec3> hold = procedural::reach_hold_point(clip);
-    if (!hold) return {};
-    const Vec3& h = *hold;
-    VecX out(static_cast<Eigen::Index>(names.size()));
-    for (std::size_t k = 0; k < names.size(); ++k) {
-        const auto i = static_cast<Eigen::Index>(k);
-        if (names[k] == "angle") out(i) = std::atan2(h.x(), h.z()) * 180.0 / kPi;
-        else if (names[k] == "height") out(i) = h.y();
-        else if (names[k] == "distance") out(i) = std::hypot(h.x(), h.z());
-        else return {};
-    }
-    return out;
-}
-
-// New parameter vectors inside the sampled region: the midpoint of a sample and its nearest
-// neighbour (in normalized parameters), for `count` samples spread over the set; never a sample.
-std::vector<VecX> between_samples(const MatX& samples, std::size_t count) {
-    std::vector<VecX> out;
-    const Eigen::Index n = samples.rows();
-    if (n < 2) return out;
-    const MatX xn = kriging::ControlScaling::from_data(samples).apply(samples);
-    std::set<std::pair<Eigen::Index, Eigen::Index>> used;
-    for (std::size_t q = 0; q < count; ++q) {
-        const auto i = static_cast<Eigen::Index>((static_cast<double>(q) + 0.5) * static_cast<double>(n) /
-                                                 static_cast<double>(count));
-        Eigen::Index nearest = -1;
-        double best = std::numeric_limits<double>::infinity();
-        for (Eigen::Index j = 0; j < n; ++j) {
-            const double d = (xn.row(j) - xn.row(i)).norm();
-            if (j != i && d > 1e-9 && d < best) {
-                best = d;
-                nearest = j;
-            }
-        }
-        if (nearest < 0 || !used.insert({std::min(i, nearest), std::max(i, nearest)}).second) continue;
-        out.push_back(0.5 * (samples.row(i) + samples.row(nearest)).transpose());
-    }
-    return out;
-}
-
-// Cell centres of the procedural reach grid (angle x height): new targets between four samples.
-std::vector<VecX> reach_cell_centres(const procedural::ReachGrid& g) {
-    std::vector<VecX> out;
-    if (g.angle.count < 2 || g.height.count < 2) return out;
-    const std::size_t na = g.angle.count - 1, nh = g.height.count - 1;
-    const std::vector<std::pair<std::size_t, std::size_t>> cells{
-        {0, 0}, {na / 3, nh - 1}, {na / 2, 0}, {(2 * na) / 3, nh / 2}, {na - 1, nh - 1}};
-    std::set<std::pair<std::size_t, std::size_t>> seen;
-    for (const auto& [a, h] : cells) {
-        if (!seen.insert({a, h}).second) continue;
-        VecX c(2);
-        c << 0.5 * (g.angle.value(a) + g.angle.value(a + 1)), 0.5 * (g.height.value(h) + g.height.value(h + 1));
-        out.push_back(c);
-    }
-    return out;
-}
-
-bool inside_box(const MatX& samples, const VecX& c) {
-    for (Eigen::Index k = 0; k < c.size(); ++k)
-        if (c(k) < samples.col(k).minCoeff() || c(k) > samples.col(k).maxCoeff()) return false;
-    return true;
-}
 
 std::string values_text(const VecX& v, const std::vector<std::string>& units) {
     std::ostringstream s;
@@ -295,60 +218,26 @@ void run_demo(const DemoArgs& a) {
     if (!a.at.empty()) {
         for (const std::string& text : a.at) targets_in.push_back(parse_parameters(text, names, units, "--at"));
     } else if (procedural && a.motion == "reach") {
-        targets_in = reach_cell_centres(reach_grid);
+        targets_in = workflow::reach_cell_centres(reach_grid);
         if (a.quick) targets_in.resize(std::min<std::size_t>(targets_in.size(), 3));
     } else {
-        targets_in = between_samples(samples, a.quick ? 3 : 5);
+        targets_in = workflow::between_samples(samples, a.quick ? 3 : 5);
     }
     std::vector<std::pair<VecX, std::string>> requests;
     for (const VecX& c : targets_in) requests.push_back({c, a.at.empty() ? "between samples" : "requested"});
     if (a.at.empty()) {
         // Outside: from the samples' mean along one parameter axis, one sampled range of that parameter
         // beyond the samples; of the 2P such points, the one the model trusts least.
-        const VecX mean = samples.colwise().mean().transpose();
-        VecX best = mean;
-        double best_rho = 2.0;
-        for (Eigen::Index k = 0; k < samples.cols(); ++k)
-            for (const double side : {1.0, -1.0}) {
-                const double lo = samples.col(k).minCoeff(), hi = samples.col(k).maxCoeff();
-                VecX c = mean;
-                c(k) = side > 0 ? hi + (hi - lo) : lo - (hi - lo);
-                const double rho = model->reliability(c);
-                if (rho < best_rho) {
-                    best_rho = rho;
-                    best = c;
-                }
-            }
-        requests.push_back({best, "outside the samples"});
+        requests.push_back({workflow::least_trusted_outside(*model), "outside the samples"});
     }
-    Measure measure = Measure::None;
+    const workflow::DemoMeasurement measurement = workflow::choose_measurement(set, *model->skeleton());
     std::string measured_what = "nothing (the set's parameters were neither extracted nor reach targets)";
-    std::vector<ParameterExtractor> extractors = workflow::source_extractors(set.parameter_source);
-    std::string extractor_names = set.parameter_source;
-    if (extractors.empty()) {  // parameters from a CSV named like extractors (the walks' speed, turn)
-        try {
-            for (const std::string& n : names) {
-                extractors.push_back(ParameterExtractor::parse(n));
-                if (extractors.back().names() != std::vector<std::string>{n}) throw InvalidArgument(n);
-            }
-            extractor_names = "extract:";
-            for (std::size_t k = 0; k < names.size(); ++k) extractor_names += (k ? "," : "") + names[k];
-        } catch (const InvalidArgument&) {
-            extractors.clear();
-        }
-    }
-    const bool reach_names = std::all_of(names.begin(), names.end(), [](const std::string& n) {
-        return n == "angle" || n == "height" || n == "distance";
-    });
-    if (!extractors.empty()) {
-        measure = Measure::Extractors;
-        measured_what = "the extractors (" + extractor_names + ") on the whole synthesized clip";
-    } else if (reach_names && model->skeleton()->find(procedural::HumanoidNames::right_hand_end)) {
-        measure = Measure::ReachTarget;
+    if (measurement.kind == workflow::DemoMeasure::Extractors)
+        measured_what = "the extractors (" + measurement.extractor_names + ") on the whole synthesized clip";
+    else if (measurement.kind == workflow::DemoMeasure::ReachTarget)
         measured_what = "the right hand's end site at the hold (its slowest frame among those at least 80% of its "
                         "largest distance from the start): bearing around the origin's vertical axis [deg], "
                         "height [cm], horizontal distance [cm]";
-    }
 
     std::printf("\n== synthesis at new parameters (%s model, ranks %s; %zu samples; parameters: %s)\n", model->kind(),
                 ranks_text(model->level_ranks(0)).c_str(), set.samples.size(), describe_parameters(names, units).c_str());
@@ -361,11 +250,9 @@ void run_demo(const DemoArgs& a) {
     for (std::size_t q = 0; q < requests.size(); ++q) {
         DemoSynthesis s;
         s.label = requests[q].second;
-        s.inside = inside_box(samples, requests[q].first);
+        s.inside = workflow::inside_box(samples, requests[q].first);
         s.outcome = workflow::synthesize(*model, set, requests[q].first);
-        if (measure == Measure::Extractors && s.outcome.clip.frame_count() >= 2)
-            s.measured = extract_parameters(s.outcome.clip, 0, s.outcome.clip.frame_count(), extractors);
-        else if (measure == Measure::ReachTarget) s.measured = measure_reach_target(s.outcome.clip, names);
+        s.measured = workflow::measure_synthesis(measurement, s.outcome.clip, names);
         char name[64];
         std::snprintf(name, sizeof name, "synth_%02zu%s.bvh", q + 1, s.inside ? "" : "_outside");
         s.file = out / name;
@@ -375,7 +262,7 @@ void run_demo(const DemoArgs& a) {
                     s.measured.size() == s.outcome.requested.size() ? values_text(s.measured, units).c_str() : "-");
         std::printf("%-20s rho %.4f, %zu frames (%.2f s), synthesized in %.4f s; %s%s\n", "", s.outcome.reliability,
                     s.outcome.clip.frame_count(), s.outcome.clip.duration(), s.outcome.seconds, s.label.c_str(),
-                    s.outcome.reliability < kLowReliability
+                    workflow::is_low_reliability(s.outcome.reliability)
                         ? "\n                     warning: reliability below 0.5: far from the samples, extrapolated"
                         : "");
         results.push_back(std::move(s));
@@ -386,17 +273,11 @@ void run_demo(const DemoArgs& a) {
     workflow::ReliabilityMap map;
     HeatMapSpec map_spec;
     if (model->parameters() >= 2) {
-        const auto padded = [&](Eigen::Index axis) {  // the samples and every synthesized point, with a margin
-            double lo = samples.col(axis).minCoeff(), hi = samples.col(axis).maxCoeff();
-            for (const auto& r : requests) {
-                lo = std::min(lo, r.first(axis));
-                hi = std::max(hi, r.first(axis));
-            }
-            const double pad = 0.15 * std::max(hi - lo, 1e-6);
-            return workflow::SliceAxis{axis, lo - pad, hi + pad, 41};
-        };
-        const workflow::SliceAxis gx = padded(0), gy = padded(1);
-        const VecX base = samples.colwise().mean().transpose();
+        std::vector<VecX> points;  // the samples and every synthesized point, with a margin
+        for (const auto& r : requests) points.push_back(r.first);
+        const workflow::SliceAxis gx = workflow::padded_axis(samples, points, 0, 41);
+        const workflow::SliceAxis gy = workflow::padded_axis(samples, points, 1, 41);
+        const VecX base = workflow::samples_mean(*model);
         map = workflow::reliability_map(*model, gx, gy, base);
         map_spec = reliability_heat_map(*model, set_name, gx, gy, base, map);
         const std::string svg = render_heat_map(map_spec);
@@ -466,7 +347,7 @@ void run_demo(const DemoArgs& a) {
         j.key("x_range").begin_array().value(map_spec.x_lo).value(map_spec.x_hi).end_array();
         j.key("y_range").begin_array().value(map_spec.y_lo).value(map_spec.y_hi).end_array();
         j.key("cells").value(static_cast<long long>(map.rho.size()));
-        j.key("min").value(map.rho.minCoeff()).key("mean").value(map.rho.mean()).key("max").value(map.rho.maxCoeff());
+        j.key("min").value(map.rho_min).key("mean").value(map.rho_mean).key("max").value(map.rho_max);
         j.key("fraction_ge_0_85").value(map.fraction_trusted).end_object();
     }
     j.key("timings_s").begin_object();

@@ -4,12 +4,12 @@
 #include "commands.hpp"
 #include "output_files.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/dataset/unwarp.hpp"
 #include "mocapdb/io/amc_writer.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
+#include "mocapdb/workflow/sample_export.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -45,12 +45,7 @@ Clip sample_clip(const Database& db, const ExportArgs& args) {
     } else {
         poses = c.aligned.tensor;
     }
-    const Eigen::Index d = poses.dimension(0), t = poses.dimension(1);
-    const Eigen::Map<const MatX> aligned(poses.data() + n * d * t, d, t);
-    const SampleRef& ref = c.set.samples[static_cast<std::size_t>(n)];
-    const MatX own = poses_at_sample_frames(aligned, c.aligned.warps.col(n), static_cast<Eigen::Index>(ref.frame_count()));
-    return clip_from_pose_vectors(c.skeleton, own, c.aligned.canonical[static_cast<std::size_t>(n)], c.frame_rate,
-                                  args.set + "_" + std::to_string(n));
+    return workflow::sample_at_own_timing(c, poses, n, args.set + "_" + std::to_string(n));
 }
 
 void run_export(const ExportArgs& args) {

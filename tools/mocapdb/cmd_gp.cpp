@@ -2,15 +2,10 @@
 // interpolate a partially observed child, sample new children, and the thesis's experiments.
 // No model file is written: every subcommand fits the model it needs (deterministically: same data
 // and options give the same fit).
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <random>
-#include <sstream>
 
 #include "commands.hpp"
 #include "output_files.hpp"
@@ -18,12 +13,12 @@
 #include "progress_bar.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/core/keep_freed_memory.hpp"
-#include "mocapdb/dataset/set_builder.hpp"
+#include "mocapdb/gp/child_selection.hpp"
 #include "mocapdb/gp/experiment.hpp"
+#include "mocapdb/gp/model_steps.hpp"
 #include "mocapdb/gp/motion_data.hpp"
 #include "mocapdb/io/bvh.hpp"
-#include "mocapdb/io/clip_file.hpp"
-#include "mocapdb/store/database.hpp"
+#include "mocapdb/workflow/gp_children.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -70,29 +65,16 @@ struct GpArgs {
     std::size_t samples = 25;
 };
 
-Clip read_child(const std::string& path, double fps) {
-    ClipReadOptions o;
-    if (fps > 0.0) o.frame_rate = fps;
-    return read_clip(path, o);
-}
-
-void load_children(const GpArgs& a, std::vector<Clip>& clips, std::vector<std::string>& names) {
+workflow::GpChildren load_children(const GpArgs& a) {
+    workflow::GpChildren children;
     if (!a.set.empty()) {
         if (a.db.empty()) throw InvalidArgument("--set needs a database file");
-        const Database db(a.db);
-        const MotionSet set = db.load_set(a.set);
-        for (std::size_t i = 0; i < set.samples.size(); ++i) {
-            const SampleRef& s = set.samples[i];
-            clips.push_back(sample_frames(set, i, db.load_clip(s.clip)));  // with the set's dropout repairs
-            names.push_back(s.clip + ":" + std::to_string(s.begin) + "-" + std::to_string(s.end));
-        }
+        children = workflow::set_children(a.db, a.set);
     } else {
-        for (const std::string& p : a.clips) {
-            clips.push_back(read_child(p, a.fps));
-            names.push_back(fs::path(p).stem().string());
-        }
+        children = workflow::clip_file_children(a.clips, a.fps);
     }
-    if (clips.empty()) throw InvalidArgument("no children: give DB.h5 --set NAME or --clips FILE...");
+    if (children.clips.empty()) throw InvalidArgument("no children: give DB.h5 --set NAME or --clips FILE...");
+    return children;
 }
 
 MotionDataOptions data_options(const GpArgs& a) {
@@ -127,25 +109,10 @@ FitOptions fit_options(const GpArgs& a, ProgressBar* bar) {
 }
 
 std::size_t child_index(const std::vector<std::string>& names, const std::string& which) {
-    if (which.empty()) return 0;
-    for (std::size_t i = 0; i < names.size(); ++i)
-        if (names[i] == which || names[i].rfind(which + ":", 0) == 0) return i;
-    try {
-        std::size_t pos = 0;
-        const unsigned long v = std::stoul(which, &pos);
-        if (pos == which.size() && v < names.size()) return v;
-    } catch (const std::exception&) {
-    }
+    if (const auto i = find_child(names, which)) return *i;
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
     throw InvalidArgument("no child '" + which + "' (children: " + list + "; or an index from 0)");
-}
-
-/// The subject of a CMU-named child ("02_01", "02_01:0-120" → "02").
-std::string subject_of(const std::string& name) {
-    const std::size_t us = name.find('_');
-    if (us == 0 || us == std::string::npos) return {};
-    return name.substr(0, us);
 }
 
 /// Three layers: each child's group, from --groups or from the subject in its CMU name (groups numbered
@@ -161,16 +128,11 @@ void assign_groups(const GpArgs& a, const std::vector<std::string>& names, HgpDa
         validate(data);
         return;
     }
-    std::vector<std::string> subjects;
-    for (const auto& n : names) {
-        const std::string s = subject_of(n);
-        if (s.empty())
+    for (const auto& n : names)
+        if (subject_of(n).empty())
             throw InvalidArgument("--layers 3: cannot tell the subject of child '" + n +
                                   "' (expected a CMU name like 02_01); give --groups with one index per child");
-        const auto it = std::find(subjects.begin(), subjects.end(), s);
-        data.groups.push_back(static_cast<std::size_t>(it - subjects.begin()));
-        if (it == subjects.end()) subjects.push_back(s);
-    }
+    data.groups = groups_by_subject(names);
 }
 
 /// The group of --subject: a subject of the CMU names (e.g. 16), or with --groups a group index.
@@ -189,13 +151,9 @@ std::size_t subject_group(const GpArgs& a, const std::vector<std::string>& names
                                   std::to_string(data.group_count() - 1));
         return v;
     }
+    if (const auto g = group_of_subject(names, data.groups, a.subject)) return *g;
     std::string known;
-    for (std::size_t r = 0; r < names.size(); ++r) {
-        const std::string s = subject_of(names[r]);
-        if (s == a.subject) return data.groups[r];
-        if (known.find(" " + s + ",") == std::string::npos) known += " " + s + ",";
-    }
-    if (!known.empty()) known.pop_back();
+    for (const std::string& s : distinct_subjects(names)) known += (known.empty() ? " " : ", ") + s;
     throw InvalidArgument("--subject '" + a.subject + "': no child of that subject (subjects:" + known + ")");
 }
 
@@ -233,17 +191,16 @@ void write_model(JsonWriter& w, const FitResult& f) {
 void print_fit_summary(const char* label, const FitResult& f) {
     std::printf("%s: log likelihood %.4f, %s, %d evaluations, %.2f s\n", label, f.log_likelihood,
                 to_string(f.status).c_str(), f.evaluations, f.seconds);
-    auto terms = [](const char* layer, const Lmc& lmc) {
-        for (std::size_t q = 0; q < lmc.terms.size(); ++q)
+    const ModelSummary summary = summarize_model(f.model);
+    auto terms = [](const char* layer, const std::vector<TermSummary>& layer_terms) {
+        for (std::size_t q = 0; q < layer_terms.size(); ++q)
             std::printf("  %s q%zu: %s lengthscale %.4g s, mean B diagonal %.4g\n", layer, q,
-                        to_string(lmc.terms[q].kernel).c_str(), std::exp(lmc.terms[q].log_lengthscale),
-                        lmc.terms[q].coregionalization().diagonal().mean());
+                        to_string(layer_terms[q].kernel).c_str(), layer_terms[q].lengthscale_s, layer_terms[q].mean_b_diagonal);
     };
-    if (f.model.hierarchical) terms("parent", f.model.parent);
-    if (f.model.grouped) terms("group ", f.model.group);
-    terms(f.model.hierarchical ? "child " : "MOA   ", f.model.child);
-    std::printf("  noise variance: mean %.3g (min %.3g, max %.3g)\n", f.model.noise_variance().mean(),
-                f.model.noise_variance().minCoeff(), f.model.noise_variance().maxCoeff());
+    terms("parent", summary.parent);
+    terms("group ", summary.group);
+    terms(f.model.hierarchical ? "child " : "MOA   ", summary.child);
+    std::printf("  noise variance: mean %.3g (min %.3g, max %.3g)\n", summary.noise_mean, summary.noise_min, summary.noise_max);
 }
 
 void write_data_json(JsonWriter& w, const MotionData& md) {
@@ -284,13 +241,11 @@ void print_data_summary(const MotionData& md) {
 }
 
 void run_fit(const GpArgs& a) {
-    std::vector<Clip> clips;
-    std::vector<std::string> names;
-    load_children(a, clips, names);
-    MotionData md = prepare_motion_data(clips, names, data_options(a));
+    const workflow::GpChildren children = load_children(a);
+    MotionData md = prepare_motion_data(children.clips, children.names, data_options(a));
     assign_groups(a, md.child_names, md.data);
     ProgressBar bar("gp fit");
-    const FitResult f = fit(md.data, initial_model(md.data, model_spec(a, !a.mo_baseline)), fit_options(a, &bar));
+    const FitResult f = fit_model(md.data, model_spec(a, !a.mo_baseline), fit_options(a, &bar));
     bar.clear();
     if (a.json) {
         JsonWriter w;
@@ -307,10 +262,8 @@ void run_fit(const GpArgs& a) {
 }
 
 void run_interpolate(const GpArgs& a) {
-    std::vector<Clip> clips;
-    std::vector<std::string> names;
-    load_children(a, clips, names);
-    MotionData md = prepare_motion_data(clips, names, data_options(a));
+    const workflow::GpChildren children = load_children(a);
+    MotionData md = prepare_motion_data(children.clips, children.names, data_options(a));
     assign_groups(a, md.child_names, md.data);
     const std::size_t child = child_index(md.child_names, a.child);
     if (md.data.child_count() < 2) throw InvalidArgument("interpolate needs ≥ 2 children (the others train the model)");
@@ -318,21 +271,14 @@ void run_interpolate(const GpArgs& a) {
         throw InvalidArgument("--observed " + std::to_string(a.observed) + " leaves fewer than 2 of " +
                               std::to_string(md.data.frames()) + " frames to predict");
     if (!a.out.empty()) refuse_existing(a.out, a.force);
-    const HgpData training = without_child(md.data, child);
     ProgressBar bar("gp interpolate");
-    const FitResult f = fit(training, initial_model(training, model_spec(a, !a.mo_baseline)), fit_options(a, &bar));
+    const ChildInterpolation interpolation =
+        interpolate_child(md.data, child, a.observed, model_spec(a, !a.mo_baseline), fit_options(a, &bar), a.seed);
     bar.clear();
-    std::mt19937_64 rng(a.seed);
-    std::vector<std::size_t> idx(md.data.frames());
-    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-    std::shuffle(idx.begin(), idx.end(), rng);
-    std::vector<bool> mask(md.data.frames(), false);
-    for (std::size_t i = 0; i < a.observed; ++i) mask[idx[i]] = true;
-    const InterpolationScores s = score_interpolation(f.model, md.data, child, mask);
-    HgpData d = md.data;
-    d.observed.assign(d.child_count(), {});
-    d.observed[child] = mask;
-    const GaussianPrediction p = predict_child(f.model, d, child, d.times);
+    const FitResult& f = interpolation.fit;
+    const std::vector<bool>& mask = interpolation.observed;
+    const InterpolationScores& s = interpolation.scores;
+    const GaussianPrediction& p = interpolation.prediction;
     if (!a.out.empty()) write_bvh(fs::path(a.out), reassemble_clip(md, p.mean, md.child_names[child] + "-interpolated"));
     if (a.json) {
         JsonWriter w;
@@ -370,10 +316,8 @@ void run_interpolate(const GpArgs& a) {
 }
 
 void run_sample(const GpArgs& a) {
-    std::vector<Clip> clips;
-    std::vector<std::string> names;
-    load_children(a, clips, names);
-    MotionData md = prepare_motion_data(clips, names, data_options(a));
+    const workflow::GpChildren children = load_children(a);
+    MotionData md = prepare_motion_data(children.clips, children.names, data_options(a));
     assign_groups(a, md.child_names, md.data);
     std::optional<std::size_t> group;
     if (!a.subject.empty()) group = subject_group(a, md.child_names, md.data);
@@ -389,16 +333,17 @@ void run_sample(const GpArgs& a) {
     }
     files.push_back(dir / "trend.bvh");
     for (const auto& p : files) refuse_existing(p, a.force);
-    ProgressBar bar("gp sample");
-    const FitResult f = fit(md.data, initial_model(md.data, model_spec(a, !a.mo_baseline)), fit_options(a, &bar));
-    bar.clear();
     SampleOptions so;
     so.seed = a.seed;
     so.group = group;
-    const auto samples = sample_children(f.model, md.data, md.data.times, a.n, so);
+    ProgressBar bar("gp sample");
+    const NewChildren drawn = sample_new_children(md.data, model_spec(a, !a.mo_baseline), fit_options(a, &bar), a.n, so);
+    bar.clear();
+    const FitResult& f = drawn.fit;
+    const std::vector<MatX>& samples = drawn.samples;
     for (std::size_t i = 0; i < samples.size(); ++i)
         write_bvh(files[i], reassemble_clip(md, samples[i], files[i].stem().string()));
-    write_bvh(files.back(), reassemble_clip(md, synthesis_trend(f.model, md.data, md.data.times), "trend"));
+    write_bvh(files.back(), reassemble_clip(md, drawn.trend, "trend"));
     if (a.json) {
         JsonWriter w;
         w.begin_object();
@@ -510,20 +455,18 @@ void run_experiment_artificial(const GpArgs& a) {
 }
 
 void run_experiment_replicates(const GpArgs& a) {
-    std::vector<Clip> clips;
-    std::vector<std::string> names;
-    load_children(a, clips, names);
-    const std::size_t n_train = clips.size();
-    for (const auto& p : a.eval_clips) {
-        clips.push_back(read_child(p, a.fps));
-        names.push_back(fs::path(p).stem().string());
-    }
+    workflow::GpChildren children = load_children(a);
+    const std::size_t n_train = children.clips.size();
+    workflow::GpChildren evaluation = workflow::clip_file_children(a.eval_clips, a.fps);
+    std::vector<Clip> clips = std::move(children.clips);
+    std::vector<std::string> names = std::move(children.names);
+    clips.insert(clips.end(), evaluation.clips.begin(), evaluation.clips.end());
+    names.insert(names.end(), evaluation.names.begin(), evaluation.names.end());
     // One normalization and dof selection over training and evaluation motions.
     const MotionData all = prepare_motion_data(clips, names, data_options(a));
-    HgpData data;
-    data.times = all.data.times;
-    data.children.assign(all.data.children.begin(), all.data.children.begin() + static_cast<std::ptrdiff_t>(n_train));
-    std::vector<MatX> real(all.data.children.begin() + static_cast<std::ptrdiff_t>(n_train), all.data.children.end());
+    ReplicateSplit split = split_replicates(all.data, n_train);
+    HgpData& data = split.training;
+    const std::vector<MatX>& real = split.real;
     std::vector<std::string> train_names(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(n_train));
     assign_groups(a, train_names, data);
     const std::size_t child = child_index(train_names, a.child);
@@ -534,14 +477,11 @@ void run_experiment_replicates(const GpArgs& a) {
     o.fit = fit_options(a, nullptr);
     ProgressBar bar("gp experiment");
     o.progress = bar.callback();
-    const ReplicateInterpolation interp = run_replicate_interpolation(data, child, a.observed_list, o);
-    SynthesisResult synth;
-    const bool do_synthesis = !real.empty();
-    if (do_synthesis) {
-        HgpData training = data;
-        synth = run_synthesis(training, real, {}, a.samples, o);
-    }
+    const ReplicateExperiment experiment = run_replicate_experiment(data, real, child, a.observed_list, a.samples, o);
     bar.clear();
+    const ReplicateInterpolation& interp = experiment.interpolation;
+    const bool do_synthesis = experiment.synthesis.has_value();
+    const SynthesisResult synth = do_synthesis ? *experiment.synthesis : SynthesisResult{};
     if (a.json) {
         JsonWriter w;
         w.begin_object();

@@ -73,14 +73,12 @@ void setup_krige(CLI::App& app) {
         }
         const CsvTable qcsv = CsvTable::read(args->query);
         qcsv.require_data_rows();
-        Eigen::MatrixXd queries = qcsv.columns(split_names(t.coords, "--coords"));
-        if (data.scaling) queries = data.scaling->apply(queries);
-        const kriging::Kriging k = kriging::Kriging::build(data.coords, vm, kriging_options(t));
-        const kriging::KrigingBatch b = k.estimate_batch(queries);
-        const Eigen::VectorXd pred = b.weights.transpose() * data.values;
-        std::optional<kriging::LooResult> loo;
-        if (args->loo) loo = k.leave_one_out(data.values);
-        const kriging::KrigingStatus& st = k.status();
+        const Eigen::MatrixXd queries = qcsv.columns(split_names(t.coords, "--coords"));
+        const kriging::TableKriging result = kriging::krige_table(data, vm, kriging_options(t), queries, args->loo);
+        const kriging::KrigingBatch& b = result.batch;
+        const Eigen::VectorXd& pred = result.prediction;
+        const std::optional<kriging::LooResult>& loo = result.loo;
+        const kriging::KrigingStatus& st = result.status;
 
         if (t.json) {
             JsonWriter j;

@@ -19,15 +19,11 @@ struct PackArgs {
     bool has_bound = false;  ///< --max-error-cm was given
 };
 
-double ratio(std::uint64_t reference, std::uint64_t bytes) {
-    return bytes > 0 ? static_cast<double>(reference) / static_cast<double>(bytes) : 0.0;
-}
-
-void write_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, std::size_t clips, std::size_t frames,
-                   double max_cm, double p99_cm, double rmse_cm) {
+void write_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, double ratio_float32, std::size_t clips,
+                   std::size_t frames, double max_cm, double p99_cm, double rmse_cm) {
     j.key("bytes").value(static_cast<std::size_t>(bytes));
     j.key("float32_bytes").value(static_cast<std::size_t>(float32));
-    j.key("ratio_float32").value(ratio(float32, bytes));
+    j.key("ratio_float32").value(ratio_float32);
     j.key("clips").value(clips);
     j.key("frames").value(frames);
     j.key("max_cm").value(max_cm);
@@ -41,9 +37,9 @@ void print_json(const std::string& db, const PackDatabaseOutcome& o) {
     j.begin_object();
     j.key("file").value(db);
     j.key("max_error_cm").value(t.max_error_cm);
-    write_figures(j, t.bytes, o.float32_bytes, t.clips, t.frames, t.max_cm, t.p99_cm, t.rmse_cm);
+    write_figures(j, t.bytes, o.float32_bytes, o.ratio_float32(), t.clips, t.frames, t.max_cm, t.p99_cm, t.rmse_cm);
     j.key("motion_seconds").value(o.motion_seconds);
-    j.key("bytes_per_second").value(o.motion_seconds > 0 ? static_cast<double>(t.bytes) / o.motion_seconds : 0.0);
+    j.key("bytes_per_second").value(o.bytes_per_second());
     j.key("replaced").value(o.replaced);
     j.key("dropped_lossless_clips").value(o.dropped_lossless);
     j.key("file_bytes").value(static_cast<std::size_t>(o.file_bytes));
@@ -56,7 +52,8 @@ void print_json(const std::string& db, const PackDatabaseOutcome& o) {
         j.key("path").value("/packed/" + r.name);
         j.key("skeleton").value(r.skeleton);
         j.key("frame_rate").value(r.frame_rate);
-        write_figures(j, r.bytes, o.group_float32_bytes.at(g), r.clips.size(), r.frames, r.max_cm, r.p99_cm, r.rmse_cm);
+        write_figures(j, r.bytes, o.group_float32_bytes.at(g), o.group_ratio_float32(g), r.clips.size(), r.frames, r.max_cm,
+                      r.p99_cm, r.rmse_cm);
         j.key("seconds").value(o.group_seconds.at(g));
         j.end_object();
     }
@@ -71,7 +68,7 @@ void print_text(const std::string& db, const PackDatabaseOutcome& o) {
                 "float32 channels; max %.4f cm, p99 %.4f cm, RMSE %.4f cm; %.2f s; file now %.2f MB\n",
                 t.clips, t.frames, o.motion_seconds, db.c_str(), t.max_error_cm,
                 o.replaced ? " (replacing the earlier packed tier)" : "", static_cast<std::size_t>(t.bytes),
-                ratio(o.float32_bytes, t.bytes), t.max_cm, t.p99_cm, t.rmse_cm, o.seconds,
+                o.ratio_float32(), t.max_cm, t.p99_cm, t.rmse_cm, o.seconds,
                 static_cast<double>(o.file_bytes) / 1e6);
     if (o.dropped_lossless > 0)
         std::printf("dropped the lossless channels of %zu clips: they are now stored within %g cm only\n",
@@ -83,7 +80,7 @@ void print_text(const std::string& db, const PackDatabaseOutcome& o) {
         const PackedGroupRecord& r = t.groups[g];
         std::printf("%-6s %-16s %8.6g %6zu %9zu %11zu %7.1f:1 %9.4f %9.4f %9.4f\n", r.name.c_str(), r.skeleton.c_str(),
                     r.frame_rate, r.clips.size(), r.frames, static_cast<std::size_t>(r.bytes),
-                    ratio(o.group_float32_bytes.at(g), r.bytes), r.max_cm, r.p99_cm, r.rmse_cm);
+                    o.group_ratio_float32(g), r.max_cm, r.p99_cm, r.rmse_cm);
     }
 }
 

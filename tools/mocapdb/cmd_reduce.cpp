@@ -1,16 +1,13 @@
 // mocapdb reduce: greedy sample reduction by leave-one-out reliability (the geostatistical paper
 // Section 5.2), as a report, optionally writing the reduced set (stored and aligned like the original).
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/dataset/alignment.hpp"
-#include "mocapdb/dataset/set_builder.hpp"
-#include "mocapdb/kriging/reduction.hpp"
-#include "synthesis_cli.hpp"
+#include "mocapdb/store/database.hpp"
+#include "mocapdb/workflow/set_reduction.hpp"
 
 namespace mocapdb::cli {
 namespace {
@@ -29,58 +26,22 @@ struct ReduceArgs {
 
 void run_reduce(const ReduceArgs& a) {
     const auto start = std::chrono::steady_clock::now();
-    const Database db(a.db);
-    const MotionSet set = db.load_set(a.set);
-    const auto model = load_synthesis_model(db, a.set, a.naive, "");
-    const MatX xc = model->scaling().apply(model->sample_parameters());
-    kriging::ReductionOptions options;
-    options.tau = a.tau;
-    options.min_samples = static_cast<Eigen::Index>(a.min_samples);
-    options.kriging = model->kernel().options();
-    const kriging::ReductionResult r = kriging::reduce_samples(xc, model->kernel().model(), options);
-
-    std::vector<std::string> labels;
-    for (const SampleRef& s : set.samples) {
-        const auto rec = db.find_clip(s.clip);
-        labels.push_back(sample_label(s, rec ? rec->frames : s.end));
-    }
+    workflow::ReductionRequest request;
+    request.set = a.set;
+    request.tau = a.tau;
+    request.min_samples = static_cast<Eigen::Index>(a.min_samples);
+    request.naive = a.naive;
+    const workflow::ReductionOutcome outcome = workflow::reduce_set(a.db, request);
+    const MotionSet& set = outcome.set;
+    const kriging::ReductionResult& r = outcome.result;
+    const std::vector<std::string>& labels = outcome.labels;
     const std::string target = a.name.empty() ? a.set + "-reduced" : a.name;
     std::string applied;
     if (a.apply) {
         if (r.kept.size() < 2) throw InvalidArgument("--apply: the reduced set would have fewer than 2 samples");
-        MotionSet reduced = set;
-        reduced.name = target;
-        reduced.samples.clear();
-        reduced.parameters.resize(static_cast<Eigen::Index>(r.kept.size()), set.parameters.cols());
-        for (std::size_t k = 0; k < r.kept.size(); ++k) {
-            reduced.samples.push_back(set.samples[static_cast<std::size_t>(r.kept[k])]);
-            reduced.parameters.row(static_cast<Eigen::Index>(k)) = set.parameters.row(r.kept[k]);
-        }
-        // Repair records only of the clips the reduced set still uses.
-        reduced.repairs.clear();
-        for (const RepairedFrames& x : set.repairs)
-            if (std::any_of(reduced.samples.begin(), reduced.samples.end(), [&](const SampleRef& s) { return s.clip == x.clip; }))
-                reduced.repairs.push_back(x);
-        // parameter_source keeps saying how the values were obtained (synth re-measures with it).
-        // Align like the original (method and frames; the reference is the reduced set's median sample).
-        const auto original = db.load_aligned(a.set);
-        std::optional<AlignedSet> aligned;
-        if (original) {
-            std::vector<Clip> clips;
-            for (std::size_t k = 0; k < reduced.samples.size(); ++k)
-                clips.push_back(sample_frames(reduced, k, db.load_clip(reduced.samples[k].clip)));
-            AlignOptions ao;
-            ao.method = original->method;
-            ao.frames = original->frames();
-            aligned = align_samples(clips, ao);
-        }
-        DatabaseWriter writer(a.db, DatabaseWriter::Mode::OpenOrCreate);
-        if (writer.view().has_set(target) && !a.force)
+        if (Database(a.db).has_set(target) && !a.force)
             throw InvalidArgument("--apply: set '" + target + "' exists (use --force to replace it, or --name)");
-        writer.put_set(reduced, a.force);
-        if (aligned) writer.put_aligned(target, *aligned);
-        writer.commit();
-        applied = aligned ? "stored and aligned" : "stored";
+        applied = workflow::store_reduced_set(a.db, outcome, target, a.force) ? "stored and aligned" : "stored";
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (a.json) {
@@ -112,7 +73,7 @@ void run_reduce(const ReduceArgs& a) {
         return;
     }
     std::printf("reduction of '%s' at tau %.3f (%s kernel %s): %zu of %zu samples kept%s\n", a.set.c_str(), a.tau,
-                model->kind(), model->kernel().model().to_string().c_str(), r.kept.size(), set.samples.size(),
+                outcome.model_kind.c_str(), outcome.kernel.to_string().c_str(), r.kept.size(), set.samples.size(),
                 r.stopped_on_threshold ? "" : " (stopped on the minimum sample count)");
     for (std::size_t k = 0; k < r.removed.size(); ++k)
         std::printf("  removed %-20s leave-one-out reliability %.3f\n", labels[static_cast<std::size_t>(r.removed[k])].c_str(),

@@ -69,7 +69,7 @@ void run_reliability(const ReliabilityArgs& a) {
     const workflow::SliceAxis gy = parse_axis(a.grid.substr(comma + 1), names);
     if (gx.axis == gy.axis) throw InvalidArgument("--grid: the two axes must differ");
     // The other axes: fixed by --fix, else at the samples' mean.
-    VecX base = model->sample_parameters().colwise().mean().transpose();
+    VecX base = workflow::samples_mean(*model);
     for (const std::string& f : a.fix) {
         const auto eq = f.rfind('=');
         if (eq == std::string::npos) throw InvalidArgument("--fix: expected AXIS=V, got '" + f + "'");
@@ -103,9 +103,9 @@ void run_reliability(const ReliabilityArgs& a) {
         j.key("x").value(names[static_cast<std::size_t>(gx.axis)]);
         j.key("y").value(names[static_cast<std::size_t>(gy.axis)]);
         j.key("cells").value(static_cast<long long>(rho.size()));
-        j.key("min").value(rho.minCoeff());
-        j.key("max").value(rho.maxCoeff());
-        j.key("mean").value(rho.mean());
+        j.key("min").value(m.rho_min);
+        j.key("max").value(m.rho_max);
+        j.key("mean").value(m.rho_mean);
         j.key("fraction_ge_0_85").value(trusted);
         j.key("svg").value(a.svg);
         if (!a.csv.empty()) j.key("csv").value(a.csv);
@@ -116,7 +116,7 @@ void run_reliability(const ReliabilityArgs& a) {
     std::printf("reliability of '%s' over %s x %s (%lld x %lld cells): min %.3f, mean %.3f, max %.3f; "
                 "%.0f%% of the slice has rho >= 0.85\n",
                 a.set.c_str(), spec.x_label.c_str(), spec.y_label.c_str(), static_cast<long long>(gx.count),
-                static_cast<long long>(gy.count), rho.minCoeff(), rho.mean(), rho.maxCoeff(), 100.0 * trusted);
+                static_cast<long long>(gy.count), m.rho_min, m.rho_mean, m.rho_max, 100.0 * trusted);
     std::printf("  wrote %s%s%s\n", a.svg.c_str(), a.csv.empty() ? "" : " and ", a.csv.c_str());
 }
 

@@ -111,9 +111,7 @@ void print_set(const Database& db, const std::string& name, bool json) {
         std::printf("dropouts: none found\n");
         return;
     }
-    std::vector<std::string> clips;
-    for (const RepairedFrames& r : set.repairs)
-        if (std::find(clips.begin(), clips.end(), r.clip) == clips.end()) clips.push_back(r.clip);
+    const std::vector<std::string> clips = summarize_repairs(set.repairs).clips;
     std::printf("repaired dropouts (joint rotations interpolated from the clean frames; frames 0-based, inclusive):\n");
     for (const std::string& c : clips) std::printf("  %-20s %s\n", c.c_str(), describe_repairs(c, set.repairs).c_str());
 }

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "json_writer.hpp"
-#include "mocapdb/eval/acl_reference.hpp"
+#include "mocapdb/eval/collection_acl.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "mocapdb/store/collection_report.hpp"
 #include "output_files.hpp"
@@ -19,42 +19,7 @@ namespace mocapdb::cli {
 namespace {
 
 // The ACL side of the report: the aggregated reference and, per E, the comparison.
-struct Reference {
-    bool given = false;
-    eval::AclTable table;
-    eval::AclCollection acl;
-    std::vector<eval::AclComparison> per_target;
-    std::string unusable;  ///< why there is no comparison ("" when there is one)
-};
-
-// Reads the tables (before the long measurement, so a malformed one is refused at once).
-Reference load_reference(const CollectionReportArgs& a) {
-    Reference ref;
-    if (a.references.empty()) return ref;
-    ref.given = true;
-    for (std::size_t i = 0; i < a.references.size(); ++i) {
-        eval::AclTable t = eval::read_acl_table(a.references[i]);
-        if (i == 0) ref.table = std::move(t);
-        else eval::append(ref.table, std::move(t));
-    }
-    return ref;
-}
-
-void compare_reference(Reference& ref, const CollectionReport& r) {
-    if (!ref.given) return;
-    ref.acl = eval::aggregate_acl(ref.table, r.clip_names);
-    if (r.clips == 0) ref.unusable = "the database has no clips";
-    else if (!ref.acl.missing.empty())
-        ref.unusable = std::to_string(ref.acl.missing.size()) + " of " + std::to_string(r.clips) +
-                       " clips have no row in the reference (e.g. " + ref.acl.missing.front() +
-                       "): ACL's bytes would not be for the same clips";
-    else if (!ref.acl.complete())
-        ref.unusable = "not every clip has a row at every ACL setting in the reference";
-    for (const TargetFigures& t : r.targets)
-        ref.per_target.push_back(ref.unusable.empty() ? eval::compare_with_acl(ref.acl, static_cast<double>(t.total.bytes),
-                                                                               t.total.max_cm, t.total.rmse_cm)
-                                                      : eval::AclComparison{});
-}
+using Reference = eval::CollectionAcl;
 
 std::string fixed(double v, int decimals) {
     char b[48];
@@ -214,7 +179,7 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
           << cell(c.smaller_at_rmse) << ",,\n";
     }
     const LosslessFigures& l = r.lossless;
-    const double bps = r.motion_seconds > 0 ? static_cast<double>(l.bytes) / r.motion_seconds : 0.0;
+    const double bps = r.lossless_bytes_per_second();
     s << "lossless,0," << l.bytes << ',' << l.float32_bytes << ',' << l.ratio_float32() << ',' << bps << ",,0,0,0,,,,,,,,"
       << (l.gzip_available ? std::to_string(l.gzip_bytes) : "") << ','
       << (l.gzip_available ? general(l.gzip_ratio_float32(), 9) : "") << '\n';
@@ -313,7 +278,7 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
     if (l.gzip_available) {
         std::snprintf(line, sizeof line, "gzip -9 of the source text: %llu bytes, %.2f:1 (lossless tier %.2fx smaller)\n",
                       static_cast<unsigned long long>(l.gzip_bytes), l.gzip_ratio_float32(),
-                      l.bytes > 0 ? static_cast<double>(l.gzip_bytes) / static_cast<double>(l.bytes) : 0.0);
+                      l.gzip_over_lossless());
         out += line;
     } else {
         out += "gzip -9 of the source text: not available (" + l.gzip_reason + ")\n";
@@ -351,14 +316,14 @@ void run_collection_report(const CollectionReportArgs& a) {
     options.threads = a.threads;
     options.random_poses = a.poses;
     for (const std::string& d : a.source_dirs) options.source_dirs.emplace_back(d);
-    Reference ref = load_reference(a);
+    Reference ref = eval::read_collection_acl(a.references);
     CollectionReport r;
     {
         const Database db(a.db);
         ProgressBar bar("report");
         r = collection_report(db, options, bar.callback());
     }
-    compare_reference(ref, r);
+    eval::compare_collection_with_acl(ref, r);
     if (!a.csv.empty()) {
         const std::string text = render_csv(r, ref);
         write_file_atomically(a.csv, [&](std::ostream& out) { out << text; });

@@ -2,50 +2,31 @@
 
 #include <cstdio>
 #include <iostream>
-#include <map>
-#include <optional>
 
 #include "json_writer.hpp"
-#include "mocapdb/store/database.hpp"
+#include "mocapdb/workflow/database_summary.hpp"
 
 namespace mocapdb::cli {
 namespace {
 
-// The packed tier's entry of each clip (null when the clip is not in it).
-struct PackedEntry {
-    const PackedGroupRecord* group = nullptr;
-    const PackedClipRecord* clip = nullptr;
-};
+using workflow::DatabaseSummary;
 
-std::map<std::string, PackedEntry> packed_entries(const std::optional<PackedTierRecord>& tier) {
-    std::map<std::string, PackedEntry> out;
-    if (!tier) return out;
-    for (const PackedGroupRecord& g : tier->groups)
-        for (const PackedClipRecord& c : g.clips) out[c.id] = {&g, &c};
-    return out;
-}
-
-void print_json(const std::string& file, const Database& db, const std::vector<ClipRecord>& clips,
-                const std::vector<SetRecord>& sets) {
-    const std::optional<PackedTierRecord> tier = db.packed();
-    const auto entries = packed_entries(tier);
+void print_json(const std::string& file, const DatabaseSummary& d) {
+    const std::vector<ClipRecord>& clips = d.clips;
+    const std::optional<PackedTierRecord>& tier = d.packed;
     JsonWriter j;
-    std::size_t frames = 0;
-    double seconds = 0.0;
-    for (const ClipRecord& c : clips) {
-        frames += c.frames;
-        seconds += c.duration();
-    }
     j.begin_object();
     j.key("file").value(file);
     j.key("format").value("mocapdb");
-    j.key("format_version").value(db.format_version());
-    j.key("file_bytes").value(static_cast<std::size_t>(db.file_size()));
+    j.key("format_version").value(d.format_version);
+    j.key("file_bytes").value(static_cast<std::size_t>(d.file_bytes));
     j.key("clip_count").value(clips.size());
-    j.key("total_frames").value(frames);
-    j.key("total_seconds").value(seconds);
+    j.key("total_frames").value(d.total_frames);
+    j.key("total_seconds").value(d.total_seconds);
     j.key("clips").begin_array();
-    for (const ClipRecord& c : clips) {
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        const ClipRecord& c = clips[i];
+        const std::optional<workflow::PackedClipEntry>& packed = d.packed_clips[i];
         j.begin_object();
         j.key("id").value(c.id);
         j.key("frames").value(c.frames);
@@ -65,14 +46,13 @@ void print_json(const std::string& file, const Database& db, const std::vector<C
         j.key("stored_bytes").value(static_cast<std::size_t>(c.stored_bytes));
         j.key("tiers").begin_array();
         if (c.lossless) j.value("lossless");
-        const auto it = entries.find(c.id);
-        if (it != entries.end()) j.value("packed");
+        if (packed) j.value("packed");
         j.end_array();
         j.key("lossless_bytes").value(static_cast<std::size_t>(c.stored_bytes));
-        if (it != entries.end()) {
-            j.key("packed_group").value(it->second.group->name);
-            j.key("packed_payload_bytes").value(static_cast<std::size_t>(it->second.clip->payload_bytes));
-            j.key("packed_max_cm").value(it->second.clip->max_cm);
+        if (packed) {
+            j.key("packed_group").value(packed->group);
+            j.key("packed_payload_bytes").value(static_cast<std::size_t>(packed->clip.payload_bytes));
+            j.key("packed_max_cm").value(packed->clip.max_cm);
         } else {
             j.key("packed_group").null();
             j.key("packed_payload_bytes").null();
@@ -82,18 +62,17 @@ void print_json(const std::string& file, const Database& db, const std::vector<C
     }
     j.end_array();
     j.key("skeletons").begin_array();
-    for (const std::string& id : db.skeletons()) {
-        const auto s = db.load_skeleton(id);
+    for (const workflow::SkeletonSummary& s : d.skeletons) {
         j.begin_object();
-        j.key("id").value(id);
-        j.key("source_file").value(db.skeleton_source(id));
-        j.key("joints").value(s->size());
-        j.key("channels").value(s->channel_count());
+        j.key("id").value(s.id);
+        j.key("source_file").value(s.source_file);
+        j.key("joints").value(s.joints);
+        j.key("channels").value(s.channels);
         j.end_object();
     }
     j.end_array();
     j.key("sets").begin_array();
-    for (const SetRecord& s : sets) {
+    for (const SetRecord& s : d.sets) {
         j.begin_object();
         j.key("name").value(s.name);
         j.key("samples").value(s.samples);
@@ -154,24 +133,16 @@ void print_json(const std::string& file, const Database& db, const std::vector<C
     std::cout << j.str();
 }
 
-void print_text(const std::string& file, const Database& db, const std::vector<ClipRecord>& clips,
-                const std::vector<SetRecord>& sets) {
-    std::size_t frames = 0;
-    double seconds = 0.0;
-    std::uint64_t stored = 0;
-    for (const ClipRecord& c : clips) {
-        frames += c.frames;
-        seconds += c.duration();
-        stored += c.stored_bytes;
-    }
-    std::printf("file        %s (%.1f MB)\n", file.c_str(), static_cast<double>(db.file_size()) / 1e6);
-    std::printf("format      mocapdb %d\n", db.format_version());
-    std::printf("clips       %zu: %zu frames, %.1f s of motion, channels %.1f MB stored\n", clips.size(), frames,
-                seconds, static_cast<double>(stored) / 1e6);
-    std::printf("skeletons   %zu\n", db.skeletons().size());
+void print_text(const std::string& file, const DatabaseSummary& d) {
+    const std::vector<ClipRecord>& clips = d.clips;
+    const std::vector<SetRecord>& sets = d.sets;
+    std::printf("file        %s (%.1f MB)\n", file.c_str(), static_cast<double>(d.file_bytes) / 1e6);
+    std::printf("format      mocapdb %d\n", d.format_version);
+    std::printf("clips       %zu: %zu frames, %.1f s of motion, channels %.1f MB stored\n", clips.size(), d.total_frames,
+                d.total_seconds, static_cast<double>(d.total_stored_bytes) / 1e6);
+    std::printf("skeletons   %zu\n", d.skeletons.size());
     std::printf("sets        %zu\n", sets.size());
-    const std::optional<PackedTierRecord> tier = db.packed();
-    const auto entries = packed_entries(tier);
+    const std::optional<PackedTierRecord>& tier = d.packed;
     if (tier) {
         std::printf("packed      %zu clips in %zu groups at max error %g cm: %.1f kB (max %.4f cm, p99 %.4f cm, RMSE %.4f cm)\n",
                     tier->clips, tier->groups.size(), tier->max_error_cm, static_cast<double>(tier->bytes) / 1e3,
@@ -182,14 +153,14 @@ void print_text(const std::string& file, const Database& db, const std::vector<C
     if (!clips.empty()) {
         std::printf("\n%-24s %8s %8s %9s %9s %9s  %-17s %-14s %s\n", "clip", "frames", "rate Hz", "seconds", "stored kB",
                     "packed kB", "tiers", "skeleton", "source");
-        for (const ClipRecord& c : clips) {
-            const auto it = entries.find(c.id);
+        for (std::size_t i = 0; i < clips.size(); ++i) {
+            const ClipRecord& c = clips[i];
+            const std::optional<workflow::PackedClipEntry>& packed = d.packed_clips[i];
             char packed_kb[32] = "-";
-            if (it != entries.end())
-                std::snprintf(packed_kb, sizeof packed_kb, "%.1f", static_cast<double>(it->second.clip->payload_bytes) / 1e3);
+            if (packed) std::snprintf(packed_kb, sizeof packed_kb, "%.1f", static_cast<double>(packed->clip.payload_bytes) / 1e3);
             std::printf("%-24s %8zu %8.6g %9.2f %9.1f %9s  %-17s %-14s %s\n", c.id.c_str(), c.frames, c.frame_rate,
                         c.duration(), static_cast<double>(c.stored_bytes) / 1e3, packed_kb,
-                        !c.lossless ? "packed" : it != entries.end() ? "lossless+packed" : "lossless", c.skeleton.c_str(),
+                        !c.lossless ? "packed" : packed ? "lossless+packed" : "lossless", c.skeleton.c_str(),
                         c.source.file_name.c_str());
         }
         if (tier) std::printf("(packed kB: the clip's coded windows; each group's header and tables are shared)\n");
@@ -216,13 +187,11 @@ void print_text(const std::string& file, const Database& db, const std::vector<C
 }  // namespace
 
 void print_database_info(const std::string& file, bool json) {
-    const Database db(file);
-    const std::vector<ClipRecord> clips = db.clips();
-    const std::vector<SetRecord> sets = db.sets();
+    const DatabaseSummary summary = workflow::summarize_database(file);
     if (json) {
-        print_json(file, db, clips, sets);
+        print_json(file, summary);
     } else {
-        print_text(file, db, clips, sets);
+        print_text(file, summary);
     }
 }
 

@@ -10,11 +10,16 @@
 
 #include "json_writer.hpp"
 #include "mocapdb/dataset/dropout_repair.hpp"
+#include "mocapdb/eval/verdicts.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "svg_plot.hpp"
 
 namespace mocapdb::cli {
 namespace {
+
+using eval::EvalResults;
+using eval::RunInfo;
+using eval::SetResults;
 
 // How a set's samples were cut, for the data table.
 std::string cycles_note(const eval::EvalSetSpec& spec) {
@@ -38,9 +43,9 @@ std::string fixed(double v, int decimals = 2) {
     return buf;
 }
 
-std::string percent(double worse, double better) {
-    if (!(better > 0.0)) return "";
-    return fixed(100.0 * (worse - better) / better, 0) + " %";
+std::string percent(double value) {
+    if (std::isnan(value)) return "";
+    return fixed(value, 0) + " %";
 }
 
 void put(const std::filesystem::path& path, const std::string& text) {
@@ -69,12 +74,10 @@ struct Table {
 
 std::string params_text(const eval::EvalSet& s) {
     std::string out;
-    const MatX& p = s.set.parameters;
-    for (std::size_t k = 0; k < s.set.parameter_names.size(); ++k) {
-        const auto c = static_cast<Eigen::Index>(k);
-        out += (k ? ", " : "") + s.set.parameter_names[k] + " [" + s.set.parameter_units[k] + "] " +
-               fmt(p.col(c).minCoeff(), 4) + " .. " + fmt(p.col(c).maxCoeff(), 4);
-    }
+    const auto ranges = eval::parameter_ranges(s);
+    for (std::size_t k = 0; k < s.set.parameter_names.size(); ++k)
+        out += (k ? ", " : "") + s.set.parameter_names[k] + " [" + s.set.parameter_units[k] + "] " + fmt(ranges[k].first, 4) +
+               " .. " + fmt(ranges[k].second, 4);
     return out;
 }
 
@@ -90,36 +93,6 @@ std::string short_caption(const RunInfo& info, const std::string& data, const st
 }
 
 std::string svg_note(const RunInfo& info) { return info.date + "; " + info.machine; }
-
-// Samples on the edge of the parameter range (value equal to the min or max of some axis).
-std::vector<bool> extreme_samples(const eval::EvalSet& s) {
-    const MatX& p = s.set.parameters;
-    std::vector<bool> out(static_cast<std::size_t>(p.rows()), false);
-    for (Eigen::Index c = 0; c < p.cols(); ++c) {
-        const double lo = p.col(c).minCoeff(), hi = p.col(c).maxCoeff();
-        for (Eigen::Index i = 0; i < p.rows(); ++i)
-            if (p(i, c) == lo || p(i, c) == hi) out[static_cast<std::size_t>(i)] = true;
-    }
-    return out;
-}
-
-// Mean of a per-LOO-sample vector over the extreme (edge = true) or interior samples.
-double split_mean(const eval::LooResult& loo, const VecX& v, const std::vector<bool>& extreme, bool edge, int& count) {
-    double sum = 0.0;
-    count = 0;
-    for (std::size_t k = 0; k < loo.samples.size(); ++k)
-        if (extreme[static_cast<std::size_t>(loo.samples[k])] == edge) {
-            sum += v(static_cast<Eigen::Index>(k));
-            ++count;
-        }
-    return count ? sum / count : 0.0;
-}
-
-const eval::MethodSpec* spec_of(const SetResults& r, const std::string& name) {
-    for (const auto& m : r.methods)
-        if (m.name == name) return &m;
-    return nullptr;
-}
 
 std::string method_label(const eval::MethodSpec& m) {
     if (m.kind != eval::MethodKind::TuckerKriging) return m.name;
@@ -256,21 +229,9 @@ std::string reliability_svg(const RunInfo& info, const SetResults& r) {
     const auto& c = r.constraint;
     for (const auto& m : c.methods) {
         PlotSeries s{m.method, {}, {}};
-        for (int b = 0; b < 10; ++b) {
-            double sum = 0.0;
-            int n = 0;
-            for (Eigen::Index q = 0; q < c.grid.rows(); ++q) {
-                const double rho = m.reliability(q);
-                const int bin = std::min(9, static_cast<int>(rho * 10.0));
-                if (bin == b && m.valid[static_cast<std::size_t>(q)]) {
-                    sum += m.error(q);
-                    ++n;
-                }
-            }
-            if (n > 0) {
-                s.x.push_back(0.1 * b + 0.05);
-                s.y.push_back(sum / n);
-            }
+        for (const auto& [centre, error] : eval::error_by_reliability(m, 10)) {
+            s.x.push_back(centre);
+            s.y.push_back(error);
         }
         p.series.push_back(s);
     }
@@ -375,10 +336,10 @@ std::string results_json(const EvalResults& e) {
         j.key("dofs").value(static_cast<long long>(s.aligned.dofs()));
         j.key("build_seconds").value(r.build_seconds);
         j.key("parameters").begin_array();
+        const auto ranges = eval::parameter_ranges(s);
         for (std::size_t k = 0; k < s.set.parameter_names.size(); ++k) {
-            const auto c = static_cast<Eigen::Index>(k);
             j.begin_object().key("name").value(s.set.parameter_names[k]).key("unit").value(s.set.parameter_units[k]);
-            j.key("min").value(s.set.parameters.col(c).minCoeff()).key("max").value(s.set.parameters.col(c).maxCoeff());
+            j.key("min").value(ranges[k].first).key("max").value(ranges[k].second);
             j.end_object();
         }
         j.end_array();
@@ -540,241 +501,178 @@ std::string results_json(const EvalResults& e) {
 // ---------------------------------------------------------------------------------------------------
 // REPORT.md
 
-struct Best {
-    std::string method;
-    double value = 0.0;
-    bool kriging = false;
-    bool found = false;
+// The text of one metric's verdict.
+struct MetricText {
+    std::string name;
+    std::string unit;
 };
 
-// The best (lowest) value over all methods and over the kriging methods only.
-template <typename F>
-std::pair<Best, Best> best_of(const SetResults& r, const std::vector<std::string>& names, F value) {
-    Best all, kr;
-    for (const std::string& n : names) {
-        const eval::MethodSpec* spec = spec_of(r, n);
-        const double v = value(n);
-        if (!std::isfinite(v)) continue;
-        const bool k = spec && spec->is_kriging();
-        if (!all.found || v < all.value) all = {n, v, k, true};
-        if (k && (!kr.found || v < kr.value)) kr = {n, v, true, true};
+MetricText metric_text(const eval::MetricVerdict& v) {
+    switch (v.metric) {
+        case eval::Metric::LooPoseMean: return {"leave-one-out mean pose error (root-relative)", " cm"};
+        case eval::Metric::LooPoseMax: return {"leave-one-out max pose error (root-relative)", " cm"};
+        case eval::Metric::LooMotionMean: return {"leave-one-out mean motion error (with root trajectory)", " cm"};
+        case eval::Metric::LooMotionMax: return {"leave-one-out max motion error (with root trajectory)", " cm"};
+        case eval::Metric::LooDuration: return {"leave-one-out duration error", " s"};
+        case eval::Metric::FootSkating: return {"foot skating of the synthesized motions", " cm/s"};
+        case eval::Metric::ConstraintReliableRmse: return {"constraint RMSE |c - c_hat| where rho >= " + fmt(v.threshold), " (normalized)"};
+        case eval::Metric::ConstraintRmse: return {"constraint RMSE over the whole grid", " (normalized)"};
     }
-    return {all, kr};
+    return {"", ""};
+}
+
+const eval::LooMethodResult* loo_method(const SetResults& r, const std::string& n) {
+    for (const auto& m : r.loo.methods)
+        if (m.method == n) return &m;
+    return nullptr;
+}
+
+const eval::ConstraintMethodResult* constraint_method(const SetResults& r, const std::string& n) {
+    for (const auto& m : r.constraint.methods)
+        if (m.method == n) return &m;
+    return nullptr;
+}
+
+std::string split_text(const eval::MetricVerdict& v) {
+    if (!v.split) return "";
+    const eval::EdgeSplit& s = *v.split;
+    const std::string contrast =
+        v.best.method.rfind("nn-blend", 0) == 0
+            ? "Kriging's linear trend extrapolates beyond the remaining samples; the nearest-neighbour blend is a "
+              "convex combination of its neighbours and cannot leave them."
+            : "RBF has the same linear trend; the two differ in how the residuals are interpolated (fitted "
+              "variogram vs cubic B-splines with support twice the nearest-neighbour distance).";
+    std::ostringstream w;
+    w << "Mean error split by position of the left-out sample: on the " << s.edge_samples
+      << " samples at the edge of the parameter range (the fold must extrapolate) " << v.best.method << " "
+      << fmt(s.best_edge) << " cm vs " << v.best_kriging.method << " " << fmt(s.kriging_edge) << " cm; on the "
+      << s.interior_samples << " interior samples " << fmt(s.best_interior) << " cm vs " << fmt(s.kriging_interior) << " cm. ";
+    switch (s.location) {
+        case eval::LossLocation::BothMoreAtEdge:
+            w << "Kriging loses on both groups, more at the edge, where the fold extrapolates. " << contrast;
+            break;
+        case eval::LossLocation::BothMoreInterior:
+            w << "Kriging loses on both groups, more on interior samples, so this is not (only) extrapolation: "
+                 "with these samples the fitted variograms and trend predict a left-out motion worse than a "
+                 "local blend of its neighbours.";
+            break;
+        case eval::LossLocation::InteriorOnly:
+            w << "The loss is on interior samples only (kriging is better at the edge): with these samples the "
+                 "fitted variograms and trend predict an interior motion worse than a local blend of its neighbours.";
+            break;
+        case eval::LossLocation::EdgeOnly:
+            w << "The loss comes from the edge samples only, where the fold extrapolates. " << contrast;
+            break;
+        case eval::LossLocation::None: break;
+    }
+    return w.str();
+}
+
+// Why a baseline won a metric, from the results behind the verdict.
+std::string why_text(const SetResults& r, const eval::MetricVerdict& v) {
+    const eval::EvalSet& s = *r.set;
+    switch (v.metric) {
+        case eval::Metric::LooPoseMean:
+        case eval::Metric::LooMotionMean: return split_text(v);
+        case eval::Metric::LooPoseMax: {
+            const auto* base = loo_method(r, v.best.method);
+            const auto* kr = loo_method(r, v.best_kriging.method);
+            if (!base || !kr || base->pose_worst_sample < 0 || kr->pose_worst_sample < 0) return std::string();
+            return "A single worst frame over all folds: " + v.best.method + " at " +
+                   s.labels[static_cast<std::size_t>(base->pose_worst_sample)] + " frame " + std::to_string(base->pose_worst_frame) +
+                   " (" + base->pose_worst_joint + "), " + v.best_kriging.method + " at " +
+                   s.labels[static_cast<std::size_t>(kr->pose_worst_sample)] + " frame " + std::to_string(kr->pose_worst_frame) +
+                   " (" + kr->pose_worst_joint + ").";
+        }
+        case eval::Metric::LooMotionMax:
+            return "A single worst frame over all folds; see the per-sample maxima in loo_" + s.spec.name + ".csv.";
+        case eval::Metric::LooDuration:
+            return "Every method predicts the duration from the samples' inverse-warp increments (Tucker and naive with "
+                   "their coefficient kernel, per-pose / per-element kriging and RBF with a per-set kernel of their own, the "
+                   "blend with its weights; lib/include/mocapdb/eval/synthesis_method.hpp).";
+        case eval::Metric::FootSkating:
+            return "The original samples skate " + fmt(eval::mean_or_nan(r.loo.original_skating_cm_per_s)) +
+                   " cm/s by the same measure (the nearest-neighbour blend mixes at most 3 samples, kriging all of them).";
+        case eval::Metric::ConstraintReliableRmse: {
+            const auto* base = constraint_method(r, v.best.method);
+            const auto* kr = constraint_method(r, v.best_kriging.method);
+            if (!base || !kr) return std::string();
+            return "Over the whole grid (including rho < " + fmt(v.threshold) + "): " + v.best.method + " RMSE " +
+                   fmt(base->all.rmse) + ", " + v.best_kriging.method + " " + fmt(kr->all.rmse) +
+                   ". The achieved parameters are measured on the synthesized clips with the same extractors; "
+                   "a blend that stays close to one captured sample reproduces that sample's measured parameters.";
+        }
+        case eval::Metric::ConstraintRmse: return "";
+    }
+    return "";
 }
 
 std::string losses_section(const EvalResults& e) {
+    const eval::Verdicts verdicts = eval::judge(e);
     std::ostringstream o;
     o << "## Where our kriging loses\n\n"
       << "Generated from the numbers above: for every set and metric, the best method overall against the best of our "
          "kriging methods (per-pose, per-element, Tucker + kriging, naive). Lower is better everywhere. A line starting "
          "with **LOSES** means a baseline (RBF or the nearest-neighbour blend) beat every kriging variant on that metric.\n\n";
-    int losses = 0, comparisons = 0, ties = 0;
-    for (const SetResults& r : e.sets) {
-        const eval::EvalSet& s = *r.set;
-        o << "### " << s.spec.name << "\n\n";
-        std::vector<std::string> names;
-        for (const auto& m : r.methods) names.push_back(m.name);
-        auto report = [&](const std::string& metric, const std::string& unit, const std::pair<Best, Best>& b,
-                          const std::string& why) {
-            if (!b.first.found || !b.second.found) return;
-            ++comparisons;
-            // Differences within 5 % (or below the metric's resolution) are reported as ties, not losses.
-            const double floor = unit == " cm" ? 0.1 : unit == " s" ? 0.01 : unit == " cm/s" ? 0.2 : 0.01;
-            if (!b.first.kriging && (b.second.value - b.first.value <= 0.05 * b.second.value ||
-                                     b.second.value - b.first.value <= floor)) {
-                ++ties;
-                o << "- " << metric << ": tie — " << b.first.method << " " << fmt(b.first.value) << unit << ", best kriging ("
-                  << b.second.method << ") " << fmt(b.second.value) << unit << ", within 5 % or " << fmt(floor) << unit
-                  << ".\n";
-                return;
+    for (const eval::SetVerdicts& sv : verdicts.sets) {
+        const SetResults& r = *sv.results;
+        o << "### " << r.set->spec.name << "\n\n";
+        for (const eval::MetricVerdict& v : sv.metrics) {
+            const MetricText t = metric_text(v);
+            const std::string& unit = t.unit;
+            switch (v.outcome) {
+                case eval::Outcome::Tie:
+                    o << "- " << t.name << ": tie — " << v.best.method << " " << fmt(v.best.value) << unit << ", best kriging ("
+                      << v.best_kriging.method << ") " << fmt(v.best_kriging.value) << unit << ", within 5 % or "
+                      << fmt(eval::tie_floor(v.metric)) << unit << ".\n";
+                    break;
+                case eval::Outcome::KrigingWins:
+                    o << "- " << t.name << ": kriging wins (" << v.best.method << " " << fmt(v.best.value) << unit << ").\n";
+                    break;
+                case eval::Outcome::Loses:
+                    o << "- **LOSES** " << t.name << ": " << v.best.method << " " << fmt(v.best.value) << unit
+                      << " against the best kriging variant, " << v.best_kriging.method << ", " << fmt(v.best_kriging.value) << unit
+                      << " (" << percent(v.kriging_worse_percent) << " worse). " << why_text(r, v) << "\n";
+                    break;
             }
-            if (b.first.kriging) {
-                o << "- " << metric << ": kriging wins (" << b.first.method << " " << fmt(b.first.value) << unit << ").\n";
+        }
+        for (const eval::CompressionVerdict& c : sv.compression) {
+            if (c.tucker_wins) {
+                o << "- compression at max error <= " << fmt(c.target_cm) << " cm: a Tucker variant wins (" << c.best.method
+                  << ", ratio " << fmt(c.best.ratio) << ").\n";
             } else {
-                ++losses;
-                o << "- **LOSES** " << metric << ": " << b.first.method << " " << fmt(b.first.value) << unit
-                  << " against the best kriging variant, " << b.second.method << ", " << fmt(b.second.value) << unit
-                  << " (" << percent(b.second.value, b.first.value) << " worse). " << why << "\n";
-            }
-        };
-        if (r.has_loo) {
-            const auto& loo = r.loo;
-            auto find = [&](const std::string& n) -> const eval::LooMethodResult* {
-                for (const auto& m : loo.methods)
-                    if (m.method == n) return &m;
-                return nullptr;
-            };
-            const std::vector<bool> extreme = extreme_samples(s);
-            auto why_loo = [&](const std::pair<Best, Best>& b, bool pose) {
-                const auto* base = find(b.first.method);
-                const auto* kr = find(b.second.method);
-                if (!base || !kr) return std::string();
-                int ne = 0, ni = 0;
-                const VecX& bv = pose ? base->sample_pose_mean_cm : base->sample_mean_cm;
-                const VecX& kv = pose ? kr->sample_pose_mean_cm : kr->sample_mean_cm;
-                const double be = split_mean(loo, bv, extreme, true, ne);
-                const double bi = split_mean(loo, bv, extreme, false, ni);
-                const double ke = split_mean(loo, kv, extreme, true, ne);
-                const double ki = split_mean(loo, kv, extreme, false, ni);
-                const std::string contrast =
-                    b.first.method.rfind("nn-blend", 0) == 0
-                        ? "Kriging's linear trend extrapolates beyond the remaining samples; the nearest-neighbour blend is a "
-                          "convex combination of its neighbours and cannot leave them."
-                        : "RBF has the same linear trend; the two differ in how the residuals are interpolated (fitted "
-                          "variogram vs cubic B-splines with support twice the nearest-neighbour distance).";
-                std::ostringstream w;
-                w << "Mean error split by position of the left-out sample: on the " << ne
-                  << " samples at the edge of the parameter range (the fold must extrapolate) " << b.first.method << " "
-                  << fmt(be) << " cm vs " << b.second.method << " " << fmt(ke) << " cm; on the " << ni
-                  << " interior samples " << fmt(bi) << " cm vs " << fmt(ki) << " cm. ";
-                const bool edge_loss = ne > 0 && ke > be, interior_loss = ni > 0 && ki > bi;
-                if (edge_loss && interior_loss) {
-                    if (ke - be > ki - bi)
-                        w << "Kriging loses on both groups, more at the edge, where the fold extrapolates. " << contrast;
-                    else
-                        w << "Kriging loses on both groups, more on interior samples, so this is not (only) extrapolation: "
-                             "with these samples the fitted variograms and trend predict a left-out motion worse than a "
-                             "local blend of its neighbours.";
-                } else if (interior_loss) {
-                    w << "The loss is on interior samples only (kriging is better at the edge): with these samples the "
-                         "fitted variograms and trend predict an interior motion worse than a local blend of its neighbours.";
-                } else if (edge_loss) {
-                    w << "The loss comes from the edge samples only, where the fold extrapolates. " << contrast;
-                }
-                return w.str();
-            };
-            auto worst_of = [&](const std::pair<Best, Best>& b) {
-                const auto* base = find(b.first.method);
-                const auto* kr = find(b.second.method);
-                if (!base || !kr || base->pose_worst_sample < 0 || kr->pose_worst_sample < 0) return std::string();
-                return "A single worst frame over all folds: " + b.first.method + " at " +
-                       s.labels[static_cast<std::size_t>(base->pose_worst_sample)] + " frame " + std::to_string(base->pose_worst_frame) +
-                       " (" + base->pose_worst_joint + "), " + b.second.method + " at " +
-                       s.labels[static_cast<std::size_t>(kr->pose_worst_sample)] + " frame " + std::to_string(kr->pose_worst_frame) +
-                       " (" + kr->pose_worst_joint + ").";
-            };
-            auto b = best_of(r, names, [&](const std::string& n) { const auto* m = find(n); return m ? m->pose_mean_cm : NAN; });
-            report("leave-one-out mean pose error (root-relative)", " cm", b, b.first.kriging ? "" : why_loo(b, true));
-            b = best_of(r, names, [&](const std::string& n) { const auto* m = find(n); return m ? m->pose_max_cm : NAN; });
-            report("leave-one-out max pose error (root-relative)", " cm", b, b.first.kriging ? "" : worst_of(b));
-            b = best_of(r, names, [&](const std::string& n) { const auto* m = find(n); return m ? m->mean_cm : NAN; });
-            report("leave-one-out mean motion error (with root trajectory)", " cm", b, b.first.kriging ? "" : why_loo(b, false));
-            b = best_of(r, names, [&](const std::string& n) { const auto* m = find(n); return m ? m->max_cm : NAN; });
-            report("leave-one-out max motion error (with root trajectory)", " cm", b,
-                   b.first.kriging ? "" : "A single worst frame over all folds; see the per-sample maxima in loo_" + s.spec.name + ".csv.");
-            b = best_of(r, names, [&](const std::string& n) { const auto* m = find(n); return m ? m->duration_error_s.mean() : NAN; });
-            report("leave-one-out duration error", " s", b,
-                   "Every method predicts the duration from the samples' inverse-warp increments (Tucker and naive with "
-                   "their coefficient kernel, per-pose / per-element kriging and RBF with a per-set kernel of their own, the "
-                   "blend with its weights; lib/include/mocapdb/eval/synthesis_method.hpp).");
-            if (loo.original_skating_cm_per_s.size()) {
-                b = best_of(r, names, [&](const std::string& n) {
-                    const auto* m = find(n);
-                    return m && m->skating_cm_per_s.size() ? m->skating_cm_per_s.mean() : NAN;
-                });
-                report("foot skating of the synthesized motions", " cm/s", b,
-                       "The original samples skate " + fmt(loo.original_skating_cm_per_s.mean()) +
-                           " cm/s by the same measure (the nearest-neighbour blend mixes at most 3 samples, kriging all of them).");
-            }
-        }
-        if (r.has_constraint && !r.constraint_options.thresholds.empty()) {
-            const auto& c = r.constraint;
-            auto find = [&](const std::string& n) -> const eval::ConstraintMethodResult* {
-                for (const auto& m : c.methods)
-                    if (m.method == n) return &m;
-                return nullptr;
-            };
-            const double lowest = r.constraint_options.thresholds.back();
-            auto b = best_of(r, names, [&](const std::string& n) {
-                const auto* m = find(n);
-                return m && !m->regions.empty() && m->regions.back().points > 0 ? m->regions.back().rmse : NAN;
-            });
-            std::string why;
-            if (b.first.found && b.second.found && !b.first.kriging) {
-                const auto* base = find(b.first.method);
-                const auto* kr = find(b.second.method);
-                why = "Over the whole grid (including rho < " + fmt(lowest) + "): " + b.first.method + " RMSE " +
-                      fmt(base->all.rmse) + ", " + b.second.method + " " + fmt(kr->all.rmse) +
-                      ". The achieved parameters are measured on the synthesized clips with the same extractors; "
-                      "a blend that stays close to one captured sample reproduces that sample's measured parameters.";
-            }
-            report("constraint RMSE |c - c_hat| where rho >= " + fmt(lowest), " (normalized)", b, why);
-            b = best_of(r, names, [&](const std::string& n) { const auto* m = find(n); return m ? m->all.rmse : NAN; });
-            report("constraint RMSE over the whole grid", " (normalized)", b, "");
-        }
-        if (r.has_compression) {
-            for (double t : r.compression_targets) {
-                const compression::RateRow* tucker = nullptr;
-                const compression::RateRow* best = nullptr;
-                for (const auto& row : r.compression.rows) {
-                    if (row.target_cm != t || !row.target_met) continue;
-                    if (row.method == "tucker") tucker = &row;
-                    if (!best || row.ratio > best->ratio) best = &row;
-                }
-                if (!tucker || !best) continue;
-                ++comparisons;
-                if (best->method.rfind("tucker", 0) == 0) {
-                    o << "- compression at max error <= " << fmt(t) << " cm: a Tucker variant wins (" << best->method
-                      << ", ratio " << fmt(best->ratio) << ").\n";
-                } else {
-                    ++losses;
-                    o << "- **LOSES** compression at max error <= " << fmt(t) << " cm: " << best->method << " ratio "
-                      << fmt(best->ratio) << " against plain Tucker " << fmt(tucker->ratio)
-                      << ". The Tucker model is what synthesis needs (pose-level random access in "
-                      << fmt(tucker->us_per_pose) << " us/pose); " << best->method << " is "
-                      << (best->access == "stream" ? "a stream codec (decodes the whole set: " : "(") << fmt(best->us_per_pose)
-                      << " us/pose).\n";
-                }
+                o << "- **LOSES** compression at max error <= " << fmt(c.target_cm) << " cm: " << c.best.method << " ratio "
+                  << fmt(c.best.ratio) << " against plain Tucker " << fmt(c.tucker.ratio)
+                  << ". The Tucker model is what synthesis needs (pose-level random access in "
+                  << fmt(c.tucker.us_per_pose) << " us/pose); " << c.best.method << " is "
+                  << (c.best.access == "stream" ? "a stream codec (decodes the whole set: " : "(") << fmt(c.best.us_per_pose)
+                  << " us/pose).\n";
             }
         }
         o << "\n";
     }
-    if (!e.runtime.empty()) {
+    if (verdicts.runtime) {
+        const eval::RuntimeVerdicts& v = *verdicts.runtime;
         o << "### Runtime (" << e.runtime_set << ")\n\n";
-        Eigen::Index n_max = 0;
-        for (const auto& row : e.runtime) n_max = std::max(n_max, row.samples);
-        const eval::RuntimeRow* fastest_build = nullptr;
-        const eval::RuntimeRow* slowest_kriging = nullptr;
-        const eval::RuntimeRow* fastest_kriging = nullptr;
-        const eval::RuntimeRow* fastest_synth = nullptr;
-        const SetResults* rs = nullptr;
-        for (const auto& r : e.sets)
-            if (r.set->spec.name == e.runtime_set) rs = &r;
-        for (const auto& row : e.runtime) {
-            if (row.samples != n_max) continue;
-            const eval::MethodSpec* spec = rs ? spec_of(*rs, row.method) : nullptr;
-            if (!fastest_build || row.build_seconds < fastest_build->build_seconds) fastest_build = &row;
-            if (!fastest_synth || row.synth_us_per_frame < fastest_synth->synth_us_per_frame) fastest_synth = &row;
-            if (spec && spec->is_kriging() && (!slowest_kriging || row.build_seconds > slowest_kriging->build_seconds))
-                slowest_kriging = &row;
-            if (spec && spec->is_kriging() && (!fastest_kriging || row.build_seconds < fastest_kriging->build_seconds))
-                fastest_kriging = &row;
-        }
-        if (fastest_build && slowest_kriging) {
-            ++comparisons;
-            const eval::MethodSpec* spec = rs ? spec_of(*rs, fastest_build->method) : nullptr;
-            const bool base = spec && !spec->is_kriging();
-            if (base) ++losses;
-            o << "- " << (base ? "**LOSES** preprocessing" : "preprocessing") << " at N = " << n_max << ": fastest is "
-              << fastest_build->method << " (" << fmt(fastest_build->build_seconds) << " s); the fastest kriging variant, "
-              << (fastest_kriging ? fastest_kriging->method : std::string("-")) << ", takes "
-              << (fastest_kriging ? fmt(fastest_kriging->build_seconds) : std::string("-")) << " s, the slowest, "
-              << slowest_kriging->method << ", " << fmt(slowest_kriging->build_seconds)
+        if (v.fastest_build && v.slowest_kriging_build) {
+            const eval::RuntimeRow& fb = *v.fastest_build;
+            o << "- " << (v.build_loses ? "**LOSES** preprocessing" : "preprocessing") << " at N = " << v.samples << ": fastest is "
+              << fb.method << " (" << fmt(fb.build_seconds) << " s); the fastest kriging variant, "
+              << (v.fastest_kriging_build ? v.fastest_kriging_build->method : std::string("-")) << ", takes "
+              << (v.fastest_kriging_build ? fmt(v.fastest_kriging_build->build_seconds) : std::string("-")) << " s, the slowest, "
+              << v.slowest_kriging_build->method << ", " << fmt(v.slowest_kriging_build->build_seconds)
               << " s. Kriging fits variograms (per-element: one per dof and frame; per-pose: one per frame) and factorizes "
                  "a system per kernel; RBF factorizes one system and the blend only stores the samples.\n";
         }
-        if (fastest_synth) {
-            ++comparisons;
-            const eval::MethodSpec* spec = rs ? spec_of(*rs, fastest_synth->method) : nullptr;
-            const bool base = spec && !spec->is_kriging();
-            if (base) ++losses;
-            o << "- " << (base ? "**LOSES** synthesis time" : "synthesis time") << " at N = " << n_max << ": fastest is "
-              << fastest_synth->method << " (" << fmt(fastest_synth->synth_us_per_frame) << " us per frame).\n";
+        if (v.fastest_synthesis) {
+            o << "- " << (v.synthesis_loses ? "**LOSES** synthesis time" : "synthesis time") << " at N = " << v.samples
+              << ": fastest is " << v.fastest_synthesis->method << " (" << fmt(v.fastest_synthesis->synth_us_per_frame)
+              << " us per frame).\n";
         }
         o << "\n";
     }
-    o << "In all: a baseline beats every kriging variant in " << losses << " of " << comparisons << " comparisons ("
-      << ties << " more are ties within 5 %).\n\n";
+    o << "In all: a baseline beats every kriging variant in " << verdicts.losses << " of " << verdicts.comparisons
+      << " comparisons (" << verdicts.ties << " more are ties within 5 %).\n\n";
     return o.str();
 }
 
@@ -853,28 +751,24 @@ std::string report_md(const EvalResults& e) {
     for (const SetResults& r : e.sets) {
         if (!r.has_loo) continue;
         const eval::EvalSet& s = *r.set;
-        VecX durations(s.size());
-        for (Eigen::Index i = 0; i < s.size(); ++i) durations(i) = s.samples[static_cast<std::size_t>(i)].duration();
+        const auto durations = eval::duration_range(s);
         o << "### " << s.spec.name << "\n\n";
         // Gain over the linear trend alone (issue #15): 1 - pose mean / trend-only pose mean.
-        double trend_pose = 0.0;
-        for (std::size_t k = 0; k < r.loo.methods.size(); ++k)
-            if (r.methods[k].kind == eval::MethodKind::TrendOnly) trend_pose = r.loo.methods[k].pose_mean_cm;
+        const std::vector<double> gains = eval::gain_over_trend(r);
         Table lt{{"method", "pose mean cm", "gain over trend-only", "pose max cm", "worst (sample, frame, joint)", "motion mean cm", "motion max cm", "duration err s", "build s/fold", "synth ms"}, {}};
         for (std::size_t k = 0; k < r.loo.methods.size(); ++k) {
             const auto& m = r.loo.methods[k];
-            const std::string gain =
-                trend_pose > 0.0 ? fixed(100.0 * (1.0 - m.pose_mean_cm / trend_pose), 1) + " %" : std::string("-");
+            const std::string gain = std::isfinite(gains[k]) ? fixed(100.0 * gains[k], 1) + " %" : std::string("-");
             lt.rows.push_back({method_label(r.methods[k]), fixed(m.pose_mean_cm, 2), gain, fixed(m.pose_max_cm, 1),
                                m.pose_worst_sample >= 0 ? s.labels[static_cast<std::size_t>(m.pose_worst_sample)] + ", " +
                                                               std::to_string(m.pose_worst_frame) + ", " + m.pose_worst_joint
                                                         : "-",
                                fixed(m.mean_cm, 2), fixed(m.max_cm, 1),
-                               fixed(m.duration_error_s.mean(), 3), fmt(m.build_seconds), fmt(1e3 * m.synth_seconds)});
+                               fixed(eval::mean_or_nan(m.duration_error_s), 3), fmt(m.build_seconds), fmt(1e3 * m.synth_seconds)});
         }
         o << lt.str() << "\n";
         for (const auto& m : r.methods)
-            if (m.kind == eval::MethodKind::TuckerKriging && m.ranks[2] >= s.size() - 1)
+            if (eval::keeps_full_sample_rank(m, s))
                 o << "Note: " << m.name << " keeps the full sample rank (R3 = " << m.ranks[2] << " >= N - 1, clamped to the "
                   << "training size in each fold): meeting the max-error target needs every sample direction, so its "
                      "kriged motions equal naive kriging's up to the dof/time truncation.\n";
@@ -883,7 +777,7 @@ std::string report_md(const EvalResults& e) {
                                   (static_cast<Eigen::Index>(r.loo.samples.size()) < s.size() ? ", every " +
                                        std::to_string(r.loo.samples.size() > 1 ? r.loo.samples[1] - r.loo.samples[0] : 1) + "th sample" : "") +
                                   ")")
-          << "\nSample durations in this set: " << fixed(durations.minCoeff(), 2) << " .. " << fixed(durations.maxCoeff(), 2)
+          << "\nSample durations in this set: " << fixed(durations.first, 2) << " .. " << fixed(durations.second, 2)
           << " s (the parameters do not fix a whole clip's duration, so the root travels different distances in aligned time)."
           << "\n\n![LOO pose error over time](loo_" << s.spec.name << ".svg) ![LOO motion error over time](loo_motion_" << s.spec.name
           << ".svg)  \nNumbers: [loo_" << s.spec.name << ".csv](loo_"
@@ -1012,15 +906,14 @@ std::string report_md(const EvalResults& e) {
         o << "### " << s.spec.name << "\n\n"
           << "τ = " << fmt(r.reduction_options.tau) << " keeps **" << r.reduction.kept_at_tau << " of " << s.size()
           << "** samples";
-        if (!r.reduction.max_reliability.empty()) {
-            const double first = r.reduction.max_reliability.front();
-            if (first < r.reduction_options.tau)
-                o << ": the highest leave-one-out reliability of any sample is already " << fixed(first, 3) << " < τ, so "
-                  << "nothing is removed (the paper removes 40 of 69). With this set's fitted variogram no sample is "
-                  << "predicted reliably enough from the others; the curve below continues past τ to show what removal would cost";
-            else
-                o << " (the paper: 29 of 69)";
-        }
+        const eval::ReductionAtTau at_tau = eval::reduction_at_tau(r);
+        if (at_tau == eval::ReductionAtTau::NothingRemoved)
+            o << ": the highest leave-one-out reliability of any sample is already "
+              << fixed(r.reduction.max_reliability.front(), 3) << " < τ, so "
+              << "nothing is removed (the paper removes 40 of 69). With this set's fitted variogram no sample is "
+              << "predicted reliably enough from the others; the curve below continues past τ to show what removal would cost";
+        else if (at_tau == eval::ReductionAtTau::SomeRemoved)
+            o << " (the paper: 29 of 69)";
         o << ".\n\n";
         Table rt{{"kept", "max LOO ρ", "greedy pose mean cm", "random pose mean cm", "greedy motion mean cm", "greedy motion max cm", "random motion mean cm"}, {}};
         const bool rnd = r.reduction_options.random_orders > 0;
@@ -1052,11 +945,11 @@ std::string report_md(const EvalResults& e) {
         for (const auto& n : names) ft.header.push_back(n);
         for (const SetResults& r : e.sets) {
             if (!r.has_loo || r.loo.original_skating_cm_per_s.size() == 0) continue;
-            std::vector<std::string> row{r.set->spec.name, fixed(r.loo.original_skating_cm_per_s.mean(), 2)};
+            std::vector<std::string> row{r.set->spec.name, fixed(eval::mean_or_nan(r.loo.original_skating_cm_per_s), 2)};
             for (const auto& n : names) {
                 std::string v = "-";
                 for (const auto& m : r.loo.methods)
-                    if (m.method == n && m.skating_cm_per_s.size()) v = fixed(m.skating_cm_per_s.mean(), 2);
+                    if (m.method == n && m.skating_cm_per_s.size()) v = fixed(eval::mean_or_nan(m.skating_cm_per_s), 2);
                 row.push_back(v);
             }
             ft.rows.push_back(row);
@@ -1103,7 +996,7 @@ std::string report_md(const EvalResults& e) {
                                fmt(row.synth_us_per_frame)});
         const eval::EvalSet* rs = nullptr;
         for (const auto& r : e.sets)
-            if (r.set->spec.name == e.runtime_set) rs = r.set;
+            if (r.set->spec.name == e.runtime_set) rs = r.set.get();
         o << rt.str() << "\n";
         if (rs) o << caption(info, *rs, "wall-clock medians; load average at start " + info.load);
         o << "\n![synthesis time](runtime.svg) ![build time](runtime_build.svg)  \nNumbers: [runtime.csv](runtime.csv).\n\n";

@@ -4,8 +4,6 @@
 #include <sstream>
 
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/kriging/trend.hpp"
-#include "mocapdb/io/csv_table.hpp"
 #include "option_lists.hpp"
 
 namespace mocapdb::cli {
@@ -32,17 +30,7 @@ void add_table_options(CLI::App& cmd, TableKrigingArgs& t) {
 }
 
 TableData load_table(const TableKrigingArgs& args) {
-    const CsvTable csv = CsvTable::read(args.data);
-    csv.require_data_rows();
-    TableData d;
-    d.coords = csv.columns(split_names(args.coords, "--coords"));
-    d.values = csv.columns({args.value}).col(0);
-    if (d.coords.rows() < 2) throw InvalidArgument(args.data + ": need at least 2 data rows for kriging");
-    if (args.normalize) {
-        d.scaling = ControlScaling::from_data(d.coords);
-        d.coords = d.scaling->apply(d.coords);
-    }
-    return d;
+    return read_scalar_table(args.data, split_names(args.coords, "--coords"), args.value, args.normalize);
 }
 
 KrigingOptions kriging_options(const TableKrigingArgs& args) {
@@ -96,12 +84,8 @@ VariogramFitOptions fit_options(const TableKrigingArgs& args) {
 
 ExperimentalVariogram table_variogram(const TableKrigingArgs& args, const TableData& data) {
     const KrigingOptions ko = kriging_options(args);
-    Eigen::VectorXd r = data.values;
-    if (ko.trend == TrendKind::Linear) {
-        const TrendBasis basis = TrendBasis::build(data.coords, TrendKind::Linear);
-        r = fit_trend_ols(basis, data.values).residuals.col(0);
-    }
-    return experimental_variogram_scalar(data.coords, r, variogram_options(args));
+    const VariogramOptions vo = variogram_options(args);
+    return kriging::table_variogram(data, ko.trend, vo);
 }
 
 FitRequest parse_fit(const std::string& spec) {
@@ -130,16 +114,9 @@ FitRequest parse_fit(const std::string& spec) {
 
 FitOutcome run_fit(const FitRequest& request, const ExperimentalVariogram& ev, const TableData& data,
                    const TableKrigingArgs& args) {
-    FitOutcome out;
     const VariogramFitOptions fo = fit_options(args);
-    if (request.by_loo) {
-        out.selection = select_exponent(ev, data.coords, data.values, kriging_options(args), fo, request.grid);
-        out.fit = out.selection->fits[out.selection->best];
-    } else {
-        const VariogramFamily fam = request.p == 0.0 ? VariogramFamily::Spherical : VariogramFamily::Stable;
-        out.fit = fit_variogram(ev, fam, request.p == 0.0 ? 1.0 : request.p, fo);
-    }
-    return out;
+    const KrigingOptions ko = kriging_options(args);
+    return fit_table_variogram(request, ev, data, ko, fo);
 }
 
 VariogramModel parse_model(const std::string& spec, double nugget, double sill, double range) {

@@ -1,6 +1,6 @@
 #pragma once
-// Shared pieces of the `variogram` and `krige` commands: option parsing, the variogram estimate and
-// fit on a table, and the JSON / text rendering of a model.
+// Shared pieces of the `variogram` and `krige` commands: option parsing into the library's table
+// kriging (mocapdb/kriging/table_kriging.hpp), and the JSON / text rendering of a model and a fit.
 #include <optional>
 #include <string>
 
@@ -9,6 +9,7 @@
 
 #include "json_writer.hpp"
 #include "mocapdb/kriging/kriging.hpp"
+#include "mocapdb/kriging/table_kriging.hpp"
 #include "mocapdb/kriging/variogram.hpp"
 #include "mocapdb/kriging/variogram_fit.hpp"
 
@@ -29,12 +30,8 @@ struct TableKrigingArgs {
     bool json = false;
 };
 
-/// The table's coordinates (N by P, normalized when asked) and values (N).
-struct TableData {
-    Eigen::MatrixXd coords;
-    Eigen::VectorXd values;
-    std::optional<kriging::ControlScaling> scaling;  ///< set with --normalize
-};
+/// The table's coordinates (N by P, normalized with --normalize) and values (N).
+using TableData = kriging::ScalarTable;
 
 /// Registers --data --coords --value --trend --trend-fit --bins --cutoff --estimator --weights --normalize --json.
 void add_table_options(CLI::App& cmd, TableKrigingArgs& t);
@@ -44,21 +41,15 @@ kriging::KrigingOptions kriging_options(const TableKrigingArgs& args);
 kriging::VariogramOptions variogram_options(const TableKrigingArgs& args);
 kriging::VariogramFitOptions fit_options(const TableKrigingArgs& args);
 
-/// Experimental variogram of the values (of their OLS-trend residuals with --trend linear).
+/// kriging::table_variogram with the options of `args` (OLS-trend residuals with --trend linear).
 kriging::ExperimentalVariogram table_variogram(const TableKrigingArgs& args, const TableData& data);
 
 /// A fit request: "sph", "stable" (p chosen by LOO over 0.2..2.0), "stable:P", or "auto" (0.0..2.0).
-struct FitRequest {
-    bool by_loo = false;
-    std::vector<double> grid;  ///< candidates when by_loo
-    double p = 0.0;            ///< paper convention (0 = spherical) when !by_loo
-};
+using FitRequest = kriging::VariogramFitRequest;
 FitRequest parse_fit(const std::string& spec);
 
-struct FitOutcome {
-    kriging::VariogramFit fit;
-    std::optional<kriging::ExponentSelection> selection;
-};
+using FitOutcome = kriging::VariogramChoice;
+/// kriging::fit_table_variogram with the options of `args`.
 FitOutcome run_fit(const FitRequest& request, const kriging::ExperimentalVariogram& ev, const TableData& data,
                    const TableKrigingArgs& args);
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/dropout_repair.hpp"
 #include "option_lists.hpp"
 #include "progress_bar.hpp"
 #include "svg_plot.hpp"
@@ -142,14 +143,12 @@ std::string describe_set(const SetOutcome& o) {
                   o.set.parameter_source.empty() ? "none" : o.set.parameter_source.c_str());
     std::string out = line;
     // Repairs are never silent: one line naming the clips (set show lists joints and frames).
-    std::vector<std::string> clips;
-    for (const RepairedFrames& r : o.set.repairs)
-        if (std::find(clips.begin(), clips.end(), r.clip) == clips.end()) clips.push_back(r.clip);
+    const RepairSummary repairs = summarize_repairs(o.set.repairs);
+    const std::vector<std::string>& clips = repairs.clips;
     if (!clips.empty()) {
         std::string names;
         for (const std::string& c : clips) names += (names.empty() ? "" : ", ") + c;
-        std::size_t frames = 0;
-        for (const RepairedFrames& r : o.set.repairs) frames = std::max(frames, r.end - r.begin);
+        const std::size_t frames = repairs.longest_run;
         out += "repaired solver dropouts in " + std::to_string(clips.size()) + " clip" + (clips.size() == 1 ? "" : "s") +
                " (" + std::to_string(o.set.repairs.size()) + " joint runs of up to " + std::to_string(frames) +
                " frames): " + names + "; 'mocapdb set show' lists them\n";

@@ -9,6 +9,7 @@
 #include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/synthesis/naive_motion_model.hpp"
 #include "mocapdb/workflow/load_model.hpp"
+#include "mocapdb/workflow/synthesis_warnings.hpp"
 
 namespace mocapdb::cli {
 
@@ -85,21 +86,20 @@ Eigen::Index parameter_index(const std::vector<std::string>& names, const std::s
 namespace mocapdb::cli {
 
 std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& model, double rho) {
+    const workflow::SynthesisWarnings w = workflow::synthesis_warnings(model, rho);
     std::vector<std::string> out;
-    if (rho < kLowReliability) {
+    if (w.low_reliability) {
         char buf[200];
         std::snprintf(buf, sizeof buf,
                       "reliability %.3f < %.1f: the parameters are far from the samples; the motion is extrapolated "
                       "and may not meet them (see mocapdb reliability)",
-                      rho, kLowReliability);
+                      rho, workflow::kLowReliability);
         out.emplace_back(buf);
     }
-    const std::string fit = synthesis::fit_status_warning(model.kernel_fit());
-    if (!fit.empty()) out.push_back(fit);
-    const kriging::KrigingStatus& st = model.report().status;
-    if (st.factorization == kriging::FactorizationStatus::Regularized)
+    if (!w.kernel_fit.empty()) out.push_back(w.kernel_fit);
+    if (w.regularized)
         out.emplace_back("singular kriging system: the covariance matrix was regularized (eigenvalues clamped)");
-    else if (st.factorization == kriging::FactorizationStatus::Jittered && st.jitter > 1e-8 * model.report().model.total_sill())
+    else if (w.jittered)
         out.emplace_back("near-singular kriging system: a jitter was added to its diagonal");
     return out;
 }

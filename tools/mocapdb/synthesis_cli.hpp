@@ -28,11 +28,7 @@ std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& 
                                                                 const std::string& lod,
                                                                 const std::string& timing = "shared");
 
-/// Below this reliability synth and query warn (issue #15): the motion is extrapolated.
-inline constexpr double kLowReliability = 0.5;
-
-/// The warnings a synthesis at reliability rho deserves: rho < kLowReliability, and a coefficient kernel whose
-/// variogram fit or factorization is not clean (fit status, jitter, regularization). One line each.
+/// The warnings a synthesis at reliability rho deserves (workflow/synthesis_warnings.hpp), one line each.
 std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& model, double rho);
 
 /// Index of a parameter by name (InvalidArgument listing the names otherwise).

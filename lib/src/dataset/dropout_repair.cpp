@@ -260,4 +260,13 @@ std::string describe_repairs(const std::string& clip_id, const std::vector<Repai
     return out;
 }
 
+RepairSummary summarize_repairs(const std::vector<RepairedFrames>& repairs) {
+    RepairSummary s;
+    for (const RepairedFrames& r : repairs) {
+        if (std::find(s.clips.begin(), s.clips.end(), r.clip) == s.clips.end()) s.clips.push_back(r.clip);
+        s.longest_run = std::max(s.longest_run, r.end - r.begin);
+    }
+    return s;
+}
+
 }  // namespace mocapdb

@@ -116,6 +116,14 @@ double LosslessFigures::gzip_ratio_float32() const {
     return gzip_available ? ratio(static_cast<double>(float32_bytes), static_cast<double>(gzip_bytes)) : 0.0;
 }
 
+double LosslessFigures::gzip_over_lossless() const {
+    return bytes > 0 ? static_cast<double>(gzip_bytes) / static_cast<double>(bytes) : 0.0;
+}
+
+double CollectionReport::lossless_bytes_per_second() const {
+    return motion_seconds > 0 ? static_cast<double>(lossless.bytes) / motion_seconds : 0.0;
+}
+
 CollectionReport collection_report(const Database& db, const CollectionReportOptions& options,
                                    const ProgressCallback& progress) {
     check_options(options);

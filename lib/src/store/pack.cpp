@@ -31,6 +31,24 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
+namespace {
+
+double ratio(std::uint64_t reference, std::uint64_t bytes) {
+    return bytes > 0 ? static_cast<double>(reference) / static_cast<double>(bytes) : 0.0;
+}
+
+}  // namespace
+
+double PackDatabaseOutcome::ratio_float32() const { return ratio(float32_bytes, tier.bytes); }
+
+double PackDatabaseOutcome::group_ratio_float32(std::size_t group) const {
+    return ratio(group_float32_bytes.at(group), tier.groups.at(group).bytes);
+}
+
+double PackDatabaseOutcome::bytes_per_second() const {
+    return motion_seconds > 0 ? static_cast<double>(tier.bytes) / motion_seconds : 0.0;
+}
+
 PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDatabaseOptions& options,
                                   const ProgressCallback& progress) {
     const auto start = std::chrono::steady_clock::now();

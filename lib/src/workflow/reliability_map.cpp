@@ -2,6 +2,8 @@
 
 namespace mocapdb::workflow {
 
+VecX samples_mean(const synthesis::SynthesisModel& model) { return model.sample_parameters().colwise().mean().transpose(); }
+
 ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const SliceAxis& gx, const SliceAxis& gy,
                                const VecX& base) {
     ReliabilityMap m;
@@ -18,6 +20,11 @@ ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const Sli
     for (Eigen::Index j = 0; j < gy.count; ++j)
         for (Eigen::Index i = 0; i < gx.count; ++i) m.values(j, i) = m.rho(j * gx.count + i);
     m.fraction_trusted = (m.rho.array() >= kTrustedReliability).cast<double>().mean();
+    if (m.rho.size()) {
+        m.rho_min = m.rho.minCoeff();
+        m.rho_mean = m.rho.mean();
+        m.rho_max = m.rho.maxCoeff();
+    }
     return m;
 }
 

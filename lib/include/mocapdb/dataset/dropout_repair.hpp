@@ -72,4 +72,11 @@ Clip with_repairs(const Clip& clip, const std::string& clip_id, const std::vecto
 /// grouped; frames 0-based, inclusive). Empty when there are none.
 std::string describe_repairs(const std::string& clip_id, const std::vector<RepairedFrames>& repairs);
 
+/// The clips with repairs (each once, in record order) and the longest repaired run (frames, end - begin).
+struct RepairSummary {
+    std::vector<std::string> clips;
+    std::size_t longest_run = 0;
+};
+RepairSummary summarize_repairs(const std::vector<RepairedFrames>& repairs);
+
 }  // namespace mocapdb

@@ -94,6 +94,7 @@ struct LosslessFigures {
 
     double ratio_float32() const;  ///< float32 / bytes
     double gzip_ratio_float32() const;
+    double gzip_over_lossless() const;  ///< gzip bytes / bytes: how much smaller the lossless tier is (0 without bytes)
 };
 
 struct CollectionReport {
@@ -107,6 +108,8 @@ struct CollectionReport {
     LosslessFigures lossless;
     int threads = 0;
     std::size_t random_poses = 0;
+
+    double lossless_bytes_per_second() const;  ///< lossless bytes per second of motion (0 without motion)
 };
 
 /// Measures the report of `db`. `progress` counts frames: every clip once per E, plus once for the

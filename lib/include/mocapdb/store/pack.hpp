@@ -42,6 +42,10 @@ struct PackDatabaseOutcome {
     double replaced_max_error_cm = 0.0;
     std::uint64_t file_bytes = 0;     ///< the database file after the commit
     double seconds = 0.0;             ///< wall time
+
+    double ratio_float32() const;                      ///< float32 bytes / tier bytes (0 without bytes)
+    double group_ratio_float32(std::size_t group) const;  ///< the same per group
+    double bytes_per_second() const;                   ///< tier bytes per second of motion (0 without motion)
 };
 
 /// Packs every clip of the database at `db` and stores the result as its packed tier (committed).

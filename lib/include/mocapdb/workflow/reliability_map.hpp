@@ -26,7 +26,11 @@ struct ReliabilityMap {
     VecX rho;      ///< per query
     MatX values;   ///< rho as gy.count rows by gx.count columns
     double fraction_trusted = 0.0;  ///< share of cells with rho >= kTrustedReliability
+    double rho_min = 0.0, rho_mean = 0.0, rho_max = 0.0;  ///< over the cells
 };
+
+/// The samples' mean parameters: where a slice crosses the axes it does not show, by default.
+VecX samples_mean(const synthesis::SynthesisModel& model);
 
 /// rho over the slice gx × gy through `base` (the other axes' values; P entries).
 ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const SliceAxis& gx, const SliceAxis& gy,
