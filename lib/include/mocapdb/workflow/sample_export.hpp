@@ -7,7 +7,7 @@
 
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/clip.hpp"
-#include "mocapdb/tensor/tensor3.hpp"
+#include "mocapdb/core/tensor3.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
 
 namespace mocapdb::workflow {
