@@ -113,7 +113,7 @@ py::dict pack(const std::filesystem::path& db, double max_error_cm, int threads,
     d["max_error_cm"] = t.max_error_cm;
     d["bytes"] = t.bytes;
     d["float32_bytes"] = o.float32_bytes;
-    d["ratio_float32"] = t.bytes > 0 ? static_cast<double>(o.float32_bytes) / static_cast<double>(t.bytes) : 0.0;
+    d["ratio_float32"] = o.ratio_float32();
     d["clips"] = t.clips;
     d["frames"] = t.frames;
     d["max_cm"] = t.max_cm;
