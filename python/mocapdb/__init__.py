@@ -35,6 +35,7 @@ from ._core import (  # noqa: F401  (the public names)
     align,
     collection_report,
     compress,
+    copy_database,
     create_set,
     import_files,
     pack,

@@ -129,6 +129,15 @@ std::shared_ptr<ModelHandle> synthesis_model(const DatabaseHandle& h, const std:
 
 void bind_database(py::module_& m) {
     bind_records(m);
+    m.def(
+        "copy_database",
+        [](const std::filesystem::path& source, const std::filesystem::path& destination) {
+            copy_database(source, destination);
+        },
+        py::arg("source"), py::arg("destination"),
+        "Copies a database to a new path: its file and (format 4) the segments it links to, into "
+        "'destination.d/' (a copy of the file alone would still read the original's segments). IoError when "
+        "destination exists.");
     py::class_<DatabaseHandle, std::shared_ptr<DatabaseHandle>>(
         m, "Database",
         "A mocapdb database file, read-only (mocapdb.open). Writing steps (import_files, create_set, align, "

@@ -2,11 +2,12 @@
 every test compares with), the shared CMU data, and a CLI runner."""
 import json
 import os
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
+
+import mocapdb
 
 
 def _env_path(name):
@@ -43,7 +44,7 @@ def test_db(shared):
 def db_copy(test_db, tmp_path):
     """A private copy of the test database for tests that write."""
     path = tmp_path / "copy.h5"
-    shutil.copyfile(test_db, path)
+    mocapdb.copy_database(test_db, path)
     return path
 
 

@@ -1,12 +1,13 @@
 """The README's Python snippet runs as written, on a copy of the examples' database named walks.h5."""
 import os
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+
+import mocapdb
 
 
 def test_readme_snippet_runs(test_db, tmp_path):
@@ -16,7 +17,7 @@ def test_readme_snippet_runs(test_db, tmp_path):
     text = readme.read_text()
     found = re.search(r"<!-- python-snippet:begin -->\s*```python\n(.*?)```\s*<!-- python-snippet:end -->", text, re.S)
     assert found, "the README has no python snippet between the markers"
-    shutil.copyfile(test_db, tmp_path / "walks.h5")
+    mocapdb.copy_database(test_db, tmp_path / "walks.h5")
     (tmp_path / "snippet.py").write_text(found.group(1))
     done = subprocess.run([sys.executable, "snippet.py"], cwd=tmp_path, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr

@@ -1,5 +1,4 @@
 """The workflow steps from Python give what the CLI's steps give on a copy of the same database."""
-import shutil
 
 import numpy as np
 import pytest
@@ -10,7 +9,7 @@ from conftest import cli_json, run_cli
 
 def test_create_set_equals_the_cli(cli, db_copy, tmp_path):
     cli_copy = tmp_path / "cli.h5"
-    shutil.copyfile(db_copy, cli_copy)
+    mocapdb.copy_database(db_copy, cli_copy)
     ours = mocapdb.create_set(db_copy, "turns", ["16_1*", "16_2*"], extract=["turn", "speed"])
     run_cli(cli, "set", "create", cli_copy, "--name", "turns", "--clips", "16_1*", "16_2*", "--extract", "turn", "speed")
     theirs = cli_json(cli, "set", "show", cli_copy, "turns")
@@ -23,7 +22,7 @@ def test_create_set_equals_the_cli(cli, db_copy, tmp_path):
 
 def test_pack_equals_the_cli(cli, db_copy, tmp_path):
     cli_copy = tmp_path / "cli.h5"
-    shutil.copyfile(db_copy, cli_copy)
+    mocapdb.copy_database(db_copy, cli_copy)
     ours = mocapdb.pack(db_copy, max_error_cm=0.5, replace=True)
     theirs = cli_json(cli, "pack", cli_copy, "--max-error-cm", "0.5", "--force")
     for key in ("bytes", "clips", "frames", "max_cm", "p99_cm", "rmse_cm", "float32_bytes", "max_error_cm"):

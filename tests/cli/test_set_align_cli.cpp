@@ -114,11 +114,11 @@ TEST_CASE("set create/show/list and align on subject 16's walks", "[cli][set][sh
     CHECK_THAT(r.err, Contains("every sample has the same parameters"));
 
     // #16: a runaway --frames is refused before the file grows (it took 1 GB before).
-    const auto size_before = std::filesystem::file_size(dir / "walks.h5");
+    const auto size_before = database_disk_bytes(dir / "walks.h5");
     r = run_cli("align " + db + " --set walks --frames 100000");
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Contains("100000 aligned frames") && Contains("use at most"));
-    CHECK(std::filesystem::file_size(dir / "walks.h5") == size_before);
+    CHECK(database_disk_bytes(dir / "walks.h5") == size_before);
 
     r = run_cli("align " + db + " --set walks --frames 80");
     INFO(r.output);

@@ -285,7 +285,7 @@ TEST_CASE("synth with the kernel compress stored writes the same BVH as fitting 
     const WalkDb& w = walk_db();
     TempDir dir("synth-kernel");
     const auto path = dir / "walks.h5";
-    std::filesystem::copy_file(w.path, path);
+    copy_database(w.path, path);
     const std::string db = quoted(path.string());
     const MatX p = Database(path).load_set("walks").parameters;
     const std::string c = csv_of(0.5 * (p.row(0) + p.row(1)).transpose());

@@ -31,7 +31,7 @@ def replace_dataset(f, path, data):
 
 # A newer format version.
 with copy("bad-newer-version.h5") as f:
-    f.attrs["format_version"] = np.int64(4)
+    f.attrs["format_version"] = np.int64(5)
 
 # An HDF5 file that is not a mocapdb database at all.
 with h5py.File("bad-foreign.h5", "w") as f:

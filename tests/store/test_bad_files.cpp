@@ -25,12 +25,12 @@ std::string first_violation(const ValidationReport& r) {
 TEST_CASE("bad files: a newer format version is refused, saying so", "[store][bad]") {
     const auto file = test_data_dir() / "bad-newer-version.h5";
     CHECK_THROWS_AS(Database(file), StoreError);
-    CHECK_THROWS_WITH(Database(file), Catch::Contains("bad-newer-version.h5: /: format_version is 4, newer than the "
-                                                      "version 3 this mocapdb reads"));
+    CHECK_THROWS_WITH(Database(file), Catch::Contains("bad-newer-version.h5: /: format_version is 5, newer than the "
+                                                      "version 4 this mocapdb reads"));
     const ValidationReport r = validate_database(file);
     REQUIRE(r.violations.size() == 1);
     CHECK(r.violations[0].path == "/");
-    CHECK(r.violations[0].message.find("newer than the version 3") != std::string::npos);
+    CHECK(r.violations[0].message.find("newer than the version 4") != std::string::npos);
     // A writer on a copy: its lock file (DB.h5.lock) must not land in the source tree.
     TempDir dir("newer");
     std::filesystem::copy_file(file, dir / "newer.h5");
@@ -108,7 +108,7 @@ TEST_CASE("bad files: flipped bytes in a clip's chunk give a checksum error nami
     // cannot tell 0x0000 from 0xFFFF).
     const ByteExtent chunk = extents.front();
     REQUIRE(chunk.size > 16);
-    flip_bytes(file, chunk.offset + chunk.size / 2, 4);
+    flip_bytes(chunk.file, chunk.offset + chunk.size / 2, 4);
 
     const Database db(file);
     CHECK_NOTHROW(db.load_clip("intact"));

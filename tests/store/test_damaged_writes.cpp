@@ -60,7 +60,7 @@ void flip_chunk(const std::filesystem::path& file, const std::string& dataset) {
     const auto extents = dataset_extents(file, dataset);
     REQUIRE(!extents.empty());
     REQUIRE(extents.front().size > 16);
-    flip_bytes(file, extents.front().offset + extents.front().size / 2, 4);
+    flip_bytes(extents.front().file, extents.front().offset + extents.front().size / 2, 4);
 }
 
 std::string digest(const std::filesystem::path& file) { return sha256_hex(file_bytes(file)); }
@@ -94,7 +94,7 @@ TEST_CASE("damaged writes: sessions that read a damaged object refuse to publish
     const auto& base = base_database();
     TempDir dir("damaged");
     const auto db = dir / "db.h5";
-    std::filesystem::copy_file(base, db);
+    copy_database(base, db);
     const std::string q = quoted(db.string());
 
     SECTION("set create over a clip whose channels fail their checksum") {
@@ -159,7 +159,7 @@ TEST_CASE("damaged writes: the library names the target, not the session's copy"
     MOCAPDB_REQUIRE_CLI();
     TempDir dir("damaged-lib");
     const auto db = dir / "db.h5";
-    std::filesystem::copy_file(base_database(), db);
+    copy_database(base_database(), db);
     flip_chunk(db, "/clips/16_15/channels_packed");
     const std::string before = digest(db);
     {

@@ -99,6 +99,8 @@ TEST_CASE("kill -9 during an import leaves the previous file valid and complete"
     INFO(full.output);
     REQUIRE(full.exit_code == 0);
     CHECK(temp_files_of(db) == 0);
+    // ... and the segments the killed sessions had begun (nothing links to them).
+    CHECK(database_disk_bytes(db) == Database(db).file_size());
     CHECK(Database(db).clips().size() == 215);
     CHECK(validate_database(db).ok());
 }

@@ -155,7 +155,7 @@ TEST_CASE("packed tier: a corrupted packed dataset gives a checksum error naming
     REQUIRE(!extents.empty());
     INFO("chunk of " << extents.front().size << " bytes, group of " << outcome.tier.bytes << " bytes");
     REQUIRE(extents.front().size > 64);
-    flip_bytes(file, extents.front().offset + extents.front().size / 2, 4);
+    flip_bytes(extents.front().file, extents.front().offset + extents.front().size / 2, 4);
 
     const Database db(file);
     CHECK_NOTHROW(db.load_clip("walk"));  // the lossless tier is intact

@@ -1,18 +1,22 @@
 // The tiny reference files, kept forever:
-// - tests/data/reference-v3.h5 (the current version, clip channels packed): rebuilding it today gives
-//   the same structure (`h5dump -H` equals the committed dump); the committed file opens, loads the
-//   same values (model included) and validates;
+// - tests/data/reference-v4.h5 with its segment folder reference-v4.h5.d/ (the current version: an
+//   index linking to one segment): rebuilding it today gives the same structure (`h5dump -H` of the
+//   index, which follows its links, with the segments' generated names replaced, equals the committed dump);
+//   the committed database opens, loads the same values (model included) and validates;
+// - tests/data/reference-v3.h5 (version 3, one file, clip channels packed) the same, as a version-3 file;
 // - tests/data/reference-v2.h5 (version 2, float64 clip channels) the same, as a version-2 file;
 // - tests/data/reference-v1.h5 (version 1, no model): still opens, loads and validates, and a writing
-//   session on it (or on the version-2 file) publishes a version-3 file with the same content.
+//   session on it (or on the version-2 or version-3 file) publishes a version-4 database with the same
+//   content, whose first segment is the old file.
 // The packed clip's byte count is zstd's (Debian 12: libzstd 1.5.4); another zstd may compress the
 // same payload to another size, which shows here as a changed dataset size in the dump. The packed
 // tier's byte count is compared without its size (without_packed_size).
-// To regenerate reference-v3 after an intended format change (with a new format version and a
+// To regenerate reference-v4 after an intended format change (with a new format version and a
 // CHANGELOG entry; then rename the constants below to the new version):
 //   MOCAPDB_UPDATE_REFERENCE=1 build/tests/test_store "[reference]"
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -30,8 +34,9 @@ using namespace mocapdb::test;
 
 namespace {
 
-const std::filesystem::path kReference = test_data_dir() / "reference-v3.h5";
-const std::filesystem::path kReferenceDump = test_data_dir() / "reference-v3.h5dump.txt";
+const std::filesystem::path kReference = test_data_dir() / "reference-v4.h5";
+const std::filesystem::path kReferenceDump = test_data_dir() / "reference-v4.h5dump.txt";
+const std::filesystem::path kReferenceV3 = test_data_dir() / "reference-v3.h5";
 const std::filesystem::path kReferenceV2 = test_data_dir() / "reference-v2.h5";
 const std::filesystem::path kReferenceV1 = test_data_dir() / "reference-v1.h5";
 
@@ -41,6 +46,13 @@ std::string header_dump(const std::filesystem::path& file) {
     REQUIRE(r.exit_code == 0);
     const auto newline = r.output.find('\n');
     return r.output.substr(newline == std::string::npos ? 0 : newline + 1);
+}
+
+// The index's dump (h5dump follows its external links into the segments), with the segments'
+// generated names (time, process, random digits) replaced by SEGMENT.
+std::string database_dump(const std::filesystem::path& index) {
+    static const std::regex name(R"(\d{8}T\d{6}Z-\d+-[0-9a-f]{8}\.h5)");
+    return std::regex_replace(header_dump(index), name, "SEGMENT.h5");
 }
 
 double max_abs_diff(const Tensor3& a, const Tensor3& b) {
@@ -127,9 +139,12 @@ TEST_CASE("reference file: rebuilding it gives the committed h5dump -H", "[store
     TempDir dir("reference");
     const auto rebuilt = dir / kReference.filename();
     write_reference_database(rebuilt);
-    const std::string dump = header_dump(rebuilt);
+    const std::string dump = database_dump(rebuilt);
     if (std::getenv("MOCAPDB_UPDATE_REFERENCE") != nullptr) {
         std::filesystem::copy_file(rebuilt, kReference, std::filesystem::copy_options::overwrite_existing);
+        const std::filesystem::path folder = kReference.string() + ".d";
+        std::filesystem::remove_all(folder);
+        std::filesystem::copy(rebuilt.string() + ".d", folder);
         std::ofstream(kReferenceDump, std::ios::binary) << "HDF5 \"" << kReference.filename().string() << "\" {\n" << dump;
         WARN("reference file regenerated in " << test_data_dir().string());
     }
@@ -141,7 +156,7 @@ TEST_CASE("reference file: rebuilding it gives the committed h5dump -H", "[store
 }
 
 TEST_CASE("reference file: the committed file opens, loads and validates", "[store][reference]") {
-    check_file_with_model(kReference, 3);
+    check_file_with_model(kReference, 4);
     // Its clip is packed, and the packed bytes are fewer than the float64 channels (4 x 9 x 8).
     const Database db(kReference);
     const auto clips = db.clips();
@@ -158,6 +173,13 @@ TEST_CASE("reference file: the committed file opens, loads and validates", "[sto
     REQUIRE(tier);
     CHECK(tier->max_error_cm == kReferencePackedErrorCm);
     CHECK(tier->clips == 1);
+    CHECK(max_position_error(db.load_clip("tiny_walk"), db.load_clip_packed("tiny_walk")) <= kReferencePackedErrorCm);
+}
+
+TEST_CASE("reference file: the version-3 file still opens, loads and validates", "[store][reference]") {
+    check_file_with_model(kReferenceV3, 3);
+    const Database db(kReferenceV3);
+    REQUIRE(db.packed());
     CHECK(max_position_error(db.load_clip("tiny_walk"), db.load_clip_packed("tiny_walk")) <= kReferencePackedErrorCm);
 }
 
@@ -192,31 +214,39 @@ TEST_CASE("reference file: the version-1 file still opens, loads and validates",
     }
 }
 
-TEST_CASE("reference file: a writing session upgrades a version-1 file to version 3", "[store][reference]") {
+TEST_CASE("reference file: a writing session upgrades a version-1 file to version 4", "[store][reference]") {
     TempDir dir("reference-upgrade");
     const auto file = dir / "db.h5";
     std::filesystem::copy_file(kReferenceV1, file);
     const ReferenceContent r = reference_content();
     {
         DatabaseWriter w(file);
-        CHECK(w.view().format_version() == 3);
+        CHECK(w.view().format_version() == 4);
         CHECK(Database(file).format_version() == 1);  // the target is untouched before commit
         w.put_model("tiny_set", r.model, r.figures);
         w.commit();
     }
     const Database db(file);
-    CHECK(db.format_version() == 3);
+    CHECK(db.format_version() == 4);
     check_common_content(db);  // its clip keeps its float64 channels
     REQUIRE(db.load_model("tiny_set").has_value());
     CHECK(validate_database(file).ok());
 
-    // A session without any change publishes version 3 too, from version 1 or 2.
-    for (const auto& old : {kReferenceV1, kReferenceV2}) {
+    // A session without any change publishes version 4 too, from version 1, 2 or 3: the old file,
+    // byte for byte, is the first segment.
+    for (const auto& old : {kReferenceV1, kReferenceV2, kReferenceV3}) {
         const auto plain = dir / ("plain-" + old.filename().string());
         std::filesystem::copy_file(old, plain);
         { DatabaseWriter(plain).commit(); }
-        CHECK(Database(plain).format_version() == 3);
+        CHECK(Database(plain).format_version() == 4);
         check_common_content(Database(plain));
         CHECK(validate_database(plain).ok());
+        std::size_t segments = 0;
+        for (const auto& e : std::filesystem::directory_iterator(plain.string() + ".d"))
+            if (e.path().extension() == ".h5") {
+                ++segments;
+                CHECK(file_bytes(e.path()) == file_bytes(old));
+            }
+        CHECK(segments == 1);
     }
 }

@@ -30,13 +30,14 @@ std::string mirror_name(int version) { return "format-v" + std::to_string(versio
 
 }  // namespace
 
-TEST_CASE("schema: the compiled-in mirrors are schemas/format-v1.json to format-v3.json", "[store][schema]") {
-    CHECK(kDatabaseFormatVersion == 3);
+TEST_CASE("schema: the compiled-in mirrors are schemas/format-v1.json to format-v4.json", "[store][schema]") {
+    CHECK(kDatabaseFormatVersion == 4);
     CHECK(builtin_schema_json(1) == file_bytes(kSchemas / "format-v1.json"));
     CHECK(builtin_schema_json(2) == file_bytes(kSchemas / "format-v2.json"));
     CHECK(builtin_schema_json(3) == file_bytes(kSchemas / "format-v3.json"));
+    CHECK(builtin_schema_json(4) == file_bytes(kSchemas / "format-v4.json"));
     CHECK(builtin_schema_json() == builtin_schema_json(kDatabaseFormatVersion));
-    CHECK_THROWS_AS(builtin_schema_json(4), InvalidArgument);
+    CHECK_THROWS_AS(builtin_schema_json(5), InvalidArgument);
     CHECK_THROWS_AS(builtin_schema_json(0), InvalidArgument);
 }
 
@@ -44,8 +45,9 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     // Objects per version: version 2 adds /sets/{set}/model and its six datasets, version 3
     // /clips/{clip}/channels_packed, the packed tier (/packed, /packed/{group} and its 5 datasets),
     // the synthesis kernel /sets/{set}/model/kernel, the repaired dropouts /sets/{set}/repairs
-    // with its 3 datasets and the periodic parameters' /sets/{set}/parameter_period.
-    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 50}};
+    // with its 3 datasets and the periodic parameters' /sets/{set}/parameter_period. Version 4 changes
+    // the layout only (index and segments): the same objects.
+    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 50}, {4, 50}};
     for (const auto& [version, path_count] : versions) {
         const std::string json = file_bytes(kSchemas / mirror_name(version));
         const std::string md = file_bytes(kSchemas / ("format-v" + std::to_string(version) + ".md"));
@@ -89,6 +91,8 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
             CHECK((path == "/clips/{clip}/channels_packed" || path.rfind("/packed", 0) == 0 ||
                    path == "/sets/{set}/model/kernel" || path.rfind("/sets/{set}/repairs", 0) == 0 ||
                    path == "/sets/{set}/parameter_period"));
+    const auto v4 = matches(file_bytes(kSchemas / "format-v4.json"), "\"path\": \"([^\"]+)\"");
+    CHECK(v4 == v3);
 }
 
 TEST_CASE("schema: a custom mirror is honoured and a malformed one refused", "[store][schema]") {
@@ -100,7 +104,7 @@ TEST_CASE("schema: a custom mirror is honoured and a malformed one refused", "[s
     json.replace(json.find(from), from.size(), to);
     ValidateOptions o;
     o.schema_json = json;
-    const ValidationReport r = validate_database(test_data_dir() / "reference-v3.h5", o);
+    const ValidationReport r = validate_database(test_data_dir() / "reference-v4.h5", o);
     REQUIRE(r.violations.size() == 1);
     CHECK(r.violations[0].path == "/");
     CHECK(r.violations[0].message == "attribute 'creator': expected \"someone else\", found \"mocapdb 0.1.0\"");

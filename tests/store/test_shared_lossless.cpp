@@ -165,7 +165,7 @@ TEST_CASE("lossless tier: both shared folders export every source number exactly
         }
         CHECK(values == float32 / 4);  // every channel value was compared
 
-        const std::uint64_t file = std::filesystem::file_size(db_path);
+        const std::uint64_t file = database_disk_bytes(db_path);
         const std::uint64_t gzip = gzip9_bytes(dir, folder.ext);
         REQUIRE(gzip > 0);
         WARN(folder.name << ": " << records.size() << " clips, " << values << " values; database file " << file

@@ -37,7 +37,7 @@ TEST_CASE("workflow: import_clips stores new clips, reports duplicates, replaces
     // A clip of F frames at 120 Hz lasts (F - 1) / 120 s.
     CHECK(first.summary.seconds == Approx(static_cast<double>(first.summary.frames - 4) / 120.0));
     CHECK(first.clips_in_db == 4);
-    CHECK(first.file_bytes == std::filesystem::file_size(db));
+    CHECK(first.file_bytes == database_disk_bytes(db));
     CHECK(first.messages.empty());
     CHECK(first.not_added.empty());
     CHECK(total > 0);
@@ -63,11 +63,11 @@ TEST_CASE("workflow: import_clips stores new clips, reports duplicates, replaces
     CHECK(Database(db).clips().size() == 5);
 
     // Nothing new: the file is left as it was (no commit).
-    const auto bytes = std::filesystem::file_size(db);
+    const auto bytes = database_disk_bytes(db);
     const workflow::ImportOutcome again = workflow::import_clips(db, files, ImportOptions{}, false);
     CHECK(again.summary.added == 0);
     CHECK(again.clips_in_db == 5);
-    CHECK(std::filesystem::file_size(db) == bytes);
+    CHECK(database_disk_bytes(db) == bytes);
 
     // force: a new database with only the given clips.
     const workflow::ImportOutcome fresh = workflow::import_clips(db, {files[0]}, ImportOptions{}, true);

@@ -62,7 +62,7 @@ TEST_CASE("workflow: create_set builds and stores a set of subject 16's walks", 
     CHECK(around.set.parameter_periods(0) == 360.0);
 
     // Errors, and nothing stored by a failed step.
-    const auto size = std::filesystem::file_size(db_path);
+    const auto size = database_disk_bytes(db_path);
     CHECK_THROWS_WITH(workflow::create_set(db_path, r), Contains("set 'walks' exists"));
     workflow::SetRequest bad = c;
     bad.name = "bad";
@@ -71,6 +71,6 @@ TEST_CASE("workflow: create_set builds and stores a set of subject 16's walks", 
     bad.periodic.clear();
     bad.clips = {"zz*"};
     CHECK_THROWS_WITH(workflow::create_set(db_path, bad), Contains("no clip matches 'zz*'") && Contains("walks.h5"));
-    CHECK(std::filesystem::file_size(db_path) == size);
+    CHECK(database_disk_bytes(db_path) == size);
     CHECK_FALSE(Database(db_path).has_set("bad"));
 }

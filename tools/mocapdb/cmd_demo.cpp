@@ -83,7 +83,7 @@ void write_values(JsonWriter& j, const std::string& key, const VecX& v) {
 const char* kReadme =
     "mocapdb demo: what each file is\n"
     "\n"
-    "demo.h5              the motion database (HDF5, schemas/format-v3.md): the imported clips, the motion\n"
+    "demo.h5              the motion database (HDF5, schemas/format-v4.md): the imported clips, the motion\n"
     "                     set with its control parameters, the DTW-aligned pose tensor and the compressed\n"
     "                     Tucker model the synthesis uses (mocapdb info demo.h5; README.md shows h5py).\n"
     "samples/             (procedural runs) the generated clips as BVH files and params.csv, the control\n"

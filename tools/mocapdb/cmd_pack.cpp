@@ -125,7 +125,7 @@ void setup_pack(CLI::App& app) {
     cmd->footer(
         "Groups the clips by skeleton topology and frame rate, packs each group so that every joint and\n"
         "end site of every source frame is within --max-error-cm of the source clip (forward kinematics,\n"
-        "world frame), and stores the groups under /packed (schemas/format-v3.md §9) in one atomic\n"
+        "world frame), and stores the groups under /packed (schemas/format-v4.md §9) in one atomic\n"
         "session. The lossless clips stay; the figures are measured by decoding the stored bytes.\n"
         "An existing packed tier is replaced only with --force.\n"
         "--drop-lossless then removes the lossless channels of every packed clip, so the file is small;\n"

@@ -49,7 +49,8 @@ void setup_validate(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("validate", "Check a motion database file against the format specification");
     cmd->footer(
         "Checks every group, dataset and attribute against the mirror of the file's version,\n"
-        "schemas/format-v1.json to format-v3.json (kinds, dtypes, dims, shapes, filters, values), reads\n"
+        "schemas/format-v1.json to format-v4.json (kinds, dtypes, dims, shapes, filters, values; for\n"
+        "version 4 first that every top-level object links to an existing segment in DB.h5.d/), reads\n"
         "every dataset (verifying its fletcher32 checksums) and checks the content rules (every clip\n"
         "decodes and is finite, with columns matching its skeleton; set samples lie within stored clips,\n"
         "aligned tensors match their set, models match their aligned tensor).\n"

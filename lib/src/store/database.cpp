@@ -32,6 +32,7 @@ Database::Database(const std::filesystem::path& path) : impl_(std::make_unique<I
     if (!std::filesystem::exists(path, ec)) throw IoError(path.string() + ": no such file");
     if (!std::filesystem::is_regular_file(path, ec)) throw IoError(path.string() + ": not a regular file");
     impl_->path = path;
+    impl_->reader_lock = std::make_unique<store::ReaderLock>(path);
     impl_->owned = store::h5::File::open(path, false);
     impl_->file = &impl_->owned;
     impl_->format_version = store::check_root(impl_->owned);
@@ -267,7 +268,15 @@ std::optional<synthesis::KernelFit> Database::load_kernel_fit(const std::string&
 
 std::uint64_t Database::file_size() const {
     QuietScope quiet;
-    return impl_->f().size();
+    return store::referenced_bytes(impl_->path, store::referenced_segments(impl_->f()));
+}
+
+std::uint64_t database_disk_bytes(const std::filesystem::path& path) { return store::disk_bytes(path); }
+
+void copy_database(const std::filesystem::path& from, const std::filesystem::path& to) {
+    QuietScope quiet;
+    const Database source(from);  // checks it, and holds the readers' lock while its segments are copied
+    store::copy_database(from, to);
 }
 
 }  // namespace mocapdb

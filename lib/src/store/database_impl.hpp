@@ -6,6 +6,7 @@
 #include <string>
 
 #include "h5/file.hpp"
+#include "segments.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/store/database.hpp"
 
@@ -13,6 +14,7 @@ namespace mocapdb {
 
 struct Database::Impl {
     std::filesystem::path path;
+    std::unique_ptr<store::ReaderLock> reader_lock;  // taken before the file is opened (segments.hpp)
     store::h5::File owned;              // the file, when this view opened it itself
     store::h5::File* file = nullptr;    // the file read (owned, or a writer's session file)
     int format_version = kDatabaseFormatVersion;  // the root attribute, as checked when opened

@@ -3,7 +3,9 @@
 #include <cctype>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
 
 #include "clip_codec.hpp"
@@ -18,6 +20,7 @@
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
 #include "root.hpp"
+#include "segments.hpp"
 #include "set_codec.hpp"
 #include "skeleton_codec.hpp"
 #include "temp_files.hpp"
@@ -30,15 +33,23 @@ using store::h5::QuietScope;
 struct DatabaseWriter::Impl {
     std::unique_ptr<store::WriterLock> lock;  // held for the whole session
     std::filesystem::path target;
-    std::filesystem::path temp;
-    store::h5::File file;
+    std::filesystem::path temp;  // the session's index: a copy of the target's, published by rename
+    store::h5::File file;        // the session's index, read through by `view`
+    // The segment this session writes into (created on the first write), as links name it.
+    std::string segment_name;
+    std::filesystem::path segment_path;
+    store::h5::File segment;
+    bool segment_garbage = false;  // objects unlinked inside the session's segment: rewrite it at commit
+    std::filesystem::path legacy_path;  // an older one-file target adopted as a segment (adopt_legacy_file)
     Database view{std::make_unique<Database::Impl>()};
     // Source hash -> clip id, built on first use (only sessions that add clips need it) from one
     // attribute per clip, and kept up to date by add_clip.
     std::optional<std::unordered_map<std::string, std::string>> sha_to_clip_;
     std::vector<std::pair<std::string, std::shared_ptr<const Skeleton>>> skeletons;  // id, structure
     bool finished = false;
-    bool removed_objects = false;  // space to reclaim at commit
+    bool removed_links = false;  // top-level objects removed: space to reclaim in the index at commit
+    bool moved = false;          // objects copied into the session's segment (their old copies are dead)
+    std::set<std::string> losing_segments;  // published segments whose objects this session dropped or moved
 
     std::unordered_map<std::string, std::string>& sha_to_clip() {
         if (!sha_to_clip_) {
@@ -50,17 +61,127 @@ struct DatabaseWriter::Impl {
         }
         return *sha_to_clip_;
     }
+    /// The session's index (what the session reads; writes go to seg()).
     store::h5::File& f() {
         if (finished) throw StoreError(target.string(), "", "the writing session is already committed");
         return file;
     }
+    /// The session's segment, created on first use with the three top groups.
+    store::h5::File& seg() {
+        f();
+        if (!segment.is_open()) {
+            std::error_code ec;
+            std::filesystem::create_directories(store::segment_dir(target), ec);
+            if (ec) throw IoError(store::segment_dir(target).string() + ": cannot create the segment folder: " + ec.message());
+            segment_name = store::new_segment_name(target);
+            segment_path = store::segment_file(target, segment_name);
+            segment = store::h5::File::create(segment_path);
+            segment.set_name_in_errors(target.string());
+            store::write_segment_root(segment);
+        }
+        return segment;
+    }
+    bool in_session_segment(const std::string& path) {
+        const auto t = f().external_target(path);
+        return t && !segment_name.empty() && t->first == segment_name;
+    }
+    /// Remembers the published segment that top-level object `path` leaves (consolidate_segments).
+    void note_loss(const std::string& path) {
+        if (const auto t = f().external_target(path); t && t->first != segment_name) losing_segments.insert(t->first);
+    }
+    /// Points the index's top-level link `path` at the same path in the session's segment.
+    void link(const std::string& path) {
+        if (f().external_target(path) || file.exists(path)) file.unlink(path);
+        file.link_external(path, segment_name, path);
+    }
+    /// Removes top-level object `path` from the index (and from the session's segment when it is there).
+    void drop(const std::string& path) {
+        note_loss(path);
+        if (in_session_segment(path)) {
+            segment.unlink(path);
+            segment_garbage = true;
+        }
+        f().unlink(path);
+        removed_links = true;
+    }
+    /// Makes top-level object `path` writable: a copy in the session's segment (published segments
+    /// are never modified), linked from the index. Costs the object's size, once per session.
+    void localize(const std::string& path) {
+        if (in_session_segment(path)) return;
+        store::h5::File& out = seg();
+        if (const auto t = file.external_target(path); t && t->second != path)
+            throw StoreError(target.string(), path, "links to " + t->second + " (expected the same path)");
+        note_loss(path);
+        file.copy_to(out, path);
+        link(path);
+        moved = true;
+    }
+    /// Makes the target (an older, one-file database) a segment of the session's index.
+    void adopt_legacy_file() {
+        std::error_code ec;
+        std::filesystem::create_directories(store::segment_dir(target), ec);
+        if (ec) throw IoError(store::segment_dir(target).string() + ": cannot create the segment folder: " + ec.message());
+        const std::string name = store::new_segment_name(target);
+        const std::filesystem::path legacy = store::segment_file(target, name);
+        std::filesystem::create_hard_link(target, legacy, ec);
+        if (ec) {
+            std::filesystem::copy_file(target, legacy, std::filesystem::copy_options::none, ec);
+            if (ec) throw IoError(target.string() + ": cannot copy to " + legacy.string() + ": " + ec.message());
+        }
+        legacy_path = legacy;
+        const store::h5::File old = store::h5::File::open(legacy, false);
+        for (const std::string& path : store::top_level_objects(old)) file.link_external(path, name, path);
+    }
+    /// Keeps the segment folder small and its files few, by moving live objects into the session's
+    /// segment (each move costs the object's size; published segments are never edited):
+    /// - a segment that lost objects in this session and whose live datasets now hold less than half
+    ///   of its bytes gives up its live objects, so that it can be removed (the dead bytes on disk
+    ///   stay below the live ones in every segment);
+    /// - beyond kMaxSegments segments, the smallest give up theirs until half that many are left
+    ///   (sizes roughly double at each merge: each byte moves O(log n) times over n appends).
+    void consolidate_segments() {
+        constexpr std::size_t kMaxSegments = 32;
+        std::map<std::string, std::vector<std::string>> live;  // segment -> top-level paths linked there
+        for (const std::string& path : store::top_level_objects(f()))
+            if (const auto t = file.external_target(path); t && t->first != segment_name) live[t->first].push_back(path);
+        std::vector<std::string> move;
+        std::vector<std::pair<std::uintmax_t, std::string>> by_size;
+        for (const auto& [name, paths] : live) {
+            std::error_code ec;
+            const std::uintmax_t size = std::filesystem::file_size(store::segment_file(target, name), ec);
+            if (losing_segments.count(name) > 0) {
+                // Dataset bytes on both sides (the HDF5 metadata of many small objects would
+                // otherwise count as dead).
+                std::uint64_t live_bytes = 0;
+                for (const std::string& path : paths) live_bytes += store::stored_bytes_under(file, path);
+                std::uint64_t all_bytes = 0;
+                const store::h5::File segment_file = store::h5::File::open(store::segment_file(target, name), false);
+                for (const std::string& path : store::top_level_objects(segment_file))
+                    all_bytes += store::stored_bytes_under(segment_file, path);
+                if (2 * live_bytes < all_bytes) {
+                    move.push_back(name);
+                    continue;
+                }
+            }
+            by_size.emplace_back(size, name);
+        }
+        if (by_size.size() > kMaxSegments) {
+            std::sort(by_size.begin(), by_size.end());
+            for (std::size_t i = 0; i + kMaxSegments / 2 < by_size.size(); ++i) move.push_back(by_size[i].second);
+        }
+        for (const std::string& name : move)
+            for (const std::string& path : live[name]) localize(path);
+    }
     void discard() noexcept {
         try {
             file = store::h5::File();  // closes
+            segment = store::h5::File();
         } catch (...) {
         }
         std::error_code ec;
         std::filesystem::remove(temp, ec);
+        if (!segment_path.empty()) std::filesystem::remove(segment_path, ec);
+        if (!legacy_path.empty()) std::filesystem::remove(legacy_path, ec);  // a second name of the target
     }
 };
 
@@ -101,17 +222,21 @@ DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode, d
     store::remove_stale_temps(target);
     s.temp = store::make_temp_path(target);
     try {
+        int version = 0;
         if (exists && mode == Mode::OpenOrCreate) {
-            { Database check(target); }  // refuses foreign, newer, truncated files before copying
+            Database check(target);  // refuses foreign, newer, truncated files before copying
+            version = check.format_version();
+        }
+        if (version >= 4) {
             std::filesystem::copy_file(target, s.temp, std::filesystem::copy_options::none, ec);
             if (ec) throw IoError(target.string() + ": cannot copy to " + s.temp.string() + ": " + ec.message());
             s.file = store::h5::File::open(s.temp, true);
-            // An older version's file is a file of this version too (versions only add optional
-            // objects): the session's copy is upgraded, the target changes only at commit().
-            if (store::check_root(s.file) < kDatabaseFormatVersion) store::upgrade_root(s.file);
         } else {
             s.file = store::h5::File::create(s.temp);
             store::write_root(s.file);
+            // A file of an older version becomes the first segment as it is (a hard link: no copy;
+            // the target's name still holds it until commit), the new index links to its objects.
+            if (version > 0) s.adopt_legacy_file();
         }
         // What the session reads comes from the target's content: errors name the target.
         s.file.set_name_in_errors(target.string());
@@ -174,10 +299,12 @@ AddClipResult DatabaseWriter::add_clip(const Clip& clip, const ClipSource& sourc
         skeleton_id = unique_name(base, [&](const std::string& c) {
             return f.type_of(store::skeleton_path(c)) != store::h5::ObjectType::None;
         });
-        store::write_skeleton(f, skeleton_id, *clip.skeleton, skeleton_file);
+        store::write_skeleton(s.seg(), skeleton_id, *clip.skeleton, skeleton_file);
+        s.link(store::skeleton_path(skeleton_id));
         s.skeletons.emplace_back(skeleton_id, clip.skeleton);
     }
-    store::write_clip(f, id, clip, skeleton_id, source);
+    store::write_clip(s.seg(), id, clip, skeleton_id, source);
+    s.link(store::clip_path(id));
     s.sha_to_clip().emplace(source.sha256, id);
     return {id, true, "added as " + id};
 }
@@ -217,25 +344,24 @@ void DatabaseWriter::put_set(const MotionSet& set, bool replace) {
     const std::string g = store::set_path(set.name);
     if (f.exists(g)) {
         if (!replace) throw InvalidArgument(who + " already exists (replace it explicitly)");
-        f.unlink(g);
-        s.removed_objects = true;
+        s.drop(g);
     }
-    store::write_set(f, set);
+    store::write_set(s.seg(), set);
+    s.link(g);
 }
 
 void DatabaseWriter::remove_set(const std::string& name) {
     QuietScope quiet;
     Impl& s = *impl_;
-    store::h5::File& f = s.f();
+    s.f();
     if (!s.view.has_set(name)) throw StoreError(s.target.string(), store::set_path(name), "no such motion set");
-    f.unlink(store::set_path(name));
-    s.removed_objects = true;
+    s.drop(store::set_path(name));
 }
 
 void DatabaseWriter::put_aligned(const std::string& set_name, const AlignedSet& aligned) {
     QuietScope quiet;
     Impl& s = *impl_;
-    store::h5::File& f = s.f();
+    s.f();
     validate(aligned);
     if (!s.view.has_set(set_name))
         throw InvalidArgument("aligned set: motion set '" + set_name + "' is not stored (store the set first)");
@@ -257,14 +383,15 @@ void DatabaseWriter::put_aligned(const std::string& set_name, const AlignedSet& 
                                   std::to_string(set.samples[n].frame_count() - 1) + "]");
     }
     const std::string g = store::aligned_path(set_name);
+    s.localize(store::set_path(set_name));
     // A stored model described the old tensor.
     for (const std::string& old : {store::model_path(set_name), g}) {
-        if (f.exists(old)) {
-            f.unlink(old);
-            s.removed_objects = true;
+        if (s.segment.exists(old)) {
+            s.segment.unlink(old);
+            s.segment_garbage = true;
         }
     }
-    store::write_aligned(f, set_name, aligned);
+    store::write_aligned(s.segment, set_name, aligned);
 }
 
 void DatabaseWriter::put_model(const std::string& set_name, const compression::SetModel& model,
@@ -304,11 +431,12 @@ void DatabaseWriter::put_model(const std::string& set_name, const compression::S
     }
     if (t.iterations < 0) throw InvalidArgument(who + ": iterations must be >= 0, found " + std::to_string(t.iterations));
     const std::string g = store::model_path(set_name);
-    if (f.exists(g)) {
-        f.unlink(g);
-        s.removed_objects = true;
+    s.localize(store::set_path(set_name));
+    if (s.segment.exists(g)) {
+        s.segment.unlink(g);
+        s.segment_garbage = true;
     }
-    store::write_model(f, set_name, model, figures);
+    store::write_model(s.segment, set_name, model, figures);
 }
 
 void DatabaseWriter::put_kernel_fit(const std::string& set_name, const synthesis::KernelFit& fit) {
@@ -322,11 +450,12 @@ void DatabaseWriter::put_kernel_fit(const std::string& set_name, const synthesis
         throw InvalidArgument(who + ": the set has no stored model (store the model first: the kernel belongs to it)");
     store::check_kernel_fit(fit, who);
     const std::string g = store::kernel_path(set_name);
-    if (f.exists(g)) {
-        f.unlink(g);
-        s.removed_objects = true;
+    s.localize(store::set_path(set_name));
+    if (s.segment.exists(g)) {
+        s.segment.unlink(g);
+        s.segment_garbage = true;
     }
-    store::write_kernel_fit(f, set_name, fit);
+    store::write_kernel_fit(s.segment, set_name, fit);
 }
 
 namespace {
@@ -404,11 +533,9 @@ void DatabaseWriter::put_packed(const PackedTierRecord& tier_in, const std::vect
         tier.clips += r.clips.size();
         tier.frames += r.frames;
     }
-    if (f.exists(store::kPacked)) {
-        f.unlink(store::kPacked);
-        s.removed_objects = true;
-    }
-    store::write_packed(f, tier, group_bytes);
+    if (f.exists(store::kPacked)) s.drop(store::kPacked);
+    store::write_packed(s.seg(), tier, group_bytes);
+    s.link(store::kPacked);
     s.view.impl_->decoder.reset();
 }
 
@@ -419,8 +546,7 @@ void DatabaseWriter::remove_packed() {
     if (!f.exists(store::kPacked)) throw StoreError(s.target.string(), store::kPacked, "no packed tier");
     refuse_if_only_copy(s.view, s.target.string(), "removed");
     s.view.impl_->decoder.reset();
-    f.unlink(store::kPacked);
-    s.removed_objects = true;
+    s.drop(store::kPacked);
 }
 
 std::size_t DatabaseWriter::drop_lossless() {
@@ -435,10 +561,11 @@ std::size_t DatabaseWriter::drop_lossless() {
     for (const PackedGroupRecord& g : tier->groups)
         for (const PackedClipRecord& c : g.clips) {
             if (!store::read_clip_record(f, c.id).lossless) continue;
-            store::drop_lossless_channels(f, c.id);
+            s.localize(store::clip_path(c.id));
+            store::drop_lossless_channels(s.segment, c.id);
+            s.segment_garbage = true;
             ++dropped;
         }
-    if (dropped > 0) s.removed_objects = true;
     return dropped;
 }
 
@@ -447,33 +574,35 @@ void DatabaseWriter::commit() {
     Impl& s = *impl_;
     s.f();
     try {
+        s.consolidate_segments();
         s.view.impl_->skeletons.clear();
-        s.file.close();
-        if (s.removed_objects) {
-            // HDF5 does not reuse the space of removed objects: copy what is live into a new file.
-            const std::filesystem::path compact = store::make_temp_path(s.target);
-            try {
-                store::h5::File from = store::h5::File::open(s.temp, false);
-                store::h5::File to = store::h5::File::create(compact);
-                store::write_root_attributes(to);
-                for (const std::string& top : {store::kSkeletons, store::kClips, store::kSets}) from.copy_to(to, top);
-                if (from.exists(store::kPacked)) from.copy_to(to, store::kPacked);
-                to.close();
-                from.close();
-            } catch (...) {
-                std::error_code ec;
-                std::filesystem::remove(compact, ec);
-                throw;
-            }
-            std::error_code ec;
-            std::filesystem::remove(s.temp, ec);
-            s.temp = compact;
+        s.view.impl_->decoder.reset();
+        s.file.close();  // also closes the segments it opened through links
+        if (s.segment.is_open()) {
+            s.segment.close();
+            // HDF5 does not reuse the space of objects unlinked in this session's segment: copy what
+            // is live into a new file of the same name (nothing links to it before the index is published).
+            if (s.segment_garbage) store::rewrite_live_objects(s.segment_path);
+            store::make_durable(s.segment_path);
         }
+        if (s.removed_links || s.moved) store::rewrite_live_objects(s.temp);
         store::publish(s.temp, s.target);
         s.finished = true;
+        s.segment_path.clear();  // published: no longer the session's to remove
+        s.legacy_path.clear();
+        try {
+            std::set<std::string> referenced;
+            {
+                const store::h5::File published = store::h5::File::open(s.target, false);
+                referenced = store::referenced_segments(published);
+            }
+            store::remove_unreferenced_segments(s.target, referenced);
+        } catch (const std::exception&) {
+            // Published; unreferenced segments stay until a later commit removes them.
+        }
         s.lock.reset();  // the next session may start from the published file
     } catch (...) {
-        s.discard();
+        if (!s.finished) s.discard();
         s.finished = true;
         s.lock.reset();
         throw;

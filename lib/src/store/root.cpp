@@ -20,6 +20,16 @@ void write_root(h5::File& file) {
     file.create_group(kSets, "sets");
 }
 
+void write_segment_root(h5::File& file) {
+    file.write_string_attribute("/", "format", "mocapdb");
+    file.write_int_attribute("/", "format_version", kDatabaseFormatVersion);
+    file.write_string_attribute("/", "kind", "segment");
+    file.write_string_attribute("/", "creator", "mocapdb 0.1.0");
+    file.create_group(kSkeletons, "skeletons");
+    file.create_group(kClips, "clips");
+    file.create_group(kSets, "sets");
+}
+
 void upgrade_root(h5::File& file) { file.write_int_attribute("/", "format_version", kDatabaseFormatVersion); }
 
 int check_root(const h5::File& file) {

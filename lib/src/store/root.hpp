@@ -10,6 +10,8 @@ constexpr int kOldestDatabaseFormatVersion = 1;
 
 /// Writes the root attributes and creates /skeletons, /clips and /sets in a new file.
 void write_root(h5::File& file);
+/// Writes the root attributes of a segment (kind "segment") and its three top groups.
+void write_segment_root(h5::File& file);
 /// Writes only the root attributes (after the top groups were copied in).
 void write_root_attributes(h5::File& file);
 /// The file's format_version. StoreError naming "/" (or the missing group) and the expected vs found

@@ -70,6 +70,11 @@ std::size_t remove_stale_temps(const std::filesystem::path& target) {
     return removed;
 }
 
+void make_durable(const std::filesystem::path& file) {
+    fsync_path(file, false);
+    fsync_path(file.has_parent_path() ? file.parent_path() : std::filesystem::path("."), true);
+}
+
 void publish(const std::filesystem::path& temp, const std::filesystem::path& target) {
     fsync_path(temp, false);
     std::error_code ec;

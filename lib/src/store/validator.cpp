@@ -19,6 +19,7 @@
 #include "mocapdb/store/validate.hpp"
 #include "root.hpp"
 #include "schema.hpp"
+#include "segments.hpp"
 #include "schema_text.hpp"
 
 namespace mocapdb {
@@ -606,6 +607,27 @@ ValidationReport validate_database(const std::filesystem::path& file, const Vali
     } catch (const StoreError& e) {
         report.violations.push_back({e.object_path().empty() ? "/" : e.object_path(), e.message()});
         return report;
+    }
+    // Format 4: every top-level object is an external link to a segment file that exists.
+    if (version >= 4) {
+        for (const std::string& path : store::top_level_objects(f)) {
+            const auto target = f.external_target(path);
+            if (!target) {
+                report.violations.push_back({path, "expected an external link into a segment (format 4), found an object "
+                                                   "stored in the index"});
+                continue;
+            }
+            const std::filesystem::path segment = store::segment_file(file, target->first);
+            if (!is_hdf5_file(segment))
+                report.violations.push_back({path, "links to segment '" + target->first + "', which " +
+                                                       (std::filesystem::exists(segment, ec) ? "is not an HDF5 file"
+                                                                                             : "is missing") +
+                                                       " (a database is its file and the folder " +
+                                                       store::segment_dir(file.filename()).string() + " beside it)"});
+            else if (target->second != path)
+                report.violations.push_back({path, "links to " + target->second + " in its segment (expected the same path)"});
+        }
+        if (!report.ok()) return report;
     }
     // The mirror of the file's own version: a version-1 file is checked against format-v1.json.
     const store::Schema schema =

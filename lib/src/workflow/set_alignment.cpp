@@ -12,16 +12,19 @@ namespace mocapdb::workflow {
 
 AlignOutcome align_set(const std::filesystem::path& db_path, const AlignRequest& a) {
     const auto start = std::chrono::steady_clock::now();
-    // Read from the published file (errors name it), write in a session only once aligned.
-    const Database db(db_path);
-    const MotionSet set = db.load_set(a.set);
+    // Read from the published file (errors name it), write in a session only once aligned. The read
+    // view is closed before the commit (an open reader keeps replaced segments on disk).
     std::vector<Clip> samples;
     AlignOutcome o;
-    for (const SampleRef& s : set.samples) {
-        const Clip clip = db.load_clip(s.clip);
-        o.labels.push_back(sample_label(s, clip.frame_count()));
-        samples.push_back(sample_frames(set, samples.size(), clip));  // with the set's dropout repairs
-        if (a.read_progress) a.read_progress({samples.size(), set.samples.size(), s.clip});
+    {
+        const Database db(db_path);
+        const MotionSet set = db.load_set(a.set);
+        for (const SampleRef& s : set.samples) {
+            const Clip clip = db.load_clip(s.clip);
+            o.labels.push_back(sample_label(s, clip.frame_count()));
+            samples.push_back(sample_frames(set, samples.size(), clip));  // with the set's dropout repairs
+            if (a.read_progress) a.read_progress({samples.size(), set.samples.size(), s.clip});
+        }
     }
     AlignOptions options;
     options.method = a.method;

@@ -57,18 +57,20 @@ bool store_reduced_set(const std::filesystem::path& db_path, const ReductionOutc
     if (kept.size() < 2)
         throw InvalidArgument("reduced set '" + name + "': " + std::to_string(kept.size()) + " kept samples, at least 2 needed");
     const MotionSet reduced = reduced_set(outcome.set, kept, name);
-    const Database db(db_path);
     // Align like the original (method and frames; the reference is the reduced set's median sample).
-    const auto original = db.load_aligned(outcome.set.name);
     std::optional<AlignedSet> aligned;
-    if (original) {
-        std::vector<Clip> clips;
-        for (std::size_t k = 0; k < reduced.samples.size(); ++k)
-            clips.push_back(sample_frames(reduced, k, db.load_clip(reduced.samples[k].clip)));
-        AlignOptions ao;
-        ao.method = original->method;
-        ao.frames = original->frames();
-        aligned = align_samples(clips, ao);
+    {
+        const Database db(db_path);  // closed before the commit (an open reader keeps replaced segments)
+        const auto original = db.load_aligned(outcome.set.name);
+        if (original) {
+            std::vector<Clip> clips;
+            for (std::size_t k = 0; k < reduced.samples.size(); ++k)
+                clips.push_back(sample_frames(reduced, k, db.load_clip(reduced.samples[k].clip)));
+            AlignOptions ao;
+            ao.method = original->method;
+            ao.frames = original->frames();
+            aligned = align_samples(clips, ao);
+        }
     }
     DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
     if (writer.view().has_set(name) && !replace)

@@ -1,18 +1,28 @@
 #pragma once
-// The motion database file (HDF5, format "mocapdb" version 3, specified in schemas/format-v3.md;
-// version 1 and 2 files are read too): a read view `Database`, and an atomic edit session `DatabaseWriter`.
+// The motion database (HDF5, format "mocapdb" version 4, specified in schemas/format-v4.md; files
+// of versions 1 to 3 are read too): a read view `Database`, and an atomic edit session `DatabaseWriter`.
 //
 // Nothing here exposes HDF5: the only code that includes HDF5 headers is in lib/src/store/h5/.
 //
-// Atomicity: a DatabaseWriter never opens its target for writing. It works on a new file beside the
-// target ("TARGET.tmp-mocapdb-PID-XXXXXXXX", a copy of the existing database or a new one) and
-// commit() closes it, fsyncs it and renames it over the target (then fsyncs the folder), so a crash
-// or kill -9 at any instant leaves either the previous file or the complete new one. A session that
-// is destroyed without commit() removes its temporary file; one that was killed leaves it behind,
-// and the next DatabaseWriter on the same target removes such files of processes that no longer
-// exist. One writing session per target at a time: a session holds an exclusive lock on
-// "TARGET.lock" from before it reads the target until it ends, and a second one waits for it (up to
-// a limit, then refuses with StoreError), so no session's commit is ever lost. Readers take no lock.
+// Layout (format 4): the file the user names is a small index whose top-level objects (skeletons,
+// clips, sets, the packed tier) are external links into segments, HDF5 files in the folder
+// "TARGET.d" beside it. A segment is written by one session and never modified afterwards.
+//
+// Atomicity: a DatabaseWriter never opens its target or a published segment for writing. What it
+// creates goes into one new segment; the index it edits is a copy ("TARGET.tmp-mocapdb-PID-XXXXXXXX").
+// commit() closes both, fsyncs the segment, then fsyncs the index copy and renames it over the target
+// (then fsyncs the folder), so a crash or kill -9 at any instant leaves either the previous database
+// or the complete new one; a commit costs what the session wrote plus the index (links), not the
+// database. An object the session changes (a set that gets its aligned form or model) is first copied
+// into the session's segment. A session destroyed without commit() removes its files; one that was
+// killed leaves them behind, and the next DatabaseWriter removes them. An older one-file database
+// becomes the first segment of a new index at its first writing session (a hard link, no copy).
+// One writing session per target at a time: a session holds an exclusive lock on "TARGET.lock"
+// from before it reads the target until it ends, and a second one waits for it (up to a limit, then
+// refuses with StoreError), so no session's commit is ever lost. Readers never wait for writers: a
+// Database holds a shared lock on "TARGET.d/readers.lock" so that segments it may still read (replaced
+// by a later commit) are removed only once no reader is open; a commit that finds readers leaves
+// them for a later commit.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -38,7 +48,7 @@ class GroupDecoder;
 
 /// The file format version this library writes. It reads every version from 1 to this one (a version
 /// only adds optional objects); a writing session on an older file upgrades its format_version.
-constexpr int kDatabaseFormatVersion = 3;
+constexpr int kDatabaseFormatVersion = 4;
 
 /// How long a DatabaseWriter waits by default for another writing session on its target.
 constexpr double kWriterWaitSeconds = 600.0;
@@ -195,7 +205,8 @@ public:
     /// variogram parameters). Its exponent_loo_mse is empty (not stored).
     std::optional<synthesis::KernelFit> load_kernel_fit(const std::string& set) const;
 
-    /// Size of the file in bytes.
+    /// Bytes of the database: its index file plus the segments the index links to (format 4), or
+    /// the one file (older formats).
     std::uint64_t file_size() const;
 
 private:
@@ -204,6 +215,15 @@ private:
     explicit Database(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };
+
+/// Bytes a database occupies on disk: the file plus every file of its segment folder ("DB.h5.d",
+/// format 4), including segments that no longer hold live objects and wait to be removed. 0 when absent.
+std::uint64_t database_disk_bytes(const std::filesystem::path& path);
+
+/// Copies a database to `to` (a path that must not exist): its file and, for format 4, the segments
+/// it links to, into "to.d/" (a copy of the file alone would still read the original's segments).
+/// StoreError when `from` is not a database; IoError when a file cannot be copied.
+void copy_database(const std::filesystem::path& from, const std::filesystem::path& to);
 
 /// An atomic edit session on a database file (see the header comment for the guarantees).
 /// Damage is refused where it is read: the constructor loads every skeleton, view() loads and the

@@ -11,9 +11,11 @@ namespace mocapdb {
 struct ByteExtent {
     std::uint64_t offset = 0;  ///< from the start of the file
     std::uint64_t size = 0;    ///< stored (filtered) bytes
+    std::filesystem::path file;  ///< the file holding them: the database file or one of its segments
 };
 
-/// The stored chunks (or the contiguous block) of dataset `dataset_path` in `file`, in chunk order.
+/// The stored chunks (or the contiguous block) of dataset `dataset_path` of database `file`, in chunk
+/// order, each with the file that holds it (in format 4 a segment reached through an external link).
 /// StoreError when the file or dataset cannot be opened.
 std::vector<ByteExtent> dataset_extents(const std::filesystem::path& file, const std::string& dataset_path);
 

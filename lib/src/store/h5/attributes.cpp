@@ -4,6 +4,7 @@
 #include <cstring>
 #include <memory>
 
+#include "access.hpp"
 #include "errors.hpp"
 #include "file.hpp"
 #include "handle.hpp"
@@ -163,15 +164,21 @@ std::vector<std::string> File::attribute_names(const std::string& path) const {
 }
 
 bool File::has_attribute(const std::string& path, const std::string& name) const {
-    const htri_t e = H5Aexists_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT);
+    const htri_t e = H5Aexists_by_name(id_, path.c_str(), name.c_str(), link_access());
     if (e < 0) fail_call(name_, path, "cannot look up attribute '" + name + "'");
     return e > 0;
 }
 
 File::Id File::open_attribute(const std::string& path, const std::string& name) const {
-    // One lookup in the common case; the existence check only to word the error.
-    const hid_t id = H5Aopen_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-    if (id >= 0) return id;
+    // One lookup in the common case; the existence check only to word the error. The object is
+    // opened first: HDF5 1.10 reads an empty variable-length string from an attribute that
+    // H5Aopen_by_name opened through an external link (the segments of format 4).
+    const hid_t obj = H5Oopen(id_, path.c_str(), link_access());
+    if (obj >= 0) {
+        const hid_t id = H5Aopen(obj, name.c_str(), H5P_DEFAULT);
+        H5Oclose(obj);
+        if (id >= 0) return id;
+    }
     H5Eclear2(H5E_DEFAULT);
     if (!has_attribute(path, name)) fail(name_, path, "missing attribute '" + name + "'");
     fail_call(name_, path, "cannot open attribute '" + name + "'");

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "access.hpp"
 #include "errors.hpp"
 #include "file.hpp"
 #include "handle.hpp"
@@ -68,7 +69,7 @@ File::Id File::open_dataset(const std::string& path) const {
     const ObjectType t = type_of(path);
     if (t != ObjectType::Dataset)
         fail(name_, path, std::string("expected a dataset, found ") + (t == ObjectType::None ? "nothing" : "a group or other object"));
-    const hid_t id = H5Dopen2(id_, path.c_str(), H5P_DEFAULT);
+    const hid_t id = H5Dopen2(id_, path.c_str(), dataset_access());
     if (id < 0) fail_call(name_, path, "cannot open the dataset");
     return id;
 }
@@ -266,6 +267,7 @@ std::vector<ByteExtent> File::extents(const std::string& path) const {
     Handle d(open_dataset(path), H5Dclose);
     Handle dcpl(check(H5Dget_create_plist(d.get()), name_, path, "cannot read the dataset properties"), H5Pclose);
     std::vector<ByteExtent> out;
+    const std::filesystem::path holder = file_holding(path);
     const H5D_layout_t layout = H5Pget_layout(dcpl.get());
     if (layout == H5D_CHUNKED) {
         hsize_t n = 0;
@@ -278,11 +280,11 @@ std::vector<ByteExtent> File::extents(const std::string& path) const {
             hsize_t size = 0;
             check(H5Dget_chunk_info(d.get(), space.get(), i, coords.data(), &mask, &addr, &size), name_, path,
                   "cannot locate a chunk");
-            out.push_back({static_cast<std::uint64_t>(addr), static_cast<std::uint64_t>(size)});
+            out.push_back({static_cast<std::uint64_t>(addr), static_cast<std::uint64_t>(size), holder});
         }
     } else if (layout == H5D_CONTIGUOUS) {
         const haddr_t addr = H5Dget_offset(d.get());
-        if (addr != HADDR_UNDEF) out.push_back({static_cast<std::uint64_t>(addr), H5Dget_storage_size(d.get())});
+        if (addr != HADDR_UNDEF) out.push_back({static_cast<std::uint64_t>(addr), H5Dget_storage_size(d.get()), holder});
     }
     return out;
 }

@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "access.hpp"
 #include "errors.hpp"
 #include "handle.hpp"
 
@@ -20,8 +21,22 @@ namespace {
 Handle file_access(const std::string& file) {
     Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), file, "", "cannot create a file access property list"), H5Pclose);
     check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), file, "", "cannot set format bounds");
-    check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), file, "", "cannot set the close degree");
+    // Weak: HDF5 opens the target of an external link (a segment) with the weak close degree and
+    // refuses to open a file twice with different degrees, and one file can be both (a writing
+    // session's segment; an older file adopted as a segment while it is still the target). Every
+    // identifier is closed by its Handle, and close() flushes before closing.
+    check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_WEAK), file, "", "cannot set the close degree");
+    // Segments reached through external links stay open until the index closes (each attribute read
+    // would otherwise open and close its segment).
+    check(H5Pset_elink_file_cache_size(fapl.get(), 64), file, "", "cannot set the external file cache");
     return fapl;
+}
+
+hid_t make_access(hid_t cls) {
+    const hid_t id = H5Pcreate(cls);
+    if (id < 0 || H5Pset_elink_acc_flags(id, H5F_ACC_RDONLY) < 0)
+        fail_call("", "", "cannot create a link access property list");
+    return id;
 }
 
 std::vector<std::string> split_path(const std::string& path) {
@@ -37,6 +52,19 @@ std::vector<std::string> split_path(const std::string& path) {
 }
 
 }  // namespace
+
+hid_t link_access() {
+    static const hid_t id = make_access(H5P_LINK_ACCESS);
+    return id;
+}
+hid_t dataset_access() {
+    static const hid_t id = make_access(H5P_DATASET_ACCESS);
+    return id;
+}
+hid_t group_access() {
+    static const hid_t id = make_access(H5P_GROUP_ACCESS);
+    return id;
+}
 
 File::~File() {
     if (id_ >= 0) H5Fclose(id_);
@@ -104,12 +132,12 @@ ObjectType File::type_of(const std::string& path) const {
     std::string prefix;
     for (const std::string& part : split_path(path)) {
         prefix += "/" + part;
-        const htri_t e = H5Lexists(id_, prefix.c_str(), H5P_DEFAULT);
+        const htri_t e = H5Lexists(id_, prefix.c_str(), link_access());
         if (e < 0) fail_call(name_, prefix, "cannot look up the link");
         if (e == 0) return ObjectType::None;
     }
     // A dangling soft link exists as a link but not as an object.
-    const htri_t target = H5Oexists_by_name(id_, path.c_str(), H5P_DEFAULT);
+    const htri_t target = H5Oexists_by_name(id_, path.c_str(), link_access());
     if (target <= 0) {
         H5Eclear2(H5E_DEFAULT);
         return ObjectType::Other;
@@ -123,7 +151,7 @@ ObjectType File::type_of(const std::string& path) const {
 }
 
 File::Id File::open_object(const std::string& path) const {
-    const hid_t id = H5Oopen(id_, path.c_str(), H5P_DEFAULT);
+    const hid_t id = H5Oopen(id_, path.c_str(), link_access());
     if (id < 0) fail_call(name_, path, "cannot open the object");
     return id;
 }
@@ -147,7 +175,7 @@ void File::unlink(const std::string& path) {
 }
 
 std::vector<std::string> File::children(const std::string& group) const {
-    Handle g(check(H5Gopen2(id_, group.c_str(), H5P_DEFAULT), name_, group, "cannot open the group"),
+    Handle g(check(H5Gopen2(id_, group.c_str(), group_access()), name_, group, "cannot open the group"),
              H5Gclose);
     H5G_info_t info;
     check(H5Gget_info(g.get(), &info), name_, group, "cannot read the group's links");
@@ -162,8 +190,48 @@ std::vector<std::string> File::children(const std::string& group) const {
 }
 
 void File::copy_to(File& destination, const std::string& path) const {
-    check(H5Ocopy(id_, path.c_str(), destination.id_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+    // Opened first, so that an object in a segment is reached read-only (link_access); H5Ocopy's own
+    // lookup would open the segment with this file's intent.
+    Handle obj(open_object(path), H5Oclose);
+    check(H5Ocopy(obj.get(), ".", destination.id_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT),
           name_, path, ("cannot copy the object to " + destination.name_).c_str());
+}
+
+}  // namespace mocapdb::store::h5
+
+namespace mocapdb::store::h5 {
+
+void File::link_external(const std::string& path, const std::string& file, const std::string& target) {
+    check(H5Lcreate_external(file.c_str(), target.c_str(), id_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT), name_, path,
+          ("cannot create the external link to " + file + ":" + target).c_str());
+}
+
+std::optional<std::pair<std::string, std::string>> File::external_target(const std::string& path) const {
+    const htri_t e = H5Lexists(id_, path.c_str(), link_access());
+    if (e < 0) fail_call(name_, path, "cannot look up the link");
+    if (e == 0) return std::nullopt;
+    H5L_info_t info;
+    check(H5Lget_info(id_, path.c_str(), &info, link_access()), name_, path, "cannot read the link");
+    if (info.type != H5L_TYPE_EXTERNAL) return std::nullopt;
+    std::vector<char> value(info.u.val_size);
+    check(H5Lget_val(id_, path.c_str(), value.data(), value.size(), link_access()), name_, path,
+          "cannot read the external link");
+    unsigned flags = 0;
+    const char* file = nullptr;
+    const char* object = nullptr;
+    check(H5Lunpack_elink_val(value.data(), value.size(), &flags, &file, &object), name_, path,
+          "cannot decode the external link");
+    return std::make_pair(std::string(file), std::string(object));
+}
+
+std::filesystem::path File::file_holding(const std::string& path) const {
+    Handle obj(open_object(path), H5Oclose);
+    const ssize_t n = H5Fget_name(obj.get(), nullptr, 0);
+    if (n < 0) fail_call(name_, path, "cannot get the name of the file holding the object");
+    std::string name(static_cast<std::size_t>(n) + 1, '\0');
+    check(H5Fget_name(obj.get(), name.data(), name.size()), name_, path, "cannot get the name of the file holding the object");
+    name.resize(static_cast<std::size_t>(n));
+    return name;
 }
 
 }  // namespace mocapdb::store::h5

@@ -6,6 +6,7 @@
 // int64 values HDF5 1.10 uses for hid_t, checked in file.cpp).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -91,8 +92,17 @@ public:
     void unlink(const std::string& path);
     /// Names of the links in a group, sorted.
     std::vector<std::string> children(const std::string& group) const;
-    /// Copies the object at `path` (recursively) into `destination` at the same path.
+    /// Copies the object at `path` (recursively) into `destination` at the same path. External links
+    /// inside it are copied as links.
     void copy_to(File& destination, const std::string& path) const;
+    /// Creates an external link at `path` to object `target` of file `file` (a path relative to this
+    /// file's folder, resolved by HDF5 from there).
+    void link_external(const std::string& path, const std::string& file, const std::string& target);
+    /// The (file, object path) an external link at `path` points to; nullopt when the link at `path`
+    /// is not external (or absent).
+    std::optional<std::pair<std::string, std::string>> external_target(const std::string& path) const;
+    /// The file that holds the object at `path` (this file, or the target of an external link on the way).
+    std::filesystem::path file_holding(const std::string& path) const;
 
     // Attributes of the object at `path`.
     std::vector<std::string> attribute_names(const std::string& path) const;
