@@ -98,7 +98,7 @@ ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
     // One open of the group for its attributes and one listing of its links: this runs for every
     // clip when a database is listed (3 000 clips: a few hundred ms, not seconds).
     const std::string g = clip_path(id);
-    if (!file.exists(g)) throw StoreError(file.name(), g, "no such clip");
+    if (!file.link_exists(g)) throw StoreError(file.name(), g, "no such clip");
     const h5::Attributes a = file.read_attributes(g);
     if (a.type != h5::ObjectType::Group) throw StoreError(file.name(), g, "no such clip");
     ClipRecord r;

@@ -54,6 +54,11 @@ std::vector<ClipRecord> Database::clips() const {
     return out;
 }
 
+std::size_t Database::clip_count() const {
+    QuietScope quiet;
+    return impl_->f().children(store::kClips).size();
+}
+
 std::optional<ClipRecord> Database::find_clip(const std::string& id) const {
     QuietScope quiet;
     if (!has_clip(id)) return std::nullopt;

@@ -37,7 +37,7 @@ ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<st
     writer.reset();
     o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Database view(db);
-    o.clips_in_db = view.clips().size();
+    o.clips_in_db = view.clip_count();
     o.file_bytes = view.file_size();
     return o;
 }

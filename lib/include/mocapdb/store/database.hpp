@@ -153,6 +153,8 @@ public:
 
     /// Every clip, sorted by id (reads only metadata).
     std::vector<ClipRecord> clips() const;
+    /// How many clips are stored (without reading their records).
+    std::size_t clip_count() const;
     /// The clip's record; nullopt when there is no such clip.
     std::optional<ClipRecord> find_clip(const std::string& id) const;
     bool has_clip(const std::string& id) const;

@@ -150,6 +150,17 @@ ObjectType File::type_of(const std::string& path) const {
     }
 }
 
+bool File::link_exists(const std::string& path) const {
+    std::string prefix;
+    for (const std::string& part : split_path(path)) {
+        prefix += "/" + part;
+        const htri_t e = H5Lexists(id_, prefix.c_str(), link_access());
+        if (e < 0) fail_call(name_, prefix, "cannot look up the link");
+        if (e == 0) return false;
+    }
+    return true;
+}
+
 File::Id File::open_object(const std::string& path) const {
     const hid_t id = H5Oopen(id_, path.c_str(), link_access());
     if (id < 0) fail_call(name_, path, "cannot open the object");

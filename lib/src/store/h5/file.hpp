@@ -87,6 +87,9 @@ public:
     // Objects. Paths are absolute ("/clips/16_15"); names never contain '/'.
     ObjectType type_of(const std::string& path) const;
     bool exists(const std::string& path) const { return type_of(path) != ObjectType::None; }
+    /// Whether the last link of `path` exists, without following it (cheaper than exists() when it is
+    /// an external link: its segment is not opened).
+    bool link_exists(const std::string& path) const;
     /// Creates a group with attribute kind = `kind`.
     void create_group(const std::string& path, const std::string& kind);
     void unlink(const std::string& path);
