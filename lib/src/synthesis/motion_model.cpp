@@ -10,7 +10,7 @@ namespace {
 std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
 
 /// Checks the model against the aligned tensor; returns the key of its kernel inputs (kernel_fit.hpp).
-std::uint64_t checked_key(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
+std::uint64_t checked_key(const compression::SetModel& model, const AlignedTiming& aligned, const MotionSet& set,
                           const SynthesisOptions& options) {
     compression::check(model, "synthesis model");
     const tensor::Dims3 dims = model.tucker.dims();
@@ -25,6 +25,10 @@ std::uint64_t checked_key(const compression::SetModel& model, const AlignedSet& 
 }  // namespace
 
 MotionModel::MotionModel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
+                         std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options)
+    : MotionModel(model, checked_timing(aligned), set, std::move(skeleton), frame_rate, options) {}
+
+MotionModel::MotionModel(const compression::SetModel& model, const AlignedTiming& aligned, const MotionSet& set,
                          std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options)
     : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, [&model] { return core_slice_values(model); },
                      checked_key(model, aligned, set, options), options, "synthesis model"),

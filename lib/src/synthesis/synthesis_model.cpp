@@ -32,7 +32,12 @@ double Timing::aligned_frame(double f) const {
     return static_cast<double>(k) + (span > 0.0 ? (f - warp(k)) / span : 0.0);
 }
 
-SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
+AlignedTiming SynthesisModel::checked_timing(const AlignedSet& aligned) {
+    validate(aligned);
+    return timing_of(aligned);
+}
+
+SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
                                double frame_rate, const std::function<MatX()>& sample_values, std::uint64_t key,
                                const SynthesisOptions& options, const char* where) {
     const auto start = std::chrono::steady_clock::now();

@@ -8,7 +8,7 @@ namespace mocapdb::workflow {
 
 std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, const std::string& name,
                                                           const synthesis::SynthesisOptions& options) {
-    AlignedSetData d = load_aligned_set(db, name);
+    AlignedTimingData d = load_aligned_timing(db, name);  // the model has its own poses: not the tensor's values
     const auto stored = db.load_model(name);
     if (!stored)
         throw InvalidArgument("set '" + name + "' in " + db.path().string() +
@@ -16,7 +16,7 @@ std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, co
                               name + ")");
     synthesis::SynthesisOptions with_fit = options;
     if (!with_fit.kernel_fit) with_fit.kernel_fit = db.load_kernel_fit(name);  // nullopt for models stored without one
-    return std::make_unique<synthesis::MotionModel>(stored->model, d.aligned, d.set, std::move(d.skeleton), d.frame_rate,
+    return std::make_unique<synthesis::MotionModel>(stored->model, d.timing, d.set, std::move(d.skeleton), d.frame_rate,
                                                     with_fit);
 }
 

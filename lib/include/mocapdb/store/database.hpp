@@ -24,6 +24,7 @@
 
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
+#include "mocapdb/dataset/aligned_timing.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/store/clip_record.hpp"
@@ -186,6 +187,11 @@ public:
     /// The set's aligned form, or nullopt when the set has not been aligned. StoreError when there
     /// is no such set.
     std::optional<AlignedSet> load_aligned(const std::string& set) const;
+    /// The aligned form's timing and shape (the warps, checked as load_aligned checks them, and the
+    /// tensor's D from its header) without reading the tensor's values, mean, scale or
+    /// canonicalizations: what the compressed synthesis model needs. nullopt when the set has not been
+    /// aligned; StoreError when there is no such set.
+    std::optional<AlignedTiming> load_aligned_timing(const std::string& set) const;
     /// The set's Tucker model, or nullopt when none is stored. StoreError when there is no such set
     /// or the model is malformed (shapes disagreeing with the aligned tensor, non-finite values).
     std::optional<StoredModel> load_model(const std::string& set) const;
