@@ -17,6 +17,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_timing.hpp"
@@ -92,7 +93,8 @@ int main(int argc, char** argv) {
         });
         std::unique_ptr<synthesis::MotionModel> mm;
         timed(build, [&] {
-            mm = std::make_unique<synthesis::MotionModel>(m->model, *a, s, skeleton, record->frame_rate, options);
+            // moved in, as workflow::load_motion_model does
+            mm = std::make_unique<synthesis::MotionModel>(std::move(m->model), *a, s, skeleton, record->frame_rate, options);
         });
         total.wall = std::min(total.wall, seconds_since(w0));
         total.cpu = std::min(total.cpu, cpu_seconds() - c0);
@@ -105,7 +107,7 @@ int main(int argc, char** argv) {
         precompute = mm->report().precompute_seconds;
         if (refit && r == 0) {
             timed(refit_build, [&] {
-                synthesis::MotionModel again(m->model, *a, s, skeleton, record->frame_rate, {});
+                synthesis::MotionModel again(db->load_model(name)->model, *a, s, skeleton, record->frame_rate, {});
                 bench::g_sink = again.report().model.range;
             });
         }
