@@ -1,8 +1,9 @@
 // The precomputed synthesis kernel /sets/{set}/model/kernel (issue #16, format-v3.md §8.1): round trip
 // (bit-identical variogram, the optional fit status and residual variance), a kernel stored without the
-// status (as written before) loading to the same model and status, it goes with the model (put_model, put_aligned, put_set drop it), refusals
-// when writing, and a corrupted stored kernel refused when reading, naming the group (by load_kernel_fit,
-// by the validator and by load_motion_model, which does not silently refit).
+// status (as written before) loading to the same model and status, it goes with the model (put_model,
+// put_aligned, put_set drop it), refusals when writing, and a corrupted stored kernel refused when
+// reading, naming the group (by load_kernel_fit, by the validator and by load_motion_model, which does
+// not silently refit).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -243,7 +244,7 @@ TEST_CASE("kernel: a kernel stored without its fit status loads to the same mode
     CHECK(without->pose(c, 4.5) == with->pose(c, 4.5));
 }
 
-TEST_CASE("kernel: the stored fit status is the model's when the key matches; malformed ones are refused",
+TEST_CASE("kernel: the stored fit status is the model's when the key matches, malformed ones are refused",
           "[store][kernel]") {
     TempDir dir("kernel-status");
     const auto path = dir / "db.h5";
@@ -253,8 +254,9 @@ TEST_CASE("kernel: the stored fit status is the model's when the key matches; ma
     REQUIRE(fit.assessed_status.has_value());
 
     // Another stored status under the same key is taken as it is (the key says it belongs to these inputs).
-    const kriging::FitStatus other =
-        *fit.assessed_status == kriging::FitStatus::PureNugget ? kriging::FitStatus::RangeAtBound : kriging::FitStatus::PureNugget;
+    const kriging::FitStatus other = *fit.assessed_status == kriging::FitStatus::PureNugget
+                                         ? kriging::FitStatus::RangeAtBound
+                                         : kriging::FitStatus::PureNugget;
     set_kernel_attributes(path, {std::string("fit_status:s=") + kriging::to_string(other)});
     CHECK(workflow::load_motion_model(Database(path), "walks")->report().fit_status == other);
 

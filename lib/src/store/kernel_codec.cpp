@@ -104,8 +104,10 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
             if (status == kriging::to_string(s)) fit.assessed_status = s;
         if (!fit.assessed_status) {
             std::string allowed;
-            for (const kriging::FitStatus s : kStatuses) allowed += (allowed.empty() ? "\"" : ", \"") + std::string(kriging::to_string(s)) + "\"";
-            throw StoreError(file.name(), g, "attribute 'fit_status': expected one of " + allowed + ", found \"" + status + "\"");
+            for (const kriging::FitStatus s : kStatuses)
+                allowed += (allowed.empty() ? "\"" : ", \"") + std::string(kriging::to_string(s)) + "\"";
+            throw StoreError(file.name(), g,
+                             "attribute 'fit_status': expected one of " + allowed + ", found \"" + status + "\"");
         }
         fit.residual_variance = file.read_double_attribute(g, "residual_variance");
         if (!(fit.residual_variance >= 0.0) || !std::isfinite(fit.residual_variance))

@@ -198,7 +198,7 @@ public:
     /// The model's precomputed coefficient kernel (/sets/{set}/model/kernel, synthesis/kernel_fit.hpp),
     /// or nullopt when there is no model or it was stored without one. StoreError, naming the object,
     /// when there is no such set or the group is malformed (bad key, family, non-finite or out-of-range
-    /// variogram parameters). Its exponent_loo_mse is empty (not stored).
+    /// variogram parameters, fit_status without residual_variance...). exponent_loo_mse: empty (not stored).
     std::optional<synthesis::KernelFit> load_kernel_fit(const std::string& set) const;
 
     /// Size of the file in bytes.
@@ -271,7 +271,7 @@ public:
     void put_model(const std::string& set, const compression::SetModel& model, const ModelFigures& figures);
     /// Stores (replaces) the precomputed coefficient kernel of the set's stored model
     /// (synthesis::fit_kernel of that model). InvalidArgument when the set has no model, the key is 0,
-    /// or the variogram is invalid (or nugget + sill = 0); exponent_loo_mse is not stored. It goes
+    /// or the variogram is invalid (or nugget + sill = 0); stores assessed_status, not exponent_loo_mse. It goes
     /// with the model: put_model, put_aligned and put_set(replace) drop it.
     void put_kernel_fit(const std::string& set, const synthesis::KernelFit& fit);
 

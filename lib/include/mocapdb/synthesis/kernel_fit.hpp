@@ -45,7 +45,7 @@ struct KernelFit {
     kriging::VariogramModel variogram;    ///< the model Kriging::build is given (valid, total sill > 0)
     /// LOO MSE per grid exponent; empty when p was given, and in a fit read from a database (not stored).
     Eigen::VectorXd exponent_loo_mse;
-    /// Status of the variogram fit (not stored: a fit read from a database says Ok; `compress` reports it).
+    /// Status of the variogram fit (not stored: Ok when read, see assessed_status; `compress` reports it).
     kriging::FitStatus status = kriging::FitStatus::Ok;
     /// The status a model built from this fit reports (assess_coefficient_kernel of the variogram on the
     /// fit's inputs; it can differ from `status` at the bounds' tolerances): set by fit_kernel and stored
@@ -95,8 +95,8 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
                                  const SynthesisOptions& options, const char* where);
 
 /// The status fit_coefficient_kernel would report for `variogram` on these inputs, recomputed from the
-/// bounds (largest lag, residual variance) without refitting: for a kernel read from a database, whose
-/// status is not stored. Cost: the trend residuals and the control-space distances (no kriging system).
+/// bounds (largest lag, residual variance) without refitting: a stored kernel's assessed_status (fit_kernel),
+/// or at load for one stored without it. Cost: the trend residuals and the control-space distances.
 kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                              const kriging::VariogramModel& variogram, const SynthesisOptions& options);
 
