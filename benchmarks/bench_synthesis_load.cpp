@@ -1,8 +1,11 @@
 // Loading a stored synthesis model (issue #16: `synth` on a 645-sample set spent 19-29 s per call
 // refitting its kernel): the steps of workflow::load_motion_model, timed one by one, with the kernel
 // stored by `compress` (the default path) and without it (the variogram refitted, as before #16),
-// then the first motion. Wall time and process CPU time per step (the machine is shared: CPU time is
-// the steadier figure); best of `repeats`. Prints one `key value` line per figure.
+// then the first motion. The model reads the aligned set's timing and shape only (load_aligned_timing,
+// as workflow::load_motion_model); the whole aligned set's read (tensor included, what the naive model
+// needs) is timed too, outside load_total, for comparison. Wall time and process CPU time per step
+// (the machine is shared: CPU time is the steadier figure); best of `repeats`. Prints one `key value`
+// line per figure.
 //   bench_synthesis_load DB.h5 SET v1,v2,... [repeats=3] [refit=1]
 // The database: any set compressed by `mocapdb compress` (benchmarks/RESULTS.md gives the commands
 // of the 645-sample set of windows of subject 16's clips).
@@ -14,11 +17,13 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_timing.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
+#include "mocapdb/workflow/load_model.hpp"
 
 using namespace mocapdb;
 using bench::Clock;
@@ -61,7 +66,8 @@ int main(int argc, char** argv) {
     const int repeats = argc > 4 ? std::max(1, std::atoi(argv[4])) : 3;
     const bool refit = argc > 5 ? std::atoi(argv[5]) != 0 : true;
 
-    Step open{"open"}, set{"load_set"}, aligned{"load_aligned"}, model{"load_model"}, kernel{"load_kernel_fit"},
+    Step open{"open"}, set{"load_set"}, timing{"load_aligned_timing"}, model{"load_model"}, kernel{"load_kernel_fit"},
+        skeleton_step{"load_skeleton"}, aligned{"load_aligned_full"}, workflow_load{"workflow_load_motion_model"},
         build{"build_model"}, first{"first_motion"}, total{"load_total"}, refit_build{"build_model_refit"};
     Eigen::Index samples = 0, frames = 0;
     bool stored = false;
@@ -73,34 +79,45 @@ int main(int argc, char** argv) {
         timed(open, [&] { db = std::make_unique<Database>(path); });
         MotionSet s;
         timed(set, [&] { s = db->load_set(name); });
-        std::optional<AlignedSet> a;
-        timed(aligned, [&] { a = db->load_aligned(name); });
+        std::optional<AlignedTiming> a;
+        timed(timing, [&] { a = db->load_aligned_timing(name); });
         std::optional<StoredModel> m;
         timed(model, [&] { m = db->load_model(name); });
         synthesis::SynthesisOptions options;
         timed(kernel, [&] { options.kernel_fit = db->load_kernel_fit(name); });
-        const auto record = db->find_clip(s.samples.front().clip);
-        const auto skeleton = db->load_skeleton(record->skeleton);
+        std::optional<ClipRecord> record;
+        std::shared_ptr<const Skeleton> skeleton;
+        timed(skeleton_step, [&] {
+            record = db->find_clip(s.samples.front().clip);
+            skeleton = db->load_skeleton(record->skeleton);
+        });
         std::unique_ptr<synthesis::MotionModel> mm;
         timed(build, [&] {
-            mm = std::make_unique<synthesis::MotionModel>(m->model, *a, s, skeleton, record->frame_rate, options);
+            // moved in, as workflow::load_motion_model does
+            mm = std::make_unique<synthesis::MotionModel>(std::move(m->model), *a, s, skeleton, record->frame_rate, options);
         });
         total.wall = std::min(total.wall, seconds_since(w0));
         total.cpu = std::min(total.cpu, cpu_seconds() - c0);
+        timed(aligned, [&] { bench::g_sink = static_cast<double>(db->load_aligned(name)->samples()); });
+        // What `mocapdb synth` calls: the steps above plus the check of every sample's clip.
+        std::unique_ptr<synthesis::MotionModel> loaded;
+        timed(workflow_load, [&] { loaded = workflow::load_motion_model(*db, name); });
+        bench::g_sink = static_cast<double>(loaded->samples());
+        loaded.reset();  // its destruction not timed
         timed(first, [&] { frames = mm->motion_poses(c).cols(); });
         samples = mm->samples();
         stored = mm->report().kernel_precomputed;
         precompute = mm->report().precompute_seconds;
         if (refit && r == 0) {
             timed(refit_build, [&] {
-                synthesis::MotionModel again(m->model, *a, s, skeleton, record->frame_rate, {});
+                synthesis::MotionModel again(db->load_model(name)->model, *a, s, skeleton, record->frame_rate, {});
                 bench::g_sink = again.report().model.range;
             });
         }
     }
     std::printf("samples %lld\nkernel_stored %d\nframes %lld\nprecompute_s %.4f\n", static_cast<long long>(samples),
                 stored ? 1 : 0, static_cast<long long>(frames), precompute);
-    for (const Step* st : {&open, &set, &aligned, &model, &kernel, &build, &total, &first})
+    for (const Step* st : {&open, &set, &timing, &model, &kernel, &skeleton_step, &build, &total, &first, &aligned, &workflow_load})
         std::printf("%s_wall_s %.4f\n%s_cpu_s %.4f\n", st->name, st->wall, st->name, st->cpu);
     if (refit) std::printf("%s_wall_s %.4f\n%s_cpu_s %.4f\n", refit_build.name, refit_build.wall, refit_build.name, refit_build.cpu);
     return 0;

@@ -173,11 +173,13 @@ TEST_CASE("store: motion sets and aligned sets round-trip and the tensor is stor
         w.add_clip(clip, synthetic_source("walk.bvh", "w"));
         w.put_set(set, false);
         CHECK_FALSE(w.view().load_aligned("walks").has_value());
+        CHECK_FALSE(w.view().load_aligned_timing("walks").has_value());
         w.put_aligned("walks", aligned);
         w.commit();
     }
     const Database db(db_path);
     CHECK(db.set_names() == std::vector<std::string>{"walks"});
+    CHECK_THROWS_AS(db.load_aligned_timing("nope"), StoreError);
     const MotionSet back = db.load_set("walks");
     CHECK(back.name == set.name);
     REQUIRE(back.samples.size() == 2);
@@ -204,6 +206,13 @@ TEST_CASE("store: motion sets and aligned sets round-trip and the tensor is stor
     REQUIRE(a->canonical.size() == 2);
     CHECK(a->canonical[1].translation == aligned.canonical[1].translation);
     CHECK(a->canonical[1].yaw == aligned.canonical[1].yaw);
+    // The timing and shape alone (what the compressed synthesis model reads): the same warps and D x T x N.
+    const auto timing = db.load_aligned_timing("walks");
+    REQUIRE(timing.has_value());
+    CHECK(timing->dofs() == static_cast<Eigen::Index>(d));
+    CHECK(timing->frames() == 12);
+    CHECK(timing->samples() == 2);
+    CHECK(timing->warps == aligned.warps);
 
     const auto records = db.sets();
     REQUIRE(records.size() == 1);

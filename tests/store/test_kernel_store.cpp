@@ -1,7 +1,9 @@
 // The precomputed synthesis kernel /sets/{set}/model/kernel (issue #16, format-v3.md §8.1): round trip
-// (bit-identical variogram), it goes with the model (put_model, put_aligned, put_set drop it), refusals
-// when writing, and a corrupted stored kernel refused when reading, naming the group (by load_kernel_fit,
-// by the validator and by load_motion_model, which does not silently refit).
+// (bit-identical variogram, the optional fit status and residual variance), a kernel stored without the
+// status (as written before) loading to the same model and status, it goes with the model (put_model,
+// put_aligned, put_set drop it), refusals when writing, and a corrupted stored kernel refused when
+// reading, naming the group (by load_kernel_fit, by the validator and by load_motion_model, which does
+// not silently refit).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -73,6 +75,16 @@ void write_raw_kernel(const std::filesystem::path& path, const std::string& key,
     REQUIRE(r.exit_code == 0);  // python3-h5py is installed by scripts/setup.sh
 }
 
+// Sets attributes of the stored kernel ("name:s=text" or "name:f=number" each), with h5py.
+void set_kernel_attributes(const std::filesystem::path& path, const std::vector<std::string>& assignments) {
+    std::string args;
+    for (const std::string& a : assignments) args += " " + quoted(a);
+    const CommandResult r = run_command("/usr/bin/python3 " + quoted((test_data_dir() / "damage_dataset.py").string()) +
+                                        " " + quoted(path.string()) + " attrs " + kKernel + args);
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+}
+
 std::pair<std::string, std::string> kernel_error(const std::filesystem::path& path) {
     try {
         Database(path).load_kernel_fit("walks");
@@ -110,14 +122,21 @@ TEST_CASE("kernel: put_kernel_fit round-trips the variogram bit for bit; it goes
     CHECK(back->variogram.sill == fit.variogram.sill);
     CHECK(back->variogram.range == fit.variogram.range);
     CHECK(back->exponent_loo_mse.size() == 0);  // not stored
+    // The status the model built from it reports, and the residual variance behind the sill bound.
+    REQUIRE(fit.assessed_status.has_value());
+    CHECK(fit.residual_variance > 0.0);
+    CHECK(back->assessed_status == fit.assessed_status);
+    CHECK(back->residual_variance == fit.residual_variance);
     const ValidationReport report = validate_database(path);
     INFO(all_violations(report));
     CHECK(report.ok());
 
-    // A stored model uses it: the same variogram, no refit.
+    // A stored model uses it: the same variogram, no refit, the stored status.
     const auto loaded = workflow::load_motion_model(Database(path), "walks");
     CHECK(loaded->report().kernel_precomputed);
     CHECK(loaded->kernel_fit().key == fit.key);
+    CHECK(loaded->report().fit_status == *fit.assessed_status);
+    CHECK(loaded->kernel_fit().residual_variance == fit.residual_variance);
 
     {
         DatabaseWriter w(path);
@@ -188,4 +207,89 @@ TEST_CASE("kernel: a corrupted stored kernel is refused naming its group", "[sto
     CHECK_FALSE(loaded->report().kernel_precomputed);
     CHECK(loaded->kernel_fit().key == fit.key);
     CHECK(loaded->kernel_fit().variogram.sill == fit.variogram.sill);
+}
+
+TEST_CASE("kernel: a kernel stored without its fit status loads to the same model and status", "[store][kernel]") {
+    TempDir dir("kernel-no-status");
+    const auto with_path = dir / "with.h5";
+    const auto without_path = dir / "without.h5";
+    const KernelFixture fx;
+    fx.write(with_path, true);
+    fx.write(without_path, false);
+    synthesis::KernelFit old_style = synthesis::fit_kernel(fx.model, fx.aligned, fx.set, {});
+    REQUIRE(old_style.assessed_status.has_value());
+    const kriging::FitStatus status = *old_style.assessed_status;
+    old_style.assessed_status.reset();  // what writers before the status was stored left
+    {
+        DatabaseWriter w(without_path);
+        w.put_kernel_fit("walks", old_style);
+        w.commit();
+    }
+    const auto back = Database(without_path).load_kernel_fit("walks");
+    REQUIRE(back.has_value());
+    CHECK_FALSE(back->assessed_status.has_value());
+    CHECK(back->residual_variance == 0.0);
+    const ValidationReport report = validate_database(without_path);
+    INFO(all_violations(report));
+    CHECK(report.ok());
+
+    // The model recomputes the status: the one stored beside the other file's kernel, and the same model.
+    const auto with = workflow::load_motion_model(Database(with_path), "walks");
+    const auto without = workflow::load_motion_model(Database(without_path), "walks");
+    CHECK(without->report().kernel_precomputed);
+    CHECK(without->report().fit_status == status);
+    CHECK(with->report().fit_status == status);
+    CHECK(without->kernel_fit().variogram.range == with->kernel_fit().variogram.range);
+    const Eigen::Vector2d c(117.0, 0.05);
+    CHECK(without->pose(c, 4.5) == with->pose(c, 4.5));
+}
+
+TEST_CASE("kernel: the stored fit status is the model's when the key matches, malformed ones are refused",
+          "[store][kernel]") {
+    TempDir dir("kernel-status");
+    const auto path = dir / "db.h5";
+    const KernelFixture fx;
+    fx.write(path, true);
+    const synthesis::KernelFit fit = *Database(path).load_kernel_fit("walks");
+    REQUIRE(fit.assessed_status.has_value());
+
+    // Another stored status under the same key is taken as it is (the key says it belongs to these inputs).
+    const kriging::FitStatus other = *fit.assessed_status == kriging::FitStatus::PureNugget
+                                         ? kriging::FitStatus::RangeAtBound
+                                         : kriging::FitStatus::PureNugget;
+    set_kernel_attributes(path, {std::string("fit_status:s=") + kriging::to_string(other)});
+    CHECK(workflow::load_motion_model(Database(path), "walks")->report().fit_status == other);
+
+    set_kernel_attributes(path, {"fit_status:s=fine"});
+    auto e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("fit_status"));
+    CHECK_THROWS_WITH(workflow::load_motion_model(Database(path), "walks"), Contains(kKernel));
+    CHECK(has_violation(validate_database(path), kKernel, "fit_status"));
+
+    set_kernel_attributes(path, {"fit_status:s=ok", "residual_variance:f=-1"});
+    e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("residual_variance"));
+
+    // One without the other.
+    const auto half_path = dir / "half.h5";
+    fx.write(half_path, false);
+    synthesis::KernelFit bare = fit;
+    bare.assessed_status.reset();
+    {
+        DatabaseWriter w(half_path);
+        w.put_kernel_fit("walks", bare);
+        w.commit();
+    }
+    set_kernel_attributes(half_path, {"fit_status:s=ok"});
+    e = kernel_error(half_path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("residual_variance"));
+
+    // The writer refuses an unusable residual variance with a status.
+    DatabaseWriter w(half_path);
+    synthesis::KernelFit bad = fit;
+    bad.residual_variance = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("residual variance"));
 }

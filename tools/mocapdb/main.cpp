@@ -2,11 +2,24 @@
 // formats results and turns errors into one line on stderr and a non-zero exit code.
 #include <exception>
 #include <iostream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "commands.hpp"
 #include "mocapdb/core/error.hpp"
 
 int main(int argc, char** argv) {
+#if defined(__GLIBC__)
+    // A command is one short process that allocates, frees and allocates again buffers of tens of MB
+    // (loading a stored model: its 22 MB core at 645 samples, the core slices, the kriging matrices).
+    // By default glibc hands such buffers back to the system (mmap, heap trimming) and every new one
+    // page-faults all its pages afresh: a third of `synth`'s load (benchmarks/RESULTS.md, #16). Keep
+    // buffers up to 32 MB (glibc's largest mmap threshold) in the heap and do not trim it, so freed
+    // memory is reused; the process ends soon anyway.
+    mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
+    mallopt(M_TRIM_THRESHOLD, 512 * 1024 * 1024);
+#endif
     CLI::App app{"mocapdb: store, compress and synthesize motion capture"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "mocapdb 0.1.0");

@@ -247,6 +247,14 @@ std::optional<AlignedSet> Database::load_aligned(const std::string& set) const {
     return store::read_aligned(f, set);
 }
 
+std::optional<AlignedTiming> Database::load_aligned_timing(const std::string& set) const {
+    QuietScope quiet;
+    const auto& f = impl_->f();
+    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    if (f.type_of(store::aligned_path(set)) != store::h5::ObjectType::Group) return std::nullopt;
+    return store::read_aligned_timing(f, set);
+}
+
 std::optional<StoredModel> Database::load_model(const std::string& set) const {
     QuietScope quiet;
     const auto& f = impl_->f();

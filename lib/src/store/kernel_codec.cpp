@@ -22,6 +22,16 @@ double* parameter(kriging::VariogramModel& m, int k) {
     }
 }
 
+const kriging::FitStatus kStatuses[] = {kriging::FitStatus::Ok, kriging::FitStatus::RangeAtBound,
+                                        kriging::FitStatus::SillAtBound, kriging::FitStatus::PureNugget,
+                                        kriging::FitStatus::Degenerate};
+
+std::string number_text(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
 std::string key_text(std::uint64_t key) {
     char buf[20];
     std::snprintf(buf, sizeof buf, "%016" PRIx64, key);
@@ -46,6 +56,8 @@ void check_kernel_fit(const synthesis::KernelFit& fit, const std::string& who) {
     if (fit.key == 0) throw InvalidArgument(who + ": the kernel fit has no key (0)");
     const std::string v = violation(fit);
     if (!v.empty()) throw InvalidArgument(who + ": " + v);
+    if (fit.assessed_status && !(fit.residual_variance >= 0.0 && std::isfinite(fit.residual_variance)))
+        throw InvalidArgument(who + ": the residual variance must be finite and >= 0");
 }
 
 void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::KernelFit& fit) {
@@ -55,6 +67,10 @@ void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::K
     file.write_string_attribute(g, "family", kriging::to_string(fit.variogram.family));
     kriging::VariogramModel m = fit.variogram;
     for (int k = 0; k < 4; ++k) file.write_double_attribute(g, kParameters[k], *parameter(m, k));
+    if (fit.assessed_status) {
+        file.write_string_attribute(g, "fit_status", kriging::to_string(*fit.assessed_status));
+        file.write_double_attribute(g, "residual_variance", fit.residual_variance);
+    }
 }
 
 synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& set) {
@@ -77,6 +93,27 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
     for (int k = 0; k < 4; ++k) *parameter(fit.variogram, k) = file.read_double_attribute(g, kParameters[k]);
     const std::string v = violation(fit);
     if (!v.empty()) throw StoreError(file.name(), g, v);
+    // The model's fit status, optional (kernels written before it was stored have neither attribute).
+    const bool has_status = file.has_attribute(g, "fit_status");
+    if (has_status != file.has_attribute(g, "residual_variance"))
+        throw StoreError(file.name(), g, std::string("attribute '") + (has_status ? "residual_variance" : "fit_status") +
+                                             "': missing (fit_status and residual_variance go together)");
+    if (has_status) {
+        const std::string status = file.read_string_attribute(g, "fit_status");
+        for (const kriging::FitStatus s : kStatuses)
+            if (status == kriging::to_string(s)) fit.assessed_status = s;
+        if (!fit.assessed_status) {
+            std::string allowed;
+            for (const kriging::FitStatus s : kStatuses)
+                allowed += (allowed.empty() ? "\"" : ", \"") + std::string(kriging::to_string(s)) + "\"";
+            throw StoreError(file.name(), g,
+                             "attribute 'fit_status': expected one of " + allowed + ", found \"" + status + "\"");
+        }
+        fit.residual_variance = file.read_double_attribute(g, "residual_variance");
+        if (!(fit.residual_variance >= 0.0) || !std::isfinite(fit.residual_variance))
+            throw StoreError(file.name(), g, "attribute 'residual_variance': expected a finite number >= 0, found " +
+                                                 number_text(fit.residual_variance));
+    }
     return fit;
 }
 

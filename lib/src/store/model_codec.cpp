@@ -57,12 +57,16 @@ void expect_shape(const h5::File& file, const std::string& path, const h5::Shape
                          "expected shape " + h5::shape_text(expected) + " " + why + ", found " + h5::shape_text(found));
 }
 
-void expect_finite(const h5::File& file, const std::string& path, const std::vector<double>& data) {
-    const auto it = std::find_if(data.begin(), data.end(), [](double x) { return !std::isfinite(x); });
-    if (it != data.end())
+void expect_finite(const h5::File& file, const std::string& path, const double* begin, const double* end) {
+    const double* it = std::find_if(begin, end, [](double x) { return !std::isfinite(x); });
+    if (it != end)
         throw StoreError(file.name(), path,
                          "expected finite values, found " + std::to_string(*it) + " at element " +
-                             std::to_string(it - data.begin()) + " (C order)");
+                             std::to_string(it - begin) + " (C order)");
+}
+
+void expect_finite(const h5::File& file, const std::string& path, const std::vector<double>& data) {
+    expect_finite(file, path, data.data(), data.data() + data.size());
 }
 
 }  // namespace
@@ -121,22 +125,30 @@ StoredModel read_model(const h5::File& file, const std::string& set) {
 
     const std::string why_dims = "(the aligned tensor " + a + "/tensor is " + h5::shape_text(tensor_info.shape) +
                                  " = (N, T, D))";
-    const auto core = file.read_array<double>(g + "/core", 3);
-    const std::uint64_t r3 = core.shape[0], r2 = core.shape[1], r1 = core.shape[2];
-    const std::uint64_t ranks[3] = {r1, r2, r3}, dims[3] = {d, t, n};
-    const char* const rank_names[3] = {"R1", "R2", "R3"};
-    const char* const dim_names[3] = {"D", "T", "N"};
-    for (int k = 0; k < 3; ++k)
-        if (ranks[k] < 1 || ranks[k] > dims[k])
-            throw StoreError(file.name(), g + "/core",
-                             std::string("core shape (R3, R2, R1) = ") + h5::shape_text(core.shape) + ": expected 1 <= " +
-                                 rank_names[k] + " <= " + dim_names[k] + " = " + std::to_string(dims[k]) + " " + why_dims);
-    expect_finite(file, g + "/core", core.data);
-    tm.ranks = {static_cast<Eigen::Index>(r1), static_cast<Eigen::Index>(r2), static_cast<Eigen::Index>(r3)};
-    tm.core = Tensor3(tm.ranks[0], tm.ranks[1], tm.ranks[2]);
-    std::copy(core.data.begin(), core.data.end(), tm.core.data());
+    // The core (tens of MB) is read straight into the model once its shape is checked.
+    std::uint64_t r1 = 0, r2 = 0, r3 = 0;
+    const std::uint64_t dims[3] = {d, t, n};
+    const h5::Shape core_shape = file.read_array_into<double>(g + "/core", 3, [&](const h5::Shape& shape) {
+        r3 = shape[0];
+        r2 = shape[1];
+        r1 = shape[2];
+        const std::uint64_t ranks[3] = {r1, r2, r3};
+        const char* const rank_names[3] = {"R1", "R2", "R3"};
+        const char* const dim_names[3] = {"D", "T", "N"};
+        for (int k = 0; k < 3; ++k)
+            if (ranks[k] < 1 || ranks[k] > dims[k])
+                throw StoreError(file.name(), g + "/core",
+                                 std::string("core shape (R3, R2, R1) = ") + h5::shape_text(shape) + ": expected 1 <= " +
+                                     rank_names[k] + " <= " + dim_names[k] + " = " + std::to_string(dims[k]) + " " +
+                                     why_dims);
+        tm.ranks = {static_cast<Eigen::Index>(r1), static_cast<Eigen::Index>(r2), static_cast<Eigen::Index>(r3)};
+        tm.core = Tensor3(tm.ranks[0], tm.ranks[1], tm.ranks[2]);  // column-major R1xR2xR3 = C-order (R3, R2, R1)
+        return tm.core.data();
+    });
+    expect_finite(file, g + "/core", tm.core.data(), tm.core.data() + tm.core.size());
+    const std::uint64_t ranks[3] = {r1, r2, r3};
 
-    const std::string why_core = "(core " + g + "/core is " + h5::shape_text(core.shape) + " = (R3, R2, R1); " +
+    const std::string why_core = "(core " + g + "/core is " + h5::shape_text(core_shape) + " = (R3, R2, R1); " +
                                  why_dims.substr(1);
     const char* const bases[3] = {"dof_basis", "time_basis", "sample_basis"};
     for (int k = 0; k < 3; ++k) {

@@ -169,6 +169,32 @@ void write_aligned(h5::File& file, const std::string& set, const AlignedSet& a) 
     file.write_array(g + "/canonical_yaw", yaw.data(), {n}, {"sample"}, "rad");
 }
 
+namespace {
+
+// The warps (T by N) and the stored increments, which must equal their differences. `why` names the
+// tensor's shape the expected shapes come from.
+MatX read_warps(const h5::File& file, const std::string& g, std::uint64_t n, std::uint64_t t, const std::string& why) {
+    const auto warps = file.read_array<double>(g + "/warps", 2);
+    expect_shape(file, g + "/warps", {n, t}, why, warps.shape);
+    expect_finite(file, g + "/warps", warps.data);
+    MatX out = Eigen::Map<const MatX>(warps.data.data(), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
+    const auto increments = file.read_array<double>(g + "/inverse_warp_increments", 2);
+    expect_shape(file, g + "/inverse_warp_increments", {n, t - 1}, why, increments.shape);
+    const Eigen::Map<const MatX> stored(increments.data.data(), static_cast<Eigen::Index>(t - 1), static_cast<Eigen::Index>(n));
+    const MatX differences = out.bottomRows(out.rows() - 1) - out.topRows(out.rows() - 1);
+    const double mismatch = (stored - differences).cwiseAbs().maxCoeff();
+    if (!(mismatch <= 1e-9 * std::max(1.0, out.cwiseAbs().maxCoeff())))
+        throw StoreError(file.name(), g + "/inverse_warp_increments",
+                         "expected warps[:, 1:] - warps[:, :-1], found values differing by up to " + std::to_string(mismatch));
+    return out;
+}
+
+std::string tensor_why(const std::string& g, const h5::Shape& shape) {
+    return "(tensor " + g + "/tensor is " + h5::shape_text(shape) + " = (sample, time, dof))";
+}
+
+}  // namespace
+
 AlignedSet read_aligned(const h5::File& file, const std::string& set) {
     const std::string g = aligned_path(set);
     AlignedSet a;
@@ -184,18 +210,8 @@ AlignedSet read_aligned(const h5::File& file, const std::string& set) {
     a.reference = static_cast<std::size_t>(reference);
     a.tensor = Tensor3(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
     std::copy(tensor.data.begin(), tensor.data.end(), a.tensor.data());
-    const std::string why = "(tensor " + g + "/tensor is " + h5::shape_text(tensor.shape) + " = (sample, time, dof))";
-    const auto warps = file.read_array<double>(g + "/warps", 2);
-    expect_shape(file, g + "/warps", {n, t}, why, warps.shape);
-    expect_finite(file, g + "/warps", warps.data);
-    a.warps = Eigen::Map<const MatX>(warps.data.data(), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
-    const auto increments = file.read_array<double>(g + "/inverse_warp_increments", 2);
-    expect_shape(file, g + "/inverse_warp_increments", {n, t - 1}, why, increments.shape);
-    const Eigen::Map<const MatX> stored(increments.data.data(), static_cast<Eigen::Index>(t - 1), static_cast<Eigen::Index>(n));
-    const double mismatch = (stored - a.inverse_warp_increments()).cwiseAbs().maxCoeff();
-    if (!(mismatch <= 1e-9 * std::max(1.0, a.warps.cwiseAbs().maxCoeff())))
-        throw StoreError(file.name(), g + "/inverse_warp_increments",
-                         "expected warps[:, 1:] - warps[:, :-1], found values differing by up to " + std::to_string(mismatch));
+    const std::string why = tensor_why(g, tensor.shape);
+    a.warps = read_warps(file, g, n, t, why);
     const auto mean = file.read_array<double>(g + "/mean", 1);
     expect_shape(file, g + "/mean", {d}, why, mean.shape);
     expect_finite(file, g + "/mean", mean.data);
@@ -216,6 +232,21 @@ AlignedSet read_aligned(const h5::File& file, const std::string& set) {
         c.yaw = yaw.data[s];
         a.canonical.push_back(c);
     }
+    return a;
+}
+
+AlignedTiming read_aligned_timing(const h5::File& file, const std::string& set) {
+    const std::string g = aligned_path(set);
+    // The tensor's header only (dtype and shape, as read_aligned's read would check them): no values.
+    const h5::DatasetInfo info = file.dataset_info(g + "/tensor");
+    if (info.dtype != "float64")
+        throw StoreError(file.name(), g + "/tensor", "expected dtype float64, found " + info.dtype);
+    if (info.shape.size() != 3)
+        throw StoreError(file.name(), g + "/tensor", "expected 3 dimensions, found shape " + h5::shape_text(info.shape));
+    const std::uint64_t n = info.shape[0], t = info.shape[1], d = info.shape[2];
+    AlignedTiming a;
+    a.dof_count = static_cast<Eigen::Index>(d);
+    a.warps = read_warps(file, g, n, t, tensor_why(g, info.shape));
     return a;
 }
 

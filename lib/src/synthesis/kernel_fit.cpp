@@ -270,8 +270,13 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     } else {
         scaling = kriging::ControlScaling::from_data(set.parameters, set.parameter_periods);
     }
-    KernelFit fit = fit_coefficient_kernel(scaling.apply(set.parameters), core_slice_values(model), options, where);
+    const MatX xc = scaling.apply(set.parameters);
+    const MatX values = core_slice_values(model);
+    KernelFit fit = fit_coefficient_kernel(xc, values, options, where);
     fit.key = kernel_key(model, set, options);
+    // What the model built from this fit reports (SynthesisModel's precomputed path, on the same inputs
+    // and hence the same key), so that loading a stored fit need not recompute it.
+    if (values.allFinite()) fit.assessed_status = assess_coefficient_kernel(xc, values, fit.variogram, options);
     return fit;
 }
 

@@ -1,6 +1,7 @@
 #include "mocapdb/synthesis/motion_model.hpp"
 
 #include <string>
+#include <utility>
 
 #include "mocapdb/core/error.hpp"
 
@@ -10,7 +11,7 @@ namespace {
 std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
 
 /// Checks the model against the aligned tensor; returns the key of its kernel inputs (kernel_fit.hpp).
-std::uint64_t checked_key(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
+std::uint64_t checked_key(const compression::SetModel& model, const AlignedTiming& aligned, const MotionSet& set,
                           const SynthesisOptions& options) {
     compression::check(model, "synthesis model");
     const tensor::Dims3 dims = model.tucker.dims();
@@ -24,13 +25,17 @@ std::uint64_t checked_key(const compression::SetModel& model, const AlignedSet& 
 
 }  // namespace
 
-MotionModel::MotionModel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
+MotionModel::MotionModel(compression::SetModel model, const AlignedSet& aligned, const MotionSet& set,
+                         std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options)
+    : MotionModel(std::move(model), checked_timing(aligned), set, std::move(skeleton), frame_rate, options) {}
+
+MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& aligned, const MotionSet& set,
                          std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options)
     : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, [&model] { return core_slice_values(model); },
                      checked_key(model, aligned, set, options), options, "synthesis model"),
-      model_(model),
-      u_sample_(model.tucker.U[2]),
-      inv_weight_(model.weight.cwiseInverse()) {
+      model_(std::move(model)),
+      u_sample_(model_.tucker.U[2]),
+      inv_weight_(model_.weight.cwiseInverse()) {
     const tensor::Ranks& full = model_.tucker.ranks;
     level_ranks_.push_back(full);
     for (const tensor::Ranks& lod : options.levels) {

@@ -26,7 +26,7 @@ MatX weighted_sample_rows(const AlignedSet& aligned, const VecX& weight) {
 NaiveMotionModel::NaiveMotionModel(const AlignedSet& aligned, const MotionSet& set,
                                    std::shared_ptr<const Skeleton> skeleton, double frame_rate, const VecX& weight,
                                    const SynthesisOptions& options)
-    : SynthesisModel(aligned, set, std::move(skeleton), frame_rate,
+    : SynthesisModel(checked_timing(aligned), set, std::move(skeleton), frame_rate,
                      [&aligned, &weight] { return weighted_sample_rows(aligned, weight); }, 0, options,
                      "naive synthesis model") {
     if (!options.levels.empty())

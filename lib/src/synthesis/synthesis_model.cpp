@@ -32,7 +32,12 @@ double Timing::aligned_frame(double f) const {
     return static_cast<double>(k) + (span > 0.0 ? (f - warp(k)) / span : 0.0);
 }
 
-SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
+AlignedTiming SynthesisModel::checked_timing(const AlignedSet& aligned) {
+    validate(aligned);
+    return timing_of(aligned);
+}
+
+SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
                                double frame_rate, const std::function<MatX()>& sample_values, std::uint64_t key,
                                const SynthesisOptions& options, const char* where) {
     const auto start = std::chrono::steady_clock::now();
@@ -81,11 +86,17 @@ SynthesisModel::SynthesisModel(const AlignedSet& aligned, const MotionSet& set, 
         if (!(kernel_fit_.variogram.total_sill() > 0.0))
             throw InvalidArgument(std::string(where) + ": the precomputed kernel's nugget + sill must be > 0");
         report_.kernel_precomputed = true;
-        // The status is not stored: recompute it from the bounds (cheap; no refit), so that a degenerate
-        // fit is reported after loading too.
-        const MatX values = sample_values();
-        if (values.rows() == n && values.allFinite())
-            kernel_fit_.status = assess_coefficient_kernel(xc, values, kernel_fit_.variogram, options);
+        // The status a model of these inputs reports, stored with the kernel (same key, same inputs);
+        // for a kernel stored without it, recomputed from the bounds (no refit, but the sample values:
+        // for the compressed model the N x R1 R2 core slices), so that a degenerate fit is reported
+        // after loading too.
+        if (kernel_fit_.assessed_status) {
+            kernel_fit_.status = *kernel_fit_.assessed_status;
+        } else {
+            const MatX values = sample_values();
+            if (values.rows() == n && values.allFinite())
+                kernel_fit_.status = assess_coefficient_kernel(xc, values, kernel_fit_.variogram, options);
+        }
     } else {
         const MatX values = sample_values();
         if (values.rows() != n || !values.allFinite())

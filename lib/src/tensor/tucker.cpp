@@ -225,12 +225,16 @@ PoseEvaluator::PoseEvaluator(const TuckerModel& model, const Ranks& lod, Order o
         order = precomputed < core_first ? Order::DofPrecomputed : Order::CoreFirst;
     }
     order_ = order;
-    const Tensor3 block = core_block(model.core, lod);
+    // The full ranks use the core as it is (no copy of the block: a model's core can be tens of MB).
+    const bool full = lod[0] == model.core.dimension(0) && lod[1] == model.core.dimension(1) &&
+                      lod[2] == model.core.dimension(2);
+    const Tensor3 block = full ? Tensor3() : core_block(model.core, lod);
+    const double* core = full ? model.core.data() : block.data();
     if (order_ == Order::DofPrecomputed) {
         w_.resize(dofs_, r2 * r3);
-        w_.noalias() = model.U[0].leftCols(r1) * Eigen::Map<const MatX>(block.data(), r1, r2 * r3);
+        w_.noalias() = model.U[0].leftCols(r1) * Eigen::Map<const MatX>(core, r1, r2 * r3);
     } else {
-        core_ = Eigen::Map<const MatX>(block.data(), r1 * r2, r3);
+        core_ = Eigen::Map<const MatX>(core, r1 * r2, r3);
         u_dof_ = model.U[0].leftCols(r1);
     }
 }

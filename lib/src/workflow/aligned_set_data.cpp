@@ -4,16 +4,24 @@
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb::workflow {
+namespace {
 
-AlignedSetData load_aligned_set(const Database& db, const std::string& name) {
-    AlignedSetData d;
-    d.set = db.load_set(name);
-    auto aligned = db.load_aligned(name);
-    if (!aligned)
-        throw InvalidArgument("set '" + name + "' in " + db.path().string() + " is not aligned (run: mocapdb align " +
-                              db.path().string() + " --set " + name + ")");
-    d.aligned = std::move(*aligned);
-    for (const SampleRef& s : d.set.samples) {
+[[noreturn]] void not_aligned(const Database& db, const std::string& name) {
+    throw InvalidArgument("set '" + name + "' in " + db.path().string() + " is not aligned (run: mocapdb align " +
+                          db.path().string() + " --set " + name + ")");
+}
+
+// The skeleton and frame rate of the set's first clip and the source size; every sample's clip must exist.
+struct SetSource {
+    std::shared_ptr<const Skeleton> skeleton;
+    double frame_rate = 0.0;
+    double seconds_of_motion = 0.0;
+    std::uint64_t clip_channel_values = 0;
+};
+
+SetSource set_source(const Database& db, const std::string& name, const MotionSet& set) {
+    SetSource d;
+    for (const SampleRef& s : set.samples) {
         const auto record = db.find_clip(s.clip);
         if (!record) throw InvalidArgument("set '" + name + "': clip '" + s.clip + "' is missing");
         if (!d.skeleton) {
@@ -23,6 +31,34 @@ AlignedSetData load_aligned_set(const Database& db, const std::string& name) {
         d.seconds_of_motion += static_cast<double>(s.frame_count()) / record->frame_rate;
         d.clip_channel_values += static_cast<std::uint64_t>(s.frame_count()) * d.skeleton->channel_count();
     }
+    return d;
+}
+
+}  // namespace
+
+AlignedSetData load_aligned_set(const Database& db, const std::string& name) {
+    AlignedSetData d;
+    d.set = db.load_set(name);
+    auto aligned = db.load_aligned(name);
+    if (!aligned) not_aligned(db, name);
+    d.aligned = std::move(*aligned);
+    SetSource source = set_source(db, name, d.set);
+    d.skeleton = std::move(source.skeleton);
+    d.frame_rate = source.frame_rate;
+    d.seconds_of_motion = source.seconds_of_motion;
+    d.clip_channel_values = source.clip_channel_values;
+    return d;
+}
+
+AlignedTimingData load_aligned_timing(const Database& db, const std::string& name) {
+    AlignedTimingData d;
+    d.set = db.load_set(name);
+    auto timing = db.load_aligned_timing(name);
+    if (!timing) not_aligned(db, name);
+    d.timing = std::move(*timing);
+    SetSource source = set_source(db, name, d.set);
+    d.skeleton = std::move(source.skeleton);
+    d.frame_rate = source.frame_rate;
     return d;
 }
 

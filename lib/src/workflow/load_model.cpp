@@ -1,5 +1,7 @@
 #include "mocapdb/workflow/load_model.hpp"
 
+#include <utility>
+
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
@@ -8,15 +10,15 @@ namespace mocapdb::workflow {
 
 std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, const std::string& name,
                                                           const synthesis::SynthesisOptions& options) {
-    AlignedSetData d = load_aligned_set(db, name);
-    const auto stored = db.load_model(name);
+    AlignedTimingData d = load_aligned_timing(db, name);  // the model has its own poses: not the tensor's values
+    auto stored = db.load_model(name);
     if (!stored)
         throw InvalidArgument("set '" + name + "' in " + db.path().string() +
                               " has no compressed model (run: mocapdb compress " + db.path().string() + " --set " +
                               name + ")");
     synthesis::SynthesisOptions with_fit = options;
     if (!with_fit.kernel_fit) with_fit.kernel_fit = db.load_kernel_fit(name);  // nullopt for models stored without one
-    return std::make_unique<synthesis::MotionModel>(stored->model, d.aligned, d.set, std::move(d.skeleton), d.frame_rate,
+    return std::make_unique<synthesis::MotionModel>(std::move(stored->model), d.timing, d.set, std::move(d.skeleton), d.frame_rate,
                                                     with_fit);
 }
 

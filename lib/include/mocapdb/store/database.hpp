@@ -34,6 +34,7 @@
 
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
+#include "mocapdb/dataset/aligned_timing.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/store/clip_record.hpp"
@@ -198,13 +199,18 @@ public:
     /// The set's aligned form, or nullopt when the set has not been aligned. StoreError when there
     /// is no such set.
     std::optional<AlignedSet> load_aligned(const std::string& set) const;
+    /// The aligned form's timing and shape (the warps, checked as load_aligned checks them, and the
+    /// tensor's D from its header) without reading the tensor's values, mean, scale or
+    /// canonicalizations: what the compressed synthesis model needs. nullopt when the set has not been
+    /// aligned; StoreError when there is no such set.
+    std::optional<AlignedTiming> load_aligned_timing(const std::string& set) const;
     /// The set's Tucker model, or nullopt when none is stored. StoreError when there is no such set
     /// or the model is malformed (shapes disagreeing with the aligned tensor, non-finite values).
     std::optional<StoredModel> load_model(const std::string& set) const;
     /// The model's precomputed coefficient kernel (/sets/{set}/model/kernel, synthesis/kernel_fit.hpp),
     /// or nullopt when there is no model or it was stored without one. StoreError, naming the object,
     /// when there is no such set or the group is malformed (bad key, family, non-finite or out-of-range
-    /// variogram parameters). Its exponent_loo_mse is empty (not stored).
+    /// variogram parameters, fit_status without residual_variance...). exponent_loo_mse: empty (not stored).
     std::optional<synthesis::KernelFit> load_kernel_fit(const std::string& set) const;
 
     /// Bytes of the database: its index file plus the segments the index links to (format 4), or
@@ -287,7 +293,7 @@ public:
     void put_model(const std::string& set, const compression::SetModel& model, const ModelFigures& figures);
     /// Stores (replaces) the precomputed coefficient kernel of the set's stored model
     /// (synthesis::fit_kernel of that model). InvalidArgument when the set has no model, the key is 0,
-    /// or the variogram is invalid (or nugget + sill = 0); exponent_loo_mse is not stored. It goes
+    /// or the variogram is invalid (or nugget + sill = 0); stores assessed_status, not exponent_loo_mse. It goes
     /// with the model: put_model, put_aligned and put_set(replace) drop it.
     void put_kernel_fit(const std::string& set, const synthesis::KernelFit& fit);
 

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "mocapdb/core/types.hpp"
@@ -44,9 +45,16 @@ struct KernelFit {
     kriging::VariogramModel variogram;    ///< the model Kriging::build is given (valid, total sill > 0)
     /// LOO MSE per grid exponent; empty when p was given, and in a fit read from a database (not stored).
     Eigen::VectorXd exponent_loo_mse;
-    /// Status of the variogram fit (not stored: a fit read from a database says Ok; `compress` reports it).
+    /// Status of the variogram fit (not stored: Ok when read, see assessed_status; `compress` reports it).
     kriging::FitStatus status = kriging::FitStatus::Ok;
-    /// Variance of the linear-trend residuals the variogram was fitted to (not stored; 0 when read).
+    /// The status a model built from this fit reports (assess_coefficient_kernel of the variogram on the
+    /// fit's inputs; it can differ from `status` at the bounds' tolerances): set by fit_kernel and stored
+    /// with the kernel (attribute fit_status), so that a model built from a stored kernel of the same key
+    /// need not recompute it (the 645 x R1 R2 core slices and their trend residuals). Empty in a fit read
+    /// from a kernel stored without it (written before): the model then recomputes it.
+    std::optional<kriging::FitStatus> assessed_status;
+    /// Variance of the linear-trend residuals the variogram was fitted to (what assess_coefficient_kernel
+    /// bounds the sill with); stored with assessed_status, 0 when read from a kernel stored without it.
     double residual_variance = 0.0;
     /// Leave-one-out check of the prediction variance (not stored; NaN when read or degenerate): the mean
     /// over samples of z_i^2 = |s_i - s_-i|^2 / V_i (the squared residual summed over the values, since the
@@ -87,8 +95,8 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
                                  const SynthesisOptions& options, const char* where);
 
 /// The status fit_coefficient_kernel would report for `variogram` on these inputs, recomputed from the
-/// bounds (largest lag, residual variance) without refitting: for a kernel read from a database, whose
-/// status is not stored. Cost: the trend residuals and the control-space distances (no kriging system).
+/// bounds (largest lag, residual variance) without refitting: a stored kernel's assessed_status (fit_kernel),
+/// or at load for one stored without it. Cost: the trend residuals and the control-space distances.
 kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                              const kriging::VariogramModel& variogram, const SynthesisOptions& options);
 
@@ -97,7 +105,7 @@ kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, c
 inline constexpr std::size_t kStoredKernelMaxSamples = 1000;
 
 /// What `compress` stores: the fit MotionModel(model, aligned, set, ..., options) would make, with its
-/// key, without building the rest of the model. InvalidArgument when the model does not describe
+/// key and assessed_status (what that model reports), without building the rest of the model. InvalidArgument when the model does not describe
 /// `aligned` or the set has fewer than 2 samples.
 KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
                      const SynthesisOptions& options);

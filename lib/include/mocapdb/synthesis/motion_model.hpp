@@ -22,10 +22,16 @@ namespace mocapdb::synthesis {
 
 class MotionModel final : public SynthesisModel {
 public:
-    /// model: the set's SetModel (dims D x T x N of `aligned`); aligned: warps and timing; set: the N by P
-    /// parameters; skeleton: the set's; frame_rate > 0 of the synthesized clips.
+    /// model: the set's SetModel (dims D x T x N of `timing`); timing: the aligned set's warps and shape
+    /// (the model does not use the aligned tensor's values: Database::load_aligned_timing reads no more);
+    /// set: the N by P parameters; skeleton: the set's; frame_rate > 0 of the synthesized clips.
     /// Throws InvalidArgument on mismatching shapes, a bad level, or too few samples (N >= 2).
-    MotionModel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
+    /// The model is taken by value: move a loaded one in (its core can be tens of MB).
+    MotionModel(compression::SetModel model, const AlignedTiming& timing, const MotionSet& set,
+                std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options = {});
+    /// The same from a whole aligned set, which is validated first (validate(AlignedSet), the tensor's
+    /// values included); the model equals the one built from timing_of(aligned).
+    MotionModel(compression::SetModel model, const AlignedSet& aligned, const MotionSet& set,
                 std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options = {});
 
     const char* kind() const override { return "tucker"; }

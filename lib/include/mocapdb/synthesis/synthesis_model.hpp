@@ -56,6 +56,7 @@
 
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
+#include "mocapdb/dataset/aligned_timing.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/kriging_predictor.hpp"
@@ -130,7 +131,7 @@ struct SynthesisOptions {
 struct SynthesisReport {
     kriging::VariogramModel model;         ///< coefficient kernel's variogram
     kriging::KrigingStatus status;         ///< its factorization
-    kriging::FitStatus fit_status = kriging::FitStatus::Ok;  ///< of the variogram fit (recomputed when precomputed)
+    kriging::FitStatus fit_status = kriging::FitStatus::Ok;  ///< of the variogram fit (precomputed: KernelFit::assessed_status, else recomputed)
     double loo_mean_z2 = 0.0;  ///< KernelFit::loo_mean_z2 (NaN when the kernel was precomputed)
     Eigen::VectorXd exponent_loo_mse;      ///< LOO MSE per grid exponent (empty when p was given or the kernel precomputed)
     double timing_exponent = 0.0;          ///< p of the timing kernel (Shared: the coefficient kernel's)
@@ -247,9 +248,14 @@ protected:
     /// variogram and leave-one-out use the Euclidean distances between the rows of `sample_values()`
     /// (N by anything; called only when the variogram is fitted here). key: kernel_key of the inputs
     /// (0: never use options.kernel_fit); when options.kernel_fit has this key its variogram is used.
-    SynthesisModel(const AlignedSet& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
+    /// timing: the aligned form's warps and D x T x N (validate(AlignedTiming) is checked here; a derived
+    /// model that uses the tensor checks the whole aligned set first, checked_timing).
+    SynthesisModel(const AlignedTiming& timing, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
                    double frame_rate, const std::function<MatX()>& sample_values, std::uint64_t key,
                    const SynthesisOptions& options, const char* where);
+
+    /// validate(aligned) (the tensor's values included), then timing_of(aligned).
+    static AlignedTiming checked_timing(const AlignedSet& aligned);
 
     /// Coefficients from kriging weights (N) into out (S).
     virtual void coefficients_from_weights(const Eigen::Ref<const VecX>& w, Eigen::Ref<VecX> out) const = 0;

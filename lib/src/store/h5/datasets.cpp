@@ -179,24 +179,35 @@ void File::check_type(const std::string& path, hid_t type, const std::string& ex
 }
 
 template <class T>
-Array<T> File::read_array(const std::string& path, std::size_t rank) const {
+Shape File::read_array_into(const std::string& path, std::size_t rank,
+                            const std::function<T*(const Shape&)>& destination) const {
     Handle d(open_dataset(path), H5Dclose);
     Handle type(check(H5Dget_type(d.get()), name_, path, "cannot read the dataset type"), H5Tclose);
     check_type(path, type.get(), Traits<T>::name);
     Handle space(check(H5Dget_space(d.get()), name_, path, "cannot read the dataset shape"), H5Sclose);
-    Array<T> out;
+    Shape shape;
     const int r = H5Sget_simple_extent_ndims(space.get());
     if (r > 0) {
         std::vector<hsize_t> dims(static_cast<std::size_t>(r));
         H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-        out.shape.assign(dims.begin(), dims.end());
+        shape.assign(dims.begin(), dims.end());
     }
-    if (H5Sget_simple_extent_type(space.get()) != H5S_SIMPLE || out.shape.size() != rank)
-        fail(name_, path, "expected " + std::to_string(rank) + " dimensions, found shape " + shape_text(out.shape));
-    out.data.resize(static_cast<std::size_t>(element_count(out.shape)));
-    if (!out.data.empty())
-        check(H5Dread(d.get(), Traits<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data.data()), name_, path,
+    if (H5Sget_simple_extent_type(space.get()) != H5S_SIMPLE || shape.size() != rank)
+        fail(name_, path, "expected " + std::to_string(rank) + " dimensions, found shape " + shape_text(shape));
+    T* out = destination(shape);
+    if (element_count(shape) > 0)
+        check(H5Dread(d.get(), Traits<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out), name_, path,
               "cannot read the dataset");
+    return shape;
+}
+
+template <class T>
+Array<T> File::read_array(const std::string& path, std::size_t rank) const {
+    Array<T> out;
+    out.shape = read_array_into<T>(path, rank, [&out](const Shape& shape) {
+        out.data.resize(static_cast<std::size_t>(element_count(shape)));
+        return out.data.data();
+    });
     return out;
 }
 
@@ -298,6 +309,8 @@ template void File::write_array<std::int32_t>(const std::string&, const std::int
 template void File::write_array<std::uint8_t>(const std::string&, const std::uint8_t*, const Shape&,
                                               const std::vector<std::string>&, const std::string&);
 template Array<double> File::read_array<double>(const std::string&, std::size_t) const;
+template Shape File::read_array_into<double>(const std::string&, std::size_t,
+                                             const std::function<double*(const Shape&)>&) const;
 template Array<std::int64_t> File::read_array<std::int64_t>(const std::string&, std::size_t) const;
 template Array<std::int32_t> File::read_array<std::int32_t>(const std::string&, std::size_t) const;
 template Array<std::uint8_t> File::read_array<std::uint8_t>(const std::string&, std::size_t) const;

@@ -6,6 +6,7 @@
 // int64 values HDF5 1.10 uses for hid_t, checked in file.cpp).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -155,6 +156,12 @@ public:
     /// Reads a whole dataset; StoreError unless its dtype is exactly T's and its rank is `rank`.
     template <class T>
     Array<T> read_array(const std::string& path, std::size_t rank) const;
+    /// The same checks, read straight into the caller's memory (no intermediate copy of a large
+    /// dataset): `destination(shape)` may check the shape (and throw), and returns a buffer of
+    /// element_count(shape) values (C order). Returns the shape.
+    template <class T>
+    Shape read_array_into(const std::string& path, std::size_t rank,
+                          const std::function<T*(const Shape&)>& destination) const;
     /// Reads a one-dimensional variable-length string dataset.
     std::vector<std::string> read_strings(const std::string& path) const;
     /// Reads every byte of a dataset (whatever its type) and discards it: verifies checksums.
