@@ -40,12 +40,53 @@ void make_signs_canonical(MatX& u) {
     }
 }
 
+// The products of the sample-basis computation on the machine's cores (issue #16). Every product is
+// cut into blocks of a fixed size (not a function of the thread count) and each block is one Eigen
+// product, so the values do not depend on how many threads ran them.
+constexpr Eigen::Index kProductBlock = 512;
+
+Eigen::Index block_count(Eigen::Index size) { return (size + kProductBlock - 1) / kProductBlock; }
+
+// out = a * b, by blocks of a's rows (out's rows).
+void parallel_product_by_rows(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const MatX>& b, Eigen::Ref<MatX> out) {
+    run_parallel_tasks(static_cast<std::size_t>(block_count(a.rows())), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        const Eigen::Index count = std::min(kProductBlock, a.rows() - first);
+        out.middleRows(first, count).noalias() = a.middleRows(first, count) * b;
+    });
+}
+
+// out = a^T * b, by blocks of b's columns (out's columns).
+void parallel_transposed_product_by_columns(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const MatX>& b,
+                                            Eigen::Ref<MatX> out) {
+    run_parallel_tasks(static_cast<std::size_t>(block_count(b.cols())), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        const Eigen::Index count = std::min(kProductBlock, b.cols() - first);
+        out.middleCols(first, count).noalias() = a.transpose() * b.middleCols(first, count);
+    });
+}
+
+// Lower triangle of a a^T (a: k by n), or of a^T a (a: n by k) when `rows`, into g (k by k, zero on
+// entry): the n columns (rows) of a in two fixed halves, each half's rank update on its own thread,
+// added in order.
+void parallel_lower_gram(const Eigen::Ref<const MatX>& a, bool rows, MatX& g) {
+    const Eigen::Index n = rows ? a.rows() : a.cols(), half = n / 2;
+    MatX second = MatX::Zero(g.rows(), g.cols());
+    run_parallel_tasks(2, [&](std::size_t i) {
+        MatX& out = i == 0 ? g : second;
+        const Eigen::Index first = i == 0 ? 0 : half, count = i == 0 ? half : n - half;
+        if (rows) out.selfadjointView<Eigen::Lower>().rankUpdate(a.middleRows(first, count).transpose());
+        else out.selfadjointView<Eigen::Lower>().rankUpdate(a.middleCols(first, count));
+    });
+    g.triangularView<Eigen::Lower>() += second;
+}
+
 // Orthonormal columns from nearly orthonormal ones, keeping the nested spans (column j stays in the
 // span of columns 0..j): two Cholesky-QR passes, Householder QR if the Gram is not positive definite.
 void reorthonormalize(MatX& v) {
     for (int pass = 0; pass < 2; ++pass) {
         MatX g = MatX::Zero(v.cols(), v.cols());
-        g.selfadjointView<Eigen::Lower>().rankUpdate(v.transpose());
+        parallel_lower_gram(v, true, g);
         const Eigen::LLT<MatX, Eigen::Lower> llt(g);
         if (llt.info() != Eigen::Success) {
             const Eigen::HouseholderQR<MatX> qr(v);
@@ -55,7 +96,13 @@ void reorthonormalize(MatX& v) {
             v = std::move(q);
             return;
         }
-        llt.matrixU().solveInPlace<Eigen::OnTheRight>(v);  // v U^-1, U^T U = v^T v
+        // v U^-1 (U^T U = v^T v), by fixed blocks of rows.
+        const MatX u = llt.matrixU();
+        run_parallel_tasks(static_cast<std::size_t>(block_count(v.rows())), [&](std::size_t i) {
+            const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+            const Eigen::Index count = std::min(kProductBlock, v.rows() - first);
+            u.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(v.middleRows(first, count));
+        });
     }
 }
 
@@ -83,7 +130,8 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
         if (k + block > max_k) return false;
         MatX omega(n, block);
         for (Eigen::Index i = 0; i < omega.size(); ++i) omega.data()[i] = gauss(rng);
-        MatX y = m * omega;
+        MatX y(l, block);
+        parallel_product_by_rows(m, omega, y);
         const double y_norm = y.norm();
         for (int pass = 0; pass < 2; ++pass)
             for (const MatX& qi : qs) y.noalias() -= qi * (qi.transpose() * y);
@@ -97,7 +145,8 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
         for (const MatX& qj : qs) qi.noalias() -= qj * (qj.transpose() * qi);
         const Eigen::HouseholderQR<MatX> clean(qi);
         qi = clean.householderQ() * MatX::Identity(l, r);
-        MatX bi = qi.transpose() * m;
+        MatX bi(r, n);
+        parallel_transposed_product_by_columns(qi, m, bi);
         captured += bi.squaredNorm();
         qs.push_back(std::move(qi));
         bs.push_back(std::move(bi));
@@ -126,9 +175,9 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     MatX c = MatX::Zero(side, side);
     if (reduced) {
         q.resize(0, 0);
-        c.selfadjointView<Eigen::Lower>().rankUpdate(b);
+        parallel_lower_gram(b, false, c);
     } else {
-        c.selfadjointView<Eigen::Lower>().rankUpdate(m);
+        parallel_lower_gram(m, false, c);
     }
     VecX ev;
     const MatX w = side > 0 ? gram_eigenbasis(c, ev) : MatX();  // reads the lower triangle
@@ -140,8 +189,13 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     while (kept < top && ev(kept) > 0.0 && ev(kept) > kKeptEigenvalue * ev(0)) ++kept;
     MatX v(n, kept);
     if (kept == 0) return v;
-    if (reduced) v.noalias() = b.transpose() * w.leftCols(kept);
-    else v.noalias() = m.transpose() * w.leftCols(kept);
+    // v = b^T w (or m^T w), by fixed blocks of samples.
+    const Eigen::Ref<const MatX> src = reduced ? Eigen::Ref<const MatX>(b) : m;
+    run_parallel_tasks(static_cast<std::size_t>(block_count(n)), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        const Eigen::Index count = std::min(kProductBlock, n - first);
+        v.middleRows(first, count).noalias() = src.middleCols(first, count).transpose() * w.leftCols(kept);
+    });
     v *= ev.head(kept).cwiseSqrt().cwiseInverse().asDiagonal();
     reorthonormalize(v);
     make_signs_canonical(v);
