@@ -9,6 +9,7 @@
 #include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/motion/pose_vector_positions.hpp"
 
 namespace mocapdb::compression {
 namespace {
@@ -46,15 +47,8 @@ SampleApproximation slices_of(const Tensor3& approx) {
 }  // namespace
 
 MatX pose_joint_positions(const Skeleton& skeleton, const Eigen::Ref<const MatX>& poses) {
-    const FrameMatrix channels = from_pose_vectors(skeleton, poses, Canonicalization{});
-    const auto joints = static_cast<Eigen::Index>(skeleton.size());
-    MatX out(3 * joints, poses.cols());
-    GlobalPose pose;
-    for (Eigen::Index f = 0; f < poses.cols(); ++f) {
-        forward_kinematics(skeleton, channels.row(f).data(), pose);
-        for (Eigen::Index j = 0; j < joints; ++j) out.block<3, 1>(3 * j, f) = pose.positions[static_cast<std::size_t>(j)];
-    }
-    return out;
+    // Without the Euler round trip for joints with three rotation channels (issue #16).
+    return pose_vector_joint_positions(skeleton, poses, Canonicalization{});
 }
 
 JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& reference, Reference hold)
