@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     const auto start = Clock::now();
     auto t = Clock::now();
     const VecX weight = compression::position_error_weights(*skeleton);
-    const compression::JointErrorMeter meter(skeleton, poses);
+    const compression::JointErrorMeter meter(skeleton, poses, compression::JointErrorMeter::Reference::Borrowed);
     std::printf("meter_s %.2f\n", seconds_since(t));
     t = Clock::now();
     const compression::PreparedSet prepared = compression::prepare_set(poses, weight);

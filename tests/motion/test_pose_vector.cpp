@@ -4,6 +4,7 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/motion/pose_vector_positions.hpp"
 
 using namespace mocapdb;
 
@@ -135,4 +136,36 @@ TEST_CASE("pose-vector functions refuse mismatched shapes", "[pose]") {
     MatX bad = to_pose_vectors(clip, c);
     bad(4, 1) = std::nan("");
     CHECK_THROWS_AS(from_pose_vectors(*clip.skeleton, bad, c), InvalidArgument);
+}
+
+TEST_CASE("joint positions straight from pose vectors equal forward kinematics of their channel rows", "[pose]") {
+    const Clip clip = test_clip(120);
+    const Skeleton& s = *clip.skeleton;
+    const Canonicalization c = canonicalization_of(clip);
+    const MatX exact = to_pose_vectors(clip, c);
+    // Perturbed poses, as a compressed model gives them: joint b (two channels) gets rotations its
+    // channels cannot express, which both paths project the same way.
+    MatX noisy = exact;
+    std::mt19937 rng(3);
+    std::normal_distribution<double> g(0.0, 0.2);
+    for (Eigen::Index i = 0; i < noisy.size(); ++i) noisy.data()[i] += g(rng);
+    for (const MatX* poses : {&exact, static_cast<const MatX*>(&noisy)}) {
+        const FrameMatrix rows = from_pose_vectors(s, *poses, c);
+        const MatX direct = pose_vector_joint_positions(s, *poses, c);
+        REQUIRE(direct.rows() == 3 * static_cast<Eigen::Index>(s.size()));
+        REQUIRE(direct.cols() == poses->cols());
+        GlobalPose pose;
+        double worst = 0.0;
+        for (Eigen::Index f = 0; f < poses->cols(); ++f) {
+            forward_kinematics(s, rows.row(f).data(), pose);
+            for (std::size_t j = 0; j < s.size(); ++j)
+                worst = std::max(worst, (pose.positions[j] - direct.block<3, 1>(3 * static_cast<Eigen::Index>(j), f)).norm());
+        }
+        INFO("worst difference " << worst << " cm");
+        CHECK(worst < 1e-10);
+    }
+    CHECK_THROWS_AS(pose_vector_joint_positions(s, MatX::Zero(5, 2), c), InvalidArgument);
+    MatX bad = exact;
+    bad(4, 1) = std::nan("");
+    CHECK_THROWS_AS(pose_vector_joint_positions(s, bad, c), InvalidArgument);
 }

@@ -253,3 +253,31 @@ TEST_CASE("sample_mode_basis, ST-HOSVD and HOOI without an N by N Gram (#16)", "
     CHECK(orthonormality_error(o.U[2]) < 1e-12);
     CHECK(relative_error(a, o) <= relative_error(a, h) + 1e-12);
 }
+
+TEST_CASE("A truncated HOSVD is a block of the full core (#16: one projection per rank search)", "[tensor][hosvd]") {
+    // Both sample-basis paths; N = 300 spans several projection chunks and both halves of the samples.
+    const Tensor3 cases[] = {random_tensor(6, 5, 20, 81), low_rank_tensor({8, 9, 300}, {5, 6, 10}, 0.01, 82)};
+    for (const Tensor3& a : cases) {
+        const Dims3 dims = dims_of(a);
+        const HosvdBases b = hosvd_bases(a);
+        const Tensor3 full = hosvd_full_core(a, b);
+        REQUIRE(full.dimension(0) == dims[0]);
+        REQUIRE(full.dimension(1) == dims[1]);
+        REQUIRE(full.dimension(2) == b.U[2].cols());
+        const Ranks rank_list[] = {{1, 1, 1}, {2, 3, 4}, {dims[0] - 1, dims[1], b.U[2].cols()}};
+        for (const Ranks& r : rank_list) {
+            const TuckerModel from_core = hosvd_from_core(b, full, r);
+            const TuckerModel from_bases = hosvd_from_bases(a, b, r);
+            INFO(dims[0] << "x" << dims[1] << "x" << dims[2] << " at ranks " << r[0] << "x" << r[1] << "x" << r[2]);
+            CHECK(from_core.ranks == r);
+            CHECK(rel_diff(from_core.core, from_bases.core) <= 1e-12);
+            for (std::size_t n = 0; n < 3; ++n) CHECK(from_core.U[n] == from_bases.U[n]);
+            CHECK(from_core.error_bound == from_bases.error_bound);
+            CHECK(std::abs(from_core.fit - from_bases.fit) <= 1e-12);
+            CHECK(rel_diff(from_core.reconstruct(), from_bases.reconstruct()) <= 1e-12);
+        }
+        // A sample rank beyond the core's columns is the caller's to complete (hosvd_from_bases).
+        if (b.U[2].cols() < dims[2])
+            CHECK_THROWS_AS(hosvd_from_core(b, full, {1, 1, b.U[2].cols() + 1}), InvalidArgument);
+    }
+}

@@ -1,16 +1,20 @@
 #include "mocapdb/compression/joint_error.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/motion/pose_vector_positions.hpp"
 
 namespace mocapdb::compression {
 namespace {
 
-MatX sample_slice(const Tensor3& a, Eigen::Index n) {
+Eigen::Map<const MatX> sample_slice(const Tensor3& a, Eigen::Index n) {
     const Eigen::Index d = a.dimension(0), t = a.dimension(1);
     return Eigen::Map<const MatX>(a.data() + n * d * t, d, t);
 }
@@ -25,93 +29,169 @@ void check_same_shape(const Tensor3& reference, const Tensor3& approx) {
                                   std::to_string(reference.dimension(2)));
 }
 
+// Samples per task of the parallel measurements: enough samples that an approximation computed per
+// call (SampleReconstruction: one product with the whole core) amortizes its set-up, few enough
+// that a failing check stops soon.
+constexpr Eigen::Index kSamplesPerChunk = 64;
+
+// The slices of an approximation held in memory, as a SampleApproximation.
+SampleApproximation slices_of(const Tensor3& approx) {
+    return [&approx](const std::vector<Eigen::Index>& ids, MatX& out) {
+        const Eigen::Index d = approx.dimension(0), t = approx.dimension(1);
+        out.resize(d, t * static_cast<Eigen::Index>(ids.size()));
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            out.middleCols(static_cast<Eigen::Index>(i) * t, t) = sample_slice(approx, ids[i]);
+    };
+}
+
 }  // namespace
 
 MatX pose_joint_positions(const Skeleton& skeleton, const Eigen::Ref<const MatX>& poses) {
-    const FrameMatrix channels = from_pose_vectors(skeleton, poses, Canonicalization{});
-    const auto joints = static_cast<Eigen::Index>(skeleton.size());
-    MatX out(3 * joints, poses.cols());
-    GlobalPose pose;
-    for (Eigen::Index f = 0; f < poses.cols(); ++f) {
-        forward_kinematics(skeleton, channels.row(f).data(), pose);
-        for (Eigen::Index j = 0; j < joints; ++j) out.block<3, 1>(3 * j, f) = pose.positions[static_cast<std::size_t>(j)];
-    }
-    return out;
+    // Without the Euler round trip for joints with three rotation channels (issue #16).
+    return pose_vector_joint_positions(skeleton, poses, Canonicalization{});
 }
 
-JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& reference)
-    : skeleton_(std::move(skeleton)), reference_(reference) {
+JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& reference, Reference hold)
+    : skeleton_(std::move(skeleton)) {
     if (!skeleton_) throw InvalidArgument("JointErrorMeter: no skeleton");
     const PoseLayout layout(*skeleton_);
-    if (reference_.dimension(0) != static_cast<Eigen::Index>(layout.dof_count()))
-        throw InvalidArgument("JointErrorMeter: the reference has " + std::to_string(reference_.dimension(0)) +
+    if (reference.dimension(0) != static_cast<Eigen::Index>(layout.dof_count()))
+        throw InvalidArgument("JointErrorMeter: the reference has " + std::to_string(reference.dimension(0)) +
                               " pose values per frame, the skeleton's pose vector has " +
                               std::to_string(layout.dof_count()));
-    reference_positions_.reserve(static_cast<std::size_t>(reference_.dimension(2)));
-    for (Eigen::Index n = 0; n < reference_.dimension(2); ++n)
-        reference_positions_.push_back(pose_joint_positions(*skeleton_, sample_slice(reference_, n)));
+    if (hold == Reference::Copied) {
+        owned_ = std::make_shared<const Tensor3>(reference);
+        reference_ = owned_.get();
+    } else {
+        reference_ = &reference;
+    }
+    const Eigen::Index samples = reference.dimension(2);
+    reference_positions_.resize(static_cast<std::size_t>(samples));
+    const auto chunks = static_cast<std::size_t>((samples + kSamplesPerChunk - 1) / kSamplesPerChunk);
+    run_parallel_tasks(chunks, [&](std::size_t c) {
+        const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
+        for (Eigen::Index n = first; n < std::min(samples, first + kSamplesPerChunk); ++n)
+            reference_positions_[static_cast<std::size_t>(n)] = pose_joint_positions(*skeleton_, sample_slice(reference, n));
+    });
 }
 
 JointErrorStats JointErrorMeter::measure(const Tensor3& approx) const {
-    check_same_shape(reference_, approx);
-    JointErrorStats s;
-    const Eigen::Index samples = reference_.dimension(2), frames = reference_.dimension(1);
+    check_same_shape(*reference_, approx);
+    return *measure_within(slices_of(approx), std::numeric_limits<double>::infinity());
+}
+
+bool JointErrorMeter::exceeds(const Tensor3& approx, double max_cm) const {
+    check_same_shape(*reference_, approx);
+    return !measure_within(slices_of(approx), max_cm).has_value();
+}
+
+std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleApproximation& approx, double max_cm,
+                                                               std::vector<Eigen::Index>* suspects) const {
+    const Tensor3& ref = *reference_;
+    const Eigen::Index dofs = ref.dimension(0), frames = ref.dimension(1), samples = ref.dimension(2);
     const auto joints = static_cast<Eigen::Index>(skeleton_->size());
+    const Eigen::Index per_sample = frames * joints;
+    // Errors by sample, frame, joint (the order measure() has always reduced them in), written by
+    // whichever thread measures the sample; uninitialized until then (a failing check touches little).
+    const std::unique_ptr<double[]> errors(new double[static_cast<std::size_t>(samples * per_sample)]);
+    std::vector<double> dof_sq(static_cast<std::size_t>(samples), 0.0);
 
-    double dof_sq = 0.0;
-    for (Eigen::Index i = 0; i < reference_.size(); ++i) {
-        const double e = approx.data()[i] - reference_.data()[i];
-        dof_sq += e * e;
+    // Measures the listed samples; returns the first one with a joint beyond max_cm, or -1.
+    const auto check = [&](const std::vector<Eigen::Index>& ids, bool record) -> Eigen::Index {
+        MatX buffer;
+        approx(ids, buffer);
+        const auto count = static_cast<Eigen::Index>(ids.size());
+        if (buffer.rows() != dofs || buffer.cols() != frames * count)
+            throw InvalidArgument("joint error: the approximation of " + std::to_string(count) + " samples is " +
+                                  std::to_string(buffer.rows()) + " x " + std::to_string(buffer.cols()) + ", expected " +
+                                  std::to_string(dofs) + " x " + std::to_string(frames * count));
+        for (Eigen::Index i = 0; i < count; ++i) {
+            const Eigen::Index n = ids[static_cast<std::size_t>(i)];
+            const auto slice = buffer.middleCols(i * frames, frames);
+            const MatX p = pose_joint_positions(*skeleton_, slice);
+            const MatX& r = reference_positions_[static_cast<std::size_t>(n)];
+            double* out = errors.get() + n * per_sample;
+            for (Eigen::Index f = 0; f < frames; ++f)
+                for (Eigen::Index j = 0; j < joints; ++j) {
+                    const double e = (p.block<3, 1>(3 * j, f) - r.block<3, 1>(3 * j, f)).norm();
+                    if (e > max_cm) return n;
+                    if (record) out[f * joints + j] = e;
+                }
+            if (record) dof_sq[static_cast<std::size_t>(n)] = (slice - sample_slice(ref, n)).squaredNorm();
+        }
+        return -1;
+    };
+    const auto note_suspect = [&](Eigen::Index n) {
+        if (!suspects) return;
+        suspects->erase(std::remove(suspects->begin(), suspects->end(), n), suspects->end());
+        suspects->insert(suspects->begin(), n);
+        if (suspects->size() > 64) suspects->resize(64);
+    };
+
+    if (suspects && !suspects->empty() && std::isfinite(max_cm)) {
+        std::vector<Eigen::Index> ids;
+        for (const Eigen::Index n : *suspects)
+            if (n >= 0 && n < samples) ids.push_back(n);
+        const Eigen::Index found = ids.empty() ? -1 : check(ids, false);
+        if (found >= 0) {
+            note_suspect(found);
+            return std::nullopt;
+        }
     }
-    s.dof_rmse = std::sqrt(dof_sq / static_cast<double>(reference_.size()));
 
-    std::vector<double> errors;
-    errors.reserve(static_cast<std::size_t>(samples * frames * joints));
+    std::atomic<bool> stop{false};
+    std::atomic<Eigen::Index> exceeded{-1};
+    const auto chunks = static_cast<std::size_t>((samples + kSamplesPerChunk - 1) / kSamplesPerChunk);
+    run_parallel_tasks(chunks, [&](std::size_t c) {
+        if (stop) return;
+        const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
+        std::vector<Eigen::Index> ids;
+        for (Eigen::Index n = first; n < std::min(samples, first + kSamplesPerChunk); ++n) ids.push_back(n);
+        const Eigen::Index found = check(ids, true);
+        if (found >= 0) {
+            Eigen::Index none = -1;
+            exceeded.compare_exchange_strong(none, found);
+            stop = true;
+        }
+    });
+    if (stop) {
+        note_suspect(exceeded.load());
+        return std::nullopt;
+    }
+
+    JointErrorStats s;
+    double all_dof_sq = 0.0;
+    for (const double v : dof_sq) all_dof_sq += v;
+    s.dof_rmse = ref.size() > 0 ? std::sqrt(all_dof_sq / static_cast<double>(ref.size())) : 0.0;
+    const Eigen::Index count = samples * per_sample;
+    s.positions = count;
+    if (count == 0) return s;
     double sum = 0.0, sum_sq = 0.0;
-    for (Eigen::Index n = 0; n < samples; ++n) {
-        const MatX p = pose_joint_positions(*skeleton_, sample_slice(approx, n));
-        const MatX& r = reference_positions_[static_cast<std::size_t>(n)];
+    for (Eigen::Index n = 0; n < samples; ++n)
         for (Eigen::Index f = 0; f < frames; ++f)
             for (Eigen::Index j = 0; j < joints; ++j) {
-                const double e = (p.block<3, 1>(3 * j, f) - r.block<3, 1>(3 * j, f)).norm();
-                errors.push_back(e);
+                const double e = errors[static_cast<std::size_t>(n * per_sample + f * joints + j)];
                 sum += e;
                 sum_sq += e * e;
                 if (e > s.worst.error_cm || s.worst.sample < 0) {
                     s.worst = {n, f, skeleton_->joint(static_cast<std::size_t>(j)).name, e};
                 }
             }
-    }
-    s.positions = static_cast<Eigen::Index>(errors.size());
-    if (errors.empty()) return s;
-    const double count = static_cast<double>(errors.size());
-    s.mean_cm = sum / count;
-    s.rmse_cm = std::sqrt(sum_sq / count);
+    const double total = static_cast<double>(count);
+    s.mean_cm = sum / total;
+    s.rmse_cm = std::sqrt(sum_sq / total);
     s.max_cm = s.worst.error_cm;
     // Nearest-rank percentile: the smallest value with at least 99% of the errors at or below it.
-    const auto rank = static_cast<std::size_t>(std::ceil(0.99 * count)) - 1;
-    std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(rank), errors.end());
-    s.p99_cm = errors[rank];
+    const auto rank = static_cast<std::size_t>(std::ceil(0.99 * total)) - 1;
+    double* const e0 = errors.get();
+    std::nth_element(e0, e0 + rank, e0 + count);
+    s.p99_cm = e0[rank];
     return s;
 }
 
-bool JointErrorMeter::exceeds(const Tensor3& approx, double max_cm) const {
-    check_same_shape(reference_, approx);
-    const Eigen::Index samples = reference_.dimension(2), frames = reference_.dimension(1);
-    const auto joints = static_cast<Eigen::Index>(skeleton_->size());
-    for (Eigen::Index n = 0; n < samples; ++n) {
-        const MatX p = pose_joint_positions(*skeleton_, sample_slice(approx, n));
-        const MatX& r = reference_positions_[static_cast<std::size_t>(n)];
-        for (Eigen::Index f = 0; f < frames; ++f)
-            for (Eigen::Index j = 0; j < joints; ++j)
-                if ((p.block<3, 1>(3 * j, f) - r.block<3, 1>(3 * j, f)).norm() > max_cm) return true;
-    }
-    return false;
-}
-
 MatX JointErrorMeter::max_error_per_frame(const Tensor3& approx) const {
-    check_same_shape(reference_, approx);
-    const Eigen::Index samples = reference_.dimension(2), frames = reference_.dimension(1);
+    check_same_shape(*reference_, approx);
+    const Eigen::Index samples = reference_->dimension(2), frames = reference_->dimension(1);
     const auto joints = static_cast<Eigen::Index>(skeleton_->size());
     MatX out = MatX::Zero(frames, samples);
     for (Eigen::Index n = 0; n < samples; ++n) {

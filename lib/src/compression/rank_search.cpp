@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "mocapdb/core/error.hpp"
@@ -10,17 +12,39 @@
 namespace mocapdb::compression {
 namespace {
 
-// Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `ok` (ok(model):
-// whether it meets the target). Only the chosen model's errors are measured in full.
-template <class Accept>
-RankSearchResult bisect(const PreparedSet& p, const compression::JointErrorMeter& meter, Accept ok,
+// A probe's measurement: whether the model meets the target, with the model's errors when the
+// check measured them on the way (the max-error check does; see measure_model).
+struct ProbeCheck {
+    bool met = false;
+    std::optional<JointErrorStats> stats;
+};
+
+// The chosen model's errors, sample by sample (no D x T x N reconstruction).
+JointErrorStats measure_model(const JointErrorMeter& meter, const SetModel& m) {
+    const SampleReconstruction approx(m);
+    return *meter.measure_within([&](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); },
+                                 std::numeric_limits<double>::infinity());
+}
+
+// Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `check` (check(model):
+// whether it meets the target). Every probe's core is a block of the core at the bases' full ranks,
+// projected once (tensor::hosvd_full_core); ranks beyond the sample basis' columns fall back to
+// hosvd_from_bases. Only the chosen model's errors are measured in full.
+template <class Check>
+RankSearchResult bisect(const PreparedSet& p, const compression::JointErrorMeter& meter, Check check,
                         const ProgressCallback& progress) {
     RankSearchResult best;
     const tensor::Dims3 dims = tensor::dims_of(p.x);
+    const Tensor3 full_core = tensor::hosvd_full_core(p.x, p.bases);
+    std::optional<JointErrorStats> best_stats;
+    tensor::Ranks best_ranks{-1, -1, -1};
+    Eigen::Index best_parameters = 0;
     const auto evaluate = [&](const tensor::Ranks& ranks) {
         RankSearchResult r;
-        r.model = hosvd_model(p, ranks);
-        r.target_met = ok(r.model);
+        r.model.mean = p.mean;
+        r.model.weight = p.weight;
+        r.model.tucker = ranks[2] <= full_core.dimension(2) ? tensor::hosvd_from_core(p.bases, full_core, ranks)
+                                                            : tensor::hosvd_from_bases(p.x, p.bases, ranks);
         return r;
     };
     // Full ranks reproduce the data (up to rounding), so the target is reachable: the bisection
@@ -49,22 +73,33 @@ RankSearchResult bisect(const PreparedSet& p, const compression::JointErrorMeter
         }
         last = ranks;
         RankSearchResult r = evaluate(ranks);
+        ProbeCheck c = check(r.model);
+        r.target_met = c.met;
         ++evaluations;
         last_ok = r.target_met;
         if (r.target_met) {
             lo = mid;
-            if (!found || r.model.tucker.parameter_count() <= best.model.tucker.parameter_count()) best = std::move(r);
+            if (!found || r.model.tucker.parameter_count() <= best_parameters) {
+                best_ranks = ranks;
+                best_parameters = r.model.tucker.parameter_count();
+                best_stats = std::move(c.stats);
+            }
             found = true;
         } else {
             hi = mid;
         }
     }
-    if (!found) {
+    if (found) {
+        // Rebuilt from the same blocks (bit for bit the probe's model): the search holds one model
+        // at a time, not the best one beside each probe's (#16: 0.1 GB at 10 000 windows).
+        best = evaluate(best_ranks);
+        best.target_met = true;
+    } else {
         best = evaluate(full);
         ++evaluations;
     }
     report(steps);
-    best.stats = meter.measure(best.model.reconstruct());
+    best.stats = best_stats ? *best_stats : measure_model(meter, best.model);
     best.evaluations = evaluations;
     report(steps + 1);
     return best;
@@ -95,8 +130,18 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
     if (!(max_cm > 0.0) || !std::isfinite(max_cm))
         throw InvalidArgument("search_ranks_for_max_error: the target must be a finite number of cm > 0, got " +
                               std::to_string(max_cm));
-    // Same decision as measure(...).max_cm <= max_cm, stopping at the first joint beyond the target.
-    return bisect(p, meter, [&](const SetModel& m) { return !meter.exceeds(m.reconstruct(), max_cm); }, progress);
+    // Same decision as measure(...).max_cm <= max_cm, sample by sample: a failing probe stops at the
+    // first chunk with a joint beyond the target (the samples that failed earlier probes first), a
+    // passing one has measured every error of its model on the way.
+    std::vector<Eigen::Index> suspects;
+    return bisect(p, meter, [&](const SetModel& m) {
+        const SampleReconstruction approx(m);
+        ProbeCheck c;
+        c.stats = meter.measure_within([&](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); },
+                                       max_cm, &suspects);
+        c.met = c.stats.has_value();
+        return c;
+    }, progress);
 }
 
 RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::JointErrorMeter& meter, double rmse,
@@ -107,7 +152,7 @@ RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::
     return bisect(p, meter, [&](const SetModel& m) {
         // ||X - X_hat||^2 = ||X||^2 - ||G||^2 for HOSVD-type models; measured from the fit.
         const double error = m.tucker.data_norm * (1.0 - m.tucker.fit);
-        return error / std::sqrt(count) <= rmse;
+        return ProbeCheck{error / std::sqrt(count) <= rmse, std::nullopt};
     }, progress);
 }
 
@@ -116,7 +161,7 @@ RankSearchResult ranks_for_ratio(const PreparedSet& p, const compression::JointE
         throw InvalidArgument("ranks_for_ratio: the target ratio must be finite and > 0, got " + std::to_string(ratio));
     RankSearchResult r;
     r.model = hosvd_model(p, tensor::ranks_for_compression(p.bases.spectra, ratio));
-    r.stats = meter.measure(r.model.reconstruct());
+    r.stats = measure_model(meter, r.model);
     r.target_met = r.model.tucker.compression_ratio() >= ratio;
     r.evaluations = 1;
     return r;

@@ -5,6 +5,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
+#include "mocapdb/tensor/mode_product.hpp"
 
 namespace mocapdb::compression {
 namespace {
@@ -58,6 +59,31 @@ Tensor3 SetModel::reconstruct() const {
 
 Tensor3 SetModel::reconstruct(const tensor::Ranks& lod) const {
     return from_weighted_centred(tucker.reconstruct(lod), mean, weight);
+}
+
+SampleReconstruction::SampleReconstruction(const SetModel& model) : model_(&model) {
+    // The first two mode products of TuckerModel::reconstruct(), as it computes them; the last one
+    // (sample mode) is done per call, so the values are reconstruct()'s.
+    const tensor::TuckerModel& t = model.tucker;
+    const Tensor3 w = tensor::mode_product(tensor::mode_product(t.core, t.U[0], 0), t.U[1], 1);
+    dof_time_ = Eigen::Map<const MatX>(w.data(), w.dimension(0) * w.dimension(1), w.dimension(2));
+}
+
+void SampleReconstruction::operator()(const std::vector<Eigen::Index>& samples, MatX& out) const {
+    const tensor::TuckerModel& t = model_->tucker;
+    const Eigen::Index d = t.U[0].rows(), frames = t.U[1].rows(), n = t.U[2].rows();
+    const auto count = static_cast<Eigen::Index>(samples.size());
+    MatX rows(count, t.ranks[2]);
+    for (Eigen::Index i = 0; i < count; ++i) {
+        const Eigen::Index s = samples[static_cast<std::size_t>(i)];
+        if (s < 0 || s >= n)
+            throw InvalidArgument("SampleReconstruction: sample " + std::to_string(s) + " is not in [0, " +
+                                  std::to_string(n) + ")");
+        rows.row(i) = t.U[2].row(s);
+    }
+    out.resize(d, frames * count);
+    Eigen::Map<MatX>(out.data(), d * frames, count).noalias() = dof_time_ * rows.transpose();
+    out = (out.array().colwise() / model_->weight.array()).matrix().colwise() + model_->mean;
 }
 
 SetModel fit_set_model(const Tensor3& poses, const VecX& weight, const tensor::Ranks& ranks,

@@ -4,6 +4,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/motion/pose_vector_positions.hpp"
 #include "mocapdb/motion/rotation.hpp"
 
 namespace mocapdb {
@@ -28,6 +29,44 @@ void write_rotation_channels(const Skeleton& skeleton, std::size_t j, const Quat
     const Vec3 angles = matrix_to_euler_near(r.toRotationMatrix(), joint.rotation_order, near, weights);
     for (int k = 0; k < 3; ++k)
         if (cols[k] >= 0) row[cols[k]] = angles[k];
+}
+
+// A frame row with every channel the pose vector does not carry at its rest value: position
+// channels at the offset (non-root translations), joints above the motion root at rest.
+VecX rest_row(const Skeleton& s) {
+    VecX rest = VecX::Zero(static_cast<Eigen::Index>(s.channel_count()));
+    for (std::size_t j = 0; j < s.size(); ++j)
+        for (int a = 0; a < 3; ++a) {
+            const int col = s.channel_column(j, static_cast<ChannelType>(a));
+            if (col >= 0) rest[col] = s.rest_position_value(j, static_cast<Axis>(a));
+        }
+    return rest;
+}
+
+// World transform of the motion root's parent at rest.
+JointTransform above_motion_root(const Skeleton& s, const VecX& rest) {
+    JointTransform above;
+    for (std::size_t j : s.motion_root_chain()) {
+        if (j == s.motion_root()) break;
+        above.position += above.orientation * s.local_translation(j, rest.data());
+        above.orientation = above.orientation * s.local_rotation(j, rest.data());
+    }
+    return above;
+}
+
+void check_pose_vectors(const Skeleton& s, const PoseLayout& layout, const Eigen::Ref<const MatX>& poses,
+                        const char* where) {
+    if (poses.rows() != static_cast<Eigen::Index>(layout.dof_count()))
+        throw InvalidArgument(std::string(where) + ": poses have " + std::to_string(poses.rows()) +
+                              " rows, the skeleton's pose vector has " + std::to_string(layout.dof_count()));
+    if (!poses.allFinite()) throw InvalidArgument(std::string(where) + ": non-finite pose value");
+    (void)s;
+}
+
+bool has_all_rotation_channels(const Skeleton& s, std::size_t j) {
+    for (int a = 3; a < 6; ++a)
+        if (s.channel_column(j, static_cast<ChannelType>(a)) < 0) return false;
+    return true;
 }
 
 }  // namespace
@@ -135,21 +174,9 @@ FrameMatrix from_pose_vectors(const Skeleton& s, const Eigen::Ref<const MatX>& p
         throw InvalidArgument("from_pose_vectors: first_near has " + std::to_string(first_near.size()) +
                               " values, a frame row has " + std::to_string(channels));
     if (!poses.allFinite()) throw InvalidArgument("from_pose_vectors: non-finite pose value");
-    // Channels the pose vector does not carry hold their rest values: position channels at the
-    // offset (non-root translations), joints above the motion root at rest.
-    VecX rest = VecX::Zero(channels);
-    for (std::size_t j = 0; j < s.size(); ++j)
-        for (int a = 0; a < 3; ++a) {
-            const int col = s.channel_column(j, static_cast<ChannelType>(a));
-            if (col >= 0) rest[col] = s.rest_position_value(j, static_cast<Axis>(a));
-        }
+    const VecX rest = rest_row(s);
     const std::size_t m = s.motion_root();
-    JointTransform above;  // world transform of the motion root's parent at rest
-    for (std::size_t j : s.motion_root_chain()) {
-        if (j == m) break;
-        above.position += above.orientation * s.local_translation(j, rest.data());
-        above.orientation = above.orientation * s.local_rotation(j, rest.data());
-    }
+    const JointTransform above = above_motion_root(s, rest);
     const Quat above_inverse = above.orientation.conjugate();
     const bool adds = s.position_channels() == PositionChannels::add_to_offset;
     FrameMatrix out = rest.transpose().replicate(poses.cols(), 1);
@@ -168,6 +195,56 @@ FrameMatrix from_pose_vectors(const Skeleton& s, const Eigen::Ref<const MatX>& p
             write_rotation_channels(s, j, exp_map(poses.col(f).segment<3>(layout.exp_map_row(j))), near.data(), row);
         }
         near = out.row(f).transpose();
+    }
+    return out;
+}
+
+MatX pose_vector_joint_positions(const Skeleton& s, const Eigen::Ref<const MatX>& poses,
+                                 const Canonicalization& canonical) {
+    const PoseLayout layout(s);
+    check_pose_vectors(s, layout, poses, "pose_vector_joint_positions");
+    const VecX rest = rest_row(s);
+    const std::size_t m = s.motion_root();
+    const JointTransform above = above_motion_root(s, rest);
+    const Quat above_inverse = above.orientation.conjugate();
+    const bool adds = s.position_channels() == PositionChannels::add_to_offset;
+    const std::size_t joints = s.size();
+    // Local rotations: the rest row's for joints the pose vector does not rotate.
+    std::vector<Quat> rest_rotations(joints), rotations(joints);
+    for (std::size_t j = 0; j < joints; ++j) rest_rotations[j] = s.local_rotation(j, rest.data());
+    std::vector<Vec3> translations(joints);
+    std::vector<char> direct(joints, 0);
+    for (std::size_t j = 0; j < joints; ++j) direct[j] = has_all_rotation_channels(s, j) ? 1 : 0;
+    VecX row = rest, near = VecX::Zero(rest.size());
+    MatX out(3 * static_cast<Eigen::Index>(joints), poses.cols());
+    GlobalPose pose;
+    for (Eigen::Index f = 0; f < poses.cols(); ++f) {
+        // The channel row from_pose_vectors writes, for the joints that still go through channels.
+        const Vec3 local = above_inverse * (canonical.invert(Vec3(poses.col(f).head<3>())) - above.position);
+        for (int a = 0; a < 3; ++a) {
+            const int col = s.channel_column(m, static_cast<ChannelType>(a));
+            if (col >= 0) row[col] = local[a] - (adds ? s.joint(m).offset[a] : 0.0);
+        }
+        rotations = rest_rotations;
+        const Quat root_rotation = above_inverse * canonical.invert(swing_twist_exp(poses.col(f).segment<3>(3)));
+        if (s.has_rotation(m)) {
+            if (direct[m]) rotations[m] = root_rotation;
+            else write_rotation_channels(s, m, root_rotation, near.data(), row.data());
+        }
+        for (std::size_t k = 1; k < layout.rotation_joints().size(); ++k) {
+            const std::size_t j = layout.rotation_joints()[k];
+            const Quat q = exp_map(poses.col(f).segment<3>(layout.exp_map_row(j)));
+            if (direct[j]) rotations[j] = q;
+            else write_rotation_channels(s, j, q, near.data(), row.data());
+        }
+        for (std::size_t j = 0; j < joints; ++j) {
+            translations[j] = s.local_translation(j, row.data());
+            if (!direct[j] && layout.exp_map_row(j) >= 0) rotations[j] = s.local_rotation(j, row.data());
+        }
+        forward_kinematics(s, rotations, translations, pose);
+        for (std::size_t j = 0; j < joints; ++j)
+            out.block<3, 1>(3 * static_cast<Eigen::Index>(j), f) = pose.positions[j];
+        near = row;
     }
     return out;
 }

@@ -11,6 +11,7 @@
 #include <Eigen/QR>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
 
 namespace mocapdb::tensor {
@@ -39,12 +40,53 @@ void make_signs_canonical(MatX& u) {
     }
 }
 
+// The products of the sample-basis computation on the machine's cores (issue #16). Every product is
+// cut into blocks of a fixed size (not a function of the thread count) and each block is one Eigen
+// product, so the values do not depend on how many threads ran them.
+constexpr Eigen::Index kProductBlock = 512;
+
+Eigen::Index block_count(Eigen::Index size) { return (size + kProductBlock - 1) / kProductBlock; }
+
+// out = a * b, by blocks of a's rows (out's rows).
+void parallel_product_by_rows(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const MatX>& b, Eigen::Ref<MatX> out) {
+    run_parallel_tasks(static_cast<std::size_t>(block_count(a.rows())), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        const Eigen::Index count = std::min(kProductBlock, a.rows() - first);
+        out.middleRows(first, count).noalias() = a.middleRows(first, count) * b;
+    });
+}
+
+// out = a^T * b, by blocks of b's columns (out's columns).
+void parallel_transposed_product_by_columns(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const MatX>& b,
+                                            Eigen::Ref<MatX> out) {
+    run_parallel_tasks(static_cast<std::size_t>(block_count(b.cols())), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        const Eigen::Index count = std::min(kProductBlock, b.cols() - first);
+        out.middleCols(first, count).noalias() = a.transpose() * b.middleCols(first, count);
+    });
+}
+
+// Lower triangle of a a^T (a: k by n), or of a^T a (a: n by k) when `rows`, into g (k by k, zero on
+// entry): the n columns (rows) of a in two fixed halves, each half's rank update on its own thread,
+// added in order.
+void parallel_lower_gram(const Eigen::Ref<const MatX>& a, bool rows, MatX& g) {
+    const Eigen::Index n = rows ? a.rows() : a.cols(), half = n / 2;
+    MatX second = MatX::Zero(g.rows(), g.cols());
+    run_parallel_tasks(2, [&](std::size_t i) {
+        MatX& out = i == 0 ? g : second;
+        const Eigen::Index first = i == 0 ? 0 : half, count = i == 0 ? half : n - half;
+        if (rows) out.selfadjointView<Eigen::Lower>().rankUpdate(a.middleRows(first, count).transpose());
+        else out.selfadjointView<Eigen::Lower>().rankUpdate(a.middleCols(first, count));
+    });
+    g.triangularView<Eigen::Lower>() += second;
+}
+
 // Orthonormal columns from nearly orthonormal ones, keeping the nested spans (column j stays in the
 // span of columns 0..j): two Cholesky-QR passes, Householder QR if the Gram is not positive definite.
 void reorthonormalize(MatX& v) {
     for (int pass = 0; pass < 2; ++pass) {
         MatX g = MatX::Zero(v.cols(), v.cols());
-        g.selfadjointView<Eigen::Lower>().rankUpdate(v.transpose());
+        parallel_lower_gram(v, true, g);
         const Eigen::LLT<MatX, Eigen::Lower> llt(g);
         if (llt.info() != Eigen::Success) {
             const Eigen::HouseholderQR<MatX> qr(v);
@@ -54,7 +96,13 @@ void reorthonormalize(MatX& v) {
             v = std::move(q);
             return;
         }
-        llt.matrixU().solveInPlace<Eigen::OnTheRight>(v);  // v U^-1, U^T U = v^T v
+        // v U^-1 (U^T U = v^T v), by fixed blocks of rows.
+        const MatX u = llt.matrixU();
+        run_parallel_tasks(static_cast<std::size_t>(block_count(v.rows())), [&](std::size_t i) {
+            const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+            const Eigen::Index count = std::min(kProductBlock, v.rows() - first);
+            u.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(v.middleRows(first, count));
+        });
     }
 }
 
@@ -82,7 +130,8 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
         if (k + block > max_k) return false;
         MatX omega(n, block);
         for (Eigen::Index i = 0; i < omega.size(); ++i) omega.data()[i] = gauss(rng);
-        MatX y = m * omega;
+        MatX y(l, block);
+        parallel_product_by_rows(m, omega, y);
         const double y_norm = y.norm();
         for (int pass = 0; pass < 2; ++pass)
             for (const MatX& qi : qs) y.noalias() -= qi * (qi.transpose() * y);
@@ -96,7 +145,8 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
         for (const MatX& qj : qs) qi.noalias() -= qj * (qj.transpose() * qi);
         const Eigen::HouseholderQR<MatX> clean(qi);
         qi = clean.householderQ() * MatX::Identity(l, r);
-        MatX bi = qi.transpose() * m;
+        MatX bi(r, n);
+        parallel_transposed_product_by_columns(qi, m, bi);
         captured += bi.squaredNorm();
         qs.push_back(std::move(qi));
         bs.push_back(std::move(bi));
@@ -109,6 +159,8 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
         q.middleCols(at, qs[i].cols()) = qs[i];
         b.middleRows(at, bs[i].rows()) = bs[i];
         at += qs[i].cols();
+        qs[i].resize(0, 0);  // one copy of b at a time, not two (#16: 0.15 GB at 10 000 samples)
+        bs[i].resize(0, 0);
     }
     return true;
 }
@@ -117,17 +169,21 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
 // energy lies in a subspace of dimension k <= L / 2 up to `budget`, of b b^T (k by k) with m ~ q b
 // (randomized_range): v_j = m^T w_j / sigma_j for the eigenvalues above kKeptEigenvalue * the
 // largest (at most min(N, L) columns). out_eigenvalues: N values, decreasing, zeros beyond.
-MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, VecX& out_eigenvalues) {
+// `owner`, when given, is the matrix m views: released as soon as m is no longer read (after the
+// randomized range; #16: the projected samples are 0.3 GB at 10 000 samples).
+MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, VecX& out_eigenvalues,
+                               MatX* owner = nullptr) {
     const Eigen::Index l = m.rows(), n = m.cols();
     MatX q, b;
     const bool reduced = l > 256 && randomized_range(m, budget, l / 2, q, b);
+    if (reduced && owner) owner->resize(0, 0);  // m dangles from here on: only b is read
     const Eigen::Index side = reduced ? b.rows() : l;
     MatX c = MatX::Zero(side, side);
     if (reduced) {
         q.resize(0, 0);
-        c.selfadjointView<Eigen::Lower>().rankUpdate(b);
+        parallel_lower_gram(b, false, c);
     } else {
-        c.selfadjointView<Eigen::Lower>().rankUpdate(m);
+        parallel_lower_gram(m, false, c);
     }
     VecX ev;
     const MatX w = side > 0 ? gram_eigenbasis(c, ev) : MatX();  // reads the lower triangle
@@ -139,8 +195,13 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     while (kept < top && ev(kept) > 0.0 && ev(kept) > kKeptEigenvalue * ev(0)) ++kept;
     MatX v(n, kept);
     if (kept == 0) return v;
-    if (reduced) v.noalias() = b.transpose() * w.leftCols(kept);
-    else v.noalias() = m.transpose() * w.leftCols(kept);
+    // v = b^T w (or m^T w), by fixed blocks of samples.
+    const Eigen::Ref<const MatX> src = reduced ? Eigen::Ref<const MatX>(b) : m;
+    run_parallel_tasks(static_cast<std::size_t>(block_count(n)), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        const Eigen::Index count = std::min(kProductBlock, n - first);
+        v.middleRows(first, count).noalias() = src.middleCols(first, count).transpose() * w.leftCols(kept);
+    });
     v *= ev.head(kept).cwiseSqrt().cwiseInverse().asDiagonal();
     reorthonormalize(v);
     make_signs_canonical(v);
@@ -153,6 +214,66 @@ Eigen::Index kept_for_budget(const VecX& ev, double budget) {
     double tail = 0.0;
     while (k > 1 && tail + ev(k - 1) <= budget) tail += ev(--k);
     return k;
+}
+
+// Samples [first, first + count) of a projected on the dof and time bases: column i of out (r0 r1
+// by count) is u0^T a(:, :, first + i) u1 in column-major order. The same products, in the same
+// order, as mode_product_transposed on modes 0 and 1, without a D by T by N intermediate.
+void project_dof_time(const Tensor3& a, const Eigen::Ref<const MatX>& u0t, const Eigen::Ref<const MatX>& u1t,
+                      Eigen::Index first, Eigen::Index count, Eigen::Ref<MatX> out) {
+    const Eigen::Index d = a.dimension(0), t = a.dimension(1), r0 = u0t.rows(), r1 = u1t.rows();
+    MatX dof_side(r0, t * count);
+    dof_side.noalias() = u0t * Eigen::Map<const MatX>(a.data() + first * d * t, d, t * count);
+    for (Eigen::Index i = 0; i < count; ++i) {
+        Eigen::Map<MatX> o(out.col(i).data(), r0, r1);
+        o.noalias() = dof_side.middleCols(i * t, t) * u1t.transpose();
+    }
+}
+
+// Samples per chunk of the chunked projections: a few MB of intermediates at D T = 5 400.
+constexpr Eigen::Index kProjectionChunk = 128;
+
+// y = a x_0 u0^T x_1 u1^T as an (r0 r1) by N matrix, chunk by chunk on the machine's cores.
+MatX projected_dof_time(const Tensor3& a, const Eigen::Ref<const MatX>& u0, const Eigen::Ref<const MatX>& u1) {
+    const Eigen::Index n = a.dimension(2);
+    const MatX u0t = u0.transpose(), u1t = u1.transpose();
+    MatX y(u0.cols() * u1.cols(), n);
+    const auto chunks = static_cast<std::size_t>((n + kProjectionChunk - 1) / kProjectionChunk);
+    run_parallel_tasks(chunks, [&](std::size_t c) {
+        const Eigen::Index first = static_cast<Eigen::Index>(c) * kProjectionChunk;
+        const Eigen::Index count = std::min(kProjectionChunk, n - first);
+        project_dof_time(a, u0t, u1t, first, count, y.middleCols(first, count));
+    });
+    return y;
+}
+
+// core = a x_0 u0^T x_1 u1^T x_2 u2^T, chunk by chunk over the samples: core_(2) is the sum over
+// chunks of y_chunk u2(chunk, :), y the dof-and-time projection. The chunks are summed in a fixed
+// order whatever the number of threads (two halves of the samples, each accumulated in order, then
+// added), so the result does not depend on the machine. Memory: two r0 r1 by r2 sums and a chunk each.
+Tensor3 projected_core(const Tensor3& a, const Eigen::Ref<const MatX>& u0, const Eigen::Ref<const MatX>& u1,
+                       const Eigen::Ref<const MatX>& u2) {
+    const Eigen::Index n = a.dimension(2), r0 = u0.cols(), r1 = u1.cols(), r2 = u2.cols();
+    const MatX u0t = u0.transpose(), u1t = u1.transpose();
+    constexpr std::size_t parts = 2;
+    std::array<MatX, parts> partial;
+    run_parallel_tasks(parts, [&](std::size_t p) {
+        const Eigen::Index begin = n * static_cast<Eigen::Index>(p) / static_cast<Eigen::Index>(parts);
+        const Eigen::Index end = n * static_cast<Eigen::Index>(p + 1) / static_cast<Eigen::Index>(parts);
+        MatX& acc = partial[p];
+        acc = MatX::Zero(r0 * r1, r2);
+        MatX y(r0 * r1, std::min(kProjectionChunk, std::max<Eigen::Index>(1, end - begin)));
+        for (Eigen::Index first = begin; first < end; first += kProjectionChunk) {
+            const Eigen::Index count = std::min(kProjectionChunk, end - first);
+            project_dof_time(a, u0t, u1t, first, count, y.leftCols(count));
+            acc.noalias() += y.leftCols(count) * u2.middleRows(first, count);
+        }
+    });
+    Tensor3 core(r0, r1, r2);
+    Eigen::Map<MatX> c(core.data(), r0 * r1, r2);
+    c = partial[0];
+    for (std::size_t p = 1; p < parts; ++p) c += partial[p];
+    return core;
 }
 
 }  // namespace
@@ -328,10 +449,8 @@ HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options) {
         b.U[2] = right_basis_from_row_gram(Eigen::Map<const MatX>(a.data(), d * t, n), 2.0 * budget,
                                            b.spectra.squared_sv[2]);
     } else {
-        const Tensor3 y = mode_product_transposed(mode_product_transposed(a, b.U[0].leftCols(k0), 0),
-                                                  b.U[1].leftCols(k1), 1);
-        b.U[2] = right_basis_from_row_gram(Eigen::Map<const MatX>(y.data(), k0 * k1, n), 2.0 * budget,
-                                           b.spectra.squared_sv[2]);
+        MatX y = projected_dof_time(a, b.U[0].leftCols(k0), b.U[1].leftCols(k1));
+        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y);
     }
     return b;
 }
@@ -353,10 +472,48 @@ TuckerModel hosvd_from_bases(const Tensor3& a, const HosvdBases& bases, const Ra
     m.U[0] = bases.U[0].leftCols(ranks[0]);
     m.U[1] = bases.U[1].leftCols(ranks[1]);
     m.U[2] = sample_basis_columns(bases.U[2], ranks[2]);
-    // Project the largest reductions first: the dof mode, then time, then sample.
-    Tensor3 c = mode_product_transposed(a, m.U[0], 0);
-    c = mode_product_transposed(c, m.U[1], 1);
-    m.core = mode_product_transposed(c, m.U[2], 2);
+    // Project the largest reductions first: the dof mode, then time, then sample (chunk by chunk).
+    m.core = projected_core(a, m.U[0], m.U[1], m.U[2]);
+    m.data_norm = std::sqrt(bases.spectra.squared_norm);
+    m.fit = fit_from(bases.spectra.squared_norm, squared_norm(m.core));
+    m.error_bound = hosvd_error_bound(bases.spectra, ranks);
+    m.fit_history = {m.fit};
+    return m;
+}
+
+Tensor3 hosvd_full_core(const Tensor3& a, const HosvdBases& bases) {
+    check_tensor(a, "hosvd_full_core");
+    const Dims3 dims = dims_of(a);
+    for (std::size_t m = 0; m < 3; ++m) {
+        if (bases.U[m].rows() != dims[m] || (m < 2 && bases.U[m].cols() != dims[m])) {
+            throw InvalidArgument(std::string("hosvd_full_core: the ") + mode_name(static_cast<int>(m)) +
+                                  " basis must have " + idx(dims[m]) + " rows" + (m < 2 ? " and columns" : "") +
+                                  ", got " + idx(bases.U[m].rows()) + " by " + idx(bases.U[m].cols()));
+        }
+    }
+    return projected_core(a, bases.U[0], bases.U[1], bases.U[2]);
+}
+
+TuckerModel hosvd_from_core(const HosvdBases& bases, const Tensor3& full_core, const Ranks& ranks) {
+    const Dims3& dims = bases.spectra.dims;
+    check_ranks(dims, ranks, "hosvd_from_core");
+    for (std::size_t m = 0; m < 3; ++m) {
+        if (full_core.dimension(static_cast<int>(m)) < ranks[m] || bases.U[m].cols() != full_core.dimension(static_cast<int>(m))) {
+            throw InvalidArgument(std::string("hosvd_from_core: the ") + mode_name(static_cast<int>(m)) +
+                                  " rank " + idx(ranks[m]) + " needs a full core of >= " + idx(ranks[m]) +
+                                  " matching the basis' " + idx(bases.U[m].cols()) + " columns, got " +
+                                  idx(full_core.dimension(static_cast<int>(m))));
+        }
+    }
+    TuckerModel m;
+    m.method = TuckerMethod::Hosvd;
+    m.status = TuckerStatus::Ok;
+    m.ranks = ranks;
+    for (std::size_t n = 0; n < 3; ++n) m.U[n] = bases.U[n].leftCols(ranks[n]);
+    m.core = Tensor3(ranks[0], ranks[1], ranks[2]);
+    for (Eigen::Index k = 0; k < ranks[2]; ++k)
+        for (Eigen::Index j = 0; j < ranks[1]; ++j)
+            for (Eigen::Index i = 0; i < ranks[0]; ++i) m.core(i, j, k) = full_core(i, j, k);
     m.data_norm = std::sqrt(bases.spectra.squared_norm);
     m.fit = fit_from(bases.spectra.squared_norm, squared_norm(m.core));
     m.error_bound = hosvd_error_bound(bases.spectra, ranks);

@@ -31,7 +31,8 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
     const AlignedSetData c = load_aligned_set(Database(db), a.set);
     const Tensor3& poses = c.aligned.tensor;
     const VecX weight = compression::position_error_weights(*c.skeleton);
-    const compression::JointErrorMeter meter(c.skeleton, poses);
+    // Borrowed: poses (c) outlives the meter; a copy would be one more set in memory (#16).
+    const compression::JointErrorMeter meter(c.skeleton, poses, compression::JointErrorMeter::Reference::Borrowed);
     const compression::PreparedSet prepared = compression::prepare_set(poses, weight);
 
     CompressOutcome o;

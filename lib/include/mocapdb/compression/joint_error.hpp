@@ -8,7 +8,9 @@
 // three) -> forward kinematics, in the canonical frame (a rigid motion of the whole sample, so
 // distances are the world distances). Every joint counts, end sites included, on every frame of
 // every sample (object space).
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,15 +43,31 @@ struct JointErrorStats {
 /// value is not finite.
 MatX pose_joint_positions(const Skeleton& skeleton, const Eigen::Ref<const MatX>& poses);
 
+/// An approximation of a D by T by N pose tensor given sample by sample (issue #16: the whole
+/// approximation of 10 000 windows need not be in memory). Called as approx(samples, out): writes the
+/// pose vectors of the listed samples side by side into out, resized to D by (T samples.size())
+/// (sample samples[i] in columns [i T, (i + 1) T), the tensor's storage order). The meter calls it
+/// from several threads at once with different samples, so it must be safe to call concurrently.
+using SampleApproximation = std::function<void(const std::vector<Eigen::Index>& samples, MatX& out)>;
+
 /// Compares approximations with one fixed reference (its joint positions are computed once).
-/// Immutable after construction; measure() is thread-safe.
+/// Immutable after construction; every method is thread-safe, and the measuring ones spread the
+/// samples over the machine's cores (run_parallel_tasks); their figures do not depend on the number
+/// of threads.
 class JointErrorMeter {
 public:
+    /// How the meter holds its reference tensor.
+    enum class Reference {
+        Copied,    ///< the meter keeps its own copy
+        Borrowed,  ///< the meter keeps a pointer: the caller keeps the tensor alive and unchanged
+                   ///< while the meter lives (saves a copy of the set: 0.43 GB at 10 000 windows)
+    };
     /// reference: D by T by N pose vectors of `skeleton` (not normalized).
-    JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& reference);
+    JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& reference,
+                    Reference hold = Reference::Copied);
 
     const Skeleton& skeleton() const { return *skeleton_; }
-    const Tensor3& reference() const { return reference_; }
+    const Tensor3& reference() const { return *reference_; }
 
     /// approx: same shape as the reference. Throws InvalidArgument on a shape mismatch or a
     /// non-finite value.
@@ -61,9 +79,21 @@ public:
     /// Per sample and frame: the largest joint error (cm), T by N. Same requirements as measure().
     MatX max_error_per_frame(const Tensor3& approx) const;
 
+    /// measure() of an approximation given sample by sample, unless a joint is more than max_cm
+    /// from the reference: then it stops at the first chunk of samples where one is (the decision
+    /// of exceeds()) and returns nothing. max_cm: any value, +infinity to always measure.
+    /// suspects (optional): samples to check first, typically those where earlier approximations
+    /// exceeded (a failing check usually stops after them); the sample found beyond max_cm is added
+    /// to it (it keeps at most 64). Memory: the N T J errors (for the percentile) and a chunk of
+    /// samples per thread. Throws InvalidArgument when approx writes a wrong shape or a non-finite
+    /// value, and whatever approx throws.
+    std::optional<JointErrorStats> measure_within(const SampleApproximation& approx, double max_cm,
+                                                  std::vector<Eigen::Index>* suspects = nullptr) const;
+
 private:
     std::shared_ptr<const Skeleton> skeleton_;
-    Tensor3 reference_;
+    std::shared_ptr<const Tensor3> owned_;   ///< the copy, when Reference::Copied
+    const Tensor3* reference_ = nullptr;      ///< owned_ or the caller's tensor
     std::vector<MatX> reference_positions_;  ///< per sample: 3J by T
 };
 

@@ -4,6 +4,7 @@
 // A the D × T × N pose vectors (aligned_set.hpp), mean_d the mean of dof d over frames and samples,
 // weight_d from dof_weights.hpp (so that |X − X̂| ≤ E everywhere keeps every joint within E cm).
 #include <optional>
+#include <vector>
 
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/tensor/hooi.hpp"
@@ -28,6 +29,23 @@ struct SetModel {
     Tensor3 reconstruct() const;
     /// At a level of detail lod (1 ≤ lod[n] ≤ ranks[n]).
     Tensor3 reconstruct(const tensor::Ranks& lod) const;
+};
+
+/// A model's pose vectors a few samples at a time (for JointErrorMeter::measure_within): the values
+/// SetModel::reconstruct() gives (the same products in the same order), without a D x T x N tensor
+/// (issue #16). The product of the core with the dof and time bases (D T by R3 doubles) is computed
+/// once; sample n is that times U_sample(n, :)^T, divided by the weights, plus the mean.
+/// Keeps a pointer to model: the model must outlive it. Thread-safe (const).
+class SampleReconstruction {
+public:
+    explicit SampleReconstruction(const SetModel& model);
+    /// Writes samples (each in [0, N)) side by side into out, resized to D by (T samples.size()).
+    /// Throws InvalidArgument on a sample out of range.
+    void operator()(const std::vector<Eigen::Index>& samples, MatX& out) const;
+
+private:
+    const SetModel* model_;
+    MatX dof_time_;  ///< (core x_0 U_dof x_1 U_time) unfolded along the sample mode: D T by R3
 };
 
 /// Decomposes the weighted, centred tensor of `poses` at explicit ranks with `method`.

@@ -132,6 +132,19 @@ HosvdBases hosvd_bases_from_grams(const Eigen::Ref<const MatX>& dof_gram, const 
 /// Throws InvalidArgument on bad arguments.
 TuckerModel hosvd_from_bases(const Tensor3& a, const HosvdBases& bases, const Ranks& ranks);
 
+/// The core at every column of the bases: a x_0 U_0^T x_1 U_1^T x_2 U_2^T with the whole of
+/// bases.U (D by T by K, K = bases.U[2].cols()). A truncated HOSVD at ranks with ranks[2] <= K has
+/// the leading ranks[0] x ranks[1] x ranks[2] block of it as its core (hosvd_from_core), so a rank
+/// search projects the data once instead of once per probe (#16). Computed over chunks of samples,
+/// on the machine's cores: memory D T K doubles plus a few chunks, no tensor of a's size.
+/// a: D by T by N, the tensor the bases came from. Throws InvalidArgument on a shape mismatch.
+Tensor3 hosvd_full_core(const Tensor3& a, const HosvdBases& bases);
+
+/// Truncated HOSVD at ranks from full_core = hosvd_full_core(a, bases): the model hosvd_from_bases
+/// gives (same bases, fit, error bound; the core up to rounding), without touching a.
+/// 1 <= ranks[n] <= dims[n] and ranks[2] <= full_core.dimension(2). Throws InvalidArgument otherwise.
+TuckerModel hosvd_from_core(const HosvdBases& bases, const Tensor3& full_core, const Ranks& ranks);
+
 /// Truncated HOSVD at ranks (R1, R2, R3). a: D by T by N, non-empty, finite; 1 <= ranks[n] <= dims[n].
 /// Returns a model with method Hosvd, status Ok. Throws InvalidArgument on bad arguments.
 TuckerModel hosvd(const Tensor3& a, const Ranks& ranks, const HosvdOptions& options = {});
