@@ -1,4 +1,4 @@
-// The precomputed synthesis kernel /sets/{set}/model/kernel (issue #16, format-v3.md §8.1): round trip
+// The precomputed synthesis kernel /sets/{set}/model/kernel (issue #16, format-v4.md §8.1): round trip
 // (bit-identical variogram, the optional fit status and residual variance), a kernel stored without the
 // status (as written before) loading to the same model and status, it goes with the model (put_model,
 // put_aligned, put_set drop it), refusals when writing, and a corrupted stored kernel refused when
