@@ -5,6 +5,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/store/database.hpp"
+#include "mocapdb/workflow/load_model.hpp"
 #include "walk_database.hpp"
 
 using namespace mocapdb;
@@ -98,4 +99,34 @@ TEST_CASE("workflow: compress_set with explicit ranks and HOOI, and its errors",
                                                              Contains("mocapdb align"));
     CHECK(Database(w.path).load_model("walks")->model.tucker.method == tensor::TuckerMethod::Hooi);
     CHECK_FALSE(Database(w.path).load_model("few").has_value());
+}
+
+TEST_CASE("workflow: a set without control parameters compresses; synthesis says why it cannot", "[workflow][shared]") {
+    // Found while measuring #16: compress stopped after its rank search with an internal class's
+    // message, because the synthesis kernel needs parameters. Real clips: subject 16's walks.
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
+    WalkDatabase w = make_walk_database("workflow_compress_noparams", WalkStage::Imported);
+    workflow::SetRequest set;
+    set.name = "plain";
+    set.clips = {"16_*"};
+    set.segment = "none";
+    workflow::create_set(w.path, set);
+    workflow::AlignRequest align;
+    align.set = "plain";
+    align.frames = 40;
+    workflow::align_set(w.path, align);
+    workflow::CompressRequest r;
+    r.set = "plain";
+    r.max_error_cm = 1.0;
+    const workflow::CompressOutcome o = workflow::compress_set(w.path, r);
+    CHECK(o.target_met);
+    CHECK(o.stats.max_cm <= 1.0);
+    CHECK_FALSE(o.kernel_stored);
+    CHECK_THAT(o.kernel_not_stored_reason, Contains("no control parameters"));
+    const Database db(w.path);
+    CHECK(db.load_model("plain").has_value());
+    CHECK_FALSE(db.load_kernel_fit("plain").has_value());
+    CHECK_THROWS_WITH(workflow::load_motion_model(db, "plain", synthesis::SynthesisOptions{}),
+                      Contains("set 'plain'") && Contains("has no control parameters"));
+    CHECK_THROWS_AS(workflow::load_naive_motion_model(db, "plain", synthesis::SynthesisOptions{}), InvalidArgument);
 }

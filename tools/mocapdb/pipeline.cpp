@@ -238,7 +238,7 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                   o.stats.rmse_cm, o.stats.mean_cm, o.stats.p99_cm, o.stats.max_cm,
                   static_cast<long long>(o.stats.worst.sample), static_cast<long long>(o.stats.worst.frame),
                   o.stats.worst.joint.c_str(), o.search_s, o.fit_s, o.kernel_s,
-                  o.kernel_stored ? "" : " (not stored: more than 1000 samples; synth fits it at load)", o.us_per_pose, o.total_s);
+                  o.kernel_stored ? "" : (" (not stored: " + o.kernel_not_stored_reason + ")").c_str(), o.us_per_pose, o.total_s);
     std::string text = buffer;
     if (o.kernel_stored) text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status + ")\n";
     if (!o.kernel_warning.empty()) text += "  warning: " + o.kernel_warning + "\n";

@@ -2,14 +2,29 @@
 
 #include <utility>
 
+#include "mocapdb/store/database.hpp"
+
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
 
 namespace mocapdb::workflow {
 
+namespace {
+
+// Synthesis interpolates over the set's control parameters: a set without any has nothing to ask for.
+void require_parameters(const Database& db, const std::string& name) {
+    if (db.load_set(name).parameters.cols() == 0)
+        throw InvalidArgument("set '" + name + "' in " + db.path().string() +
+                              " has no control parameters, so there is nothing to synthesize at (create the set with "
+                              "--extract or --params)");
+}
+
+}  // namespace
+
 std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, const std::string& name,
                                                           const synthesis::SynthesisOptions& options) {
+    require_parameters(db, name);
     AlignedTimingData d = load_aligned_timing(db, name);  // the model has its own poses: not the tensor's values
     auto stored = db.load_model(name);
     if (!stored)
@@ -24,6 +39,7 @@ std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, co
 
 std::unique_ptr<synthesis::NaiveMotionModel> load_naive_motion_model(const Database& db, const std::string& name,
                                                                      const synthesis::SynthesisOptions& options) {
+    require_parameters(db, name);
     AlignedSetData d = load_aligned_set(db, name);
     const VecX weight = compression::position_error_weights(*d.skeleton);
     return std::make_unique<synthesis::NaiveMotionModel>(d.aligned, d.set, std::move(d.skeleton), d.frame_rate, weight,

@@ -79,12 +79,18 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
 
     // The synthesis kernel's variogram, fitted once here so that synthesis need not (#16; kernel_fit.hpp).
     // Its leave-one-out choice is O(N^3) in the samples: above kStoredKernelMaxSamples it is not paid
-    // here, and the model fits it at load as for a model without a stored kernel.
+    // here, and the model fits it at load as for a model without a stored kernel. A set without
+    // control parameters compresses, but has nothing to synthesize over: no kernel.
     const auto kernel_start = Clock::now();
     std::optional<synthesis::KernelFit> kernel;
-    if (c.set.samples.size() <= synthesis::kStoredKernelMaxSamples)
+    if (c.set.samples.size() <= synthesis::kStoredKernelMaxSamples && c.set.parameters.cols() > 0)
         kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
     o.kernel_stored = kernel.has_value();
+    if (!kernel)
+        o.kernel_not_stored_reason = c.set.parameters.cols() == 0
+                                         ? "the set has no control parameters: nothing to synthesize at"
+                                         : "more than " + std::to_string(synthesis::kStoredKernelMaxSamples) +
+                                               " samples; synth fits it at load";
     o.kernel_s = seconds_since(kernel_start);
     if (kernel) {
         o.kernel_variogram = kernel->variogram.to_string();

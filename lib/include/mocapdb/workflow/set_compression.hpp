@@ -45,7 +45,8 @@ struct CompressOutcome {
     std::uint64_t stored_bytes = 0;      ///< the model in the file
     double search_s = 0.0, fit_s = 0.0, total_s = 0.0;
     double kernel_s = 0.0;               ///< fitting the synthesis kernel's variogram stored with the model
-    bool kernel_stored = false;          ///< false above synthesis::kStoredKernelMaxSamples samples
+    bool kernel_stored = false;          ///< false above synthesis::kStoredKernelMaxSamples samples, or without parameters
+    std::string kernel_not_stored_reason;  ///< why not, when not ("" when stored)
     std::string kernel_variogram;        ///< the stored kernel's variogram (empty when not stored)
     std::string kernel_status = "ok";    ///< its fit status (kriging::to_string(FitStatus))
     std::string kernel_warning;          ///< synthesis::fit_status_warning, "" when the fit is clean
