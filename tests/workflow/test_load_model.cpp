@@ -64,7 +64,7 @@ void damage(const std::filesystem::path& file, const std::string& dataset) {
     REQUIRE(!extents.empty());
     const ByteExtent chunk = extents.front();
     REQUIRE(chunk.size > 16);
-    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    std::fstream f(chunk.file, std::ios::in | std::ios::out | std::ios::binary);  // the segment holding it
     REQUIRE(f);
     for (std::uint64_t k = 0; k < 4; ++k) {
         const auto at = static_cast<std::streamoff>(chunk.offset + chunk.size / 2 + k);
@@ -119,7 +119,7 @@ TEST_CASE("workflow: load_motion_model does not read the aligned tensor (damage 
     const std::filesystem::path path = dir / "walks.h5";
     const std::string tensor = "/sets/walks/aligned/tensor", warps = "/sets/walks/aligned/warps";
 
-    std::filesystem::copy_file(walks().path, path);
+    copy_database(walks().path, path);
     damage(path, tensor);
     {
         const Database db(path);
@@ -133,7 +133,8 @@ TEST_CASE("workflow: load_motion_model does not read the aligned tensor (damage 
     }
 
     std::filesystem::remove(path);
-    std::filesystem::copy_file(walks().path, path);
+    std::filesystem::remove_all(path.string() + ".d");
+    copy_database(walks().path, path);
     damage(path, warps);
     const Database db(path);
     CHECK_THROWS_AS(workflow::load_motion_model(db, "walks"), ChecksumError);
