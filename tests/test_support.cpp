@@ -3,8 +3,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "shared_data.hpp"
 
@@ -52,5 +54,31 @@ std::string quoted(const std::string& word) {
 }
 
 CommandResult run_cli(const std::string& arguments) { return run_command(quoted(cli_path()) + " " + arguments); }
+
+std::filesystem::path folder_for_this_build(const std::filesystem::path& folder, const std::string& extension,
+                                            const std::filesystem::path& scratch) {
+#ifdef MOCAPDB_SANITIZED_BUILD
+    constexpr std::size_t stride = 6;
+#else
+    constexpr std::size_t stride = 1;
+#endif
+    if (stride == 1) return folder;
+    std::vector<std::filesystem::path> clips, others;
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+        (entry.path().extension() == extension ? clips : others).push_back(entry.path());
+    std::sort(clips.begin(), clips.end());
+    const auto sample = scratch / ("every-" + std::to_string(stride) + "th-" + folder.filename().string());
+    std::filesystem::create_directories(sample);
+    for (std::size_t i = 0; i < clips.size(); i += stride)
+        std::filesystem::create_symlink(clips[i], sample / clips[i].filename());
+    for (const auto& p : others) std::filesystem::create_symlink(p, sample / p.filename());
+    return sample;
+}
+
+std::size_t count_files(const std::filesystem::path& folder, const std::string& extension) {
+    std::size_t n = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) n += entry.path().extension() == extension;
+    return n;
+}
 
 }  // namespace mocapdb::test

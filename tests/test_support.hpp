@@ -33,4 +33,13 @@ CommandResult run_cli(const std::string& arguments);
 /// Single-quotes a path or word for the shell.
 std::string quoted(const std::string& word);
 
+/// The clip folder a whole-folder test imports: `folder` itself in a release build; in a sanitizer build
+/// (MOCAPDB_SANITIZED_BUILD, 10-20x slower) a folder created under `scratch` holding symbolic links to
+/// every 6th clip with extension `extension` (".amc", sorted by name) and to every other file (e.g. the
+/// ASF skeletons). The release pass checks every clip; the sanitizer pass checks the same code paths.
+std::filesystem::path folder_for_this_build(const std::filesystem::path& folder, const std::string& extension,
+                                            const std::filesystem::path& scratch);
+/// Number of files with `extension` in `folder` (links included).
+std::size_t count_files(const std::filesystem::path& folder, const std::string& extension);
+
 }  // namespace mocapdb::test

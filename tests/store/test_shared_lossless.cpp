@@ -119,10 +119,10 @@ TEST_CASE("lossless tier: both shared folders export every source number exactly
           "[store][shared][acceptance][lossless]") {
     MOCAPDB_REQUIRE_CLI();
     for (const Folder& folder : {Folder{"cmu-asfamc", "amc", ""}, Folder{"cmu-walkrun-pfnn", "bvh", " --fps 60"}}) {
-        const auto dir = datasets_dir() / folder.name;
-        MOCAPDB_REQUIRE_SHARED(dir);
+        MOCAPDB_REQUIRE_SHARED(datasets_dir() / folder.name);
         INFO("folder " << folder.name);
         TempDir tmp("lossless");
+        const auto dir = folder_for_this_build(datasets_dir() / folder.name, "." + folder.ext, tmp.path());
         const auto db_path = tmp / (folder.name + ".h5");
         const CommandResult import =
             run_cli("import " + quoted(dir.string()) + folder.import_options + " -o " + quoted(db_path.string()));

@@ -31,7 +31,8 @@ std::filesystem::path segment_dir(const std::filesystem::path& index) {
 }
 
 std::string new_segment_name(const std::filesystem::path& index) {
-    static std::mt19937_64 gen{std::random_device{}()};
+    // One generator per thread: writers in several threads of one process draw names concurrently.
+    thread_local std::mt19937_64 gen{std::random_device{}()};
     const std::time_t now = std::time(nullptr);
     std::tm utc{};
     gmtime_r(&now, &utc);
