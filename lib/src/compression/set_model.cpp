@@ -1,9 +1,11 @@
 #include "mocapdb/compression/set_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
 
@@ -65,8 +67,19 @@ SampleReconstruction::SampleReconstruction(const SetModel& model) : model_(&mode
     // The first two mode products of TuckerModel::reconstruct(), as it computes them; the last one
     // (sample mode) is done per call, so the values are reconstruct()'s.
     const tensor::TuckerModel& t = model.tucker;
-    const Tensor3 w = tensor::mode_product(tensor::mode_product(t.core, t.U[0], 0), t.U[1], 1);
-    dof_time_ = Eigen::Map<const MatX>(w.data(), w.dimension(0) * w.dimension(1), w.dimension(2));
+    const Tensor3 w0 = tensor::mode_product(t.core, t.U[0], 0);
+    // The time product as tensor::mode_product computes it (one product per sample-mode slice), the
+    // slices on the machine's cores (independent, so the values do not depend on the thread count).
+    const Eigen::Index d = w0.dimension(0), r1 = w0.dimension(1), r2 = w0.dimension(2), frames = t.U[1].rows();
+    dof_time_.resize(d * frames, r2);
+    constexpr Eigen::Index kSlices = 64;
+    run_parallel_tasks(static_cast<std::size_t>((r2 + kSlices - 1) / kSlices), [&](std::size_t c) {
+        const Eigen::Index first = static_cast<Eigen::Index>(c) * kSlices;
+        for (Eigen::Index k = first; k < std::min(r2, first + kSlices); ++k) {
+            Eigen::Map<MatX> o(dof_time_.col(k).data(), d, frames);
+            o.noalias() = Eigen::Map<const MatX>(w0.data() + k * d * r1, d, r1) * t.U[1].transpose();
+        }
+    });
 }
 
 void SampleReconstruction::operator()(const std::vector<Eigen::Index>& samples, MatX& out) const {
