@@ -13,9 +13,9 @@
 // that a probe meets the target means forward kinematics of every pose of every sample, while
 // finding one joint beyond it proves it does not. So the bisection first decides each probe on a
 // screen of its samples (screen_for in rank_search.cpp: screen_samples spread evenly over the set,
-// the samples that dropping the probe's sample-basis columns moves most, and those found beyond the
-// target before): a joint beyond the target there fails the probe for good; none passes it
-// provisionally. The triple the bisection picks is then checked on every pose of every sample. If
+// the 128 farthest from the mean, the 32 that dropping the probe's sample-basis columns moves most,
+// and those found beyond the target before): a joint beyond the target there fails the probe for
+// good; none passes it provisionally. The triple the bisection picks is then checked on every pose of every sample. If
 // one is beyond the target, that triple fails for good, every sample beyond the target joins every
 // later screen, and the bisection runs again; after three such rounds every probe is checked on
 // every pose (the search without screening). So the returned model has always been measured pose by
@@ -24,6 +24,7 @@
 // bisection's path (a provisional pass the full search would have failed, on a probe other than the
 // chosen one): then the bisection continues from a different interval; the result still meets the
 // target and is still the fewest-parameter passing triple among those the bisection visited.
+// docs/synthesis.md (Compression, "How the ranks are found") says the same for users.
 #include <functional>
 
 #include "mocapdb/compression/set_model.hpp"
