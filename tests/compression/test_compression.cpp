@@ -208,3 +208,83 @@ TEST_CASE("rank search: projected sample basis gives the dense path's ranks and 
         }
     }
 }
+
+TEST_CASE("rank search: screened probes give a model checked on every pose (#16)", "[compression][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const auto skeleton = skeleton_of("cmu-asfamc/16_15.amc");
+    const VecX w = compression::position_error_weights(*skeleton);
+    // 10-frame windows cut every 5 frames from six walks: a few hundred samples, so a screen of 16
+    // of them (plus the outliers and the truncation's samples) is a small part of the set.
+    Tensor3 windows;
+    {
+        std::vector<MatX> cut;
+        for (int t = 11; t < 17; ++t) {
+            const Clip clip = read_clip(test::datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc"));
+            for (std::size_t f = 0; f + 10 <= clip.frame_count() && cut.size() < 600; f += 5) {
+                const Clip part = slice(clip, f, f + 10);
+                cut.push_back(to_pose_vectors(part, canonicalization_of(part)));
+            }
+        }
+        windows = Tensor3(cut[0].rows(), 10, static_cast<Eigen::Index>(cut.size()));
+        for (std::size_t k = 0; k < cut.size(); ++k)
+            std::copy(cut[k].data(), cut[k].data() + cut[k].size(), windows.data() + k * cut[k].size());
+    }
+    REQUIRE(windows.dimension(2) > 4 * 16);
+    const compression::JointErrorMeter meter(skeleton, windows);
+    const compression::PreparedSet prepared = compression::prepare_set(windows, w);
+    for (const double target : {2.0, 0.5, 0.1}) {
+        const auto full = compression::search_ranks_for_max_error(prepared, meter, target, {}, 0);
+        const auto screened = compression::search_ranks_for_max_error(prepared, meter, target, {}, 16);
+        const tensor::Ranks& a = full.model.tucker.ranks;
+        const tensor::Ranks& b = screened.model.tucker.ranks;
+        INFO("target " << target << " cm: unscreened " << a[0] << "x" << a[1] << "x" << a[2] << " max "
+                       << full.stats.max_cm << " cm, " << full.evaluations << " models, " << full.full_checks
+                       << " full checks; screened " << b[0] << "x" << b[1] << "x" << b[2] << " max "
+                       << screened.stats.max_cm << " cm, " << screened.evaluations << " models, "
+                       << screened.full_checks << " full checks");
+        CHECK(screened.target_met);
+        CHECK(screened.stats.max_cm <= target);
+        // The errors are those of the returned model, measured on every pose.
+        CHECK(meter.measure(screened.model.reconstruct()).max_cm == screened.stats.max_cm);
+        CHECK(screened.full_checks >= 1);
+        CHECK(screened.full_checks < full.full_checks);
+        // On these walks the screens decide as the full checks do: the same ranks.
+        CHECK(a == b);
+        CHECK(screened.stats.max_cm == full.stats.max_cm);
+    }
+    CHECK_THROWS_AS(compression::search_ranks_for_max_error(prepared, meter, 1.0, {}, -1), InvalidArgument);
+}
+
+TEST_CASE("joint error meter: a check on listed samples, and every sample beyond the target (#16)", "[compression][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const AlignedSet a = walks(4, 20);
+    const auto skeleton = skeleton_of("cmu-asfamc/16_15.amc");
+    const compression::JointErrorMeter meter(skeleton, a.tensor);
+    // Samples 1 and 3 moved rigidly by 2 cm: their every joint is 2 cm off, the others exact.
+    Tensor3 shifted = a.tensor;
+    for (const Eigen::Index n : {1, 3})
+        for (Eigen::Index f = 0; f < a.tensor.dimension(1); ++f) shifted(0, f, n) += 2.0;
+    const auto approx = [&](const std::vector<Eigen::Index>& ids, MatX& out) {
+        const Eigen::Index d = shifted.dimension(0), t = shifted.dimension(1);
+        out.resize(d, t * static_cast<Eigen::Index>(ids.size()));
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            out.middleCols(static_cast<Eigen::Index>(i) * t, t) =
+                Eigen::Map<const MatX>(shifted.data() + ids[i] * d * t, d, t);
+    };
+    CHECK_FALSE(meter.exceeds_on(approx, {0, 2}, 1.0));
+    CHECK(meter.exceeds_on(approx, {0, 3}, 1.0));
+    CHECK_FALSE(meter.exceeds_on(approx, {1, 3}, 2.5));
+    std::vector<Eigen::Index> suspects;
+    CHECK(meter.exceeds_on(approx, {1}, 1.0, &suspects));
+    CHECK(suspects == std::vector<Eigen::Index>{1});
+    CHECK_THROWS_AS(meter.exceeds_on(approx, {4}, 1.0), InvalidArgument);
+
+    std::vector<Eigen::Index> beyond{7};
+    CHECK_FALSE(meter.measure_within(approx, 1.0, nullptr, &beyond).has_value());
+    CHECK(beyond == std::vector<Eigen::Index>{1, 3});
+    const auto within = meter.measure_within(approx, 2.5, nullptr, &beyond);
+    REQUIRE(within.has_value());
+    CHECK(beyond.empty());
+    CHECK(std::abs(within->max_cm - 2.0) < 1e-9);
+    CHECK(within->max_cm == meter.measure(shifted).max_cm);
+}

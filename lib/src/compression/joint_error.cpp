@@ -44,6 +44,14 @@ SampleApproximation slices_of(const Tensor3& approx) {
     };
 }
 
+// Puts sample n at the front of the suspects (at most 64 kept); nothing when there is no list.
+void note_suspect(std::vector<Eigen::Index>* suspects, Eigen::Index n) {
+    if (!suspects || n < 0) return;
+    suspects->erase(std::remove(suspects->begin(), suspects->end(), n), suspects->end());
+    suspects->insert(suspects->begin(), n);
+    if (suspects->size() > 64) suspects->resize(64);
+}
+
 }  // namespace
 
 MatX pose_joint_positions(const Skeleton& skeleton, const Eigen::Ref<const MatX>& poses) {
@@ -85,56 +93,99 @@ bool JointErrorMeter::exceeds(const Tensor3& approx, double max_cm) const {
     return !measure_within(slices_of(approx), max_cm).has_value();
 }
 
-std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleApproximation& approx, double max_cm,
-                                                               std::vector<Eigen::Index>* suspects) const {
+Eigen::Index JointErrorMeter::check_samples(const SampleApproximation& approx, const std::vector<Eigen::Index>& ids,
+                                            double max_cm, double* errors, double* dof_sq, char* flagged) const {
     const Tensor3& ref = *reference_;
-    const Eigen::Index dofs = ref.dimension(0), frames = ref.dimension(1), samples = ref.dimension(2);
+    const Eigen::Index dofs = ref.dimension(0), frames = ref.dimension(1);
+    const auto joints = static_cast<Eigen::Index>(skeleton_->size());
+    const Eigen::Index per_sample = frames * joints;
+    MatX buffer;
+    approx(ids, buffer);
+    const auto count = static_cast<Eigen::Index>(ids.size());
+    if (buffer.rows() != dofs || buffer.cols() != frames * count)
+        throw InvalidArgument("joint error: the approximation of " + std::to_string(count) + " samples is " +
+                              std::to_string(buffer.rows()) + " x " + std::to_string(buffer.cols()) + ", expected " +
+                              std::to_string(dofs) + " x " + std::to_string(frames * count));
+    for (Eigen::Index i = 0; i < count; ++i) {
+        const Eigen::Index n = ids[static_cast<std::size_t>(i)];
+        const auto slice = buffer.middleCols(i * frames, frames);
+        const MatX p = pose_joint_positions(*skeleton_, slice);
+        const MatX& r = reference_positions_[static_cast<std::size_t>(n)];
+        double* out = errors ? errors + n * per_sample : nullptr;
+        bool over = false;
+        for (Eigen::Index f = 0; f < frames; ++f)
+            for (Eigen::Index j = 0; j < joints; ++j) {
+                const double e = (p.block<3, 1>(3 * j, f) - r.block<3, 1>(3 * j, f)).norm();
+                if (e > max_cm) {
+                    if (!flagged) return n;
+                    over = true;
+                }
+                if (out) out[f * joints + j] = e;
+            }
+        if (over) flagged[n] = 1;
+        if (dof_sq) dof_sq[n] = (slice - sample_slice(ref, n)).squaredNorm();
+    }
+    return -1;
+}
+
+bool JointErrorMeter::exceeds_on(const SampleApproximation& approx, const std::vector<Eigen::Index>& samples,
+                                 double max_cm, std::vector<Eigen::Index>* suspects) const {
+    const Eigen::Index total = reference_->dimension(2);
+    for (const Eigen::Index n : samples)
+        if (n < 0 || n >= total)
+            throw InvalidArgument("JointErrorMeter::exceeds_on: sample " + std::to_string(n) + " is not in [0, " +
+                                  std::to_string(total) + ")");
+    if (suspects && !suspects->empty()) {
+        std::vector<Eigen::Index> ids;
+        for (const Eigen::Index n : *suspects)
+            if (n >= 0 && n < total) ids.push_back(n);
+        const Eigen::Index found = ids.empty() ? -1 : check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
+        if (found >= 0) {
+            note_suspect(suspects, found);
+            return true;
+        }
+    }
+    std::atomic<bool> stop{false};
+    std::atomic<Eigen::Index> exceeded{-1};
+    const auto count = static_cast<Eigen::Index>(samples.size());
+    const auto chunks = static_cast<std::size_t>((count + kSamplesPerChunk - 1) / kSamplesPerChunk);
+    run_parallel_tasks(chunks, [&](std::size_t c) {
+        if (stop) return;
+        const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
+        const std::vector<Eigen::Index> ids(samples.begin() + first,
+                                            samples.begin() + std::min(count, first + kSamplesPerChunk));
+        const Eigen::Index found = check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
+        if (found >= 0) {
+            Eigen::Index none = -1;
+            exceeded.compare_exchange_strong(none, found);
+            stop = true;
+        }
+    });
+    if (stop) note_suspect(suspects, exceeded.load());
+    return stop;
+}
+
+std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleApproximation& approx, double max_cm,
+                                                               std::vector<Eigen::Index>* suspects,
+                                                               std::vector<Eigen::Index>* beyond) const {
+    const Tensor3& ref = *reference_;
+    const Eigen::Index frames = ref.dimension(1), samples = ref.dimension(2);
     const auto joints = static_cast<Eigen::Index>(skeleton_->size());
     const Eigen::Index per_sample = frames * joints;
     // Errors by sample, frame, joint (the order measure() has always reduced them in), written by
     // whichever thread measures the sample; uninitialized until then (a failing check touches little).
     const std::unique_ptr<double[]> errors(new double[static_cast<std::size_t>(samples * per_sample)]);
     std::vector<double> dof_sq(static_cast<std::size_t>(samples), 0.0);
+    // With `beyond`: per sample, whether it has a joint beyond max_cm (every sample is measured).
+    std::vector<char> flagged(beyond ? static_cast<std::size_t>(samples) : 0, 0);
 
-    // Measures the listed samples; returns the first one with a joint beyond max_cm, or -1.
-    const auto check = [&](const std::vector<Eigen::Index>& ids, bool record) -> Eigen::Index {
-        MatX buffer;
-        approx(ids, buffer);
-        const auto count = static_cast<Eigen::Index>(ids.size());
-        if (buffer.rows() != dofs || buffer.cols() != frames * count)
-            throw InvalidArgument("joint error: the approximation of " + std::to_string(count) + " samples is " +
-                                  std::to_string(buffer.rows()) + " x " + std::to_string(buffer.cols()) + ", expected " +
-                                  std::to_string(dofs) + " x " + std::to_string(frames * count));
-        for (Eigen::Index i = 0; i < count; ++i) {
-            const Eigen::Index n = ids[static_cast<std::size_t>(i)];
-            const auto slice = buffer.middleCols(i * frames, frames);
-            const MatX p = pose_joint_positions(*skeleton_, slice);
-            const MatX& r = reference_positions_[static_cast<std::size_t>(n)];
-            double* out = errors.get() + n * per_sample;
-            for (Eigen::Index f = 0; f < frames; ++f)
-                for (Eigen::Index j = 0; j < joints; ++j) {
-                    const double e = (p.block<3, 1>(3 * j, f) - r.block<3, 1>(3 * j, f)).norm();
-                    if (e > max_cm) return n;
-                    if (record) out[f * joints + j] = e;
-                }
-            if (record) dof_sq[static_cast<std::size_t>(n)] = (slice - sample_slice(ref, n)).squaredNorm();
-        }
-        return -1;
-    };
-    const auto note_suspect = [&](Eigen::Index n) {
-        if (!suspects) return;
-        suspects->erase(std::remove(suspects->begin(), suspects->end(), n), suspects->end());
-        suspects->insert(suspects->begin(), n);
-        if (suspects->size() > 64) suspects->resize(64);
-    };
-
-    if (suspects && !suspects->empty() && std::isfinite(max_cm)) {
+    if (!beyond && suspects && !suspects->empty() && std::isfinite(max_cm)) {
         std::vector<Eigen::Index> ids;
         for (const Eigen::Index n : *suspects)
             if (n >= 0 && n < samples) ids.push_back(n);
-        const Eigen::Index found = ids.empty() ? -1 : check(ids, false);
+        const Eigen::Index found = ids.empty() ? -1 : check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
         if (found >= 0) {
-            note_suspect(found);
+            note_suspect(suspects, found);
             return std::nullopt;
         }
     }
@@ -147,15 +198,25 @@ std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleAppro
         const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
         std::vector<Eigen::Index> ids;
         for (Eigen::Index n = first; n < std::min(samples, first + kSamplesPerChunk); ++n) ids.push_back(n);
-        const Eigen::Index found = check(ids, true);
+        const Eigen::Index found =
+            check_samples(approx, ids, max_cm, errors.get(), dof_sq.data(), beyond ? flagged.data() : nullptr);
         if (found >= 0) {
             Eigen::Index none = -1;
             exceeded.compare_exchange_strong(none, found);
             stop = true;
         }
     });
+    if (beyond) {
+        beyond->clear();
+        for (Eigen::Index n = 0; n < samples; ++n)
+            if (flagged[static_cast<std::size_t>(n)]) beyond->push_back(n);
+        if (!beyond->empty()) {
+            note_suspect(suspects, beyond->front());
+            return std::nullopt;
+        }
+    }
     if (stop) {
-        note_suspect(exceeded.load());
+        note_suspect(suspects, exceeded.load());
         return std::nullopt;
     }
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "mocapdb/core/error.hpp"
@@ -12,97 +14,147 @@
 namespace mocapdb::compression {
 namespace {
 
-// A probe's measurement: whether the model meets the target, with the model's errors when the
-// check measured them on the way (the max-error check does; see measure_model).
-struct ProbeCheck {
-    bool met = false;
-    std::optional<JointErrorStats> stats;
-};
+// The bisection's grid: log e over [log 1e-7, 0], halved until the interval is 0.01 wide (at most
+// 28 steps); its number of steps is known up front.
+double log_error_low() { return std::log(1e-7); }
+constexpr double kLogErrorResolution = 0.01;
 
-// The chosen model's errors, sample by sample (no D x T x N reconstruction).
-JointErrorStats measure_model(const JointErrorMeter& meter, const SetModel& m) {
-    const SampleReconstruction approx(m);
-    return *meter.measure_within([&](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); },
-                                 std::numeric_limits<double>::infinity());
+std::uint64_t bisection_steps() {
+    return static_cast<std::uint64_t>(std::min(28.0, std::ceil(std::log2((0.0 - log_error_low()) / kLogErrorResolution))));
 }
 
-// Bisection over log e ∈ [log e_min, 0] for the largest e whose model satisfies `check` (check(model):
-// whether it meets the target). Every probe's core is a block of the core at the bases' full ranks,
-// projected once (tensor::hosvd_full_core); ranks beyond the sample basis' columns fall back to
-// hosvd_from_bases. Only the chosen model's errors are measured in full.
-template <class Check>
-RankSearchResult bisect(const PreparedSet& p, const compression::JointErrorMeter& meter, Check check,
-                        const ProgressCallback& progress) {
-    RankSearchResult best;
-    const tensor::Dims3 dims = tensor::dims_of(p.x);
-    const Tensor3 full_core = tensor::hosvd_full_core(p.x, p.bases);
-    std::optional<JointErrorStats> best_stats;
-    tensor::Ranks best_ranks{-1, -1, -1};
+// One bisection over log e: decide(ranks) says whether the model at ranks_for_error_bound(e) counts
+// as meeting the target. Returns the passing triple with the fewest parameters (of equal ones, the
+// later), or nothing when no probe passed. step(i) is called before step i.
+template <class Decide, class Step>
+std::optional<tensor::Ranks> bisection(const tensor::ModeSpectra& spectra, Decide decide, Step step) {
+    std::optional<tensor::Ranks> best;
     Eigen::Index best_parameters = 0;
-    const auto evaluate = [&](const tensor::Ranks& ranks) {
-        RankSearchResult r;
-        r.model.mean = p.mean;
-        r.model.weight = p.weight;
-        r.model.tucker = ranks[2] <= full_core.dimension(2) ? tensor::hosvd_from_core(p.bases, full_core, ranks)
-                                                            : tensor::hosvd_from_bases(p.x, p.bases, ranks);
-        return r;
-    };
-    // Full ranks reproduce the data (up to rounding), so the target is reachable: the bisection
-    // assumes it and measures them only when no probe met the target (they are the largest model,
-    // so any probe that meets the target is preferred to them). The sample rank of a D x T x N
-    // tensor is at most D T, so min(N, D T) sample columns are already full.
-    const tensor::Ranks full{dims[0], dims[1], std::min(dims[2], dims[0] * dims[1])};
-    bool found = false;
-    int evaluations = 0;
-    double lo = std::log(1e-7), hi = 0.0;  // lo: known to meet (or assumed: finer than full-rank rounding)
+    double lo = log_error_low(), hi = 0.0;  // lo: known to meet (or assumed: finer than full-rank rounding)
     tensor::Ranks last{-1, -1, -1};
     bool last_ok = false;
-    // Progress in bisection steps: the interval halves each step, so their number is known up front
-    // (plus one for measuring the chosen model).
-    const auto steps = static_cast<std::uint64_t>(std::min(28.0, std::ceil(std::log2((hi - lo) / 0.01))));
-    const auto report = [&](std::uint64_t done) {
-        if (progress) progress({done, steps + 1, "rank search"});
-    };
-    for (int i = 0; i < 28 && hi - lo > 0.01; ++i) {
-        report(static_cast<std::uint64_t>(i));
+    for (int i = 0; i < 28 && hi - lo > kLogErrorResolution; ++i) {
+        step(static_cast<std::uint64_t>(i));
         const double mid = 0.5 * (lo + hi);
-        const tensor::Ranks ranks = tensor::ranks_for_error_bound(p.bases.spectra, std::exp(mid));
+        const tensor::Ranks ranks = tensor::ranks_for_error_bound(spectra, std::exp(mid));
         if (ranks == last) {  // same triple as the previous probe: its answer is known
             (last_ok ? lo : hi) = mid;
             continue;
         }
         last = ranks;
-        RankSearchResult r = evaluate(ranks);
-        ProbeCheck c = check(r.model);
-        r.target_met = c.met;
-        ++evaluations;
-        last_ok = r.target_met;
-        if (r.target_met) {
+        last_ok = decide(ranks);
+        if (last_ok) {
             lo = mid;
-            if (!found || r.model.tucker.parameter_count() <= best_parameters) {
-                best_ranks = ranks;
-                best_parameters = r.model.tucker.parameter_count();
-                best_stats = std::move(c.stats);
+            const Eigen::Index parameters = tensor::tucker_parameter_count(spectra.dims, ranks);
+            if (!best || parameters <= best_parameters) {
+                best = ranks;
+                best_parameters = parameters;
             }
-            found = true;
         } else {
             hi = mid;
         }
     }
-    if (found) {
-        // Rebuilt from the same blocks (bit for bit the probe's model): the search holds one model
-        // at a time, not the best one beside each probe's (#16: 0.1 GB at 10 000 windows).
-        best = evaluate(best_ranks);
-        best.target_met = true;
-    } else {
-        best = evaluate(full);
-        ++evaluations;
-    }
-    report(steps);
-    best.stats = best_stats ? *best_stats : measure_model(meter, best.model);
-    best.evaluations = evaluations;
-    report(steps + 1);
     return best;
+}
+
+// The HOSVD model at ranks from the core at the bases' full ranks (projected once): a block of it,
+// or a projection of X for sample ranks beyond the sample basis' columns.
+SetModel model_at(const PreparedSet& p, const Tensor3& full_core, const tensor::Ranks& ranks) {
+    SetModel m;
+    m.mean = p.mean;
+    m.weight = p.weight;
+    m.tucker = ranks[2] <= full_core.dimension(2) ? tensor::hosvd_from_core(p.bases, full_core, ranks)
+                                                  : tensor::hosvd_from_bases(p.x, p.bases, ranks);
+    return m;
+}
+
+// The block [0, R1) x [0, R2) x [0, R3) of the full core: hosvd_from_core's copy, slice by slice.
+Tensor3 core_block(const Tensor3& full_core, const tensor::Ranks& ranks) {
+    Tensor3 core(ranks[0], ranks[1], ranks[2]);
+    const Eigen::Index f0 = full_core.dimension(0), f1 = full_core.dimension(1);
+    for (Eigen::Index k = 0; k < ranks[2]; ++k)
+        Eigen::Map<MatX>(core.data() + k * ranks[0] * ranks[1], ranks[0], ranks[1]) =
+            Eigen::Map<const MatX>(full_core.data() + k * f0 * f1, f0, f1).topLeftCorner(ranks[0], ranks[1]);
+    return core;
+}
+
+SampleApproximation samples_of(const SampleReconstruction& approx) {
+    return [&approx](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); };
+}
+
+// The chosen model's errors, sample by sample (no D x T x N reconstruction).
+JointErrorStats measure_model(const JointErrorMeter& meter, const SetModel& m) {
+    const SampleReconstruction approx(m);
+    return *meter.measure_within(samples_of(approx), std::numeric_limits<double>::infinity());
+}
+
+// Full ranks reproduce the data (up to rounding), so the target is reachable: the bisection assumes
+// it and measures them only when no probe met the target (they are the largest model, so any probe
+// that meets the target is preferred to them). The sample rank of a D x T x N tensor is at most D T,
+// so min(N, D T) sample columns are already full.
+RankSearchResult full_rank_result(const PreparedSet& p, const Tensor3& full_core, const JointErrorMeter& meter) {
+    const tensor::Dims3 dims = tensor::dims_of(p.x);
+    RankSearchResult r;
+    r.model = model_at(p, full_core, {dims[0], dims[1], std::min(dims[2], dims[0] * dims[1])});
+    r.stats = measure_model(meter, r.model);
+    return r;
+}
+
+// Screened rounds before every probe is checked on every sample (see search_ranks_for_max_error).
+constexpr int kScreenedRounds = 3;
+// Samples most changed by a probe's sample-mode truncation that join its screen.
+constexpr Eigen::Index kTruncationScreen = 32;
+// Samples farthest from the mean (largest weighted, centred energy) that join every screen: at 10 000
+// windows the one sample a 512-sample screen missed was the 44th farthest of them (#16).
+constexpr Eigen::Index kOutlierScreen = 128;
+// At most this many of the samples found beyond the target by failed full checks join every screen.
+constexpr std::size_t kFoundScreen = 256;
+
+// `spread` evenly spread samples of X and the kOutlierScreen samples with the largest energy, increasing.
+std::vector<Eigen::Index> fixed_screen(const Tensor3& x, Eigen::Index spread) {
+    const Eigen::Index samples = x.dimension(2);
+    std::vector<Eigen::Index> ids;
+    for (Eigen::Index i = 0; i < spread; ++i) ids.push_back(i * samples / spread);
+    const VecX energy =
+        Eigen::Map<const MatX>(x.data(), x.dimension(0) * x.dimension(1), samples).colwise().squaredNorm().transpose();
+    std::vector<Eigen::Index> order(static_cast<std::size_t>(samples));
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
+    const auto top = std::min(kOutlierScreen, samples);
+    std::partial_sort(order.begin(), order.begin() + top, order.end(), [&](Eigen::Index a, Eigen::Index b) {
+        return energy(a) > energy(b) || (energy(a) == energy(b) && a < b);
+    });
+    ids.insert(ids.end(), order.begin(), order.begin() + top);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+}
+
+// The samples a probe at `ranks` is screened on, increasing: `fixed` (fixed_screen), the samples found beyond the
+// target by earlier full checks, and the kTruncationScreen samples with the largest energy in the
+// sample-basis columns the probe leaves out (sum over k >= R3 of lambda_k U_sample(n, k)^2: where
+// dropping sample columns moves a sample most). Depends only on the bases, the ranks and the earlier
+// checks' results, never on the number of threads.
+std::vector<Eigen::Index> screen_for(const tensor::HosvdBases& bases, const tensor::Ranks& ranks,
+                                     const std::vector<Eigen::Index>& fixed, const std::vector<Eigen::Index>& found) {
+    std::vector<Eigen::Index> ids = fixed;
+    ids.insert(ids.end(), found.begin(), found.begin() + static_cast<std::ptrdiff_t>(std::min(found.size(), kFoundScreen)));
+    const MatX& u = bases.U[2];
+    const VecX& lambda = bases.spectra.squared_sv[2];
+    const Eigen::Index columns = std::min(u.cols(), lambda.size());
+    if (ranks[2] < columns) {
+        const auto dropped = columns - ranks[2];
+        const VecX energy = u.middleCols(ranks[2], dropped).array().square().matrix() * lambda.segment(ranks[2], dropped);
+        std::vector<Eigen::Index> order(static_cast<std::size_t>(energy.size()));
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
+        const auto top = std::min<Eigen::Index>(kTruncationScreen, energy.size());
+        std::partial_sort(order.begin(), order.begin() + top, order.end(), [&](Eigen::Index a, Eigen::Index b) {
+            return energy(a) > energy(b) || (energy(a) == energy(b) && a < b);
+        });
+        ids.insert(ids.end(), order.begin(), order.begin() + top);
+    }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
 }
 
 }  // namespace
@@ -126,22 +178,102 @@ SetModel hosvd_model(const PreparedSet& p, const tensor::Ranks& ranks) {
 }
 
 RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compression::JointErrorMeter& meter, double max_cm,
-                                            const ProgressCallback& progress) {
+                                            const ProgressCallback& progress, Eigen::Index screen_samples) {
     if (!(max_cm > 0.0) || !std::isfinite(max_cm))
         throw InvalidArgument("search_ranks_for_max_error: the target must be a finite number of cm > 0, got " +
                               std::to_string(max_cm));
-    // Same decision as measure(...).max_cm <= max_cm, sample by sample: a failing probe stops at the
-    // first chunk with a joint beyond the target (the samples that failed earlier probes first), a
-    // passing one has measured every error of its model on the way.
-    std::vector<Eigen::Index> suspects;
-    return bisect(p, meter, [&](const SetModel& m) {
-        const SampleReconstruction approx(m);
-        ProbeCheck c;
-        c.stats = meter.measure_within([&](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); },
-                                       max_cm, &suspects);
-        c.met = c.stats.has_value();
-        return c;
-    }, progress);
+    if (screen_samples < 0)
+        throw InvalidArgument("search_ranks_for_max_error: screen_samples must be >= 0, got " +
+                              std::to_string(screen_samples));
+    const Tensor3 full_core = tensor::hosvd_full_core(p.x, p.bases);
+    const Eigen::Index samples = p.x.dimension(2);
+    const std::uint64_t steps = bisection_steps();
+    std::uint64_t reported = 0;
+    const auto report = [&](std::uint64_t done) {
+        reported = std::max(reported, done);
+        if (progress) progress({reported, steps + 1, "rank search"});
+    };
+    // Screening pays when the screen is a small part of the set.
+    const bool screening = screen_samples > 0 && 4 * screen_samples < samples;
+    const std::vector<Eigen::Index> fixed = screening ? fixed_screen(p.x, screen_samples) : std::vector<Eigen::Index>{};
+
+    std::set<tensor::Ranks> failed;                       // a joint beyond the target was found
+    std::map<tensor::Ranks, JointErrorStats> passed;      // every pose checked: within the target
+    std::vector<Eigen::Index> suspects, found, beyond;  // suspects: order only; found: joins screens
+    int evaluations = 0, full_checks = 0;
+    for (int round = 0;; ++round) {
+        const bool screened = screening && round < kScreenedRounds;
+        // Same decision as measure(...).max_cm <= max_cm, sample by sample: a failing probe stops at
+        // the first chunk with a joint beyond the target (the samples that failed earlier probes
+        // first), a passing one has measured every error of its model on the way. A screened probe
+        // only looks at its screen: failing there is failing; passing there is provisional.
+        const auto decide = [&](const tensor::Ranks& ranks) {
+            if (failed.count(ranks)) return false;
+            if (passed.count(ranks)) return true;
+            // The probe's reconstruction from a block of the full core and the bases' leading columns
+            // (no N x R3 copy of the sample basis per probe: 80 MB at 10 000 windows).
+            std::optional<SetModel> sliced;
+            Tensor3 core;
+            std::optional<SampleReconstruction> reconstruction;
+            if (ranks[2] <= full_core.dimension(2)) {
+                core = core_block(full_core, ranks);
+                reconstruction.emplace(core, p.bases.U[0], p.bases.U[1], p.bases.U[2], p.mean, p.weight);
+            } else {
+                sliced = model_at(p, full_core, ranks);
+                reconstruction.emplace(*sliced);
+            }
+            const SampleReconstruction& approx = *reconstruction;
+            ++evaluations;
+            if (screened) {
+                const bool over = meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found),
+                                                   max_cm, &suspects);
+                if (over) failed.insert(ranks);
+                return !over;
+            }
+            ++full_checks;
+            std::optional<JointErrorStats> stats = meter.measure_within(samples_of(approx), max_cm, &suspects);
+            if (!stats) {
+                failed.insert(ranks);
+                return false;
+            }
+            passed.emplace(ranks, std::move(*stats));
+            return true;
+        };
+        const std::optional<tensor::Ranks> candidate =
+            bisection(p.bases.spectra, decide, [&](std::uint64_t i) { if (round == 0) report(i); });
+        RankSearchResult best;
+        if (!candidate) {
+            best = full_rank_result(p, full_core, meter);
+            ++evaluations;
+        } else {
+            best.model = model_at(p, full_core, *candidate);
+            best.target_met = true;
+            const auto known = passed.find(*candidate);
+            if (known != passed.end()) {
+                best.stats = known->second;
+            } else {
+                // The screen's answer confirmed on every pose; where it was wrong, the samples beyond the
+                // target join every screen and the bisection runs again.
+                report(steps);
+                const SampleReconstruction approx(best.model);
+                ++full_checks;
+                std::optional<JointErrorStats> stats =
+                    meter.measure_within(samples_of(approx), max_cm, &suspects, &beyond);
+                if (!stats) {
+                    failed.insert(*candidate);
+                    for (const Eigen::Index n : beyond)
+                        if (std::find(found.begin(), found.end(), n) == found.end()) found.push_back(n);
+                    continue;
+                }
+                best.stats = std::move(*stats);
+            }
+        }
+        report(steps);
+        best.evaluations = evaluations;
+        best.full_checks = full_checks;
+        report(steps + 1);
+        return best;
+    }
 }
 
 RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::JointErrorMeter& meter, double rmse,
@@ -149,11 +281,35 @@ RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::
     if (!(rmse >= 0.0) || !std::isfinite(rmse))
         throw InvalidArgument("search_ranks_for_rmse: the target must be finite and >= 0, got " + std::to_string(rmse));
     const double count = static_cast<double>(p.x.size());
-    return bisect(p, meter, [&](const SetModel& m) {
-        // ||X - X_hat||^2 = ||X||^2 - ||G||^2 for HOSVD-type models; measured from the fit.
-        const double error = m.tucker.data_norm * (1.0 - m.tucker.fit);
-        return ProbeCheck{error / std::sqrt(count) <= rmse, std::nullopt};
-    }, progress);
+    const Tensor3 full_core = tensor::hosvd_full_core(p.x, p.bases);
+    int evaluations = 0;
+    const std::uint64_t steps = bisection_steps();
+    const auto report = [&](std::uint64_t done) {
+        if (progress) progress({done, steps + 1, "rank search"});
+    };
+    const std::optional<tensor::Ranks> candidate = bisection(
+        p.bases.spectra,
+        [&](const tensor::Ranks& ranks) {
+            ++evaluations;
+            // ||X - X_hat||^2 = ||X||^2 - ||G||^2 for HOSVD-type models; measured from the fit.
+            const tensor::TuckerModel t = model_at(p, full_core, ranks).tucker;
+            return t.data_norm * (1.0 - t.fit) / std::sqrt(count) <= rmse;
+        },
+        report);
+    RankSearchResult best;
+    if (candidate) {
+        best.model = model_at(p, full_core, *candidate);
+        best.target_met = true;
+        report(steps);
+        best.stats = measure_model(meter, best.model);
+    } else {
+        best = full_rank_result(p, full_core, meter);
+        ++evaluations;
+    }
+    best.evaluations = evaluations;
+    best.full_checks = 1;
+    report(steps + 1);
+    return best;
 }
 
 RankSearchResult ranks_for_ratio(const PreparedSet& p, const compression::JointErrorMeter& meter, double ratio) {
@@ -164,6 +320,7 @@ RankSearchResult ranks_for_ratio(const PreparedSet& p, const compression::JointE
     r.stats = measure_model(meter, r.model);
     r.target_met = r.model.tucker.compression_ratio() >= ratio;
     r.evaluations = 1;
+    r.full_checks = 1;
     return r;
 }
 

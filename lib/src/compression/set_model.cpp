@@ -1,9 +1,11 @@
 #include "mocapdb/compression/set_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
 
@@ -61,29 +63,56 @@ Tensor3 SetModel::reconstruct(const tensor::Ranks& lod) const {
     return from_weighted_centred(tucker.reconstruct(lod), mean, weight);
 }
 
-SampleReconstruction::SampleReconstruction(const SetModel& model) : model_(&model) {
+SampleReconstruction::SampleReconstruction(const SetModel& model)
+    : SampleReconstruction(model.tucker.core, model.tucker.U[0], model.tucker.U[1], model.tucker.U[2], model.mean,
+                           model.weight) {}
+
+SampleReconstruction::SampleReconstruction(const Tensor3& core, const Eigen::Ref<const MatX>& dof_basis,
+                                           const Eigen::Ref<const MatX>& time_basis, const MatX& sample_basis,
+                                           const VecX& mean, const VecX& weight)
+    : sample_basis_(&sample_basis), sample_rank_(core.dimension(2)), mean_(&mean), weight_(&weight) {
+    const Eigen::Index r0 = core.dimension(0), r1 = core.dimension(1);
+    if (dof_basis.cols() < r0 || time_basis.cols() < r1 || sample_basis.cols() < sample_rank_ ||
+        mean.size() != dof_basis.rows() || weight.size() != dof_basis.rows())
+        throw InvalidArgument("SampleReconstruction: bases of " + std::to_string(dof_basis.cols()) + ", " +
+                              std::to_string(time_basis.cols()) + ", " + std::to_string(sample_basis.cols()) +
+                              " columns and " + std::to_string(dof_basis.rows()) + " dofs (mean " +
+                              std::to_string(mean.size()) + ", weight " + std::to_string(weight.size()) +
+                              ") for a core of " + std::to_string(r0) + " x " + std::to_string(r1) + " x " +
+                              std::to_string(sample_rank_));
     // The first two mode products of TuckerModel::reconstruct(), as it computes them; the last one
     // (sample mode) is done per call, so the values are reconstruct()'s.
-    const tensor::TuckerModel& t = model.tucker;
-    const Tensor3 w = tensor::mode_product(tensor::mode_product(t.core, t.U[0], 0), t.U[1], 1);
-    dof_time_ = Eigen::Map<const MatX>(w.data(), w.dimension(0) * w.dimension(1), w.dimension(2));
+    const Tensor3 w0 = tensor::mode_product(core, dof_basis.leftCols(r0), 0);
+    // The time product as tensor::mode_product computes it (one product per sample-mode slice), the
+    // slices on the machine's cores (independent, so the values do not depend on the thread count).
+    const Eigen::Index d = w0.dimension(0), r2 = w0.dimension(2), frames = time_basis.rows();
+    const auto time = time_basis.leftCols(r1);
+    dof_time_.resize(d * frames, r2);
+    constexpr Eigen::Index kSlices = 64;
+    run_parallel_tasks(static_cast<std::size_t>((r2 + kSlices - 1) / kSlices), [&](std::size_t c) {
+        const Eigen::Index first = static_cast<Eigen::Index>(c) * kSlices;
+        for (Eigen::Index k = first; k < std::min(r2, first + kSlices); ++k) {
+            Eigen::Map<MatX> o(dof_time_.col(k).data(), d, frames);
+            o.noalias() = Eigen::Map<const MatX>(w0.data() + k * d * r1, d, r1) * time.transpose();
+        }
+    });
 }
 
 void SampleReconstruction::operator()(const std::vector<Eigen::Index>& samples, MatX& out) const {
-    const tensor::TuckerModel& t = model_->tucker;
-    const Eigen::Index d = t.U[0].rows(), frames = t.U[1].rows(), n = t.U[2].rows();
+    const Eigen::Index d = mean_->size(), frames = dof_time_.rows() / std::max<Eigen::Index>(1, d);
+    const Eigen::Index n = sample_basis_->rows();
     const auto count = static_cast<Eigen::Index>(samples.size());
-    MatX rows(count, t.ranks[2]);
+    MatX rows(count, sample_rank_);
     for (Eigen::Index i = 0; i < count; ++i) {
         const Eigen::Index s = samples[static_cast<std::size_t>(i)];
         if (s < 0 || s >= n)
             throw InvalidArgument("SampleReconstruction: sample " + std::to_string(s) + " is not in [0, " +
                                   std::to_string(n) + ")");
-        rows.row(i) = t.U[2].row(s);
+        rows.row(i) = sample_basis_->row(s).head(sample_rank_);
     }
     out.resize(d, frames * count);
     Eigen::Map<MatX>(out.data(), d * frames, count).noalias() = dof_time_ * rows.transpose();
-    out = (out.array().colwise() / model_->weight.array()).matrix().colwise() + model_->mean;
+    out = (out.array().colwise() / weight_->array()).matrix().colwise() + *mean_;
 }
 
 SetModel fit_set_model(const Tensor3& poses, const VecX& weight, const tensor::Ranks& ranks,

@@ -84,17 +84,36 @@ public:
     /// of exceeds()) and returns nothing. max_cm: any value, +infinity to always measure.
     /// suspects (optional): samples to check first, typically those where earlier approximations
     /// exceeded (a failing check usually stops after them); the sample found beyond max_cm is added
-    /// to it (it keeps at most 64). Memory: the N T J errors (for the percentile) and a chunk of
-    /// samples per thread. Throws InvalidArgument when approx writes a wrong shape or a non-finite
-    /// value, and whatever approx throws.
+    /// to it (it keeps at most 64). beyond (optional): a joint beyond max_cm does not stop the
+    /// check; every sample is measured and *beyond receives, in increasing order, every sample with
+    /// a joint beyond max_cm (empty when there is none; which samples they are does not depend on the
+    /// number of threads, unlike the one a stopping check finds first). Memory: the N T J errors (for
+    /// the percentile) and a chunk of samples per thread. Throws InvalidArgument when approx writes a
+    /// wrong shape or a non-finite value, and whatever approx throws.
     std::optional<JointErrorStats> measure_within(const SampleApproximation& approx, double max_cm,
-                                                  std::vector<Eigen::Index>* suspects = nullptr) const;
+                                                  std::vector<Eigen::Index>* suspects = nullptr,
+                                                  std::vector<Eigen::Index>* beyond = nullptr) const;
+
+    /// Whether one of `samples` (each in [0, N)) has a joint more than max_cm from the reference,
+    /// checked as measure_within() checks every sample (the suspects first, then the samples in
+    /// chunks on the machine's cores, stopping at the first chunk with one); only the listed samples
+    /// are reconstructed. The answer does not depend on the number of threads. Throws InvalidArgument
+    /// on a sample out of range, and as measure_within().
+    bool exceeds_on(const SampleApproximation& approx, const std::vector<Eigen::Index>& samples, double max_cm,
+                    std::vector<Eigen::Index>* suspects = nullptr) const;
 
 private:
     std::shared_ptr<const Skeleton> skeleton_;
     std::shared_ptr<const Tensor3> owned_;   ///< the copy, when Reference::Copied
     const Tensor3* reference_ = nullptr;      ///< owned_ or the caller's tensor
     std::vector<MatX> reference_positions_;  ///< per sample: 3J by T
+
+    /// Reconstructs and measures samples `ids`. Without `flagged`, returns the first sample with a
+    /// joint beyond max_cm (its remaining errors unwritten), else -1; with it, measures them all and
+    /// sets flagged[n] for each such sample. errors (N T J) and dof_sq (N), when given, receive the
+    /// samples' errors at their places.
+    Eigen::Index check_samples(const SampleApproximation& approx, const std::vector<Eigen::Index>& ids, double max_cm,
+                               double* errors, double* dof_sq, char* flagged) const;
 };
 
 }  // namespace mocapdb::compression

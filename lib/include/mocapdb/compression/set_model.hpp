@@ -39,12 +39,23 @@ struct SetModel {
 class SampleReconstruction {
 public:
     explicit SampleReconstruction(const SetModel& model);
+    /// The same for the model with core `core` (R1 x R2 x R3), bases the first R1, R2, R3 columns of
+    /// dof_basis, time_basis and sample_basis, mean and weight: the values of that model's
+    /// reconstruct() without copying its N by R3 sample basis (#16: the rank search's probes, sliced
+    /// from the full-rank bases). Keeps pointers to sample_basis, mean and weight: they must outlive
+    /// it. Throws InvalidArgument when a basis has fewer columns than the core's dimension.
+    SampleReconstruction(const Tensor3& core, const Eigen::Ref<const MatX>& dof_basis,
+                         const Eigen::Ref<const MatX>& time_basis, const MatX& sample_basis, const VecX& mean,
+                         const VecX& weight);
     /// Writes samples (each in [0, N)) side by side into out, resized to D by (T samples.size()).
     /// Throws InvalidArgument on a sample out of range.
     void operator()(const std::vector<Eigen::Index>& samples, MatX& out) const;
 
 private:
-    const SetModel* model_;
+    const MatX* sample_basis_;  ///< N by >= R3: its first R3 columns are the model's
+    Eigen::Index sample_rank_ = 0;
+    const VecX* mean_;
+    const VecX* weight_;
     MatX dof_time_;  ///< (core x_0 U_dof x_1 U_time) unfolded along the sample mode: D T by R3
 };
 
