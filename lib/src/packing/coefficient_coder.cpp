@@ -35,8 +35,9 @@ std::uint32_t gamma(Sink& sink, BitContext* prefix, BitContext* msb, std::uint32
 }
 
 // `level` (size entries, zeroed by the caller): min(|q|, 2) by grid index.
+// Returns the coded length (scan positions up to the last nonzero one; decoding: at most `size`).
 template <class Sink>
-void traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, std::size_t size, const ScanGrid& grid,
+std::size_t traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, std::size_t size, const ScanGrid& grid,
               std::int32_t* q, std::uint8_t* level) {
     const std::uint32_t* scan = grid.scan->data();
     const auto rows = static_cast<std::uint32_t>(grid.rows);
@@ -71,6 +72,7 @@ void traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, std::siz
     }
     if constexpr (Sink::kDecoding)
         for (std::size_t i = length; i < size; ++i) q[i] = 0;
+    return length;
 }
 
 struct EncodeSink {
@@ -179,11 +181,12 @@ void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::
     decode_coefficients(data, size, classes.data(), classes.size(), grid, contexts, out_q.data(), level.data());
 }
 
-void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes, std::size_t count,
-                         const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q, std::uint8_t* level) {
+std::size_t decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes,
+                                std::size_t count, const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q,
+                                std::uint8_t* level) {
     DecodeSink sink{RangeDecoder(data, size)};
     std::fill(level, level + count, std::uint8_t(0));
-    traverse(sink, contexts, classes, count, grid, out_q, level);
+    return traverse(sink, contexts, classes, count, grid, out_q, level);
 }
 
 }  // namespace mocapdb::packing
