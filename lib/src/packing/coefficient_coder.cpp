@@ -35,9 +35,14 @@ std::uint32_t gamma(Sink& sink, BitContext* prefix, BitContext* msb, std::uint32
 }
 
 // `level` (size entries, zeroed by the caller): min(|q|, 2) by grid index.
+// Returns the coded length (scan positions up to the last nonzero one; decoding: at most `size`).
+// Decoding with `nonzero` given: the scan positions of the nonzero coefficients, in order, into it
+// (their count into *nonzero_count).
 template <class Sink>
-void traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, std::size_t size, const ScanGrid& grid,
-              std::int32_t* q, std::uint8_t* level) {
+std::size_t traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, std::size_t size, const ScanGrid& grid,
+                     std::int32_t* q, std::uint8_t* level, std::uint32_t* nonzero = nullptr,
+                     std::size_t* nonzero_count = nullptr) {
+    std::size_t nonzeros = 0;
     const std::uint32_t* scan = grid.scan->data();
     const auto rows = static_cast<std::uint32_t>(grid.rows);
     std::uint32_t length = 0;
@@ -67,10 +72,15 @@ void traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, std::siz
         std::uint32_t m = 1;
         if (sink.bit(ctx.greater_one(cls, n), magnitude > 1 ? 1 : 0)) m = gamma(sink, ctx.gamma(cls), ctx.gamma_msb(cls), magnitude - 1) + 1;
         level[pos] = static_cast<std::uint8_t>(std::min<std::uint32_t>(m, 2));
-        if constexpr (Sink::kDecoding) q[i] = negative ? -static_cast<std::int32_t>(m) : static_cast<std::int32_t>(m);
+        if constexpr (Sink::kDecoding) {
+            q[i] = negative ? -static_cast<std::int32_t>(m) : static_cast<std::int32_t>(m);
+            if (nonzero != nullptr) nonzero[nonzeros++] = static_cast<std::uint32_t>(i);
+        }
     }
+    if (nonzero_count != nullptr) *nonzero_count = nonzeros;
     if constexpr (Sink::kDecoding)
         for (std::size_t i = length; i < size; ++i) q[i] = 0;
+    return length;
 }
 
 struct EncodeSink {
@@ -179,11 +189,12 @@ void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::
     decode_coefficients(data, size, classes.data(), classes.size(), grid, contexts, out_q.data(), level.data());
 }
 
-void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes, std::size_t count,
-                         const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q, std::uint8_t* level) {
+std::size_t decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes,
+                                std::size_t count, const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q,
+                                std::uint8_t* level, std::uint32_t* nonzero, std::size_t* nonzero_count) {
     DecodeSink sink{RangeDecoder(data, size)};
     std::fill(level, level + count, std::uint8_t(0));
-    traverse(sink, contexts, classes, count, grid, out_q, level);
+    return traverse(sink, contexts, classes, count, grid, out_q, level, nonzero, nonzero_count);
 }
 
 }  // namespace mocapdb::packing

@@ -90,9 +90,11 @@ void GroupDecoder::load_window(const detail::WindowEntry& e, detail::WindowScrat
     m.prepare(s);
     const std::vector<std::uint8_t>& classes = classes_[e.step];
     s.contexts = m.contexts;  // every window starts from the trained probabilities
+    std::size_t nonzeros = 0;
     decode_coefficients(bytes_.data() + payload_ + e.offset, e.size, classes.data(), classes.size(), m.grid(),
-                        s.contexts, s.q.data(), s.level.data());
-    m.dequantize(e.step, s.q.data(), classes.size(), s);
+                        s.contexts, s.q.data(), s.level.data(), s.nonzero.data(), &nonzeros);
+    // Only the nonzero coefficients are dequantized (no passes over the zeros of the grid).
+    m.dequantize_nonzero(e.step, s.q.data(), s.nonzero.data(), nonzeros, s);
 }
 
 FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) const {

@@ -75,6 +75,7 @@ void GroupModel::prepare(WindowScratch& s) const {
     const std::size_t cells = da * static_cast<std::size_t>(window);
     s.q.resize(cells);
     s.level.resize(cells);
+    s.nonzero.resize(cells);
     s.g.resize(cells);
     s.y.resize(da);
     s.x.resize(da);
@@ -102,6 +103,22 @@ void GroupModel::dequantize(int step_index, const std::int32_t* q, std::size_t n
     std::fill(s.g.begin(), s.g.begin() + static_cast<std::ptrdiff_t>(da * static_cast<std::size_t>(s.columns)), 0.0);
     // Zeros too (+0, as the clearing wrote; a zero past the cleared columns is never read).
     for (std::size_t i = 0; i < n; ++i) s.g[scan[i]] = q[i] * step;
+}
+
+void GroupModel::dequantize_nonzero(int step_index, const std::int32_t* q, const std::uint32_t* nonzero,
+                                    std::size_t count, WindowScratch& s) const {
+    const double step = step_of(step_index);
+    const std::size_t da = std::max<std::size_t>(1, active.size());
+    std::uint32_t last = 0, last_row = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+        last = std::max(last, scan[nonzero[k]]);
+        last_row = std::max(last_row, static_cast<std::uint32_t>(scan_row[nonzero[k]]));
+    }
+    // As dequantize: one column for an all-zero window, none for an empty grid.
+    s.columns = scan.empty() ? 0 : static_cast<int>(last / da) + 1;
+    s.rows = count == 0 ? 0 : static_cast<int>(last_row) + 1;
+    std::fill(s.g.begin(), s.g.begin() + static_cast<std::ptrdiff_t>(da * static_cast<std::size_t>(s.columns)), 0.0);
+    for (std::size_t k = 0; k < count; ++k) s.g[scan[nonzero[k]]] = q[nonzero[k]] * step;
 }
 
 namespace {

@@ -59,6 +59,7 @@ struct WindowEntry {
 struct WindowScratch {
     std::vector<std::int32_t> q;    ///< quantized coefficients, scan order
     std::vector<std::uint8_t> level;
+    std::vector<std::uint32_t> nonzero;  ///< scan positions of the nonzero coefficients (the decoder's)
     std::vector<double> g;          ///< dequantized coefficients, Da by W, column-major
     int columns = 0;                ///< time columns of g up to its last nonzero one
     int rows = 0;                   ///< dof rows of g up to its last nonzero one
@@ -112,6 +113,10 @@ struct GroupModel {
     /// the rest are zero). Only the first s.columns columns of s.g are written (zeros included): the
     /// frame products read no further.
     void dequantize(int step_index, const std::int32_t* q, std::size_t n, WindowScratch& s) const;
+    /// The same from the decoder's list of nonzero scan positions (`count` of them, ascending; q zero
+    /// elsewhere): the same s.g, s.columns and s.rows, touching only the nonzero coefficients.
+    void dequantize_nonzero(int step_index, const std::int32_t* q, const std::uint32_t* nonzero, std::size_t count,
+                            WindowScratch& s) const;
     /// Channel row of frame t (0 <= t < W) of a window's dequantized coefficients g: x = U (G v_t), summed in a
     /// fixed order (time column, then dof basis column), then pose dofs -> channels. Every decode
     /// path and the encoder's check go through here, so a frame has the same bits however decoded.

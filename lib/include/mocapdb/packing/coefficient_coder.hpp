@@ -82,8 +82,12 @@ void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::
                          const ScanGrid& grid, ContextSet contexts, std::vector<std::int32_t>& out_q);
 /// The same without allocating: `count` classes and out_q entries; `contexts` is the caller's copy
 /// of the initial probabilities and is adapted in place (spent afterwards); `level` is scratch of
-/// `count` bytes.
-void decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes, std::size_t count,
-                         const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q, std::uint8_t* level);
+/// `count` bytes. Returns the coded length L (<= count): out_q is zero from L on, so a caller may
+/// read only its first L entries. With `nonzero` (room for `count` entries) and `nonzero_count`:
+/// the scan positions of the nonzero coefficients, ascending, and their number.
+std::size_t decode_coefficients(const std::uint8_t* data, std::size_t size, const std::uint8_t* classes,
+                                std::size_t count, const ScanGrid& grid, ContextSet& contexts, std::int32_t* out_q,
+                                std::uint8_t* level, std::uint32_t* nonzero = nullptr,
+                                std::size_t* nonzero_count = nullptr);
 
 }  // namespace mocapdb::packing
