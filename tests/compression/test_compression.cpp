@@ -144,26 +144,34 @@ TEST_CASE("set model: full ranks reproduce the poses, truncation meets the searc
     CHECK_THROWS_AS(compression::search_ranks_for_max_error(prepared, meter, 0.0), InvalidArgument);
 }
 
+namespace {
+
+// Windows of `length` frames cut every `hop` frames from subject 16's walks 16_11..16_16 (at most
+// `max_windows`), canonicalized, as a dof x time x window tensor.
+Tensor3 walk_windows(std::size_t length, std::size_t hop, std::size_t max_windows) {
+    std::vector<MatX> cut;
+    for (int t = 11; t < 17; ++t) {
+        const Clip clip = read_clip(test::datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc"));
+        for (std::size_t f = 0; f + length <= clip.frame_count() && cut.size() < max_windows; f += hop) {
+            const Clip part = slice(clip, f, f + length);
+            cut.push_back(to_pose_vectors(part, canonicalization_of(part)));
+        }
+    }
+    Tensor3 windows(cut[0].rows(), static_cast<Eigen::Index>(length), static_cast<Eigen::Index>(cut.size()));
+    for (std::size_t k = 0; k < cut.size(); ++k)
+        std::copy(cut[k].data(), cut[k].data() + cut[k].size(), windows.data() + k * cut[k].size());
+    return windows;
+}
+
+}  // namespace
+
 TEST_CASE("rank search: projected sample basis gives the dense path's ranks and errors (#16)", "[compression][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const auto skeleton = skeleton_of("cmu-asfamc/16_15.amc");
     const VecX w = compression::position_error_weights(*skeleton);
     // Real tensors on both sides of N = D T: six walks aligned to 30 frames (N < D T), and 3-frame
     // windows cut every 4 frames from the same walks (N > D T).
-    Tensor3 windows;
-    {
-        std::vector<MatX> cut;
-        for (int t = 11; t < 17; ++t) {
-            const Clip clip = read_clip(test::datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc"));
-            for (std::size_t f = 0; f + 3 <= clip.frame_count() && cut.size() < 400; f += 4) {
-                const Clip part = slice(clip, f, f + 3);
-                cut.push_back(to_pose_vectors(part, canonicalization_of(part)));
-            }
-        }
-        windows = Tensor3(cut[0].rows(), 3, static_cast<Eigen::Index>(cut.size()));
-        for (std::size_t k = 0; k < cut.size(); ++k)
-            std::copy(cut[k].data(), cut[k].data() + cut[k].size(), windows.data() + k * cut[k].size());
-    }
+    const Tensor3 windows = walk_windows(3, 4, 400);
     REQUIRE(windows.dimension(2) > windows.dimension(0) * windows.dimension(1));
     const AlignedSet aligned = walks(6, 30);
     for (const Tensor3* poses : std::initializer_list<const Tensor3*>{&aligned.tensor, &windows}) {
@@ -215,20 +223,7 @@ TEST_CASE("rank search: screened probes give a model checked on every pose (#16)
     const VecX w = compression::position_error_weights(*skeleton);
     // 10-frame windows cut every 5 frames from six walks: a few hundred samples, so a screen of 16
     // of them (plus the outliers and the truncation's samples) is a small part of the set.
-    Tensor3 windows;
-    {
-        std::vector<MatX> cut;
-        for (int t = 11; t < 17; ++t) {
-            const Clip clip = read_clip(test::datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc"));
-            for (std::size_t f = 0; f + 10 <= clip.frame_count() && cut.size() < 600; f += 5) {
-                const Clip part = slice(clip, f, f + 10);
-                cut.push_back(to_pose_vectors(part, canonicalization_of(part)));
-            }
-        }
-        windows = Tensor3(cut[0].rows(), 10, static_cast<Eigen::Index>(cut.size()));
-        for (std::size_t k = 0; k < cut.size(); ++k)
-            std::copy(cut[k].data(), cut[k].data() + cut[k].size(), windows.data() + k * cut[k].size());
-    }
+    const Tensor3 windows = walk_windows(10, 5, 600);
     REQUIRE(windows.dimension(2) > 4 * 16);
     const compression::JointErrorMeter meter(skeleton, windows);
     const compression::PreparedSet prepared = compression::prepare_set(windows, w);

@@ -110,6 +110,18 @@ constexpr Eigen::Index kOutlierScreen = 128;
 // At most this many of the samples found beyond the target by failed full checks join every screen.
 constexpr std::size_t kFoundScreen = 256;
 
+// The indices of the `count` largest entries of `energy` (ties to the smaller index), largest first.
+std::vector<Eigen::Index> largest_entries(const VecX& energy, Eigen::Index count) {
+    std::vector<Eigen::Index> order(static_cast<std::size_t>(energy.size()));
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
+    const auto top = std::min(count, energy.size());
+    std::partial_sort(order.begin(), order.begin() + top, order.end(), [&](Eigen::Index a, Eigen::Index b) {
+        return energy(a) > energy(b) || (energy(a) == energy(b) && a < b);
+    });
+    order.resize(static_cast<std::size_t>(top));
+    return order;
+}
+
 // `spread` evenly spread samples of X and the kOutlierScreen samples with the largest energy, increasing.
 std::vector<Eigen::Index> fixed_screen(const Tensor3& x, Eigen::Index spread) {
     const Eigen::Index samples = x.dimension(2);
@@ -117,13 +129,8 @@ std::vector<Eigen::Index> fixed_screen(const Tensor3& x, Eigen::Index spread) {
     for (Eigen::Index i = 0; i < spread; ++i) ids.push_back(i * samples / spread);
     const VecX energy =
         Eigen::Map<const MatX>(x.data(), x.dimension(0) * x.dimension(1), samples).colwise().squaredNorm().transpose();
-    std::vector<Eigen::Index> order(static_cast<std::size_t>(samples));
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
-    const auto top = std::min(kOutlierScreen, samples);
-    std::partial_sort(order.begin(), order.begin() + top, order.end(), [&](Eigen::Index a, Eigen::Index b) {
-        return energy(a) > energy(b) || (energy(a) == energy(b) && a < b);
-    });
-    ids.insert(ids.end(), order.begin(), order.begin() + top);
+    const std::vector<Eigen::Index> outliers = largest_entries(energy, kOutlierScreen);
+    ids.insert(ids.end(), outliers.begin(), outliers.end());
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     return ids;
@@ -144,13 +151,8 @@ std::vector<Eigen::Index> screen_for(const tensor::HosvdBases& bases, const tens
     if (ranks[2] < columns) {
         const auto dropped = columns - ranks[2];
         const VecX energy = u.middleCols(ranks[2], dropped).array().square().matrix() * lambda.segment(ranks[2], dropped);
-        std::vector<Eigen::Index> order(static_cast<std::size_t>(energy.size()));
-        for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
-        const auto top = std::min<Eigen::Index>(kTruncationScreen, energy.size());
-        std::partial_sort(order.begin(), order.begin() + top, order.end(), [&](Eigen::Index a, Eigen::Index b) {
-            return energy(a) > energy(b) || (energy(a) == energy(b) && a < b);
-        });
-        ids.insert(ids.end(), order.begin(), order.begin() + top);
+        const std::vector<Eigen::Index> moved = largest_entries(energy, kTruncationScreen);
+        ids.insert(ids.end(), moved.begin(), moved.end());
     }
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
