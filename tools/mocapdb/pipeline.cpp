@@ -230,15 +230,16 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                   "model in file %llu bytes\n"
                   "  relative error %.3g (HOSVD bound %.3g); joint error: rmse %.3f cm, mean %.3f cm, p99 %.3f cm, "
                   "max %.3f cm (sample %lld, frame %lld, %s)\n"
-                  "  rank search %.2f s, decomposition %.3f s, synthesis kernel %.2f s%s, %.3f us per pose; %.2f s in all\n",
+                  "  load %.2f s, bases %.2f s, rank search %.2f s, decomposition %.3f s, synthesis kernel %.2f s%s, %.3f us per pose, store %.2f s; %.2f s in all\n",
                   set.c_str(), o.criterion.c_str(), ranks_text(o.dims).c_str(), ranks_text(t.ranks).c_str(),
                   tensor::to_string(t.method), o.target_met ? "" : " (target NOT met: closest ranks)",
                   static_cast<unsigned long long>(o.bytes), static_cast<unsigned long long>(o.raw_bytes), o.ratio(),
                   static_cast<unsigned long long>(o.stored_bytes), 1.0 - t.fit, t.error_bound / t.data_norm,
                   o.stats.rmse_cm, o.stats.mean_cm, o.stats.p99_cm, o.stats.max_cm,
                   static_cast<long long>(o.stats.worst.sample), static_cast<long long>(o.stats.worst.frame),
-                  o.stats.worst.joint.c_str(), o.search_s, o.fit_s, o.kernel_s,
-                  o.kernel_stored ? "" : (" (not stored: " + o.kernel_not_stored_reason + ")").c_str(), o.us_per_pose, o.total_s);
+                  o.stats.worst.joint.c_str(), o.load_s, o.bases_s, o.search_s, o.fit_s, o.kernel_s,
+                  o.kernel_stored ? "" : (" (not stored: " + o.kernel_not_stored_reason + ")").c_str(), o.us_per_pose,
+                  o.store_s, o.total_s);
     std::string text = buffer;
     if (o.kernel_stored) text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status + ")\n";
     if (!o.kernel_warning.empty()) text += "  warning: " + o.kernel_warning + "\n";
@@ -265,6 +266,8 @@ void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
     j.key("relative_error").value(1.0 - t.fit);
     j.key("relative_error_bound").value(t.error_bound / t.data_norm);
     write_joint_error_json(j, o.stats);
+    j.key("load_s").value(o.load_s);
+    j.key("bases_s").value(o.bases_s);
     j.key("search_s").value(o.search_s);
     j.key("precompute_s").value(o.fit_s);
     j.key("kernel_s").value(o.kernel_s);
@@ -274,6 +277,7 @@ void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
         j.key("kernel_status").value(o.kernel_status);
     }
     j.key("us_per_pose").value(o.us_per_pose);
+    j.key("store_s").value(o.store_s);
     j.key("total_s").value(o.total_s);
 }
 

@@ -43,7 +43,12 @@ struct CompressOutcome {
     std::uint64_t raw_bytes = 0;         ///< aligned tensor as float32
     std::uint64_t bytes = 0;             ///< float32 model + side information
     std::uint64_t stored_bytes = 0;      ///< the model in the file
-    double search_s = 0.0, fit_s = 0.0, total_s = 0.0;
+    double load_s = 0.0;                 ///< reading the aligned set
+    double bases_s = 0.0;                ///< centring, weighting and the HOSVD bases (every mode's spectrum)
+    double search_s = 0.0;               ///< the rank search (or the explicit ranks' model)
+    double fit_s = 0.0;                  ///< decomposing at the chosen ranks with the requested method
+    double store_s = 0.0;                ///< writing and committing model and kernel
+    double total_s = 0.0;
     double kernel_s = 0.0;               ///< fitting the synthesis kernel's variogram stored with the model
     bool kernel_stored = false;          ///< false above synthesis::kStoredKernelMaxSamples samples, or without parameters
     std::string kernel_not_stored_reason;  ///< why not, when not ("" when stored)
