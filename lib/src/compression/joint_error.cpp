@@ -128,6 +128,19 @@ Eigen::Index JointErrorMeter::check_samples(const SampleApproximation& approx, c
     return -1;
 }
 
+bool JointErrorMeter::a_suspect_exceeds(const SampleApproximation& approx, double max_cm,
+                                        std::vector<Eigen::Index>* suspects) const {
+    if (!suspects || suspects->empty()) return false;
+    const Eigen::Index total = reference_->dimension(2);
+    std::vector<Eigen::Index> ids;
+    for (const Eigen::Index n : *suspects)
+        if (n >= 0 && n < total) ids.push_back(n);
+    const Eigen::Index found = ids.empty() ? -1 : check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
+    if (found < 0) return false;
+    note_suspect(suspects, found);
+    return true;
+}
+
 bool JointErrorMeter::exceeds_on(const SampleApproximation& approx, const std::vector<Eigen::Index>& samples,
                                  double max_cm, std::vector<Eigen::Index>* suspects) const {
     const Eigen::Index total = reference_->dimension(2);
@@ -135,16 +148,7 @@ bool JointErrorMeter::exceeds_on(const SampleApproximation& approx, const std::v
         if (n < 0 || n >= total)
             throw InvalidArgument("JointErrorMeter::exceeds_on: sample " + std::to_string(n) + " is not in [0, " +
                                   std::to_string(total) + ")");
-    if (suspects && !suspects->empty()) {
-        std::vector<Eigen::Index> ids;
-        for (const Eigen::Index n : *suspects)
-            if (n >= 0 && n < total) ids.push_back(n);
-        const Eigen::Index found = ids.empty() ? -1 : check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
-        if (found >= 0) {
-            note_suspect(suspects, found);
-            return true;
-        }
-    }
+    if (a_suspect_exceeds(approx, max_cm, suspects)) return true;
     std::atomic<bool> stop{false};
     std::atomic<Eigen::Index> exceeded{-1};
     const auto count = static_cast<Eigen::Index>(samples.size());
@@ -179,16 +183,7 @@ std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleAppro
     // With `beyond`: per sample, whether it has a joint beyond max_cm (every sample is measured).
     std::vector<char> flagged(beyond ? static_cast<std::size_t>(samples) : 0, 0);
 
-    if (!beyond && suspects && !suspects->empty() && std::isfinite(max_cm)) {
-        std::vector<Eigen::Index> ids;
-        for (const Eigen::Index n : *suspects)
-            if (n >= 0 && n < samples) ids.push_back(n);
-        const Eigen::Index found = ids.empty() ? -1 : check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
-        if (found >= 0) {
-            note_suspect(suspects, found);
-            return std::nullopt;
-        }
-    }
+    if (!beyond && std::isfinite(max_cm) && a_suspect_exceeds(approx, max_cm, suspects)) return std::nullopt;
 
     std::atomic<bool> stop{false};
     std::atomic<Eigen::Index> exceeded{-1};

@@ -114,6 +114,9 @@ private:
     /// samples' errors at their places.
     Eigen::Index check_samples(const SampleApproximation& approx, const std::vector<Eigen::Index>& ids, double max_cm,
                                double* errors, double* dof_sq, char* flagged) const;
+    /// Whether one of the `suspects` (samples that failed earlier checks; those outside the set are
+    /// skipped) has a joint beyond max_cm; moves that sample to the front of the list.
+    bool a_suspect_exceeds(const SampleApproximation& approx, double max_cm, std::vector<Eigen::Index>* suspects) const;
 };
 
 }  // namespace mocapdb::compression
