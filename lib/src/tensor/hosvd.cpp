@@ -81,12 +81,26 @@ void parallel_lower_gram(const Eigen::Ref<const MatX>& a, bool rows, MatX& g) {
     g.triangularView<Eigen::Lower>() += second;
 }
 
+// Frobenius norm of g - I, g symmetric and given by its lower triangle.
+double distance_from_identity(const MatX& g) {
+    double off = 0.0, diagonal = 0.0;
+    for (Eigen::Index j = 0; j < g.cols(); ++j) {
+        diagonal += (g(j, j) - 1.0) * (g(j, j) - 1.0);
+        off += g.col(j).tail(g.rows() - j - 1).squaredNorm();
+    }
+    return std::sqrt(diagonal + 2.0 * off);
+}
+
 // Orthonormal columns from nearly orthonormal ones, keeping the nested spans (column j stays in the
-// span of columns 0..j): two Cholesky-QR passes, Householder QR if the Gram is not positive definite.
+// span of columns 0..j): Cholesky-QR, Householder QR if the Gram is not positive definite. One pass
+// leaves an orthogonality error of about eps cond(v)^2, so a second pass runs only when v was not
+// already close to orthonormal (||v^T v - I||_F > 0.1, i.e. cond(v)^2 > 1.22; #16: a pass is 5.6 s
+// for 11 070 x 3 719).
 void reorthonormalize(MatX& v) {
     for (int pass = 0; pass < 2; ++pass) {
         MatX g = MatX::Zero(v.cols(), v.cols());
         parallel_lower_gram(v, true, g);
+        const bool last = distance_from_identity(g) <= 0.1;
         const Eigen::LLT<MatX, Eigen::Lower> llt(g);
         if (llt.info() != Eigen::Success) {
             const Eigen::HouseholderQR<MatX> qr(v);
@@ -103,6 +117,7 @@ void reorthonormalize(MatX& v) {
             const Eigen::Index count = std::min(kProductBlock, v.rows() - first);
             u.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(v.middleRows(first, count));
         });
+        if (last) return;
     }
 }
 
