@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev         # JSON: the schema mirror, --json output, the tests' JSON checks
   python3-zstandard          # the README's h5py snippet decodes a clip with it
   liblbfgspp-dev             # L-BFGS for the Gaussian-process hyperparameters
+  liblapacke-dev libopenblas-dev  # LAPACK's divide-and-conquer eigensolver for large Gram matrices (OpenBLAS)
   pybind11-dev python3-dev   # the Python module (python/), built when found
   python3-numpy python3-pytest  # its arrays and its tests, run by ctest
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
