@@ -43,7 +43,8 @@ struct SynthesisOptions;
 struct KernelFit {
     std::uint64_t key = 0;                ///< kernel_key of the inputs (0: none)
     kriging::VariogramModel variogram;    ///< the model Kriging::build is given (valid, total sill > 0)
-    /// LOO MSE per grid exponent; empty when p was given, and in a fit read from a database (not stored).
+    /// LOO MSE per grid exponent: the smallest over the candidate shapes tried with that exponent
+    /// (fit_coefficient_kernel); empty when p was given, and in a fit read from a database (not stored).
     Eigen::VectorXd exponent_loo_mse;
     /// Status of the variogram fit (not stored: Ok when read, see assessed_status; `compress` reports it).
     kriging::FitStatus status = kriging::FitStatus::Ok;
@@ -90,7 +91,17 @@ MatX core_slice_values(const compression::SetModel& model);
 /// options.max_sill_factor * the residual variance, a nugget >= options.gaussian_nugget_fraction * that
 /// variance for p = 2; p = options.exponent or the leave-one-out choice over options.exponent_grid; a
 /// placeholder model (status Degenerate) for samples without variation. Key left 0.
-/// InvalidArgument (prefixed with `where`) for an exponent outside [0, 2].
+/// Shape (options.shape_selection = LeaveOneOut, the default): the candidates are the least-squares fit
+/// of every exponent, then at the best exponent the grid options.range_fractions x options.nugget_shares
+/// (range = fraction * the range bound, nugget = share * (nugget + sill)), then, if a grid shape won, that
+/// shape at the other exponents; the one with the smallest closed-form leave-one-out MSE of the values
+/// wins, so a pure-nugget fit (the trend alone) stays only when
+/// no correlated shape predicts the left-out samples better. A grid shape's nugget and sill are then
+/// scaled so that the leave-one-out mean z^2 is 1 (within the sill bound); the weights and rho do not
+/// depend on that scale. At most 2 |exponent_grid| + |range_fractions| |nugget_shares| kriging systems,
+/// O(N^3) each.
+/// InvalidArgument (prefixed with `where`) for an exponent outside [0, 2], an empty grid, a range fraction
+/// outside (0, 1] or a nugget share outside [0, 1).
 KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                  const SynthesisOptions& options, const char* where);
 

@@ -23,7 +23,9 @@
 //     d_ij = || X_i - X_j ||_F           (naive: between the weighted, centred samples X = (A - mean) w),
 // equal at full ranks (orthonormal bases); the model exponent p is chosen by closed-form leave-one-out
 // over the paper's grid 0.0, 0.2, ..., 2.0 (p = 0 spherical) unless given, then nugget, sill and
-// range are fitted (Cressie weighted least squares).
+// range are fitted (Cressie weighted least squares); by default (ShapeSelection::LeaveOneOut) a bounded
+// grid of ranges and nugget shares competes with those fits by the same leave-one-out error
+// (kernel_fit.hpp: fit_coefficient_kernel).
 //
 // Timing (the geostatistical paper Section 3.5): the inverse-warp increments Delta A_i(t) =
 // warps(t + 1, i) - warps(t, i) (T - 1 values per sample: source frames per aligned frame) are kriged
@@ -101,6 +103,15 @@ struct SynthesisOptions {
     double max_sill_factor = 2.0;
     /// Smallest nugget of a Gaussian (p = 2) model, as a fraction of the residual variance.
     double gaussian_nugget_fraction = 0.01;
+    /// How range and nugget share of the coefficient kernel are chosen (issue #15): LeastSquares = the
+    /// weighted least-squares fit to the experimental variogram only; LeaveOneOut (default) = that fit and a
+    /// bounded grid of ranges (range_fractions of the range bound) and nugget shares, the candidate with the
+    /// smallest closed-form leave-one-out error of the sample values wins (kernel_fit.hpp).
+    enum class ShapeSelection { LeastSquares, LeaveOneOut } shape_selection = ShapeSelection::LeaveOneOut;
+    /// Candidate ranges of the LeaveOneOut shape search, as fractions (0, 1] of the range bound.
+    std::vector<double> range_fractions = {0.1, 0.2, 0.35, 0.5, 0.75, 1.0};
+    /// Candidate nugget shares nugget / (nugget + sill) in [0, 1) of the LeaveOneOut shape search.
+    std::vector<double> nugget_shares = {0.0, 0.15, 0.4};
 
     static kriging::VariogramOptions matheron_variogram() {
         kriging::VariogramOptions v;
