@@ -176,6 +176,7 @@ TEST_CASE("Projected sample basis equals the dense N by N one (#16)", "[tensor][
          low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.0, 64)},
         {"sample rank 12 with full dof and time ranks, D T > 256 (randomized range)",
          low_rank_tensor({20, 15, 400}, {20, 15, 12}, 0.0, 65)},
+        {"random, N > D T > 256 (the randomized range gives up early: no low rank)", random_tensor(20, 15, 400, 66)},
     };
     for (const Case& c : cases) {
         INFO(c.what);
