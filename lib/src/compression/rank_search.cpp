@@ -68,16 +68,6 @@ SetModel model_at(const PreparedSet& p, const Tensor3& full_core, const tensor::
     return m;
 }
 
-// The block [0, R1) x [0, R2) x [0, R3) of the full core: hosvd_from_core's copy, slice by slice.
-Tensor3 core_block(const Tensor3& full_core, const tensor::Ranks& ranks) {
-    Tensor3 core(ranks[0], ranks[1], ranks[2]);
-    const Eigen::Index f0 = full_core.dimension(0), f1 = full_core.dimension(1);
-    for (Eigen::Index k = 0; k < ranks[2]; ++k)
-        Eigen::Map<MatX>(core.data() + k * ranks[0] * ranks[1], ranks[0], ranks[1]) =
-            Eigen::Map<const MatX>(full_core.data() + k * f0 * f1, f0, f1).topLeftCorner(ranks[0], ranks[1]);
-    return core;
-}
-
 SampleApproximation samples_of(const SampleReconstruction& approx) {
     return [&approx](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); };
 }
@@ -213,13 +203,11 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
             if (failed.count(ranks)) return false;
             if (passed.count(ranks)) return true;
             // The probe's reconstruction from a block of the full core and the bases' leading columns
-            // (no N x R3 copy of the sample basis per probe: 80 MB at 10 000 windows).
+            // (no copy of the core block, nor of the N x R3 sample basis: 80 MB at 10 000 windows).
             std::optional<SetModel> sliced;
-            Tensor3 core;
             std::optional<SampleReconstruction> reconstruction;
             if (ranks[2] <= full_core.dimension(2)) {
-                core = core_block(full_core, ranks);
-                reconstruction.emplace(core, p.bases.U[0], p.bases.U[1], p.bases.U[2], p.mean, p.weight);
+                reconstruction.emplace(full_core, ranks, p.bases.U[0], p.bases.U[1], p.bases.U[2], p.mean, p.weight);
             } else {
                 sliced = model_at(p, full_core, ranks);
                 reconstruction.emplace(*sliced);

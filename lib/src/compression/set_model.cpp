@@ -7,7 +7,6 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
-#include "mocapdb/tensor/mode_product.hpp"
 
 namespace mocapdb::compression {
 namespace {
@@ -64,36 +63,41 @@ Tensor3 SetModel::reconstruct(const tensor::Ranks& lod) const {
 }
 
 SampleReconstruction::SampleReconstruction(const SetModel& model)
-    : SampleReconstruction(model.tucker.core, model.tucker.U[0], model.tucker.U[1], model.tucker.U[2], model.mean,
-                           model.weight) {}
+    : SampleReconstruction(model.tucker.core, tensor::dims_of(model.tucker.core), model.tucker.U[0], model.tucker.U[1],
+                           model.tucker.U[2], model.mean, model.weight) {}
 
-SampleReconstruction::SampleReconstruction(const Tensor3& core, const Eigen::Ref<const MatX>& dof_basis,
+SampleReconstruction::SampleReconstruction(const Tensor3& core, const tensor::Ranks& ranks,
+                                           const Eigen::Ref<const MatX>& dof_basis,
                                            const Eigen::Ref<const MatX>& time_basis, const MatX& sample_basis,
                                            const VecX& mean, const VecX& weight)
-    : sample_basis_(&sample_basis), sample_rank_(core.dimension(2)), mean_(&mean), weight_(&weight) {
-    const Eigen::Index r0 = core.dimension(0), r1 = core.dimension(1);
-    if (dof_basis.cols() < r0 || time_basis.cols() < r1 || sample_basis.cols() < sample_rank_ ||
+    : sample_basis_(&sample_basis), sample_rank_(ranks[2]), mean_(&mean), weight_(&weight) {
+    const Eigen::Index r0 = ranks[0], r1 = ranks[1], f0 = core.dimension(0), f1 = core.dimension(1);
+    if (r0 < 0 || r1 < 0 || sample_rank_ < 0 || r0 > f0 || r1 > f1 || sample_rank_ > core.dimension(2) ||
+        dof_basis.cols() < r0 || time_basis.cols() < r1 || sample_basis.cols() < sample_rank_ ||
         mean.size() != dof_basis.rows() || weight.size() != dof_basis.rows())
         throw InvalidArgument("SampleReconstruction: bases of " + std::to_string(dof_basis.cols()) + ", " +
                               std::to_string(time_basis.cols()) + ", " + std::to_string(sample_basis.cols()) +
                               " columns and " + std::to_string(dof_basis.rows()) + " dofs (mean " +
                               std::to_string(mean.size()) + ", weight " + std::to_string(weight.size()) +
-                              ") for a core of " + std::to_string(r0) + " x " + std::to_string(r1) + " x " +
-                              std::to_string(sample_rank_));
-    // The first two mode products of TuckerModel::reconstruct(), as it computes them; the last one
-    // (sample mode) is done per call, so the values are reconstruct()'s.
-    const Tensor3 w0 = tensor::mode_product(core, dof_basis.leftCols(r0), 0);
-    // The time product as tensor::mode_product computes it (one product per sample-mode slice), the
-    // slices on the machine's cores (independent, so the values do not depend on the thread count).
-    const Eigen::Index d = w0.dimension(0), r2 = w0.dimension(2), frames = time_basis.rows();
+                              ") for ranks " + std::to_string(r0) + " x " + std::to_string(r1) + " x " +
+                              std::to_string(sample_rank_) + " of a core of " + std::to_string(f0) + " x " +
+                              std::to_string(f1) + " x " + std::to_string(core.dimension(2)));
+    // The first two mode products of TuckerModel::reconstruct(), slice by slice of the sample mode
+    // (each output value is the same sum, in the same order, as in its one product over the whole
+    // unfolding), the slices on the machine's cores (independent, so the values do not depend on the
+    // thread count); the last product (sample mode) is done per call.
+    const Eigen::Index d = dof_basis.rows(), frames = time_basis.rows();
+    const auto dof = dof_basis.leftCols(r0);
     const auto time = time_basis.leftCols(r1);
-    dof_time_.resize(d * frames, r2);
+    dof_time_.resize(d * frames, sample_rank_);
     constexpr Eigen::Index kSlices = 64;
-    run_parallel_tasks(static_cast<std::size_t>((r2 + kSlices - 1) / kSlices), [&](std::size_t c) {
+    run_parallel_tasks(static_cast<std::size_t>((sample_rank_ + kSlices - 1) / kSlices), [&](std::size_t c) {
         const Eigen::Index first = static_cast<Eigen::Index>(c) * kSlices;
-        for (Eigen::Index k = first; k < std::min(r2, first + kSlices); ++k) {
+        MatX w0(d, r1);
+        for (Eigen::Index k = first; k < std::min(sample_rank_, first + kSlices); ++k) {
+            w0.noalias() = dof * Eigen::Map<const MatX>(core.data() + k * f0 * f1, f0, f1).topLeftCorner(r0, r1);
             Eigen::Map<MatX> o(dof_time_.col(k).data(), d, frames);
-            o.noalias() = Eigen::Map<const MatX>(w0.data() + k * d * r1, d, r1) * time.transpose();
+            o.noalias() = w0 * time.transpose();
         }
     });
 }

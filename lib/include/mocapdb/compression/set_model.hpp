@@ -39,12 +39,14 @@ struct SetModel {
 class SampleReconstruction {
 public:
     explicit SampleReconstruction(const SetModel& model);
-    /// The same for the model with core `core` (R1 x R2 x R3), bases the first R1, R2, R3 columns of
-    /// dof_basis, time_basis and sample_basis, mean and weight: the values of that model's
-    /// reconstruct() without copying its N by R3 sample basis (#16: the rank search's probes, sliced
-    /// from the full-rank bases). Keeps pointers to sample_basis, mean and weight: they must outlive
-    /// it. Throws InvalidArgument when a basis has fewer columns than the core's dimension.
-    SampleReconstruction(const Tensor3& core, const Eigen::Ref<const MatX>& dof_basis,
+    /// The same for the model with core the block [0, R1) x [0, R2) x [0, R3) of `core` (ranks, each
+    /// at most core's dimension), bases the first R1, R2, R3 columns of dof_basis, time_basis and
+    /// sample_basis, mean and weight: that model's reconstruct() (the same products, slice by slice)
+    /// without copying its core block or N by R3 sample basis (#16: the rank search's probes, sliced
+    /// from the full core and bases; a copy per probe was 0.1 GB of fresh pages at 11 070 windows).
+    /// Keeps pointers to sample_basis, mean and weight: they must outlive it. Throws InvalidArgument
+    /// when a rank exceeds the core's dimension or a basis has fewer columns than the rank.
+    SampleReconstruction(const Tensor3& core, const tensor::Ranks& ranks, const Eigen::Ref<const MatX>& dof_basis,
                          const Eigen::Ref<const MatX>& time_basis, const MatX& sample_basis, const VecX& mean,
                          const VecX& weight);
     /// Writes samples (each in [0, N)) side by side into out, resized to D by (T samples.size()).
