@@ -255,6 +255,31 @@ TEST_CASE("sample_mode_basis, ST-HOSVD and HOOI without an N by N Gram (#16)", "
     CHECK(relative_error(a, o) <= relative_error(a, h) + 1e-12);
 }
 
+TEST_CASE("The projected path's factored core equals the projected full core (#16)", "[tensor][hosvd]") {
+    struct Case {
+        const char* what;
+        Tensor3 a;
+    };
+    const Case cases[] = {
+        {"low rank + 1% noise: the samples as stored", low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.01, 91)},
+        {"exactly low rank: dof and time vectors left out", low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.0, 92)},
+        {"sample rank 12, D T > 256: randomized range", low_rank_tensor({20, 15, 400}, {20, 15, 12}, 0.0, 93)},
+        {"random, D T > 256: the range gives up, exact Gram", random_tensor(20, 15, 400, 94)},
+    };
+    for (const Case& c : cases) {
+        INFO(c.what);
+        const HosvdBases b = hosvd_bases(c.a);
+        REQUIRE(b.factored_core.size() > 0);
+        const Tensor3 full = hosvd_full_core(c.a, b);
+        REQUIRE(dims_of(b.factored_core) == dims_of(full));
+        const double rd = rel_diff(b.factored_core, full);
+        INFO("relative difference " << rd);
+        CHECK(rd <= 1e-10);
+    }
+    // The dense path makes none (hosvd_full_core projects).
+    CHECK(hosvd_bases(random_tensor(6, 5, 20, 95)).factored_core.size() == 0);
+}
+
 TEST_CASE("A truncated HOSVD is a block of the full core (#16: one projection per rank search)", "[tensor][hosvd]") {
     // Both sample-basis paths; N = 300 spans several projection chunks and both halves of the samples.
     const Tensor3 cases[] = {random_tensor(6, 5, 20, 81), low_rank_tensor({8, 9, 300}, {5, 6, 10}, 0.01, 82)};

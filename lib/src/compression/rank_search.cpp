@@ -68,6 +68,14 @@ SetModel model_at(const PreparedSet& p, const Tensor3& full_core, const tensor::
     return m;
 }
 
+// The core at the bases' full ranks: the bases' factored core when the projected path made one, else
+// projected into `computed`.
+const Tensor3& core_at_full_ranks(const PreparedSet& p, Tensor3& computed) {
+    if (p.bases.factored_core.size() > 0) return p.bases.factored_core;
+    computed = tensor::hosvd_full_core(p.x, p.bases);
+    return computed;
+}
+
 SampleApproximation samples_of(const SampleReconstruction& approx) {
     return [&approx](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); };
 }
@@ -177,7 +185,8 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
     if (screen_samples < 0)
         throw InvalidArgument("search_ranks_for_max_error: screen_samples must be >= 0, got " +
                               std::to_string(screen_samples));
-    const Tensor3 full_core = tensor::hosvd_full_core(p.x, p.bases);
+    Tensor3 computed_core;
+    const Tensor3& full_core = core_at_full_ranks(p, computed_core);
     const Eigen::Index samples = p.x.dimension(2);
     const std::uint64_t steps = bisection_steps();
     std::uint64_t reported = 0;
@@ -271,7 +280,8 @@ RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::
     if (!(rmse >= 0.0) || !std::isfinite(rmse))
         throw InvalidArgument("search_ranks_for_rmse: the target must be finite and >= 0, got " + std::to_string(rmse));
     const double count = static_cast<double>(p.x.size());
-    const Tensor3 full_core = tensor::hosvd_full_core(p.x, p.bases);
+    Tensor3 computed_core;
+    const Tensor3& full_core = core_at_full_ranks(p, computed_core);
     int evaluations = 0;
     const std::uint64_t steps = bisection_steps();
     const auto report = [&](std::uint64_t done) {

@@ -33,12 +33,16 @@ double fit_from(double squared_norm_a, double squared_norm_core) {
     return 1.0 - std::sqrt(std::max(0.0, 1.0 - squared_norm_core / squared_norm_a));
 }
 
-// gram_eigenbasis's sign convention: each column's largest-magnitude entry positive.
-void make_signs_canonical(MatX& u) {
+// gram_eigenbasis's sign convention: each column's largest-magnitude entry positive. The columns of
+// `companion` (when given, as many as u's) change sign with u's.
+void make_signs_canonical(MatX& u, MatX* companion = nullptr) {
     for (Eigen::Index j = 0; j < u.cols(); ++j) {
         Eigen::Index imax = 0;
         u.col(j).cwiseAbs().maxCoeff(&imax);
-        if (u(imax, j) < 0.0) u.col(j) = -u.col(j);
+        if (u(imax, j) < 0.0) {
+            u.col(j) = -u.col(j);
+            if (companion) companion->col(j) = -companion->col(j);
+        }
     }
 }
 
@@ -97,8 +101,10 @@ double distance_from_identity(const MatX& g) {
 // span of columns 0..j): Cholesky-QR, Householder QR if the Gram is not positive definite. One pass
 // leaves an orthogonality error of about eps cond(v)^2, so a second pass runs only when v was not
 // already close to orthonormal (||v^T v - I||_F > 0.1, i.e. cond(v)^2 > 1.22; #16: a pass is 5.6 s
-// for 11 070 x 3 719).
-void reorthonormalize(MatX& v) {
+// for 11 070 x 3 719). Returns the upper triangular r with v_new = v_old r^-1, or an empty matrix
+// when the Householder fallback ran.
+MatX reorthonormalize(MatX& v) {
+    MatX r;
     for (int pass = 0; pass < 2; ++pass) {
         MatX g = MatX::Zero(v.cols(), v.cols());
         parallel_lower_gram(v, true, g);
@@ -110,7 +116,7 @@ void reorthonormalize(MatX& v) {
             for (Eigen::Index j = 0; j < v.cols(); ++j)
                 if (q.col(j).dot(v.col(j)) < 0.0) q.col(j) = -q.col(j);
             v = std::move(q);
-            return;
+            return MatX();
         }
         // v U^-1 (U^T U = v^T v), by fixed blocks of rows.
         const MatX u = llt.matrixU();
@@ -119,8 +125,10 @@ void reorthonormalize(MatX& v) {
             const Eigen::Index count = std::min(kProductBlock, v.rows() - first);
             u.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(v.middleRows(first, count));
         });
-        if (last) return;
+        r = pass == 0 ? u : MatX(u.triangularView<Eigen::Upper>() * r);
+        if (last) break;
     }
+    return r;
 }
 
 // Eigenvalues below this fraction of the largest give no sample-basis column on the projected path:
@@ -201,9 +209,12 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
 // (randomized_range): v_j = m^T w_j / sigma_j for the eigenvalues above kKeptEigenvalue * the
 // largest (at most min(N, L) columns). out_eigenvalues: N values, decreasing, zeros beyond.
 // `owner`, when given, is the matrix m views: released as soon as m is no longer read (after the
-// randomized range; #16: the projected samples are 0.3 GB at 10 000 samples).
+// randomized range; #16: the projected samples are 0.3 GB at 10 000 samples). out_coordinates, when
+// given, receives m v (L by the columns of v) from the factors: m v = w sigma r^-1 (q w sigma r^-1
+// on the reduced path), r from the re-orthonormalization; by a product with m when that fell back
+// to Householder.
 MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, VecX& out_eigenvalues,
-                               MatX* owner = nullptr) {
+                               MatX* owner = nullptr, MatX* out_coordinates = nullptr) {
     const Eigen::Index l = m.rows(), n = m.cols();
     MatX q, b;
     const bool reduced = l > 256 && randomized_range(m, budget, l / 2, q, b);
@@ -211,7 +222,7 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     const Eigen::Index side = reduced ? b.rows() : l;
     MatX c = MatX::Zero(side, side);
     if (reduced) {
-        q.resize(0, 0);
+        if (!out_coordinates) q.resize(0, 0);
         parallel_lower_gram(b, false, c);
     } else {
         parallel_lower_gram(m, false, c);
@@ -234,8 +245,32 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
         v.middleRows(first, count).noalias() = src.middleCols(first, count).transpose() * w.leftCols(kept);
     });
     v *= ev.head(kept).cwiseSqrt().cwiseInverse().asDiagonal();
-    reorthonormalize(v);
-    make_signs_canonical(v);
+    const MatX r = reorthonormalize(v);
+    if (!out_coordinates) {
+        make_signs_canonical(v);
+        return v;
+    }
+    MatX& coordinates = *out_coordinates;
+    if (r.size() > 0) {
+        // w sigma r^-1, by fixed blocks of rows (then q times it on the reduced path).
+        MatX ws = w.leftCols(kept) * ev.head(kept).cwiseSqrt().asDiagonal();
+        run_parallel_tasks(static_cast<std::size_t>(block_count(side)), [&](std::size_t i) {
+            const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+            const Eigen::Index count = std::min(kProductBlock, side - first);
+            r.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(ws.middleRows(first, count));
+        });
+        if (reduced) {
+            coordinates.resize(l, kept);
+            parallel_product_by_rows(q, ws, coordinates);
+        } else {
+            coordinates = std::move(ws);
+        }
+    } else {
+        // No triangular factor: the product itself (b v on the reduced path, m v otherwise).
+        coordinates.noalias() = src * v;
+        if (reduced) coordinates = q * coordinates;
+    }
+    make_signs_canonical(v, &coordinates);
     return v;
 }
 
@@ -506,13 +541,36 @@ HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options) {
         b.U[2] = gram_eigenbasis(mode_gram(a, 2), b.spectra.squared_sv[2]);
         return b;
     }
+    MatX coordinates;  // the projected samples' coordinates on U[2]: k0 k1 by K
     if (k0 == d && k1 == t) {  // nothing to leave out: the samples as stored
         b.U[2] = right_basis_from_row_gram(Eigen::Map<const MatX>(a.data(), d * t, n), 2.0 * budget,
-                                           b.spectra.squared_sv[2]);
+                                           b.spectra.squared_sv[2], nullptr, &coordinates);
     } else {
         MatX y = projected_dof_time(a, b.U[0].leftCols(k0), b.U[1].leftCols(k1));
-        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y);
+        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y, &coordinates);
     }
+    // Column j of the coordinates, as a k0 by k1 matrix, is the core's slice j (project_dof_time's
+    // order); for the samples as stored it is in the data's own dof and time coordinates: core slice
+    // = U0^T (that) U1. Slices by fixed blocks on the machine's cores.
+    const Eigen::Index kk = b.U[2].cols();
+    b.factored_core = Tensor3(d, t, kk);
+    b.factored_core.setZero();
+    const bool as_stored = k0 == d && k1 == t;
+    run_parallel_tasks(static_cast<std::size_t>(block_count(kk)), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        const Eigen::Index count = std::min(kProductBlock, kk - first);
+        MatX dof_side(d, t);
+        for (Eigen::Index j = first; j < first + count; ++j) {
+            const Eigen::Map<const MatX> c(coordinates.col(j).data(), k0, k1);
+            Eigen::Map<MatX> slice(b.factored_core.data() + j * d * t, d, t);
+            if (as_stored) {
+                dof_side.noalias() = b.U[0].transpose() * c;
+                slice.noalias() = dof_side * b.U[1];
+            } else {
+                slice.topLeftCorner(k0, k1) = c;
+            }
+        }
+    });
     return b;
 }
 
