@@ -12,17 +12,31 @@
 
 using namespace mocapdb;
 
-TEST_CASE("the exponent's leave-one-out error equals that of the full values", "[synthesis]") {
-    // Many more values per sample than samples (S = 300 >> N = 20), a smooth field plus noise, as the core
-    // slices of a Tucker model are.
-    std::mt19937 rng(7);
+namespace {
+
+// c: n by 2 standard normal parameters; values: n by s, field(c(i, 0), c(i, 1), j) plus Gaussian noise of
+// standard deviation noise (drawn after c, value by value).
+template <class Field>
+void random_design(Eigen::Index n, Eigen::Index s, unsigned seed, double noise, MatX& c, MatX& values, Field field) {
+    std::mt19937 rng(seed);
     std::normal_distribution<double> normal;
-    const Eigen::Index n = 20, s = 300;
-    MatX c(n, 2), values(n, s);
+    c.resize(n, 2);
+    values.resize(n, s);
     for (Eigen::Index i = 0; i < c.size(); ++i) c.data()[i] = normal(rng);
     for (Eigen::Index i = 0; i < n; ++i)
         for (Eigen::Index j = 0; j < s; ++j)
-            values(i, j) = std::sin(0.7 * c(i, 0) + 0.01 * static_cast<double>(j)) * std::cos(c(i, 1)) + 0.1 * normal(rng);
+            values(i, j) = field(c(i, 0), c(i, 1), static_cast<double>(j)) + noise * normal(rng);
+}
+
+}  // namespace
+
+TEST_CASE("the exponent's leave-one-out error equals that of the full values", "[synthesis]") {
+    // Many more values per sample than samples (S = 300 >> N = 20), a smooth field plus noise, as the core
+    // slices of a Tucker model are.
+    MatX c, values;
+    random_design(20, 300, 7, 0.1, c, values, [](double c0, double c1, double j) {
+        return std::sin(0.7 * c0 + 0.01 * j) * std::cos(c1);
+    });
     const synthesis::SynthesisOptions options;
     const synthesis::KernelFit fit = synthesis::fit_coefficient_kernel(c, values, options, "test");
     REQUIRE(fit.exponent_loo_mse.size() == static_cast<Eigen::Index>(options.exponent_grid.size()));
@@ -43,16 +57,10 @@ TEST_CASE("the leave-one-out shape search predicts the left-out samples at least
           "[synthesis]") {
     // Short-range structure on a coarse design (the experimental variogram's bins mix it with the noise),
     // plus a linear drift, in 2 parameters.
-    std::mt19937 rng(11);
-    std::normal_distribution<double> normal;
-    const Eigen::Index n = 24, s = 40;
-    MatX c(n, 2), values(n, s);
-    for (Eigen::Index i = 0; i < c.size(); ++i) c.data()[i] = normal(rng);
-    for (Eigen::Index i = 0; i < n; ++i)
-        for (Eigen::Index j = 0; j < s; ++j)
-            values(i, j) = 0.5 * c(i, 0) - 0.3 * c(i, 1) +
-                           std::sin(3.0 * c(i, 0) + 0.1 * static_cast<double>(j)) * std::cos(2.0 * c(i, 1)) +
-                           0.2 * normal(rng);
+    MatX c, values;
+    random_design(24, 40, 11, 0.2, c, values, [](double c0, double c1, double j) {
+        return 0.5 * c0 - 0.3 * c1 + std::sin(3.0 * c0 + 0.1 * j) * std::cos(2.0 * c1);
+    });
     synthesis::SynthesisOptions least_squares;
     least_squares.shape_selection = synthesis::SynthesisOptions::ShapeSelection::LeastSquares;
     const synthesis::SynthesisOptions loo;  // the default
