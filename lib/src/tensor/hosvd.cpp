@@ -51,13 +51,19 @@ void make_signs_canonical(MatX& u, MatX* companion = nullptr) {
 // product, so the values do not depend on how many threads ran them.
 constexpr Eigen::Index kProductBlock = 512;
 
-Eigen::Index block_count(Eigen::Index size) { return (size + kProductBlock - 1) / kProductBlock; }
+// f(first, count) for each block [first, first + count) of kProductBlock indices out of [0, size),
+// the blocks on the machine's cores.
+template <class F>
+void for_each_block(Eigen::Index size, F f) {
+    run_parallel_tasks(static_cast<std::size_t>((size + kProductBlock - 1) / kProductBlock), [&](std::size_t i) {
+        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
+        f(first, std::min(kProductBlock, size - first));
+    });
+}
 
 // out = a * b, by blocks of a's rows (out's rows).
 void parallel_product_by_rows(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const MatX>& b, Eigen::Ref<MatX> out) {
-    run_parallel_tasks(static_cast<std::size_t>(block_count(a.rows())), [&](std::size_t i) {
-        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
-        const Eigen::Index count = std::min(kProductBlock, a.rows() - first);
+    for_each_block(a.rows(), [&](Eigen::Index first, Eigen::Index count) {
         out.middleRows(first, count).noalias() = a.middleRows(first, count) * b;
     });
 }
@@ -65,9 +71,7 @@ void parallel_product_by_rows(const Eigen::Ref<const MatX>& a, const Eigen::Ref<
 // out = a^T * b, by blocks of b's columns (out's columns).
 void parallel_transposed_product_by_columns(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const MatX>& b,
                                             Eigen::Ref<MatX> out) {
-    run_parallel_tasks(static_cast<std::size_t>(block_count(b.cols())), [&](std::size_t i) {
-        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
-        const Eigen::Index count = std::min(kProductBlock, b.cols() - first);
+    for_each_block(b.cols(), [&](Eigen::Index first, Eigen::Index count) {
         out.middleCols(first, count).noalias() = a.transpose() * b.middleCols(first, count);
     });
 }
@@ -120,9 +124,7 @@ MatX reorthonormalize(MatX& v) {
         }
         // v U^-1 (U^T U = v^T v), by fixed blocks of rows.
         const MatX u = llt.matrixU();
-        run_parallel_tasks(static_cast<std::size_t>(block_count(v.rows())), [&](std::size_t i) {
-            const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
-            const Eigen::Index count = std::min(kProductBlock, v.rows() - first);
+        for_each_block(v.rows(), [&](Eigen::Index first, Eigen::Index count) {
             u.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(v.middleRows(first, count));
         });
         r = pass == 0 ? u : MatX(u.triangularView<Eigen::Upper>() * r);
@@ -239,9 +241,7 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     if (kept == 0) return v;
     // v = b^T w (or m^T w), by fixed blocks of samples.
     const Eigen::Ref<const MatX> src = reduced ? Eigen::Ref<const MatX>(b) : m;
-    run_parallel_tasks(static_cast<std::size_t>(block_count(n)), [&](std::size_t i) {
-        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
-        const Eigen::Index count = std::min(kProductBlock, n - first);
+    for_each_block(n, [&](Eigen::Index first, Eigen::Index count) {
         v.middleRows(first, count).noalias() = src.middleCols(first, count).transpose() * w.leftCols(kept);
     });
     v *= ev.head(kept).cwiseSqrt().cwiseInverse().asDiagonal();
@@ -254,9 +254,7 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     if (r.size() > 0) {
         // w sigma r^-1, by fixed blocks of rows (then q times it on the reduced path).
         MatX ws = w.leftCols(kept) * ev.head(kept).cwiseSqrt().asDiagonal();
-        run_parallel_tasks(static_cast<std::size_t>(block_count(side)), [&](std::size_t i) {
-            const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
-            const Eigen::Index count = std::min(kProductBlock, side - first);
+        for_each_block(side, [&](Eigen::Index first, Eigen::Index count) {
             r.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(ws.middleRows(first, count));
         });
         if (reduced) {
@@ -556,9 +554,7 @@ HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options) {
     b.factored_core = Tensor3(d, t, kk);
     b.factored_core.setZero();
     const bool as_stored = k0 == d && k1 == t;
-    run_parallel_tasks(static_cast<std::size_t>(block_count(kk)), [&](std::size_t i) {
-        const Eigen::Index first = static_cast<Eigen::Index>(i) * kProductBlock;
-        const Eigen::Index count = std::min(kProductBlock, kk - first);
+    for_each_block(kk, [&](Eigen::Index first, Eigen::Index count) {
         MatX dof_side(d, t);
         for (Eigen::Index j = first; j < first + count; ++j) {
             const Eigen::Map<const MatX> c(coordinates.col(j).data(), k0, k1);
