@@ -1,5 +1,7 @@
 #include "mocapdb/workflow/aligned_set_data.hpp"
 
+#include <map>
+
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/store/database.hpp"
 
@@ -21,14 +23,19 @@ struct SetSource {
 
 SetSource set_source(const Database& db, const std::string& name, const MotionSet& set) {
     SetSource d;
+    std::map<std::string, double> frame_rates;  // one record read per clip, not per sample (#16: windows)
     for (const SampleRef& s : set.samples) {
-        const auto record = db.find_clip(s.clip);
-        if (!record) throw InvalidArgument("set '" + name + "': clip '" + s.clip + "' is missing");
-        if (!d.skeleton) {
-            d.skeleton = db.load_skeleton(record->skeleton);
-            d.frame_rate = record->frame_rate;
+        auto known = frame_rates.find(s.clip);
+        if (known == frame_rates.end()) {
+            const auto record = db.find_clip(s.clip);
+            if (!record) throw InvalidArgument("set '" + name + "': clip '" + s.clip + "' is missing");
+            if (!d.skeleton) {
+                d.skeleton = db.load_skeleton(record->skeleton);
+                d.frame_rate = record->frame_rate;
+            }
+            known = frame_rates.emplace(s.clip, record->frame_rate).first;
         }
-        d.seconds_of_motion += static_cast<double>(s.frame_count()) / record->frame_rate;
+        d.seconds_of_motion += static_cast<double>(s.frame_count()) / known->second;
         d.clip_channel_values += static_cast<std::uint64_t>(s.frame_count()) * d.skeleton->channel_count();
     }
     return d;
