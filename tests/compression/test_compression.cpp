@@ -250,6 +250,41 @@ TEST_CASE("rank search: screened probes give a model checked on every pose (#16)
     CHECK_THROWS_AS(compression::search_ranks_for_max_error(prepared, meter, 1.0, {}, -1), InvalidArgument);
 }
 
+TEST_CASE("rank search: probes decided on the truncation reconstruction give the full search's model (#16)",
+          "[compression][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const auto skeleton = skeleton_of("cmu-asfamc/16_15.amc");
+    const VecX w = compression::position_error_weights(*skeleton);
+    // 8-frame windows at every frame of six walks: N > D T, and the walks have no low numerical rank,
+    // so the sample basis comes from the exact Gram of the projected samples and spans them (the
+    // truncation path applies).
+    const Tensor3 windows = walk_windows(8, 1, 3000);
+    REQUIRE(windows.dimension(2) > windows.dimension(0) * windows.dimension(1));
+    const compression::JointErrorMeter meter(skeleton, windows);
+    const compression::PreparedSet prepared = compression::prepare_set(windows, w);
+    REQUIRE(prepared.bases.spans_projected_samples);
+    int decided_by_truncation = 0;
+    for (const double target : {0.02, 0.002, 0.0005}) {
+        const auto full = compression::search_ranks_for_max_error(prepared, meter, target, {}, 0);
+        const auto screened = compression::search_ranks_for_max_error(prepared, meter, target, {}, 32);
+        const tensor::Ranks& a = full.model.tucker.ranks;
+        const tensor::Ranks& b = screened.model.tucker.ranks;
+        INFO("target " << target << " cm: unscreened " << a[0] << "x" << a[1] << "x" << a[2] << " max "
+                       << full.stats.max_cm << " cm; screened " << b[0] << "x" << b[1] << "x" << b[2] << " max "
+                       << screened.stats.max_cm << " cm, " << screened.evaluations << " models, "
+                       << screened.truncation_checks << " on the truncation reconstruction");
+        CHECK(full.truncation_checks == 0);  // unscreened: every probe measured on its own model
+        decided_by_truncation += screened.truncation_checks;
+        CHECK(screened.target_met);
+        CHECK(screened.stats.max_cm <= target);
+        // The reported errors are the returned model's own, bit for bit.
+        CHECK(meter.measure(screened.model.reconstruct()).max_cm == screened.stats.max_cm);
+        CHECK(a == b);
+        CHECK(screened.stats.max_cm == full.stats.max_cm);
+    }
+    CHECK(decided_by_truncation > 0);
+}
+
 TEST_CASE("joint error meter: a check on listed samples, and every sample beyond the target (#16)", "[compression][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const AlignedSet a = walks(4, 20);

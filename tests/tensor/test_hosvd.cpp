@@ -4,6 +4,7 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/hooi.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
+#include "mocapdb/tensor/mode_product.hpp"
 #include "tensor_fixtures.hpp"
 
 using namespace mocapdb;
@@ -259,12 +260,13 @@ TEST_CASE("The projected path's factored core equals the projected full core (#1
     struct Case {
         const char* what;
         Tensor3 a;
+        bool spans;  // the sample basis spans the projected samples (not the randomized range)
     };
     const Case cases[] = {
-        {"low rank + 1% noise: the samples as stored", low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.01, 91)},
-        {"exactly low rank: dof and time vectors left out", low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.0, 92)},
-        {"sample rank 12, D T > 256: randomized range", low_rank_tensor({20, 15, 400}, {20, 15, 12}, 0.0, 93)},
-        {"random, D T > 256: the range gives up, exact Gram", random_tensor(20, 15, 400, 94)},
+        {"low rank + 1% noise: the samples as stored", low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.01, 91), true},
+        {"exactly low rank: dof and time vectors left out", low_rank_tensor({8, 9, 150}, {4, 5, 6}, 0.0, 92), true},
+        {"sample rank 12, D T > 256: randomized range", low_rank_tensor({20, 15, 400}, {20, 15, 12}, 0.0, 93), false},
+        {"random, D T > 256: the range gives up, exact Gram", random_tensor(20, 15, 400, 94), true},
     };
     for (const Case& c : cases) {
         INFO(c.what);
@@ -275,6 +277,25 @@ TEST_CASE("The projected path's factored core equals the projected full core (#1
         const double rd = rel_diff(b.factored_core, full);
         INFO("relative difference " << rd);
         CHECK(rd <= 1e-10);
+        CHECK(b.spans_projected_samples == c.spans);
+        const Dims3 dims = dims_of(c.a);
+        REQUIRE(b.projected_dofs >= 1);
+        REQUIRE(b.projected_dofs <= dims[0]);
+        REQUIRE(b.projected_frames >= 1);
+        REQUIRE(b.projected_frames <= dims[1]);
+        if (!c.spans) continue;
+        // Spanning: the model over every sample column, at ranks up to k0 x k1, is each sample's
+        // projection on the leading dof and time vectors (what the rank search's truncation
+        // reconstruction relies on).
+        for (const Ranks r : {Ranks{b.projected_dofs, b.projected_frames, b.U[2].cols()},
+                              Ranks{std::max<Eigen::Index>(1, b.projected_dofs - 1), b.projected_frames, b.U[2].cols()}}) {
+            const MatX u0 = b.U[0].leftCols(r[0]), u1 = b.U[1].leftCols(r[1]);
+            const Tensor3 projection = mode_product(
+                mode_product(mode_product_transposed(mode_product_transposed(c.a, u0, 0), u1, 1), u0, 0), u1, 1);
+            const double pd = rel_diff(hosvd_from_core(b, b.factored_core, r).reconstruct(), projection);
+            INFO("ranks " << r[0] << "x" << r[1] << "x" << r[2] << ": differs from the projection by " << pd);
+            CHECK(pd <= 1e-10);
+        }
     }
     // The dense path makes none (hosvd_full_core projects).
     CHECK(hosvd_bases(random_tensor(6, 5, 20, 95)).factored_core.size() == 0);

@@ -10,6 +10,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/rank_selection.hpp"
+#include "truncation_reconstruction.hpp"
 
 namespace mocapdb::compression {
 namespace {
@@ -76,7 +77,8 @@ const Tensor3& core_at_full_ranks(const PreparedSet& p, Tensor3& computed) {
     return computed;
 }
 
-SampleApproximation samples_of(const SampleReconstruction& approx) {
+template <class Reconstruction>
+SampleApproximation samples_of(const Reconstruction& approx) {
     return [&approx](const std::vector<Eigen::Index>& ids, MatX& out) { approx(ids, out); };
 }
 
@@ -201,7 +203,7 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
     std::set<tensor::Ranks> failed;                       // a joint beyond the target was found
     std::map<tensor::Ranks, JointErrorStats> passed;      // every pose checked: within the target
     std::vector<Eigen::Index> suspects, found, beyond;  // suspects: order only; found: joins screens
-    int evaluations = 0, full_checks = 0;
+    int evaluations = 0, full_checks = 0, truncation_checks = 0;
     for (int round = 0;; ++round) {
         const bool screened = screening && round < kScreenedRounds;
         // Same decision as measure(...).max_cm <= max_cm, sample by sample: a failing probe stops at
@@ -211,6 +213,15 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
         const auto decide = [&](const tensor::Ranks& ranks) {
             if (failed.count(ranks)) return false;
             if (passed.count(ranks)) return true;
+            ++evaluations;
+            if (screened && detail::TruncationReconstruction::cheaper_than_direct(p.bases, ranks)) {
+                ++truncation_checks;
+                const detail::TruncationReconstruction approx(p.x, p.bases, ranks, p.mean, p.weight);
+                const bool over = meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found),
+                                                   max_cm, &suspects);
+                if (over) failed.insert(ranks);
+                return !over;
+            }
             // The probe's reconstruction from a block of the full core and the bases' leading columns
             // (no copy of the core block, nor of the N x R3 sample basis: 80 MB at 10 000 windows).
             std::optional<SetModel> sliced;
@@ -222,7 +233,6 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
                 reconstruction.emplace(*sliced);
             }
             const SampleReconstruction& approx = *reconstruction;
-            ++evaluations;
             if (screened) {
                 const bool over = meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found),
                                                    max_cm, &suspects);
@@ -252,16 +262,28 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
                 best.stats = known->second;
             } else {
                 // The screen's answer confirmed on every pose; where it was wrong, the samples beyond the
-                // target join every screen and the bisection runs again.
+                // target join every screen and the bisection runs again. Decided first on the cheaper
+                // reconstruction where there is one; the model returned is measured on its own values.
                 report(steps);
-                const SampleReconstruction approx(best.model);
-                ++full_checks;
-                std::optional<JointErrorStats> stats =
-                    meter.measure_within(samples_of(approx), max_cm, &suspects, &beyond);
-                if (!stats) {
+                const auto fail_candidate = [&] {
                     failed.insert(*candidate);
                     for (const Eigen::Index n : beyond)
                         if (std::find(found.begin(), found.end(), n) == found.end()) found.push_back(n);
+                };
+                ++full_checks;
+                if (detail::TruncationReconstruction::cheaper_than_direct(p.bases, *candidate)) {
+                    ++truncation_checks;
+                    const detail::TruncationReconstruction approx(p.x, p.bases, *candidate, p.mean, p.weight);
+                    if (!meter.measure_within(samples_of(approx), max_cm, &suspects, &beyond)) {
+                        fail_candidate();
+                        continue;
+                    }
+                }
+                const SampleReconstruction approx(best.model);
+                std::optional<JointErrorStats> stats =
+                    meter.measure_within(samples_of(approx), max_cm, &suspects, &beyond);
+                if (!stats) {
+                    fail_candidate();
                     continue;
                 }
                 best.stats = std::move(*stats);
@@ -270,6 +292,7 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
         report(steps);
         best.evaluations = evaluations;
         best.full_checks = full_checks;
+        best.truncation_checks = truncation_checks;
         report(steps + 1);
         return best;
     }

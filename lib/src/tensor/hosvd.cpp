@@ -216,10 +216,11 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
 // on the reduced path), r from the re-orthonormalization; by a product with m when that fell back
 // to Householder.
 MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, VecX& out_eigenvalues,
-                               MatX* owner = nullptr, MatX* out_coordinates = nullptr) {
+                               MatX* owner = nullptr, MatX* out_coordinates = nullptr, bool* out_reduced = nullptr) {
     const Eigen::Index l = m.rows(), n = m.cols();
     MatX q, b;
     const bool reduced = l > 256 && randomized_range(m, budget, l / 2, q, b);
+    if (out_reduced) *out_reduced = reduced;
     if (reduced && owner) owner->resize(0, 0);  // m dangles from here on: only b is read
     const Eigen::Index side = reduced ? b.rows() : l;
     MatX c = MatX::Zero(side, side);
@@ -540,13 +541,17 @@ HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options) {
         return b;
     }
     MatX coordinates;  // the projected samples' coordinates on U[2]: k0 k1 by K
+    bool reduced = false;
     if (k0 == d && k1 == t) {  // nothing to leave out: the samples as stored
         b.U[2] = right_basis_from_row_gram(Eigen::Map<const MatX>(a.data(), d * t, n), 2.0 * budget,
-                                           b.spectra.squared_sv[2], nullptr, &coordinates);
+                                           b.spectra.squared_sv[2], nullptr, &coordinates, &reduced);
     } else {
         MatX y = projected_dof_time(a, b.U[0].leftCols(k0), b.U[1].leftCols(k1));
-        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y, &coordinates);
+        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y, &coordinates, &reduced);
     }
+    b.projected_dofs = k0;
+    b.projected_frames = k1;
+    b.spans_projected_samples = !reduced;
     // Column j of the coordinates, as a k0 by k1 matrix, is the core's slice j (project_dof_time's
     // order); for the samples as stored it is in the data's own dof and time coordinates: core slice
     // = U0^T (that) U1. Slices by fixed blocks on the machine's cores.

@@ -24,6 +24,12 @@
 // bisection's path (a provisional pass the full search would have failed, on a probe other than the
 // chosen one): then the bisection continues from a different interval; the result still meets the
 // target and is still the fewest-parameter passing triple among those the bisection visited.
+// Screened probes and the candidate's first full check run on the cheaper truncation reconstruction
+// where it applies (truncation_reconstruction.hpp in src/); a candidate that passes there is measured
+// again on its own reconstruction, and those are the errors returned.
+// Screened probes and the candidate's first full check run on the cheaper truncation reconstruction
+// where it applies (lib/src/compression/truncation_reconstruction.hpp); a candidate that passes there
+// is measured again on its own reconstruction, and those are the errors returned.
 // docs/synthesis.md (Compression, "How the ranks are found") says the same for users.
 #include <functional>
 
@@ -53,6 +59,7 @@ struct RankSearchResult {
     bool target_met = false;
     int evaluations = 0;            ///< models reconstructed and checked (on a screen or in full)
     int full_checks = 0;            ///< of them (or the chosen one again), checked on every pose
+    int truncation_checks = 0;      ///< screens and full checks decided on the truncation reconstruction
 };
 
 /// Samples a probe is screened on by default (see the header comment): about 1/20 of a set of

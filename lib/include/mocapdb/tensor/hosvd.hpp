@@ -87,6 +87,14 @@ struct HosvdBases {
     /// time directions the projection kept, zero in the others (they hold at most the projection's
     /// tolerance of the energy).
     Tensor3 factored_core;
+    /// With factored_core: the projected path's dof and time counts k0, k1 (each slice of
+    /// factored_core is zero outside its leading k0 x k1 block), and whether U[2] spans the projected
+    /// samples (exact Gram of M: up to the eigenvalues below 1e-14 of the largest; false on the
+    /// randomized path, whose range may leave out half the tolerance). When it does, the model's terms
+    /// over all K columns add up to each sample's projection on the leading k0 dof and k1 time vectors.
+    Eigen::Index projected_dofs = 0;
+    Eigen::Index projected_frames = 0;
+    bool spans_projected_samples = false;
 };
 
 /// How hosvd_bases computes the sample basis.
