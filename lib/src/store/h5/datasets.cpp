@@ -9,8 +9,10 @@
 #include "access.hpp"
 #include "errors.hpp"
 #include "file.hpp"
+#include "filtered_chunks.hpp"
 #include "handle.hpp"
 #include "types.hpp"
+#include "mocapdb/core/parallel_tasks.hpp"
 
 namespace mocapdb::store::h5 {
 namespace {
@@ -44,6 +46,47 @@ struct Traits<std::uint8_t> {
 
 constexpr std::uint64_t kChunkBytes = 256 * 1024;
 constexpr unsigned kDeflateLevel = 4;
+// Deflated datasets from this size on have their chunks filtered on the machine's cores
+// (filtered_chunks.hpp), this many chunks at a time (a few MB of buffers).
+constexpr std::uint64_t kParallelFilterBytes = 4 * 1024 * 1024;
+constexpr std::size_t kChunksPerBatch = 32;
+
+// Writes `data` (C order, `extent`, elements of `element_size` bytes in the file's representation)
+// chunk by chunk through H5Dwrite_chunk: each chunk (rows [c chunk[0], ...), whole trailing axes,
+// zero-padded at the edge as HDF5 pads it) shuffled, deflated and checksummed as the dataset's
+// filters would, the chunks of a batch on the machine's cores and written in order.
+void write_filtered_chunks(hid_t d, const std::vector<hsize_t>& extent, const std::vector<hsize_t>& chunk,
+                           std::size_t element_size, const void* data, bool shuffle, const std::string& file,
+                           const std::string& path) {
+    std::uint64_t row_bytes = element_size;
+    for (std::size_t i = 1; i < extent.size(); ++i) row_bytes *= extent[i];
+    const std::uint64_t chunk_bytes = chunk[0] * row_bytes;
+    const std::size_t chunks = static_cast<std::size_t>((extent[0] + chunk[0] - 1) / chunk[0]);
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    std::vector<std::vector<std::uint8_t>> encoded(kChunksPerBatch);
+    for (std::size_t first = 0; first < chunks; first += kChunksPerBatch) {
+        const std::size_t batch = std::min(kChunksPerBatch, chunks - first);
+        run_parallel_tasks(batch, [&](std::size_t i) {
+            const std::size_t c = first + i;
+            const std::uint64_t rows = std::min<std::uint64_t>(chunk[0], extent[0] - c * chunk[0]);
+            const std::uint8_t* begin = bytes + c * chunk_bytes;
+            if (rows == chunk[0]) {
+                encoded[i] = encode_filtered_chunk(begin, chunk_bytes, element_size, shuffle, kDeflateLevel);
+            } else {
+                std::vector<std::uint8_t> padded(chunk_bytes, 0);
+                std::copy(begin, begin + rows * row_bytes, padded.begin());
+                encoded[i] = encode_filtered_chunk(padded.data(), chunk_bytes, element_size, shuffle, kDeflateLevel);
+            }
+        });
+        for (std::size_t i = 0; i < batch; ++i) {
+            if (encoded[i].empty()) fail_call(file, path, "cannot deflate chunk " + std::to_string(first + i));
+            std::vector<hsize_t> offset(extent.size(), 0);
+            offset[0] = (first + i) * chunk[0];
+            if (H5Dwrite_chunk(d, H5P_DEFAULT, 0, offset.data(), encoded[i].size(), encoded[i].data()) < 0)
+                fail_call(file, path, "cannot write chunk " + std::to_string(first + i));
+        }
+    }
+}
 
 
 std::uint64_t element_count(const Shape& shape) {
@@ -138,9 +181,19 @@ void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, c
     Handle d(H5Dcreate2(id_, path.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
              H5Dclose);
     if (!d.valid()) fail_call(name_, path, "cannot create the dataset");
-    if (count > 0)
+    const std::size_t element_size = H5Tget_size(file_type);
+    const bool parallel = !shape.empty() && filters != Filters::ChecksumOnly && H5Tequal(file_type, mem_type) > 0 &&
+                          count * element_size >= kParallelFilterBytes;
+    if (parallel) {
+        std::vector<hsize_t> chunk(extent.size());
+        check(H5Pget_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), name_, path,
+              "cannot read the chunk shape");
+        write_filtered_chunks(d.get(), extent, chunk, element_size, data, filters == Filters::ShuffleDeflate, name_,
+                              path);
+    } else if (count > 0) {
         check(H5Dwrite(d.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name_, path,
               "cannot write the dataset");
+    }
     d.reset();
     write_strings_attribute(path, "dims", dims);
     write_string_attribute(path, "units", units);
