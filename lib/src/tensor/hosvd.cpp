@@ -77,11 +77,11 @@ void parallel_transposed_product_by_columns(const Eigen::Ref<const MatX>& a, con
     });
 }
 
-// The two level-3 operations below go to OpenBLAS (dsyrk, dtrsm), on its threads: about twice as fast
-// as Eigen's on two cores at 11 070 x 3 719 (#16: Gram 4.0 -> 2.3 s, solve 3.4 -> 1.6 s). Their values
-// did not change with OpenBLAS's thread count in a check on 1, 2, 3 and 8 threads; its dgemm's did, so
-// the products stay with Eigen in fixed blocks. (dsyevd, in gram_eigenbasis below, is not thread-count
-// independent: OPENBLAS_NUM_THREADS=1 moves the last digits of the bases, and so of the errors.)
+// The sample basis's level-3 operations on the projected samples go to OpenBLAS (dsyrk, dtrsm, dgemm),
+// on its threads: about twice as fast as Eigen's on two cores at 11 070 x 3 719 for the Gram and the
+// solves (#16: 4.0 -> 2.3 s and 3.4 -> 1.6 s). Like dsyevd (gram_eigenbasis, below), dgemm's last
+// digits change with OpenBLAS's thread count (OPENBLAS_NUM_THREADS); dsyrk's and dtrsm's did not in a
+// check on 1, 2, 3 and 8 threads. mocapdb's own worker count changes no value.
 
 // Sizes beyond BLAS's 32-bit integers stay with Eigen.
 constexpr Eigen::Index kBlasMaxSize = std::numeric_limits<int>::max();
@@ -104,6 +104,24 @@ void lower_gram(const Eigen::Ref<const MatX>& a, bool rows, MatX& g) {
     }
     cblas_dsyrk(CblasColMajor, CblasLower, rows ? CblasTrans : CblasNoTrans, static_cast<int>(k), static_cast<int>(n),
                 1.0, a.data(), static_cast<int>(a.outerStride()), 0.0, g.data(), static_cast<int>(k));
+}
+
+// out = a^T b (out sized a.cols() by b.cols()): OpenBLAS's dgemm, 15-20 % faster than Eigen's products
+// in fixed blocks at 11 070 x 3 720 x 3 719 (#16: the sample basis's largest product).
+void transposed_product(const Eigen::Ref<const MatX>& a, const Eigen::Ref<const MatX>& b, MatX& out) {
+    out.resize(a.cols(), b.cols());
+    if (out.size() == 0) return;
+    if (a.rows() == 0) {
+        out.setZero();
+        return;
+    }
+    if (std::max({a.rows(), a.cols(), b.cols(), a.outerStride(), b.outerStride()}) > kBlasMaxSize) {
+        out.noalias() = a.transpose() * b;
+        return;
+    }
+    cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, static_cast<int>(a.cols()), static_cast<int>(b.cols()),
+                static_cast<int>(a.rows()), 1.0, a.data(), static_cast<int>(a.outerStride()), b.data(),
+                static_cast<int>(b.outerStride()), 0.0, out.data(), static_cast<int>(out.rows()));
 }
 
 // v u^-1 in place (u upper triangular, as many columns as v).
@@ -265,11 +283,9 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     while (kept < top && ev(kept) > 0.0 && ev(kept) > kKeptEigenvalue * ev(0)) ++kept;
     MatX v(n, kept);
     if (kept == 0) return v;
-    // v = b^T w (or m^T w), by fixed blocks of samples.
+    // v = b^T w (or m^T w).
     const Eigen::Ref<const MatX> src = reduced ? Eigen::Ref<const MatX>(b) : m;
-    for_each_block(n, [&](Eigen::Index first, Eigen::Index count) {
-        v.middleRows(first, count).noalias() = src.middleCols(first, count).transpose() * w.leftCols(kept);
-    });
+    transposed_product(src, w.leftCols(kept), v);
     v *= ev.head(kept).cwiseSqrt().cwiseInverse().asDiagonal();
     const MatX r = reorthonormalize(v);
     if (!out_coordinates) {
