@@ -90,6 +90,13 @@ void check_identical(const StoredModel& back, const compression::SetModel& m, co
     CHECK(back.figures.p99_cm == fig.p99_cm);
 }
 
+// Puts `m` as the model of set "walks" in its own write session.
+void store_model(const std::filesystem::path& db_path, const compression::SetModel& m, const ModelFigures& fig) {
+    DatabaseWriter w(db_path);
+    w.put_model("walks", m, fig);
+    w.commit();
+}
+
 // The StoreError of load_model on a fixture: its path and message.
 std::pair<std::string, std::string> load_error(const std::filesystem::path& file) {
     try {
@@ -188,11 +195,7 @@ TEST_CASE("model: a model of several MB, its chunks filtered on the machine's co
     const compression::SetModel m = fx.model({4, 6, 90}, tensor::TuckerMethod::Hosvd);
     REQUIRE(m.tucker.U[2].size() * 8 >= 4 * 1024 * 1024);
     const ModelFigures fig{0.5, 1.0, 0.75, 2.0, 1.5};
-    {
-        DatabaseWriter w(db_path);
-        w.put_model("walks", m, fig);
-        w.commit();
-    }
+    store_model(db_path, m, fig);
     const Database db(db_path);
     const auto back = db.load_model("walks");
     REQUIRE(back.has_value());
@@ -211,17 +214,9 @@ TEST_CASE("model: put_model replaces a stored model", "[store][model]") {
     const compression::SetModel first = fx.model({6, 6, 3}, tensor::TuckerMethod::Hosvd);
     const compression::SetModel second = fx.model({2, 3, 1}, tensor::TuckerMethod::StHosvd);
     const ModelFigures fig1{1, 2, 3, 4, 5}, fig2{0.5, 0.25, 0.125, 2, 1};
-    {
-        DatabaseWriter w(db_path);
-        w.put_model("walks", first, fig1);
-        w.commit();
-    }
+    store_model(db_path, first, fig1);
     const std::uint64_t size_first = database_disk_bytes(db_path);
-    {
-        DatabaseWriter w(db_path);
-        w.put_model("walks", second, fig2);
-        w.commit();
-    }
+    store_model(db_path, second, fig2);
     const Database db(db_path);
     const auto back = db.load_model("walks");
     REQUIRE(back.has_value());
