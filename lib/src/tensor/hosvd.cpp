@@ -47,9 +47,10 @@ void make_signs_canonical(MatX& u, MatX* companion = nullptr) {
     }
 }
 
-// The products of the sample-basis computation on the machine's cores (issue #16). Every product is
-// cut into blocks of a fixed size (not a function of the thread count) and each block is one Eigen
-// product, so the values do not depend on how many threads ran them.
+// The Eigen products of the sample-basis computation on the machine's cores (issue #16). Every product
+// is cut into blocks of a fixed size (not a function of the thread count) and each block is one Eigen
+// product, so the values do not depend on how many threads ran them. (The largest operations go to
+// OpenBLAS instead: see lower_gram below.)
 constexpr Eigen::Index kProductBlock = 512;
 
 // f(first, count) for each block [first, first + count) of kProductBlock indices out of [0, size),
@@ -294,7 +295,7 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     }
     MatX& coordinates = *out_coordinates;
     if (r.size() > 0) {
-        // w sigma r^-1, by fixed blocks of rows (then q times it on the reduced path).
+        // w sigma r^-1 (then q times it on the reduced path).
         MatX ws = w.leftCols(kept) * ev.head(kept).cwiseSqrt().asDiagonal();
         solve_upper_on_right(r, ws);
         if (reduced) {

@@ -15,12 +15,12 @@
 // k1 time basis vectors (L = k0 k1; k0, k1 the smallest counts whose discarded dof and time energy
 // is <= projection_tolerance ||A||^2, so M M^T equals the sample Gram's nonzero part to rounding),
 // the sample basis is V = M^T W Sigma^-1 from the eigendecomposition W Sigma^2 W^T of the L by L
-// matrix M M^T (re-orthonormalized by two Cholesky-QR passes). When L > 256 and M's energy lies in
-// k <= L / 2 dimensions up to half the tolerance, a blocked randomized range finder with exact
-// energy accounting gives M ~ Q B (Q: L by k) and the k by k matrix B B^T replaces M M^T. Only the
-// columns that can carry energy are kept (at most min(N, L)); the spectrum is padded with zeros to
-// N values, and a rank above the kept columns gets an orthonormal completion (those directions
-// carry no energy). Memory O(N R + L^2) (O(N k + L k) on the randomized path), time O(L^2 N + L^3)
+// matrix M M^T (re-orthonormalized by Cholesky-QR: one pass, a second when needed). When L > 256 and
+// M's energy lies in k <= L / 2 dimensions up to half the tolerance, a blocked randomized range
+// finder with exact energy accounting gives M ~ Q B (Q: L by k) and the k by k matrix B B^T replaces
+// M M^T. Only the columns that can carry energy are kept (at most min(N, L)); the spectrum is padded
+// with zeros to N values, and a rank above the kept columns gets an orthonormal completion (those
+// directions carry no energy). Memory O(N R + L^2) (O(N k + L k) on the randomized path), time O(L^2 N + L^3)
 // (O(L N k + k^3)) instead of O(N^2 L + N^3).
 //
 // Accuracy: eigenvalues of a Gram matrix carry absolute errors of about eps * sigma_1^2, so singular
