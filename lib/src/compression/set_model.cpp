@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "core_terms.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
 
 namespace mocapdb::compression {
@@ -86,20 +86,7 @@ SampleReconstruction::SampleReconstruction(const Tensor3& core, const tensor::Ra
     // (each output value is the same sum, in the same order, as in its one product over the whole
     // unfolding), the slices on the machine's cores (independent, so the values do not depend on the
     // thread count); the last product (sample mode) is done per call.
-    const Eigen::Index d = dof_basis.rows(), frames = time_basis.rows();
-    const auto dof = dof_basis.leftCols(r0);
-    const auto time = time_basis.leftCols(r1);
-    dof_time_.resize(d * frames, sample_rank_);
-    constexpr Eigen::Index kSlices = 64;
-    run_parallel_tasks(static_cast<std::size_t>((sample_rank_ + kSlices - 1) / kSlices), [&](std::size_t c) {
-        const Eigen::Index first = static_cast<Eigen::Index>(c) * kSlices;
-        MatX w0(d, r1);
-        for (Eigen::Index k = first; k < std::min(sample_rank_, first + kSlices); ++k) {
-            w0.noalias() = dof * Eigen::Map<const MatX>(core.data() + k * f0 * f1, f0, f1).topLeftCorner(r0, r1);
-            Eigen::Map<MatX> o(dof_time_.col(k).data(), d, frames);
-            o.noalias() = w0 * time.transpose();
-        }
-    });
+    detail::core_terms(core, dof_basis.leftCols(r0), time_basis.leftCols(r1), 0, sample_rank_, dof_time_);
 }
 
 void SampleReconstruction::operator()(const std::vector<Eigen::Index>& samples, MatX& out) const {

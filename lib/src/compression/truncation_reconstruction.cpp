@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <string>
 
+#include "core_terms.hpp"
 #include "mocapdb/core/error.hpp"
-#include "mocapdb/core/parallel_tasks.hpp"
 
 namespace mocapdb::compression::detail {
 
@@ -34,22 +34,8 @@ TruncationReconstruction::TruncationReconstruction(const Tensor3& x, const tenso
                               " are not within the projected path's bases, or the tensor of " +
                               std::to_string(x.dimension(0)) + " x " + std::to_string(x.dimension(1)) + " x " +
                               std::to_string(x.dimension(2)) + " is not theirs");
-    const Tensor3& core = bases.factored_core;
-    const Eigen::Index r0 = ranks[0], r1 = ranks[1], first = ranks[2], k = core.dimension(2);
-    const Eigen::Index f0 = core.dimension(0), f1 = core.dimension(1);
-    const auto dof = bases.U[0].leftCols(r0);
-    const auto time = bases.U[1].leftCols(r1);
-    dropped_terms_.resize(d * t, k - first);
-    constexpr Eigen::Index kSlices = 64;
-    run_parallel_tasks(static_cast<std::size_t>((k - first + kSlices - 1) / kSlices), [&](std::size_t c) {
-        const Eigen::Index begin = first + static_cast<Eigen::Index>(c) * kSlices;
-        MatX w0(d, r1);
-        for (Eigen::Index j = begin; j < std::min(k, begin + kSlices); ++j) {
-            w0.noalias() = dof * Eigen::Map<const MatX>(core.data() + j * f0 * f1, f0, f1).topLeftCorner(r0, r1);
-            Eigen::Map<MatX> o(dropped_terms_.col(j - first).data(), d, t);
-            o.noalias() = w0 * time.transpose();
-        }
-    });
+    core_terms(bases.factored_core, bases.U[0].leftCols(ranks[0]), bases.U[1].leftCols(ranks[1]), ranks[2],
+               bases.factored_core.dimension(2), dropped_terms_);
 }
 
 void TruncationReconstruction::operator()(const std::vector<Eigen::Index>& samples, MatX& out) const {

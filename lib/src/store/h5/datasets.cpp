@@ -160,10 +160,11 @@ void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, c
     Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), name_, path, "cannot create dataset properties"), H5Pclose);
     check(H5Pset_obj_track_times(dcpl.get(), 0), name_, path, "cannot disable time tracking");
     const std::uint64_t count = element_count(shape);
+    const std::size_t element_size = H5Tget_size(file_type);
+    std::vector<hsize_t> chunk(extent);
     if (!shape.empty() && count > 0) {
         // Whole trailing axes per chunk; the first axis split so that a chunk is about kChunkBytes.
-        std::vector<hsize_t> chunk(extent);
-        const std::uint64_t row_bytes = count / extent[0] * H5Tget_size(file_type);
+        const std::uint64_t row_bytes = count / extent[0] * element_size;
         chunk[0] = std::clamp<hsize_t>(kChunkBytes / std::max<std::uint64_t>(row_bytes, 1), 1, extent[0]);
         if (filters == Filters::ChecksumOnly) {
             // Unfiltered edge chunks are stored whole: split evenly so that the padding is < 1 row per chunk.
@@ -181,13 +182,9 @@ void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, c
     Handle d(H5Dcreate2(id_, path.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
              H5Dclose);
     if (!d.valid()) fail_call(name_, path, "cannot create the dataset");
-    const std::size_t element_size = H5Tget_size(file_type);
     const bool parallel = !shape.empty() && filters != Filters::ChecksumOnly && H5Tequal(file_type, mem_type) > 0 &&
                           count * element_size >= kParallelFilterBytes;
     if (parallel) {
-        std::vector<hsize_t> chunk(extent.size());
-        check(H5Pget_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), name_, path,
-              "cannot read the chunk shape");
         write_filtered_chunks(d.get(), extent, chunk, element_size, data, filters == Filters::ShuffleDeflate, name_,
                               path);
     } else if (count > 0) {
