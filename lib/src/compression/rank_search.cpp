@@ -88,16 +88,47 @@ JointErrorStats measure_model(const JointErrorMeter& meter, const SetModel& m) {
     return *meter.measure_within(samples_of(approx), std::numeric_limits<double>::infinity());
 }
 
+// The reconstruction of the model at ranks: from a block of the full core and the bases' leading
+// columns (no copy of the core block, nor of the N x R3 sample basis: 0.29 GB at 11 070 windows),
+// or from a model of its own (`holder`) for sample ranks beyond the full core.
+const SampleReconstruction& reconstruction_at(const PreparedSet& p, const Tensor3& full_core,
+                                              const tensor::Ranks& ranks, std::optional<SetModel>& holder,
+                                              std::optional<SampleReconstruction>& reconstruction) {
+    if (ranks[2] <= full_core.dimension(2)) {
+        reconstruction.emplace(full_core, ranks, p.bases.U[0], p.bases.U[1], p.bases.U[2], p.mean, p.weight);
+    } else {
+        holder = model_at(p, full_core, ranks);
+        reconstruction.emplace(*holder);
+    }
+    return *reconstruction;
+}
+
+// What the search chose: the model is made from it afterwards, from the prepared set or by taking it.
+struct Choice {
+    tensor::Ranks ranks{};
+    JointErrorStats stats;
+    bool target_met = false;
+    int evaluations = 0, full_checks = 0, truncation_checks = 0;
+};
+
+RankSearchResult result_of(const Choice& c, SetModel model) {
+    RankSearchResult r;
+    r.model = std::move(model);
+    r.stats = c.stats;
+    r.target_met = c.target_met;
+    r.evaluations = c.evaluations;
+    r.full_checks = c.full_checks;
+    r.truncation_checks = c.truncation_checks;
+    return r;
+}
+
 // Full ranks reproduce the data (up to rounding), so the target is reachable: the bisection assumes
 // it and measures them only when no probe met the target (they are the largest model, so any probe
 // that meets the target is preferred to them). The sample rank of a D x T x N tensor is at most D T,
 // so min(N, D T) sample columns are already full.
-RankSearchResult full_rank_result(const PreparedSet& p, const Tensor3& full_core, const JointErrorMeter& meter) {
+tensor::Ranks full_ranks(const PreparedSet& p) {
     const tensor::Dims3 dims = tensor::dims_of(p.x);
-    RankSearchResult r;
-    r.model = model_at(p, full_core, {dims[0], dims[1], std::min(dims[2], dims[0] * dims[1])});
-    r.stats = measure_model(meter, r.model);
-    return r;
+    return {dims[0], dims[1], std::min(dims[2], dims[0] * dims[1])};
 }
 
 // Screened rounds before every probe is checked on every sample (see search_ranks_for_max_error).
@@ -179,16 +210,20 @@ SetModel hosvd_model(const PreparedSet& p, const tensor::Ranks& ranks) {
     return m;
 }
 
-RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compression::JointErrorMeter& meter, double max_cm,
-                                            const ProgressCallback& progress, Eigen::Index screen_samples) {
+namespace {
+
+void check_max_error_arguments(double max_cm, Eigen::Index screen_samples) {
     if (!(max_cm > 0.0) || !std::isfinite(max_cm))
         throw InvalidArgument("search_ranks_for_max_error: the target must be a finite number of cm > 0, got " +
                               std::to_string(max_cm));
     if (screen_samples < 0)
         throw InvalidArgument("search_ranks_for_max_error: screen_samples must be >= 0, got " +
                               std::to_string(screen_samples));
-    Tensor3 computed_core;
-    const Tensor3& full_core = core_at_full_ranks(p, computed_core);
+}
+
+// The search of search_ranks_for_max_error, up to (not including) making the chosen model.
+Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, const compression::JointErrorMeter& meter,
+                            double max_cm, const ProgressCallback& progress, Eigen::Index screen_samples) {
     const Eigen::Index samples = p.x.dimension(2);
     const std::uint64_t steps = bisection_steps();
     std::uint64_t reported = 0;
@@ -222,17 +257,9 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
                 if (over) failed.insert(ranks);
                 return !over;
             }
-            // The probe's reconstruction from a block of the full core and the bases' leading columns
-            // (no copy of the core block, nor of the N x R3 sample basis: 80 MB at 10 000 windows).
-            std::optional<SetModel> sliced;
+            std::optional<SetModel> holder;
             std::optional<SampleReconstruction> reconstruction;
-            if (ranks[2] <= full_core.dimension(2)) {
-                reconstruction.emplace(full_core, ranks, p.bases.U[0], p.bases.U[1], p.bases.U[2], p.mean, p.weight);
-            } else {
-                sliced = model_at(p, full_core, ranks);
-                reconstruction.emplace(*sliced);
-            }
-            const SampleReconstruction& approx = *reconstruction;
+            const SampleReconstruction& approx = reconstruction_at(p, full_core, ranks, holder, reconstruction);
             if (screened) {
                 const bool over = meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found),
                                                    max_cm, &suspects);
@@ -250,12 +277,17 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
         };
         const std::optional<tensor::Ranks> candidate =
             bisection(p.bases.spectra, decide, [&](std::uint64_t i) { if (round == 0) report(i); });
-        RankSearchResult best;
+        Choice best;
         if (!candidate) {
-            best = full_rank_result(p, full_core, meter);
+            best.ranks = full_ranks(p);
+            std::optional<SetModel> holder;
+            std::optional<SampleReconstruction> reconstruction;
+            best.stats = *meter.measure_within(
+                samples_of(reconstruction_at(p, full_core, best.ranks, holder, reconstruction)),
+                std::numeric_limits<double>::infinity());
             ++evaluations;
         } else {
-            best.model = model_at(p, full_core, *candidate);
+            best.ranks = *candidate;
             best.target_met = true;
             const auto known = passed.find(*candidate);
             if (known != passed.end()) {
@@ -279,9 +311,11 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
                         continue;
                     }
                 }
-                const SampleReconstruction approx(best.model);
-                std::optional<JointErrorStats> stats =
-                    meter.measure_within(samples_of(approx), max_cm, &suspects, &beyond);
+                std::optional<SetModel> holder;
+                std::optional<SampleReconstruction> reconstruction;
+                std::optional<JointErrorStats> stats = meter.measure_within(
+                    samples_of(reconstruction_at(p, full_core, *candidate, holder, reconstruction)), max_cm,
+                    &suspects, &beyond);
                 if (!stats) {
                     fail_candidate();
                     continue;
@@ -293,9 +327,42 @@ RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compress
         best.evaluations = evaluations;
         best.full_checks = full_checks;
         best.truncation_checks = truncation_checks;
-        report(steps + 1);
         return best;
     }
+}
+
+}  // namespace
+
+RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compression::JointErrorMeter& meter, double max_cm,
+                                            const ProgressCallback& progress, Eigen::Index screen_samples) {
+    check_max_error_arguments(max_cm, screen_samples);
+    Tensor3 computed_core;
+    const Tensor3& full_core = core_at_full_ranks(p, computed_core);
+    const Choice c = choose_for_max_error(p, full_core, meter, max_cm, progress, screen_samples);
+    RankSearchResult r = result_of(c, model_at(p, full_core, c.ranks));
+    if (progress) progress({bisection_steps() + 1, bisection_steps() + 1, "rank search"});
+    return r;
+}
+
+RankSearchResult search_ranks_for_max_error(PreparedSet&& p, const compression::JointErrorMeter& meter, double max_cm,
+                                            const ProgressCallback& progress, Eigen::Index screen_samples) {
+    check_max_error_arguments(max_cm, screen_samples);
+    Tensor3 computed_core;
+    const Tensor3& full_core = core_at_full_ranks(p, computed_core);
+    const Choice c = choose_for_max_error(p, full_core, meter, max_cm, progress, screen_samples);
+    SetModel m;
+    if (c.ranks[2] <= full_core.dimension(2)) {
+        m.mean = std::move(p.mean);
+        m.weight = std::move(p.weight);
+        p.x = Tensor3();
+        m.tucker = tensor::hosvd_from_core(std::move(p.bases), full_core, c.ranks);  // full_core is read first
+    } else {
+        m = model_at(p, full_core, c.ranks);
+    }
+    p = PreparedSet{};
+    RankSearchResult r = result_of(c, std::move(m));
+    if (progress) progress({bisection_steps() + 1, bisection_steps() + 1, "rank search"});
+    return r;
 }
 
 RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::JointErrorMeter& meter, double rmse,
@@ -326,7 +393,8 @@ RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::
         report(steps);
         best.stats = measure_model(meter, best.model);
     } else {
-        best = full_rank_result(p, full_core, meter);
+        best.model = model_at(p, full_core, full_ranks(p));
+        best.stats = measure_model(meter, best.model);
         ++evaluations;
     }
     best.evaluations = evaluations;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <string>
@@ -159,7 +160,9 @@ MatX reorthonormalize(MatX& v) {
         MatX g = MatX::Zero(v.cols(), v.cols());
         lower_gram(v, true, g);
         const bool last = distance_from_identity(g) <= 0.1;
-        const Eigen::LLT<MatX, Eigen::Lower> llt(g);
+        // Factored in g's own storage, U = L^T then copied into its upper triangle (#16: the
+        // factor, U and r were three more K x K matrices, 0.33 GB at K = 3 719).
+        const Eigen::LLT<Eigen::Ref<MatX>, Eigen::Lower> llt(g);
         if (llt.info() != Eigen::Success) {
             const Eigen::HouseholderQR<MatX> qr(v);
             MatX q = qr.householderQ() * MatX::Identity(v.rows(), v.cols());
@@ -169,9 +172,12 @@ MatX reorthonormalize(MatX& v) {
             return MatX();
         }
         // v U^-1 (U^T U = v^T v).
-        const MatX u = llt.matrixU();
+        MatX& u = g;
+        for (Eigen::Index j = 1; j < u.cols(); ++j) u.col(j).head(j) = u.row(j).head(j).transpose();
+        u.triangularView<Eigen::StrictlyLower>().setZero();
         solve_upper_on_right(u, v);
-        r = pass == 0 ? u : MatX(u.triangularView<Eigen::Upper>() * r);
+        if (pass == 0) r = std::move(u);
+        else r = MatX(u.triangularView<Eigen::Upper>() * r);
         if (last) break;
     }
     return r;
@@ -250,33 +256,42 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
     return true;
 }
 
+bool eigenbasis_in_place(MatX& g, VecX& out_eigenvalues);  // below, beside lapack_eigen
+
 // Right singular vectors of m (L by N) from the eigendecomposition of m m^T (L by L), or, when m's
 // energy lies in a subspace of dimension k <= L / 2 up to `budget`, of b b^T (k by k) with m ~ q b
 // (randomized_range): v_j = m^T w_j / sigma_j for the eigenvalues above kKeptEigenvalue * the
 // largest (at most min(N, L) columns). out_eigenvalues: N values, decreasing, zeros beyond.
 // `owner`, when given, is the matrix m views: released as soon as m is no longer read (after the
-// randomized range; #16: the projected samples are 0.3 GB at 10 000 samples). out_coordinates, when
-// given, receives m v (L by the columns of v) from the factors: m v = w sigma r^-1 (q w sigma r^-1
-// on the reduced path), r from the re-orthonormalization; by a product with m when that fell back
-// to Householder.
+// randomized range, or after v = m^T w; #16: the projected samples are 0.3 GB at 10 000 samples).
+// out_coordinates, when given, receives m v (L by the columns of v) from the factors: m v = w sigma
+// r^-1 (q w sigma r^-1 on the reduced path), r from the re-orthonormalization; by a product with m
+// when that fell back to Householder (with `owner` released, m is first rebuilt into it by
+// `rebuild_owner`, which must then be given).
 MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, VecX& out_eigenvalues,
-                               MatX* owner = nullptr, MatX* out_coordinates = nullptr, bool* out_reduced = nullptr) {
+                               MatX* owner = nullptr, MatX* out_coordinates = nullptr, bool* out_reduced = nullptr,
+                               const std::function<void(MatX&)>& rebuild_owner = nullptr) {
     const Eigen::Index l = m.rows(), n = m.cols();
     MatX q, b;
     const bool reduced = l > 256 && randomized_range(m, budget, l / 2, q, b);
     if (out_reduced) *out_reduced = reduced;
     if (reduced && owner) owner->resize(0, 0);  // m dangles from here on: only b is read
     const Eigen::Index side = reduced ? b.rows() : l;
-    MatX c = MatX::Zero(side, side);
-    if (reduced) {
-        if (!out_coordinates) q.resize(0, 0);
-        lower_gram(b, false, c);
-    } else {
-        lower_gram(m, false, c);
-    }
+    if (reduced && !out_coordinates) q.resize(0, 0);
+    const auto gram = [&](MatX& c) {
+        c = MatX::Zero(side, side);
+        lower_gram(reduced ? Eigen::Ref<const MatX>(b) : m, false, c);
+    };
     VecX ev;
-    const MatX w = side > 0 ? gram_eigenbasis(c, ev) : MatX();  // reads the lower triangle
-    c.resize(0, 0);
+    MatX w;  // the Gram's eigenvectors (its lower triangle read), by decreasing eigenvalue
+    if (side > 0) {
+        gram(w);
+        if (!eigenbasis_in_place(w, ev)) {
+            MatX c;
+            gram(c);
+            w = gram_eigenbasis(c, ev);
+        }
+    }
     const Eigen::Index top = std::min(side, n);
     out_eigenvalues = VecX::Zero(n);
     out_eigenvalues.head(top) = ev.head(top);
@@ -285,8 +300,14 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     MatX v(n, kept);
     if (kept == 0) return v;
     // v = b^T w (or m^T w).
-    const Eigen::Ref<const MatX> src = reduced ? Eigen::Ref<const MatX>(b) : m;
-    transposed_product(src, w.leftCols(kept), v);
+    {
+        const Eigen::Ref<const MatX> src = reduced ? Eigen::Ref<const MatX>(b) : m;
+        transposed_product(src, w.leftCols(kept), v);
+    }
+    // m is not read again unless the re-orthonormalization falls back to Householder: on the exact
+    // path its owner goes now, before the Gram of v and the core (#16: 0.33 GB of the peak at 11 070).
+    const bool released = !reduced && owner && rebuild_owner && out_coordinates;
+    if (released) owner->resize(0, 0);
     v *= ev.head(kept).cwiseSqrt().cwiseInverse().asDiagonal();
     const MatX r = reorthonormalize(v);
     if (!out_coordinates) {
@@ -295,19 +316,26 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     }
     MatX& coordinates = *out_coordinates;
     if (r.size() > 0) {
-        // w sigma r^-1 (then q times it on the reduced path).
-        MatX ws = w.leftCols(kept) * ev.head(kept).cwiseSqrt().asDiagonal();
-        solve_upper_on_right(r, ws);
+        // w sigma r^-1 (then q times it on the reduced path), in w's storage.
+        w.conservativeResize(Eigen::NoChange, kept);
+        w *= ev.head(kept).cwiseSqrt().asDiagonal();
+        solve_upper_on_right(r, w);
         if (reduced) {
             coordinates.resize(l, kept);
-            parallel_product_by_rows(q, ws, coordinates);
+            parallel_product_by_rows(q, w, coordinates);
         } else {
-            coordinates = std::move(ws);
+            coordinates = std::move(w);
         }
+    } else if (reduced) {
+        // No triangular factor: the product itself (q b v on the reduced path, m v otherwise).
+        coordinates.noalias() = b * v;
+        coordinates = q * coordinates;
+    } else if (released) {
+        rebuild_owner(*owner);
+        coordinates.noalias() = *owner * v;
+        owner->resize(0, 0);
     } else {
-        // No triangular factor: the product itself (b v on the reduced path, m v otherwise).
-        coordinates.noalias() = src * v;
-        if (reduced) coordinates = q * coordinates;
+        coordinates.noalias() = m * v;
     }
     make_signs_canonical(v, &coordinates);
     return v;
@@ -501,6 +529,27 @@ bool lapack_eigen(const Eigen::Ref<const MatX>& g, MatX& vectors, VecX& values) 
     return info == 0 && vectors.allFinite() && values.allFinite();
 }
 
+// gram_eigenbasis(g) in g's own storage when dsyevd takes it (the same call on the same matrix, so
+// the same values bit for bit; columns reversed and signs fixed in place; #16: no second 0.11 GB
+// matrix at 3 720): g becomes the eigenvectors, decreasing. False when gram_eigenbasis would use
+// Eigen, and when LAPACK fails; g may then be overwritten, and the caller recomputes it.
+bool eigenbasis_in_place(MatX& g, VecX& out_eigenvalues) {
+    const Eigen::Index n = g.rows();
+    if (n != g.cols() || n < kLapackEigenMinSize ||
+        n > static_cast<Eigen::Index>(std::numeric_limits<lapack_int>::max()) || !g.allFinite())
+        return false;
+    VecX values(n);
+    const auto size = static_cast<lapack_int>(n);
+    if (LAPACKE_dsyevd(LAPACK_COL_MAJOR, 'V', 'L', size, g.data(), size, values.data()) != 0 || !g.allFinite() ||
+        !values.allFinite())
+        return false;
+    out_eigenvalues.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) out_eigenvalues(i) = std::max(0.0, values(n - 1 - i));
+    for (Eigen::Index i = 0; i < n / 2; ++i) g.col(i).swap(g.col(n - 1 - i));
+    make_signs_canonical(g);
+    return true;
+}
+
 }  // namespace
 
 MatX gram_eigenbasis(const Eigen::Ref<const MatX>& g, VecX& out_eigenvalues) {
@@ -586,8 +635,11 @@ HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options) {
         b.U[2] = right_basis_from_row_gram(Eigen::Map<const MatX>(a.data(), d * t, n), 2.0 * budget,
                                            b.spectra.squared_sv[2], nullptr, &coordinates, &reduced);
     } else {
-        MatX y = projected_dof_time(a, b.U[0].leftCols(k0), b.U[1].leftCols(k1));
-        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y, &coordinates, &reduced);
+        const auto project = [&](MatX& out) { out = projected_dof_time(a, b.U[0].leftCols(k0), b.U[1].leftCols(k1)); };
+        MatX y;
+        project(y);
+        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y, &coordinates, &reduced,
+                                           project);
     }
     b.projected_dofs = k0;
     b.projected_frames = k1;
@@ -654,7 +706,10 @@ Tensor3 hosvd_full_core(const Tensor3& a, const HosvdBases& bases) {
     return projected_core(a, bases.U[0], bases.U[1], bases.U[2]);
 }
 
-TuckerModel hosvd_from_core(const HosvdBases& bases, const Tensor3& full_core, const Ranks& ranks) {
+namespace {
+
+// hosvd_from_core without the bases' columns (m.U left empty).
+TuckerModel core_block_model(const HosvdBases& bases, const Tensor3& full_core, const Ranks& ranks) {
     const Dims3& dims = bases.spectra.dims;
     check_ranks(dims, ranks, "hosvd_from_core");
     for (std::size_t m = 0; m < 3; ++m) {
@@ -669,7 +724,6 @@ TuckerModel hosvd_from_core(const HosvdBases& bases, const Tensor3& full_core, c
     m.method = TuckerMethod::Hosvd;
     m.status = TuckerStatus::Ok;
     m.ranks = ranks;
-    for (std::size_t n = 0; n < 3; ++n) m.U[n] = bases.U[n].leftCols(ranks[n]);
     m.core = Tensor3(ranks[0], ranks[1], ranks[2]);
     // Copied slice by slice (#16: a probe's core of 3.7 million values per rank-search probe).
     const Eigen::Index f0 = full_core.dimension(0), f1 = full_core.dimension(1);
@@ -680,6 +734,24 @@ TuckerModel hosvd_from_core(const HosvdBases& bases, const Tensor3& full_core, c
     m.fit = fit_from(bases.spectra.squared_norm, squared_norm(m.core));
     m.error_bound = hosvd_error_bound(bases.spectra, ranks);
     m.fit_history = {m.fit};
+    return m;
+}
+
+}  // namespace
+
+TuckerModel hosvd_from_core(const HosvdBases& bases, const Tensor3& full_core, const Ranks& ranks) {
+    TuckerModel m = core_block_model(bases, full_core, ranks);
+    for (std::size_t n = 0; n < 3; ++n) m.U[n] = bases.U[n].leftCols(ranks[n]);
+    return m;
+}
+
+TuckerModel hosvd_from_core(HosvdBases&& bases, const Tensor3& full_core, const Ranks& ranks) {
+    TuckerModel m = core_block_model(bases, full_core, ranks);  // full_core is read before bases go
+    for (std::size_t n = 0; n < 3; ++n) {
+        m.U[n] = std::move(bases.U[n]);
+        m.U[n].conservativeResize(Eigen::NoChange, ranks[n]);  // the leading columns stay where they are
+    }
+    bases = HosvdBases{};
     return m;
 }
 

@@ -32,7 +32,7 @@ compression::RankSearchResult choose_ranks(const Tensor3& poses, const VecX& wei
                                            CompressOutcome& o) {
     compression::RankSearchResult chosen;
     const auto bases_start = Clock::now();
-    const compression::PreparedSet prepared = compression::prepare_set(poses, weight);
+    compression::PreparedSet prepared = compression::prepare_set(poses, weight);
     o.bases_s = seconds_since(bases_start);
     const auto search_start = Clock::now();
     if (a.ranks) {
@@ -53,7 +53,7 @@ compression::RankSearchResult choose_ranks(const Tensor3& poses, const VecX& wei
         o.criterion = "ratio >= " + std::to_string(a.ratio);
     } else {
         const double target = a.max_error_cm > 0.0 ? a.max_error_cm : 1.0;
-        chosen = compression::search_ranks_for_max_error(prepared, meter, target, a.progress);
+        chosen = compression::search_ranks_for_max_error(std::move(prepared), meter, target, a.progress);
         std::ostringstream s;
         s << "max joint error <= " << target << " cm";
         o.criterion = s.str();

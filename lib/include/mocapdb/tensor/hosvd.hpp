@@ -159,6 +159,11 @@ Tensor3 hosvd_full_core(const Tensor3& a, const HosvdBases& bases);
 /// 1 <= ranks[n] <= dims[n] and ranks[2] <= full_core.dimension(2). Throws InvalidArgument otherwise.
 TuckerModel hosvd_from_core(const HosvdBases& bases, const Tensor3& full_core, const Ranks& ranks);
 
+/// The same model, taking the bases' storage instead of copying their leading columns (#16: the
+/// N x R3 sample basis is 0.29 GB at 11 070 windows). full_core may be bases.factored_core: its block
+/// is copied before anything is released. bases is left empty. Same arguments and errors.
+TuckerModel hosvd_from_core(HosvdBases&& bases, const Tensor3& full_core, const Ranks& ranks);
+
 /// Truncated HOSVD at ranks (R1, R2, R3). a: D by T by N, non-empty, finite; 1 <= ranks[n] <= dims[n].
 /// Returns a model with method Hosvd, status Ok. Throws InvalidArgument on bad arguments.
 TuckerModel hosvd(const Tensor3& a, const Ranks& ranks, const HosvdOptions& options = {});
