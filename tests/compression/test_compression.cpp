@@ -281,6 +281,18 @@ TEST_CASE("rank search: probes decided on the truncation reconstruction give the
         CHECK(meter.measure(screened.model.reconstruct()).max_cm == screened.stats.max_cm);
         CHECK(a == b);
         CHECK(screened.stats.max_cm == full.stats.max_cm);
+        // The search that takes the prepared set (compress's) returns the same model and errors.
+        compression::PreparedSet copy = prepared;
+        const auto taken = compression::search_ranks_for_max_error(std::move(copy), meter, target, {}, 32);
+        CHECK(copy.x.size() == 0);
+        CHECK(taken.model.tucker.ranks == b);
+        for (std::size_t n = 0; n < 3; ++n) CHECK(taken.model.tucker.U[n] == screened.model.tucker.U[n]);
+        const Tensor3& c0 = taken.model.tucker.core;
+        const Tensor3& c1 = screened.model.tucker.core;
+        REQUIRE(c0.size() == c1.size());
+        CHECK(Eigen::Map<const VecX>(c0.data(), c0.size()) == Eigen::Map<const VecX>(c1.data(), c1.size()));
+        CHECK(taken.stats.max_cm == screened.stats.max_cm);
+        CHECK(taken.stats.p99_cm == screened.stats.p99_cm);
     }
     CHECK(decided_by_truncation > 0);
 }

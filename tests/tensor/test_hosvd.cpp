@@ -326,5 +326,19 @@ TEST_CASE("A truncated HOSVD is a block of the full core (#16: one projection pe
         // A sample rank beyond the core's columns is the caller's to complete (hosvd_from_bases).
         if (b.U[2].cols() < dims[2])
             CHECK_THROWS_AS(hosvd_from_core(b, full, {1, 1, b.U[2].cols() + 1}), InvalidArgument);
+        // Taking the bases (their factored core as the full core, where there is one) gives the
+        // copying overload's model bit for bit.
+        for (const Ranks& r : rank_list) {
+            HosvdBases taken = b;
+            const Tensor3& core = b.factored_core.size() > 0 ? taken.factored_core : full;
+            const TuckerModel copied = hosvd_from_core(b, b.factored_core.size() > 0 ? b.factored_core : full, r);
+            const TuckerModel moved = hosvd_from_core(std::move(taken), core, r);
+            for (std::size_t n = 0; n < 3; ++n) CHECK(moved.U[n] == copied.U[n]);
+            CHECK(rel_diff(moved.core, copied.core) == 0.0);
+            CHECK(moved.fit == copied.fit);
+            CHECK(moved.error_bound == copied.error_bound);
+            CHECK(taken.U[2].size() == 0);
+            CHECK(taken.factored_core.size() == 0);
+        }
     }
 }
