@@ -330,3 +330,46 @@ TEST_CASE("joint error meter: a check on listed samples, and every sample beyond
     CHECK(std::abs(within->max_cm - 2.0) < 1e-9);
     CHECK(within->max_cm == meter.measure(shifted).max_cm);
 }
+
+TEST_CASE("the set held once: prepared in place, measured against poses read back from X (#16)", "[compression][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const auto skeleton = skeleton_of("cmu-asfamc/16_15.amc");
+    const VecX w = compression::position_error_weights(*skeleton);
+    const Tensor3 windows = walk_windows(10, 5, 600);
+    const compression::PreparedSet copied = compression::prepare_set(windows, w);
+    Tensor3 held = windows;
+    const compression::PreparedSet in_place = compression::prepare_set_in_place(held, w);
+    // The same X and bases, bit for bit; the tensor holds X, the prepared set only points at it.
+    REQUIRE(in_place.in_place == &held);
+    CHECK(in_place.x.size() == 0);
+    const Eigen::Map<const VecX> a(copied.x.data(), copied.x.size()), b(held.data(), held.size());
+    CHECK(a == b);
+    CHECK(&in_place.weighted() == &held);
+    for (std::size_t n = 0; n < 3; ++n) CHECK(in_place.bases.U[n] == copied.bases.U[n]);
+    CHECK(in_place.mean == copied.mean);
+
+    // A meter on X, mean and weight measures as the meter on the poses, to rounding of the poses.
+    const compression::JointErrorMeter on_poses(skeleton, windows);
+    const compression::JointErrorMeter on_x(skeleton, held, in_place.mean, w);
+    const compression::SetModel m = compression::hosvd_model(copied, {8, 6, 20});
+    const Tensor3 approx = m.reconstruct();
+    const compression::JointErrorStats s0 = on_poses.measure(approx), s1 = on_x.measure(approx);
+    INFO("max " << s0.max_cm << " / " << s1.max_cm << " cm, dof rmse " << s0.dof_rmse << " / " << s1.dof_rmse);
+    CHECK(s0.max_cm > 0.1);
+    CHECK(std::abs(s0.max_cm - s1.max_cm) <= 1e-9 * s0.max_cm);
+    CHECK(std::abs(s0.rmse_cm - s1.rmse_cm) <= 1e-9 * s0.rmse_cm);
+    CHECK(std::abs(s0.dof_rmse - s1.dof_rmse) <= 1e-9 * s0.dof_rmse);
+    CHECK(s0.worst.sample == s1.worst.sample);
+    // The poses themselves, read back, are at 0 cm.
+    CHECK(on_x.measure(windows).max_cm <= 1e-9);
+    CHECK_THROWS_AS(compression::JointErrorMeter(skeleton, held, in_place.mean, VecX::Zero(w.size())), InvalidArgument);
+    CHECK_THROWS_AS(compression::JointErrorMeter(skeleton, held, in_place.mean.head(3), w), InvalidArgument);
+
+    // The decomposition from X equals the one from the poses, bit for bit.
+    for (const auto method : {tensor::TuckerMethod::Hosvd, tensor::TuckerMethod::Hooi}) {
+        const compression::SetModel from_poses = compression::fit_set_model(windows, w, {8, 6, 20}, method);
+        const compression::SetModel from_x = compression::fit_weighted_set_model(held, in_place.mean, w, {8, 6, 20}, method);
+        for (std::size_t n = 0; n < 3; ++n) CHECK(from_x.tucker.U[n] == from_poses.tucker.U[n]);
+        CHECK(from_x.mean == from_poses.mean);
+    }
+}

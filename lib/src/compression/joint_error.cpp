@@ -73,13 +73,42 @@ JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const
     } else {
         reference_ = &reference;
     }
-    const Eigen::Index samples = reference.dimension(2);
+    compute_reference_positions();
+}
+
+JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& weighted_centred,
+                                 const VecX& mean, const VecX& weight)
+    : skeleton_(std::move(skeleton)), reference_(&weighted_centred), mean_(mean), weight_(weight) {
+    if (!skeleton_) throw InvalidArgument("JointErrorMeter: no skeleton");
+    const PoseLayout layout(*skeleton_);
+    const auto dofs = static_cast<Eigen::Index>(layout.dof_count());
+    if (weighted_centred.dimension(0) != dofs || mean.size() != dofs || weight.size() != dofs)
+        throw InvalidArgument("JointErrorMeter: the weighted reference has " +
+                              std::to_string(weighted_centred.dimension(0)) + " values per frame, its mean " +
+                              std::to_string(mean.size()) + " and its weight " + std::to_string(weight.size()) +
+                              "; the skeleton's pose vector has " + std::to_string(dofs));
+    if (!(weight.array() > 0.0).all() || !weight.allFinite() || !mean.allFinite())
+        throw InvalidArgument("JointErrorMeter: the reference's weights must be finite and > 0, its mean finite");
+    compute_reference_positions();
+}
+
+Eigen::Map<const MatX> JointErrorMeter::reference_poses(Eigen::Index n, MatX& buffer) const {
+    const Eigen::Map<const MatX> slice = sample_slice(*reference_, n);
+    if (mean_.size() == 0) return slice;
+    // from_weighted_centred's arithmetic, one sample at a time.
+    buffer = (slice.array().colwise() / weight_.array()).matrix().colwise() + mean_;
+    return Eigen::Map<const MatX>(buffer.data(), buffer.rows(), buffer.cols());
+}
+
+void JointErrorMeter::compute_reference_positions() {
+    const Eigen::Index samples = reference_->dimension(2);
     reference_positions_.resize(static_cast<std::size_t>(samples));
     const auto chunks = static_cast<std::size_t>((samples + kSamplesPerChunk - 1) / kSamplesPerChunk);
     run_parallel_tasks(chunks, [&](std::size_t c) {
         const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
+        MatX buffer;
         for (Eigen::Index n = first; n < std::min(samples, first + kSamplesPerChunk); ++n)
-            reference_positions_[static_cast<std::size_t>(n)] = pose_joint_positions(*skeleton_, sample_slice(reference, n));
+            reference_positions_[static_cast<std::size_t>(n)] = pose_joint_positions(*skeleton_, reference_poses(n, buffer));
     });
 }
 
@@ -99,7 +128,7 @@ Eigen::Index JointErrorMeter::check_samples(const SampleApproximation& approx, c
     const Eigen::Index dofs = ref.dimension(0), frames = ref.dimension(1);
     const auto joints = static_cast<Eigen::Index>(skeleton_->size());
     const Eigen::Index per_sample = frames * joints;
-    MatX buffer;
+    MatX buffer, reference_buffer;
     approx(ids, buffer);
     const auto count = static_cast<Eigen::Index>(ids.size());
     if (buffer.rows() != dofs || buffer.cols() != frames * count)
@@ -123,7 +152,7 @@ Eigen::Index JointErrorMeter::check_samples(const SampleApproximation& approx, c
                 if (out) out[f * joints + j] = e;
             }
         if (over) flagged[n] = 1;
-        if (dof_sq) dof_sq[n] = (slice - sample_slice(ref, n)).squaredNorm();
+        if (dof_sq) dof_sq[n] = (slice - reference_poses(n, reference_buffer)).squaredNorm();
     }
     return -1;
 }

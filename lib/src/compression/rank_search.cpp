@@ -65,7 +65,7 @@ SetModel model_at(const PreparedSet& p, const Tensor3& full_core, const tensor::
     m.mean = p.mean;
     m.weight = p.weight;
     m.tucker = ranks[2] <= full_core.dimension(2) ? tensor::hosvd_from_core(p.bases, full_core, ranks)
-                                                  : tensor::hosvd_from_bases(p.x, p.bases, ranks);
+                                                  : tensor::hosvd_from_bases(p.weighted(), p.bases, ranks);
     return m;
 }
 
@@ -73,7 +73,7 @@ SetModel model_at(const PreparedSet& p, const Tensor3& full_core, const tensor::
 // projected into `computed`.
 const Tensor3& core_at_full_ranks(const PreparedSet& p, Tensor3& computed) {
     if (p.bases.factored_core.size() > 0) return p.bases.factored_core;
-    computed = tensor::hosvd_full_core(p.x, p.bases);
+    computed = tensor::hosvd_full_core(p.weighted(), p.bases);
     return computed;
 }
 
@@ -127,7 +127,7 @@ RankSearchResult result_of(const Choice& c, SetModel model) {
 // that meets the target is preferred to them). The sample rank of a D x T x N tensor is at most D T,
 // so min(N, D T) sample columns are already full.
 tensor::Ranks full_ranks(const PreparedSet& p) {
-    const tensor::Dims3 dims = tensor::dims_of(p.x);
+    const tensor::Dims3 dims = tensor::dims_of(p.weighted());
     return {dims[0], dims[1], std::min(dims[2], dims[0] * dims[1])};
 }
 
@@ -202,11 +202,22 @@ PreparedSet prepare_set(const Tensor3& poses, const VecX& weight) {
     return p;
 }
 
+PreparedSet prepare_set_in_place(Tensor3& poses, const VecX& weight) {
+    tensor::check_tensor(poses, "prepare_set");
+    PreparedSet p;
+    p.mean = dof_means(poses);
+    p.weight = weight;
+    weighted_centred_in_place(poses, p.mean, p.weight);
+    p.in_place = &poses;
+    p.bases = tensor::hosvd_bases(poses);
+    return p;
+}
+
 SetModel hosvd_model(const PreparedSet& p, const tensor::Ranks& ranks) {
     SetModel m;
     m.mean = p.mean;
     m.weight = p.weight;
-    m.tucker = tensor::hosvd_from_bases(p.x, p.bases, ranks);
+    m.tucker = tensor::hosvd_from_bases(p.weighted(), p.bases, ranks);
     return m;
 }
 
@@ -224,7 +235,7 @@ void check_max_error_arguments(double max_cm, Eigen::Index screen_samples) {
 // The search of search_ranks_for_max_error, up to (not including) making the chosen model.
 Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, const compression::JointErrorMeter& meter,
                             double max_cm, const ProgressCallback& progress, Eigen::Index screen_samples) {
-    const Eigen::Index samples = p.x.dimension(2);
+    const Eigen::Index samples = p.weighted().dimension(2);
     const std::uint64_t steps = bisection_steps();
     std::uint64_t reported = 0;
     const auto report = [&](std::uint64_t done) {
@@ -233,7 +244,7 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
     };
     // Screening pays when the screen is a small part of the set.
     const bool screening = screen_samples > 0 && 4 * screen_samples < samples;
-    const std::vector<Eigen::Index> fixed = screening ? fixed_screen(p.x, screen_samples) : std::vector<Eigen::Index>{};
+    const std::vector<Eigen::Index> fixed = screening ? fixed_screen(p.weighted(), screen_samples) : std::vector<Eigen::Index>{};
 
     std::set<tensor::Ranks> failed;                       // a joint beyond the target was found
     std::map<tensor::Ranks, JointErrorStats> passed;      // every pose checked: within the target
@@ -251,7 +262,7 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
             ++evaluations;
             if (screened && detail::TruncationReconstruction::cheaper_than_direct(p.bases, ranks)) {
                 ++truncation_checks;
-                const detail::TruncationReconstruction approx(p.x, p.bases, ranks, p.mean, p.weight);
+                const detail::TruncationReconstruction approx(p.weighted(), p.bases, ranks, p.mean, p.weight);
                 const bool over = meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found),
                                                    max_cm, &suspects);
                 if (over) failed.insert(ranks);
@@ -305,7 +316,7 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
                 ++full_checks;
                 if (detail::TruncationReconstruction::cheaper_than_direct(p.bases, *candidate)) {
                     ++truncation_checks;
-                    const detail::TruncationReconstruction approx(p.x, p.bases, *candidate, p.mean, p.weight);
+                    const detail::TruncationReconstruction approx(p.weighted(), p.bases, *candidate, p.mean, p.weight);
                     if (!meter.measure_within(samples_of(approx), max_cm, &suspects, &beyond)) {
                         fail_candidate();
                         continue;
@@ -369,7 +380,7 @@ RankSearchResult search_ranks_for_rmse(const PreparedSet& p, const compression::
                                        const ProgressCallback& progress) {
     if (!(rmse >= 0.0) || !std::isfinite(rmse))
         throw InvalidArgument("search_ranks_for_rmse: the target must be finite and >= 0, got " + std::to_string(rmse));
-    const double count = static_cast<double>(p.x.size());
+    const double count = static_cast<double>(p.weighted().size());
     Tensor3 computed_core;
     const Tensor3& full_core = core_at_full_ranks(p, computed_core);
     int evaluations = 0;

@@ -37,6 +37,15 @@ Tensor3 weighted_centred(const Tensor3& poses, const VecX& mean, const VecX& wei
     return x;
 }
 
+void weighted_centred_in_place(Tensor3& poses, const VecX& mean, const VecX& weight) {
+    check_dof_vector(poses, mean, "mean");
+    check_dof_vector(poses, weight, "weight");
+    if (!(weight.array() > 0.0).all()) throw InvalidArgument("weighted_centred: every weight must be > 0");
+    const Eigen::Index d = poses.dimension(0), columns = poses.dimension(1) * poses.dimension(2);
+    Eigen::Map<MatX> m(poses.data(), d, columns);
+    m = (m.colwise() - mean).array().colwise() * weight.array();
+}
+
 Tensor3 from_weighted_centred(const Tensor3& x, const VecX& mean, const VecX& weight) {
     check_dof_vector(x, mean, "mean");
     check_dof_vector(x, weight, "weight");
@@ -109,10 +118,18 @@ void SampleReconstruction::operator()(const std::vector<Eigen::Index>& samples, 
 SetModel fit_set_model(const Tensor3& poses, const VecX& weight, const tensor::Ranks& ranks,
                        tensor::TuckerMethod method, const tensor::HooiOptions& hooi) {
     tensor::check_tensor(poses, "fit_set_model");
+    const VecX mean = dof_means(poses);
+    return fit_weighted_set_model(weighted_centred(poses, mean, weight), mean, weight, ranks, method, hooi);
+}
+
+SetModel fit_weighted_set_model(const Tensor3& x, const VecX& mean, const VecX& weight, const tensor::Ranks& ranks,
+                                tensor::TuckerMethod method, const tensor::HooiOptions& hooi) {
+    tensor::check_tensor(x, "fit_set_model");
+    check_dof_vector(x, mean, "mean");
+    check_dof_vector(x, weight, "weight");
     SetModel m;
-    m.mean = dof_means(poses);
+    m.mean = mean;
     m.weight = weight;
-    const Tensor3 x = weighted_centred(poses, m.mean, m.weight);
     switch (method) {
         case tensor::TuckerMethod::Hosvd: m.tucker = tensor::hosvd(x, ranks, hooi.hosvd); break;
         case tensor::TuckerMethod::StHosvd: m.tucker = tensor::st_hosvd(x, ranks); break;

@@ -24,16 +24,12 @@ std::string ranks_text(const tensor::Ranks& r) {
     return std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
 }
 
-// The ranks by the request's target, with the model at them. The weighted copy of the set and its
-// bases live only here: released before the model is decomposed and stored (#16: about 1 GB at
-// 11 070 windows). Sets o.criterion, o.bases_s and o.search_s.
-compression::RankSearchResult choose_ranks(const Tensor3& poses, const VecX& weight,
-                                           const compression::JointErrorMeter& meter, const CompressRequest& a,
-                                           CompressOutcome& o) {
+// The ranks by the request's target, with the model at them. The bases live only here: released
+// before the model is decomposed and stored (#16: about 0.5 GB at 11 070 windows). Sets o.criterion
+// and o.search_s.
+compression::RankSearchResult choose_ranks(compression::PreparedSet prepared, const compression::JointErrorMeter& meter,
+                                           const CompressRequest& a, CompressOutcome& o) {
     compression::RankSearchResult chosen;
-    const auto bases_start = Clock::now();
-    compression::PreparedSet prepared = compression::prepare_set(poses, weight);
-    o.bases_s = seconds_since(bases_start);
     const auto search_start = Clock::now();
     if (a.ranks) {
         const tensor::Ranks& r = *a.ranks;
@@ -66,15 +62,24 @@ compression::RankSearchResult choose_ranks(const Tensor3& poses, const VecX& wei
 
 CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequest& a) {
     const auto start = Clock::now();
-    const AlignedSetData c = load_aligned_set(Database(db), a.set);
-    const Tensor3& poses = c.aligned.tensor;
+    AlignedSetData c = load_aligned_set(Database(db), a.set);
     const VecX weight = compression::position_error_weights(*c.skeleton);
-    // Borrowed: poses (c) outlives the meter; a copy would be one more set in memory (#16).
-    const compression::JointErrorMeter meter(c.skeleton, poses, compression::JointErrorMeter::Reference::Borrowed);
     CompressOutcome o;
     o.load_s = seconds_since(start);
-    o.dims = tensor::dims_of(poses);
-    compression::RankSearchResult chosen = choose_ranks(poses, weight, meter, a, o);
+    o.dims = tensor::dims_of(c.aligned.tensor);
+    o.raw_bytes = compression::aligned_float32_bytes(c.aligned.tensor);
+
+    // The set is held once (#16: 0.48 GB at 11 070 windows): its tensor becomes the weighted, centred
+    // X in place (x below, from here on), and the meter reads the poses back from it.
+    const auto bases_start = Clock::now();
+    compression::PreparedSet prepared = compression::prepare_set_in_place(c.aligned.tensor, weight);
+    o.bases_s = seconds_since(bases_start);
+    const Tensor3& x = c.aligned.tensor;
+    const VecX mean = prepared.mean;
+    const auto meter_start = Clock::now();
+    const compression::JointErrorMeter meter(c.skeleton, x, mean, weight);
+    o.load_s += seconds_since(meter_start);  // the reference's joint positions, counted with the load as before
+    compression::RankSearchResult chosen = choose_ranks(std::move(prepared), meter, a, o);
     o.target_met = chosen.target_met;
 
     // The chosen ranks, decomposed with the requested method. HOSVD is the search's own model (the
@@ -85,7 +90,7 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
     hooi.max_iterations = a.max_iterations;
     const bool reuse = a.method == tensor::TuckerMethod::Hosvd;
     o.model = reuse ? std::move(chosen.model)
-                    : compression::fit_set_model(poses, weight, chosen.model.tucker.ranks, a.method, hooi);
+                    : compression::fit_weighted_set_model(x, mean, weight, chosen.model.tucker.ranks, a.method, hooi);
     o.fit_s = seconds_since(fit_start);
     o.stats = reuse && chosen.stats.positions > 0 ? chosen.stats : meter.measure(o.model.reconstruct());
     o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
@@ -96,6 +101,7 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
     // control parameters compresses, but has nothing to synthesize over: no kernel.
     const auto kernel_start = Clock::now();
     std::optional<synthesis::KernelFit> kernel;
+    // (fit_kernel reads only the aligned tensor's shape, which x keeps.)
     if (c.set.samples.size() <= synthesis::kStoredKernelMaxSamples && c.set.parameters.cols() > 0)
         kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
     o.kernel_stored = kernel.has_value();
@@ -121,9 +127,8 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
         if (r.name == a.set) o.stored_bytes = r.model_stored_bytes;
     o.store_s = seconds_since(store_start);
 
-    o.raw_bytes = compression::aligned_float32_bytes(poses);
     o.bytes = compression::tucker_float32_bytes(o.model) +
-              compression::side_info_bytes(poses.dimension(1), poses.dimension(2), c.set.parameters.cols());
+              compression::side_info_bytes(o.dims[1], o.dims[2], c.set.parameters.cols());
     o.total_s = seconds_since(start);
     return o;
 }

@@ -16,6 +16,8 @@ namespace mocapdb::compression {
 VecX dof_means(const Tensor3& poses);
 /// X = (A − mean) · weight, per dof row. Throws InvalidArgument on a length mismatch or weight ≤ 0.
 Tensor3 weighted_centred(const Tensor3& poses, const VecX& mean, const VecX& weight);
+/// weighted_centred's values written over `poses` (the same arithmetic, so the same values bit for bit).
+void weighted_centred_in_place(Tensor3& poses, const VecX& mean, const VecX& weight);
 /// The inverse: A = X / weight + mean.
 Tensor3 from_weighted_centred(const Tensor3& x, const VecX& mean, const VecX& weight);
 
@@ -65,6 +67,9 @@ private:
 /// Throws InvalidArgument for bad ranks, shapes or non-finite values.
 SetModel fit_set_model(const Tensor3& poses, const VecX& weight, const tensor::Ranks& ranks,
                        tensor::TuckerMethod method, const tensor::HooiOptions& hooi = {});
+/// The same from x = weighted_centred(poses, mean, weight) (mean = dof_means(poses)): the same model.
+SetModel fit_weighted_set_model(const Tensor3& x, const VecX& mean, const VecX& weight, const tensor::Ranks& ranks,
+                                tensor::TuckerMethod method, const tensor::HooiOptions& hooi = {});
 
 /// Throws InvalidArgument unless the parts agree: bases D × R1, T × R2, N × R3 with core R1 × R2 × R3,
 /// mean and weight of length D, weights > 0, everything finite. `where` names the caller.
