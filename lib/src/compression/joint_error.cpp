@@ -122,8 +122,18 @@ bool JointErrorMeter::exceeds(const Tensor3& approx, double max_cm) const {
     return !measure_within(slices_of(approx), max_cm).has_value();
 }
 
+// Arrays of N values (errors: N T J), written at sample n's place by whichever thread measures it.
+struct JointErrorMeter::SampleFigures {
+    float* errors;           // by sample, frame, joint: for the percentile only (#16: half the memory)
+    double* sum;             // of the sample's errors
+    double* sum_sq;          // of their squares
+    double* dof_sq;          // squared pose-vector difference
+    double* worst;           // the sample's largest error (its first occurrence, frame then joint)
+    Eigen::Index* worst_at;  // where: frame * J + joint
+};
+
 Eigen::Index JointErrorMeter::check_samples(const SampleApproximation& approx, const std::vector<Eigen::Index>& ids,
-                                            double max_cm, double* errors, double* dof_sq, char* flagged) const {
+                                            double max_cm, const SampleFigures* figures, char* flagged) const {
     const Tensor3& ref = *reference_;
     const Eigen::Index dofs = ref.dimension(0), frames = ref.dimension(1);
     const auto joints = static_cast<Eigen::Index>(skeleton_->size());
@@ -140,8 +150,10 @@ Eigen::Index JointErrorMeter::check_samples(const SampleApproximation& approx, c
         const auto slice = buffer.middleCols(i * frames, frames);
         const MatX p = pose_joint_positions(*skeleton_, slice);
         const MatX& r = reference_positions_[static_cast<std::size_t>(n)];
-        double* out = errors ? errors + n * per_sample : nullptr;
+        float* out = figures ? figures->errors + n * per_sample : nullptr;
         bool over = false;
+        double sum = 0.0, sum_sq = 0.0, worst = -1.0;
+        Eigen::Index worst_at = 0;
         for (Eigen::Index f = 0; f < frames; ++f)
             for (Eigen::Index j = 0; j < joints; ++j) {
                 const double e = (p.block<3, 1>(3 * j, f) - r.block<3, 1>(3 * j, f)).norm();
@@ -149,10 +161,22 @@ Eigen::Index JointErrorMeter::check_samples(const SampleApproximation& approx, c
                     if (!flagged) return n;
                     over = true;
                 }
-                if (out) out[f * joints + j] = e;
+                if (!out) continue;
+                out[f * joints + j] = static_cast<float>(e);
+                sum += e;
+                sum_sq += e * e;
+                if (e > worst) {
+                    worst = e;
+                    worst_at = f * joints + j;
+                }
             }
         if (over) flagged[n] = 1;
-        if (dof_sq) dof_sq[n] = (slice - reference_poses(n, reference_buffer)).squaredNorm();
+        if (!figures) continue;
+        figures->sum[n] = sum;
+        figures->sum_sq[n] = sum_sq;
+        figures->worst[n] = worst;
+        figures->worst_at[n] = worst_at;
+        figures->dof_sq[n] = (slice - reference_poses(n, reference_buffer)).squaredNorm();
     }
     return -1;
 }
@@ -164,7 +188,7 @@ bool JointErrorMeter::a_suspect_exceeds(const SampleApproximation& approx, doubl
     std::vector<Eigen::Index> ids;
     for (const Eigen::Index n : *suspects)
         if (n >= 0 && n < total) ids.push_back(n);
-    const Eigen::Index found = ids.empty() ? -1 : check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
+    const Eigen::Index found = ids.empty() ? -1 : check_samples(approx, ids, max_cm, nullptr, nullptr);
     if (found < 0) return false;
     note_suspect(suspects, found);
     return true;
@@ -187,7 +211,7 @@ bool JointErrorMeter::exceeds_on(const SampleApproximation& approx, const std::v
         const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
         const std::vector<Eigen::Index> ids(samples.begin() + first,
                                             samples.begin() + std::min(count, first + kSamplesPerChunk));
-        const Eigen::Index found = check_samples(approx, ids, max_cm, nullptr, nullptr, nullptr);
+        const Eigen::Index found = check_samples(approx, ids, max_cm, nullptr, nullptr);
         if (found >= 0) {
             Eigen::Index none = -1;
             exceeded.compare_exchange_strong(none, found);
@@ -205,10 +229,12 @@ std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleAppro
     const Eigen::Index frames = ref.dimension(1), samples = ref.dimension(2);
     const auto joints = static_cast<Eigen::Index>(skeleton_->size());
     const Eigen::Index per_sample = frames * joints;
-    // Errors by sample, frame, joint (the order measure() has always reduced them in), written by
-    // whichever thread measures the sample; uninitialized until then (a failing check touches little).
-    const std::unique_ptr<double[]> errors(new double[static_cast<std::size_t>(samples * per_sample)]);
-    std::vector<double> dof_sq(static_cast<std::size_t>(samples), 0.0);
+    // Uninitialized until a sample is measured (a failing check touches little of them).
+    const auto n_values = static_cast<std::size_t>(samples);
+    const std::unique_ptr<float[]> errors(new float[n_values * static_cast<std::size_t>(per_sample)]);
+    std::vector<double> sums(n_values), sums_sq(n_values), dof_sq(n_values), worst(n_values);
+    std::vector<Eigen::Index> worst_at(n_values);
+    const SampleFigures figures{errors.get(), sums.data(), sums_sq.data(), dof_sq.data(), worst.data(), worst_at.data()};
     // With `beyond`: per sample, whether it has a joint beyond max_cm (every sample is measured).
     std::vector<char> flagged(beyond ? static_cast<std::size_t>(samples) : 0, 0);
 
@@ -223,7 +249,7 @@ std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleAppro
         std::vector<Eigen::Index> ids;
         for (Eigen::Index n = first; n < std::min(samples, first + kSamplesPerChunk); ++n) ids.push_back(n);
         const Eigen::Index found =
-            check_samples(approx, ids, max_cm, errors.get(), dof_sq.data(), beyond ? flagged.data() : nullptr);
+            check_samples(approx, ids, max_cm, &figures, beyond ? flagged.data() : nullptr);
         if (found >= 0) {
             Eigen::Index none = -1;
             exceeded.compare_exchange_strong(none, found);
@@ -251,26 +277,31 @@ std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleAppro
     const Eigen::Index count = samples * per_sample;
     s.positions = count;
     if (count == 0) return s;
+    // In sample order, whatever thread measured which sample: the worst is the first largest error
+    // in (sample, frame, joint) order.
     double sum = 0.0, sum_sq = 0.0;
-    for (Eigen::Index n = 0; n < samples; ++n)
-        for (Eigen::Index f = 0; f < frames; ++f)
-            for (Eigen::Index j = 0; j < joints; ++j) {
-                const double e = errors[static_cast<std::size_t>(n * per_sample + f * joints + j)];
-                sum += e;
-                sum_sq += e * e;
-                if (e > s.worst.error_cm || s.worst.sample < 0) {
-                    s.worst = {n, f, skeleton_->joint(static_cast<std::size_t>(j)).name, e};
-                }
-            }
+    Eigen::Index worst_sample = 0;
+    for (Eigen::Index n = 0; n < samples; ++n) {
+        const auto i = static_cast<std::size_t>(n);
+        sum += sums[i];
+        sum_sq += sums_sq[i];
+        if (worst[i] > worst[static_cast<std::size_t>(worst_sample)]) worst_sample = n;
+    }
+    if (frames > 0 && joints > 0) {
+        const auto w = static_cast<std::size_t>(worst_sample);
+        const Eigen::Index at = worst_at[w];
+        s.worst = {worst_sample, at / joints, skeleton_->joint(static_cast<std::size_t>(at % joints)).name, worst[w]};
+    }
     const double total = static_cast<double>(count);
     s.mean_cm = sum / total;
     s.rmse_cm = std::sqrt(sum_sq / total);
     s.max_cm = s.worst.error_cm;
-    // Nearest-rank percentile: the smallest value with at least 99% of the errors at or below it.
+    // Nearest-rank percentile: the smallest value with at least 99% of the errors at or below it
+    // (rounding to float keeps the order, so this is the exact percentile rounded to float).
     const auto rank = static_cast<std::size_t>(std::ceil(0.99 * total)) - 1;
-    double* const e0 = errors.get();
+    float* const e0 = errors.get();
     std::nth_element(e0, e0 + rank, e0 + count);
-    s.p99_cm = e0[rank];
+    s.p99_cm = static_cast<double>(e0[rank]);
     return s;
 }
 

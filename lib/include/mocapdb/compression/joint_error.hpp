@@ -33,7 +33,7 @@ struct JointErrorStats {
     double rmse_cm = 0.0;    ///< sqrt(mean |p - p_hat|^2) over joints, frames, samples
     double mean_cm = 0.0;    ///< mean |p - p_hat|
     double max_cm = 0.0;
-    double p99_cm = 0.0;     ///< 99th percentile of |p - p_hat| (nearest rank)
+    double p99_cm = 0.0;     ///< 99th percentile of |p - p_hat| (nearest rank), to float precision
     WorstJoint worst;
     Eigen::Index positions = 0;  ///< number of (joint, frame, sample) positions compared
 };
@@ -94,8 +94,9 @@ public:
     /// to it (it keeps at most 64). beyond (optional): a joint beyond max_cm does not stop the
     /// check; every sample is measured and *beyond receives, in increasing order, every sample with
     /// a joint beyond max_cm (empty when there is none; which samples they are does not depend on the
-    /// number of threads, unlike the one a stopping check finds first). Memory: the N T J errors (for
-    /// the percentile) and a chunk of samples per thread. Throws InvalidArgument when approx writes a
+    /// number of threads, unlike the one a stopping check finds first). Memory: the N T J errors as
+    /// float, for the percentile (the other figures are summed in double, sample by sample), and a
+    /// chunk of samples per thread. Throws InvalidArgument when approx writes a
     /// wrong shape or a non-finite value, and whatever approx throws.
     std::optional<JointErrorStats> measure_within(const SampleApproximation& approx, double max_cm,
                                                   std::vector<Eigen::Index>* suspects = nullptr,
@@ -120,12 +121,13 @@ private:
     Eigen::Map<const MatX> reference_poses(Eigen::Index n, MatX& buffer) const;
     void compute_reference_positions();
 
+    /// A measurement's per-sample results, at each sample's place (defined in joint_error.cpp).
+    struct SampleFigures;
     /// Reconstructs and measures samples `ids`. Without `flagged`, returns the first sample with a
     /// joint beyond max_cm (its remaining errors unwritten), else -1; with it, measures them all and
-    /// sets flagged[n] for each such sample. errors (N T J) and dof_sq (N), when given, receive the
-    /// samples' errors at their places.
+    /// sets flagged[n] for each such sample. figures, when given, receive the samples' results.
     Eigen::Index check_samples(const SampleApproximation& approx, const std::vector<Eigen::Index>& ids, double max_cm,
-                               double* errors, double* dof_sq, char* flagged) const;
+                               const SampleFigures* figures, char* flagged) const;
     /// Whether one of the `suspects` (samples that failed earlier checks; those outside the set are
     /// skipped) has a joint beyond max_cm; moves that sample to the front of the list.
     bool a_suspect_exceeds(const SampleApproximation& approx, double max_cm, std::vector<Eigen::Index>* suspects) const;
