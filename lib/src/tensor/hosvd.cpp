@@ -256,7 +256,7 @@ bool randomized_range(const Eigen::Ref<const MatX>& m, double budget, Eigen::Ind
     return true;
 }
 
-bool eigenbasis_in_place(MatX& g, VecX& out_eigenvalues);  // below, beside lapack_eigen
+bool eigenbasis_in_place(MatX& g, VecX& out_eigenvalues, bool& overwritten);  // below, beside lapack_eigen
 
 // Right singular vectors of m (L by N) from the eigendecomposition of m m^T (L by L), or, when m's
 // energy lies in a subspace of dimension k <= L / 2 up to `budget`, of b b^T (k by k) with m ~ q b
@@ -286,10 +286,10 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
     MatX w;  // the Gram's eigenvectors (its lower triangle read), by decreasing eigenvalue
     if (side > 0) {
         gram(w);
-        if (!eigenbasis_in_place(w, ev)) {
-            MatX c;
-            gram(c);
-            w = gram_eigenbasis(c, ev);
+        bool overwritten = false;
+        if (!eigenbasis_in_place(w, ev, overwritten)) {
+            if (overwritten) gram(w);
+            w = gram_eigenbasis(w, ev);
         }
     }
     const Eigen::Index top = std::min(side, n);
@@ -327,7 +327,7 @@ MatX right_basis_from_row_gram(const Eigen::Ref<const MatX>& m, double budget, V
             coordinates = std::move(w);
         }
     } else if (reduced) {
-        // No triangular factor: the product itself (q b v on the reduced path, m v otherwise).
+        // No triangular factor (Householder ran): the product itself, q b v here, m v below.
         coordinates.noalias() = b * v;
         coordinates = q * coordinates;
     } else if (released) {
@@ -532,14 +532,16 @@ bool lapack_eigen(const Eigen::Ref<const MatX>& g, MatX& vectors, VecX& values) 
 // gram_eigenbasis(g) in g's own storage when dsyevd takes it (the same call on the same matrix, so
 // the same values bit for bit; columns reversed and signs fixed in place; #16: no second 0.11 GB
 // matrix at 3 720): g becomes the eigenvectors, decreasing. False when gram_eigenbasis would use
-// Eigen, and when LAPACK fails; g may then be overwritten, and the caller recomputes it.
-bool eigenbasis_in_place(MatX& g, VecX& out_eigenvalues) {
+// Eigen (g untouched), and when LAPACK fails (g overwritten: `overwritten` is set).
+bool eigenbasis_in_place(MatX& g, VecX& out_eigenvalues, bool& overwritten) {
     const Eigen::Index n = g.rows();
+    overwritten = false;
     if (n != g.cols() || n < kLapackEigenMinSize ||
         n > static_cast<Eigen::Index>(std::numeric_limits<lapack_int>::max()) || !g.allFinite())
         return false;
     VecX values(n);
     const auto size = static_cast<lapack_int>(n);
+    overwritten = true;
     if (LAPACKE_dsyevd(LAPACK_COL_MAJOR, 'V', 'L', size, g.data(), size, values.data()) != 0 || !g.allFinite() ||
         !values.allFinite())
         return false;
