@@ -44,6 +44,20 @@ SampleApproximation slices_of(const Tensor3& approx) {
     };
 }
 
+// Throws unless there is a skeleton and the reference's values per frame (and, for a weighted
+// reference, its mean and weight) match its pose vector's dof count.
+void check_dof_count(const Skeleton* skeleton, Eigen::Index values, Eigen::Index mean, Eigen::Index weight) {
+    if (!skeleton) throw InvalidArgument("JointErrorMeter: no skeleton");
+    const auto dofs = static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count());
+    if (values != dofs || mean != dofs || weight != dofs)
+        throw InvalidArgument("JointErrorMeter: the reference has " + std::to_string(values) +
+                              " pose values per frame" +
+                              (mean == values && weight == values
+                                   ? std::string()
+                                   : ", its mean " + std::to_string(mean) + " and its weight " + std::to_string(weight)) +
+                              "; the skeleton's pose vector has " + std::to_string(dofs));
+}
+
 // Puts sample n at the front of the suspects (at most 64 kept); nothing when there is no list.
 void note_suspect(std::vector<Eigen::Index>* suspects, Eigen::Index n) {
     if (!suspects || n < 0) return;
@@ -61,12 +75,7 @@ MatX pose_joint_positions(const Skeleton& skeleton, const Eigen::Ref<const MatX>
 
 JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& reference, Reference hold)
     : skeleton_(std::move(skeleton)) {
-    if (!skeleton_) throw InvalidArgument("JointErrorMeter: no skeleton");
-    const PoseLayout layout(*skeleton_);
-    if (reference.dimension(0) != static_cast<Eigen::Index>(layout.dof_count()))
-        throw InvalidArgument("JointErrorMeter: the reference has " + std::to_string(reference.dimension(0)) +
-                              " pose values per frame, the skeleton's pose vector has " +
-                              std::to_string(layout.dof_count()));
+    check_dof_count(skeleton_.get(), reference.dimension(0), reference.dimension(0), reference.dimension(0));
     if (hold == Reference::Copied) {
         owned_ = std::make_shared<const Tensor3>(reference);
         reference_ = owned_.get();
@@ -79,14 +88,7 @@ JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const
 JointErrorMeter::JointErrorMeter(std::shared_ptr<const Skeleton> skeleton, const Tensor3& weighted_centred,
                                  const VecX& mean, const VecX& weight)
     : skeleton_(std::move(skeleton)), reference_(&weighted_centred), mean_(mean), weight_(weight) {
-    if (!skeleton_) throw InvalidArgument("JointErrorMeter: no skeleton");
-    const PoseLayout layout(*skeleton_);
-    const auto dofs = static_cast<Eigen::Index>(layout.dof_count());
-    if (weighted_centred.dimension(0) != dofs || mean.size() != dofs || weight.size() != dofs)
-        throw InvalidArgument("JointErrorMeter: the weighted reference has " +
-                              std::to_string(weighted_centred.dimension(0)) + " values per frame, its mean " +
-                              std::to_string(mean.size()) + " and its weight " + std::to_string(weight.size()) +
-                              "; the skeleton's pose vector has " + std::to_string(dofs));
+    check_dof_count(skeleton_.get(), weighted_centred.dimension(0), mean.size(), weight.size());
     if (!(weight.array() > 0.0).all() || !weight.allFinite() || !mean.allFinite())
         throw InvalidArgument("JointErrorMeter: the reference's weights must be finite and > 0, its mean finite");
     compute_reference_positions();

@@ -26,17 +26,6 @@ VecX dof_means(const Tensor3& poses) {
     return Eigen::Map<const MatX>(poses.data(), d, columns).rowwise().mean();
 }
 
-Tensor3 weighted_centred(const Tensor3& poses, const VecX& mean, const VecX& weight) {
-    check_dof_vector(poses, mean, "mean");
-    check_dof_vector(poses, weight, "weight");
-    if (!(weight.array() > 0.0).all()) throw InvalidArgument("weighted_centred: every weight must be > 0");
-    Tensor3 x(poses.dimensions());
-    const Eigen::Index d = poses.dimension(0), columns = poses.dimension(1) * poses.dimension(2);
-    Eigen::Map<MatX>(x.data(), d, columns) =
-        (Eigen::Map<const MatX>(poses.data(), d, columns).colwise() - mean).array().colwise() * weight.array();
-    return x;
-}
-
 void weighted_centred_in_place(Tensor3& poses, const VecX& mean, const VecX& weight) {
     check_dof_vector(poses, mean, "mean");
     check_dof_vector(poses, weight, "weight");
@@ -44,6 +33,12 @@ void weighted_centred_in_place(Tensor3& poses, const VecX& mean, const VecX& wei
     const Eigen::Index d = poses.dimension(0), columns = poses.dimension(1) * poses.dimension(2);
     Eigen::Map<MatX> m(poses.data(), d, columns);
     m = (m.colwise() - mean).array().colwise() * weight.array();
+}
+
+Tensor3 weighted_centred(const Tensor3& poses, const VecX& mean, const VecX& weight) {
+    Tensor3 x = poses;
+    weighted_centred_in_place(x, mean, weight);
+    return x;
 }
 
 Tensor3 from_weighted_centred(const Tensor3& x, const VecX& mean, const VecX& weight) {
