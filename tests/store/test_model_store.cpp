@@ -3,6 +3,8 @@
 // made by tests/data/make_bad_fixtures.py), validation and the CLI's listing.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -10,6 +12,7 @@
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
+#include "mocapdb/store/storage_extents.hpp"
 #include "mocapdb/store/validate.hpp"
 #include "shared_data.hpp"
 #include "store_test_support.hpp"
@@ -204,6 +207,42 @@ TEST_CASE("model: a model of several MB, its chunks filtered on the machine's co
     REQUIRE(aligned.has_value());
     CHECK(same_bits(aligned->tensor, fx.aligned.tensor));
     CHECK(validate_database(db_path).ok());
+    // Seeded noise deflates poorly: the chunks after the first 4 (about 256 KiB each, deflated to
+    // decide) are stored at deflate level 0, each larger than any deflated one; the round trip above
+    // read them.
+    const std::vector<ByteExtent> chunks = dataset_extents(db_path, "/sets/walks/model/sample_basis");
+    REQUIRE(chunks.size() > 8);
+    std::uint64_t deflated = 0, stored = std::numeric_limits<std::uint64_t>::max();
+    for (std::size_t i = 0; i < 4; ++i) deflated = std::max(deflated, chunks[i].size);
+    for (std::size_t i = 4; i < chunks.size(); ++i) stored = std::min(stored, chunks[i].size);
+    CHECK(stored > deflated);
+}
+
+TEST_CASE("model: a large dataset that deflates well stays deflated (#16)", "[store][model]") {
+    // The other side of the level-0 fallback: an aligned tensor of several MB whose values are
+    // quarters (few distinct doubles) keeps deflate on every chunk, and reads back exactly.
+    TempDir dir("model-deflated");
+    const auto db_path = dir / "db.h5";
+    Fixture fx;
+    const Eigen::Index samples = 6001;
+    fx.set.samples.clear();
+    fx.set.parameters = MatX(samples, 1);
+    for (Eigen::Index k = 0; k < samples; ++k) {
+        fx.set.samples.push_back({"walk", static_cast<std::size_t>(k % 20), static_cast<std::size_t>(k % 20 + 20)});
+        fx.set.parameters(k, 0) = 100.0 + static_cast<double>(k);
+    }
+    fx.aligned = synthetic_aligned(fx.dofs, 12, fx.set);
+    for (Eigen::Index i = 0; i < fx.aligned.tensor.size(); ++i)
+        fx.aligned.tensor.data()[i] = std::round(4.0 * fx.aligned.tensor.data()[i]) / 4.0;
+    const auto raw = static_cast<std::uint64_t>(fx.aligned.tensor.size()) * 8;
+    REQUIRE(raw >= 4 * 1024 * 1024);
+    fx.write(db_path);
+    std::uint64_t stored = 0;
+    for (const ByteExtent& e : dataset_extents(db_path, "/sets/walks/aligned/tensor")) stored += e.size;
+    CHECK(stored < raw / 2);
+    const auto aligned = Database(db_path).load_aligned("walks");
+    REQUIRE(aligned.has_value());
+    CHECK(same_bits(aligned->tensor, fx.aligned.tensor));
 }
 
 TEST_CASE("model: put_model replaces a stored model", "[store][model]") {
