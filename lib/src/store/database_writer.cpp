@@ -106,13 +106,15 @@ struct DatabaseWriter::Impl {
     }
     /// Makes top-level object `path` writable: a copy in the session's segment (published segments
     /// are never modified), linked from the index. Costs the object's size, once per session.
-    void localize(const std::string& path) {
+    /// `replaced`: objects below `path` the caller is about to replace or remove, not copied (a copy
+    /// unlinked in the segment would be dead space that the commit rewrites the segment to drop).
+    void localize(const std::string& path, const std::vector<std::string>& replaced = {}) {
         if (in_session_segment(path)) return;
         store::h5::File& out = seg();
         if (const auto t = file.external_target(path); t && t->second != path)
             throw StoreError(target.string(), path, "links to " + t->second + " (expected the same path)");
         note_loss(path);
-        file.copy_to(out, path);
+        file.copy_to_except(out, path, replaced);
         link(path);
         moved = true;
     }
@@ -383,7 +385,7 @@ void DatabaseWriter::put_aligned(const std::string& set_name, const AlignedSet& 
                                   std::to_string(set.samples[n].frame_count() - 1) + "]");
     }
     const std::string g = store::aligned_path(set_name);
-    s.localize(store::set_path(set_name));
+    s.localize(store::set_path(set_name), {store::model_path(set_name), g});
     // A stored model described the old tensor.
     for (const std::string& old : {store::model_path(set_name), g}) {
         if (s.segment.exists(old)) {
@@ -431,7 +433,7 @@ void DatabaseWriter::put_model(const std::string& set_name, const compression::S
     }
     if (t.iterations < 0) throw InvalidArgument(who + ": iterations must be >= 0, found " + std::to_string(t.iterations));
     const std::string g = store::model_path(set_name);
-    s.localize(store::set_path(set_name));
+    s.localize(store::set_path(set_name), {g});
     if (s.segment.exists(g)) {
         s.segment.unlink(g);
         s.segment_garbage = true;
@@ -450,7 +452,7 @@ void DatabaseWriter::put_kernel_fit(const std::string& set_name, const synthesis
         throw InvalidArgument(who + ": the set has no stored model (store the model first: the kernel belongs to it)");
     store::check_kernel_fit(fit, who);
     const std::string g = store::kernel_path(set_name);
-    s.localize(store::set_path(set_name));
+    s.localize(store::set_path(set_name), {g});
     if (s.segment.exists(g)) {
         s.segment.unlink(g);
         s.segment_garbage = true;

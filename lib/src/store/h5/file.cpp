@@ -6,6 +6,7 @@
 #include <cstring>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "access.hpp"
 #include "errors.hpp"
@@ -167,13 +168,23 @@ File::Id File::open_object(const std::string& path) const {
     return id;
 }
 
+namespace {
+
+// How the store creates groups. Keep attributes in the object header (compact) up to 32 of them
+// instead of HDF5's default 8: H5Ocopy (copy_to, used to compact the file at commit) of a group whose
+// variable-length string attributes are in dense storage crashes in HDF5 1.10 (H5T__conv_vlen). A
+// model group has 12.
+Handle group_creation(const std::string& file, const std::string& path) {
+    Handle gcpl(check(H5Pcreate(H5P_GROUP_CREATE), file, path, "cannot create a group property list"), H5Pclose);
+    check(H5Pset_obj_track_times(gcpl.get(), 0), file, path, "cannot disable time tracking");
+    check(H5Pset_attr_phase_change(gcpl.get(), 32, 24), file, path, "cannot set the attribute storage");
+    return gcpl;
+}
+
+}  // namespace
+
 void File::create_group(const std::string& path, const std::string& kind) {
-    Handle gcpl(check(H5Pcreate(H5P_GROUP_CREATE), name_, path, "cannot create a group property list"), H5Pclose);
-    check(H5Pset_obj_track_times(gcpl.get(), 0), name_, path, "cannot disable time tracking");
-    // Keep attributes in the object header (compact) up to 32 of them instead of HDF5's default 8:
-    // H5Ocopy (copy_to, used to compact the file at commit) of a group whose variable-length string
-    // attributes are in dense storage crashes in HDF5 1.10 (H5T__conv_vlen). A model group has 12.
-    check(H5Pset_attr_phase_change(gcpl.get(), 32, 24), name_, path, "cannot set the attribute storage");
+    const Handle gcpl = group_creation(name_, path);
     Handle g(check(H5Gcreate2(id_, path.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), name_, path,
                    "cannot create the group"),
              H5Gclose);
@@ -206,6 +217,56 @@ void File::copy_to(File& destination, const std::string& path) const {
     Handle obj(open_object(path), H5Oclose);
     check(H5Ocopy(obj.get(), ".", destination.id_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT),
           name_, path, ("cannot copy the object to " + destination.name_).c_str());
+}
+
+namespace {
+
+// H5Aiterate callback: copies one attribute (any type, variable-length strings included) of the
+// object `loc` to the object whose identifier `data` points to. No exception crosses HDF5's C frames.
+herr_t copy_attribute(hid_t loc, const char* name, const H5A_info_t* /*info*/, void* data) noexcept {
+    const hid_t destination = *static_cast<const hid_t*>(data);
+    Handle a(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
+    if (!a.valid()) return -1;
+    Handle type(H5Aget_type(a.get()), H5Tclose);
+    Handle space(H5Aget_space(a.get()), H5Sclose);
+    if (!type.valid() || !space.valid()) return -1;
+    const hssize_t points = H5Sget_select_npoints(space.get());
+    const std::size_t size = H5Tget_size(type.get());
+    if (points < 0 || size == 0) return -1;
+    std::vector<unsigned char> buffer(static_cast<std::size_t>(points) * size + 1);
+    if (H5Aread(a.get(), type.get(), buffer.data()) < 0) return -1;
+    const bool variable = H5Tis_variable_str(type.get()) > 0 || H5Tdetect_class(type.get(), H5T_VLEN) > 0;
+    Handle out(H5Acreate2(destination, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    const bool written = out.valid() && H5Awrite(out.get(), type.get(), buffer.data()) >= 0;
+    if (variable) H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, buffer.data());
+    return written ? 0 : -1;
+}
+
+}  // namespace
+
+void File::copy_to_except(File& destination, const std::string& path, const std::vector<std::string>& skipped) const {
+    bool above_skipped = false;
+    for (const std::string& s : skipped) {
+        if (s == path) return;
+        if (s.size() > path.size() && s.compare(0, path.size(), path) == 0 && s[path.size()] == '/') above_skipped = true;
+    }
+    if (!above_skipped) {
+        copy_to(destination, path);
+        return;
+    }
+    // (Not the source's creation properties: HDF5 1.10 then fails to copy objects into the new group.)
+    Handle source(check(H5Gopen2(id_, path.c_str(), group_access()), name_, path, "cannot open the group"), H5Gclose);
+    const Handle gcpl = group_creation(destination.name_, path);
+    Handle group(check(H5Gcreate2(destination.id_, path.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
+                       destination.name_, path, "cannot create the group"),
+                 H5Gclose);
+    hsize_t idx = 0;
+    hid_t target = group.get();
+    check(H5Aiterate2(source.get(), H5_INDEX_NAME, H5_ITER_INC, &idx, copy_attribute, &target), name_, path,
+          ("cannot copy the group's attributes to " + destination.name_).c_str());
+    group.reset();
+    source.reset();
+    for (const std::string& child : children(path)) copy_to_except(destination, path + "/" + child, skipped);
 }
 
 }  // namespace mocapdb::store::h5

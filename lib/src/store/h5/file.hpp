@@ -99,6 +99,10 @@ public:
     /// Copies the object at `path` (recursively) into `destination` at the same path. External links
     /// inside it are copied as links.
     void copy_to(File& destination, const std::string& path) const;
+    /// The same without the objects at the paths in `skipped` (absolute, below `path`): the groups
+    /// above them are made anew in `destination` with their attributes and the rest of their
+    /// members. For an object about to be replaced: it is never copied only to be unlinked.
+    void copy_to_except(File& destination, const std::string& path, const std::vector<std::string>& skipped) const;
     /// Creates an external link at `path` to object `target` of file `file` (a path relative to this
     /// file's folder, resolved by HDF5 from there).
     void link_external(const std::string& path, const std::string& file, const std::string& target);
