@@ -4,7 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "core_terms.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/hosvd.hpp"
 
@@ -74,39 +73,14 @@ SampleReconstruction::SampleReconstruction(const Tensor3& core, const tensor::Ra
                                            const Eigen::Ref<const MatX>& dof_basis,
                                            const Eigen::Ref<const MatX>& time_basis, const MatX& sample_basis,
                                            const VecX& mean, const VecX& weight)
-    : sample_basis_(&sample_basis), sample_rank_(ranks[2]), mean_(&mean), weight_(&weight) {
-    const Eigen::Index r0 = ranks[0], r1 = ranks[1], f0 = core.dimension(0), f1 = core.dimension(1);
-    if (r0 < 0 || r1 < 0 || sample_rank_ < 0 || r0 > f0 || r1 > f1 || sample_rank_ > core.dimension(2) ||
-        dof_basis.cols() < r0 || time_basis.cols() < r1 || sample_basis.cols() < sample_rank_ ||
-        mean.size() != dof_basis.rows() || weight.size() != dof_basis.rows())
-        throw InvalidArgument("SampleReconstruction: bases of " + std::to_string(dof_basis.cols()) + ", " +
-                              std::to_string(time_basis.cols()) + ", " + std::to_string(sample_basis.cols()) +
-                              " columns and " + std::to_string(dof_basis.rows()) + " dofs (mean " +
-                              std::to_string(mean.size()) + ", weight " + std::to_string(weight.size()) +
-                              ") for ranks " + std::to_string(r0) + " x " + std::to_string(r1) + " x " +
-                              std::to_string(sample_rank_) + " of a core of " + std::to_string(f0) + " x " +
-                              std::to_string(f1) + " x " + std::to_string(core.dimension(2)));
-    // The first two mode products of TuckerModel::reconstruct(), slice by slice of the sample mode
-    // (each output value is the same sum, in the same order, as in its one product over the whole
-    // unfolding), the slices on the machine's cores (independent, so the values do not depend on the
-    // thread count); the last product (sample mode) is done per call.
-    detail::core_terms(core, dof_basis.leftCols(r0), time_basis.leftCols(r1), 0, sample_rank_, dof_time_);
+    : decoder_(core, ranks, dof_basis, time_basis, sample_basis), mean_(&mean), weight_(&weight) {
+    if (mean.size() != dof_basis.rows() || weight.size() != dof_basis.rows())
+        throw InvalidArgument("SampleReconstruction: " + std::to_string(dof_basis.rows()) + " dofs, mean of " +
+                              std::to_string(mean.size()) + " and weight of " + std::to_string(weight.size()));
 }
 
 void SampleReconstruction::operator()(const std::vector<Eigen::Index>& samples, MatX& out) const {
-    const Eigen::Index d = mean_->size(), frames = dof_time_.rows() / std::max<Eigen::Index>(1, d);
-    const Eigen::Index n = sample_basis_->rows();
-    const auto count = static_cast<Eigen::Index>(samples.size());
-    MatX rows(count, sample_rank_);
-    for (Eigen::Index i = 0; i < count; ++i) {
-        const Eigen::Index s = samples[static_cast<std::size_t>(i)];
-        if (s < 0 || s >= n)
-            throw InvalidArgument("SampleReconstruction: sample " + std::to_string(s) + " is not in [0, " +
-                                  std::to_string(n) + ")");
-        rows.row(i) = sample_basis_->row(s).head(sample_rank_);
-    }
-    out.resize(d, frames * count);
-    Eigen::Map<MatX>(out.data(), d * frames, count).noalias() = dof_time_ * rows.transpose();
+    decoder_.decode(samples, out);
     out = (out.array().colwise() / weight_->array()).matrix().colwise() + *mean_;
 }
 

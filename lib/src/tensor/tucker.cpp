@@ -6,6 +6,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
+#include "mocapdb/tensor/sample_decoder.hpp"
 
 namespace mocapdb::tensor {
 
@@ -123,11 +124,7 @@ Tensor3 TuckerModel::reconstruct() const { return reconstruct(ranks); }
 
 Tensor3 TuckerModel::reconstruct(const Ranks& lod) const {
     check_lod(ranks, lod, "TuckerModel::reconstruct");
-    Tensor3 t = core_block(core, lod);
-    t = mode_product(t, U[0].leftCols(lod[0]), 0);
-    t = mode_product(t, U[1].leftCols(lod[1]), 1);
-    t = mode_product(t, U[2].leftCols(lod[2]), 2);
-    return t;
+    return SampleDecoder(core, lod, U[0], U[1], U[2]).decode_all();
 }
 
 MatX TuckerModel::reconstruct_sample(Eigen::Index n) const {

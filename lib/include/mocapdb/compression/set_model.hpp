@@ -8,6 +8,7 @@
 
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/tensor/hooi.hpp"
+#include "mocapdb/tensor/sample_decoder.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
 namespace mocapdb::compression {
@@ -34,20 +35,18 @@ struct SetModel {
 };
 
 /// A model's pose vectors a few samples at a time (for JointErrorMeter::measure_within): the values
-/// SetModel::reconstruct() gives (the same products in the same order), without a D x T x N tensor
-/// (issue #16). The product of the core with the dof and time bases (D T by R3 doubles) is computed
-/// once; sample n is that times U_sample(n, :)^T, divided by the weights, plus the mean.
+/// SetModel::reconstruct() gives (both decode through tensor::SampleDecoder), without a D x T x N
+/// tensor (issue #16). Sample n is the decoder's sample n, divided by the weights, plus the mean.
 /// Keeps a pointer to model: the model must outlive it. Thread-safe (const).
 class SampleReconstruction {
 public:
     explicit SampleReconstruction(const SetModel& model);
     /// The same for the model with core the block [0, R1) x [0, R2) x [0, R3) of `core` (ranks, each
     /// at most core's dimension), bases the first R1, R2, R3 columns of dof_basis, time_basis and
-    /// sample_basis, mean and weight: that model's reconstruct() (the same products, slice by slice)
-    /// without copying its core block or N by R3 sample basis (#16: the rank search's probes, sliced
-    /// from the full core and bases; a copy per probe was 0.1 GB of fresh pages at 11 070 windows).
-    /// Keeps pointers to sample_basis, mean and weight: they must outlive it. Throws InvalidArgument
-    /// when a rank exceeds the core's dimension or a basis has fewer columns than the rank.
+    /// sample_basis, mean and weight: that model's reconstruct() without copying its N by R3 sample
+    /// basis (#16: the rank search's probes, sliced from the full core and bases). Keeps views of the
+    /// bases, mean and weight: they must outlive it. Throws InvalidArgument when a rank exceeds the
+    /// core's dimension or a basis has fewer columns than the rank, or mean and weight are not D long.
     SampleReconstruction(const Tensor3& core, const tensor::Ranks& ranks, const Eigen::Ref<const MatX>& dof_basis,
                          const Eigen::Ref<const MatX>& time_basis, const MatX& sample_basis, const VecX& mean,
                          const VecX& weight);
@@ -56,11 +55,9 @@ public:
     void operator()(const std::vector<Eigen::Index>& samples, MatX& out) const;
 
 private:
-    const MatX* sample_basis_;  ///< N by >= R3: its first R3 columns are the model's
-    Eigen::Index sample_rank_ = 0;
+    tensor::SampleDecoder decoder_;
     const VecX* mean_;
     const VecX* weight_;
-    MatX dof_time_;  ///< (core x_0 U_dof x_1 U_time) unfolded along the sample mode: D T by R3
 };
 
 /// Decomposes the weighted, centred tensor of `poses` at explicit ranks with `method`.
