@@ -221,10 +221,9 @@ void File::copy_to(File& destination, const std::string& path) const {
 
 namespace {
 
-// H5Aiterate callback: copies one attribute (any type, variable-length strings included) of the
-// object `loc` to the object whose identifier `data` points to. No exception crosses HDF5's C frames.
-herr_t copy_attribute(hid_t loc, const char* name, const H5A_info_t* /*info*/, void* data) noexcept {
-    const hid_t destination = *static_cast<const hid_t*>(data);
+// Copies one attribute (any type, variable-length strings included) of the object `loc` to the
+// object `destination`; -1 when HDF5 fails.
+herr_t copy_attribute_or_throw(hid_t loc, const char* name, hid_t destination) {
     Handle a(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
     if (!a.valid()) return -1;
     Handle type(H5Aget_type(a.get()), H5Tclose);
@@ -240,6 +239,15 @@ herr_t copy_attribute(hid_t loc, const char* name, const H5A_info_t* /*info*/, v
     const bool written = out.valid() && H5Awrite(out.get(), type.get(), buffer.data()) >= 0;
     if (variable) H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, buffer.data());
     return written ? 0 : -1;
+}
+
+// H5Aiterate callback (`data`: the destination's identifier): no exception crosses HDF5's C frames.
+herr_t copy_attribute(hid_t loc, const char* name, const H5A_info_t* /*info*/, void* data) noexcept {
+    try {
+        return copy_attribute_or_throw(loc, name, *static_cast<const hid_t*>(data));
+    } catch (...) {
+        return -1;
+    }
 }
 
 }  // namespace
