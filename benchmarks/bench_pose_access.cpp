@@ -6,6 +6,8 @@
 //
 // Per folder (its largest group) and E, µs per pose, best of --repeats (median beside it):
 //   cold_us      GroupDecoder::decode_pose at random (clip, frame): range-decodes the pose's window
+//   index_us     PoseIndex::pose at the same random (clip, frame): the group range-decoded once, in
+//                memory sparse (its build seconds and memory, MB, printed beside it)
 //   window_us    decode_window of every window once, per frame decoded (streaming)
 //   play_us      PoseSampler, every frame of every clip in order (sequential playback)
 //   crowd_us     PoseSampler (capacity 128), --crowd clips at random start frames, each advanced one
@@ -36,6 +38,7 @@
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/packing/pose_index.hpp"
 #include "mocapdb/packing/pose_sampler.hpp"
 
 namespace fs = std::filesystem;
@@ -118,6 +121,9 @@ int main(int argc, char** argv) {
     for (const auto& name : folders)
         for (double E : errors) {
             const packing::GroupDecoder decoder(packed_bytes(name, E, cache));
+            const double build_start = now();
+            const packing::PoseIndex index(decoder);
+            const double build_s = now() - build_start;
             const std::size_t clips = decoder.clip_count();
             const std::size_t channels = decoder.skeleton(0)->channel_count();
             std::size_t frames = 0, windows = 0;
@@ -128,7 +134,7 @@ int main(int argc, char** argv) {
             std::vector<double> row(channels), other(channels);
             packing::LocalPose local, local2;
             // [0]: channel rows, [1]: local poses
-            Timing cold[2], window, play[2], crowd1[2], crowd4[2];
+            Timing cold[2], indexed[2], window, play[2], crowd1[2], crowd4[2];
             double hit1 = 0, hit4 = 0;
             bool identical = true;
             double rotation_error = 0.0;
@@ -149,6 +155,22 @@ int main(int argc, char** argv) {
                         }
                     }
                     cold[kind].add(now() - t, static_cast<std::size_t>(poses));
+                }
+                for (int kind = 0; kind < 2; ++kind) {  // random access through the index
+                    std::mt19937 rng(7);
+                    const double t = now();
+                    for (int p = 0; p < poses; ++p) {
+                        const std::size_t k = rng() % clips;
+                        const std::size_t f = rng() % decoder.frame_count(k);
+                        if (kind == 0) {
+                            index.pose(k, f, row.data());
+                            g_sink = g_sink + row[0];
+                        } else {
+                            index.local_pose(k, f, local);
+                            consume(local);
+                        }
+                    }
+                    indexed[kind].add(now() - t, static_cast<std::size_t>(poses));
                 }
                 {  // streaming, window by window
                     const double t = now();
@@ -204,11 +226,17 @@ int main(int argc, char** argv) {
                                     decoder.decode_pose(k, f + s, row.data());
                                     sampler.pose(k, f + s, other.data());
                                     identical = identical && std::memcmp(row.data(), other.data(), channels * sizeof(double)) == 0;
+                                    index.pose(k, f + s, other.data());
+                                    identical = identical && std::memcmp(row.data(), other.data(), channels * sizeof(double)) == 0;
                                     // Local poses: sampler == decoder bit for bit, rotations == the row's.
                                     sampler.local_pose(k, f + s, local);
                                     decoder.decode_local_pose(k, f + s, local2);
                                     identical = identical &&
                                                 std::memcmp(local.rotations.data(), local2.rotations.data(), local.rotations.size() * sizeof(Quat)) == 0;
+                                    index.local_pose(k, f + s, local);
+                                    identical = identical &&
+                                                std::memcmp(local.rotations.data(), local2.rotations.data(), local.rotations.size() * sizeof(Quat)) == 0 &&
+                                                std::memcmp(local.translations.data(), local2.translations.data(), local.translations.size() * sizeof(Vec3)) == 0;
                                     for (std::size_t j = 0; j < skeleton.size(); ++j) {
                                         const Quat q = decoder.skeleton(k)->local_rotation(j, row.data());
                                         const Quat& l = local.rotations[j];
@@ -224,13 +252,16 @@ int main(int argc, char** argv) {
                 "clock=%s folder=%s E=%g clips=%zu frames=%zu windows=%zu channels=%zu joints=%zu | channel rows: cold_us=%.2f "
                 "(median %.2f) window_us=%.2f (median %.2f) play_us=%.2f (median %.2f) crowd_us=%.2f (median %.2f) "
                 "crowd4_us=%.2f (median %.2f) | local poses: cold_us=%.2f (median %.2f) play_us=%.2f (median %.2f) "
-                "crowd_us=%.2f (median %.2f) crowd4_us=%.2f (median %.2f) | hit %.3f / %.3f "
-                "sampler_equals_decoder=%d local_rotation_max_dev=%.1e\n",
+                "crowd_us=%.2f (median %.2f) crowd4_us=%.2f (median %.2f) | hit %.3f / %.3f | index: build_s=%.3f memory_mb=%.2f coefficients=%zu escaped=%zu "
+                "rows index_us=%.2f (median %.2f) local index_us=%.2f (median %.2f) | "
+                "sampler_and_index_equal_decoder=%d local_rotation_max_dev=%.1e\n",
                 clock.c_str(), name.c_str(), E, clips, frames, windows, channels, decoder.skeleton(0)->size(), best(cold[0].us),
                 median(cold[0].us), best(window.us), median(window.us), best(play[0].us), median(play[0].us),
                 best(crowd1[0].us), median(crowd1[0].us), best(crowd4[0].us), median(crowd4[0].us), best(cold[1].us),
                 median(cold[1].us), best(play[1].us), median(play[1].us), best(crowd1[1].us), median(crowd1[1].us),
-                best(crowd4[1].us), median(crowd4[1].us), hit1, hit4, identical ? 1 : 0, rotation_error);
+                best(crowd4[1].us), median(crowd4[1].us), hit1, hit4, build_s, static_cast<double>(index.memory_bytes()) / 1e6,
+                index.coefficient_count(), index.escaped_count(), best(indexed[0].us), median(indexed[0].us), best(indexed[1].us),
+                median(indexed[1].us), identical ? 1 : 0, rotation_error);
             std::fflush(stdout);
         }
     return 0;

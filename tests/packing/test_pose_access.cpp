@@ -1,15 +1,17 @@
-// One pose by random access and through a PoseSampler gives exactly the bits of its window's decode
-// (the bits the encoder verified against the bound), on both shared rigs at each E.
+// One pose by random access, through a PoseSampler and through a PoseIndex gives exactly the bits of
+// its window's decode (the bits the encoder verified against the bound), on both shared rigs at each E.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <thread>
 
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/packing/pose_index.hpp"
 #include "mocapdb/packing/pose_sampler.hpp"
 #include "mocapdb/procedural/walk.hpp"
 #include "shared_clips.hpp"
@@ -46,23 +48,27 @@ struct LocalError {
     }
 };
 
-// Every frame of every clip: decode_pose and the sampler (fed in a scrambled order, small capacity so
-// that windows are evicted and decoded again) equal decode_window's row; decode_local_pose and the
-// sampler's local_pose agree bit for bit, and their rotations and translations are the row's local
-// transforms (Skeleton::local_rotation / local_translation) to 1e-12.
-void check_every_frame(const std::vector<Clip>& clips) {
+// Every frame of every clip: decode_pose, the index and the sampler (fed in a scrambled order, small
+// capacity so that windows are evicted and decoded again) equal decode_window's row; decode_local_pose,
+// the index's and the sampler's local_pose agree bit for bit, and their rotations and translations are
+// the row's local transforms (Skeleton::local_rotation / local_translation) to 1e-12. Returns the
+// levels the indexes held apart (too large for their words) over every E.
+std::size_t check_every_frame(const std::vector<Clip>& clips, const std::vector<double>& errors = {1.0, 0.5, 0.1}) {
+    std::size_t escaped = 0;
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
-    for (double E : {1.0, 0.5, 0.1}) {
+    for (double E : errors) {
         PackOptions options;
         options.max_error_cm = E;
         const GroupDecoder decoder(pack_group(ptrs, options).bytes);
+        const PoseIndex index(decoder);
+        escaped += index.escaped_count();
         PoseSampler sampler(decoder, 2);
         const std::size_t channels = decoder.skeleton(0)->channel_count();
         REQUIRE(sampler.channel_count() == channels);
         std::vector<double> row(channels);
         std::vector<std::pair<std::size_t, std::size_t>> order;
-        std::size_t mismatches = 0, sampler_mismatches = 0, frames = 0, local_mismatches = 0;
+        std::size_t mismatches = 0, sampler_mismatches = 0, frames = 0, local_mismatches = 0, index_mismatches = 0;
         LocalPose local, sampled;
         LocalError error;
         const std::size_t first_window_frames = decoder.frame_count(0);
@@ -75,6 +81,10 @@ void check_every_frame(const std::vector<Clip>& clips) {
                     if (!same_bits(row.data(), window.row(t).data(), channels)) ++mismatches;
                     decoder.decode_local_pose(k, f, local);
                     error.add(*decoder.skeleton(k), row.data(), local);
+                    index.pose(k, f, row.data());
+                    if (!same_bits(row.data(), window.row(t).data(), channels)) ++index_mismatches;
+                    index.local_pose(k, f, sampled);
+                    if (!same_bits(sampled, local)) ++index_mismatches;
                     order.emplace_back(k, f);
                     ++frames;
                 }
@@ -98,6 +108,8 @@ void check_every_frame(const std::vector<Clip>& clips) {
         }
         INFO("E " << E << ": " << frames << " frames");
         CHECK(mismatches == 0);
+        CHECK(index_mismatches == 0);
+        CHECK(index.coefficient_count() > 0);
         CHECK(sampler_mismatches == 0);
         CHECK(sampler.hits() + sampler.misses() == 2 * frames);
         CHECK(local_mismatches == 0);
@@ -107,18 +119,27 @@ void check_every_frame(const std::vector<Clip>& clips) {
         CHECK(error.translation < 1e-12);
         CHECK(error.unit < 1e-12);
     }
+    return escaped;
 }
 
 }  // namespace
 
-TEST_CASE("decode_pose and PoseSampler equal decode_window bit for bit: PFNN rig", "[packing][shared]") {
+TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: PFNN rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
     check_every_frame(test::read_shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}, 300));
 }
 
-TEST_CASE("decode_pose and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {
+TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
+}
+
+TEST_CASE("PoseIndex: levels too large for a 32-bit word decode through the escape, same bits", "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    // A bound far below any codec's use makes quantizer steps tiny and the largest levels exceed the
+    // 2^19 a word of this grid holds.
+    const std::size_t escaped = check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01"}, 64), {0.0005});
+    CHECK(escaped > 0);
 }
 
 TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are refused", "[packing]") {
@@ -150,4 +171,41 @@ TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are re
     sampler.pose(1, 0, row.data());
     decoder.decode_pose(1, 0, expected.data());
     CHECK(same_bits(row.data(), expected.data(), row.size()));
+}
+
+TEST_CASE("PoseIndex: bad indices are refused; threads sharing one index decode the decoder's bits", "[packing]") {
+    std::vector<Clip> clips;
+    for (double turn : {0.0, 90.0, -45.0}) {
+        procedural::WalkOptions o;
+        o.frame_rate = 60.0;
+        o.cycles = 3;
+        clips.push_back(procedural::generate_walk({1.2, turn, 0.0}, o).clip);
+    }
+    const GroupDecoder decoder(pack_group({&clips[0], &clips[1], &clips[2]}, PackOptions{}).bytes);
+    const PoseIndex index(decoder);
+    CHECK(index.memory_bytes() >= index.coefficient_count() * 4);
+    std::vector<double> row(decoder.skeleton(0)->channel_count());
+    CHECK_THROWS_AS(index.pose(0, decoder.frame_count(0), row.data()), InvalidArgument);
+    CHECK_THROWS_AS(index.pose(3, 0, row.data()), InvalidArgument);
+    LocalPose local;
+    CHECK_THROWS_AS(index.local_pose(3, 0, local), InvalidArgument);
+    // Every frame, from two threads at once in opposite orders, against decode_pose.
+    std::vector<std::pair<std::size_t, std::size_t>> frames;
+    for (std::size_t k = 0; k < decoder.clip_count(); ++k)
+        for (std::size_t f = 0; f < decoder.frame_count(k); ++f) frames.emplace_back(k, f);
+    std::size_t mismatches[2] = {0, 0};
+    auto run = [&](int id) {
+        std::vector<double> mine(row.size()), expected(row.size());
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            const auto& [k, f] = frames[id == 0 ? i : frames.size() - 1 - i];
+            index.pose(k, f, mine.data());
+            decoder.decode_pose(k, f, expected.data());
+            if (!same_bits(mine.data(), expected.data(), mine.size())) ++mismatches[id];
+        }
+    };
+    std::thread other(run, 1);
+    run(0);
+    other.join();
+    CHECK(mismatches[0] == 0);
+    CHECK(mismatches[1] == 0);
 }

@@ -85,7 +85,7 @@ void GroupDecoder::raw_rows(const detail::WindowEntry& e, int frames, std::size_
                 static_cast<std::size_t>(count) * channels * sizeof(double));
 }
 
-void GroupDecoder::load_window(const detail::WindowEntry& e, detail::WindowScratch& s) const {
+std::size_t GroupDecoder::decode_levels(const detail::WindowEntry& e, detail::WindowScratch& s) const {
     const detail::GroupModel& m = *model_;
     m.prepare(s);
     const std::vector<std::uint8_t>& classes = classes_[e.step];
@@ -93,8 +93,13 @@ void GroupDecoder::load_window(const detail::WindowEntry& e, detail::WindowScrat
     std::size_t nonzeros = 0;
     decode_coefficients(bytes_.data() + payload_ + e.offset, e.size, classes.data(), classes.size(), m.grid(),
                         s.contexts, s.q.data(), s.level.data(), s.nonzero.data(), &nonzeros);
+    return nonzeros;
+}
+
+void GroupDecoder::load_window(const detail::WindowEntry& e, detail::WindowScratch& s) const {
+    const std::size_t nonzeros = decode_levels(e, s);
     // Only the nonzero coefficients are dequantized (no passes over the zeros of the grid).
-    m.dequantize_nonzero(e.step, s.q.data(), s.nonzero.data(), nonzeros, s);
+    model_->dequantize_nonzero(e.step, s.q.data(), s.nonzero.data(), nonzeros, s);
 }
 
 FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) const {

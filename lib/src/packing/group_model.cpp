@@ -78,7 +78,7 @@ void GroupModel::prepare(WindowScratch& s) const {
     s.nonzero.resize(cells);
     s.g.resize(cells);
     s.y.resize(da);
-    s.x.resize(da);
+    s.x.resize((da + 3) / 4 * 4);  // whole lanes of 4 (PoseIndex writes them)
     s.yb.resize(da * kFrameBlock);
     s.xb.resize(da * kFrameBlock);
     s.p.resize(static_cast<std::size_t>(dofs));
@@ -266,7 +266,6 @@ void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns,
     const std::size_t da = active.size();
     const auto W = static_cast<std::size_t>(window);
     double* y = s.y.data();
-    double* x = s.x.data();
     // y = G v_t (v_t = row t of the time basis), then x = U y. Each output element sums its terms in
     // ascending column order, in blocks of kBlock elements held in registers; the result does not
     // depend on vectorization or on what else is decoded (no FMA contraction: -ffp-contract=off).
@@ -274,10 +273,19 @@ void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns,
     // Rows of g past `rows` are zero: so are those elements of y, and their terms in x are skipped.
     const auto r = static_cast<std::size_t>(rows);
     multiply_columns(g, r, da, v, W, static_cast<std::size_t>(columns), y);
-    multiply_columns(dof_basis.data(), da, da, y, 1, r, x);
-    const SkeletonEntry& entry = skeletons[clip.skeleton];
+    pose_of(clip, y, rows, s, p);
+}
+
+void GroupModel::pose_of(const ClipEntry& clip, const double* y, int rows, WindowScratch& s, double* p) const {
+    const std::size_t da = active.size();
+    double* x = s.x.data();
+    multiply_columns(dof_basis.data(), da, da, y, 1, static_cast<std::size_t>(rows), x);
+    place_dofs(clip, x, p);
+}
+
+void GroupModel::place_dofs(const ClipEntry& clip, double* x, double* p) const {
     std::copy(constant.begin(), constant.end(), p);
-    unweight(x, entry, p);
+    unweight(x, skeletons[clip.skeleton], p);
 }
 
 void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,

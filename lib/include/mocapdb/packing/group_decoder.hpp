@@ -9,7 +9,8 @@
 // Cost of one pose (decode_pose, cold): its window's coefficients are range-decoded whole (every
 // time-basis vector spans the window), then only its frame is reconstructed and turned into channels.
 // For many poses from the same windows (playback, crowds) use a PoseSampler (pose_sampler.hpp),
-// which keeps decoded windows.
+// which keeps decoded windows; for random poses at about a microsecond, a PoseIndex (pose_index.hpp),
+// which keeps the whole group entropy-decoded.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -26,6 +27,7 @@ struct WindowScratch;
 }
 
 class PoseSampler;
+class PoseIndex;
 
 /// One frame as animation runtimes consume it (ACL, ozz-animation): per joint of the clip's skeleton
 /// (GroupDecoder::skeleton(clip)->joints() order, end sites included) the LOCAL transform forward
@@ -79,6 +81,7 @@ public:
 
 private:
     friend class PoseSampler;
+    friend class PoseIndex;
     void check(std::size_t clip) const;
     void check(std::size_t clip, std::size_t frame) const;
     const detail::WindowEntry& entry(std::size_t clip, std::size_t window) const;
@@ -86,6 +89,9 @@ private:
     int frames_in(std::size_t clip, std::size_t window) const;
     /// Raw windows: the stored rows of frames [t0, t0 + count) into out (row-major).
     void raw_rows(const detail::WindowEntry& e, int frames, std::size_t channels, int t0, int count, double* out) const;
+    /// Coded windows: range-decodes into s.q and lists the nonzero scan positions in s.nonzero
+    /// (returns their number).
+    std::size_t decode_levels(const detail::WindowEntry& e, detail::WindowScratch& s) const;
     /// Coded windows: range-decodes and dequantizes into s.g / s.columns.
     void load_window(const detail::WindowEntry& e, detail::WindowScratch& s) const;
     std::vector<std::uint8_t> bytes_;

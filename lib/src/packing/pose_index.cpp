@@ -1,0 +1,198 @@
+#include "mocapdb/packing/pose_index.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "group_model.hpp"
+
+namespace mocapdb::packing {
+
+namespace {
+
+detail::WindowScratch& thread_scratch() {
+    thread_local detail::WindowScratch scratch;
+    return scratch;
+}
+
+// Bits that hold 0 .. n - 1.
+unsigned bits_for(std::uint64_t n) {
+    unsigned b = 0;
+    while ((std::uint64_t{1} << b) < n) ++b;
+    return b;
+}
+
+// A word: dof row | time column << row_bits | (level + bias) << place_bits, bias = 2^(31 - place_bits).
+// It holds levels with -bias < level < bias; a biased level of 0 is the escape: the level is the
+// window's next exception.
+std::int64_t level_bias(unsigned place_bits) { return std::int64_t{1} << (31 - place_bits); }
+
+bool fits(std::int32_t level, unsigned place_bits) {
+    const std::int64_t bias = level_bias(place_bits);
+    return level > -bias && level < bias;
+}
+
+std::uint32_t word_of(std::uint32_t row, std::uint32_t column, std::int32_t level, unsigned row_bits, unsigned place_bits) {
+    const auto biased = fits(level, place_bits) ? static_cast<std::uint32_t>(std::int64_t{level} + level_bias(place_bits)) : 0u;
+    return row | (column << row_bits) | (biased << place_bits);
+}
+
+// y[row] += (level · step) · v[column] for each word, in the stored order: for every row its terms in
+// ascending column, as GroupModel::frame_pose sums the dense grid (its zero terms change no bits).
+void accumulate(const std::uint32_t* words, std::size_t count, const std::int32_t* exceptions, unsigned row_bits,
+                unsigned place_bits, double step, const double* v, double* y) {
+    const std::uint32_t row_mask = (1u << row_bits) - 1;
+    const std::uint32_t column_mask = (1u << (place_bits - row_bits)) - 1;
+    const std::int64_t bias = level_bias(place_bits);
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::uint32_t w = words[k];
+        const std::int64_t biased = w >> place_bits;
+        const std::int64_t level = biased != 0 ? biased - bias : *exceptions++;
+        y[w & row_mask] += static_cast<double>(level) * step * v[(w >> row_bits) & column_mask];
+    }
+}
+
+typedef double Lane4 __attribute__((vector_size(32)));
+
+// out[i] = sum over c < columns of a[i + ld·c] · w[c] for i < 4·V, each summed in ascending c from +0
+// (no contraction: -ffp-contract=off), as GroupModel's products sum it: the same bits, with V
+// independent vector accumulators (one pass over the columns for up to 32 rows).
+template <std::size_t V>
+void lanes_times(const double* a, std::size_t ld, const double* w, std::size_t columns, double* out) {
+    Lane4 acc[V];
+    for (std::size_t v = 0; v < V; ++v) acc[v] = Lane4{0.0, 0.0, 0.0, 0.0};
+    for (std::size_t c = 0; c < columns; ++c) {
+        const Lane4 wc{w[c], w[c], w[c], w[c]};
+        const double* col = a + c * ld;
+        for (std::size_t v = 0; v < V; ++v) {
+            Lane4 x;
+            std::memcpy(&x, col + 4 * v, sizeof x);
+            acc[v] += x * wc;
+        }
+    }
+    std::memcpy(out, acc, sizeof acc);
+}
+
+// lanes_times over `lanes` lanes of 4 rows (a padded to ld = 4·lanes rows or more).
+void padded_times(const double* a, std::size_t lanes, std::size_t ld, const double* w, std::size_t columns,
+                  double* out) {
+    std::size_t l = 0;
+    for (; l + 8 <= lanes; l += 8) lanes_times<8>(a + 4 * l, ld, w, columns, out + 4 * l);
+    const double* al = a + 4 * l;
+    double* ol = out + 4 * l;
+    switch (lanes - l) {
+        case 7: return lanes_times<7>(al, ld, w, columns, ol);
+        case 6: return lanes_times<6>(al, ld, w, columns, ol);
+        case 5: return lanes_times<5>(al, ld, w, columns, ol);
+        case 4: return lanes_times<4>(al, ld, w, columns, ol);
+        case 3: return lanes_times<3>(al, ld, w, columns, ol);
+        case 2: return lanes_times<2>(al, ld, w, columns, ol);
+        case 1: return lanes_times<1>(al, ld, w, columns, ol);
+        default: return;
+    }
+}
+
+}  // namespace
+
+PoseIndex::PoseIndex(const GroupDecoder& decoder) : decoder_(&decoder) {
+    const detail::GroupModel& m = *decoder.model_;
+    const std::size_t da = std::max<std::size_t>(1, m.active.size());
+    const auto W = static_cast<std::size_t>(m.window);
+    row_bits_ = bits_for(da);
+    place_bits_ = row_bits_ + bits_for(W);
+    if (place_bits_ > kMaxPlaceBits)
+        throw InvalidArgument("PoseIndex: a group of " + std::to_string(m.active.size()) + " varying dofs and windows of " +
+                              std::to_string(W) + " frames has " + std::to_string(da * W) +
+                              " coefficients per window; the index holds at most 2^" + std::to_string(kMaxPlaceBits) +
+                              " (decode such a group with GroupDecoder)");
+    // The dof basis with its rows padded to whole lanes of 4 (zero rows), column-major.
+    lanes_ = (m.active.size() + 3) / 4;
+    const std::size_t ld = 4 * lanes_;
+    dof_basis_.assign(ld * m.active.size(), 0.0);
+    for (std::size_t c = 0; c < m.active.size(); ++c)
+        for (std::size_t r = 0; r < m.active.size(); ++r)
+            dof_basis_[r + ld * c] = m.dof_basis(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+    time_rows_.resize(W * W);
+    for (std::size_t t = 0; t < W; ++t)
+        for (std::size_t c = 0; c < W; ++c) time_rows_[t * W + c] = m.time_basis(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(c));
+
+    struct Cell {
+        std::uint32_t place;  // row + Da · column, the grid's column-major order
+        std::int32_t level;
+    };
+    std::vector<Cell> cells;
+    detail::WindowScratch& s = thread_scratch();
+    windows_.resize(m.windows.size());
+    for (std::size_t i = 0; i < m.windows.size(); ++i) {
+        const detail::WindowEntry& e = m.windows[i];
+        Window& out = windows_[i];
+        out.begin = words_.size();
+        out.exceptions = exceptions_.size();
+        if (e.step == detail::kRawStep) continue;
+        const std::size_t n = decoder.decode_levels(e, s);
+        cells.clear();
+        for (std::size_t k = 0; k < n; ++k) cells.push_back({m.scan[s.nonzero[k]], s.q[s.nonzero[k]]});
+        std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.place < b.place; });
+        std::uint32_t last_row = 0;
+        for (const Cell& c : cells) {
+            const auto row = static_cast<std::uint32_t>(c.place % da);
+            const auto column = static_cast<std::uint32_t>(c.place / da);
+            last_row = std::max(last_row, row);
+            words_.push_back(word_of(row, column, c.level, row_bits_, place_bits_));
+            if (!fits(c.level, place_bits_)) exceptions_.push_back(c.level);
+        }
+        out.count = static_cast<std::uint32_t>(n);
+        out.rows = n == 0 ? 0 : last_row + 1;  // as GroupModel::dequantize_nonzero
+        out.step = detail::step_of(e.step);
+    }
+    words_.shrink_to_fit();
+    exceptions_.shrink_to_fit();
+}
+
+std::size_t PoseIndex::memory_bytes() const {
+    return words_.capacity() * sizeof(std::uint32_t) + exceptions_.capacity() * sizeof(std::int32_t) + windows_.capacity() * sizeof(Window) +
+           (time_rows_.capacity() + dof_basis_.capacity()) * sizeof(double);
+}
+
+const double* PoseIndex::dofs(std::size_t clip, std::size_t global, std::size_t t) const {
+    const detail::GroupModel& m = *decoder_->model_;
+    const Window& win = windows_[global];
+    // A random window is not in cache: its words are requested at once, not a line at a time as the
+    // loop reaches them (prefetching is a hint: no effect on the result).
+    const auto* first = reinterpret_cast<const char*>(words_.data() + win.begin);
+    const std::size_t bytes = win.count * sizeof(std::uint32_t);
+    for (std::size_t b = 0; b < bytes; b += 64) __builtin_prefetch(first + b);
+    detail::WindowScratch& s = thread_scratch();
+    m.prepare(s);
+    double* y = s.y.data();
+    std::fill(y, y + win.rows, 0.0);
+    const double* v = time_rows_.data() + t * static_cast<std::size_t>(m.window);
+    accumulate(words_.data() + win.begin, win.count, exceptions_.data() + win.exceptions, row_bits_, place_bits_,
+               win.step, v, y);
+    // x = U y (GroupModel::pose_of's bits), then the dofs.
+    double* x = s.x.data();
+    padded_times(dof_basis_.data(), lanes_, 4 * lanes_, y, win.rows, x);
+    m.place_dofs(m.clips[clip], x, s.p.data());
+    return s.p.data();
+}
+
+void PoseIndex::pose(std::size_t clip, std::size_t frame, double* out_row) const {
+    decoder_->check(clip, frame);
+    const detail::GroupModel& m = *decoder_->model_;
+    const auto W = static_cast<std::size_t>(m.window);
+    const std::size_t global = m.clips[clip].first_window + frame / W;
+    if (m.windows[global].step == detail::kRawStep) return decoder_->decode_pose(clip, frame, out_row);
+    m.row_of(m.clips[clip], dofs(clip, global, frame % W), out_row);
+}
+
+void PoseIndex::local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const {
+    decoder_->check(clip, frame);
+    const detail::GroupModel& m = *decoder_->model_;
+    const auto W = static_cast<std::size_t>(m.window);
+    const std::size_t global = m.clips[clip].first_window + frame / W;
+    if (m.windows[global].step == detail::kRawStep) return decoder_->decode_local_pose(clip, frame, out);
+    m.local_of(m.clips[clip], dofs(clip, global, frame % W), out);
+}
+
+}  // namespace mocapdb::packing
