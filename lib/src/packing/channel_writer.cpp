@@ -196,8 +196,10 @@ Quat ChannelWriter::channel_rotation(const RotationJoint& j, const Quat& local) 
                             sn = c0;
                         }
                     }
-                    Quat f(c, 0.0, 0.0, 0.0);
-                    f.vec()[j.axes[n]] = sn;
+                    // The factor's components by selects, not by a store into one lane of it (a
+                    // scalar store then read as a vector stalls store forwarding).
+                    const int a = j.axes[n];
+                    const Quat f(c, a == 0 ? sn : 0.0, a == 1 ? sn : 0.0, a == 2 ? sn : 0.0);
                     q = q * f;
                 }
                 return j.axis * q * j.axis.conjugate();
