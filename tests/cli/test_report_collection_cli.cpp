@@ -4,7 +4,9 @@
 // and line, option conflicts, and an empty database.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
+#include <sstream>
 
 #include "mini_json.hpp"
 #include "mocapdb/store/database.hpp"
@@ -57,7 +59,7 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
         CHECK(row["max_error_cm"].number == E[t]);
         for (const char* key : {"bytes", "float32_bytes", "ratio_float32", "bytes_per_second", "bits_per_joint_frame",
                                 "max_cm", "p99_cm", "rmse_cm", "encode_seconds", "stream_mb_per_second",
-                                "decode_pose_us", "poses_timed", "clips", "frames", "motion_seconds", "raw_windows",
+                                "decode_pose_us", "indexed_local_pose_us", "index_bytes", "poses_timed", "clips", "frames", "motion_seconds", "raw_windows",
                                 "pack_attempts", "acl", "group_figures"})
             CHECK(row.has(key));
         const double bytes = row["bytes"].number;
@@ -73,6 +75,8 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
         CHECK(row["bytes_per_second"].number == Approx(bytes / j["motion_seconds"].number));
         CHECK(row["bits_per_joint_frame"].number == Approx(8.0 * bytes / (j["frames"].number * 57)));  // 43 joints + 14 end sites
         CHECK(row["decode_pose_us"].number > 0.0);
+        CHECK(row["indexed_local_pose_us"].number > 0.0);
+        CHECK(row["index_bytes"].number > 0.0);
         CHECK(row["poses_timed"].number == 500);
         CHECK(row["stream_mb_per_second"].number > 0.0);
         REQUIRE(row["group_figures"].items.size() == 1);
@@ -106,6 +110,12 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
     CHECK(csv_text.rfind("tier,max_error_cm,bytes,", 0) == 0);
     CHECK(std::count(csv_text.begin(), csv_text.end(), '\n') == 4);
     CHECK(csv_text.find("\nlossless,0,") != std::string::npos);
+    {  // every row has the header's cells
+        std::istringstream lines(csv_text);
+        std::string header, row;
+        std::getline(lines, header);
+        while (std::getline(lines, row)) CHECK(std::count(row.begin(), row.end(), ',') == std::count(header.begin(), header.end(), ','));
+    }
     const std::string svg_text = read_all(svg);
     CHECK(svg_text.find("<svg") == 0);
     CHECK(svg_text.find("packed tier (ours)") != std::string::npos);

@@ -100,7 +100,7 @@ void setup_report(CLI::App& app) {
         "JSON keys: file, clips, frames, groups, motion_seconds, float32_bytes, threads, random_poses,\n"
         "targets[] (max_error_cm, bytes, float32_bytes, ratio_float32, bytes_per_second,\n"
         "bits_per_joint_frame, max_cm, p99_cm, rmse_cm, encode_seconds, stream_mb_per_second,\n"
-        "decode_pose_us, acl {bytes_at_max, smaller_at_max, bytes_at_rmse, smaller_at_rmse} or null,\n"
+        "decode_pose_us, indexed_local_pose_us, index_bytes, acl {bytes_at_max, smaller_at_max, bytes_at_rmse, smaller_at_rmse} or null,\n"
         "group_figures[]), lossless {bytes, ratio_float32, gzip9_bytes, gzip9_ratio_float32, ...},\n"
         "reference {files, comparable, reason, clips_missing, settings[]} or null.");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);

@@ -86,6 +86,8 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
         json_figures(j, tf.total);
         j.key("decode_pose_us").value(tf.pose_microseconds);
         j.key("poses_timed").value(tf.poses_timed);
+        j.key("indexed_local_pose_us").value(tf.indexed_pose_microseconds);
+        j.key("index_bytes").value(static_cast<std::size_t>(tf.index_bytes));
         j.key("acl");
         if (ref.given && ref.unusable.empty()) {
             const eval::AclComparison& c = ref.per_target[t];
@@ -166,7 +168,7 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
     s.precision(9);
     s << "tier,max_error_cm,bytes,float32_bytes,ratio_float32,bytes_per_second,bits_per_joint_frame,max_cm,p99_cm,"
          "rmse_cm,encode_s,decode_pose_us,stream_mb_s,acl_bytes_at_max,x_smaller_at_max,acl_bytes_at_rmse,"
-         "x_smaller_at_rmse,gzip9_bytes,gzip9_ratio_float32\n";
+         "x_smaller_at_rmse,gzip9_bytes,gzip9_ratio_float32,indexed_local_pose_us,index_bytes\n";
     auto cell = [](const std::optional<double>& v) { return v ? general(*v, 9) : std::string(); };
     for (std::size_t t = 0; t < r.targets.size(); ++t) {
         const TargetFigures& tf = r.targets[t];
@@ -176,13 +178,13 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
           << f.bytes_per_second() << ',' << f.bits_per_joint_frame() << ',' << f.max_cm << ',' << f.p99_cm << ','
           << f.rmse_cm << ',' << f.encode_seconds << ',' << tf.pose_microseconds << ',' << f.stream_mb_per_second()
           << ',' << cell(c.bytes_at_max) << ',' << cell(c.smaller_at_max) << ',' << cell(c.bytes_at_rmse) << ','
-          << cell(c.smaller_at_rmse) << ",,\n";
+          << cell(c.smaller_at_rmse) << ",,," << tf.indexed_pose_microseconds << ',' << tf.index_bytes << '\n';
     }
     const LosslessFigures& l = r.lossless;
     const double bps = r.lossless_bytes_per_second();
     s << "lossless,0," << l.bytes << ',' << l.float32_bytes << ',' << l.ratio_float32() << ',' << bps << ",,0,0,0,,,,,,,,"
       << (l.gzip_available ? std::to_string(l.gzip_bytes) : "") << ','
-      << (l.gzip_available ? general(l.gzip_ratio_float32(), 9) : "") << '\n';
+      << (l.gzip_available ? general(l.gzip_ratio_float32(), 9) : "") << ",,\n";
     return s.str();
 }
 
@@ -254,8 +256,8 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
         }
     }
     out += "\n";
-    std::snprintf(line, sizeof line, "%6s %11s %8s %8s %8s %9s %9s %9s %7s %8s %7s %12s %9s %12s %9s\n", "E cm",
-                  "bytes", "vs f32", "B/s", "bit/j/f", "max cm", "p99 cm", "rmse cm", "enc s", "pose us", "MB/s",
+    std::snprintf(line, sizeof line, "%6s %11s %8s %8s %8s %9s %9s %9s %7s %8s %7s %7s %12s %9s %12s %9s\n", "E cm",
+                  "bytes", "vs f32", "B/s", "bit/j/f", "max cm", "p99 cm", "rmse cm", "enc s", "pose us", "idx us", "MB/s",
                   "ACL B @max", "x smaller", "ACL B @rmse", "x smaller");
     out += line;
     for (std::size_t t = 0; t < r.targets.size(); ++t) {
@@ -263,10 +265,11 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
         const PackedFigures& f = tf.total;
         const bool usable = ref.given && ref.unusable.empty();
         const eval::AclComparison c = usable ? ref.per_target[t] : eval::AclComparison{};
-        std::snprintf(line, sizeof line, "%6s %11llu %7.2f:1 %8.0f %8.3f %9.5f %9.5f %9.5f %7.2f %8.1f %7.1f %12s %9s %12s %9s\n",
+        std::snprintf(line, sizeof line, "%6s %11llu %7.2f:1 %8.0f %8.3f %9.5f %9.5f %9.5f %7.2f %8.1f %7.2f %7.1f %12s %9s %12s %9s\n",
                       general(tf.max_error_cm).c_str(), static_cast<unsigned long long>(f.bytes), f.ratio_float32(),
                       f.bytes_per_second(), f.bits_per_joint_frame(), f.max_cm, f.p99_cm, f.rmse_cm, f.encode_seconds,
-                      tf.pose_microseconds, f.stream_mb_per_second(), opt_bytes(c.bytes_at_max, usable).c_str(),
+                      tf.pose_microseconds, tf.indexed_pose_microseconds, f.stream_mb_per_second(),
+                      opt_bytes(c.bytes_at_max, usable).c_str(),
                       opt_ratio(c.smaller_at_max, usable).c_str(), opt_bytes(c.bytes_at_rmse, usable).c_str(),
                       opt_ratio(c.smaller_at_rmse, usable).c_str());
         out += line;
@@ -300,7 +303,12 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
     out +=
         "\nbytes: everything the decoder needs (skeletons, bases, contexts, tables, payloads); errors: FK positions of "
         "every joint and end site at every source frame, decoded vs source; bit/j/f counts end sites as joints; "
-        "pose us: random access, one thread; MB/s: float32 channels decoded per second, streaming.\n";
+        "pose us: random access, one thread, a channel row from the packed bytes; idx us: the same poses as local "
+        "transforms through an index of the group held in memory (PoseIndex";
+    for (std::size_t t = 0; t < r.targets.size(); ++t)
+        out += (t ? ", " : ": ") + fixed(static_cast<double>(r.targets[t].index_bytes) / 1e6, 2) + " MB at " +
+               general(r.targets[t].max_error_cm) + " cm";
+    out += "); MB/s: float32 channels decoded per second, streaming.\n";
     if (ref.given && ref.unusable.empty())
         out += "ACL: bytes interpolated log-linearly at our measured error over the same clips (as compare.py); "
                "'outside': our error is outside ACL's measured range (no extrapolation).\n";

@@ -15,7 +15,8 @@
 // - encode s: pack_group wall time (every attempt, see measured_pack.hpp);
 // - stream MB/s: float32 channel bytes / wall time of GroupDecoder::decode_clip over every clip;
 // - pose µs: wall time of GroupDecoder::decode_pose at `random_poses` frames drawn uniformly from
-//   the collection's frames (fixed seed, one thread), per pose.
+//   the collection's frames (fixed seed, one thread), per pose; indexed pose µs: the same frames as
+//   local transforms through a PoseIndex of their group (built one group at a time, not timed).
 // Lossless tier: the stored channels of every clip (`channels_packed` datasets, docs/storage.md; the
 // stored skeletons are not counted, as gzip is not charged the ASF files). gzip -9: zlib level 9
 // deflate of each clip's source file plus gzip's container (10-byte header, the file name, 8-byte
@@ -77,8 +78,13 @@ struct TargetFigures {
     double max_error_cm = 0.0;  ///< E
     PackedFigures total;
     std::vector<GroupFigures> groups;
-    double pose_microseconds = 0.0;  ///< random access, per pose
+    double pose_microseconds = 0.0;  ///< random access, per pose (GroupDecoder::decode_pose, channel row)
     std::size_t poses_timed = 0;
+    /// The same poses as local transforms through a PoseIndex (packing/pose_index.hpp: each group
+    /// range-decoded once and held in memory; built one group at a time), per pose; and the bytes the
+    /// groups' indexes hold (their sum: what a reader keeping every group indexed holds).
+    double indexed_pose_microseconds = 0.0;
+    std::uint64_t index_bytes = 0;
 };
 
 struct LosslessFigures {
