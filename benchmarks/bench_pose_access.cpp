@@ -140,38 +140,31 @@ int main(int argc, char** argv) {
             double rotation_error = 0.0;
             auto consume = [&](const packing::LocalPose& p) { g_sink = g_sink + p.rotations[1].w() + p.translations[0].x(); };
             for (int r = 0; r < repeats; ++r) {
-                for (int kind = 0; kind < 2; ++kind) {  // cold random access
-                    std::mt19937 rng(7);
-                    const double t = now();
-                    for (int p = 0; p < poses; ++p) {
-                        const std::size_t k = rng() % clips;
-                        const std::size_t f = rng() % decoder.frame_count(k);
-                        if (kind == 0) {
-                            decoder.decode_pose(k, f, row.data());
-                            g_sink = g_sink + row[0];
-                        } else {
-                            decoder.decode_local_pose(k, f, local);
-                            consume(local);
+                // Random access, the same (clip, frame) sequence for each source: [0] rows, [1] local poses.
+                auto random_access = [&](Timing* out, auto&& rows_of, auto&& local_of) {
+                    for (int kind = 0; kind < 2; ++kind) {
+                        std::mt19937 rng(7);
+                        const double t = now();
+                        for (int p = 0; p < poses; ++p) {
+                            const std::size_t k = rng() % clips;
+                            const std::size_t f = rng() % decoder.frame_count(k);
+                            if (kind == 0) {
+                                rows_of(k, f);
+                                g_sink = g_sink + row[0];
+                            } else {
+                                local_of(k, f);
+                                consume(local);
+                            }
                         }
+                        out[kind].add(now() - t, static_cast<std::size_t>(poses));
                     }
-                    cold[kind].add(now() - t, static_cast<std::size_t>(poses));
-                }
-                for (int kind = 0; kind < 2; ++kind) {  // random access through the index
-                    std::mt19937 rng(7);
-                    const double t = now();
-                    for (int p = 0; p < poses; ++p) {
-                        const std::size_t k = rng() % clips;
-                        const std::size_t f = rng() % decoder.frame_count(k);
-                        if (kind == 0) {
-                            index.pose(k, f, row.data());
-                            g_sink = g_sink + row[0];
-                        } else {
-                            index.local_pose(k, f, local);
-                            consume(local);
-                        }
-                    }
-                    indexed[kind].add(now() - t, static_cast<std::size_t>(poses));
-                }
+                };
+                random_access(
+                    cold, [&](std::size_t k, std::size_t f) { decoder.decode_pose(k, f, row.data()); },
+                    [&](std::size_t k, std::size_t f) { decoder.decode_local_pose(k, f, local); });
+                random_access(
+                    indexed, [&](std::size_t k, std::size_t f) { index.pose(k, f, row.data()); },
+                    [&](std::size_t k, std::size_t f) { index.local_pose(k, f, local); });
                 {  // streaming, window by window
                     const double t = now();
                     for (std::size_t k = 0; k < clips; ++k)

@@ -177,22 +177,28 @@ const double* PoseIndex::dofs(std::size_t clip, std::size_t global, std::size_t 
     return s.p.data();
 }
 
-void PoseIndex::pose(std::size_t clip, std::size_t frame, double* out_row) const {
+const double* PoseIndex::frame_dofs(std::size_t clip, std::size_t frame) const {
     decoder_->check(clip, frame);
     const detail::GroupModel& m = *decoder_->model_;
     const auto W = static_cast<std::size_t>(m.window);
     const std::size_t global = m.clips[clip].first_window + frame / W;
-    if (m.windows[global].step == detail::kRawStep) return decoder_->decode_pose(clip, frame, out_row);
-    m.row_of(m.clips[clip], dofs(clip, global, frame % W), out_row);
+    return m.windows[global].step == detail::kRawStep ? nullptr : dofs(clip, global, frame % W);
+}
+
+void PoseIndex::pose(std::size_t clip, std::size_t frame, double* out_row) const {
+    const detail::GroupModel& m = *decoder_->model_;
+    if (const double* p = frame_dofs(clip, frame))
+        m.row_of(m.clips[clip], p, out_row);
+    else
+        decoder_->decode_pose(clip, frame, out_row);  // a window stored as source rows
 }
 
 void PoseIndex::local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const {
-    decoder_->check(clip, frame);
     const detail::GroupModel& m = *decoder_->model_;
-    const auto W = static_cast<std::size_t>(m.window);
-    const std::size_t global = m.clips[clip].first_window + frame / W;
-    if (m.windows[global].step == detail::kRawStep) return decoder_->decode_local_pose(clip, frame, out);
-    m.local_of(m.clips[clip], dofs(clip, global, frame % W), out);
+    if (const double* p = frame_dofs(clip, frame))
+        m.local_of(m.clips[clip], p, out);
+    else
+        decoder_->decode_local_pose(clip, frame, out);
 }
 
 }  // namespace mocapdb::packing

@@ -50,6 +50,9 @@ private:
     };
     /// Frame t's dofs of coded window `global` into the scratch's pose buffer.
     const double* dofs(std::size_t clip, std::size_t global, std::size_t t) const;
+    /// The frame's dofs after checking the indices (InvalidArgument); nullptr for a window stored as
+    /// source rows (the decoder serves those).
+    const double* frame_dofs(std::size_t clip, std::size_t frame) const;
 
     const GroupDecoder* decoder_;
     std::vector<Window> windows_;        ///< per window of the group (raw windows: count 0, unused)
