@@ -266,6 +266,7 @@ void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns,
     const std::size_t da = active.size();
     const auto W = static_cast<std::size_t>(window);
     double* y = s.y.data();
+    double* x = s.x.data();
     // y = G v_t (v_t = row t of the time basis), then x = U y. Each output element sums its terms in
     // ascending column order, in blocks of kBlock elements held in registers; the result does not
     // depend on vectorization or on what else is decoded (no FMA contraction: -ffp-contract=off).
@@ -273,13 +274,7 @@ void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns,
     // Rows of g past `rows` are zero: so are those elements of y, and their terms in x are skipped.
     const auto r = static_cast<std::size_t>(rows);
     multiply_columns(g, r, da, v, W, static_cast<std::size_t>(columns), y);
-    pose_of(clip, y, rows, s, p);
-}
-
-void GroupModel::pose_of(const ClipEntry& clip, const double* y, int rows, WindowScratch& s, double* p) const {
-    const std::size_t da = active.size();
-    double* x = s.x.data();
-    multiply_columns(dof_basis.data(), da, da, y, 1, static_cast<std::size_t>(rows), x);
+    multiply_columns(dof_basis.data(), da, da, y, 1, r, x);
     place_dofs(clip, x, p);
 }
 

@@ -170,7 +170,7 @@ const double* PoseIndex::dofs(std::size_t clip, std::size_t global, std::size_t 
     const double* v = time_rows_.data() + t * static_cast<std::size_t>(m.window);
     accumulate(words_.data() + win.begin, win.count, exceptions_.data() + win.exceptions, row_bits_, place_bits_,
                win.step, v, y);
-    // x = U y (GroupModel::pose_of's bits), then the dofs.
+    // x = U y (GroupModel::frame_pose's sums, so its bits), then the dofs.
     double* x = s.x.data();
     padded_times(dof_basis_.data(), lanes_, 4 * lanes_, y, win.rows, x);
     m.place_dofs(m.clips[clip], x, s.p.data());

@@ -9,8 +9,8 @@
 // Cost of one pose (decode_pose, cold): its window's coefficients are range-decoded whole (every
 // time-basis vector spans the window), then only its frame is reconstructed and turned into channels.
 // For many poses from the same windows (playback, crowds) use a PoseSampler (pose_sampler.hpp),
-// which keeps decoded windows; for random poses at about a microsecond, a PoseIndex (pose_index.hpp),
-// which keeps the whole group entropy-decoded.
+// which keeps decoded windows; for random poses in a few µs, a PoseIndex (pose_index.hpp), which
+// keeps the whole group entropy-decoded.
 #include <cstddef>
 #include <cstdint>
 #include <memory>

@@ -1,10 +1,11 @@
 #pragma once
-// Random access to any pose of a packed group in about a microsecond: the group's windows
+// Random access to any pose of a packed group in a few microseconds: the group's windows
 // range-decoded once, at construction, and kept in memory sparse (per window its nonzero quantized
 // coefficients with their places in the grid, time column by time column). A pose then costs its
 // frame's products only (y = G v_t over the window's nonzero coefficients, x = U y, dofs to channels
 // or local transforms): no range decoding (GroupDecoder::decode_pose spends 15-60 µs there) and no
-// cache to miss. The trade is memory: memory_bytes() is several times the packed bytes (docs/packing.md).
+// window cache to miss (RESULTS.md: 1.3-3 µs per local pose at 1 cm on the shared rigs). The trade
+// is memory: memory_bytes() is about 5x the packed bytes (docs/packing.md).
 //
 // Contract: pose / local_pose give exactly the bits of GroupDecoder::decode_pose / decode_local_pose
 // (the bits the encoder verified against the bound). InvalidArgument on a bad clip or frame;
