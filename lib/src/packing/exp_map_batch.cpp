@@ -7,17 +7,11 @@
 #include <immintrin.h>
 #endif
 
+#include "lane4.hpp"
+
 namespace mocapdb::packing::detail {
 namespace {
 constexpr std::size_t kLanes = 16;  // exp_maps works in chunks of this many vectors
-
-typedef double Lane4 __attribute__((vector_size(32)));
-
-inline Lane4 load4(const double* p) {
-    Lane4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
 
 // Lane-wise square root, correctly rounded as std::sqrt.
 inline Lane4 sqrt4(Lane4 v) {

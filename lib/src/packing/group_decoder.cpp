@@ -8,13 +8,7 @@
 
 namespace mocapdb::packing {
 
-namespace {
-// Per-thread decode buffers: const methods stay thread-safe and allocate only on a thread's first use.
-detail::WindowScratch& thread_scratch() {
-    thread_local detail::WindowScratch scratch;
-    return scratch;
-}
-}  // namespace
+using detail::thread_scratch;
 
 GroupDecoder::GroupDecoder(std::vector<std::uint8_t> bytes)
     : bytes_(std::move(bytes)), model_(std::make_unique<detail::GroupModel>()) {

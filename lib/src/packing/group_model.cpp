@@ -7,6 +7,7 @@
 #include <string>
 
 #include "byte_stream.hpp"
+#include "lane4.hpp"
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/core/error.hpp"
 
@@ -78,7 +79,7 @@ void GroupModel::prepare(WindowScratch& s) const {
     s.nonzero.resize(cells);
     s.g.resize(cells);
     s.y.resize(da);
-    s.x.resize((da + 3) / 4 * 4);  // whole lanes of 4 (PoseIndex writes them)
+    s.x.resize(da);
     s.yb.resize(da * kFrameBlock);
     s.xb.resize(da * kFrameBlock);
     s.p.resize(static_cast<std::size_t>(dofs));
@@ -141,24 +142,27 @@ void block_columns(const double* a, std::size_t ld, const double* w, std::size_t
 }
 
 // a: `rows` rows of a column-major matrix with leading dimension ld.
+// block_columns for the last `rest` (< kBlock) rows in one pass over the columns (blocks of 4 and
+// single rows one after the other made up to three passes, the single rows' sums serial chains).
+template <std::size_t N>
+void rest_columns(std::size_t rest, const double* a, std::size_t ld, const double* w, std::size_t stride,
+                  std::size_t columns, double* out) {
+    if constexpr (N > 0) {
+        if (rest == N) return block_columns<N>(a, ld, w, stride, columns, out);
+        rest_columns<N - 1>(rest, a, ld, w, stride, columns, out);
+    }
+}
+
 void multiply_columns(const double* a, std::size_t rows, std::size_t ld, const double* w, std::size_t stride,
                       std::size_t columns, double* out) {
     std::size_t i = 0;
     for (; i + kBlock <= rows; i += kBlock) block_columns<kBlock>(a + i, ld, w, stride, columns, out + i);
-    for (; i + 4 <= rows; i += 4) block_columns<4>(a + i, ld, w, stride, columns, out + i);
-    for (; i < rows; ++i) block_columns<1>(a + i, ld, w, stride, columns, out + i);
+    rest_columns<kBlock - 1>(rows - i, a + i, ld, w, stride, columns, out + i);
 }
 // multiply_columns for kFrameBlock weight vectors at once: out[i + out_ld·f] = sum over c of
 // a[i + ld·c] · w[c·stride + f·fstride], each element summed as multiply_columns sums it (ascending
 // c from +0, no contraction), so the same bits; the columns of `a` are loaded once for all frames.
 // Written with vector types (the compiler's own vectorization of this nest spilled to the stack).
-typedef double Lane4 __attribute__((vector_size(32)));
-
-inline Lane4 load4(const double* p) {
-    Lane4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
 
 template <std::size_t V>  // V lanes of 4 rows
 void block_frames(const double* a, std::size_t ld, const double* w, std::size_t stride, std::size_t fstride,
@@ -266,7 +270,6 @@ void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns,
     const std::size_t da = active.size();
     const auto W = static_cast<std::size_t>(window);
     double* y = s.y.data();
-    double* x = s.x.data();
     // y = G v_t (v_t = row t of the time basis), then x = U y. Each output element sums its terms in
     // ascending column order, in blocks of kBlock elements held in registers; the result does not
     // depend on vectorization or on what else is decoded (no FMA contraction: -ffp-contract=off).
@@ -274,13 +277,20 @@ void GroupModel::frame_pose(const ClipEntry& clip, const double* g, int columns,
     // Rows of g past `rows` are zero: so are those elements of y, and their terms in x are skipped.
     const auto r = static_cast<std::size_t>(rows);
     multiply_columns(g, r, da, v, W, static_cast<std::size_t>(columns), y);
-    multiply_columns(dof_basis.data(), da, da, y, 1, r, x);
-    place_dofs(clip, x, p);
+    pose_of(clip, y, rows, s, p);
 }
 
-void GroupModel::place_dofs(const ClipEntry& clip, double* x, double* p) const {
+void GroupModel::pose_of(const ClipEntry& clip, const double* y, int rows, WindowScratch& s, double* p) const {
+    const std::size_t da = active.size();
+    double* x = s.x.data();
+    multiply_columns(dof_basis.data(), da, da, y, 1, static_cast<std::size_t>(rows), x);
     std::copy(constant.begin(), constant.end(), p);
     unweight(x, skeletons[clip.skeleton], p);
+}
+
+WindowScratch& thread_scratch() {
+    thread_local WindowScratch scratch;
+    return scratch;
 }
 
 void GroupModel::reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,

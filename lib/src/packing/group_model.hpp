@@ -69,6 +69,10 @@ struct WindowScratch {
     ContextSet contexts;
 };
 
+/// The calling thread's scratch (GroupDecoder's and PoseIndex's const methods stay thread-safe and
+/// allocate only on a thread's first use).
+WindowScratch& thread_scratch();
+
 /// Frames frames_pose reconstructs together (register-blocked over frames: the coefficients and
 /// the dof basis are read once per block instead of once per frame).
 constexpr int kFrameBlock = 4;
@@ -127,9 +131,9 @@ struct GroupModel {
     /// The first half of frame_row: frame t's dofs (D values: pose vector, then extra position
     /// channels, pose units) into p. frame_row is frame_pose then row_of.
     void frame_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s, double* p) const;
-    /// frame_pose's last step: the weighted active dofs x (Da, divided in place) and the constant dofs
-    /// into p (PoseIndex forms x by the same sums and ends here too).
-    void place_dofs(const ClipEntry& clip, double* x, double* p) const;
+    /// frame_pose's second half: x = U y (y: Da values, zero from `rows` on, whose terms are skipped),
+    /// then the dofs into p. PoseIndex forms y by frame_pose's sums and ends here too.
+    void pose_of(const ClipEntry& clip, const double* y, int rows, WindowScratch& s, double* p) const;
     /// frame_pose of the kFrameBlock frames t0, t0 + 1, ... (t0 + kFrameBlock <= W) into p (D values
     /// per frame, one frame after the other): the same bits per frame as frame_pose, about half the
     /// time per frame.

@@ -1,7 +1,6 @@
 #include "mocapdb/packing/pose_index.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <string>
 #include <utility>
 
@@ -10,11 +9,6 @@
 namespace mocapdb::packing {
 
 namespace {
-
-detail::WindowScratch& thread_scratch() {
-    thread_local detail::WindowScratch scratch;
-    return scratch;
-}
 
 // Bits that hold 0 .. n - 1.
 unsigned bits_for(std::uint64_t n) {
@@ -53,46 +47,6 @@ void accumulate(const std::uint32_t* words, std::size_t count, const std::int32_
     }
 }
 
-typedef double Lane4 __attribute__((vector_size(32)));
-
-// out[i] = sum over c < columns of a[i + ld·c] · w[c] for i < 4·V, each summed in ascending c from +0
-// (no contraction: -ffp-contract=off), as GroupModel's products sum it: the same bits, with V
-// independent vector accumulators (one pass over the columns for up to 32 rows).
-template <std::size_t V>
-void lanes_times(const double* a, std::size_t ld, const double* w, std::size_t columns, double* out) {
-    Lane4 acc[V];
-    for (std::size_t v = 0; v < V; ++v) acc[v] = Lane4{0.0, 0.0, 0.0, 0.0};
-    for (std::size_t c = 0; c < columns; ++c) {
-        const Lane4 wc{w[c], w[c], w[c], w[c]};
-        const double* col = a + c * ld;
-        for (std::size_t v = 0; v < V; ++v) {
-            Lane4 x;
-            std::memcpy(&x, col + 4 * v, sizeof x);
-            acc[v] += x * wc;
-        }
-    }
-    std::memcpy(out, acc, sizeof acc);
-}
-
-// lanes_times over `lanes` lanes of 4 rows (a padded to ld = 4·lanes rows or more).
-void padded_times(const double* a, std::size_t lanes, std::size_t ld, const double* w, std::size_t columns,
-                  double* out) {
-    std::size_t l = 0;
-    for (; l + 8 <= lanes; l += 8) lanes_times<8>(a + 4 * l, ld, w, columns, out + 4 * l);
-    const double* al = a + 4 * l;
-    double* ol = out + 4 * l;
-    switch (lanes - l) {
-        case 7: return lanes_times<7>(al, ld, w, columns, ol);
-        case 6: return lanes_times<6>(al, ld, w, columns, ol);
-        case 5: return lanes_times<5>(al, ld, w, columns, ol);
-        case 4: return lanes_times<4>(al, ld, w, columns, ol);
-        case 3: return lanes_times<3>(al, ld, w, columns, ol);
-        case 2: return lanes_times<2>(al, ld, w, columns, ol);
-        case 1: return lanes_times<1>(al, ld, w, columns, ol);
-        default: return;
-    }
-}
-
 }  // namespace
 
 PoseIndex::PoseIndex(const GroupDecoder& decoder) : decoder_(&decoder) {
@@ -106,13 +60,6 @@ PoseIndex::PoseIndex(const GroupDecoder& decoder) : decoder_(&decoder) {
                               std::to_string(W) + " frames has " + std::to_string(da * W) +
                               " coefficients per window; the index holds at most 2^" + std::to_string(kMaxPlaceBits) +
                               " (decode such a group with GroupDecoder)");
-    // The dof basis with its rows padded to whole lanes of 4 (zero rows), column-major.
-    lanes_ = (m.active.size() + 3) / 4;
-    const std::size_t ld = 4 * lanes_;
-    dof_basis_.assign(ld * m.active.size(), 0.0);
-    for (std::size_t c = 0; c < m.active.size(); ++c)
-        for (std::size_t r = 0; r < m.active.size(); ++r)
-            dof_basis_[r + ld * c] = m.dof_basis(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
     time_rows_.resize(W * W);
     for (std::size_t t = 0; t < W; ++t)
         for (std::size_t c = 0; c < W; ++c) time_rows_[t * W + c] = m.time_basis(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(c));
@@ -122,7 +69,7 @@ PoseIndex::PoseIndex(const GroupDecoder& decoder) : decoder_(&decoder) {
         std::int32_t level;
     };
     std::vector<Cell> cells;
-    detail::WindowScratch& s = thread_scratch();
+    detail::WindowScratch& s = detail::thread_scratch();
     windows_.resize(m.windows.size());
     for (std::size_t i = 0; i < m.windows.size(); ++i) {
         const detail::WindowEntry& e = m.windows[i];
@@ -152,7 +99,7 @@ PoseIndex::PoseIndex(const GroupDecoder& decoder) : decoder_(&decoder) {
 
 std::size_t PoseIndex::memory_bytes() const {
     return words_.capacity() * sizeof(std::uint32_t) + exceptions_.capacity() * sizeof(std::int32_t) + windows_.capacity() * sizeof(Window) +
-           (time_rows_.capacity() + dof_basis_.capacity()) * sizeof(double);
+           time_rows_.capacity() * sizeof(double);
 }
 
 const double* PoseIndex::dofs(std::size_t clip, std::size_t global, std::size_t t) const {
@@ -163,17 +110,14 @@ const double* PoseIndex::dofs(std::size_t clip, std::size_t global, std::size_t 
     const auto* first = reinterpret_cast<const char*>(words_.data() + win.begin);
     const std::size_t bytes = win.count * sizeof(std::uint32_t);
     for (std::size_t b = 0; b < bytes; b += 64) __builtin_prefetch(first + b);
-    detail::WindowScratch& s = thread_scratch();
+    detail::WindowScratch& s = detail::thread_scratch();
     m.prepare(s);
     double* y = s.y.data();
     std::fill(y, y + win.rows, 0.0);
     const double* v = time_rows_.data() + t * static_cast<std::size_t>(m.window);
     accumulate(words_.data() + win.begin, win.count, exceptions_.data() + win.exceptions, row_bits_, place_bits_,
                win.step, v, y);
-    // x = U y (GroupModel::frame_pose's sums, so its bits), then the dofs.
-    double* x = s.x.data();
-    padded_times(dof_basis_.data(), lanes_, 4 * lanes_, y, win.rows, x);
-    m.place_dofs(m.clips[clip], x, s.p.data());
+    m.pose_of(m.clips[clip], y, static_cast<int>(win.rows), s, s.p.data());
     return s.p.data();
 }
 

@@ -14,7 +14,7 @@
 // construction; every const method is thread-safe (per-thread scratch, allocated on a thread's first
 // call, none per pose after that).
 // Memory: 4 bytes per nonzero coefficient, 4 more per level too large for its word (rare), 32 per
-// window, the W x W time basis and the Da x Da dof basis. Holds groups of up to 2^20 coefficients
+// window and the W x W time basis. Holds groups of up to 2^20 coefficients
 // per window (Da x W: e.g. 4096 varying dofs at W = 256); InvalidArgument beyond.
 #include <cstddef>
 #include <cstdint>
@@ -58,8 +58,6 @@ private:
     const GroupDecoder* decoder_;
     std::vector<Window> windows_;        ///< per window of the group (raw windows: count 0, unused)
     std::vector<double> time_rows_;      ///< time basis, row t contiguous (W x W)
-    std::size_t lanes_ = 0;              ///< Da rounded up to lanes of 4
-    std::vector<double> dof_basis_;      ///< Da by Da, rows padded to 4 lanes_ (zero rows)
     static constexpr unsigned kMaxPlaceBits = 20;  ///< leaves 12 bits of a word for a level
     unsigned row_bits_ = 0;              ///< word: dof row | time column << row_bits_ | level + bias << place_bits_
     unsigned place_bits_ = 0;
