@@ -51,9 +51,10 @@ struct LocalError {
 // Every frame of every clip: decode_pose, the index and the sampler (fed in a scrambled order, small
 // capacity so that windows are evicted and decoded again) equal decode_window's row; decode_local_pose,
 // the index's and the sampler's local_pose agree bit for bit, and their rotations and translations are
-// the row's local transforms (Skeleton::local_rotation / local_translation) to 1e-12. Returns the
-// levels the indexes held apart (too large for their words) over every E.
-std::size_t check_every_frame(const std::vector<Clip>& clips, const std::vector<double>& errors = {1.0, 0.5, 0.1}) {
+// the row's local transforms (Skeleton::local_rotation / local_translation) to 1e-12 (rotations to
+// `rotation_tolerance`). Returns the levels the indexes held apart (too large for their words) over every E.
+std::size_t check_every_frame(const std::vector<Clip>& clips, const std::vector<double>& errors = {1.0, 0.5, 0.1},
+                              double rotation_tolerance = 1e-12) {
     std::size_t escaped = 0;
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
@@ -115,7 +116,7 @@ std::size_t check_every_frame(const std::vector<Clip>& clips, const std::vector<
         CHECK(local_mismatches == 0);
         INFO("local pose vs the row's local transforms: rotation " << error.rotation << ", translation "
                                                                   << error.translation << ", |q| - 1 " << error.unit);
-        CHECK(error.rotation < 1e-12);
+        CHECK(error.rotation < rotation_tolerance);
         CHECK(error.translation < 1e-12);
         CHECK(error.unit < 1e-12);
     }
@@ -132,6 +133,62 @@ TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bi
 TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
+}
+
+TEST_CASE("Local poses of two-channel joints: every rotation order, absent axis and bone axis", "[packing]") {
+    // 18 joints with two rotation channels (6 orders x 3 absent axes), each under its own bone axis
+    // C, the middle angle swept past ±90° (the other Euler family) and the others over ±150°: the
+    // local poses (four joints at a time in their Euler frames) equal the row's transforms. Frames land
+    // within 1e-4 of ±90° (gimbal lock), where splitting a rotation into two angles amplifies rounding
+    // by about 1 / cos b (both here and in the row's atan2): measured up to 2e-12 there, hence 1e-10;
+    // a wrong family, axis or sign is off by O(1).
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::vector<Joint> joints(1);
+    joints[0].name = "root";
+    joints[0].channels = {ChannelType::Xposition, ChannelType::Yposition, ChannelType::Zposition,
+                          ChannelType::Zrotation, ChannelType::Xrotation, ChannelType::Yrotation};
+    for (int order = 0; order < 6; ++order)
+        for (int missing = 0; missing < 3; ++missing) {
+            Joint j;
+            j.name = "j" + std::to_string(joints.size());
+            j.parent = static_cast<int>(joints.size()) - 1;
+            j.offset = Vec3(0.0, 10.0, 0.0);
+            j.rotation_order = static_cast<EulerOrder>(order);
+            const auto axes = axes_of(j.rotation_order);
+            for (int n = 0; n < 3; ++n)
+                if (n != missing) j.channels.push_back(static_cast<ChannelType>(3 + static_cast<int>(axes[static_cast<std::size_t>(n)])));
+            j.axis = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+            joints.push_back(j);
+        }
+    Joint end;
+    end.name = "end";
+    end.parent = static_cast<int>(joints.size()) - 1;
+    end.offset = Vec3(0.0, 10.0, 0.0);
+    end.end_site = true;
+    joints.push_back(end);
+    Clip clip;
+    clip.skeleton = std::make_shared<const Skeleton>(joints);
+    clip.frame_rate = 60.0;
+    clip.name = "two_channel_orders";
+    const int frames = 240;
+    clip.channels = FrameMatrix::Zero(frames, static_cast<Eigen::Index>(clip.skeleton->channel_count()));
+    for (int f = 0; f < frames; ++f) {
+        const double t = f / 60.0;
+        clip.channels(f, 0) = 20.0 * t;
+        clip.channels(f, 1) = 90.0;
+        for (Eigen::Index c = 3; c < 6; ++c) clip.channels(f, c) = 0.3 * std::sin(t + static_cast<double>(c));
+        for (std::size_t j = 1; j + 1 < joints.size(); ++j) {
+            const auto axes = axes_of(joints[j].rotation_order);
+            for (std::size_t n = 0; n < 3; ++n) {
+                const int column = clip.skeleton->channel_column(j, static_cast<ChannelType>(3 + static_cast<int>(axes[n])));
+                if (column < 0) continue;
+                const double amplitude = n == 1 ? 2.0 : 2.6;  // the middle angle past ±π/2
+                clip.channels(f, column) = amplitude * std::sin((0.9 + 0.2 * static_cast<double>(n)) * t + static_cast<double>(j + n));
+            }
+        }
+    }
+    check_every_frame({clip}, {1.0, 0.1}, 1e-10);
 }
 
 TEST_CASE("PoseIndex: levels too large for a 32-bit word decode through the escape, same bits", "[packing][shared]") {

@@ -53,8 +53,10 @@ ChannelWriter::ChannelWriter(const Skeleton& s) {
         for (int i = 0; i < 3; ++i)
             if (present == 2 && r.cols[static_cast<std::size_t>(i)] < 0) r.missing = i;
         if (r.single >= 0) r.twist_axis = joint.axis * Vec3::Unit(r.axes[static_cast<std::size_t>(r.single)]);
+        if (present == 2) r.euler_frame = detail::euler_frame(r.axes.data(), r.parity, r.axis);
         joints_.push_back(r);
     }
+    plan_lanes();
     motion_root_ = m;
     adds_ = s.position_channels() == PositionChannels::add_to_offset;
     column_joint_.assign(s.channel_count(), -1);
@@ -226,6 +228,18 @@ void ChannelWriter::fold_constants(const std::vector<bool>& varies, const double
         rest_rotations_[static_cast<std::size_t>(joints_[k].joint)] = euler_rotation(joints_[k], angles);
     }
     joints_ = std::move(kept);
+    plan_lanes();
+}
+
+void ChannelWriter::plan_lanes() {
+    if (joints_.empty()) return;
+    const auto two = std::stable_partition(joints_.begin() + 1, joints_.end(), [](const RotationJoint& j) { return j.present == 2; });
+    two_channel_joints_ = static_cast<std::size_t>(two - joints_.begin()) - 1;
+    two_channel_lanes_.assign((two_channel_joints_ + 3) / 4, TwoChannelLanes{});
+    for (std::size_t k = 0; k < two_channel_joints_; ++k) {
+        const RotationJoint& j = joints_[1 + k];
+        set_lane(two_channel_lanes_[k / 4], static_cast<int>(k % 4), j.euler_frame, j.missing);
+    }
 }
 
 void ChannelWriter::write(const double* pose, const Canonicalization& canonical, double* row) const {
@@ -258,20 +272,53 @@ void ChannelWriter::write_local(const double* pose, const Canonicalization& cano
         const Quat root_rotation = above_inverse_ * canonical.invert(swing_twist_exp(Vec3(pose[3], pose[4], pose[5])));
         out.rotations[motion_root_] = channel_rotation(joints_.front(), root_rotation);
     }
-    // The joints' exp maps in chunks (exp_maps: polynomial sincos, not libm's; ~1e-16 from exp_map).
+    // The joints' exp maps in chunks (exp_maps: polynomial sincos, not libm's; ~1e-16 from exp_map),
+    // those of joints with two channels taken in their Euler frames and projected four at a time. The
+    // chunk is a multiple of 4, so their lanes never straddle two chunks.
     constexpr std::size_t kChunk = 16;
     double x[kChunk], y[kChunk], z[kChunk];
     Quat q[kChunk];
+    const std::size_t two_end = 1 + two_channel_joints_;  // joints_[1 .. two_end) have two channels
     for (std::size_t k0 = 1; k0 < joints_.size(); k0 += kChunk) {
         const std::size_t n = std::min(kChunk, joints_.size() - k0);
         for (std::size_t i = 0; i < n; ++i) {
-            const double* v = pose + joints_[k0 + i].pose_row;
-            x[i] = v[0];
-            y[i] = v[1];
-            z[i] = v[2];
+            const RotationJoint& j = joints_[k0 + i];
+            const double* v = pose + j.pose_row;
+            if (k0 + i < two_end) {
+                const Vec3 a = j.euler_frame * Vec3(v[0], v[1], v[2]);
+                x[i] = a.x();
+                y[i] = a.y();
+                z[i] = a.z();
+            } else {
+                x[i] = v[0];
+                y[i] = v[1];
+                z[i] = v[2];
+            }
         }
-        exp_maps(x, y, z, n, q);
-        for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t lanes = std::min(kChunk, (n + 3) / 4 * 4);
+        for (std::size_t i = n; i < lanes; ++i) x[i] = y[i] = z[i] = 0.0;
+        exp_maps(x, y, z, lanes, q);
+        const std::size_t first_other = two_end > k0 ? std::min(n, two_end - k0) : 0;  // in this chunk
+        for (std::size_t i = 0; i < first_other; i += 4) {
+            const Lane4 w{q[i].w(), q[i + 1].w(), q[i + 2].w(), q[i + 3].w()};
+            const Lane4 qx{q[i].x(), q[i + 1].x(), q[i + 2].x(), q[i + 3].x()};
+            const Lane4 qy{q[i].y(), q[i + 1].y(), q[i + 2].y(), q[i + 3].y()};
+            const Lane4 qz{q[i].z(), q[i + 1].z(), q[i + 2].z(), q[i + 3].z()};
+            Lane4 ow, ox, oy, oz;
+            const unsigned left = project_two_channels(two_channel_lanes_[(k0 - 1 + i) / 4], w, qx, qy, qz, ow, ox, oy, oz);
+            const std::size_t m = std::min<std::size_t>(4, first_other - i);
+            for (std::size_t l = 0; l < m; ++l) {
+                const RotationJoint& j = joints_[k0 + i + l];
+                Quat& r = out.rotations[static_cast<std::size_t>(j.joint)];
+                if ((left >> l & 1u) != 0) {  // near gimbal lock or the family boundary: as channel_rotation
+                    const double* v = pose + j.pose_row;
+                    r = channel_rotation(j, exp_map(Vec3(v[0], v[1], v[2])));
+                } else {
+                    r = Quat(ow[l], ox[l], oy[l], oz[l]);
+                }
+            }
+        }
+        for (std::size_t i = first_other; i < n; ++i) {
             const RotationJoint& j = joints_[k0 + i];
             out.rotations[static_cast<std::size_t>(j.joint)] = channel_rotation(j, q[i]);
         }
