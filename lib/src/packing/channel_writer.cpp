@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "exp_map_batch.hpp"
 #include "mocapdb/motion/rotation.hpp"
@@ -242,13 +243,13 @@ void ChannelWriter::plan_lanes() {
     }
 }
 
-void ChannelWriter::write(const double* pose, const Canonicalization& canonical, double* row) const {
+void ChannelWriter::write(const double* pose, const Placement& placement, double* row) const {
     std::copy(rest_.begin(), rest_.end(), row);
-    const Vec3 local = above_inverse_ * (canonical.invert(Vec3(pose[0], pose[1], pose[2])) - above_position_);
+    const Vec3 local = above_inverse_ * (placement.invert(Vec3(pose[0], pose[1], pose[2])) - above_position_);
     for (std::size_t a = 0; a < 3; ++a)
         if (root_translation_[a] >= 0)
             row[root_translation_[a]] = local[static_cast<Eigen::Index>(a)] - root_offset_[static_cast<Eigen::Index>(a)];
-    const Quat root_rotation = above_inverse_ * canonical.invert(swing_twist_exp(Vec3(pose[3], pose[4], pose[5])));
+    const Quat root_rotation = above_inverse_ * placement.invert(swing_twist_exp(Vec3(pose[3], pose[4], pose[5])));
     if (root_rotates_) write_rotation(joints_.front(), root_rotation, row);
     for (std::size_t k = 1; k < joints_.size(); ++k) {
         const double* v = pose + joints_[k].pose_row;
@@ -256,11 +257,12 @@ void ChannelWriter::write(const double* pose, const Canonicalization& canonical,
     }
 }
 
-void ChannelWriter::write_local(const double* pose, const Canonicalization& canonical, LocalPose& out) const {
-    std::copy(rest_rotations_.begin(), rest_rotations_.end(), out.rotations.begin());
-    std::copy(rest_translations_.begin(), rest_translations_.end(), out.translations.begin());
+void ChannelWriter::write_local(const double* pose, const Placement& placement, LocalPose& out) const {
+    // Whole arrays at once (std::copy moved the Vec3s a double at a time).
+    std::memcpy(static_cast<void*>(out.rotations.data()), rest_rotations_.data(), rest_rotations_.size() * sizeof(Quat));
+    std::memcpy(static_cast<void*>(out.translations.data()), rest_translations_.data(), rest_translations_.size() * sizeof(Vec3));
     // The motion root: as write() forms its channels, then as Skeleton::local_translation reads them.
-    const Vec3 local = above_inverse_ * (canonical.invert(Vec3(pose[0], pose[1], pose[2])) - above_position_);
+    const Vec3 local = above_inverse_ * (placement.invert(Vec3(pose[0], pose[1], pose[2])) - above_position_);
     Vec3& t = out.translations[motion_root_];
     for (std::size_t a = 0; a < 3; ++a)
         if (root_translation_[a] >= 0) {
@@ -269,7 +271,11 @@ void ChannelWriter::write_local(const double* pose, const Canonicalization& cano
             t[e] = adds_ ? offsets_[motion_root_][e] + value : value;
         }
     if (root_rotates_) {
-        const Quat root_rotation = above_inverse_ * canonical.invert(swing_twist_exp(Vec3(pose[3], pose[4], pose[5])));
+        // swing_twist_exp with both exp maps through exp_maps (libm's sincos was 5 % of a local pose).
+        const double x[4] = {pose[3], 0.0, 0.0, 0.0}, y[4] = {0.0, pose[4], 0.0, 0.0}, z[4] = {pose[5], 0.0, 0.0, 0.0};
+        Quat q[4];
+        exp_maps(x, y, z, 2, q);
+        const Quat root_rotation = above_inverse_ * placement.invert((q[0] * q[1]).normalized());
         out.rotations[motion_root_] = channel_rotation(joints_.front(), root_rotation);
     }
     // The joints' exp maps in chunks (exp_maps: polynomial sincos, not libm's; ~1e-16 from exp_map),

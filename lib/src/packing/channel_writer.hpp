@@ -21,6 +21,18 @@
 
 namespace mocapdb::packing::detail {
 
+/// A clip's canonicalization with its heading rotation formed once (Canonicalization::invert forms
+/// it, a sincos, on every call); invert gives Canonicalization::invert's bits (the same operations).
+struct Placement {
+    Placement() = default;
+    explicit Placement(const Canonicalization& c) : heading(Eigen::AngleAxisd(c.yaw, Vec3::UnitY())), translation(c.translation) {}
+    Vec3 invert(const Vec3& p) const { return heading * p + translation; }
+    Quat invert(const Quat& q) const { return heading * q; }
+
+    Quat heading = Quat::Identity();
+    Vec3 translation = Vec3::Zero();
+};
+
 class ChannelWriter {
 public:
     ChannelWriter() = default;
@@ -32,15 +44,15 @@ public:
     void fold_constants(const std::vector<bool>& varies, const double* pose);
 
     /// Writes the channel row (channel_count values) of `pose` (the skeleton's pose-vector dofs)
-    /// placed back in the world by `canonical`. Const: one writer serves any number of threads.
-    void write(const double* pose, const Canonicalization& canonical, double* row) const;
+    /// placed back in the world by `placement`. Const: one writer serves any number of threads.
+    void write(const double* pose, const Placement& placement, double* row) const;
 
     /// The same frame as local joint transforms (LocalPose, group_decoder.hpp): every joint's rotation
     /// equals, to rounding (~1e-15), Skeleton::local_rotation of the row write() gives (up to sign),
     /// its translation Skeleton::local_translation; no Euler angles are formed (exp map -> quaternion,
     /// projected onto the joint's channel axes where it has fewer than three). out must already hold
     /// size() entries in both vectors (not resized here). Non-root position channels: set_position.
-    void write_local(const double* pose, const Canonicalization& canonical, LocalPose& out) const;
+    void write_local(const double* pose, const Placement& placement, LocalPose& out) const;
     /// A non-root position channel (row column `column`) with value `value` into out's translations.
     void set_position(int column, double value, LocalPose& out) const;
     /// Joints of the skeleton (LocalPose sizes).

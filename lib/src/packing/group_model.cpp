@@ -242,7 +242,7 @@ void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, 
 
 void GroupModel::row_of(const ClipEntry& clip, const double* p, double* row) const {
     const SkeletonEntry& entry = skeletons[clip.skeleton];
-    entry.writer.write(p, clip.canonical, row);
+    entry.writer.write(p, clip.placement, row);
     for (std::size_t e = 0; e < extra_columns.size(); ++e) row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
 }
 
@@ -250,7 +250,7 @@ void GroupModel::local_of(const ClipEntry& clip, const double* p, LocalPose& out
     const SkeletonEntry& entry = skeletons[clip.skeleton];
     out.rotations.resize(entry.writer.size());
     out.translations.resize(entry.writer.size());
-    entry.writer.write_local(p, clip.canonical, out);
+    entry.writer.write_local(p, clip.placement, out);
     for (std::size_t e = 0; e < extra_columns.size(); ++e)
         entry.writer.set_position(extra_columns[e], p[static_cast<std::size_t>(pose_dofs) + e], out);
 }
@@ -526,8 +526,10 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
         if (c.frames == 0) throw Error("packed group: clip without frames");
         const double tx = r.f32();  // one read per statement: argument order is unspecified
         const double tz = r.f32();
-        c.canonical.translation = Vec3(tx, 0.0, tz);
-        c.canonical.yaw = r.f32();
+        Canonicalization canonical;
+        canonical.translation = Vec3(tx, 0.0, tz);
+        canonical.yaw = r.f32();
+        c.set_canonical(canonical);
         c.first_window = window_total;
         window_total += (c.frames + static_cast<std::uint64_t>(window) - 1) / static_cast<std::uint64_t>(window);
     }

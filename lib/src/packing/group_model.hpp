@@ -45,7 +45,12 @@ struct SkeletonEntry {
 struct ClipEntry {
     std::uint32_t skeleton = 0;
     std::uint64_t frames = 0;
-    Canonicalization canonical;  ///< float32-rounded
+    Canonicalization canonical;  ///< float32-rounded (set_canonical)
+    Placement placement;         ///< canonical's, for the channel writer
+    void set_canonical(const Canonicalization& c) {
+        canonical = c;
+        placement = Placement(c);
+    }
     std::uint64_t first_window = 0;  ///< index into windows
 };
 

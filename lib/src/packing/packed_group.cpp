@@ -218,8 +218,10 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         e.skeleton = static_cast<std::uint32_t>(k);
         e.frames = clips[i]->frame_count();
         const Canonicalization c = canonicalization_of(*clips[i]);
-        e.canonical.translation = Vec3(static_cast<float>(c.translation.x()), 0.0, static_cast<float>(c.translation.z()));
-        e.canonical.yaw = static_cast<float>(c.yaw);
+        Canonicalization rounded;
+        rounded.translation = Vec3(static_cast<float>(c.translation.x()), 0.0, static_cast<float>(c.translation.z()));
+        rounded.yaw = static_cast<float>(c.yaw);
+        e.set_canonical(rounded);
         e.first_window = window_total;
         window_total += (e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W);
     }
