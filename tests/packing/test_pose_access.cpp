@@ -135,10 +135,11 @@ TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bi
     check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
 }
 
-TEST_CASE("Local poses of two-channel joints: every rotation order, absent axis and bone axis", "[packing]") {
-    // 18 joints with two rotation channels (6 orders x 3 absent axes), each under its own bone axis
-    // C, the middle angle swept past ±90° (the other Euler family) and the others over ±150°: the
-    // local poses (four joints at a time in their Euler frames) equal the row's transforms. Frames land
+TEST_CASE("Local poses of one- and two-channel joints: every rotation order, absent axis and bone axis", "[packing]") {
+    // 18 joints with two rotation channels (6 orders x 3 absent axes), 3 with one (x, y, z) and one
+    // with three, each under its own bone axis C, the middle angle swept past ±90° (the other Euler
+    // family) and the others over ±150°: the local poses (four joints of a kind at a time, partial
+    // groups included) equal the row's transforms. Frames land
     // within 1e-4 of ±90° (gimbal lock), where splitting a rotation into two angles amplifies rounding
     // by about 1 / cos b (both here and in the row's atan2): measured up to 2e-12 there, hence 1e-10;
     // a wrong family, axis or sign is off by O(1).
@@ -161,6 +162,17 @@ TEST_CASE("Local poses of two-channel joints: every rotation order, absent axis 
             j.axis = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
             joints.push_back(j);
         }
+    for (int axis = 0; axis < 4; ++axis) {  // 3: three channels
+        Joint j;
+        j.name = "j" + std::to_string(joints.size());
+        j.parent = static_cast<int>(joints.size()) - 1;
+        j.offset = Vec3(0.0, 10.0, 0.0);
+        j.rotation_order = EulerOrder::YZX;
+        for (int a = 0; a < 3; ++a)
+            if (a == axis || axis == 3) j.channels.push_back(static_cast<ChannelType>(3 + a));
+        j.axis = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+        joints.push_back(j);
+    }
     Joint end;
     end.name = "end";
     end.parent = static_cast<int>(joints.size()) - 1;

@@ -235,12 +235,17 @@ void ChannelWriter::fold_constants(const std::vector<bool>& varies, const double
 void ChannelWriter::plan_lanes() {
     if (joints_.empty()) return;
     const auto two = std::stable_partition(joints_.begin() + 1, joints_.end(), [](const RotationJoint& j) { return j.present == 2; });
+    const auto one = std::stable_partition(two, joints_.end(), [](const RotationJoint& j) { return j.present == 1; });
     two_channel_joints_ = static_cast<std::size_t>(two - joints_.begin()) - 1;
+    one_channel_joints_ = static_cast<std::size_t>(one - two);
     two_channel_lanes_.assign((two_channel_joints_ + 3) / 4, TwoChannelLanes{});
     for (std::size_t k = 0; k < two_channel_joints_; ++k) {
         const RotationJoint& j = joints_[1 + k];
         set_lane(two_channel_lanes_[k / 4], static_cast<int>(k % 4), j.euler_frame, j.missing);
     }
+    one_channel_lanes_.assign((one_channel_joints_ + 3) / 4, OneChannelLanes{});
+    for (std::size_t k = 0; k < one_channel_joints_; ++k)
+        for (int a = 0; a < 3; ++a) one_channel_lanes_[k / 4].axis[a][k % 4] = joints_[1 + two_channel_joints_ + k].twist_axis[a];
 }
 
 void ChannelWriter::write(const double* pose, const Placement& placement, double* row) const {
@@ -271,63 +276,60 @@ void ChannelWriter::write_local(const double* pose, const Placement& placement, 
             t[e] = adds_ ? offsets_[motion_root_][e] + value : value;
         }
     if (root_rotates_) {
-        // swing_twist_exp with both exp maps through exp_maps (libm's sincos was 5 % of a local pose).
-        const double x[4] = {pose[3], 0.0, 0.0, 0.0}, y[4] = {0.0, pose[4], 0.0, 0.0}, z[4] = {pose[5], 0.0, 0.0, 0.0};
-        Quat q[4];
-        exp_maps(x, y, z, 2, q);
-        const Quat root_rotation = above_inverse_ * placement.invert((q[0] * q[1]).normalized());
+        // swing_twist_exp with both exp maps in lanes (libm's sincos was 5 % of a local pose).
+        Lane4 w, x, y, z;
+        exp_maps(Lane4{pose[3], 0.0, 0.0, 0.0}, Lane4{0.0, pose[4], 0.0, 0.0}, Lane4{pose[5], 0.0, 0.0, 0.0}, w, x, y, z);
+        const Quat swing(w[0], x[0], y[0], z[0]), twist(w[1], x[1], y[1], z[1]);
+        const Quat root_rotation = above_inverse_ * placement.invert((swing * twist).normalized());
         out.rotations[motion_root_] = channel_rotation(joints_.front(), root_rotation);
     }
-    // The joints' exp maps in chunks (exp_maps: polynomial sincos, not libm's; ~1e-16 from exp_map),
-    // those of joints with two channels taken in their Euler frames and projected four at a time. The
-    // chunk is a multiple of 4, so their lanes never straddle two chunks.
-    constexpr std::size_t kChunk = 16;
-    double x[kChunk], y[kChunk], z[kChunk];
-    Quat q[kChunk];
-    const std::size_t two_end = 1 + two_channel_joints_;  // joints_[1 .. two_end) have two channels
-    for (std::size_t k0 = 1; k0 < joints_.size(); k0 += kChunk) {
-        const std::size_t n = std::min(kChunk, joints_.size() - k0);
-        for (std::size_t i = 0; i < n; ++i) {
-            const RotationJoint& j = joints_[k0 + i];
+    // The other joints four at a time (lanes of one kind of joint), each one's exp map, then its
+    // projection onto its channels. Joints with two channels take their exp maps in their Euler frames.
+    const auto put = [&out](const RotationJoint& j, const Lane4& w, const Lane4& x, const Lane4& y, const Lane4& z, std::size_t l) {
+        out.rotations[static_cast<std::size_t>(j.joint)] = Quat(w[l], x[l], y[l], z[l]);
+    };
+    std::size_t first = 1;
+    for (std::size_t g = 0; g < two_channel_lanes_.size(); ++g) {
+        Vec3 a[4];
+        for (std::size_t l = 0; l < 4; ++l) {
+            const RotationJoint& j = lane_joint(first, two_channel_joints_, g, l);
             const double* v = pose + j.pose_row;
-            if (k0 + i < two_end) {
-                const Vec3 a = j.euler_frame * Vec3(v[0], v[1], v[2]);
-                x[i] = a.x();
-                y[i] = a.y();
-                z[i] = a.z();
+            a[l] = j.euler_frame * Vec3(v[0], v[1], v[2]);
+        }
+        Lane4 w, x, y, z, ow, ox, oy, oz;
+        exp_maps(Lane4{a[0].x(), a[1].x(), a[2].x(), a[3].x()}, Lane4{a[0].y(), a[1].y(), a[2].y(), a[3].y()},
+                 Lane4{a[0].z(), a[1].z(), a[2].z(), a[3].z()}, w, x, y, z);
+        const unsigned left = project_two_channels(two_channel_lanes_[g], w, x, y, z, ow, ox, oy, oz);
+        for (std::size_t l = 0; l < 4 && 4 * g + l < two_channel_joints_; ++l) {
+            const RotationJoint& j = joints_[first + 4 * g + l];
+            if ((left >> l & 1u) != 0) {  // near gimbal lock or the family boundary: as channel_rotation
+                const double* v = pose + j.pose_row;
+                out.rotations[static_cast<std::size_t>(j.joint)] = channel_rotation(j, exp_map(Vec3(v[0], v[1], v[2])));
             } else {
-                x[i] = v[0];
-                y[i] = v[1];
-                z[i] = v[2];
+                put(j, ow, ox, oy, oz, l);
             }
         }
-        const std::size_t lanes = std::min(kChunk, (n + 3) / 4 * 4);
-        for (std::size_t i = n; i < lanes; ++i) x[i] = y[i] = z[i] = 0.0;
-        exp_maps(x, y, z, lanes, q);
-        const std::size_t first_other = two_end > k0 ? std::min(n, two_end - k0) : 0;  // in this chunk
-        for (std::size_t i = 0; i < first_other; i += 4) {
-            const Lane4 w{q[i].w(), q[i + 1].w(), q[i + 2].w(), q[i + 3].w()};
-            const Lane4 qx{q[i].x(), q[i + 1].x(), q[i + 2].x(), q[i + 3].x()};
-            const Lane4 qy{q[i].y(), q[i + 1].y(), q[i + 2].y(), q[i + 3].y()};
-            const Lane4 qz{q[i].z(), q[i + 1].z(), q[i + 2].z(), q[i + 3].z()};
-            Lane4 ow, ox, oy, oz;
-            const unsigned left = project_two_channels(two_channel_lanes_[(k0 - 1 + i) / 4], w, qx, qy, qz, ow, ox, oy, oz);
-            const std::size_t m = std::min<std::size_t>(4, first_other - i);
-            for (std::size_t l = 0; l < m; ++l) {
-                const RotationJoint& j = joints_[k0 + i + l];
-                Quat& r = out.rotations[static_cast<std::size_t>(j.joint)];
-                if ((left >> l & 1u) != 0) {  // near gimbal lock or the family boundary: as channel_rotation
-                    const double* v = pose + j.pose_row;
-                    r = channel_rotation(j, exp_map(Vec3(v[0], v[1], v[2])));
-                } else {
-                    r = Quat(ow[l], ox[l], oy[l], oz[l]);
-                }
-            }
-        }
-        for (std::size_t i = first_other; i < n; ++i) {
-            const RotationJoint& j = joints_[k0 + i];
-            out.rotations[static_cast<std::size_t>(j.joint)] = channel_rotation(j, q[i]);
-        }
+    }
+    first += two_channel_joints_;
+    // Exp maps of the joints [first, first + count) in lane group g.
+    const auto exp_lanes = [&](std::size_t count, std::size_t g, Lane4& w, Lane4& x, Lane4& y, Lane4& z) {
+        const double* v[4];
+        for (std::size_t l = 0; l < 4; ++l) v[l] = pose + lane_joint(first, count, g, l).pose_row;
+        exp_maps(Lane4{v[0][0], v[1][0], v[2][0], v[3][0]}, Lane4{v[0][1], v[1][1], v[2][1], v[3][1]},
+                 Lane4{v[0][2], v[1][2], v[2][2], v[3][2]}, w, x, y, z);
+    };
+    for (std::size_t g = 0; g < one_channel_lanes_.size(); ++g) {
+        Lane4 w, x, y, z, ow, ox, oy, oz;
+        exp_lanes(one_channel_joints_, g, w, x, y, z);
+        project_one_channel(one_channel_lanes_[g], w, x, y, z, ow, ox, oy, oz);
+        for (std::size_t l = 0; l < 4 && 4 * g + l < one_channel_joints_; ++l) put(joints_[first + 4 * g + l], ow, ox, oy, oz, l);
+    }
+    first += one_channel_joints_;
+    const std::size_t three = joints_.size() - first;  // three channels: any rotation, no projection
+    for (std::size_t g = 0; 4 * g < three; ++g) {
+        Lane4 w, x, y, z;
+        exp_lanes(three, g, w, x, y, z);
+        for (std::size_t l = 0; l < 4 && 4 * g + l < three; ++l) put(joints_[first + 4 * g + l], w, x, y, z, l);
     }
 }
 

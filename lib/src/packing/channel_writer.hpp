@@ -17,7 +17,7 @@
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/motion/skeleton.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
-#include "two_channel_lanes.hpp"
+#include "channel_lanes.hpp"
 
 namespace mocapdb::packing::detail {
 
@@ -71,7 +71,7 @@ private:
         int present = 0;            ///< rotation channels (1..3; 0 for a motion root without any)
         int missing = -1;           ///< with two channels: index (0..2) in the order of the absent axis
         Vec3 twist_axis = Vec3::UnitX();  ///< with one channel: C · its axis (local frame)
-        Mat3 euler_frame = Mat3::Identity();  ///< with two channels: A (two_channel_lanes.hpp)
+        Mat3 euler_frame = Mat3::Identity();  ///< with two channels: A (channel_lanes.hpp)
     };
     /// The Euler angles write_rotation writes (in the order's axis order; absent axes included).
     static void choose_angles(const RotationJoint& j, const Quat& local, double* angles);
@@ -80,9 +80,15 @@ private:
     static Quat euler_rotation(const RotationJoint& j, const double* angles);
     /// The rotation of the channels write_rotation would write for `local`, without forming angles.
     static Quat channel_rotation(const RotationJoint& j, const Quat& local);
-    /// Puts the joints with two rotation channels (motion root aside) first after the root, and
-    /// fills their lanes.
+    /// Orders the joints after the motion root by their rotation channels (two, one, three) and fills
+    /// the lanes of those with two and one.
     void plan_lanes();
+    /// Lane l of group g of the joints joints_[first .. first + count): the group's first joint in
+    /// lanes past the end (computed, dropped).
+    const RotationJoint& lane_joint(std::size_t first, std::size_t count, std::size_t g, std::size_t l) const {
+        const std::size_t k = 4 * g + l;
+        return joints_[first + (k < count ? k : 4 * g)];
+    }
 
     std::vector<double> rest_;             ///< channel row of the rest pose
     std::array<int, 3> root_translation_{-1, -1, -1};
@@ -91,8 +97,10 @@ private:
     Vec3 above_position_ = Vec3::Zero();
     bool root_rotates_ = false;
     std::vector<RotationJoint> joints_;    ///< motion root first (pose row 3), then the others
-    std::size_t two_channel_joints_ = 0;   ///< joints_[1 .. 1 + this) have two rotation channels
+    std::size_t two_channel_joints_ = 0;   ///< joints_[1 .. 1 + this) have two rotation channels,
+    std::size_t one_channel_joints_ = 0;   ///< the next this many one; the rest three
     std::vector<TwoChannelLanes> two_channel_lanes_;  ///< those joints four at a time
+    std::vector<OneChannelLanes> one_channel_lanes_;
     // LocalPose: rest transforms of every joint (folded constant joints at their constant rotation),
     // the motion root's, and what a position channel column moves.
     std::vector<Quat> rest_rotations_;

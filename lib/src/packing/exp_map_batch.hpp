@@ -6,13 +6,12 @@
 // 1 ulp), so a quaternion differs from exp_map's by ~1e-16 per component; not bit-identical to it,
 // so only for outputs whose contract is "equal to ~1e-15" (LocalPose), never for channel rows (whose
 // bits the encoder verified). Pure function, thread-safe, no allocation.
-#include <cstddef>
-
-#include "mocapdb/core/types.hpp"
+#include "lane4.hpp"
 
 namespace mocapdb::packing::detail {
 
-/// out[i] = exp_map((x[i], y[i], z[i])) to ~1e-16 per component, i < n; angles up to ~1e6 rad.
-void exp_maps(const double* x, const double* y, const double* z, std::size_t n, Quat* out);
+/// exp_map((x, y, z)) of four rotation vectors (by lane) as quaternion components w, qx, qy, qz, to
+/// ~1e-16 per component; angles up to ~1e6 rad.
+void exp_maps(Lane4 x, Lane4 y, Lane4 z, Lane4& w, Lane4& qx, Lane4& qy, Lane4& qz);
 
 }  // namespace mocapdb::packing::detail

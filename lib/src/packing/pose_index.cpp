@@ -17,19 +17,17 @@ unsigned bits_for(std::uint64_t n) {
     return b;
 }
 
-// A word: dof row | time column << row_bits | (level + bias) << place_bits, bias = 2^(31 - place_bits).
-// It holds levels with -bias < level < bias; a biased level of 0 is the escape: the level is the
-// window's next exception.
-std::int64_t level_bias(unsigned place_bits) { return std::int64_t{1} << (31 - place_bits); }
-
+// A word: dof row | time column << row_bits | level << place_bits, the level a two's-complement
+// field of 32 - place_bits bits (read back by an arithmetic shift). Coded levels are never 0, so a
+// field of 0 is the escape: the level is the window's next exception.
 bool fits(std::int32_t level, unsigned place_bits) {
-    const std::int64_t bias = level_bias(place_bits);
-    return level > -bias && level < bias;
+    const std::int64_t half = std::int64_t{1} << (31 - place_bits);
+    return level >= -half && level < half;
 }
 
 std::uint32_t word_of(std::uint32_t row, std::uint32_t column, std::int32_t level, unsigned row_bits, unsigned place_bits) {
-    const auto biased = fits(level, place_bits) ? static_cast<std::uint32_t>(std::int64_t{level} + level_bias(place_bits)) : 0u;
-    return row | (column << row_bits) | (biased << place_bits);
+    const std::uint32_t field = fits(level, place_bits) ? static_cast<std::uint32_t>(level) << place_bits : 0u;
+    return row | (column << row_bits) | field;
 }
 
 // y[row] += (level · step) · v[column] for each word, in the stored order: for every row its terms in
@@ -38,11 +36,10 @@ void accumulate(const std::uint32_t* words, std::size_t count, const std::int32_
                 unsigned place_bits, double step, const double* v, double* y) {
     const std::uint32_t row_mask = (1u << row_bits) - 1;
     const std::uint32_t column_mask = (1u << (place_bits - row_bits)) - 1;
-    const std::int64_t bias = level_bias(place_bits);
     for (std::size_t k = 0; k < count; ++k) {
         const std::uint32_t w = words[k];
-        const std::int64_t biased = w >> place_bits;
-        const std::int64_t level = biased != 0 ? biased - bias : *exceptions++;
+        const std::int32_t field = static_cast<std::int32_t>(w) >> place_bits;
+        const std::int32_t level = field != 0 ? field : *exceptions++;
         y[w & row_mask] += static_cast<double>(level) * step * v[(w >> row_bits) & column_mask];
     }
 }

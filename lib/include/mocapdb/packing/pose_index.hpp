@@ -59,10 +59,10 @@ private:
     std::vector<Window> windows_;        ///< per window of the group (raw windows: count 0, unused)
     std::vector<double> time_rows_;      ///< time basis, row t contiguous (W x W)
     static constexpr unsigned kMaxPlaceBits = 20;  ///< leaves 12 bits of a word for a level
-    unsigned row_bits_ = 0;              ///< word: dof row | time column << row_bits_ | level + bias << place_bits_
+    unsigned row_bits_ = 0;              ///< word: dof row | time column << row_bits_ | level << place_bits_
     unsigned place_bits_ = 0;
     std::vector<std::uint32_t> words_;   ///< every coded window's nonzero coefficients, window by window
-    std::vector<std::int32_t> exceptions_;  ///< levels outside their word's range (escape: biased 0)
+    std::vector<std::int32_t> exceptions_;  ///< levels outside their word's range (escape: a field of 0)
 };
 
 }  // namespace mocapdb::packing

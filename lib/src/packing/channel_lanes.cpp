@@ -1,4 +1,4 @@
-#include "two_channel_lanes.hpp"
+#include "channel_lanes.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -47,6 +47,19 @@ inline void half_angles(Lane4 x, Lane4 y, Lane4& c, Lane4& s) {
 }
 
 }  // namespace
+
+void project_one_channel(const OneChannelLanes& lanes, Lane4 w, Lane4 x, Lane4 y, Lane4 z, Lane4& out_w, Lane4& out_x,
+                         Lane4& out_y, Lane4& out_z) {
+    const Lane4 s = x * lanes.axis[0] + y * lanes.axis[1] + z * lanes.axis[2];
+    const Lane4 n = sqrt4(w * w + s * s);
+    const Mask4 zero = n == 0.0;  // a half turn about an axis at right angles: no twist
+    const Lane4 safe = zero ? splat(1.0) : n;
+    const Lane4 f = s / safe;
+    out_w = zero ? splat(1.0) : w / safe;
+    out_x = zero ? splat(0.0) : f * lanes.axis[0];
+    out_y = zero ? splat(0.0) : f * lanes.axis[1];
+    out_z = zero ? splat(0.0) : f * lanes.axis[2];
+}
 
 Mat3 euler_frame(const int* axes, double parity, const Quat& axis) {
     const Mat3 inverse = axis.conjugate().toRotationMatrix();
