@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <random>
@@ -52,10 +53,10 @@ struct LocalError {
 // capacity so that windows are evicted and decoded again) equal decode_window's row; decode_local_pose,
 // the index's and the sampler's local_pose agree bit for bit, and their rotations and translations are
 // the row's local transforms (Skeleton::local_rotation / local_translation) to 1e-12 (rotations to
-// `rotation_tolerance`). Returns the levels the indexes held apart (too large for their words) over every E.
-std::size_t check_every_frame(const std::vector<Clip>& clips, const std::vector<double>& errors = {1.0, 0.5, 0.1},
+// `rotation_tolerance`). Returns the indexes' blocks of 8-, 16- and 32-bit levels, over every E.
+std::array<std::size_t, 3> check_every_frame(const std::vector<Clip>& clips, const std::vector<double>& errors = {1.0, 0.5, 0.1},
                               double rotation_tolerance = 1e-12) {
-    std::size_t escaped = 0;
+    std::array<std::size_t, 3> widths{};
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
     for (double E : errors) {
@@ -63,7 +64,7 @@ std::size_t check_every_frame(const std::vector<Clip>& clips, const std::vector<
         options.max_error_cm = E;
         const GroupDecoder decoder(pack_group(ptrs, options).bytes);
         const PoseIndex index(decoder);
-        escaped += index.escaped_count();
+        for (std::size_t w = 0; w < 3; ++w) widths[w] += index.block_widths()[w];
         PoseSampler sampler(decoder, 2);
         const std::size_t channels = decoder.skeleton(0)->channel_count();
         REQUIRE(sampler.channel_count() == channels);
@@ -120,7 +121,7 @@ std::size_t check_every_frame(const std::vector<Clip>& clips, const std::vector<
         CHECK(error.translation < 1e-12);
         CHECK(error.unit < 1e-12);
     }
-    return escaped;
+    return widths;
 }
 
 }  // namespace
@@ -132,7 +133,9 @@ TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bi
 
 TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
-    check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
+    const auto widths = check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
+    CHECK(widths[0] > 0);  // the index's blocks of 8- and 16-bit levels both decoded
+    CHECK(widths[1] > 0);
 }
 
 TEST_CASE("Local poses of one- and two-channel joints: every rotation order, absent axis and bone axis", "[packing]") {
@@ -203,12 +206,11 @@ TEST_CASE("Local poses of one- and two-channel joints: every rotation order, abs
     check_every_frame({clip}, {1.0, 0.1}, 1e-10);
 }
 
-TEST_CASE("PoseIndex: levels too large for a 32-bit word decode through the escape, same bits", "[packing][shared]") {
+TEST_CASE("PoseIndex: blocks with levels beyond 16 bits keep 32-bit cells, same bits", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
-    // A bound far below any codec's use makes quantizer steps tiny and the largest levels exceed the
-    // 2^19 a word of this grid holds.
-    const std::size_t escaped = check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01"}, 64), {0.0005});
-    CHECK(escaped > 0);
+    // A bound far below any codec's use makes quantizer steps tiny and the largest levels exceed ±32767.
+    const auto widths = check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01"}, 64), {0.0005});
+    CHECK(widths[2] > 0);
 }
 
 TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are refused", "[packing]") {
@@ -252,7 +254,7 @@ TEST_CASE("PoseIndex: bad indices are refused; threads sharing one index decode 
     }
     const GroupDecoder decoder(pack_group({&clips[0], &clips[1], &clips[2]}, PackOptions{}).bytes);
     const PoseIndex index(decoder);
-    CHECK(index.memory_bytes() >= index.coefficient_count() * 4);
+    CHECK(index.memory_bytes() >= index.coefficient_count() * 2);
     std::vector<double> row(decoder.skeleton(0)->channel_count());
     CHECK_THROWS_AS(index.pose(0, decoder.frame_count(0), row.data()), InvalidArgument);
     CHECK_THROWS_AS(index.pose(3, 0, row.data()), InvalidArgument);

@@ -1,21 +1,28 @@
 #pragma once
-// Random access to any pose of a packed group in a few microseconds: the group's windows
-// range-decoded once, at construction, and kept in memory sparse (per window its nonzero quantized
-// coefficients with their places in the grid, time column by time column). A pose then costs its
-// frame's products only (y = G v_t over the window's nonzero coefficients, x = U y, dofs to channels
-// or local transforms): no range decoding (GroupDecoder::decode_pose spends 15-60 µs there) and no
-// window cache to miss (RESULTS.md: 1.3-3 µs per local pose at 1 cm on the shared rigs). The trade
-// is memory: memory_bytes() is about 5x the packed bytes (docs/packing.md).
+// Random access to any pose of a packed group in a couple of microseconds: the group's windows
+// range-decoded once, at construction, and kept in memory as small dense blocks. A pose then costs
+// its frame's products only (y = G v_t, x = U y, dofs to channels or local transforms): no range
+// decoding (GroupDecoder::decode_pose spends 15-60 µs there) and no window cache to miss
+// (RESULTS.md: about 1.5 µs per local pose at 1 cm on the 31-joint ASF rig).
+//
+// Layout: a window's coefficient grid G (Da dof rows by W time columns, rows and columns ordered by
+// energy, so the nonzeros crowd the top left) is cut into blocks of 16 dof rows; a block keeps its
+// quantized levels for the time columns up to its last nonzero one, 16 per column, as 8-, 16- or
+// 32-bit integers (the fewest bits that hold its largest level). y = G v_t then runs four rows to a
+// vector with no index arithmetic; the zeros kept cost about 2-3 cells per nonzero coefficient at
+// 1 cm and 1.3-1.6 at 0.1 cm (docs/packing.md).
 //
 // Contract: pose / local_pose give exactly the bits of GroupDecoder::decode_pose / decode_local_pose
-// (the bits the encoder verified against the bound). InvalidArgument on a bad clip or frame;
-// mocapdb::Error from the constructor on malformed window bytes (every window is decoded there).
+// (the bits the encoder verified against the bound): every y element sums its terms in ascending
+// time column as GroupModel::frame_pose does, and the zero terms change no bits. InvalidArgument on
+// a bad clip or frame; mocapdb::Error from the constructor on malformed window bytes (every window
+// is decoded there).
 // Ownership and threads: refers to `decoder` (must outlive the index; only read). Immutable after
 // construction; every const method is thread-safe (per-thread scratch, allocated on a thread's first
 // call, none per pose after that).
-// Memory: 4 bytes per nonzero coefficient, 4 more per level too large for its word (rare), 32 per
-// window and the W x W time basis. Holds groups of up to 2^20 coefficients
-// per window (Da x W: e.g. 4096 varying dofs at W = 256); InvalidArgument beyond.
+// Memory: memory_bytes(); a few bytes per nonzero coefficient (docs/packing.md), plus the W x W time
+// basis. Windows of up to 16383 frames.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -36,18 +43,19 @@ public:
 
     /// Bytes this index holds (the decoder's packed bytes not included).
     std::size_t memory_bytes() const;
-    /// Nonzero coefficients held (over every coded window).
-    std::size_t coefficient_count() const { return words_.size(); }
-    /// Levels too large for their words, held apart.
-    std::size_t escaped_count() const { return exceptions_.size(); }
+    /// Nonzero coefficients over every coded window.
+    std::size_t coefficient_count() const { return coefficients_; }
+    /// Blocks of 16 dof rows held with 8-, 16- and 32-bit levels (over every coded window).
+    const std::array<std::size_t, 3>& block_widths() const { return block_widths_; }
 
 private:
+    static constexpr std::size_t kBlockRows = 16;  ///< dof rows per block (four vectors of 4)
+    static constexpr unsigned kWidthShift = 14;    ///< block entry: time columns | width code << this
     struct Window {
-        std::uint64_t begin = 0;  ///< first word of the window
-        std::uint64_t exceptions = 0;  ///< its first level too large for its word, in exceptions_
-        std::uint32_t count = 0;  ///< its nonzero coefficients
-        std::uint32_t rows = 0;   ///< dof rows up to the last nonzero one (+1)
-        double step = 0.0;        ///< quantizer step
+        std::uint64_t begin = 0;    ///< first byte of its blocks' cells in cells_
+        std::uint64_t blocks = 0;   ///< first of its block entries in blocks_
+        double step = 0.0;          ///< quantizer step
+        std::uint32_t rows = 0;     ///< dof rows up to the last nonzero one (+1); 0: raw or all zero
     };
     /// Frame t's dofs of coded window `global` into the scratch's pose buffer.
     const double* dofs(std::size_t clip, std::size_t global, std::size_t t) const;
@@ -56,13 +64,12 @@ private:
     const double* frame_dofs(std::size_t clip, std::size_t frame) const;
 
     const GroupDecoder* decoder_;
-    std::vector<Window> windows_;        ///< per window of the group (raw windows: count 0, unused)
-    std::vector<double> time_rows_;      ///< time basis, row t contiguous (W x W)
-    static constexpr unsigned kMaxPlaceBits = 20;  ///< leaves 12 bits of a word for a level
-    unsigned row_bits_ = 0;              ///< word: dof row | time column << row_bits_ | level << place_bits_
-    unsigned place_bits_ = 0;
-    std::vector<std::uint32_t> words_;   ///< every coded window's nonzero coefficients, window by window
-    std::vector<std::int32_t> exceptions_;  ///< levels outside their word's range (escape: a field of 0)
+    std::vector<Window> windows_;               ///< per window of the group (raw windows: rows 0, unused)
+    std::vector<double> time_rows_;             ///< time basis, row t contiguous (W x W)
+    std::vector<std::uint16_t> blocks_;         ///< per window, per block: time columns kept | width code (0, 1, 2: 8, 16, 32 bits) << kWidthShift
+    std::vector<std::uint8_t> cells_;           ///< per block, per column, kBlockRows levels of its width
+    std::size_t coefficients_ = 0;
+    std::array<std::size_t, 3> block_widths_{};
 };
 
 }  // namespace mocapdb::packing
