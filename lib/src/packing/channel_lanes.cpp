@@ -2,25 +2,11 @@
 
 #include <cmath>
 #include <cstdint>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
 
 namespace mocapdb::packing::detail {
 namespace {
 
 typedef std::int64_t Mask4 __attribute__((vector_size(32)));
-
-inline Lane4 splat(double v) { return Lane4{v, v, v, v}; }
-
-inline Lane4 sqrt4(Lane4 v) {
-#if defined(__AVX__)
-    return _mm256_sqrt_pd(v);
-#else
-    for (int i = 0; i < 4; ++i) v[i] = std::sqrt(v[i]);
-    return v;
-#endif
-}
 
 inline Lane4 abs4(Lane4 v) {
     return reinterpret_cast<Lane4>(reinterpret_cast<Mask4>(v) & Mask4{INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX});

@@ -13,16 +13,6 @@
 namespace mocapdb::packing::detail {
 namespace {
 
-// Lane-wise square root, correctly rounded as std::sqrt.
-inline Lane4 sqrt4(Lane4 v) {
-#if defined(__AVX__)
-    return _mm256_sqrt_pd(v);
-#else
-    for (int i = 0; i < 4; ++i) v[i] = std::sqrt(v[i]);
-    return v;
-#endif
-}
-
 // s, c = sin, cos of x >= 0 (half angles), lane by lane: x = j·π/2 + r, |r| <= π/4, r from three
 // parts of π/2 (the first two with few significant bits, so j·part is exact for the angles met here),
 // Cephes' sin/cos polynomials on r, the quadrant j mod 4 by selects. Every lane computes exactly what
