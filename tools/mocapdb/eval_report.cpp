@@ -23,6 +23,7 @@ using eval::SetResults;
 
 // How a set's samples were cut, for the data table.
 std::string cycles_note(const eval::EvalSetSpec& spec) {
+    if (spec.flight_windows) return " (the jump of each clip: 0.5 s before take-off to 0.5 s after landing of its longest flight)";
     if (!spec.gait_cycles) return "";
     if (spec.max_cycles_per_clip == 1) return " (one gait cycle per clip, the middle one: every sample starts at the same phase)";
     if (spec.max_cycles_per_clip == 0) return " (every gait cycle of each clip)";

@@ -100,4 +100,20 @@ Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& cl
     return contact;
 }
 
+std::optional<Flight> longest_flight(const Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>& contacts) {
+    const Eigen::Index frames = contacts.cols();
+    std::optional<Flight> best;
+    for (Eigen::Index f = 0; f < frames;) {
+        if (contacts.col(f).any()) {
+            ++f;
+            continue;
+        }
+        Eigen::Index g = f;
+        while (g < frames && !contacts.col(g).any()) ++g;
+        if (f > 0 && g < frames && (!best || g - f > best->landing - best->takeoff - 1)) best = Flight{f - 1, g};
+        f = g;
+    }
+    return best;
+}
+
 }  // namespace mocapdb

@@ -31,28 +31,13 @@ std::size_t reach_frame(const std::string& at, std::size_t begin, std::size_t en
 
 double jump_length(const Clip& clip, std::size_t begin, std::size_t end, const FootContactOptions& options,
                    const MatX& root) {
-    const auto contact = foot_contacts(slice(clip, begin, end), options);
-    const auto frames = contact.cols();
-    Eigen::Index best_start = -1, best_length = 0;
-    for (Eigen::Index f = 0; f < frames;) {
-        if (contact.col(f).any()) {
-            ++f;
-            continue;
-        }
-        Eigen::Index g = f;
-        while (g < frames && !contact.col(g).any()) ++g;
-        if (f > 0 && g < frames && g - f > best_length) {  // a flight bounded by contacts on both sides
-            best_start = f;
-            best_length = g - f;
-        }
-        f = g;
-    }
-    if (best_start < 0)
+    const std::optional<Flight> flight = longest_flight(foot_contacts(slice(clip, begin, end), options));
+    if (!flight)
         throw InvalidArgument("clip '" + clip.name + "' frames [" + std::to_string(begin) + ", " + std::to_string(end) +
                               "): no flight phase (a run of frames with no foot contact between contacts); "
                               "not a jump, or the contact tolerances need adjusting");
-    const Eigen::Index takeoff = static_cast<Eigen::Index>(begin) + best_start - 1;
-    const Eigen::Index landing = static_cast<Eigen::Index>(begin) + best_start + best_length;
+    const Eigen::Index takeoff = static_cast<Eigen::Index>(begin) + flight->takeoff;
+    const Eigen::Index landing = static_cast<Eigen::Index>(begin) + flight->landing;
     return std::hypot(root(0, landing) - root(0, takeoff), root(2, landing) - root(2, takeoff));
 }
 

@@ -30,6 +30,18 @@ std::vector<SampleRef> gait_cycles(const Clip& clip, const std::string& clip_id,
     return spread_evenly(out, options.max_per_clip);
 }
 
+std::vector<SampleRef> flight_window(const Clip& clip, const std::string& clip_id, const FlightWindowOptions& options) {
+    if (!(options.before_seconds >= 0.0) || !(options.after_seconds >= 0.0))
+        throw InvalidArgument("flight window: the margins before take-off and after landing must be >= 0 s");
+    const std::optional<Flight> flight = longest_flight(foot_contacts(clip, options.contacts));
+    if (!flight) return {};
+    const auto margin = [&](double seconds) { return static_cast<Eigen::Index>(std::lround(seconds * clip.frame_rate)); };
+    const Eigen::Index frames = static_cast<Eigen::Index>(clip.frame_count());
+    const Eigen::Index begin = std::max<Eigen::Index>(0, flight->takeoff - margin(options.before_seconds));
+    const Eigen::Index end = std::min(frames, flight->landing + margin(options.after_seconds) + 1);
+    return {{clip_id, static_cast<std::size_t>(begin), static_cast<std::size_t>(end)}};
+}
+
 std::vector<SampleRef> spread_evenly(const std::vector<SampleRef>& all, std::size_t keep) {
     if (keep == 0 || all.size() <= keep) return all;
     if (keep == 1) return {all[(all.size() - 1) / 2]};

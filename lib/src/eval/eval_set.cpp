@@ -59,6 +59,8 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
             GaitCycleOptions gait;
             gait.max_per_clip = spec.max_cycles_per_clip;
             refs = gait_cycles(clip, id, gait);
+        } else if (spec.flight_windows) {
+            refs = flight_window(clip, id);
         } else {
             refs.push_back({id, 0, clip.frame_count()});
         }

@@ -87,6 +87,7 @@ EvalPlan make_eval_plan(EvalMode mode) {
         for (const auto& c : clip_range("16", 5, 10, {8})) s.clips.push_back(c);
         for (const auto& c : clip_range("105", 39, 45)) s.clips.push_back(c);
         s.extractors = {"jump"};
+        s.flight_windows = true;  // phase-consistent samples: the jump, not the standing around it
         s.frames = 40;
         p.sets.push_back({s, true, 1, true, false, true});
     }
@@ -96,6 +97,7 @@ EvalPlan make_eval_plan(EvalMode mode) {
         s.description = "subject 105 jump turns (90 to 360 degrees, both directions), parameterized by turn angle";
         s.clips = clip_range("105", 46, 61, {57});
         s.extractors = {"turn"};
+        s.flight_windows = true;  // as the forward jumps
         s.frames = 40;
         p.sets.push_back({s, true, 1, true, false, true});
     }

@@ -1,6 +1,7 @@
 #pragma once
 // Foot contacts from joint heights and speeds, and the root trajectory quantities the parameter
 // extractors and segmentation share.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,5 +29,16 @@ std::vector<std::string> default_feet(const Skeleton& skeleton);
 /// Contact flags: feet by frames (1 = in contact). The floor level of each foot is the 5th
 /// percentile of its height over the clip, so a few glitchy frames do not move it.
 Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& clip, const FootContactOptions& options);
+
+/// A flight: frames takeoff + 1 .. landing - 1 have no foot in contact; takeoff and landing do.
+struct Flight {
+    Eigen::Index takeoff = -1;  ///< last frame in contact before the flight
+    Eigen::Index landing = -1;  ///< first frame in contact after it
+};
+
+/// The longest flight of `contacts` (feet by frames, foot_contacts) bounded by contact on both sides
+/// (the first of equally long ones); nullopt when there is none (no jump, or the clip starts or ends
+/// in the air).
+std::optional<Flight> longest_flight(const Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>& contacts);
 
 }  // namespace mocapdb

@@ -2,6 +2,7 @@
 // Cutting long clips into many comparable samples.
 #include <vector>
 
+#include "mocapdb/dataset/foot_contacts.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/motion/clip.hpp"
 
@@ -22,6 +23,19 @@ struct GaitCycleOptions {
 /// (a missed or spurious pass), are skipped. None when the feet do not alternate (gait_phase.hpp).
 /// InvalidArgument when the feet are not found.
 std::vector<SampleRef> gait_cycles(const Clip& clip, const std::string& clip_id, const GaitCycleOptions& options = {});
+
+struct FlightWindowOptions {
+    FootContactOptions contacts;
+    double before_seconds = 0.5;  ///< kept before take-off (the crouch and push-off)
+    double after_seconds = 0.5;   ///< kept after landing (the absorption)
+};
+
+/// The jump of a clip as one sample (issue #15: phase-consistent samples): from before_seconds before
+/// the take-off of its longest flight (foot_contacts.hpp: longest_flight) to after_seconds after the
+/// landing, clipped to the clip. Whole clips of jumps hold different amounts of standing before and
+/// after, which a both-ends-pinned alignment then mixes with the jump itself. None when the clip has no
+/// flight. InvalidArgument for negative margins or feet not found.
+std::vector<SampleRef> flight_window(const Clip& clip, const std::string& clip_id, const FlightWindowOptions& options = {});
 
 /// `keep` of `all`, evenly spread (first and last included; keep = 1: the middle one); all when
 /// keep = 0 or keep >= all.size().

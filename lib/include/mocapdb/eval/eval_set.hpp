@@ -27,6 +27,7 @@ struct EvalSetSpec {
     std::vector<std::string> clips;       ///< CMU trial ids ("16_15"), in sample order
     bool gait_cycles = false;             ///< false: whole clips; true: gait cycles (segmentation.hpp)
     std::size_t max_cycles_per_clip = 0;  ///< gait: keep at most this many cycles per clip, evenly spread (0 = all)
+    bool flight_windows = false;          ///< true: the jump of each clip (segmentation.hpp: flight_window)
     std::vector<std::string> extractors;  ///< ParameterExtractor specs ("turn", "speed", "jump", ...)
     Eigen::Index frames = 60;             ///< aligned frames T
 };
