@@ -24,6 +24,7 @@ const char* segmentation_name(Segmentation s) {
     switch (s) {
         case Segmentation::GaitCycles: return "gait_cycles";
         case Segmentation::Windows: return "windows";
+        case Segmentation::Flights: return "flights";
         case Segmentation::Auto: return "auto";
         case Segmentation::WholeClips: break;
     }

@@ -5,6 +5,7 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/dataset/segmentation.hpp"
+#include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "shared_data.hpp"
 
@@ -83,4 +84,37 @@ TEST_CASE("flight windows: none without a flight, and margins must be >= 0", "[f
     bad.before_seconds = 0.5;
     bad.after_seconds = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(flight_window(still, "still", bad), InvalidArgument);
+}
+
+TEST_CASE("a set measuring jump lengths takes the jump of each clip by default", "[flight][set][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
+    const std::vector<std::string> ids = {"16_05", "16_06", "105_39"};
+    const ClipLoader load = [](const std::string& id) {
+        return read_clip(test::datasets_dir() / "cmu-asfamc" / (id + ".amc"));
+    };
+    SetBuildOptions options;
+    options.name = "jumps";
+    parse_segmentation("auto", options);
+    options.extractors.push_back(ParameterExtractor::parse("jump"));
+    Segmentation used = Segmentation::Auto;
+    const MotionSet set = build_motion_set(ids, load, options, nullptr, &used);
+    CHECK(used == Segmentation::Flights);
+    REQUIRE(set.samples.size() == ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const Clip clip = load(ids[i]);
+        const std::vector<SampleRef> w = flight_window(clip, ids[i]);
+        REQUIRE(w.size() == 1);
+        CHECK(set.samples[i].begin == w[0].begin);
+        CHECK(set.samples[i].end == w[0].end);
+    }
+
+    // Explicit margins, and what is refused.
+    parse_segmentation("flight:0.25:1", options);
+    CHECK(options.segmentation == Segmentation::Flights);
+    CHECK(options.flight.before_seconds == 0.25);
+    CHECK(options.flight.after_seconds == 1.0);
+    parse_segmentation("flight:0.3", options);
+    CHECK(options.flight.before_seconds == 0.3);
+    for (const char* bad : {"flight:", "flight:-1", "flight:x", "flight:0.5:nan", "flight:0.5:1:2", "flights"})
+        CHECK_THROWS_AS(parse_segmentation(bad, options), InvalidArgument);
 }

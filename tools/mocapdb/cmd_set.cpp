@@ -128,15 +128,18 @@ void setup_set(CLI::App& app) {
         "Examples:\n"
         "  mocapdb set create db.h5 --name walks --clips '16_1[1-9]' '16_2?' 16_30 --extract turn speed\n"
         "  mocapdb set create db.h5 --name walks1 --clips '16_1[1-9]' --segment gait:1 --extract speed turn\n"
-        "  mocapdb set create db.h5 --name jumps --clips '16_0[5-9]' --segment none --extract jump\n"
+        "  mocapdb set create db.h5 --name jumps --clips '16_0[5-9]' --segment flight:0.5:0.5 --extract jump\n"
         "  mocapdb set create db.h5 --name dirs --clips 'strafe_*' --segment gait:1 --extract bearing speed\n"
         "  mocapdb set create db.h5 --name reach --clips 'reach_*' --params targets.csv\n"
         "Extractors: displacement (dx, dz cm), turn (rad), speed (cm/s), jump (cm), reach:JOINT@FRAME (cm;\n"
         "FRAME = offset, end or P%); definitions in lib/include/mocapdb/dataset/param_extractors.hpp.\n"
-        "Segmentation: auto (default: gait cycles when parameters are extracted and at least 80 % of the\n"
-        "clips have one, else whole clips), none (whole clips), gait[:N] (gait cycles from one forward pass of the left\n"
-        "foot past the right to the next, so every sample starts at the same phase; at most N per clip,\n"
-        "evenly spread, 1 = the middle one), window:LENGTH[:HOP] (frames). Params CSV: header 'sample,name[unit],...', one row per sample\n"
+        "Segmentation: auto (default: flights when a jump is extracted; else gait cycles when parameters are\n"
+        "extracted and at least 80 % of the clips have one; else whole clips), none (whole clips), gait[:N] (gait\n"
+        "cycles from one forward pass of the left foot past the right to the next, so every sample starts at the\n"
+        "same phase; at most N per clip, evenly spread, 1 = the middle one), window:LENGTH[:HOP] (frames),\n"
+        "flight[:BEFORE[:AFTER]] (the clip's longest flight with BEFORE s before take-off and AFTER s after landing,\n"
+        "default 0.5 each: every jump sample starts the same time before its take-off). Params CSV: header\n"
+        "'sample,name[unit],...', one row per sample\n"
         "labelled CLIP (whole clip) or CLIP:BEGIN-END.");
     create->add_option("db", c->db, "database file")->required();
     create->add_option("--name", c->name, "set name")->required();
@@ -144,7 +147,7 @@ void setup_set(CLI::App& app) {
     create->add_option("--params", c->params_csv, "control parameters from a CSV")->check(CLI::ExistingFile);
     create->add_option("--extract", c->extract, "control parameters measured from the motion");
     create->add_option("--periodic", c->periodic, "NAME=PERIOD: a periodic parameter (e.g. bearing=360 for degrees); 'bearing' extracted is periodic by itself");
-    create->add_option("--segment", c->segment, "auto | none | gait[:N] | window:LENGTH[:HOP] (default auto)");
+    create->add_option("--segment", c->segment, "auto | none | gait[:N] | window:LENGTH[:HOP] | flight[:BEFORE[:AFTER]] (default auto)");
     create->add_option("--feet", c->feet, "left,right foot joints for gait cycles and contacts, e.g. ltoes,rtoes (default: found by name)");
     create->add_flag("--force,--replace", c->replace, "replace an existing set of that name");
     create->callback([c] { run_create(*c); });

@@ -130,8 +130,11 @@ std::string describe_set(const SetOutcome& o) {
     const char* kind = "whole clips";
     if (o.segmentation == Segmentation::GaitCycles) kind = "gait cycles";
     if (o.segmentation == Segmentation::Windows) kind = "windows";
+    if (o.segmentation == Segmentation::Flights) kind = "the jump of each clip";
     std::string how = kind;
-    if (o.auto_segmentation) {
+    if (o.auto_segmentation && o.segmentation == Segmentation::Flights) {
+        how += ", chosen because a jump length is measured; --segment none for whole clips";
+    } else if (o.auto_segmentation) {
         const std::string share = std::to_string(static_cast<int>(std::lround(100.0 * kAutoGaitShare))) + " %";
         how += o.segmentation == Segmentation::GaitCycles
                    ? ", chosen because most clips have a gait cycle; --segment none for whole clips"

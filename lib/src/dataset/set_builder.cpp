@@ -20,6 +20,19 @@ std::size_t parse_count(const std::string& text, const std::string& spec) {
     return static_cast<std::size_t>(value);
 }
 
+double parse_seconds(const std::string& text, const std::string& spec) {
+    std::size_t used = 0;
+    double value = -1.0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::logic_error&) {
+        used = 0;
+    }
+    if (used != text.size() || !(value >= 0.0 && value <= 60.0))
+        throw InvalidArgument("segmentation '" + spec + "': '" + text + "' is not a duration in seconds (0 to 60)");
+    return value;
+}
+
 }  // namespace
 
 void parse_segmentation(const std::string& spec, SetBuildOptions& options) {
@@ -37,8 +50,17 @@ void parse_segmentation(const std::string& spec, SetBuildOptions& options) {
         options.window_length = parse_count(rest.substr(0, colon), spec);
         options.window_hop = colon == std::string::npos ? options.window_length : parse_count(rest.substr(colon + 1), spec);
         if (options.window_length < 2) throw InvalidArgument("segmentation '" + spec + "': windows need at least 2 frames");
+    } else if (spec == "flight" || spec.rfind("flight:", 0) == 0) {
+        options.segmentation = Segmentation::Flights;
+        if (spec != "flight") {
+            const std::string rest = spec.substr(7);
+            const auto colon = rest.find(':');
+            options.flight.before_seconds = parse_seconds(rest.substr(0, colon), spec);
+            if (colon != std::string::npos) options.flight.after_seconds = parse_seconds(rest.substr(colon + 1), spec);
+        }
     } else {
-        throw InvalidArgument("unknown segmentation '" + spec + "' (expected auto, none, gait[:N] or window:LENGTH[:HOP])");
+        throw InvalidArgument("unknown segmentation '" + spec +
+                              "' (expected auto, none, gait[:N], window:LENGTH[:HOP] or flight[:BEFORE[:AFTER]])");
     }
 }
 
@@ -64,6 +86,7 @@ void collect_samples(const std::vector<std::string>& clip_ids, const ClipLoader&
             case Segmentation::Windows:
                 samples = fixed_windows(clip, id, options.window_length, options.window_hop);
                 break;
+            case Segmentation::Flights: samples = flight_window(clip, id, options.flight); break;
         }
         if (samples.empty() && out_skipped) out_skipped->push_back(id);
         if (!samples.empty())
@@ -99,6 +122,9 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
     set.dropouts_checked = options.repair_dropouts;
     std::vector<VecX> rows;
     Segmentation used = options.segmentation;
+    const bool measures_jumps = std::any_of(options.extractors.begin(), options.extractors.end(),
+                                            [](const ParameterExtractor& e) { return e.kind == ParameterKind::Jump; });
+    if (used == Segmentation::Auto && measures_jumps) used = Segmentation::Flights;
     if (used == Segmentation::Auto) {
         used = Segmentation::WholeClips;
         // Locomotion is told by the feet: gait cycles when most clips have one (the others, e.g. a

@@ -87,6 +87,7 @@ SetOutcome create_set(const std::filesystem::path& db_file, const SetRequest& a)
     parse_segmentation(a.segment, options);
     o.auto_segmentation = options.segmentation == Segmentation::Auto;
     if (!a.feet.empty()) options.gait.feet = a.feet;
+    if (!a.feet.empty()) options.flight.contacts.feet = a.feet;
     for (const std::string& spec : a.extract) {
         options.extractors.push_back(ParameterExtractor::parse(spec));
         if (!a.feet.empty()) options.extractors.back().contacts.feet = options.gait.feet;

@@ -14,11 +14,12 @@
 
 namespace mocapdb {
 
-/// Auto: gait cycles when the parameters are measured (extractors given) and at least kAutoGaitShare
-/// of the selected clips have a gait cycle (locomotion: samples then start and end at the same phase,
-/// so aligned frames never blend left-foot-forward with right-foot-forward poses; clips without a
-/// cycle are skipped); whole clips otherwise.
-enum class Segmentation { Auto, WholeClips, GaitCycles, Windows };
+/// Auto: flights when a jump length is measured (the jump of each clip, cut the same way around its
+/// take-off and landing: flight_window); else gait cycles when the parameters are measured (extractors
+/// given) and at least kAutoGaitShare of the selected clips have a gait cycle (locomotion: samples then
+/// start and end at the same phase, so aligned frames never blend left-foot-forward with
+/// right-foot-forward poses; clips without a cycle are skipped); whole clips otherwise.
+enum class Segmentation { Auto, WholeClips, GaitCycles, Windows, Flights };
 inline constexpr double kAutoGaitShare = 0.8;
 
 struct SetBuildOptions {
@@ -27,6 +28,7 @@ struct SetBuildOptions {
     GaitCycleOptions gait;          ///< GaitCycles, Auto
     std::size_t window_length = 0;  ///< Windows: frames per sample
     std::size_t window_hop = 0;     ///< Windows: frames between window starts
+    FlightWindowOptions flight;     ///< Flights, Auto
     /// Parameters measured per sample; may be empty when the caller supplies them (CSV).
     std::vector<ParameterExtractor> extractors;
     /// Detect and repair solver dropouts in each clip before it is segmented and measured
@@ -38,8 +40,9 @@ struct SetBuildOptions {
     ProgressCallback progress;
 };
 
-/// Parses "auto", "none", "gait[:N]" (at most N cycles per clip, evenly spread; 1 = the middle one) or
-/// "window:LENGTH[:HOP]" (frames; HOP defaults to LENGTH) into `options`. InvalidArgument otherwise.
+/// Parses "auto", "none", "gait[:N]" (at most N cycles per clip, evenly spread; 1 = the middle one),
+/// "window:LENGTH[:HOP]" (frames; HOP defaults to LENGTH) or "flight[:BEFORE[:AFTER]]" (seconds kept
+/// before take-off and after landing, default 0.5 each) into `options`. InvalidArgument otherwise.
 void parse_segmentation(const std::string& spec, SetBuildOptions& options);
 
 /// Loads one clip at a time (the set builder never holds more than one).
