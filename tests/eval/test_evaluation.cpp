@@ -69,10 +69,10 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
         done.push_back(d.stage);
     };
     const EvalResults e = run_evaluation(plan, test::datasets_dir() / "cmu-asfamc", describe_run("test", EvalMode::Tiny), observer);
-    CHECK(done == std::vector<EvalStage>{EvalStage::BuildSet, EvalStage::LeaveOneOut, EvalStage::Constraint,
-                                         EvalStage::Compression, EvalStage::Runtime});
-    CHECK(started == std::vector<EvalStage>{EvalStage::LeaveOneOut, EvalStage::Constraint, EvalStage::Compression,
-                                            EvalStage::Runtime});
+    CHECK(done == std::vector<EvalStage>{EvalStage::BuildSet, EvalStage::LeaveOneOut, EvalStage::KernelHeadroom,
+                                         EvalStage::Constraint, EvalStage::Compression, EvalStage::Runtime});
+    CHECK(started == std::vector<EvalStage>{EvalStage::LeaveOneOut, EvalStage::KernelHeadroom, EvalStage::Constraint,
+                                            EvalStage::Compression, EvalStage::Runtime});
     CHECK(e.info.command == "test");
     CHECK(e.info.mode == "tiny");
     CHECK(e.info.wall_seconds > 0.0);
@@ -89,6 +89,9 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
     CHECK(r.methods[3].ranks[2] <= 2);
     CHECK(r.has_loo);
     CHECK(r.loo.samples == std::vector<Eigen::Index>{0, 2, 4});
+    CHECK(r.has_headroom);
+    CHECK(r.headroom.kernels == 8);  // the tiny grid: 2 exponents x 2 ranges x 2 nugget shares
+    CHECK(r.headroom.best_pose_mean_cm <= r.headroom.median_pose_mean_cm);
     CHECK(r.has_constraint);
     CHECK(r.constraint.grid.rows() == 9);
     CHECK_FALSE(r.has_reduction);

@@ -41,6 +41,7 @@ void say(const char* format, ...) {
 std::string bar_label(eval::EvalStage stage, const std::string& set) {
     switch (stage) {
         case eval::EvalStage::LeaveOneOut: return "eval " + set + ": leave-one-out";
+        case eval::EvalStage::KernelHeadroom: return "eval " + set + ": kernel headroom";
         case eval::EvalStage::Constraint: return "eval " + set + ": constraints";
         case eval::EvalStage::Reduction: return "eval " + set + ": reduction";
         case eval::EvalStage::Compression: return "eval " + set + ": compression";
@@ -61,6 +62,10 @@ void print_stage(const eval::EvalStageDone& d) {
         case eval::EvalStage::LeaveOneOut:
             say("[eval] %s: leave-one-out over %zu samples x %zu methods (%.1f s)\n", name, d.results->loo.samples.size(),
                 d.results->methods.size(), d.seconds);
+            break;
+        case eval::EvalStage::KernelHeadroom:
+            say("[eval] %s: kernel headroom over %lld kernels (%.1f s)\n", name,
+                static_cast<long long>(d.results->headroom.kernels), d.seconds);
             break;
         case eval::EvalStage::Constraint:
             say("[eval] %s: constraint accuracy on %lld grid points (%.1f s)\n", name,

@@ -356,6 +356,15 @@ std::string results_json(const EvalResults& e) {
             j.end_object();
         }
         j.end_array();
+        if (r.has_headroom) {
+            const eval::KernelHeadroom& h = r.headroom;
+            j.key("kernel_headroom").begin_object();
+            j.key("kernels").value(static_cast<long long>(h.kernels));
+            j.key("best_pose_mean_cm").value(h.best_pose_mean_cm).key("median_pose_mean_cm").value(h.median_pose_mean_cm);
+            j.key("best_p").value(h.best.paper_p()).key("best_range").value(h.best.range);
+            j.key("best_nugget_share").value(h.best.nugget).key("best_anisotropy").value(h.best_anisotropy);
+            j.end_object();
+        }
         if (r.has_loo) {
             j.key("loo").begin_object();
             j.key("seconds").value(r.loo_seconds);
@@ -773,6 +782,16 @@ std::string report_md(const EvalResults& e) {
                 o << "Note: " << m.name << " keeps the full sample rank (R3 = " << m.ranks[2] << " >= N - 1, clamped to the "
                   << "training size in each fold): meeting the max-error target needs every sample direction, so its "
                      "kriged motions equal naive kriging's up to the dof/time truncation.\n";
+        if (r.has_headroom) {
+            const eval::KernelHeadroom& h = r.headroom;
+            o << "Kernel headroom (lib/include/mocapdb/eval/kernel_headroom.hpp): of " << h.kernels
+              << " fixed kernels tried in the same folds with naive kriging, the best reaches **" << fixed(h.best_pose_mean_cm, 2)
+              << " cm** pose mean (p = " << fmt(h.best.paper_p()) << ", range " << fmt(h.best.range) << " sd, nugget share "
+              << fmt(h.best.nugget) << ", axes after the first scaled by " << fmt(h.best_anisotropy) << "), the median kernel "
+              << fixed(h.median_pose_mean_cm, 2)
+              << " cm. That best is chosen on the very errors it is scored on, so no choice among these kernels made "
+                 "from the training samples alone can do better.\n";
+        }
         o << "\n"
           << caption(info, s, std::to_string(r.loo.samples.size()) + " folds (left-out samples" +
                                   (static_cast<Eigen::Index>(r.loo.samples.size()) < s.size() ? ", every " +

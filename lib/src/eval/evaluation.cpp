@@ -129,6 +129,12 @@ EvalResults run_evaluation(const EvalPlan& plan, const std::filesystem::path& cm
             r.has_loo = true;
             r.loo_seconds = since(t0);
             if (observer.stage_done) observer.stage_done({EvalStage::LeaveOneOut, &set, &r, r.loo_seconds});
+            KernelHeadroomOptions ho = plan.headroom;
+            ho.samples = lo.samples;
+            stage(observer, EvalStage::KernelHeadroom, set, &r, [&](const ProgressCallback& progress) {
+                r.headroom = kernel_headroom(set, ho, progress);
+                r.has_headroom = true;
+            });
         }
         if (sp.constraint) {
             r.constraint_options = plan.constraint;

@@ -53,6 +53,10 @@ EvalPlan make_eval_plan(EvalMode mode) {
         p.runtime_set = s.name;
         p.runtime.sizes = {5, 9};
         p.runtime.repeats = 1;
+        p.headroom.exponents = {0.0, 1.5};
+        p.headroom.ranges = {0.5, 2.0};
+        p.headroom.nugget_shares = {0.0, 0.3};
+        p.headroom.anisotropy = {1.0};
         return p;
     }
     if (mode == EvalMode::Quick) {
@@ -65,6 +69,10 @@ EvalPlan make_eval_plan(EvalMode mode) {
         p.runtime_set = "walks16";
         p.runtime.sizes = {8, 16, 25};
         p.runtime.repeats = 1;
+        p.headroom.exponents = {0.0, 1.5};
+        p.headroom.ranges = {0.5, 2.0};
+        p.headroom.nugget_shares = {0.0, 0.3};
+        p.headroom.anisotropy = {1.0};
         return p;
     }
     p.sets.push_back({walks_spec(40), true, 1, true, false, true});

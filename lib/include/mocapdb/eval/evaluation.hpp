@@ -19,6 +19,7 @@
 #include "mocapdb/eval/constraint_accuracy.hpp"
 #include "mocapdb/eval/eval_set.hpp"
 #include "mocapdb/eval/evaluation_plan.hpp"
+#include "mocapdb/eval/kernel_headroom.hpp"
 #include "mocapdb/eval/loo_prediction.hpp"
 #include "mocapdb/eval/reduction_curve.hpp"
 #include "mocapdb/eval/runtime_scaling.hpp"
@@ -52,6 +53,8 @@ struct SetResults {
     bool has_loo = false;
     LooResult loo;
     double loo_seconds = 0.0;
+    bool has_headroom = false;               ///< run with the leave-one-out, over its left-out samples
+    KernelHeadroom headroom;
     bool has_constraint = false;
     ConstraintResult constraint;
     ConstraintOptions constraint_options;
@@ -70,7 +73,7 @@ struct EvalResults {
     std::vector<RuntimeRow> runtime;
 };
 
-enum class EvalStage { BuildSet, LeaveOneOut, Constraint, Reduction, Compression, Runtime };
+enum class EvalStage { BuildSet, LeaveOneOut, KernelHeadroom, Constraint, Reduction, Compression, Runtime };
 
 /// A finished stage: the set it worked on, that set's results so far (null for BuildSet and Runtime)
 /// and its wall-clock seconds.

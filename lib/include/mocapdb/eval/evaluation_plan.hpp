@@ -9,6 +9,7 @@
 
 #include "mocapdb/eval/constraint_accuracy.hpp"
 #include "mocapdb/eval/eval_set.hpp"
+#include "mocapdb/eval/kernel_headroom.hpp"
 #include "mocapdb/eval/reduction_curve.hpp"
 #include "mocapdb/eval/runtime_scaling.hpp"
 #include "mocapdb/eval/synthesis_method.hpp"
@@ -36,6 +37,9 @@ struct EvalPlan {
     std::vector<double> compression_targets = {5.0, 2.0, 1.0, 0.5};
     bool hooi = true;
     std::vector<std::string> hooi_sets;  ///< when not empty: HOOI rows only for these sets
+    /// The grid of the kernel headroom (kernel_headroom.hpp), run on every set with leave-one-out, over
+    /// its left-out samples.
+    KernelHeadroomOptions headroom;
     std::string runtime_set;             ///< the set the runtime study uses
     RuntimeOptions runtime;
 };
