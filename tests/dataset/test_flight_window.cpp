@@ -84,6 +84,8 @@ TEST_CASE("flight windows: none without a flight, and margins must be >= 0", "[f
     bad.before_seconds = 0.5;
     bad.after_seconds = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(flight_window(still, "still", bad), InvalidArgument);
+    bad.after_seconds = 1e300;
+    CHECK_THROWS_AS(flight_window(still, "still", bad), InvalidArgument);
 }
 
 TEST_CASE("a set measuring jump lengths takes the jump of each clip by default", "[flight][set][shared]") {

@@ -31,8 +31,9 @@ std::vector<SampleRef> gait_cycles(const Clip& clip, const std::string& clip_id,
 }
 
 std::vector<SampleRef> flight_window(const Clip& clip, const std::string& clip_id, const FlightWindowOptions& options) {
-    if (!(options.before_seconds >= 0.0) || !(options.after_seconds >= 0.0))
-        throw InvalidArgument("flight window: the margins before take-off and after landing must be >= 0 s");
+    const auto valid = [](double seconds) { return seconds >= 0.0 && seconds <= 3600.0; };
+    if (!valid(options.before_seconds) || !valid(options.after_seconds))
+        throw InvalidArgument("flight window: the margins before take-off and after landing must be 0 to 3600 s");
     const std::optional<Flight> flight = longest_flight(foot_contacts(clip, options.contacts));
     if (!flight) return {};
     const auto margin = [&](double seconds) { return static_cast<Eigen::Index>(std::lround(seconds * clip.frame_rate)); };

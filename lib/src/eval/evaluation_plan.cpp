@@ -15,6 +15,16 @@ std::vector<std::string> clip_range(const std::string& subject, int first, int l
     return out;
 }
 
+// Eight kernels: enough to exercise the kernel headroom in smoke runs.
+KernelHeadroomOptions small_headroom_grid() {
+    KernelHeadroomOptions o;
+    o.exponents = {0.0, 1.5};
+    o.ranges = {0.5, 2.0};
+    o.nugget_shares = {0.0, 0.3};
+    o.anisotropy = {1.0};
+    return o;
+}
+
 EvalSetSpec walks_spec(Eigen::Index frames) {
     EvalSetSpec s;
     s.name = "walks16";
@@ -53,10 +63,7 @@ EvalPlan make_eval_plan(EvalMode mode) {
         p.runtime_set = s.name;
         p.runtime.sizes = {5, 9};
         p.runtime.repeats = 1;
-        p.headroom.exponents = {0.0, 1.5};
-        p.headroom.ranges = {0.5, 2.0};
-        p.headroom.nugget_shares = {0.0, 0.3};
-        p.headroom.anisotropy = {1.0};
+        p.headroom = small_headroom_grid();
         return p;
     }
     if (mode == EvalMode::Quick) {
@@ -69,10 +76,7 @@ EvalPlan make_eval_plan(EvalMode mode) {
         p.runtime_set = "walks16";
         p.runtime.sizes = {8, 16, 25};
         p.runtime.repeats = 1;
-        p.headroom.exponents = {0.0, 1.5};
-        p.headroom.ranges = {0.5, 2.0};
-        p.headroom.nugget_shares = {0.0, 0.3};
-        p.headroom.anisotropy = {1.0};
+        p.headroom = small_headroom_grid();
         return p;
     }
     p.sets.push_back({walks_spec(40), true, 1, true, false, true});

@@ -3,9 +3,9 @@
 // (issue #15, acceptance 1: "kriging beats RBF and the trend"): every kernel of a fixed grid (model
 // exponent, range, nugget share and, with two or more linear parameters, the relative scale of the
 // axes after the first) is used in every fold of a naive-kriging leave-one-out, and the best mean
-// error over the grid is kept. The best is chosen on the very errors it is scored on, so it is a bound
-// no kernel choice made from the training samples alone can beat; when it does not reach a baseline,
-// no variogram fitting will.
+// error over the grid is kept. The best is chosen on the very errors it is scored on, so no choice
+// among these kernels made from the training samples alone can beat it: when it does not reach a
+// baseline, fitting the variogram better will not either (unless it leaves the grid's families).
 //
 // Folds as loo_prediction.hpp (left-out sample i, the others train; DTW alignment shared), prediction
 // as synthesis::NaiveMotionModel blends them (weights of the universal kriging with the linear OLS
