@@ -245,7 +245,7 @@ int main(int argc, char** argv) {
                 "clock=%s folder=%s E=%g clips=%zu frames=%zu windows=%zu channels=%zu joints=%zu | channel rows: cold_us=%.2f "
                 "(median %.2f) window_us=%.2f (median %.2f) play_us=%.2f (median %.2f) crowd_us=%.2f (median %.2f) "
                 "crowd4_us=%.2f (median %.2f) | local poses: cold_us=%.2f (median %.2f) play_us=%.2f (median %.2f) "
-                "crowd_us=%.2f (median %.2f) crowd4_us=%.2f (median %.2f) | hit %.3f / %.3f | index: build_s=%.3f memory_mb=%.2f coefficients=%zu blocks_8_16_32=%zu/%zu/%zu "
+                "crowd_us=%.2f (median %.2f) crowd4_us=%.2f (median %.2f) | hit %.3f / %.3f | index: build_s=%.3f memory_mb=%.2f coefficients=%zu columns_8_16_32=%zu/%zu/%zu "
                 "rows index_us=%.2f (median %.2f) local index_us=%.2f (median %.2f) | "
                 "sampler_and_index_equal_decoder=%d local_rotation_max_dev=%.1e\n",
                 clock.c_str(), name.c_str(), E, clips, frames, windows, channels, decoder.skeleton(0)->size(), best(cold[0].us),
@@ -253,7 +253,7 @@ int main(int argc, char** argv) {
                 best(crowd1[0].us), median(crowd1[0].us), best(crowd4[0].us), median(crowd4[0].us), best(cold[1].us),
                 median(cold[1].us), best(play[1].us), median(play[1].us), best(crowd1[1].us), median(crowd1[1].us),
                 best(crowd4[1].us), median(crowd4[1].us), hit1, hit4, build_s, static_cast<double>(index.memory_bytes()) / 1e6,
-                index.coefficient_count(), index.block_widths()[0], index.block_widths()[1], index.block_widths()[2], best(indexed[0].us), median(indexed[0].us), best(indexed[1].us),
+                index.coefficient_count(), index.column_widths()[0], index.column_widths()[1], index.column_widths()[2], best(indexed[0].us), median(indexed[0].us), best(indexed[1].us),
                 median(indexed[1].us), identical ? 1 : 0, rotation_error);
             std::fflush(stdout);
         }

@@ -53,7 +53,7 @@ struct LocalError {
 // capacity so that windows are evicted and decoded again) equal decode_window's row; decode_local_pose,
 // the index's and the sampler's local_pose agree bit for bit, and their rotations and translations are
 // the row's local transforms (Skeleton::local_rotation / local_translation) to 1e-12 (rotations to
-// `rotation_tolerance`). Returns the indexes' blocks of 8-, 16- and 32-bit levels, over every E.
+// `rotation_tolerance`). Returns the indexes' columns of 8-, 16- and 32-bit levels, over every E.
 std::array<std::size_t, 3> check_every_frame(const std::vector<Clip>& clips, const std::vector<double>& errors = {1.0, 0.5, 0.1},
                               double rotation_tolerance = 1e-12) {
     std::array<std::size_t, 3> widths{};
@@ -64,7 +64,7 @@ std::array<std::size_t, 3> check_every_frame(const std::vector<Clip>& clips, con
         options.max_error_cm = E;
         const GroupDecoder decoder(pack_group(ptrs, options).bytes);
         const PoseIndex index(decoder);
-        for (std::size_t w = 0; w < 3; ++w) widths[w] += index.block_widths()[w];
+        for (std::size_t w = 0; w < 3; ++w) widths[w] += index.column_widths()[w];
         PoseSampler sampler(decoder, 2);
         const std::size_t channels = decoder.skeleton(0)->channel_count();
         REQUIRE(sampler.channel_count() == channels);
@@ -134,7 +134,7 @@ TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bi
 TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const auto widths = check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}, 300));
-    CHECK(widths[0] > 0);  // the index's blocks of 8- and 16-bit levels both decoded
+    CHECK(widths[0] > 0);  // the index's columns of 8- and 16-bit levels both decoded
     CHECK(widths[1] > 0);
 }
 
@@ -206,11 +206,12 @@ TEST_CASE("Local poses of one- and two-channel joints: every rotation order, abs
     check_every_frame({clip}, {1.0, 0.1}, 1e-10);
 }
 
-TEST_CASE("PoseIndex: blocks with levels beyond 16 bits keep 32-bit cells, same bits", "[packing][shared]") {
+TEST_CASE("PoseIndex: columns with levels beyond 16 bits keep 32-bit cells, same bits", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     // A bound far below any codec's use makes quantizer steps tiny and the largest levels exceed ±32767.
     const auto widths = check_every_frame(test::read_shared_clips("cmu-asfamc", {"02_01"}, 64), {0.0005});
-    CHECK(widths[2] > 0);
+    CHECK(widths[2] > 0);  // and narrower columns after them in the same blocks
+    CHECK(widths[0] > 0);
 }
 
 TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are refused", "[packing]") {

@@ -7,10 +7,10 @@
 //
 // Layout: a window's coefficient grid G (Da dof rows by W time columns, rows and columns ordered by
 // energy, so the nonzeros crowd the top left) is cut into blocks of 16 dof rows; a block keeps its
-// quantized levels for the time columns up to its last nonzero one, 16 per column, as 8-, 16- or
-// 32-bit integers (the fewest bits that hold its largest level). y = G v_t then runs four rows to a
-// vector with no index arithmetic; the zeros kept cost about 2-3 cells per nonzero coefficient at
-// 1 cm and 1.3-1.6 at 0.1 cm (docs/packing.md).
+// quantized levels for the time columns up to its last nonzero one, 16 per column, as 32-bit, then
+// 16-bit, then 8-bit integers (each column the fewest bits that hold its levels and those of every
+// later column). y = G v_t then runs four rows to a vector with no index arithmetic; the zeros kept
+// cost about 2-3 cells per nonzero coefficient at 1 cm and 1.3-1.6 at 0.1 cm (docs/packing.md).
 //
 // Contract: pose / local_pose give exactly the bits of GroupDecoder::decode_pose / decode_local_pose
 // (the bits the encoder verified against the bound): every y element sums its terms in ascending
@@ -21,7 +21,7 @@
 // construction; every const method is thread-safe (per-thread scratch, allocated on a thread's first
 // call, none per pose after that).
 // Memory: memory_bytes(); a few bytes per nonzero coefficient (docs/packing.md), plus the W x W time
-// basis. Windows of up to 16383 frames.
+// basis. Windows of up to 65535 frames.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -45,12 +45,14 @@ public:
     std::size_t memory_bytes() const;
     /// Nonzero coefficients over every coded window.
     std::size_t coefficient_count() const { return coefficients_; }
-    /// Blocks of 16 dof rows held with 8-, 16- and 32-bit levels (over every coded window).
-    const std::array<std::size_t, 3>& block_widths() const { return block_widths_; }
+    /// Block columns (16 levels each) held with 8-, 16- and 32-bit levels (over every coded window).
+    const std::array<std::size_t, 3>& column_widths() const { return column_widths_; }
 
 private:
     static constexpr std::size_t kBlockRows = 16;  ///< dof rows per block (four vectors of 4)
-    static constexpr unsigned kWidthShift = 14;    ///< block entry: time columns | width code << this
+    static constexpr std::size_t kMaxWindow = 65535;
+    /// Per block: its columns of 32-bit levels, of 32- or 16-bit levels, and of any width (all kept).
+    using BlockEntry = std::array<std::uint16_t, 3>;
     struct Window {
         std::uint64_t begin = 0;    ///< first byte of its blocks' cells in cells_
         std::uint64_t blocks = 0;   ///< first of its block entries in blocks_
@@ -66,10 +68,10 @@ private:
     const GroupDecoder* decoder_;
     std::vector<Window> windows_;               ///< per window of the group (raw windows: rows 0, unused)
     std::vector<double> time_rows_;             ///< time basis, row t contiguous (W x W)
-    std::vector<std::uint16_t> blocks_;         ///< per window, per block: time columns kept | width code (0, 1, 2: 8, 16, 32 bits) << kWidthShift
-    std::vector<std::uint8_t> cells_;           ///< per block, per column, kBlockRows levels of its width
+    std::vector<BlockEntry> blocks_;            ///< per window, per block
+    std::vector<std::uint8_t> cells_;           ///< per block, per column, kBlockRows levels of the column's width
     std::size_t coefficients_ = 0;
-    std::array<std::size_t, 3> block_widths_{};
+    std::array<std::size_t, 3> column_widths_{};
 };
 
 }  // namespace mocapdb::packing
