@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
@@ -52,11 +53,25 @@ void check_bound(const std::vector<Clip>& clips, std::size_t max_frames_per_clip
         CHECK(packed.stats.error.max_cm <= E);
         const GroupDecoder decoder(packed.bytes);
         REQUIRE(decoder.clip_count() == cut.size());
+        double decoded_max = 0.0;
         for (std::size_t k = 0; k < cut.size(); ++k) {
             const double err = max_position_error(cut[k], decoder.decode_clip(k));
             INFO("clip " << cut[k].name << " max " << err);
             CHECK(err <= E);
+            decoded_max = std::max(decoded_max, err);
+            // The decoder's skeleton is the source's rounded to float32, to the bit: what the encoder
+            // checked its bound with.
+            const Skeleton& source = *cut[k].skeleton;
+            const Skeleton& decoded = *decoder.skeleton(k);
+            REQUIRE(decoded.size() == source.size());
+            for (std::size_t j = 0; j < source.size(); ++j)
+                for (int a = 0; a < 3; ++a) {
+                    INFO("joint " << source.joint(j).name << " offset " << a);
+                    CHECK(decoded.joint(j).offset[a] == float32_value(source.joint(j).offset[a]));
+                }
         }
+        // The encoder measured exactly what a reader decodes (no margin needed, no second attempt).
+        CHECK(decoded_max == packed.stats.error.max_cm);
     }
 }
 

@@ -1,3 +1,4 @@
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/codec/deflate.hpp"
 
 #include <cmath>
@@ -83,7 +84,7 @@ Bytes inflate_bytes(const std::uint8_t* data, std::size_t size, std::size_t expe
 
 Tensor3 round_to_float32(const Tensor3& a) {
     Tensor3 out(a.dimension(0), a.dimension(1), a.dimension(2));
-    for (Eigen::Index i = 0; i < a.size(); ++i) out.data()[i] = static_cast<double>(static_cast<float>(a.data()[i]));
+    for (Eigen::Index i = 0; i < a.size(); ++i) out.data()[i] = float32_value(a.data()[i]);
     return out;
 }
 

@@ -1,3 +1,4 @@
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/codec/pca_baseline.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -72,9 +73,10 @@ Tensor3 SamplePca::reconstruct(Eigen::Index k, bool float32_storage) const {
     Tensor3 out(dofs_, frames_, samples_);
     Eigen::Map<MatX> y(out.data(), L, samples_);
     if (float32_storage) {
-        const MatX mean = mean_.cast<float>().cast<double>();
-        const MatX b = basis_.leftCols(k).cast<float>().cast<double>();
-        const MatX c = coeffs_.topRows(k).cast<float>().cast<double>();
+        MatX mean = mean_, b = basis_.leftCols(k), c = coeffs_.topRows(k);
+        round_entries_to_float32(mean);
+        round_entries_to_float32(b);
+        round_entries_to_float32(c);
         y.noalias() = b * c;
         y.colwise() += mean.col(0);
     } else {

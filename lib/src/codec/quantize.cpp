@@ -1,3 +1,4 @@
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/codec/quantize.hpp"
 
 #include <algorithm>
@@ -101,13 +102,13 @@ QuantizedColumns read_part(detail::ByteReader& r, Eigen::Index rows, Eigen::Inde
 
 /// float32 nearest x from below (<= x).
 float float_down(double x) {
-    float f = static_cast<float>(x);
+    float f = to_float32(x);
     if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
     return f;
 }
 /// float32 nearest x from above (>= x).
 float float_up(double x) {
-    float f = static_cast<float>(x);
+    float f = to_float32(x);
     if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
     return f;
 }

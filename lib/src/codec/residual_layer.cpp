@@ -1,3 +1,4 @@
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/codec/residual_layer.hpp"
 
 #include <cmath>
@@ -75,7 +76,7 @@ ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>&
             e > static_cast<double>(std::numeric_limits<float>::max()))
             throw InvalidArgument("encode_residual: tolerance of dof " + std::to_string(d) + " is " + std::to_string(e) +
                                   " (must be finite, in the normal float32 range, > 0)");
-        float f = static_cast<float>(e);
+        float f = to_float32(e);
         if (static_cast<double>(f) > e) f = std::nextafter(f, 0.0f);
         stored[d] = f;
         if (f != stored[0]) all_equal = false;

@@ -1,3 +1,4 @@
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/codec/zfp_codec.hpp"
 
 #include <cmath>
@@ -87,7 +88,7 @@ EncodedStream zfp_encode(const Tensor3& a, const Eigen::Ref<const VecX>& eps) {
         if (!std::isfinite(eps[d]) || eps[d] < 1e-30 || eps[d] > 1e30)
             throw InvalidArgument("zfp_encode: tolerance of dof " + std::to_string(d) + " is " + std::to_string(eps[d]) +
                                   " (must be finite, in [1e-30, 1e30])");
-        float f = static_cast<float>(eps[d]);
+        float f = to_float32(eps[d]);
         if (static_cast<double>(f) > eps[d]) f = std::nextafter(f, 0.0f);
         stored[d] = f;
         w.f32(f);

@@ -1,3 +1,4 @@
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/compression/rate_distortion.hpp"
 
 #include <algorithm>
@@ -26,7 +27,7 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 // The model as a float32 file would hold it.
 tensor::TuckerModel rounded_to_float32(tensor::TuckerModel m) {
     m.core = codec::round_to_float32(m.core);
-    for (MatX& u : m.U) u = u.cast<float>().cast<double>();
+    for (MatX& u : m.U) round_entries_to_float32(u);
     return m;
 }
 

@@ -8,6 +8,7 @@
 
 #include "byte_stream.hpp"
 #include "lane4.hpp"
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/core/error.hpp"
 
@@ -340,18 +341,30 @@ MatX decode_basis(const std::uint8_t* data, std::size_t size, Eigen::Index n) {
 
 SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extra) {
     std::vector<Joint> joints = source.joints();
-    for (Joint& j : joints) {
-        j.offset = j.offset.cast<float>().cast<double>();
-        j.axis.coeffs() = j.axis.coeffs().cast<float>().cast<double>();
-        j.axis.normalize();
+    std::vector<std::array<float, 4>> axes(joints.size());
+    for (std::size_t k = 0; k < joints.size(); ++k) {
+        round_entries_to_float32(joints[k].offset);  // not .cast<float>(): see core/float32.hpp
+        for (int a = 0; a < 4; ++a) axes[k][static_cast<std::size_t>(a)] = to_float32(joints[k].axis.coeffs()[a]);
     }
     SourceUnits units = source.source_units();
-    units.cm_per_unit = static_cast<float>(units.cm_per_unit);
-    const Vec3 forward = source.forward().cast<float>().cast<double>();
+    units.cm_per_unit = float32_value(units.cm_per_unit);
+    std::array<float, 3> forward{};
+    for (int a = 0; a < 3; ++a) forward[static_cast<std::size_t>(a)] = to_float32(source.forward()[a]);
+    return stored_entry(std::move(joints), units, forward, axes, pose_dofs, extra);
+}
+
+SkeletonEntry stored_entry(std::vector<Joint> joints, const SourceUnits& units, const std::array<float, 3>& forward,
+                           const std::vector<std::array<float, 4>>& axes, int pose_dofs, std::size_t extra) {
+    for (std::size_t k = 0; k < joints.size(); ++k) {
+        for (int a = 0; a < 4; ++a) joints[k].axis.coeffs()[a] = axes[k][static_cast<std::size_t>(a)];
+        joints[k].axis.normalize();
+    }
     SkeletonEntry e;
-    e.skeleton = std::make_shared<const Skeleton>(std::move(joints), units, forward);
+    e.skeleton = std::make_shared<const Skeleton>(std::move(joints), units, Vec3(forward[0], forward[1], forward[2]));
     e.weights = weights_of(*e.skeleton, pose_dofs, extra);
     e.writer = ChannelWriter(*e.skeleton);
+    e.stored_axes = axes;
+    e.stored_forward = forward;
     return e;
 }
 
@@ -378,14 +391,15 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
         const Skeleton& k = *e.skeleton;
         w.f32(k.source_units().cm_per_unit);
         w.u8(k.source_units().degrees ? 1 : 0);
-        for (int a = 0; a < 3; ++a) w.f32(k.forward()[a]);
+        for (float c : e.stored_forward) w.f32(c);
+        const std::array<float, 4> identity{0.0f, 0.0f, 0.0f, 1.0f};  // x, y, z, w
         bool any_axis = false;
-        for (const Joint& j : k.joints()) any_axis = any_axis || !j.axis.coeffs().isApprox(Quat::Identity().coeffs(), 0.0);
+        for (const auto& a : e.stored_axes) any_axis = any_axis || a != identity;
         w.u8(any_axis ? 1 : 0);
-        for (const Joint& j : k.joints()) {
-            for (int a = 0; a < 3; ++a) w.f32(j.offset[a]);
+        for (std::size_t j = 0; j < k.size(); ++j) {
+            for (int a = 0; a < 3; ++a) w.f32(k.joint(j).offset[a]);
             if (any_axis)
-                for (int a = 0; a < 4; ++a) w.f32(j.axis.coeffs()[a]);
+                for (float c : e.stored_axes[j]) w.f32(c);
         }
     }
     std::vector<std::uint8_t> mask((static_cast<std::size_t>(dofs) + 7) / 8, 0);
@@ -464,21 +478,19 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
         SourceUnits units;
         units.cm_per_unit = r.f32();
         units.degrees = r.u8() != 0;
-        Vec3 forward;
-        for (int a = 0; a < 3; ++a) forward[a] = r.f32();
+        std::array<float, 3> forward{};
+        for (float& c : forward) c = static_cast<float>(r.f32());  // exact: read as float32
         const bool any_axis = r.u8() != 0;
         std::vector<Joint> joints = topology;
-        for (Joint& j : joints) {
-            for (int a = 0; a < 3; ++a) j.offset[a] = r.f32();
-            if (any_axis) {
-                for (int a = 0; a < 4; ++a) j.axis.coeffs()[a] = r.f32();
-                j.axis.normalize();
-            }
+        std::vector<std::array<float, 4>> axes(joints.size(), {0.0f, 0.0f, 0.0f, 1.0f});
+        for (std::size_t j = 0; j < joints.size(); ++j) {
+            for (int a = 0; a < 3; ++a) joints[j].offset[a] = r.f32();
+            if (any_axis)
+                for (float& c : axes[j]) c = static_cast<float>(r.f32());  // exact: read as float32
         }
-        // make_entry's rounding is idempotent on float32 values: the same skeleton as at encode time.
-        const Skeleton decoded(std::move(joints), units, forward);
-        pose_dofs = static_cast<int>(PoseLayout(decoded).dof_count());
-        skeletons.push_back(make_entry(decoded, pose_dofs, extra));
+        // The values the encoder's skeleton was built from: the same skeleton, to the bit.
+        pose_dofs = static_cast<int>(PoseLayout(Skeleton(joints, units, Vec3(forward[0], forward[1], forward[2]))).dof_count());
+        skeletons.push_back(stored_entry(std::move(joints), units, forward, axes, pose_dofs, extra));
     }
     dofs = pose_dofs + static_cast<int>(extra);
     extra_columns.clear();

@@ -4,6 +4,7 @@
 // bases, the scan order, the trained contexts, and the one reconstruction routine both use, so that
 // the error verified at encode time is exactly the error of any later decode.
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -40,6 +41,12 @@ struct SkeletonEntry {
     VecX weights;                              ///< D weights (pose dofs, then extra position channels)
     ChannelWriter writer;                      ///< pose vector -> channel row of `skeleton`
     std::vector<double> active_weights;        ///< weights[active[i]] (set with the active dofs)
+    /// What the bytes hold of each joint's axis (four float32 coefficients) and of the forward
+    /// direction (three), which `skeleton` normalizes. Written as they are, so that the decoder
+    /// normalizes the same values to the same skeleton (writing the normalized values rounded again
+    /// moved positions by up to 5e-7 cm).
+    std::vector<std::array<float, 4>> stored_axes;
+    std::array<float, 3> stored_forward{};
 };
 
 struct ClipEntry {
@@ -165,6 +172,12 @@ struct GroupModel {
 /// The decoder's copy of a skeleton (offsets, axes, forward rounded to float32) and its dof weights
 /// (rotations: position_error_weights relative to the root translation's; translations: kTranslationWeight).
 SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extra);
+/// The same from what the bytes hold: `joints` with float32 offsets (their axes are replaced by
+/// `axes` normalized), units with a float32 cm_per_unit, and the forward direction. make_entry(s)
+/// is stored_entry of s's values rounded to float32, so encoder and decoder use the same skeleton
+/// to the bit.
+SkeletonEntry stored_entry(std::vector<Joint> joints, const SourceUnits& units, const std::array<float, 3>& forward,
+                           const std::vector<std::array<float, 4>>& axes, int pose_dofs, std::size_t extra);
 
 /// A basis (entries rounded to multiples of kBasisStep) as coded bytes, and back (n by n).
 std::vector<std::uint8_t> encode_basis(const MatX& basis);

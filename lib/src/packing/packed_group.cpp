@@ -1,3 +1,4 @@
+#include "mocapdb/core/float32.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -219,8 +220,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         e.frames = clips[i]->frame_count();
         const Canonicalization c = canonicalization_of(*clips[i]);
         Canonicalization rounded;
-        rounded.translation = Vec3(static_cast<float>(c.translation.x()), 0.0, static_cast<float>(c.translation.z()));
-        rounded.yaw = static_cast<float>(c.yaw);
+        rounded.translation = Vec3(float32_value(c.translation.x()), 0.0, float32_value(c.translation.z()));
+        rounded.yaw = float32_value(c.yaw);
         e.set_canonical(rounded);
         e.first_window = window_total;
         window_total += (e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W);

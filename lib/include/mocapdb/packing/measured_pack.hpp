@@ -1,10 +1,12 @@
 #pragma once
 // Packing a group and measuring what a reader gets: pack_group, then every clip decoded from the
 // bytes with GroupDecoder::decode_clip (as a reader decodes it) and compared with the source clip by
-// forward kinematics (every joint and end site, world frame, every source frame). Should a position
-// land above E after all (the encoder's own check and the reader's decode have been seen to differ
-// by 4e-7 cm), the group is packed again with E lowered by twice the excess, up to three attempts
-// (the rule `mocapdb pack` applies, store/pack.cpp), so the figures are those of bytes that meet E.
+// forward kinematics (every joint and end site, world frame, every source frame). The encoder checks
+// its bound on exactly what this decode gives (tests/packing: the two maxima are equal); should a
+// position land above E all the same (a compiler folding away the float32 rounding of the stored
+// skeleton once made them differ by up to 1e-5 cm, core/float32.hpp), the group is packed again with
+// E lowered by twice the excess, up to three attempts (the rule `mocapdb pack` applies,
+// store/pack.cpp), so the figures are those of bytes that meet E.
 //
 // Inputs are borrowed for the call. Thread-safety: pack_group's threads (options.threads); the
 // measurement runs on the calling thread. Errors: those of pack_group; Error when the decoded group
