@@ -1,0 +1,1364 @@
+// Prototype of a runtime packed format (a measurement, not a format): can a time-LOCAL transform give
+// a cold random pose from the stored bytes in about a microsecond without losing format 2's bytes?
+// Results and reading: benchmarks/RESULTS.md, "Runtime format prototype".
+//
+// Candidate: each clip's weighted active dofs in format 2's dof basis (y = U⁻¹ x; the group's
+// skeletons, weights and basis are parsed from format 2's bytes), keys every W frames (shared by
+// neighbouring windows), and between them a closed-loop hierarchical linear prediction: level j holds
+// the frames at odd multiples of W/2^j, each predicted as the mean of its two reconstructed
+// neighbours, the difference quantized (dead zone, --rounding). A frame reads 2 keys and log2(W)
+// detail columns, and its error is its own column's quantization error (no accumulation). Each key
+// takes the coarsest step that keeps its frame within E, made finer by --key-offsets step indices and
+// checked again (the bound is not monotone in the step); each window the coarsest step that keeps its
+// frames within E, by the decoder's own routine (pose_of, row_of, FK of every joint and end site
+// against the source clip).
+//
+// Columns: rows up to the last nonzero one, coded JPEG-like ((zero run, bit length) pairs as one
+// symbol, sign and lower bits raw, an end symbol), static canonical Huffman codes per (level, row/8)
+// limited to --code-bits bits so that one table lookup decodes a symbol. Per window: key step, key,
+// window step, a directory, the columns in tree order (frame t's path: skip left subtrees).
+//   variant 1  directory = each internal node's left-subtree size in bits (per level one width);
+//              a frame decodes its columns one after the other
+//   variant 2  directory = the key's and every column's size; the frame's columns decode as
+//              independent chains, interleaved symbol by symbol (checked equal to variant 1)
+// With --poses N: both bitstreams are built, every frame of every clip is decoded from the bytes and
+// compared with its source (FK, cm), and N cold random local poses (random clip and frame, nothing
+// kept) are timed (thread CPU, best of 3) beside format 2's GroupDecoder::decode_local_pose on the
+// same sequence. Bytes: entries + 3-byte offsets + code tables (5 bits per symbol) + format 2's header
+// (a conservative stand-in: it also holds format 2's time basis and contexts).
+// Also printed: estimates of the candidate's bytes (ideal static entropy; one bit width per window,
+// level and row; per-row Huffman values) and format 2's own coefficients under the same estimator.
+//
+//   bench_runtime_prototype [--folders cmu-walkrun-pfnn,cmu-asfamc] [--errors 1,0.1] [--windows 16,32]
+//                           [--key-offsets 0,12] [--rounding 0.4] [--code-bits 11] [--poses N] [--limit N]
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_timing.hpp"
+#include "shared_folder.hpp"
+#include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/packed_group.hpp"
+#include "../lib/src/packing/group_model.hpp"
+
+using namespace mocapdb;
+using namespace mocapdb::packing;
+
+namespace {
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    for (std::string item; std::getline(in, item, ',');)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+int bit_length(std::uint32_t v) {
+    int n = 0;
+    while (v) {
+        ++n;
+        v >>= 1;
+    }
+    return n;
+}
+
+/// Empirical static entropy of symbols per context, bits, with a table cost per used entry.
+struct StaticCost {
+    std::map<std::pair<int, int>, std::map<int, std::size_t>> counts;  // (context) -> symbol -> n
+    double extra_bits = 0.0;                                           // escapes' uniform bits
+    void add(int c1, int c2, std::int32_t q) {
+        constexpr int kDirect = 40;
+        int sym = q;
+        if (q > kDirect || q < -kDirect) {
+            sym = q > 0 ? kDirect + 1 : -kDirect - 1;
+            extra_bits += 2.0 * bit_length(static_cast<std::uint32_t>(std::abs(q) - kDirect)) - 1.0;
+        }
+        ++counts[{c1, c2}][sym];
+    }
+    /// Bits of the contexts whose first key is `level` (all when level < 0), escapes excluded.
+    double bits(int level = -1) const {
+        double total = level < 0 ? extra_bits : 0.0;
+        for (const auto& [ctx, hist] : counts) {
+            if (level >= 0 && ctx.first != level) continue;
+            std::size_t n = 0;
+            for (const auto& [s, k] : hist) n += k;
+            for (const auto& [s, k] : hist) total += static_cast<double>(k) * std::log2(static_cast<double>(n) / static_cast<double>(k));
+            total += 10.0 * static_cast<double>(hist.size());
+        }
+        return total;
+    }
+};
+
+struct HierResult {
+    double static_bits = 0.0, fixed_bits = 0.0;
+    /// Per clip its windows and then its end key: the key at the window's start (step index and
+    /// values), the window's step index and detail columns in tree order (none for the end key).
+    struct Entry {
+        int key_step = 0;
+        std::vector<std::int32_t> key;
+        int step = -1;
+        std::vector<std::vector<std::int32_t>> columns;
+    };
+    std::vector<Entry> entries;
+    std::vector<std::size_t> clip_first;  ///< per clip, its first entry
+    /// Per window: its start key (level 0), then its detail columns in tree order (level, values).
+    std::vector<std::vector<std::pair<int, std::vector<std::int32_t>>>> window_columns;
+    double max_error = 0.0;
+    std::size_t windows = 0, keys = 0, nonzero = 0;
+};
+
+/// Coarsest step index in [0, kMaxStep] for which passes(k) holds, galloping from `start`; -1 if none.
+template <class F>
+int coarsest(int start, F passes) {
+    int lo = -1, hi = -1;
+    if (passes(start)) {
+        lo = start;
+        for (int stride = 1; lo < detail::kMaxStep; stride *= 2) {
+            const int c = std::min(detail::kMaxStep, lo + stride);
+            if (!passes(c)) {
+                hi = c;
+                break;
+            }
+            lo = c;
+        }
+    } else {
+        hi = start;
+        for (int stride = 1; lo < 0 && hi > 0; stride *= 2) {
+            const int c = std::max(0, hi - stride);
+            if (passes(c)) lo = c;
+            else hi = c;
+        }
+    }
+    while (hi >= 0 && lo >= 0 && hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        if (passes(mid)) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+
+std::int32_t quantize(double v, double inv_step, double rounding) {
+    const double a = std::abs(v) * inv_step;
+    const auto m = static_cast<std::int32_t>(std::floor(a + rounding));
+    return v < 0 ? -m : m;
+}
+
+/// The hierarchical candidate on one group (clips in group order, m parsed from format 2's bytes).
+HierResult run_hier(const detail::GroupModel& m, const std::vector<const Clip*>& clips, double E, int W, int key_offset,
+                    StaticCost& cost, StaticCost& widths, double rounding) {
+    HierResult r;
+    const auto Da = static_cast<Eigen::Index>(m.active.size());
+    const MatX Uinv = m.dof_basis.partialPivLu().inverse();
+    int levels = 0;
+    while ((1 << levels) < W) ++levels;
+    detail::WindowScratch s;
+    m.prepare(s);
+    std::vector<double> row, p(static_cast<std::size_t>(m.dofs));
+    GlobalPose pose;
+    int k_prev = std::clamp(static_cast<int>(std::lround(12.0 * (std::log2(E) + 14.0))), 0, 254);
+    int kk_prev = k_prev;
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        const Clip& clip = *clips[i];
+        const detail::ClipEntry& e = m.clips[i];
+        const Skeleton& sk = *m.skeletons[e.skeleton].skeleton;
+        row.resize(sk.channel_count());
+        const MatX x = m.weighted_active(clip, m.skeletons[e.skeleton], e.canonical);
+        const MatX source = joint_positions(clip);
+        const auto F = x.cols();
+        const auto J = static_cast<Eigen::Index>(sk.size());
+        const Eigen::Index nw = (F - 1 + W - 1) / W;
+        const Eigen::Index T = nw * W + 1;
+        MatX y(Da, T), yh(Da, T);
+        for (Eigen::Index t = 0; t < T; ++t) y.col(t) = Uinv * x.col(std::min(t, F - 1));
+        // Distance check of reconstructed frame t (a real frame).
+        double worst = 0.0;
+        auto frame_ok = [&](Eigen::Index t, const double* yt) {
+            m.pose_of(e, yt, static_cast<int>(Da), s, p.data());
+            m.row_of(e, p.data(), row.data());
+            forward_kinematics(sk, row.data(), pose);
+            for (Eigen::Index j = 0; j < J; ++j) {
+                const double d = (pose.positions[static_cast<std::size_t>(j)] - source.block<3, 1>(3 * j, t)).norm();
+                if (!(d <= E)) return false;
+                worst = std::max(worst, d);
+            }
+            return true;
+        };
+        // Keys.
+        std::vector<std::vector<std::int32_t>> key_q(static_cast<std::size_t>(nw + 1));
+        VecX tmp(Da);
+        for (Eigen::Index w = 0; w <= nw; ++w) {
+            const Eigen::Index t = w * W;
+            const Eigen::Index real = std::min(t, F - 1);
+            auto passes = [&](int k) {
+                const double step = detail::step_of(k), inv = 1.0 / step;
+                for (Eigen::Index d = 0; d < Da; ++d) tmp[d] = quantize(y(d, t), inv, rounding) * step;
+                return frame_ok(real, tmp.data());
+            };
+            int k = coarsest(kk_prev, passes);
+            if (k < 0) throw Error("key fails even at the finest step");
+            kk_prev = k;
+            // A finer step for the key (better predictions); the bound is not monotone in the step,
+            // so the key is checked again and made finer until it holds.
+            auto& q = key_q[static_cast<std::size_t>(w)];
+            q.resize(static_cast<std::size_t>(Da));
+            for (k = std::max(0, k - key_offset);; --k) {
+                if (k < 0) throw Error("key fails even at the finest step");
+                const double step = detail::step_of(k), inv = 1.0 / step;
+                for (Eigen::Index d = 0; d < Da; ++d) {
+                    q[static_cast<std::size_t>(d)] = quantize(y(d, t), inv, rounding);
+                    yh(d, t) = q[static_cast<std::size_t>(d)] * step;
+                }
+                if (frame_ok(real, yh.col(t).data())) break;
+            }
+            r.max_error = std::max(r.max_error, worst);
+            if (w == 0) r.clip_first.push_back(r.entries.size());
+            r.entries.push_back({k, q, -1, {}});
+            ++r.keys;
+            r.static_bits += 8;  // step byte
+            for (Eigen::Index d = 0; d < Da; ++d) cost.add(0, static_cast<int>(d), q[static_cast<std::size_t>(d)]);
+        }
+        // Windows.
+        std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W));
+        for (Eigen::Index w = 0; w < nw; ++w) {
+            const Eigen::Index t0 = w * W;
+            auto encode = [&](int k) {
+                const double step = detail::step_of(k), inv = 1.0 / step;
+                for (int j = 1; j <= levels; ++j) {
+                    const int h = W >> j;
+                    for (int t = h; t < W; t += 2 * h) {
+                        for (Eigen::Index d = 0; d < Da; ++d) {
+                            const double pred = 0.5 * (yh(d, t0 + t - h) + yh(d, t0 + t + h));
+                            const std::int32_t v = quantize(y(d, t0 + t) - pred, inv, rounding);
+                            q[static_cast<std::size_t>(t * Da + d)] = v;
+                            yh(d, t0 + t) = v ? pred + v * step : pred;  // the decoder's form: zeros add nothing
+                        }
+                    }
+                }
+            };
+            auto passes = [&](int k) {
+                encode(k);
+                for (int t = 1; t < W && t0 + t < F; ++t)
+                    if (!frame_ok(t0 + t, yh.col(t0 + t).data())) return false;
+                return true;
+            };
+            worst = 0.0;
+            const int k = coarsest(k_prev, passes);
+            if (k < 0) throw Error("window fails even at the finest step");
+            k_prev = k;
+            worst = 0.0;
+            passes(k);
+            r.max_error = std::max(r.max_error, worst);
+            ++r.windows;
+            {
+                auto& wc = r.window_columns.emplace_back();
+                wc.push_back({0, key_q[static_cast<std::size_t>(w)]});
+                std::vector<std::pair<int, int>> order;  // (t, level) in tree order
+                auto tree = [&](auto&& self, int lo, int hi, int level) -> void {
+                    if (hi - lo < 2) return;
+                    const int mid = (lo + hi) / 2;
+                    order.push_back({mid, level});
+                    self(self, lo, mid, level + 1);
+                    self(self, mid, hi, level + 1);
+                };
+                tree(tree, 0, W, 1);
+                auto& entry = r.entries[r.clip_first.back() + static_cast<std::size_t>(w)];
+                entry.step = k;
+                for (const auto& [t, level] : order) {
+                    wc.push_back({level, std::vector<std::int32_t>(q.begin() + t * Da, q.begin() + (t + 1) * Da)});
+                    entry.columns.push_back(wc.back().second);
+                }
+            }
+            r.static_bits += 8;
+            r.fixed_bits += 8;
+            for (int j = 1; j <= levels; ++j) {
+                const int h = W >> j;
+                const int columns = W / (2 * h);  // odd multiples of h below W
+                for (Eigen::Index d = 0; d < Da; ++d) {
+                    std::int32_t largest = 0;
+                    for (int t = h; t < W; t += 2 * h) {
+                        const std::int32_t v = q[static_cast<std::size_t>(t * Da + d)];
+                        cost.add(j, static_cast<int>(d), v);
+                        largest = std::max(largest, std::abs(v));
+                        if (v) ++r.nonzero;
+                    }
+                    const int width = largest ? bit_length(static_cast<std::uint32_t>(largest)) + 1 : 0;
+                    widths.add(j, static_cast<int>(d), width);
+                    r.fixed_bits += static_cast<double>(width) * columns;
+                }
+            }
+        }
+        // Keys at fixed widths: one width per key and row (coded in context (0, row)).
+        for (const auto& kq : key_q) {
+            for (Eigen::Index d = 0; d < Da; ++d) {
+                const std::int32_t v = std::abs(kq[static_cast<std::size_t>(d)]);
+                const int width = v ? bit_length(static_cast<std::uint32_t>(v)) + 1 : 0;
+                widths.add(0, static_cast<int>(d), width);
+                r.fixed_bits += width + 8.0 / static_cast<double>(Da);
+            }
+        }
+    }
+    return r;
+}
+
+/// Huffman code lengths of a histogram (symbol -> count); plain Huffman (no length limit).
+std::map<int, int> huffman_lengths(const std::map<int, std::size_t>& hist) {
+    std::map<int, int> out;
+    if (hist.size() == 1) {
+        out[hist.begin()->first] = 1;
+        return out;
+    }
+    // (count, node); leaves 0..n-1, internal nodes after; parent links.
+    std::vector<int> symbols;
+    std::vector<std::size_t> weight;
+    for (const auto& [sym, n] : hist) {
+        symbols.push_back(sym);
+        weight.push_back(n);
+    }
+    const std::size_t n = symbols.size();
+    std::vector<int> parent(2 * n, -1);
+    using Item = std::pair<std::size_t, int>;
+    std::vector<Item> heap;
+    for (std::size_t i = 0; i < n; ++i) heap.push_back({weight[i], static_cast<int>(i)});
+    auto cmp = [](const Item& a, const Item& b) { return a.first > b.first; };
+    std::make_heap(heap.begin(), heap.end(), cmp);
+    int next = static_cast<int>(n);
+    while (heap.size() > 1) {
+        std::pop_heap(heap.begin(), heap.end(), cmp);
+        const Item a = heap.back();
+        heap.pop_back();
+        std::pop_heap(heap.begin(), heap.end(), cmp);
+        const Item b = heap.back();
+        heap.pop_back();
+        parent[static_cast<std::size_t>(a.second)] = next;
+        parent[static_cast<std::size_t>(b.second)] = next;
+        heap.push_back({a.first + b.first, next++});
+        std::push_heap(heap.begin(), heap.end(), cmp);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        int depth = 0;
+        for (int v = static_cast<int>(i); parent[static_cast<std::size_t>(v)] >= 0; v = parent[static_cast<std::size_t>(v)]) ++depth;
+        out[symbols[i]] = depth;
+    }
+    return out;
+}
+
+/// Realistic bytes of the hierarchical candidate with static Huffman codes: per column the number
+/// of rows up to its last nonzero one (context: level), then each row's value (context: level, row;
+/// |q| > 15 escapes with Elias-gamma bits); tables at 5 bits per used symbol; per window a
+/// directory of the left-subtree bit sizes of the column tree (per level a 5-bit width, then each
+/// size at that width), a 3-byte window offset and the step byte; each key a step byte.
+struct HuffmanFigures {
+    double bits = 0.0, directory_bits = 0.0, table_bits = 0.0, symbols_per_frame = 0.0;
+};
+/// A column as (context, symbol, extra raw bits) triples. mode 0: the row count, then each row's
+/// value (|q| <= 7 itself, else its bit length as a symbol with the sign, then the bits below the top
+/// one); mode 1: JPEG-like (zero run 0..15 or 16 = sixteen zeros, bit length of the value) pairs as one
+/// symbol, sign and bits below the top one raw, an end symbol after the last nonzero (context: level
+/// and the row bucket row/8).
+struct Coded {
+    int c1, c2, sym, extra;
+};
+void code_column(int level, const std::vector<std::int32_t>& v, int mode, std::vector<Coded>& out) {
+    int n = static_cast<int>(v.size());
+    while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+    if (mode == 0) {
+        out.push_back({level, -1, n, 0});
+        for (int d = 0; d < n; ++d) {
+            const std::int32_t q = v[static_cast<std::size_t>(d)];
+            if (q >= -7 && q <= 7) {
+                out.push_back({level, d, q, 0});
+            } else {
+                const int c = bit_length(static_cast<std::uint32_t>(std::abs(q)));
+                out.push_back({level, d, q > 0 ? 100 + c : -100 - c, c - 1});
+            }
+        }
+        return;
+    }
+    int run = 0;
+    for (int d = 0; d < n; ++d) {
+        const std::int32_t q = v[static_cast<std::size_t>(d)];
+        if (q == 0) {
+            ++run;
+            continue;
+        }
+        while (run >= 16) {
+            out.push_back({level, (d - run) / 8, 16 * 32, 0});
+            run -= 16;
+        }
+        const int c = bit_length(static_cast<std::uint32_t>(std::abs(q)));
+        out.push_back({level, d / 8, run * 32 + c, c});  // c - 1 magnitude bits + sign
+        run = 0;
+    }
+    if (n < static_cast<int>(v.size())) out.push_back({level, n / 8, -1, 0});  // end of column
+}
+
+HuffmanFigures huffman_bits(const HierResult& r, int W, int mode) {
+    std::map<std::pair<int, int>, std::map<int, std::size_t>> hist;
+    std::vector<Coded> coded;
+    for (const auto& wc : r.window_columns)
+        for (const auto& [level, v] : wc) {
+            coded.clear();
+            code_column(level, v, mode, coded);
+            for (const Coded& c : coded) ++hist[{c.c1, c.c2}][c.sym];
+        }
+    std::map<std::pair<int, int>, std::map<int, int>> lengths;
+    HuffmanFigures f;
+    for (const auto& [ctx, h] : hist) {
+        lengths[ctx] = huffman_lengths(h);
+        f.table_bits += 5.0 * static_cast<double>(h.size()) + 8.0;
+    }
+    double symbols = 0.0, frames = 0.0;
+    int levels = 0;
+    while ((1 << levels) < W) ++levels;
+    for (const auto& wc : r.window_columns) {
+        std::vector<double> column_bits;
+        std::vector<double> column_symbols;
+        for (const auto& [level, v] : wc) {
+            coded.clear();
+            code_column(level, v, mode, coded);
+            double b = 0.0;
+            for (const Coded& c : coded) b += lengths[{c.c1, c.c2}][c.sym] + c.extra;
+            column_bits.push_back(b);
+            column_symbols.push_back(static_cast<double>(coded.size()));
+            f.bits += b;
+        }
+        // Directory: columns after the key are in tree order; a node's left subtree is the next
+        // 2^(levels - level) - 1 columns.
+        std::vector<double> width(static_cast<std::size_t>(levels + 1), 0.0);
+        std::vector<int> count(static_cast<std::size_t>(levels + 1), 0);
+        for (std::size_t i = 1; i < wc.size(); ++i) {
+            const int level = wc[i].first;
+            if (level >= levels) continue;  // leaves' parents have no subtree to skip
+            const std::size_t span = (std::size_t{1} << (levels - level)) - 1;
+            double size = 0.0;
+            for (std::size_t k = i + 1; k < i + 1 + span && k < wc.size(); ++k) size += column_bits[k];
+            width[static_cast<std::size_t>(level)] = std::max(width[static_cast<std::size_t>(level)],
+                                                             static_cast<double>(bit_length(static_cast<std::uint32_t>(size))));
+            ++count[static_cast<std::size_t>(level)];
+        }
+        for (int level = 1; level < levels; ++level)
+            f.directory_bits += 5.0 + width[static_cast<std::size_t>(level)] * count[static_cast<std::size_t>(level)];
+        f.directory_bits += 24.0 + 8.0;
+        // Symbols a frame decodes, averaged over the window's frames: its two keys and its path.
+        for (int t = 0; t < W; ++t) {
+            // Key symbols: this window's key (next window's is about the same size).
+            double s = 2.0 * column_symbols[0];
+            std::size_t i = 1;
+            int lo = 0, hi = W, level = 1;
+            while (hi - lo >= 2 && t != lo) {
+                const int mid = (lo + hi) / 2;
+                s += column_symbols[i];
+                if (t == mid) break;
+                const std::size_t span = (std::size_t{1} << (levels - level)) - 1;
+                if (t < mid) { hi = mid; i += 1; }
+                else { lo = mid; i += 1 + span; }
+                ++level;
+            }
+            symbols += s;
+            frames += 1;
+        }
+    }
+    f.bits += f.table_bits + f.directory_bits + 8.0 * static_cast<double>(r.keys);
+    f.symbols_per_frame = frames > 0 ? symbols / frames : 0.0;
+    return f;
+}
+
+/// Static estimate of format 2's own coefficients (window step as stored, rounding 0.4, no trim).
+double format2_static_bits(const detail::GroupModel& m, const std::vector<const Clip*>& clips) {
+    StaticCost cost;
+    const auto Da = static_cast<Eigen::Index>(m.active.size());
+    const int W = m.window;
+    const MatX Uinv = m.dof_basis.partialPivLu().inverse();
+    const MatX Vinv_t = m.time_basis.partialPivLu().inverse().transpose();
+    double bits = 0.0;
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        const detail::ClipEntry& e = m.clips[i];
+        const MatX x = m.weighted_active(*clips[i], m.skeletons[e.skeleton], e.canonical);
+        const auto F = x.cols();
+        const Eigen::Index nw = (F + W - 1) / W;
+        for (Eigen::Index w = 0; w < nw; ++w) {
+            const auto& we = m.windows[e.first_window + static_cast<std::uint64_t>(w)];
+            bits += 8;
+            if (we.step == detail::kRawStep) continue;
+            MatX xw(Da, W);
+            for (int t = 0; t < W; ++t) xw.col(t) = x.col(std::min<Eigen::Index>(w * W + t, F - 1));
+            const MatX g = Uinv * xw * Vinv_t;
+            const double inv = 1.0 / detail::step_of(we.step);
+            for (Eigen::Index d = 0; d < Da; ++d)
+                for (int k = 0; k < W; ++k) cost.add(k, static_cast<int>(d), quantize(g(d, k), inv, 0.4));
+        }
+    }
+    return bits + cost.bits();
+}
+
+// ---- A real bitstream of the hierarchical candidate, to time a cold pose from the stored bytes ----
+
+/// MSB-first bit writer.
+struct BitWriter {
+    std::vector<std::uint8_t> bytes;
+    std::uint64_t acc = 0;
+    int n = 0;
+    void put(std::uint32_t value, int bits) {
+        if (bits == 0) return;
+        acc = (acc << bits) | (static_cast<std::uint64_t>(value) & ((std::uint64_t{1} << bits) - 1));
+        n += bits;
+        while (n >= 8) {
+            bytes.push_back(static_cast<std::uint8_t>(acc >> (n - 8)));
+            n -= 8;
+        }
+        acc &= (std::uint64_t{1} << n) - 1;
+    }
+    void align() {
+        if (n > 0) put(0, 8 - n);
+    }
+    std::size_t bits() const { return bytes.size() * 8 + static_cast<std::size_t>(n); }
+};
+
+/// MSB-first bit reader over a buffer with at least 8 bytes of slack after the data.
+struct BitReader {
+    const std::uint8_t* data;
+    std::size_t pos;  // bits
+    std::uint64_t window() const {
+        std::uint64_t v;
+        std::memcpy(&v, data + (pos >> 3), 8);
+        return __builtin_bswap64(v) << (pos & 7);
+    }
+    std::uint32_t get(int bits) {
+        if (bits == 0) return 0;
+        const auto v = static_cast<std::uint32_t>(window() >> (64 - bits));
+        pos += static_cast<std::size_t>(bits);
+        return v;
+    }
+};
+
+/// The decoder's bit buffer (Giesen's branch-free refill): buf holds the next bits MSB-first, at
+/// least 56 of them after refill(); the loads do not depend on the bits decoded.
+struct FastBits {
+    const std::uint8_t* next = nullptr;
+    std::uint64_t buf = 0;
+    int avail = 0;  // bits in buf
+    std::size_t consumed = 0;
+    FastBits() = default;
+    FastBits(const std::uint8_t* data, std::size_t bit) : next(data + (bit >> 3)) {
+        refill();
+        drop(static_cast<int>(bit & 7));
+        consumed = bit;
+    }
+    void refill() {
+        std::uint64_t v;
+        std::memcpy(&v, next, 8);
+        buf |= __builtin_bswap64(v) >> avail;
+        next += (63 - avail) >> 3;
+        avail |= 56;
+    }
+    void drop(int n) {
+        buf <<= n;
+        avail -= n;
+        consumed += static_cast<std::size_t>(n);
+    }
+};
+
+constexpr int kCodeArray = 16;
+/// Code lengths are limited to this, and the decode tables have 2^this entries (--code-bits).
+int kMaxCode = 11;
+int& kFastBits = kMaxCode;
+constexpr int kEnd = -1;        // end of column
+constexpr int kZeroRun = 16 * 32;  // sixteen zeros
+
+/// A canonical Huffman code of one context: lengths limited to kMaxCode, a kFastBits lookup table
+/// and the canonical tables for longer codes.
+struct HuffmanCode {
+    std::map<int, int> length;
+    std::map<int, std::uint32_t> code;
+    struct Fast {
+        std::int16_t symbol = 0;
+        std::uint8_t length = 0;  // 0: longer than kFastBits
+    };
+    std::vector<Fast> fast;
+    /// The same table packed for the decoder's loop: bits 0-3 length (0: slow path), 4-8 run,
+    /// 9-13 bit length of the value, 14-15 kind (0 value, 1 sixteen zeros, 2 end).
+    std::vector<std::uint16_t> packed;
+    std::vector<int> sorted;  // symbols in canonical order
+    std::array<std::uint32_t, kCodeArray + 2> first{}, count{}, index{};
+
+    void build(const std::map<int, std::size_t>& hist) {
+        length = huffman_lengths(hist);
+        // Limit lengths: clamp, then lengthen the rarest shorter codes until Kraft's sum is <= 1.
+        for (auto& [s, l] : length) l = std::min(l, kMaxCode);
+        auto kraft = [&] {
+            double k = 0.0;
+            for (const auto& [s, l] : length) k += std::ldexp(1.0, -l);
+            return k;
+        };
+        std::vector<std::pair<std::size_t, int>> by_count;
+        for (const auto& [s, n] : hist) by_count.push_back({n, s});
+        std::sort(by_count.begin(), by_count.end());
+        while (kraft() > 1.0 + 1e-12)
+            for (const auto& [n, s] : by_count)
+                if (length[s] < kMaxCode) {
+                    ++length[s];
+                    break;
+                }
+        // Canonical codes: by (length, symbol).
+        std::vector<std::pair<int, int>> order;
+        for (const auto& [s, l] : length) order.push_back({l, s});
+        std::sort(order.begin(), order.end());
+        std::uint32_t c = 0;
+        int previous = order.empty() ? 0 : order.front().first;
+        count.fill(0);
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            const auto [l, s] = order[i];
+            c <<= (l - previous);
+            previous = l;
+            code[s] = c;
+            if (count[static_cast<std::size_t>(l)] == 0) {
+                first[static_cast<std::size_t>(l)] = c;
+                index[static_cast<std::size_t>(l)] = static_cast<std::uint32_t>(i);
+            }
+            ++count[static_cast<std::size_t>(l)];
+            sorted.push_back(s);
+            ++c;
+        }
+        fast.assign(std::size_t{1} << kFastBits, Fast{});
+        for (const auto& [s, l] : length) {
+            if (l > kFastBits) continue;
+            const std::uint32_t base = code[s] << (kFastBits - l);
+            for (std::uint32_t k = 0; k < (1u << (kFastBits - l)); ++k) fast[base + k] = {static_cast<std::int16_t>(s), static_cast<std::uint8_t>(l)};
+        }
+        packed.assign(fast.size(), 0);
+        for (std::size_t i = 0; i < fast.size(); ++i) {
+            const Fast f = fast[i];
+            if (!f.length) continue;
+            const int kind = f.symbol == kEnd ? 2 : f.symbol == kZeroRun ? 1 : 0;
+            const int run = kind ? 0 : f.symbol >> 5, cat = kind ? 0 : f.symbol & 31;
+            packed[i] = static_cast<std::uint16_t>(f.length | run << 4 | cat << 9 | kind << 14);
+        }
+    }
+    void write(BitWriter& out, int symbol) const { out.put(code.at(symbol), length.at(symbol)); }
+    int read(BitReader& in) const {
+        const std::uint64_t w = in.window();
+        const Fast& f = fast[static_cast<std::size_t>(w >> (64 - kFastBits))];
+        if (f.length) {
+            in.pos += f.length;
+            return f.symbol;
+        }
+        for (int l = kFastBits + 1; l <= kMaxCode; ++l) {
+            const auto v = static_cast<std::uint32_t>(w >> (64 - l));
+            const std::uint32_t n = count[static_cast<std::size_t>(l)];
+            if (n && v - first[static_cast<std::size_t>(l)] < n) {
+                in.pos += static_cast<std::size_t>(l);
+                return sorted[index[static_cast<std::size_t>(l)] + (v - first[static_cast<std::size_t>(l)])];
+            }
+        }
+        throw Error("bad code");
+    }
+};
+
+/// The runtime candidate of one group: window byte offsets, each window's bits, the codes.
+struct RuntimeGroup {
+    int W = 0, levels = 0, Da = 0, buckets = 0;
+    std::vector<HuffmanCode> codes;      // (level, bucket) -> code; level 0 = keys
+    std::vector<std::uint32_t> offsets;  // per entry, byte offset
+    std::vector<std::size_t> clip_first;
+    std::vector<std::uint8_t> bytes;     // entries' bits, 8 bytes of slack at the end
+    std::size_t table_bits = 0, directory_bits = 0;
+    bool prefetch = true;
+    /// Every context's decode table, one after the other (2^kFastBits entries each): bits 0-3 the
+    /// code length, 4-8 the zero run (16: sixteen zeros), 9-13 the value's bit length (0: none), 14 end.
+    std::vector<std::uint16_t> flat;
+    void build_flat() {
+        const std::size_t n = std::size_t{1} << kFastBits;
+        flat.assign(codes.size() * n, 0);
+        for (std::size_t c = 0; c < codes.size(); ++c) {
+            if (codes[c].fast.empty()) continue;
+            for (std::size_t i = 0; i < n; ++i) {
+                const auto f = codes[c].fast[i];
+                if (!f.length) continue;
+                const int end = f.symbol == kEnd, zeros = f.symbol == kZeroRun;
+                const int run = end ? 0 : zeros ? 16 : f.symbol >> 5, cat = end || zeros ? 0 : f.symbol & 31;
+                flat[c * n + i] = static_cast<std::uint16_t>(f.length | run << 4 | cat << 9 | end << 14);
+            }
+        }
+    }
+
+    const HuffmanCode& code(int level, int row) const { return codes[static_cast<std::size_t>(level * buckets + row / 8)]; }
+
+    /// Column symbols (run/size with end), as code_column mode 1 but contexts by the run's start.
+    void symbols(int level, const std::vector<std::int32_t>& v, std::vector<Coded>& out) const {
+        int n = static_cast<int>(v.size());
+        while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+        int start = 0;
+        for (int d = 0; d < n; ++d) {
+            const std::int32_t q = v[static_cast<std::size_t>(d)];
+            if (q == 0) continue;
+            while (d - start >= 16) {
+                out.push_back({level, start, kZeroRun, 0});
+                start += 16;
+            }
+            const int c = bit_length(static_cast<std::uint32_t>(std::abs(q)));
+            out.push_back({level, start, (d - start) * 32 + c, q});
+            start = d + 1;
+        }
+        if (n < static_cast<int>(v.size())) out.push_back({level, start, kEnd, 0});
+    }
+    void write_column(BitWriter& out, int level, const std::vector<std::int32_t>& v) const {
+        std::vector<Coded> coded;
+        symbols(level, v, coded);
+        for (const Coded& c : coded) {
+            code(c.c1, c.c2).write(out, c.sym);
+            if (c.sym == kEnd || c.sym == kZeroRun) continue;
+            const int cat = c.sym & 31;
+            const std::int32_t q = c.extra;
+            out.put(q < 0 ? 1u : 0u, 1);
+            out.put(static_cast<std::uint32_t>(std::abs(q)), cat - 1);
+        }
+    }
+    /// y[d] = mean of a[d] and b[d] (keys: a == nullptr, 0), plus q[d] * step where q[d] is nonzero.
+    void read_column(BitReader& in, int level, const double* a, const double* b, double step, double* y) const {
+        if (a) {
+            for (int d = 0; d < Da; ++d) y[d] = 0.5 * (a[d] + b[d]);
+        } else {
+            std::fill(y, y + Da, 0.0);
+        }
+        const int B = kFastBits;
+        const std::uint16_t* table = flat.data() + (static_cast<std::size_t>(level * buckets) << B);
+        FastBits bits(in.data, in.pos);
+        int d = 0;
+        while (d < Da) {
+            bits.refill();
+            const std::uint16_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(bits.buf >> (64 - B))];
+            if (e & (1u << 14)) {
+                bits.drop(e & 15);
+                break;
+            }
+            const int len = e & 15, cat = (e >> 9) & 31;
+            d += (e >> 4) & 31;
+            const auto v = static_cast<std::uint32_t>(((bits.buf << len) >> 1) >> (63 - cat));
+            bits.drop(len + cat);
+            if (cat) {
+                const auto mag = static_cast<std::int32_t>((1u << (cat - 1)) | (v & ((1u << (cat - 1)) - 1)));
+                y[d] = y[d] + ((v >> (cat - 1)) ? -mag : mag) * step;
+                ++d;
+            }
+        }
+        in.pos = bits.consumed;
+    }
+};
+
+/// Column levels and frames in tree order for windows of W = 2^levels frames.
+void tree_order(int W, std::vector<int>& level, std::vector<int>& frame) {
+    auto tree = [&](auto&& self, int lo, int hi, int l) -> void {
+        if (hi - lo < 2) return;
+        const int mid = (lo + hi) / 2;
+        level.push_back(l);
+        frame.push_back(mid);
+        self(self, lo, mid, l + 1);
+        self(self, mid, hi, l + 1);
+    };
+    tree(tree, 0, W, 1);
+}
+
+RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
+    RuntimeGroup g;
+    g.W = W;
+    g.Da = Da;
+    while ((1 << g.levels) < W) ++g.levels;
+    g.buckets = (Da + 7) / 8;
+    g.clip_first = r.clip_first;
+    std::vector<int> tl, tf;
+    tree_order(W, tl, tf);
+    std::vector<std::map<int, std::size_t>> hist(static_cast<std::size_t>((g.levels + 1) * g.buckets));
+    std::vector<Coded> coded;
+    auto count = [&](int level, const std::vector<std::int32_t>& v) {
+        coded.clear();
+        g.symbols(level, v, coded);
+        for (const Coded& c : coded) ++hist[static_cast<std::size_t>(c.c1 * g.buckets + c.c2 / 8)][c.sym];
+    };
+    for (const auto& e : r.entries) {
+        count(0, e.key);
+        for (std::size_t i = 0; i < e.columns.size(); ++i) count(tl[i], e.columns[i]);
+    }
+    g.codes.resize(hist.size());
+    for (std::size_t c = 0; c < hist.size(); ++c) {
+        if (hist[c].empty()) continue;
+        g.codes[c].build(hist[c]);
+        g.table_bits += 8 + 5 * hist[c].size();
+    }
+    BitWriter out;
+    for (const auto& e : r.entries) {
+        out.align();
+        g.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+        out.put(static_cast<std::uint32_t>(e.key_step), 8);
+        g.write_column(out, 0, e.key);
+        if (e.step < 0) continue;
+        out.put(static_cast<std::uint32_t>(e.step), 8);
+        // Column sizes, then each internal node's left subtree size (per level at one width).
+        std::vector<std::size_t> size;
+        for (std::size_t i = 0; i < e.columns.size(); ++i) {
+            BitWriter scratch;
+            g.write_column(scratch, tl[i], e.columns[i]);
+            size.push_back(scratch.bits());
+        }
+        std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
+        for (std::size_t i = 0; i < e.columns.size(); ++i) {
+            const int l = tl[i];
+            if (l >= g.levels) continue;
+            const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
+            std::size_t s = 0;
+            for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
+            left[static_cast<std::size_t>(l)].push_back(s);
+        }
+        const std::size_t before = out.bits();
+        std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
+        for (int l = 1; l < g.levels; ++l) {
+            for (std::size_t s : left[static_cast<std::size_t>(l)])
+                width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
+            out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
+        }
+        for (int l = 1; l < g.levels; ++l)
+            for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
+        g.directory_bits += out.bits() - before;
+        for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+    }
+    out.align();
+    g.build_flat();
+    g.bytes = std::move(out.bytes);
+    g.bytes.resize(g.bytes.size() + 8, 0);
+    return g;
+}
+
+/// A frame of a clip into y (Da values), from the bytes alone; a, b, c: Da values of scratch each.
+void runtime_frame(const RuntimeGroup& g, std::size_t clip, std::size_t frame, double* y, double* a, double* b,
+                   double* c) {
+    const std::size_t w = frame / static_cast<std::size_t>(g.W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(g.W));
+    const std::size_t entry = g.clip_first[clip] + w;
+    if (g.prefetch) {
+        // The window's bytes and the next key's: one pass of prefetches before the first decode, so
+        // that the misses overlap instead of following one another.
+        const std::size_t end = std::min<std::size_t>(g.bytes.size(), std::size_t{g.offsets[entry + 1]} + 192);
+        for (std::size_t at = g.offsets[entry] & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(g.bytes.data() + at);
+    }
+    BitReader in{g.bytes.data(), std::size_t{g.offsets[entry]} * 8};
+    const double key_step = detail::step_of(static_cast<int>(in.get(8)));
+    if (t == 0) {
+        g.read_column(in, 0, nullptr, nullptr, key_step, y);
+        return;
+    }
+    g.read_column(in, 0, nullptr, nullptr, key_step, a);
+    {
+        BitReader next{g.bytes.data(), std::size_t{g.offsets[entry + 1]} * 8};
+        const double next_step = detail::step_of(static_cast<int>(next.get(8)));
+        g.read_column(next, 0, nullptr, nullptr, next_step, b);
+    }
+    const double step = detail::step_of(static_cast<int>(in.get(8)));
+    int width[8] = {0};
+    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
+    // Left subtree sizes on t's path: level l's sizes start after the earlier levels' (2^(l-1) each).
+    std::size_t sizes_at = in.pos;
+    std::size_t skip[8] = {0};
+    for (int l = 1; l < g.levels; ++l) {
+        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
+        BitReader s{g.bytes.data(), sizes_at + node * static_cast<std::size_t>(width[l])};
+        skip[l] = s.get(width[l]);
+        sizes_at += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
+    }
+    in.pos = sizes_at;
+    int lo = 0, hi = g.W;
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 1;; ++l) {
+        const int mid = (lo + hi) / 2;
+        if (mid == t) {
+            g.read_column(in, l, lo_y, hi_y, step, y);
+            return;
+        }
+        double* out = lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c;
+        g.read_column(in, l, lo_y, hi_y, step, out);
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            in.pos += skip[l];
+            lo = mid;
+            lo_y = out;
+        }
+    }
+}
+
+
+// ---- Variant 2: every column's size in the directory, so that a frame's columns (two keys and its
+// path) decode as independent chains, interleaved symbol by symbol. ----
+
+struct Chain {
+    FastBits bits;
+    const std::uint16_t* table = nullptr;
+    int d = 0;
+    std::int32_t* q = nullptr;
+    bool live = false;
+};
+
+/// One symbol of a chain (the run/size code of RuntimeGroup::read_column, into q).
+inline void chain_step(Chain& c, int Da, int B) {
+    c.bits.refill();
+    const std::uint16_t e = c.table[(static_cast<std::size_t>(c.d >> 3) << B) | static_cast<std::size_t>(c.bits.buf >> (64 - B))];
+    if (e & (1u << 14)) {
+        c.bits.drop(e & 15);
+        c.live = false;
+        return;
+    }
+    const int len = e & 15, cat = (e >> 9) & 31;
+    c.d += (e >> 4) & 31;
+    const auto v = static_cast<std::uint32_t>(((c.bits.buf << len) >> 1) >> (63 - cat));
+    c.bits.drop(len + cat);
+    if (cat) {
+        const auto mag = static_cast<std::int32_t>((1u << (cat - 1)) | (v & ((1u << (cat - 1)) - 1)));
+        c.q[c.d] = (v >> (cat - 1)) ? -mag : mag;
+        ++c.d;
+    }
+    if (c.d >= Da) c.live = false;
+}
+
+struct RuntimeGroup2 {
+    const RuntimeGroup* base = nullptr;  // codes, tables, geometry
+    std::vector<std::uint32_t> offsets;
+    std::vector<std::uint8_t> bytes;
+    std::size_t directory_bits = 0;
+    std::vector<int> tree_level, tree_frame;
+};
+
+RuntimeGroup2 build_runtime2(const RuntimeGroup& g, const HierResult& r) {
+    RuntimeGroup2 g2;
+    g2.base = &g;
+    tree_order(g.W, g2.tree_level, g2.tree_frame);
+    BitWriter out;
+    auto size_of = [&](int level, const std::vector<std::int32_t>& v) {
+        BitWriter scratch;
+        g.write_column(scratch, level, v);
+        return scratch.bits();
+    };
+    for (const auto& e : r.entries) {
+        out.align();
+        g2.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+        out.put(static_cast<std::uint32_t>(e.key_step), 8);
+        const std::size_t key_bits = size_of(0, e.key);
+        const int key_width = bit_length(static_cast<std::uint32_t>(key_bits));
+        out.put(static_cast<std::uint32_t>(key_width), 5);
+        out.put(static_cast<std::uint32_t>(key_bits), key_width);
+        g2.directory_bits += 5 + static_cast<std::size_t>(key_width);
+        g.write_column(out, 0, e.key);
+        if (e.step < 0) continue;
+        out.put(static_cast<std::uint32_t>(e.step), 8);
+        std::vector<std::size_t> size;
+        std::vector<int> width(static_cast<std::size_t>(g.levels + 1), 0);
+        for (std::size_t i = 0; i < e.columns.size(); ++i) {
+            size.push_back(size_of(g2.tree_level[i], e.columns[i]));
+            auto& w = width[static_cast<std::size_t>(g2.tree_level[i])];
+            w = std::max(w, bit_length(static_cast<std::uint32_t>(size.back())));
+        }
+        const std::size_t before = out.bits();
+        for (int l = 1; l <= g.levels; ++l) out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
+        for (std::size_t i = 0; i < e.columns.size(); ++i)
+            out.put(static_cast<std::uint32_t>(size[i]), width[static_cast<std::size_t>(g2.tree_level[i])]);
+        g2.directory_bits += out.bits() - before;
+        for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, g2.tree_level[i], e.columns[i]);
+    }
+    out.align();
+    g2.bytes = std::move(out.bytes);
+    g2.bytes.resize(g2.bytes.size() + 8, 0);
+    return g2;
+}
+
+/// Variant 2's frame: two keys and the path's columns decoded as independent chains, then the
+/// predictions (the encoder's expressions, so the same bits). q: (2 + levels) * Da ints of scratch.
+void runtime_frame2(const RuntimeGroup2& g2, std::size_t clip, std::size_t frame, double* y, double* a, double* b,
+                    double* c, std::int32_t* q) {
+    const RuntimeGroup& g = *g2.base;
+    const int Da = g.Da, B = kFastBits, W = g.W;
+    const std::size_t w = frame / static_cast<std::size_t>(W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
+    const std::size_t entry = g.clip_first[clip] + w;
+    const std::uint8_t* data = g2.bytes.data();
+    {
+        const std::size_t end = std::min<std::size_t>(g2.bytes.size(), std::size_t{g2.offsets[entry + 1]} + 192);
+        for (std::size_t at = g2.offsets[entry] & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
+    }
+    const std::uint16_t* keys = g.flat.data();
+    BitReader in{data, std::size_t{g2.offsets[entry]} * 8};
+    const double key_step = detail::step_of(static_cast<int>(in.get(8)));
+    const std::size_t key_bits = in.get(static_cast<int>(in.get(5)));
+    Chain chains[12];
+    int n = 0;
+    std::fill(q, q + static_cast<std::ptrdiff_t>(2 + g.levels) * Da, 0);
+    chains[n++] = Chain{FastBits(data, in.pos), keys, 0, q, true};
+    if (t == 0) {
+        while (chains[0].live) chain_step(chains[0], Da, B);
+        for (int d = 0; d < Da; ++d) y[d] = q[d] ? q[d] * key_step : 0.0;
+        return;
+    }
+    in.pos += key_bits;
+    BitReader next{data, std::size_t{g2.offsets[entry + 1]} * 8};
+    const double next_step = detail::step_of(static_cast<int>(next.get(8)));
+    next.get(static_cast<int>(next.get(5)));
+    chains[n++] = Chain{FastBits(data, next.pos), keys, 0, q + Da, true};
+    const double step = detail::step_of(static_cast<int>(in.get(8)));
+    int width[8] = {0};
+    for (int l = 1; l <= g.levels; ++l) width[l] = static_cast<int>(in.get(5));
+    // Sizes in tree order; the path's columns and their starts.
+    const int columns = W - 1;
+    std::size_t start[64];
+    std::size_t at = 0;
+    {
+        std::size_t sizes_bits = 0;
+        for (int i = 0; i < columns; ++i) sizes_bits += static_cast<std::size_t>(width[g2.tree_level[static_cast<std::size_t>(i)]]);
+        const std::size_t base = in.pos + sizes_bits;
+        for (int i = 0; i < columns; ++i) {
+            start[i] = base + at;
+            at += in.get(width[g2.tree_level[static_cast<std::size_t>(i)]]);
+        }
+    }
+    int path[10], path_mid[10], levels_on_path = 0;
+    {
+        int lo = 0, hi = W, i = 0;
+        for (int l = 1;; ++l) {
+            const int mid = (lo + hi) / 2;
+            path[levels_on_path] = i;
+            path_mid[levels_on_path++] = mid;
+            if (mid == t || levels_on_path == 10) break;
+            if (t < mid) {
+                hi = mid;
+                i += 1;
+            } else {
+                lo = mid;
+                i += 1 + ((1 << (g.levels - l)) - 1);
+            }
+        }
+    }
+    for (int k = 0; k < levels_on_path && n < 12; ++k)
+        chains[n++] = Chain{FastBits(data, start[path[k]]), g.flat.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << B), 0,
+                            q + (2 + k) * Da, true};
+    for (bool any = true; any;) {
+        any = false;
+        for (int k = 0; k < n; ++k)
+            if (chains[k].live) {
+                chain_step(chains[k], Da, B);
+                any = true;
+            }
+    }
+    // Predictions, as the encoder formed them.
+    for (int d = 0; d < Da; ++d) {
+        a[d] = q[d] ? q[d] * key_step : 0.0;
+        b[d] = q[Da + d] ? q[Da + d] * next_step : 0.0;
+    }
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int k = 0; k < levels_on_path; ++k) {
+        const std::int32_t* qk = q + (2 + k) * Da;
+        const bool last = k + 1 == levels_on_path;
+        double* out = last ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        for (int d = 0; d < Da; ++d) {
+            const double pred = 0.5 * (lo_y[d] + hi_y[d]);
+            out[d] = qk[d] ? pred + qk[d] * step : pred;
+        }
+        if (last) return;
+        if (t < path_mid[k]) hi_y = out;
+        else lo_y = out;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> folders{"cmu-walkrun-pfnn", "cmu-asfamc"};
+    std::vector<double> errors{1.0, 0.1};
+    std::vector<int> windows{16, 32};
+    std::vector<int> key_offsets{0, 12};
+    double rounding = 0.4;
+    std::size_t limit = 0;
+    std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
+    for (int a = 1; a + 1 < argc; a += 2) {
+        const std::string k = argv[a], v = argv[a + 1];
+        if (k == "--folders") folders = split(v);
+        else if (k == "--errors") { errors.clear(); for (auto& s : split(v)) errors.push_back(std::stod(s)); }
+        else if (k == "--windows") { windows.clear(); for (auto& s : split(v)) windows.push_back(std::stoi(s)); }
+        else if (k == "--key-offsets") { key_offsets.clear(); for (auto& s : split(v)) key_offsets.push_back(std::stoi(s)); }
+        else if (k == "--rounding") rounding = std::stod(v);
+        else if (k == "--limit") limit = std::stoul(v);
+        else if (k == "--poses") poses = std::stoul(v);
+        else if (k == "--code-bits") kMaxCode = std::stoi(v);
+    }
+    std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
+                "windows,keys,nonzero,seconds\n");
+    for (const auto& folder : folders) {
+        const std::vector<Clip> clips = bench::read_shared_folder(folder, limit);
+        std::vector<const Clip*> all;
+        for (const Clip& c : clips) all.push_back(&c);
+        const auto groups = group_clips(all);
+        for (double E : errors) {
+            PackOptions o;
+            o.max_error_cm = E;
+            o.time_basis = TimeBasis::Learned;
+            o.dof_basis = DofBasis::Learned;
+            std::vector<detail::GroupModel> models(groups.size());
+            std::vector<std::vector<const Clip*>> members(groups.size());
+            std::size_t f2_bytes = 0, f2_payload = 0, f2_header = 0;
+            std::vector<std::vector<std::uint8_t>> f2(groups.size());
+            double f2_static = 0.0;
+            for (std::size_t g = 0; g < groups.size(); ++g) {
+                for (std::size_t i : groups[g]) members[g].push_back(all[i]);
+                const PackedGroup pg = pack_group(members[g], o);
+                f2_bytes += pg.stats.bytes;
+                f2_payload += pg.stats.payload_bytes + pg.stats.table_bytes;
+                f2_header += pg.stats.header_bytes;
+                f2[g] = pg.bytes;
+                models[g].read_header(pg.bytes.data(), pg.bytes.size());
+                f2_static += format2_static_bits(models[g], members[g]);
+            }
+            for (int W : windows)
+                for (int ko : key_offsets) {
+                    const auto t0 = bench::Clock::now();
+                    HierResult total;
+                    double static_bits = 0.0, fixed_bits = 0.0;
+                    std::vector<RuntimeGroup> runtime;
+                    std::vector<HierResult> hier_results;
+                    std::vector<double> by_level(10, 0.0);
+                    HuffmanFigures huff, rle;
+                    for (std::size_t g = 0; g < groups.size(); ++g) {
+                        StaticCost cost, widths;
+                        const HierResult r = run_hier(models[g], members[g], E, W, ko, cost, widths, rounding);
+                        for (int j = 0; j < 10; ++j) by_level[static_cast<std::size_t>(j)] += cost.bits(j) / 8;
+                        static_bits += r.static_bits + cost.bits();
+                        if (poses > 0) {
+                            runtime.push_back(build_runtime(r, W, static_cast<int>(models[g].active.size())));
+                            hier_results.push_back(r);
+                        }
+                        const HuffmanFigures h = huffman_bits(r, W, 0);
+                        const HuffmanFigures h1 = huffman_bits(r, W, 1);
+                        rle.bits += h1.bits;
+                        rle.symbols_per_frame += h1.symbols_per_frame * static_cast<double>(r.windows);
+                        huff.bits += h.bits;
+                        huff.directory_bits += h.directory_bits;
+                        huff.table_bits += h.table_bits;
+                        huff.symbols_per_frame += h.symbols_per_frame * static_cast<double>(r.windows);
+                        fixed_bits += r.fixed_bits + widths.bits();
+                        total.max_error = std::max(total.max_error, r.max_error);
+                        total.windows += r.windows;
+                        total.keys += r.keys;
+                        total.nonzero += r.nonzero;
+                    }
+                    std::printf("%s,%g,%zu,%zu,%.0f,%d,%d,%.0f,%.0f,%.7f,%zu,%zu,%zu,%.1f\n", folder.c_str(), E, f2_bytes,
+                                f2_payload, f2_static / 8, W, ko, static_bits / 8, fixed_bits / 8, total.max_error,
+                                total.windows, total.keys, total.nonzero, bench::seconds_since(t0));
+                    std::printf("#  huffman %.0f (directory %.0f, tables %.0f), symbols per frame %.1f\n", huff.bits / 8,
+                                huff.directory_bits / 8, huff.table_bits / 8,
+                                huff.symbols_per_frame / static_cast<double>(std::max<std::size_t>(1, total.windows)));
+                    std::printf("#  huffman run/size %.0f, symbols per frame %.1f\n", rle.bits / 8,
+                                rle.symbols_per_frame / static_cast<double>(std::max<std::size_t>(1, total.windows)));
+                    if (poses > 0) {
+                        // Bytes: entries, a 3-byte offset per entry, the code tables, format 2's header as a
+                        // stand-in for the shared header (skeletons, dof basis, constants, clip table).
+                        double bits = 0.0, directory = 0.0, tables = 0.0;
+                        std::size_t entries = 0;
+                        for (const RuntimeGroup& rg : runtime) {
+                            bits += 8.0 * static_cast<double>(rg.bytes.size() - 8);
+                            directory += static_cast<double>(rg.directory_bits);
+                            tables += static_cast<double>(rg.table_bits);
+                            entries += rg.offsets.size();
+                        }
+                        const double bytes = bits / 8 + 3.0 * static_cast<double>(entries) + tables / 8 + static_cast<double>(f2_header);
+                        // Every frame decoded from the bytes, FK against the source clip.
+                        double worst = 0.0;
+                        GlobalPose pose;
+                        for (std::size_t g = 0; g < groups.size(); ++g) {
+                            const auto& m = models[g];
+                            const auto Da = m.active.size();
+                            std::vector<double> y(Da), a(Da), b(Da), c(Da), p(static_cast<std::size_t>(m.dofs)), row;
+                            detail::WindowScratch s;
+                            m.prepare(s);
+                            for (std::size_t i = 0; i < members[g].size(); ++i) {
+                                const Clip& clip = *members[g][i];
+                                const auto& e = m.clips[i];
+                                const Skeleton& sk = *m.skeletons[e.skeleton].skeleton;
+                                row.resize(sk.channel_count());
+                                const MatX source = joint_positions(clip);
+                                for (std::size_t f = 0; f < clip.frame_count(); ++f) {
+                                    runtime_frame(runtime[g], i, f, y.data(), a.data(), b.data(), c.data());
+                                    m.pose_of(e, y.data(), static_cast<int>(Da), s, p.data());
+                                    m.row_of(e, p.data(), row.data());
+                                    forward_kinematics(sk, row.data(), pose);
+                                    for (std::size_t j = 0; j < sk.size(); ++j)
+                                        worst = std::max(worst, (pose.positions[j] - source.block<3, 1>(3 * static_cast<Eigen::Index>(j),
+                                                                                                          static_cast<Eigen::Index>(f))).norm());
+                                }
+                            }
+                        }
+                        // Cold random local poses: the same sequence for both formats.
+                        std::mt19937_64 rng(7);
+                        std::vector<std::array<std::size_t, 3>> seq;
+                        std::size_t frames_total = 0;
+                        for (const auto& mem : members)
+                            for (const Clip* c : mem) frames_total += c->frame_count();
+                        for (std::size_t n = 0; n < poses; ++n) {
+                            std::size_t u = std::uniform_int_distribution<std::size_t>(0, frames_total - 1)(rng);
+                            for (std::size_t g = 0; g < members.size(); ++g)
+                                for (std::size_t i = 0; i < members[g].size(); ++i) {
+                                    const std::size_t fc = members[g][i]->frame_count();
+                                    if (u < fc) {
+                                        seq.push_back({g, i, u});
+                                        u = ~std::size_t{0} >> 1;
+                                        g = members.size() - 1;
+                                        break;
+                                    }
+                                    u -= fc;
+                                }
+                        }
+                        std::vector<GroupDecoder> decoders;
+                        for (const auto& bytes_g : f2) decoders.emplace_back(bytes_g);
+                        LocalPose out;
+                        double ours = 1e300, theirs = 1e300;
+                        std::vector<std::vector<double>> scratch(groups.size());
+                        std::vector<detail::WindowScratch> ws(groups.size());
+                        for (std::size_t g = 0; g < groups.size(); ++g) {
+                            scratch[g].assign(4 * models[g].active.size() + static_cast<std::size_t>(models[g].dofs), 0.0);
+                            models[g].prepare(ws[g]);
+                        }
+                        for (int rep = 0; rep < 3; ++rep) {
+                            double c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const auto& m = models[g];
+                                const std::size_t Da = m.active.size();
+                                double* base = scratch[g].data();
+                                runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                m.local_of(m.clips[i], base + 4 * Da, out);
+                            }
+                            ours = std::min(ours, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                            c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) decoders[g].decode_local_pose(i, f, out);
+                            theirs = std::min(theirs, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                        }
+                        // Stages: the frame's y from the bytes alone, and y -> local pose alone (on stored y).
+                        double decode_only = 1e300, pose_only = 1e300;
+                        for (int rep = 0; rep < 3; ++rep) {
+                            double c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const std::size_t Da = models[g].active.size();
+                                double* base = scratch[g].data();
+                                runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                            }
+                            decode_only = std::min(decode_only, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                            c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const auto& m = models[g];
+                                const std::size_t Da = m.active.size();
+                                double* base = scratch[g].data();
+                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                m.local_of(m.clips[i], base + 4 * Da, out);
+                            }
+                            pose_only = std::min(pose_only, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                        }
+                        double no_prefetch = 1e300;
+                        for (auto& rg : runtime) rg.prefetch = false;
+                        for (int rep = 0; rep < 3; ++rep) {
+                            const double c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const std::size_t Da = models[g].active.size();
+                                double* base = scratch[g].data();
+                                runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                            }
+                            no_prefetch = std::min(no_prefetch, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                        }
+                        for (auto& rg : runtime) rg.prefetch = true;
+                        double hot = 1e300;  // 32 poses over and over: their bytes stay in L1/L2
+                        for (int rep = 0; rep < 3; ++rep) {
+                            const double c0 = bench::thread_cpu_seconds();
+                            for (int again = 0; again < 200; ++again)
+                                for (std::size_t n = 0; n < 32; ++n) {
+                                    const auto& [g, i, f] = seq[n];
+                                    const std::size_t Da = models[g].active.size();
+                                    double* base = scratch[g].data();
+                                    runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                }
+                            hot = std::min(hot, (bench::thread_cpu_seconds() - c0) / 6400.0 * 1e6);
+                        }
+                        std::printf("#  hot (32 poses repeated): y from bytes %.3f us\n", hot);
+                        // Variant 2: sizes of every column, interleaved chains.
+                        std::vector<RuntimeGroup2> runtime2;
+                        double directory2 = 0.0, bits2 = 0.0, worst2 = 0.0;
+                        {
+                            std::size_t gi = 0;
+                            for (std::size_t g = 0; g < groups.size(); ++g) {
+                                runtime2.push_back(build_runtime2(runtime[g], hier_results[g]));
+                                directory2 += static_cast<double>(runtime2.back().directory_bits);
+                                bits2 += 8.0 * static_cast<double>(runtime2.back().bytes.size() - 8);
+                                ++gi;
+                            }
+                            // Every frame equal to variant 1's y, bit for bit.
+                            for (std::size_t g = 0; g < groups.size(); ++g) {
+                                const std::size_t Da = models[g].active.size();
+                                std::vector<double> y1(Da), y2(Da), sa(Da), sb(Da), sc(Da);
+                                std::vector<std::int32_t> qs(static_cast<std::size_t>(2 + runtime[g].levels) * Da);
+                                for (std::size_t i = 0; i < members[g].size(); ++i)
+                                    for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
+                                        runtime_frame(runtime[g], i, f, y1.data(), sa.data(), sb.data(), sc.data());
+                                        runtime_frame2(runtime2[g], i, f, y2.data(), sa.data(), sb.data(), sc.data(), qs.data());
+                                        for (std::size_t d = 0; d < Da; ++d)
+                                            if (std::memcmp(&y1[d], &y2[d], sizeof(double)) != 0) worst2 = 1e9;
+                                    }
+                            }
+                        }
+                        std::vector<std::vector<std::int32_t>> qscratch(groups.size());
+                        for (std::size_t g = 0; g < groups.size(); ++g)
+                            qscratch[g].assign(static_cast<std::size_t>(2 + runtime[g].levels) * models[g].active.size(), 0);
+                        double decode2 = 1e300, cold2 = 1e300;
+                        for (int rep = 0; rep < 3; ++rep) {
+                            double c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const std::size_t Da = models[g].active.size();
+                                double* base = scratch[g].data();
+                                runtime_frame2(runtime2[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, qscratch[g].data());
+                            }
+                            decode2 = std::min(decode2, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                            c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const auto& m = models[g];
+                                const std::size_t Da = m.active.size();
+                                double* base = scratch[g].data();
+                                runtime_frame2(runtime2[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, qscratch[g].data());
+                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                m.local_of(m.clips[i], base + 4 * Da, out);
+                            }
+                            cold2 = std::min(cold2, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                        }
+                        std::size_t entries2 = 0;
+                        for (const auto& rg : runtime2) entries2 += rg.offsets.size();
+                        std::printf("#  VARIANT 2 (interleaved): bytes %.0f (entries %.0f, directory %.0f); %s; y from bytes %.3f us, "
+                                    "cold local pose %.3f us\n",
+                                    bits2 / 8 + 3.0 * static_cast<double>(entries2) + tables / 8 + static_cast<double>(f2_header), bits2 / 8,
+                                    directory2 / 8, worst2 > 0 ? "MISMATCH with variant 1" : "every frame equal to variant 1", decode2, cold2);
+                        std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
+                                    no_prefetch, pose_only);
+                        std::printf("#  RUNTIME bytes %.0f (entries %.0f, directory %.0f, offsets %zu, tables %.0f, header %zu); "
+                                    "max %.7f cm over every frame; cold local pose %.3f us (format 2: %.3f us)\n",
+                                    bytes, bits / 8, directory / 8, 3 * entries, tables / 8, f2_header, worst, ours, theirs);
+                    }
+                    std::printf("#  static bytes by level (0 = keys):");
+                    for (double b : by_level)
+                        if (b > 0) std::printf(" %.0f", b);
+                    std::printf("\n");
+                    std::fflush(stdout);
+                }
+        }
+    }
+    return 0;
+}
