@@ -197,9 +197,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     m.frame_rate = clips.front()->frame_rate;
     m.window = options.window;
     m.pose_dofs = static_cast<int>(PoseLayout(s0).dof_count());
-    for (std::size_t j = 1; j < s0.size(); ++j)
-        for (ChannelType c : s0.joint(j).channels)
-            if (!is_rotation(c)) m.extra_columns.push_back(s0.channel_column(j, c));
+    m.extra_columns = detail::extra_position_columns(s0);
     m.dofs = m.pose_dofs + static_cast<int>(m.extra_columns.size());
     const int W = m.window;
 
