@@ -123,13 +123,14 @@ TEST_CASE("six-channel layout: imported with either --bvh-positions, the collect
     std::filesystem::create_directories(dir / "clips");
     BvhReadOptions pfnn;
     pfnn.frame_rate = 60.0;
-    write_bvh(dir / "clips/perf_a.bvh", six_channel_layout(slice(read_bvh(folder / "16_13_60fps.bvh", pfnn), 0, 300), Vec3(0, 92.5, 1.5)),
+    // Two performers, 222 and 235 frames.
+    write_bvh(dir / "clips/perf_a.bvh", six_channel_layout(read_bvh(folder / "16_13_60fps.bvh", pfnn), Vec3(0, 92.5, 1.5)),
               BvhWriteOptions{17, 1.0});
-    write_bvh(dir / "clips/perf_b.bvh", six_channel_layout(slice(read_bvh(folder / "02_01_60fps.bvh", pfnn), 0, 300), Vec3(0, 101.0, -2.0)),
+    write_bvh(dir / "clips/perf_b.bvh", six_channel_layout(read_bvh(folder / "16_15_60fps.bvh", pfnn), Vec3(0, 101.0, -2.0)),
               BvhWriteOptions{17, 1.0});
-    for (const std::string positions : {"replace", "add"}) {
+    for (const char* positions : {"replace", "add"}) {
         INFO("--bvh-positions " << positions);
-        const std::string db = (dir / (positions + ".h5")).string();
+        const std::string db = (dir / (std::string(positions) + ".h5")).string();
         const CommandResult imported = run_cli("import " + quoted((dir / "clips").string()) + " --fps 60 --bvh-positions " +
                                                positions + " -o " + quoted(db));
         INFO(imported.output);
