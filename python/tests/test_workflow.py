@@ -89,7 +89,11 @@ def test_a_failure_on_a_worker_thread_is_an_exception_and_leaves_the_folder(db_c
     fails, so both encoder threads do) raises mocapdb.Error instead of taking the interpreter down, and
     the database and its folder stay exactly as they were (no temporary file, lock or segment)."""
     folder = db_copy.parent
+    # A database some session has written (the copy has not): its writer lock file exists, as it does
+    # for good (never removed: writer_lock.hpp), and its readers' lock file.
+    mocapdb.pack(db_copy, max_error_cm=1.0, replace=True)
     before = _listing(folder)
+    assert (folder / "copy.h5.lock").exists()
     assert any(name.endswith(".h5") for name, _ in before)
     for threads in (2, 1):
         with pytest.raises(mocapdb.Error, match=r"window 0 frame \d+: even its source rows are .* over 1e-09 cm"):
