@@ -19,6 +19,23 @@
 using namespace mocapdb;
 using namespace mocapdb::test;
 
+namespace {
+
+// Same rig, two performers (PFNN 16_13 and 16_15): only the Hips OFFSET (a constant the position
+// channels replace) differs. Written as perf_a.bvh and perf_b.bvh into `clips` (created).
+void write_two_performers(const std::filesystem::path& clips) {
+    const auto folder = datasets_dir() / "cmu-walkrun-pfnn";
+    std::filesystem::create_directories(clips);
+    BvhReadOptions pfnn;
+    pfnn.frame_rate = 60.0;
+    write_bvh(clips / "perf_a.bvh", six_channel_layout(read_bvh(folder / "16_13_60fps.bvh", pfnn), Vec3(0, 92.5, 1.5)),
+              BvhWriteOptions{17, 1.0});
+    write_bvh(clips / "perf_b.bvh", six_channel_layout(read_bvh(folder / "16_15_60fps.bvh", pfnn), Vec3(0, 101.0, -2.0)),
+              BvhWriteOptions{17, 1.0});
+}
+
+}  // namespace
+
 TEST_CASE("six-channel layout: bone lengths, turn and speed as with rotation-only channels", "[store][bvh][shared]") {
     const auto folder = datasets_dir() / "cmu-walkrun-pfnn";
     MOCAPDB_REQUIRE_SHARED(folder);
@@ -71,18 +88,10 @@ TEST_CASE("six-channel layout: bone lengths, turn and speed as with rotation-onl
 }
 
 TEST_CASE("six-channel layout: two performers whose Hips offsets differ build one set", "[store][bvh][shared][cli]") {
-    const auto folder = datasets_dir() / "cmu-walkrun-pfnn";
-    MOCAPDB_REQUIRE_SHARED(folder);
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
     MOCAPDB_REQUIRE_CLI();
     TempDir dir("sixch_set");
-    std::filesystem::create_directories(dir / "clips");
-    BvhReadOptions pfnn;
-    pfnn.frame_rate = 60.0;
-    // Same rig, two performers: only the Hips OFFSET (a constant the position channels replace) differs.
-    write_bvh(dir / "clips/perf_a.bvh", six_channel_layout(read_bvh(folder / "16_13_60fps.bvh", pfnn), Vec3(0, 92.5, 1.5)),
-              BvhWriteOptions{17, 1.0});
-    write_bvh(dir / "clips/perf_b.bvh", six_channel_layout(read_bvh(folder / "16_15_60fps.bvh", pfnn), Vec3(0, 101.0, -2.0)),
-              BvhWriteOptions{17, 1.0});
+    write_two_performers(dir / "clips");
     const auto db = dir / "db.h5";
     const CommandResult imported = run_cli("import " + quoted((dir / "clips").string()) + " --fps 60 -o " + quoted(db.string()));
     INFO(imported.output);
@@ -116,18 +125,10 @@ TEST_CASE("six-channel layout: imported with either --bvh-positions, the collect
     // Issue #36: every clip of this layout failed in `mocapdb pack` (436.9 cm off with replace, a bad
     // skeleton index with add). Measured from the file: the packed tier decoded against the lossless
     // tier (exact to the imported file), FK of every joint and end site at every frame.
-    const auto folder = datasets_dir() / "cmu-walkrun-pfnn";
-    MOCAPDB_REQUIRE_SHARED(folder);
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
     MOCAPDB_REQUIRE_CLI();
     TempDir dir("sixch_pack");
-    std::filesystem::create_directories(dir / "clips");
-    BvhReadOptions pfnn;
-    pfnn.frame_rate = 60.0;
-    // Two performers, 222 and 235 frames.
-    write_bvh(dir / "clips/perf_a.bvh", six_channel_layout(read_bvh(folder / "16_13_60fps.bvh", pfnn), Vec3(0, 92.5, 1.5)),
-              BvhWriteOptions{17, 1.0});
-    write_bvh(dir / "clips/perf_b.bvh", six_channel_layout(read_bvh(folder / "16_15_60fps.bvh", pfnn), Vec3(0, 101.0, -2.0)),
-              BvhWriteOptions{17, 1.0});
+    write_two_performers(dir / "clips");  // 222 and 235 frames
     for (const char* positions : {"replace", "add"}) {
         INFO("--bvh-positions " << positions);
         const std::string db = (dir / (std::string(positions) + ".h5")).string();
