@@ -40,7 +40,7 @@ constexpr int kMaxStep = 254;
 constexpr std::uint8_t kRawStep = 255;
 
 struct SkeletonEntry {
-    std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes
+    std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes; the source's convention and motion root
     VecX weights;                              ///< D weights (pose dofs, then extra position channels)
     ChannelWriter writer;                      ///< pose vector -> channel row of `skeleton`
     std::vector<double> active_weights;        ///< weights[active[i]] (set with the active dofs)
