@@ -81,4 +81,16 @@ std::size_t count_files(const std::filesystem::path& folder, const std::string& 
     return n;
 }
 
+std::string folder_listing(const std::filesystem::path& folder) {
+    std::vector<std::string> lines;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+        const std::string size = entry.is_directory() ? "dir" : std::to_string(entry.file_size());
+        lines.push_back(std::filesystem::relative(entry.path(), folder).string() + " " + size);
+    }
+    std::sort(lines.begin(), lines.end());
+    std::string out;
+    for (const std::string& line : lines) out += line + "\n";
+    return out;
+}
+
 }  // namespace mocapdb::test

@@ -41,5 +41,8 @@ std::filesystem::path folder_for_this_build(const std::filesystem::path& folder,
                                             const std::filesystem::path& scratch);
 /// Number of files with `extension` in `folder` (links included).
 std::size_t count_files(const std::filesystem::path& folder, const std::string& extension);
+/// Every file and folder under `folder` (recursive), one "RELATIVE_PATH SIZE" line each (size of a
+/// regular file, "dir" for a folder), sorted: what a failed command must leave as it found it.
+std::string folder_listing(const std::filesystem::path& folder);
 
 }  // namespace mocapdb::test

@@ -79,6 +79,30 @@ def test_workflow_errors(shared, tmp_path):
         mocapdb.compress(tmp_path / "z.h5", "walks", method="svd")
 
 
+def _listing(folder):
+    """Every file and folder under `folder` with its size (None for a folder), sorted."""
+    return sorted((str(p.relative_to(folder)), p.stat().st_size if p.is_file() else None) for p in folder.rglob("*"))
+
+
+def test_a_failure_on_a_worker_thread_is_an_exception_and_leaves_the_folder(db_copy):
+    """Issue #36: a clip that cannot pack (a bound below what the float32 skeleton reaches: every clip
+    fails, so both encoder threads do) raises mocapdb.Error instead of taking the interpreter down, and
+    the database and its folder stay exactly as they were (no temporary file, lock or segment)."""
+    folder = db_copy.parent
+    # A database some session has written (the copy has not): its writer lock file exists, as it does
+    # for good (never removed: writer_lock.hpp), and its readers' lock file.
+    mocapdb.pack(db_copy, max_error_cm=1.0, replace=True)
+    before = _listing(folder)
+    assert (folder / "copy.h5.lock").exists()
+    assert any(name.endswith(".h5") for name, _ in before)
+    for threads in (2, 1):
+        with pytest.raises(mocapdb.Error, match=r"window 0 frame \d+: even its source rows are .* over 1e-09 cm"):
+            mocapdb.pack(db_copy, max_error_cm=1e-9, threads=threads, replace=True)
+        assert _listing(folder) == before
+    with mocapdb.open(db_copy) as db:
+        assert db.packed().max_error_cm == 1.0  # the tier it had
+
+
 def test_collection_report_equals_the_cli(cli, test_db):
     ours = mocapdb.collection_report(test_db, max_error_cm=[1.0])
     theirs = cli_json(cli, "report", test_db, "--collection", "--max-error-cm", "1", "--poses", "0")

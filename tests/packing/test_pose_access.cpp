@@ -17,6 +17,7 @@
 #include "mocapdb/procedural/walk.hpp"
 #include "shared_clips.hpp"
 #include "shared_data.hpp"
+#include "six_channel_rig.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::packing;
@@ -129,6 +130,18 @@ std::array<std::size_t, 3> check_every_frame(const std::vector<Clip>& clips, con
 TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: PFNN rig", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
     check_every_frame(test::read_shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "07_01_60fps", "132_35_60fps"}, 300));
+}
+
+TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: static ROOT, 6 channels on every joint",
+          "[packing][shared]") {
+    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
+    const std::vector<Clip> sources = test::read_shared_clips("cmu-walkrun-pfnn", {"02_01_60fps", "132_35_60fps"}, 200);
+    for (PositionChannels positions : {PositionChannels::replace_offset, PositionChannels::add_to_offset}) {
+        std::vector<Clip> clips;
+        for (const Clip& c : sources)
+            clips.push_back(test::through_bvh_text(test::six_channel_layout(c, Vec3(0.0, 92.5, 1.5)), positions));
+        check_every_frame(clips, {1.0, 0.1});
+    }
 }
 
 TEST_CASE("decode_pose, PoseIndex and PoseSampler equal decode_window bit for bit: 31-joint ASF rig", "[packing][shared]") {

@@ -1,8 +1,11 @@
 // Issue #16, found 1: real CMU walks rewritten in the layout commercial pipelines export (a static
 // ROOT "Reference", the body's translation in its child Hips, 6 channels on every joint whose position
-// channels equal OFFSET), read as the ecosystem reads them, and two performers in one set.
+// channels equal OFFSET: six_channel_rig.hpp), read as the ecosystem reads them, and two performers in
+// one set.
 #include <catch2/catch.hpp>
 
+#include "fk_error.hpp"
+#include "mini_json.hpp"
 #include "mocapdb/dataset/param_extractors.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/motion/figure_height.hpp"
@@ -10,6 +13,7 @@
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
 #include "shared_data.hpp"
+#include "six_channel_rig.hpp"
 #include "test_support.hpp"
 
 using namespace mocapdb;
@@ -17,54 +21,17 @@ using namespace mocapdb::test;
 
 namespace {
 
-constexpr ChannelType kPositions[] = {ChannelType::Xposition, ChannelType::Yposition, ChannelType::Zposition};
-
-// The same motion with a static "Reference" ROOT above the source root (renamed Hips, with OFFSET
-// `hips_offset`) and position channels on every joint holding its local translation.
-Clip six_channel_layout(const Clip& source, const Vec3& hips_offset) {
-    const Skeleton& s = *source.skeleton;
-    REQUIRE(s.joint(0).offset.isZero());
-    std::vector<Joint> joints;
-    Joint reference;
-    reference.name = "Reference";
-    reference.channels = {kPositions[0], kPositions[1], kPositions[2], ChannelType::Zrotation, ChannelType::Xrotation,
-                          ChannelType::Yrotation};
-    reference.rotation_order = EulerOrder::ZXY;
-    joints.push_back(reference);
-    for (std::size_t j = 0; j < s.size(); ++j) {
-        Joint joint = s.joint(j);
-        joint.parent = joint.parent + 1;
-        if (j == 0) {
-            joint.name = "Hips";
-            joint.offset = hips_offset;
-        }
-        if (!joint.end_site) {
-            std::vector<ChannelType> channels(std::begin(kPositions), std::end(kPositions));
-            for (ChannelType c : joint.channels)
-                if (is_rotation(c)) channels.push_back(c);
-            joint.channels = channels;
-        }
-        joints.push_back(joint);
-    }
-    auto skeleton = std::make_shared<const Skeleton>(joints, s.source_units(), s.forward(), PositionChannels::replace_offset);
-    Clip out;
-    out.name = source.name;
-    out.frame_rate = source.frame_rate;
-    out.skeleton = skeleton;
-    out.channels = FrameMatrix::Zero(source.channels.rows(), static_cast<Eigen::Index>(skeleton->channel_count()));
-    for (std::size_t f = 0; f < source.frame_count(); ++f) {
-        double* row = out.channels.row(static_cast<Eigen::Index>(f)).data();
-        for (std::size_t j = 0; j < s.size(); ++j) {
-            const Vec3 t = s.local_translation(j, source.frame(f));  // Hips: the body's path; others: OFFSET
-            for (int a = 0; a < 3; ++a) {
-                const int col = skeleton->channel_column(j + 1, kPositions[a]);
-                if (col >= 0) row[col] = t[a];
-            }
-            for (ChannelType c : s.joint(j).channels)
-                if (is_rotation(c)) row[skeleton->channel_column(j + 1, c)] = source.frame(f)[s.channel_column(j, c)];
-        }
-    }
-    return out;
+// Same rig, two performers (PFNN 16_13 and 16_15): only the Hips OFFSET (a constant the position
+// channels replace) differs. Written as perf_a.bvh and perf_b.bvh into `clips` (created).
+void write_two_performers(const std::filesystem::path& clips) {
+    const auto folder = datasets_dir() / "cmu-walkrun-pfnn";
+    std::filesystem::create_directories(clips);
+    BvhReadOptions pfnn;
+    pfnn.frame_rate = 60.0;
+    write_bvh(clips / "perf_a.bvh", six_channel_layout(read_bvh(folder / "16_13_60fps.bvh", pfnn), Vec3(0, 92.5, 1.5)),
+              BvhWriteOptions{17, 1.0});
+    write_bvh(clips / "perf_b.bvh", six_channel_layout(read_bvh(folder / "16_15_60fps.bvh", pfnn), Vec3(0, 101.0, -2.0)),
+              BvhWriteOptions{17, 1.0});
 }
 
 }  // namespace
@@ -121,18 +88,10 @@ TEST_CASE("six-channel layout: bone lengths, turn and speed as with rotation-onl
 }
 
 TEST_CASE("six-channel layout: two performers whose Hips offsets differ build one set", "[store][bvh][shared][cli]") {
-    const auto folder = datasets_dir() / "cmu-walkrun-pfnn";
-    MOCAPDB_REQUIRE_SHARED(folder);
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
     MOCAPDB_REQUIRE_CLI();
     TempDir dir("sixch_set");
-    std::filesystem::create_directories(dir / "clips");
-    BvhReadOptions pfnn;
-    pfnn.frame_rate = 60.0;
-    // Same rig, two performers: only the Hips OFFSET (a constant the position channels replace) differs.
-    write_bvh(dir / "clips/perf_a.bvh", six_channel_layout(read_bvh(folder / "16_13_60fps.bvh", pfnn), Vec3(0, 92.5, 1.5)),
-              BvhWriteOptions{17, 1.0});
-    write_bvh(dir / "clips/perf_b.bvh", six_channel_layout(read_bvh(folder / "16_15_60fps.bvh", pfnn), Vec3(0, 101.0, -2.0)),
-              BvhWriteOptions{17, 1.0});
+    write_two_performers(dir / "clips");
     const auto db = dir / "db.h5";
     const CommandResult imported = run_cli("import " + quoted((dir / "clips").string()) + " --fps 60 -o " + quoted(db.string()));
     INFO(imported.output);
@@ -159,4 +118,45 @@ TEST_CASE("six-channel layout: two performers whose Hips offsets differ build on
                                         " --fps 60 --bvh-positions add -o " + quoted((dir / "wrong.h5").string()));
     INFO(wrong.output);
     CHECK(wrong.output.find("tall at frame 0") != std::string::npos);
+}
+
+TEST_CASE("six-channel layout: imported with either --bvh-positions, the collection packs within E on 1 and 2 threads",
+          "[store][packed][bvh][shared][cli]") {
+    // Issue #36: every clip of this layout failed in `mocapdb pack` (436.9 cm off with replace, a bad
+    // skeleton index with add). Measured from the file: the packed tier decoded against the lossless
+    // tier (exact to the imported file), FK of every joint and end site at every frame.
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
+    MOCAPDB_REQUIRE_CLI();
+    TempDir dir("sixch_pack");
+    write_two_performers(dir / "clips");  // 222 and 235 frames
+    for (const char* positions : {"replace", "add"}) {
+        INFO("--bvh-positions " << positions);
+        const std::string db = (dir / (std::string(positions) + ".h5")).string();
+        const CommandResult imported = run_cli("import " + quoted((dir / "clips").string()) + " --fps 60 --bvh-positions " +
+                                               positions + " -o " + quoted(db));
+        INFO(imported.output);
+        REQUIRE(imported.exit_code == 0);
+        for (const double E : {1.0, 0.5, 0.1}) {
+            double bytes = -1.0;
+            for (const int threads : {1, 2}) {
+                INFO("E = " << E << ", " << threads << " threads");
+                const CommandResult packed = run_cli("pack " + quoted(db) + " --max-error-cm " + std::to_string(E) +
+                                                     " --threads " + std::to_string(threads) + " --force --json");
+                INFO(packed.output);
+                REQUIRE(packed.exit_code == 0);
+                const Json j = parse_json(packed.out);
+                CHECK(j["clips"].number == 2);
+                CHECK(j["max_cm"].number <= E);
+                if (bytes >= 0.0) CHECK(j["bytes"].number == bytes);  // the thread count changes no byte
+                bytes = j["bytes"].number;
+                const Database view(db);
+                for (const ClipRecord& r : view.clips()) {
+                    const double err = max_position_error(view.load_clip(r.id), view.load_clip_packed(r.id));
+                    INFO(r.id << ": decoded max " << err << " cm");
+                    CHECK(err <= E);
+                    CHECK(err > 0.0);
+                }
+            }
+        }
+    }
 }

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <limits>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -14,33 +16,47 @@ std::size_t worker_count(std::size_t tasks) {
     return std::max<std::size_t>(1, std::min(tasks, cores));
 }
 
-void run_parallel_tasks(std::size_t tasks, const std::function<void(std::size_t)>& task) {
-    const std::size_t workers = worker_count(tasks);
+void run_on_workers(std::size_t workers, std::size_t tasks, const std::function<void(std::size_t, std::size_t)>& task) {
+    workers = std::max<std::size_t>(1, std::min(workers, tasks));
     if (workers < 2) {
-        for (std::size_t i = 0; i < tasks; ++i) task(i);
+        for (std::size_t i = 0; i < tasks; ++i) task(i, 0);
         return;
     }
     std::atomic<std::size_t> next{0};
     std::atomic<bool> failed{false};
-    std::exception_ptr first;
-    std::mutex first_mutex;
-    const auto work = [&]() {
-        for (std::size_t i = next++; i < tasks && !failed; i = next++) {
+    std::size_t failed_task = std::numeric_limits<std::size_t>::max();
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    const auto work = [&](std::size_t w) {
+        for (std::size_t i; !failed.load() && (i = next++) < tasks;) {
             try {
-                task(i);
+                task(i, w);
             } catch (...) {
-                const std::lock_guard<std::mutex> lock(first_mutex);
-                if (!first) first = std::current_exception();
+                const std::lock_guard<std::mutex> lock(failure_mutex);
+                if (i < failed_task) {
+                    failed_task = i;
+                    failure = std::current_exception();
+                }
                 failed = true;
             }
         }
     };
     std::vector<std::thread> others;
     others.reserve(workers - 1);
-    for (std::size_t w = 1; w < workers; ++w) others.emplace_back(work);
-    work();
+    for (std::size_t w = 1; w < workers; ++w) {
+        try {
+            others.emplace_back(work, w);
+        } catch (const std::system_error&) {
+            break;  // no more threads: the started workers and this one take every task
+        }
+    }
+    work(0);
     for (std::thread& t : others) t.join();
-    if (first) std::rethrow_exception(first);
+    if (failure) std::rethrow_exception(failure);
+}
+
+void run_parallel_tasks(std::size_t tasks, const std::function<void(std::size_t)>& task) {
+    run_on_workers(worker_count(tasks), tasks, [&task](std::size_t i, std::size_t) { task(i); });
 }
 
 }  // namespace mocapdb

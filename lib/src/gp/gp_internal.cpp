@@ -1,10 +1,10 @@
 #include "gp_internal.hpp"
 
-#include <atomic>
 #include <cmath>
-#include <thread>
 
 #include <Eigen/Cholesky>
+
+#include "mocapdb/core/parallel_tasks.hpp"
 
 namespace mocapdb::gp::detail {
 
@@ -72,18 +72,9 @@ void invert_from_factor_in_place(MatX& m) {
 }
 
 void run_tasks(const std::vector<std::function<void()>>& tasks, int threads) {
-    if (threads < 2 || tasks.size() < 2) {
-        for (const auto& t : tasks) t();
-        return;
-    }
-    // Two workers take the next task in order: a lone task at the end runs on whichever is free.
-    std::atomic<std::size_t> next{0};
-    auto work = [&]() {
-        for (std::size_t i = next++; i < tasks.size(); i = next++) tasks[i]();
-    };
-    std::thread other(work);
-    work();
-    other.join();
+    // Two workers take the next task in order: a lone task at the end runs on whichever is free. A
+    // task's exception reaches the caller (run_on_workers).
+    run_on_workers(threads < 2 ? 1 : 2, tasks.size(), [&tasks](std::size_t i, std::size_t) { tasks[i](); });
 }
 
 }  // namespace mocapdb::gp::detail

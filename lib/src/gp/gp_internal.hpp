@@ -21,7 +21,8 @@ bool factor_in_place(MatX& m, double& out_log_det);
 /// Replaces the Cholesky factor L held in m's lower triangle by the full symmetric inverse (L Lᵀ)⁻¹.
 void invert_from_factor_in_place(MatX& m);
 
-/// Runs independent tasks, on two threads when `threads` ≥ 2 and there are several tasks.
+/// Runs independent tasks, on two threads when `threads` ≥ 2 and there are several tasks; a task's
+/// exception is rethrown here (the first task's that threw), never lost on a worker thread.
 void run_tasks(const std::vector<std::function<void()>>& tasks, int threads);
 
 }  // namespace mocapdb::gp::detail

@@ -25,7 +25,18 @@ bool same_topology(const Skeleton& a, const Skeleton& b) {
             x.rotation_order != y.rotation_order || x.end_site != y.end_site)
             return false;
     }
-    return true;
+    return a.motion_root() == b.motion_root();
+}
+
+std::vector<int> extra_position_columns(const Skeleton& s) {
+    const std::vector<std::size_t>& chain = s.motion_root_chain();
+    std::vector<int> out;
+    for (std::size_t j = 0; j < s.size(); ++j) {
+        if (std::find(chain.begin(), chain.end(), j) != chain.end()) continue;
+        for (ChannelType c : s.joint(j).channels)
+            if (!is_rotation(c)) out.push_back(s.channel_column(j, c));
+    }
+    return out;
 }
 
 void GroupModel::build_scan() {
@@ -350,17 +361,20 @@ SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extr
     units.cm_per_unit = float32_value(units.cm_per_unit);
     std::array<float, 3> forward{};
     for (int a = 0; a < 3; ++a) forward[static_cast<std::size_t>(a)] = to_float32(source.forward()[a]);
-    return stored_entry(std::move(joints), units, forward, axes, pose_dofs, extra);
+    return stored_entry(std::move(joints), units, forward, axes, source.position_channels(), source.motion_root(),
+                        pose_dofs, extra);
 }
 
 SkeletonEntry stored_entry(std::vector<Joint> joints, const SourceUnits& units, const std::array<float, 3>& forward,
-                           const std::vector<std::array<float, 4>>& axes, int pose_dofs, std::size_t extra) {
+                           const std::vector<std::array<float, 4>>& axes, PositionChannels positions,
+                           std::size_t motion_root, int pose_dofs, std::size_t extra) {
     for (std::size_t k = 0; k < joints.size(); ++k) {
         for (int a = 0; a < 4; ++a) joints[k].axis.coeffs()[a] = axes[k][static_cast<std::size_t>(a)];
         joints[k].axis.normalize();
     }
     SkeletonEntry e;
-    e.skeleton = std::make_shared<const Skeleton>(std::move(joints), units, Vec3(forward[0], forward[1], forward[2]));
+    e.skeleton = std::make_shared<const Skeleton>(std::move(joints), units, Vec3(forward[0], forward[1], forward[2]),
+                                                  positions, motion_root);
     e.weights = weights_of(*e.skeleton, pose_dofs, extra);
     e.writer = ChannelWriter(*e.skeleton);
     e.stored_axes = axes;
@@ -386,11 +400,14 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
         for (ChannelType c : j.channels) w.u8(static_cast<std::uint8_t>(c));
         w.u8(static_cast<std::uint8_t>(j.rotation_order));
     }
+    w.varint(s.motion_root());
     w.varint(skeletons.size());
     for (const SkeletonEntry& e : skeletons) {
         const Skeleton& k = *e.skeleton;
         w.f32(k.source_units().cm_per_unit);
-        w.u8(k.source_units().degrees ? 1 : 0);
+        // Bit 0: angles in degrees; bit 1: position channels replace OFFSET (else they add to it).
+        const bool replaces = k.position_channels() == PositionChannels::replace_offset;
+        w.u8(static_cast<std::uint8_t>((k.source_units().degrees ? 1 : 0) | (replaces ? 2 : 0)));
         for (float c : e.stored_forward) w.f32(c);
         const std::array<float, 4> identity{0.0f, 0.0f, 0.0f, 1.0f};  // x, y, z, w
         bool any_axis = false;
@@ -444,9 +461,9 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
     ByteReader r(data, size);
     if (r.raw<std::uint32_t>() != 0x5042444Du) throw Error("packed group: bad magic");
     const auto version = r.u8();
-    if (version != kFormatVersion)
+    if (version < kOldestFormatVersion || version > kFormatVersion)
         throw Error("packed group: version " + std::to_string(version) + ", this build reads " +
-                    std::to_string(kFormatVersion));
+                    std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion));
     const auto clip_count = r.varint();
     if (clip_count == 0) return r.position();
     frame_rate = r.raw<double>();
@@ -467,17 +484,30 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
         }
         j.rotation_order = static_cast<EulerOrder>(r.u8());
     }
+    const std::uint64_t motion_root = version >= 3 ? r.varint() : 0;
+    if (motion_root >= joint_count) throw Error("packed group: bad motion root");
+    // The layout (pose dofs, extra position channels) depends on the topology alone.
+    std::shared_ptr<const Skeleton> layout;
+    try {
+        layout = std::make_shared<const Skeleton>(topology, SourceUnits{}, Vec3::UnitZ(), PositionChannels::add_to_offset,
+                                                  static_cast<std::size_t>(motion_root));
+    } catch (const InvalidArgument& e) {
+        throw Error(std::string("packed group: bad topology: ") + e.what());
+    }
+    pose_dofs = static_cast<int>(PoseLayout(*layout).dof_count());
+    extra_columns = extra_position_columns(*layout);
+    const std::size_t extra = extra_columns.size();
     const auto skeleton_count = r.varint();
     if (skeleton_count == 0 || skeleton_count > clip_count) throw Error("packed group: bad skeleton count");
-    std::size_t extra = 0;
-    for (std::size_t j = 1; j < topology.size(); ++j)
-        for (ChannelType c : topology[j].channels)
-            if (!is_rotation(c)) ++extra;
     skeletons.clear();
     for (std::uint64_t k = 0; k < skeleton_count; ++k) {
         SourceUnits units;
         units.cm_per_unit = r.f32();
-        units.degrees = r.u8() != 0;
+        const auto unit_flags = r.u8();
+        if (version >= 3 && unit_flags > 3) throw Error("packed group: bad skeleton flags");
+        units.degrees = (version >= 3 ? unit_flags & 1 : unit_flags) != 0;
+        const PositionChannels positions =
+            version >= 3 && (unit_flags & 2) != 0 ? PositionChannels::replace_offset : PositionChannels::add_to_offset;
         std::array<float, 3> forward{};
         for (float& c : forward) c = static_cast<float>(r.f32());  // exact: read as float32
         const bool any_axis = r.u8() != 0;
@@ -489,15 +519,10 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
                 for (float& c : axes[j]) c = static_cast<float>(r.f32());  // exact: read as float32
         }
         // The values the encoder's skeleton was built from: the same skeleton, to the bit.
-        pose_dofs = static_cast<int>(PoseLayout(Skeleton(joints, units, Vec3(forward[0], forward[1], forward[2]))).dof_count());
-        skeletons.push_back(stored_entry(std::move(joints), units, forward, axes, pose_dofs, extra));
+        skeletons.push_back(stored_entry(std::move(joints), units, forward, axes, positions,
+                                         static_cast<std::size_t>(motion_root), pose_dofs, extra));
     }
     dofs = pose_dofs + static_cast<int>(extra);
-    extra_columns.clear();
-    const Skeleton& s0 = *skeletons.front().skeleton;
-    for (std::size_t j = 1; j < s0.size(); ++j)
-        for (ChannelType c : s0.joint(j).channels)
-            if (!is_rotation(c)) extra_columns.push_back(s0.channel_column(j, c));
     active.clear();
     constant.assign(static_cast<std::size_t>(dofs), 0.0);
     std::vector<std::uint8_t> mask((static_cast<std::size_t>(dofs) + 7) / 8);

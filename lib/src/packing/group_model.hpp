@@ -18,10 +18,13 @@
 
 namespace mocapdb::packing::detail {
 
-/// 2: every frame is reconstructed on its own (fixed summation order, Euler angles unwrapped against
-/// zero), so one pose decodes to the same bits as its window. Version 1 bytes decode to different
-/// bits than their encoder verified and are refused.
-constexpr std::uint8_t kFormatVersion = 2;
+/// 3: the skeletons keep what the pose vector <-> channel mapping depends on besides offsets and
+/// axes: the motion root (in the topology) and the position-channel convention (per skeleton).
+/// Version 2 stored neither: its bytes are read as motion root 0 and positions added to OFFSET,
+/// the skeleton its encoder verified with (the same bits). Version 1 bytes (frames reconstructed
+/// window-wide) decode to different bits than their encoder verified and are refused.
+constexpr std::uint8_t kFormatVersion = 3;
+constexpr std::uint8_t kOldestFormatVersion = 2;
 /// Weight of a translation dof (cm) relative to a rotation dof's lever weight (see weights_of).
 constexpr double kTranslationWeight = 3.0;
 /// Range (pose units: cm or rad) under which a dof counts as constant in the group.
@@ -37,7 +40,7 @@ constexpr int kMaxStep = 254;
 constexpr std::uint8_t kRawStep = 255;
 
 struct SkeletonEntry {
-    std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes
+    std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes; the source's convention and motion root
     VecX weights;                              ///< D weights (pose dofs, then extra position channels)
     ChannelWriter writer;                      ///< pose vector -> channel row of `skeleton`
     std::vector<double> active_weights;        ///< weights[active[i]] (set with the active dofs)
@@ -173,17 +176,24 @@ struct GroupModel {
 /// (rotations: position_error_weights relative to the root translation's; translations: kTranslationWeight).
 SkeletonEntry make_entry(const Skeleton& source, int pose_dofs, std::size_t extra);
 /// The same from what the bytes hold: `joints` with float32 offsets (their axes are replaced by
-/// `axes` normalized), units with a float32 cm_per_unit, and the forward direction. make_entry(s)
-/// is stored_entry of s's values rounded to float32, so encoder and decoder use the same skeleton
-/// to the bit.
+/// `axes` normalized), units with a float32 cm_per_unit, the forward direction, the position-channel
+/// convention and the motion root. make_entry(s) is stored_entry of s's values rounded to float32,
+/// so encoder and decoder use the same skeleton to the bit.
 SkeletonEntry stored_entry(std::vector<Joint> joints, const SourceUnits& units, const std::array<float, 3>& forward,
-                           const std::vector<std::array<float, 4>>& axes, int pose_dofs, std::size_t extra);
+                           const std::vector<std::array<float, 4>>& axes, PositionChannels positions,
+                           std::size_t motion_root, int pose_dofs, std::size_t extra);
 
 /// A basis (entries rounded to multiples of kBasisStep) as coded bytes, and back (n by n).
 std::vector<std::uint8_t> encode_basis(const MatX& basis);
 MatX decode_basis(const std::uint8_t* data, std::size_t size, Eigen::Index n);
 
-/// Same joints, channels, orders, end sites (offsets and axes may differ).
+/// Same joints, channels, orders, end sites and motion root (offsets, axes and the position-channel
+/// convention may differ: each skeleton of a group keeps its own).
 bool same_topology(const Skeleton& a, const Skeleton& b);
+
+/// Row columns of the position channels the pose vector does not carry (the extra dofs): those of
+/// every joint outside the motion-root chain (the motion root's are its pose translation; the
+/// joints above it stay at rest), in row order.
+std::vector<int> extra_position_columns(const Skeleton& s);
 
 }  // namespace mocapdb::packing::detail

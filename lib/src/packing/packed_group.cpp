@@ -9,12 +9,13 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
-#include <thread>
+#include <sstream>
 
 #include <zdict.h>
 #include <zstd.h>
 
 #include "group_model.hpp"
+#include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 
 namespace mocapdb::packing {
@@ -197,9 +198,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     m.frame_rate = clips.front()->frame_rate;
     m.window = options.window;
     m.pose_dofs = static_cast<int>(PoseLayout(s0).dof_count());
-    for (std::size_t j = 1; j < s0.size(); ++j)
-        for (ChannelType c : s0.joint(j).channels)
-            if (!is_rotation(c)) m.extra_columns.push_back(s0.channel_column(j, c));
+    m.extra_columns = detail::extra_position_columns(s0);
     m.dofs = m.pose_dofs + static_cast<int>(m.extra_columns.size());
     const int W = m.window;
 
@@ -235,22 +234,9 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         progress(Progress{units_done.load(), total_units, c.name});
     };
 
+    // One state per worker; an exception on any worker reaches the caller (run_on_workers).
     auto run_parallel = [&](auto&& per_clip, auto& states) {
-        std::atomic<std::size_t> next{0};
-        auto worker = [&](std::size_t t) {
-            for (std::size_t i; (i = next.fetch_add(1)) < clips.size();) per_clip(i, states[t]);
-        };
-        std::vector<std::thread> pool;
-        for (std::size_t t = 1; t < states.size(); ++t) pool.emplace_back(worker, t);
-        std::exception_ptr failure;
-        try {
-            worker(0);
-        } catch (...) {
-            failure = std::current_exception();
-            next = clips.size();
-        }
-        for (auto& th : pool) th.join();
-        if (failure) std::rethrow_exception(failure);
+        run_on_workers(states.size(), clips.size(), [&](std::size_t i, std::size_t t) { per_clip(i, states[t]); });
     };
     const std::size_t threads = static_cast<std::size_t>(
         std::min<std::size_t>(static_cast<std::size_t>(options.threads), clips.size()));
@@ -512,11 +498,14 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         for (Eigen::Index j = 0; j < J; ++j) {
                             const double d = (pose.positions[static_cast<std::size_t>(j)] -
                                               source.block<3, 1>(3 * j, f0 + t)).norm();
-                            if (!(d <= E))
-                                throw PackingFailed("pack: clip '" + clip.name + "' window " + std::to_string(w) +
-                                                    ": even its source rows are " + std::to_string(d) +
-                                                    " cm off with the stored (float32) skeleton, over " +
-                                                    std::to_string(E) + " cm");
+                            if (!(d <= E)) {
+                                std::ostringstream message;  // %g-like: E may be far below 1e-6 cm
+                                message << "pack: clip '" << clip.name << "' window " << w << " frame " << f0 + t
+                                        << ": even its source rows are " << d << " cm off (joint '"
+                                        << decoded_skeleton.joint(static_cast<std::size_t>(j)).name
+                                        << "') with the stored (float32) skeleton, over " << E << " cm";
+                                throw PackingFailed(message.str());
+                            }
                             st.errors.add(d);
                         }
                     }

@@ -100,9 +100,10 @@ PackedTierRecord read_packed_record(const h5::File& file) {
             throw StoreError(file.name(), g + "/bytes",
                              "expected uint8 (byte), found " + bytes.dtype + " " + h5::shape_text(bytes.shape));
         const std::string codec = file.read_string_attribute(g + "/bytes", "codec");
-        if (codec != kPackedGroupCodec)
+        if (codec != kPackedGroupCodec && codec != kPackedGroupCodecV2)
             throw StoreError(file.name(), g + "/bytes",
-                             "attribute 'codec': expected \"" + kPackedGroupCodec + "\", found \"" + codec + "\"");
+                             "attribute 'codec': expected \"" + kPackedGroupCodec + "\" or \"" + kPackedGroupCodecV2 +
+                                 "\", found \"" + codec + "\"");
         r.bytes = bytes.shape[0];
         r.stored_bytes = bytes.stored_bytes;
         const std::vector<std::string> ids = file.read_strings(g + "/clip");

@@ -10,8 +10,10 @@
 
 namespace mocapdb::store {
 
-/// The `codec` attribute of /packed/{group}/bytes (packing::pack_group's format, version 1).
-inline const std::string kPackedGroupCodec = "mocapdb-packed-group-2";
+/// The `codec` attribute of /packed/{group}/bytes written (packing::pack_group's format, version 3)
+/// and the older one still read (version 2: no motion root or position-channel convention stored).
+inline const std::string kPackedGroupCodec = "mocapdb-packed-group-3";
+inline const std::string kPackedGroupCodecV2 = "mocapdb-packed-group-2";
 
 /// Writes /packed (which must not exist) with `tier`'s figures and one group per entry; the groups'
 /// names are tier.groups[i].name.

@@ -20,7 +20,8 @@
 // coder whose contexts are trained on the group (coefficient_coder.hpp). Each window decodes on its
 // own.
 //
-// Bytes count everything the decoder needs: topology, every distinct skeleton (offsets, axes),
+// Bytes count everything the decoder needs: topology and motion root, every distinct skeleton
+// (offsets, axes, position-channel convention: the clips' own skeleton in all but float32 rounding),
 // bases, energies, trained contexts, per-clip canonicalization and frame count, per-window step and
 // size, payloads. Clip names are not stored (the caller keeps them in the same order).
 #include <cstddef>
