@@ -14,9 +14,12 @@
 // FK of the source clip (cm). Timing: N (clip, frame) drawn uniformly over the folder's frames
 // (mt19937_64, --seed), the same sequence for every codec; one thread; per repeat every codec runs the
 // sequence once (in turn); µs per pose from thread CPU time and wall time, min and median of repeats.
-// Codecs: `acl` (a decompression context per clip, initialized before timing), `acl_init` (one context
-// initialized for every pose), `packed` (ours); more go into make_codecs() (a PoseCodec each).
-// --cache DIR keeps ACL's and our bytes per (folder, clips, E) between runs; delete it when a codec
+// Codecs: `acl` (one decompression context, initialized for each pose: nothing kept between poses),
+// `acl_ctx` (a context per clip, initialized before timing: on the 182 ASF clips slower than one
+// context, colder in cache; on 33 PFNN clips slightly faster); ACL seeks frame / rate, rounding to the
+// nearest sample. `packed` (ours). More go into make_codecs() (a PoseCodec each). `us/ACL`: thread CPU min over the faster ACL variant's; `ACL/bytes`: ACL's bytes at the same E
+// over the codec's; `x ACL @max`: compare.py's figure (ACL's bytes from its table at the codec's max).
+// --limit N: the first N clips in name order. --cache DIR keeps ACL's and our bytes per (folder, clips, E) between runs; delete it when a codec
 // or the data change.
 #include <algorithm>
 #include <cmath>
@@ -27,6 +30,7 @@
 #include <functional>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -160,7 +164,7 @@ public:
     }
 
     /// One pose with the clip's own context (initialized in bind()).
-    double decode(std::size_t clip, std::size_t frame) {
+    double decode_bound(std::size_t clip, std::size_t frame) {
         Context& c = *contexts_[clip];
         c.seek(static_cast<float>(frame) / rates_[clip], acl::sample_rounding_policy::nearest);
         c.decompress_tracks(writer_);
@@ -168,15 +172,17 @@ public:
     }
 
     /// One pose with one context, initialized for this pose (nothing kept between poses).
-    double decode_initializing(std::size_t clip, std::size_t frame) {
+    double decode(std::size_t clip, std::size_t frame) {
         shared_.initialize(*tracks_[clip]);
         shared_.seek(static_cast<float>(frame) / rates_[clip], acl::sample_rounding_policy::nearest);
         shared_.decompress_tracks(writer_);
         return rtm::quat_get_w(writer_.rotations[1].v) + rtm::vector_get_x(writer_.translations[0].v);
     }
 
-    void local_pose(std::size_t clip, std::size_t frame, packing::LocalPose& out) {
-        decode(clip, frame);
+    /// The pose decode() (or, `bound`, decode_bound()) gives, as doubles.
+    void local_pose(std::size_t clip, std::size_t frame, bool bound, packing::LocalPose& out) {
+        if (bound) decode_bound(clip, frame);
+        else decode(clip, frame);
         const std::size_t n = tracks_[clip]->get_num_tracks();
         out.rotations.resize(n);
         out.translations.resize(n);
@@ -356,9 +362,9 @@ struct Measured {
     std::vector<double> cpu_us, wall_us;
 };
 
-/// Max / p99 / RMSE of the codec's local poses against the source, every joint and frame of every clip.
+/// Max / p99 (resolution 20 E / 8192) / RMSE of the codec's local poses against the source, every joint and frame of every clip.
 packing::ErrorStats codec_error(PoseCodec& codec, const std::vector<Clip>& clips, const std::vector<MatX>& source, double E) {
-    packing::ErrorAccumulator errors(E);
+    packing::ErrorAccumulator errors(20.0 * E);  // ACL reaches several times its precision
     packing::LocalPose local;
     GlobalPose global;
     for (std::size_t k = 0; k < clips.size(); ++k) {
@@ -375,12 +381,15 @@ packing::ErrorStats codec_error(PoseCodec& codec, const std::vector<Clip>& clips
     return errors.stats();
 }
 
+/// The codecs timed, ACL first. A new decoder of ours: build it from the same clips at E (or from the
+/// packed groups) beside `ours`, and push one more PoseCodec whose decode writes every joint's local
+/// transform of (clip, frame) into its own buffer; the timing loop, the error and the table take it as is.
 std::vector<PoseCodec> make_codecs(const std::shared_ptr<AclClips>& acl, const std::shared_ptr<PackedClips>& ours) {
     std::vector<PoseCodec> codecs;
-    const auto acl_local = [acl](std::size_t k, std::size_t f, packing::LocalPose& out) { acl->local_pose(k, f, out); };
-    codecs.push_back({"acl", acl->bytes(), [acl](std::size_t k, std::size_t f) { return acl->decode(k, f); }, acl_local});
-    codecs.push_back(
-        {"acl_init", acl->bytes(), [acl](std::size_t k, std::size_t f) { return acl->decode_initializing(k, f); }, acl_local});
+    for (const bool bound : {false, true})
+        codecs.push_back({bound ? "acl_ctx" : "acl", acl->bytes(),
+                          [acl, bound](std::size_t k, std::size_t f) { return bound ? acl->decode_bound(k, f) : acl->decode(k, f); },
+                          [acl, bound](std::size_t k, std::size_t f, packing::LocalPose& out) { acl->local_pose(k, f, bound, out); }});
     const auto ours_local = [ours](std::size_t k, std::size_t f, packing::LocalPose& out) {
         const auto [g, m] = ours->where[k];
         ours->groups[g].decode_local_pose(m, f, out);
@@ -413,6 +422,62 @@ void time_codecs(std::vector<PoseCodec>& codecs, const std::vector<Sample>& pose
             out[i].cpu_us.push_back(cpu_s / n * 1e6);
             out[i].wall_us.push_back(wall_s / n * 1e6);
         }
+}
+
+/// One (folder, E): the table (unless json_only) and its JSON. Bytes ratio to codecs[0] (ACL), time ratio
+/// to the faster ACL variant (thread CPU, min of repeats); compare.py's
+/// figure from `reference` (ACL's table over the same clips) for the other codecs.
+nlohmann::json report(const std::string& folder, double E, std::size_t clips, std::size_t frames,
+                      const std::vector<PoseCodec>& codecs, const std::vector<Measured>& measured,
+                      const eval::AclCollection& reference, bool json_only) {
+    const bool usable = reference.complete() && !reference.settings.empty();
+    const eval::AclSetting* csv = nullptr;
+    for (const auto& s : reference.settings)
+        if (usable && std::abs(s.precision_cm - E) < 1e-9) csv = &s;
+    nlohmann::json row = {{"folder", folder}, {"E_cm", E}, {"clips", clips}, {"frames", frames}, {"codecs", nlohmann::json::array()}};
+    if (csv != nullptr) row["acl_csv"] = {{"bytes", csv->bytes}, {"max_cm", csv->max_cm}, {"rmse_cm", csv->rmse_cm}};
+    if (!json_only) {
+        std::printf("\nE = %g cm\n", E);
+        if (csv != nullptr)
+            std::printf("  ACL's table (compare.py): %llu bytes, max %.4f cm; this run's ACL bytes are %+.2f %% of it\n",
+                        static_cast<unsigned long long>(csv->bytes), csv->max_cm,
+                        100.0 * (static_cast<double>(codecs[0].bytes) / static_cast<double>(csv->bytes) - 1.0));
+        std::printf("  %-8s %10s %8s %8s %8s | %7s %7s %7s %7s | %9s %11s %9s\n", "codec", "bytes", "max cm", "p99 cm",
+                    "rmse cm", "cpu min", "cpu med", "wallmin", "wallmed", "ACL/bytes", "x ACL @max", "us/ACL");
+    }
+    double acl_cpu = 1e300;  // the faster ACL variant's
+    for (std::size_t i = 0; i < codecs.size(); ++i)
+        if (codecs[i].name.rfind("acl", 0) == 0) acl_cpu = std::min(acl_cpu, best(measured[i].cpu_us));
+    for (std::size_t i = 0; i < codecs.size(); ++i) {
+        const Measured& m = measured[i];
+        const double bytes_ratio = static_cast<double>(codecs[0].bytes) / static_cast<double>(codecs[i].bytes);
+        const double time_ratio = best(m.cpu_us) / acl_cpu;
+        std::optional<double> smaller;
+        if (usable && codecs[i].name.rfind("acl", 0) != 0)
+            smaller = eval::compare_with_acl(reference, static_cast<double>(codecs[i].bytes), m.error.max_cm, m.error.rmse_cm)
+                          .smaller_at_max;
+        if (!json_only) {
+            char at_max[32] = "-";
+            if (smaller) std::snprintf(at_max, sizeof at_max, "%.2fx", *smaller);
+            std::printf("  %-8s %10llu %8.5f %8.5f %8.5f | %7.3f %7.3f %7.3f %7.3f | %8.2fx %11s %8.2fx\n",
+                        codecs[i].name.c_str(), static_cast<unsigned long long>(codecs[i].bytes), m.error.max_cm,
+                        m.error.p99_cm, m.error.rmse_cm, best(m.cpu_us), median(m.cpu_us), best(m.wall_us), median(m.wall_us),
+                        bytes_ratio, at_max, time_ratio);
+        }
+        row["codecs"].push_back({{"name", codecs[i].name},
+                                 {"bytes", codecs[i].bytes},
+                                 {"max_cm", m.error.max_cm},
+                                 {"p99_cm", m.error.p99_cm},
+                                 {"rmse_cm", m.error.rmse_cm},
+                                 {"pose_us_cpu_min", best(m.cpu_us)},
+                                 {"pose_us_cpu_median", median(m.cpu_us)},
+                                 {"pose_us_wall_min", best(m.wall_us)},
+                                 {"pose_us_wall_median", median(m.wall_us)},
+                                 {"acl_bytes_over_bytes", bytes_ratio},
+                                 {"smaller_than_acl_at_max", smaller ? nlohmann::json(*smaller) : nlohmann::json()},
+                                 {"pose_us_over_acl", time_ratio}});
+    }
+    return row;
 }
 
 }  // namespace
@@ -495,45 +560,10 @@ int main(int argc, char** argv) {
                 for (std::size_t i = 0; i < codecs.size(); ++i) measured[i].error = codec_error(codecs[i], clips, source, E);
                 time_codecs(codecs, sequence, repeats, measured);
 
-                const eval::AclSetting* csv = nullptr;
-                for (const auto& s : reference.settings)
-                    if (std::abs(s.precision_cm - E) < 1e-9 && s.clips == clips.size()) csv = &s;
-                const double acl_cpu = best(measured[0].cpu_us);
-                nlohmann::json row = {{"folder", name}, {"E_cm", E}, {"clips", clips.size()}, {"frames", frames},
-                                      {"acl_compress_s", acl_s}, {"pack_s", pack_s}, {"codecs", nlohmann::json::array()}};
-                if (csv != nullptr)
-                    row["acl_csv"] = {{"bytes", csv->bytes}, {"max_cm", csv->max_cm}, {"rmse_cm", csv->rmse_cm}};
-                if (!json) {
-                    std::printf("\nE = %g cm%s\n", E, acl_s + pack_s > 0 ? "" : " (bytes from --cache)");
-                    if (acl_s + pack_s > 0) std::printf("  ACL compress %.1f s wall, pack %.1f s wall\n", acl_s, pack_s);
-                    if (csv != nullptr)
-                        std::printf("  ACL's table (compare.py): %llu bytes, max %.4f cm: this run's ACL bytes are %+.2f %% of it\n",
-                                    static_cast<unsigned long long>(csv->bytes), csv->max_cm,
-                                    100.0 * (static_cast<double>(codecs[0].bytes) / static_cast<double>(csv->bytes) - 1.0));
-                    std::printf("  %-9s %11s %9s %9s %9s | %8s %8s %8s %8s | %10s %10s\n", "codec", "bytes", "max cm", "p99 cm",
-                                "rmse cm", "cpu min", "cpu med", "wall min", "wall med", "ACL/bytes", "us/ACL us");
-                }
-                for (std::size_t i = 0; i < codecs.size(); ++i) {
-                    const Measured& m = measured[i];
-                    const double bytes_ratio = static_cast<double>(codecs[0].bytes) / static_cast<double>(codecs[i].bytes);
-                    const double time_ratio = best(m.cpu_us) / acl_cpu;
-                    if (!json)
-                        std::printf("  %-9s %11llu %9.5f %9.5f %9.5f | %8.3f %8.3f %8.3f %8.3f | %9.2fx %9.2fx\n",
-                                    codecs[i].name.c_str(), static_cast<unsigned long long>(codecs[i].bytes), m.error.max_cm,
-                                    m.error.p99_cm, m.error.rmse_cm, best(m.cpu_us), median(m.cpu_us), best(m.wall_us),
-                                    median(m.wall_us), bytes_ratio, time_ratio);
-                    row["codecs"].push_back({{"name", codecs[i].name},
-                                             {"bytes", codecs[i].bytes},
-                                             {"max_cm", m.error.max_cm},
-                                             {"p99_cm", m.error.p99_cm},
-                                             {"rmse_cm", m.error.rmse_cm},
-                                             {"pose_us_cpu_min", best(m.cpu_us)},
-                                             {"pose_us_cpu_median", median(m.cpu_us)},
-                                             {"pose_us_wall_min", best(m.wall_us)},
-                                             {"pose_us_wall_median", median(m.wall_us)},
-                                             {"acl_bytes_over_bytes", bytes_ratio},
-                                             {"pose_us_over_acl", time_ratio}});
-                }
+                nlohmann::json row = report(name, E, clips.size(), frames, codecs, measured, reference, json);
+                row["acl_compress_s"] = acl_s > 0 ? nlohmann::json(acl_s) : nlohmann::json();  // null: from --cache
+                row["pack_s"] = pack_s > 0 ? nlohmann::json(pack_s) : nlohmann::json();
+                if (!json && acl_s + pack_s > 0) std::printf("  ACL compress %.1f s wall, pack %.1f s wall\n", acl_s, pack_s);
                 doc["results"].push_back(row);
                 std::fflush(stdout);
             }
