@@ -122,7 +122,8 @@ public:
     AclClips(const AclClips&) = delete;
     AclClips& operator=(const AclClips&) = delete;
     ~AclClips() {
-        for (acl::compressed_tracks* t : tracks_) allocator_.deallocate(t, t->get_size());
+        for (acl::compressed_tracks* t : tracks_)
+            if (t != nullptr) allocator_.deallocate(t, t->get_size());  // nullptr: compression threw
     }
 
     /// Compresses every clip at precision E cm (threads: clips in parallel).
