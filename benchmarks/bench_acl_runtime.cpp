@@ -3,7 +3,7 @@
 // per codec its bytes, its max error with our metric and the time of one cold random whole pose.
 //
 //   bench_acl_runtime [--folder cmu-walkrun-pfnn|cmu-asfamc|all] [--errors 1,0.5,0.1] [--poses 20000]
-//                     [--repeats 5] [--seed 7] [--limit N] [--threads 2] [--cache DIR] [--json]
+//                     [--repeats 5] [--seed 7] [--limit N] [--threads 2] [--cache DIR] [--index] [--json]
 //
 // ACL as ../shared/reference/acl/README.md made its tables: one transform track per joint and end site
 // (local rotation and translation = Skeleton::local_rotation / local_translation of the source row,
@@ -15,12 +15,14 @@
 // (mt19937_64, --seed), the same sequence for every codec; one thread; per repeat every codec runs the
 // sequence once (in turn); µs per pose from thread CPU time and wall time, min and median of repeats.
 // Codecs: `acl` (one decompression context, initialized for each pose: nothing kept between poses),
-// `acl_ctx` (a context per clip, initialized before timing: on the 182 ASF clips slower than one
-// context, colder in cache; on 33 PFNN clips slightly faster); ACL seeks frame / rate, rounding to the
-// nearest sample. `packed` (ours). More go into make_codecs() (a PoseCodec each). `us/ACL`: thread CPU min over the faster ACL variant's; `ACL/bytes`: ACL's bytes at the same E
-// over the codec's; `x ACL @max`: compare.py's figure (ACL's bytes from its table at the codec's max).
-// --limit N: the first N clips in name order. --cache DIR keeps ACL's and our bytes per (folder, clips, E) between runs; delete it when a codec
-// or the data change.
+// `acl_ctx` (a context per clip, initialized before timing; which of the two is faster changes between
+// runs, by up to ~15 %; ACL seeks frame / rate, rounding to the nearest sample); `packed` (ours); with
+// --index `index` (a PoseIndex per group: the packed tier expanded in memory; bytes = packed + index
+// memory). More go into make_codecs() (a PoseCodec each). Columns: `us/ACL` thread CPU min over the
+// faster ACL variant's; `ACL/bytes` ACL's bytes at the same E over the codec's; `x ACL @max`
+// compare.py's figure (ACL's bytes from its table, interpolated at the codec's measured max).
+// --limit N: the first N clips in name order. --cache DIR keeps ACL's and our bytes per (folder,
+// clips, E) between runs; delete it when a codec or the data change.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -54,6 +56,7 @@
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/group_split.hpp"
 #include "mocapdb/packing/measured_pack.hpp"
+#include "mocapdb/packing/pose_index.hpp"
 
 namespace fs = std::filesystem;
 using namespace mocapdb;
@@ -385,7 +388,7 @@ packing::ErrorStats codec_error(PoseCodec& codec, const std::vector<Clip>& clips
 /// The codecs timed, ACL first. A new decoder of ours: build it from the same clips at E (or from the
 /// packed groups) beside `ours`, and push one more PoseCodec whose decode writes every joint's local
 /// transform of (clip, frame) into its own buffer; the timing loop, the error and the table take it as is.
-std::vector<PoseCodec> make_codecs(const std::shared_ptr<AclClips>& acl, const std::shared_ptr<PackedClips>& ours) {
+std::vector<PoseCodec> make_codecs(const std::shared_ptr<AclClips>& acl, const std::shared_ptr<PackedClips>& ours, bool index) {
     std::vector<PoseCodec> codecs;
     for (const bool bound : {false, true})
         codecs.push_back({bound ? "acl_ctx" : "acl", acl->bytes(),
@@ -401,6 +404,24 @@ std::vector<PoseCodec> make_codecs(const std::shared_ptr<AclClips>& acl, const s
                           return ours->local.rotations[1].w() + ours->local.translations[0].x();
                       },
                       ours_local});
+    if (index) {  // a PoseIndex per group: bytes = the packed bytes it refers to + the index's memory
+        auto indexes = std::make_shared<std::vector<std::unique_ptr<packing::PoseIndex>>>();
+        std::uint64_t bytes = ours->bytes;
+        for (const packing::GroupDecoder& g : ours->groups) {
+            indexes->push_back(std::make_unique<packing::PoseIndex>(g));
+            bytes += indexes->back()->memory_bytes();
+        }
+        const auto index_local = [ours, indexes](std::size_t k, std::size_t f, packing::LocalPose& out) {
+            const auto [g, m] = ours->where[k];
+            (*indexes)[g]->local_pose(m, f, out);
+        };
+        codecs.push_back({"index", bytes,
+                          [ours, index_local](std::size_t k, std::size_t f) {
+                              index_local(k, f, ours->local);
+                              return ours->local.rotations[1].w() + ours->local.translations[0].x();
+                          },
+                          index_local});
+    }
     return codecs;
 }
 
@@ -489,7 +510,7 @@ int main(int argc, char** argv) {
     std::size_t poses = 20000, limit = 0;
     int repeats = 5, threads = 2;
     std::uint64_t seed = 7;
-    bool json = false;
+    bool json = false, index = false;
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
@@ -506,6 +527,7 @@ int main(int argc, char** argv) {
             else if (a == "--threads") threads = std::max(1, std::stoi(next()));
             else if (a == "--cache") cache = next();
             else if (a == "--json") json = true;
+            else if (a == "--index") index = true;
             else throw InvalidArgument("unknown argument " + a);
         }
         if (poses == 0) throw InvalidArgument("--poses must be positive");
@@ -556,7 +578,7 @@ int main(int argc, char** argv) {
                     if (!cache.empty()) write_blobs(cache_file(cache, name, clips.size(), E, "packed"), blobs);
                 }
 
-                std::vector<PoseCodec> codecs = make_codecs(acl, ours);
+                std::vector<PoseCodec> codecs = make_codecs(acl, ours, index);
                 std::vector<Measured> measured(codecs.size());
                 for (std::size_t i = 0; i < codecs.size(); ++i) measured[i].error = codec_error(codecs[i], clips, source, E);
                 time_codecs(codecs, sequence, repeats, measured);
