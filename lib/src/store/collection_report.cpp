@@ -147,11 +147,12 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
         out.frames += r.frames;
         out.motion_seconds += static_cast<double>(r.frames) / r.frame_rate;
         out.float32_bytes += static_cast<std::uint64_t>(r.frames) * r.channels * 4u;
-        out.lossless.bytes += r.stored_bytes;
+        out.lossless.channel_bytes += r.stored_bytes;
         const std::string stem = std::filesystem::path(r.source.file_name).stem().string();
         out.clip_names.push_back(stem.empty() ? r.id : stem);
     }
     out.lossless.float32_bytes = out.float32_bytes;
+    out.lossless.bytes = db.clips_file_bytes();
     std::vector<std::vector<std::size_t>> groups;  // as pack_database groups them
     for (const std::vector<std::size_t>& g : packing::group_clips(head_ptrs)) {
         std::vector<std::size_t> frames;
@@ -229,6 +230,7 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
             f.encode_seconds = m.encode_seconds;
             f.stream_seconds = m.decode_seconds;
             f.raw_windows = m.packed.stats.raw_windows;
+            f.parts = m.packed.stats.parts;
             f.attempts = m.attempts;
             all_errors[t].merge(m.errors);
             TargetFigures& target = out.targets[t];
@@ -242,6 +244,7 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
             total.encode_seconds += f.encode_seconds;
             total.stream_seconds += f.stream_seconds;
             total.raw_windows += f.raw_windows;
+            packing::add_parts(total.parts, f.parts);
             total.attempts = std::max(total.attempts, f.attempts);
             target.groups.push_back(std::move(g));
             decoders[t].emplace_back(std::move(m.packed.bytes));
