@@ -22,8 +22,9 @@
 // channel_bytes: the channel data alone. The stored skeletons are not counted, as gzip is not charged
 // the ASF files. gzip -9: zlib level 9
 // deflate of each clip's source file plus gzip's container (10-byte header, the file name, 8-byte
-// trailer), only when every clip's source file is found in `source_dirs` under its recorded name
-// with its recorded SHA-256; otherwise `gzip_available` is false and the reason says why.
+// trailer), only when every clip's source file is found in `source_dirs` (subfolders included) under
+// its recorded name with its recorded SHA-256; otherwise `gzip_available` is false and the reason
+// says why.
 //
 // The database is only read (not thread-safe: one Database per thread). Memory: one group's clips
 // and their FK positions at a time, plus every E's packed bytes. Errors: InvalidArgument for bad
@@ -45,8 +46,8 @@ struct CollectionReportOptions {
     int threads = 2;                                  ///< encoder threads
     std::size_t random_poses = 20000;                 ///< poses timed per E (0: no timing)
     std::uint32_t seed = 7;                           ///< of the random poses
-    /// Folders searched for the clips' source files (by recorded file name) for gzip -9; empty: not
-    /// measured.
+    /// Folders searched, subfolders included, for the clips' source files (by recorded file name,
+    /// the first with the recorded SHA-256) for gzip -9; empty: not measured.
     std::vector<std::filesystem::path> source_dirs;
 };
 
