@@ -145,7 +145,8 @@ py::dict pack(const std::filesystem::path& db, std::optional<double> max_error_c
         budget["max_error_cm"] = t.max_error_cm;
         py::list tried;
         for (const PackDatabaseOutcome::Budget::Try& e : o.budget->tried)
-            tried.append(py::dict(py::arg("max_error_cm") = e.max_error_cm, py::arg("bytes") = e.bytes,
+            tried.append(py::dict(py::arg("max_error_cm") = e.max_error_cm,
+                                  py::arg("bytes") = e.bytes > 0 || e.fits ? py::object(py::int_(e.bytes)) : py::none(),
                                   py::arg("fits") = e.fits));
         budget["tried"] = tried;
         d["budget"] = budget;
