@@ -47,6 +47,9 @@ TEST_CASE("split_by_frames: equal shares, a clip longer than the budget alone, b
           std::vector<std::vector<std::size_t>>{{0, 1}, {2, 3}});
     // One-clip runs join the neighbour with fewer frames (here all three end up together).
     CHECK(split_by_frames({0, 1, 2}, {10, 500, 10}, 100) == std::vector<std::vector<std::size_t>>{{0, 1, 2}});
+    // Two neighbouring one-clip runs pair up rather than both joining the smaller neighbour.
+    CHECK(split_by_frames({0, 1, 2, 3}, {87, 74, 222, 236}, 309) ==
+          std::vector<std::vector<std::size_t>>{{0, 1}, {2, 3}});
     // A remainder of one clip joins its neighbour instead of forming a group of its own.
     CHECK(split_by_frames({0, 1, 2, 3, 4}, {100, 100, 100, 100, 10}, 200) ==
           std::vector<std::vector<std::size_t>>{{0, 1}, {2, 3, 4}});

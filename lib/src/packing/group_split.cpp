@@ -29,7 +29,8 @@ std::vector<std::vector<std::size_t>> split_by_frames(const std::vector<std::siz
         run += frames[i];
     }
     // A run of one clip would spend a whole group's overhead (topology, skeletons, bases, contexts)
-    // on it: it joins the neighbour whose frames are fewer (the first on a tie).
+    // on it: it joins a neighbouring run of one clip if there is one (two problems solved at once),
+    // otherwise the neighbour whose frames are fewer (the first on a tie).
     std::vector<std::uint64_t> sums;
     std::size_t k = 0;
     for (const auto& r : out) {
@@ -42,7 +43,9 @@ std::vector<std::vector<std::size_t>> split_by_frames(const std::vector<std::siz
             ++i;
             continue;
         }
-        const bool left = i > 0 && (i + 1 == out.size() || sums[i - 1] <= sums[i + 1]);
+        bool left = i > 0 && (i + 1 == out.size() || sums[i - 1] <= sums[i + 1]);
+        if (i > 0 && i + 1 < out.size() && (out[i - 1].size() == 1) != (out[i + 1].size() == 1))
+            left = out[i - 1].size() == 1;
         const std::size_t into = left ? i - 1 : i + 1;
         if (left) out[into].push_back(out[i].front());
         else out[into].insert(out[into].begin(), out[i].front());
