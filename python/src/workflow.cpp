@@ -97,9 +97,19 @@ py::dict create_set(const std::filesystem::path& db, const std::string& name, co
     return d;
 }
 
-py::dict pack(const std::filesystem::path& db, double max_error_cm, int threads, bool replace, bool drop_lossless) {
+py::dict parts_dict(const packing::ByteParts& parts) {
+    py::dict d;  // insertion order: the parts' order
+    for (const packing::BytePart& p : parts) d[py::str(p.name)] = p.bytes;
+    return d;
+}
+
+py::dict pack(const std::filesystem::path& db, std::optional<double> max_error_cm, std::optional<std::uint64_t> max_bytes,
+              int threads, bool replace, bool drop_lossless) {
+    if (max_error_cm && max_bytes) throw InvalidArgument("pack: give max_error_cm or max_bytes, not both");
+    if (max_bytes && *max_bytes == 0) throw InvalidArgument("pack: max_bytes must be >= 1");
     PackDatabaseOptions options;
-    options.max_error_cm = max_error_cm;
+    options.max_error_cm = max_error_cm.value_or(1.0);
+    options.max_bytes = max_bytes.value_or(0);
     options.threads = threads;
     options.replace = replace;
     options.drop_lossless = drop_lossless;
@@ -125,6 +135,24 @@ py::dict pack(const std::filesystem::path& db, double max_error_cm, int threads,
     d["dropped_lossless_clips"] = o.dropped_lossless;
     d["file_bytes"] = o.file_bytes;
     d["seconds"] = o.seconds;
+    d["parts"] = parts_dict(o.parts);
+    py::list group_parts;
+    for (const packing::ByteParts& g : o.group_parts) group_parts.append(parts_dict(g));
+    d["group_parts"] = group_parts;
+    if (o.budget) {
+        py::dict budget;
+        budget["max_bytes"] = o.budget->max_bytes;
+        budget["max_error_cm"] = t.max_error_cm;
+        py::list tried;
+        for (const PackDatabaseOutcome::Budget::Try& e : o.budget->tried)
+            tried.append(py::dict(py::arg("max_error_cm") = e.max_error_cm,
+                                  py::arg("bytes") = e.bytes > 0 || e.fits ? py::object(py::int_(e.bytes)) : py::none(),
+                                  py::arg("fits") = e.fits));
+        budget["tried"] = tried;
+        d["budget"] = budget;
+    } else {
+        d["budget"] = py::none();
+    }
     d["tier"] = t;
     return d;
 }
@@ -212,6 +240,7 @@ py::dict packed_figures(const PackedFigures& f) {
     d["max_cm"] = f.max_cm;
     d["p99_cm"] = f.p99_cm;
     d["rmse_cm"] = f.rmse_cm;
+    d["parts"] = parts_dict(f.parts);
     return d;
 }
 
@@ -236,6 +265,7 @@ py::dict collection_report_dict(const std::filesystem::path& path, const std::ve
     d["float32_bytes"] = r.float32_bytes;
     py::dict lossless;
     lossless["bytes"] = r.lossless.bytes;
+    lossless["channel_bytes"] = r.lossless.channel_bytes;
     lossless["float32_bytes"] = r.lossless.float32_bytes;
     lossless["ratio_float32"] = r.lossless.ratio_float32();
     if (r.lossless.gzip_available) lossless["gzip_bytes"] = r.lossless.gzip_bytes;
@@ -280,16 +310,19 @@ void bind_workflow(py::module_& m) {
           "ranks meeting max_error_cm (default 1 cm), rmse or ratio; method 'hosvd', 'sthosvd' or 'hooi'. The model "
           "and its synthesis kernel are stored (committed). Returns the keys of `mocapdb compress --json` "
           "(criterion, target_met, ranks, bytes, ratio, max_cm, p99_cm, rmse_cm, ...).");
-    m.def("pack", &pack, py::arg("db"), py::arg("max_error_cm") = 1.0, py::arg("threads") = 2, py::arg("replace") = false,
-          py::arg("drop_lossless") = false,
-          "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm), stored as the packed tier "
-          "(committed). Returns the keys of `mocapdb pack --json` (bytes, max_cm, p99_cm, rmse_cm, clips, frames, ...) "
-          "and 'tier', the PackedTier.");
-    m.def("collection_report", &collection_report_dict, py::arg("db"), py::arg("max_error_cm") = std::vector<double>{1.0, 0.5, 0.1},
+    m.def("pack", &pack, py::arg("db"), py::arg("max_error_cm") = py::none(), py::arg("max_bytes") = py::none(),
+          py::arg("threads") = 2, py::arg("replace") = false, py::arg("drop_lossless") = false,
+          "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm, default 1), or with "
+          "max_bytes at the smallest max error whose bytes fit max_bytes (not both), stored as the packed tier "
+          "(committed). Returns the keys of `mocapdb pack --json` (bytes, max_error_cm, max_cm, p99_cm, rmse_cm, "
+          "clips, frames, parts: bytes per kind of stored data summing to bytes, budget: None or {max_bytes, "
+          "max_error_cm, tried}, ...), 'group_parts' (per group) and 'tier', the PackedTier.");
+    m.def("collection_report", &collection_report_dict, py::arg("db"), py::arg("max_error_cm") = std::vector<double>{1.0, 0.5, 0.1, 0.03, 0.01},
           py::arg("threads") = 2, py::arg("source_dirs") = std::vector<std::filesystem::path>{},
           "`mocapdb report` on a whole collection (nothing is stored): the lossless tier's bytes and, per bound E, "
-          "the packed bytes and measured errors. Returns {'clips', 'frames', 'groups', 'motion_seconds', "
-          "'float32_bytes', 'lossless': {...}, 'targets': [{'max_error_cm', 'bytes', 'max_cm', ...}]}.");
+          "the packed bytes (with 'parts'), and measured errors. Returns {'clips', 'frames', 'groups', 'motion_seconds', "
+          "'float32_bytes', 'lossless': {'bytes' (file bytes spent on the clips), 'channel_bytes', ...}, 'targets': "
+          "[{'max_error_cm', 'bytes', 'parts', 'max_cm', ...}]}.");
 }
 
 }  // namespace mocapdb::python

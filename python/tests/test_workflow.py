@@ -31,6 +31,32 @@ def test_pack_equals_the_cli(cli, db_copy, tmp_path):
     assert ours["tier"].max_error_cm == 0.5
     with mocapdb.open(db_copy) as db:
         assert db.packed().bytes == ours["bytes"]
+    # Bytes per kind of stored data, as the CLI gives them, summing exactly to the bytes.
+    assert ours["parts"] == theirs["parts"]
+    assert list(ours["parts"]) == list(theirs["parts"])
+    assert sum(ours["parts"].values()) == ours["bytes"]
+    assert [sum(p.values()) for p in ours["group_parts"]] == [g["bytes"] for g in theirs["groups"]]
+    assert ours["budget"] is None
+
+
+def test_pack_to_a_byte_budget(cli, db_copy, tmp_path):
+    cli_copy = tmp_path / "cli.h5"
+    mocapdb.copy_database(db_copy, cli_copy)
+    coarse = mocapdb.pack(db_copy, max_error_cm=1.0, replace=True)["bytes"]
+    budget = int(coarse * 1.5)
+    ours = mocapdb.pack(db_copy, max_bytes=budget, replace=True)
+    theirs = cli_json(cli, "pack", cli_copy, "--max-bytes", str(budget), "--force")
+    assert ours["bytes"] <= budget
+    assert ours["max_error_cm"] < 1.0 and ours["max_cm"] <= ours["max_error_cm"]
+    for key in ("bytes", "max_error_cm", "max_cm", "parts", "budget"):
+        assert ours[key] == theirs[key], key
+    assert ours["budget"]["max_bytes"] == budget
+    with pytest.raises(mocapdb.Error, match="smallest this collection packs to"):
+        mocapdb.pack(db_copy, max_bytes=10, replace=True)
+    with pytest.raises(mocapdb.Error, match="not both"):
+        mocapdb.pack(db_copy, max_error_cm=1.0, max_bytes=budget, replace=True)
+    with mocapdb.open(db_copy) as db:
+        assert db.packed().max_error_cm == ours["max_error_cm"]  # the failed calls changed nothing
 
 
 def test_import_align_compress_equal_the_cli(cli, shared, tmp_path):

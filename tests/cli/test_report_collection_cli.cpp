@@ -200,7 +200,9 @@ TEST_CASE("report --collection: an empty database gives an empty report, not a c
     REQUIRE(j.exit_code == 0);
     const Json r = parse_json(j.out);
     CHECK(r["clips"].number == 0);
-    REQUIRE(r["targets"].items.size() == 3);  // 1, 0.5, 0.1 by default
+    REQUIRE(r["targets"].items.size() == 5);  // 1, 0.5, 0.1, 0.03, 0.01 by default
+    const double defaults[] = {1, 0.5, 0.1, 0.03, 0.01};
+    for (std::size_t t = 0; t < 5; ++t) CHECK(r["targets"][t]["max_error_cm"].number == defaults[t]);
     for (const Json& t : r["targets"].items) {
         CHECK(t["bytes"].number == 0);
         CHECK(t["group_figures"].items.empty());
@@ -216,4 +218,77 @@ TEST_CASE("report --collection: an empty database gives an empty report, not a c
         CHECK(ref.exit_code == 0);
         CHECK_FALSE(parse_json(ref.out)["reference"]["comparable"].boolean);
     }
+}
+
+TEST_CASE("report --collection: rows at 0.03 and 0.01 cm beside ACL, parts per target, honest lossless bytes, "
+          "source files in subfolders", "[cli][report][shared]") {
+    MOCAPDB_REQUIRE_CLI();
+    const auto bvh = datasets_dir() / "cmu-walkrun-pfnn";
+    const auto acl = reference_dir() / "acl" / "cmu-walkrun-pfnn.csv";
+    MOCAPDB_REQUIRE_SHARED(bvh);
+    MOCAPDB_REQUIRE_SHARED(acl);
+    TempDir dir("report-fine");
+    // The source files two folders down: --source-dir searches subfolders.
+    const auto nested = dir / "sources" / "walks" / "60fps";
+    std::filesystem::create_directories(nested);
+    // Two clips whose ACL error at its most precise setting is above 0.01 cm (0.0112 and 0.0113).
+    for (const char* name : {"45_01_60fps.bvh", "83_37_60fps.bvh"}) std::filesystem::copy_file(bvh / name, nested / name);
+    const std::string db = (dir / "db.h5").string();
+    const CommandResult imported = run_cli("import " + quoted(nested.string()) + " --fps 60 -o " + quoted(db));
+    INFO(imported.output);
+    REQUIRE(imported.exit_code == 0);
+
+    const CommandResult r = run_cli("report " + quoted(db) + " --collection --max-error-cm 0.03,0.01 --poses 100 --json --reference " +
+                                    quoted(acl.string()) + " --source-dir " + quoted((dir / "sources").string()));
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    const Json j = parse_json(r.out);
+    REQUIRE(j["reference"]["comparable"].boolean);
+    // ACL's most precise setting (0.01 cm, its default) over these clips.
+    double acl_finest_bytes = 0.0, acl_finest_max = 0.0;
+    for (const Json& setting : j["reference"]["settings"].items)
+        if (setting["precision_cm"].number == 0.01) {
+            acl_finest_bytes = setting["bytes"].number;
+            acl_finest_max = setting["max_cm"].number;
+        }
+    REQUIRE(acl_finest_bytes > 0.0);
+    const double E[] = {0.03, 0.01};
+    for (std::size_t t = 0; t < 2; ++t) {
+        const Json& row = j["targets"][t];
+        INFO("E = " << E[t]);
+        CHECK(row["max_error_cm"].number == E[t]);
+        CHECK(row["max_cm"].number <= E[t]);
+        double parts = 0.0;
+        for (const auto& [name, bytes] : row["parts"].members) parts += bytes.number;
+        CHECK(parts == row["bytes"].number);
+        for (const Json& g : row["group_figures"].items) {
+            double group_parts = 0.0;
+            for (const auto& [name, bytes] : g["parts"].members) group_parts += bytes.number;
+            CHECK(group_parts == g["bytes"].number);
+        }
+        // A comparison at every E: interpolated inside ACL's range, ACL's most precise setting as a
+        // lower bound below it (our max under ACL's smallest measured max).
+        const Json& c = row["acl"];
+        REQUIRE(c["bytes_at_max"].kind == Json::Number);
+        REQUIRE(c["smaller_at_max"].kind == Json::Number);
+        CHECK(c["smaller_at_max"].number == Approx(c["bytes_at_max"].number / row["bytes"].number));
+        const bool below = row["max_cm"].number < acl_finest_max;
+        CHECK(c["max_lower_bound"].boolean == below);
+        if (below) CHECK(c["bytes_at_max"].number == acl_finest_bytes);
+        else CHECK(c["bytes_at_max"].number <= acl_finest_bytes);
+    }
+    CHECK(j["targets"][1]["acl"]["max_lower_bound"].boolean);  // ACL's 0.01 setting reaches 0.0113 cm here
+
+    // Lossless: the file bytes the clips take, more than their channel data, within the files.
+    const Json& l = j["lossless"];
+    CHECK(l["bytes"].number > l["channel_bytes"].number + 2 * 2000);
+    CHECK(l["bytes"].number < static_cast<double>(Database(db).file_size()));
+    CHECK(l["ratio_float32"].number == Approx(l["float32_bytes"].number / l["bytes"].number));
+    CHECK(l["gzip9_available"].boolean);
+    CHECK(l["sources_found"].number == 2);
+    const CommandResult text = run_cli("report " + quoted(db) + " --collection --max-error-cm 0.01 --poses 10 --reference " +
+                                       quoted(acl.string()));
+    INFO(text.output);
+    CHECK(text.exit_code == 0);
+    CHECK(text.out.find(">=") != std::string::npos);
 }

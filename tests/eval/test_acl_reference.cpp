@@ -78,6 +78,7 @@ TEST_CASE("ACL reference: bytes at our error equal compare.py's on the shared ta
         {"cmu-walkrun-pfnn.csv", "", 95457, 0.99991, 0.308},
         {"cmu-walkrun-pfnn.csv", "*_0[13]_60fps", 20000, 0.5, 0.16},
         {"cmu-walkrun-pfnn.csv", "", 50000, 5.0, 0.003},  // above and below ACL's measured range
+        {"cmu-asfamc.csv", "", 3000000, 0.01, 0.0033},    // E = 0.01: both below (lower bounds)
     };
     for (const Case& c : cases) {
         INFO(c.table << " clips '" << c.pattern << "' bytes " << c.bytes << " max " << c.max_cm << " rmse " << c.rmse_cm);
@@ -112,13 +113,22 @@ TEST_CASE("ACL reference: bytes at our error equal compare.py's on the shared ta
         CHECK(k == acl.settings.size());
         const Printed at_max = printed_verdict(r.out, "max");
         const Printed at_rmse = printed_verdict(r.out, "rmse");
-        CHECK(at_max.outside == !mine.bytes_at_max.has_value());
-        CHECK(at_rmse.outside == !mine.bytes_at_rmse.has_value());
-        if (mine.bytes_at_max) {
+        // compare.py gives no figure outside ACL's range; below it we give ACL's most precise setting
+        // as a flagged lower bound (AclComparison), otherwise the same figures.
+        CHECK(at_max.outside == (!mine.bytes_at_max.has_value() || mine.max_lower_bound));
+        CHECK(at_rmse.outside == (!mine.bytes_at_rmse.has_value() || mine.rmse_lower_bound));
+        const AclSetting& finest = acl.settings.front();  // by precision: the smallest errors
+        if (mine.max_lower_bound) {
+            CHECK(c.max_cm < finest.max_cm);
+            CHECK(*mine.bytes_at_max == static_cast<double>(finest.bytes));
+        } else if (mine.bytes_at_max) {
             CHECK(*mine.bytes_at_max == Approx(at_max.acl_bytes).margin(0.5 + 1e-6));
             CHECK(*mine.smaller_at_max == Approx(at_max.smaller).margin(0.005 + 1e-9));
         }
-        if (mine.bytes_at_rmse) {
+        if (mine.rmse_lower_bound) {
+            CHECK(c.rmse_cm < finest.rmse_cm);
+            CHECK(*mine.bytes_at_rmse == static_cast<double>(finest.bytes));
+        } else if (mine.bytes_at_rmse) {
             CHECK(*mine.bytes_at_rmse == Approx(at_rmse.acl_bytes).margin(0.5 + 1e-6));
             CHECK(*mine.smaller_at_rmse == Approx(at_rmse.smaller).margin(0.005 + 1e-9));
         }
@@ -149,6 +159,27 @@ TEST_CASE("ACL reference: interpolation is log-linear between bracketing setting
     CHECK(*c.bytes_at_max == Approx(500.0));
     CHECK(*c.smaller_at_max == Approx(5.0));
     CHECK(*c.bytes_at_rmse == Approx(200.0));
+    CHECK_FALSE(c.max_lower_bound);
+    CHECK_FALSE(c.rmse_lower_bound);
+
+    // Below ACL's most precise setting (error 0.2, 500 bytes, its largest): those bytes as a flagged
+    // lower bound; above its coarsest: none.
+    const AclComparison below = compare_with_acl(aggregate_acl(t, {"a"}), 100.0, 0.05, 0.01);
+    CHECK(below.max_lower_bound);
+    CHECK(below.rmse_lower_bound);
+    CHECK(*below.bytes_at_max == 500.0);
+    CHECK(*below.smaller_at_max == Approx(5.0));
+    CHECK(*below.bytes_at_rmse == 500.0);
+    const AclComparison above = compare_with_acl(aggregate_acl(t, {"a"}), 100.0, 2.0, 0.5);
+    CHECK_FALSE(above.bytes_at_max);
+    CHECK_FALSE(above.max_lower_bound);
+    CHECK_FALSE(above.bytes_at_rmse);
+    // No bound when the most precise setting is not the largest (its bytes would not bound ACL's).
+    AclTable odd = t;
+    odd.rows[0].acl_bytes = 100;
+    const AclComparison none = compare_with_acl(aggregate_acl(odd, {"a"}), 100.0, 0.05, 0.01);
+    CHECK_FALSE(none.bytes_at_max);
+    CHECK_FALSE(none.max_lower_bound);
 }
 
 TEST_CASE("ACL reference: a malformed table is an error naming the file, line and what was expected", "[eval][acl]") {

@@ -1,7 +1,9 @@
-// split_by_frames: a group cut into runs of whole clips, in order, none above the frame budget
-// unless a single clip is (the bound on pack's memory).
+// split_by_frames: a group cut into runs of whole clips, in order, within the frame budget (the bound
+// on pack's memory) except for a one-clip run merged into a neighbour, and never a run of one clip
+// when there are several (a whole group's overhead for one clip, issue 36).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <numeric>
 #include <random>
 
@@ -22,14 +24,17 @@ TEST_CASE("split_by_frames keeps order, whole clips and the budget", "[packing]"
         const auto runs = split_by_frames(members, frames, budget);
         std::vector<std::size_t> joined;
         std::size_t k = 0;
+        const std::size_t longest = *std::max_element(frames.begin(), frames.end());
         for (const auto& run : runs) {
             REQUIRE_FALSE(run.empty());
+            if (n > 1) CHECK(run.size() >= 2);
             std::size_t sum = 0;
             for (std::size_t m : run) {
                 joined.push_back(m);
                 sum += frames[k++];
             }
-            CHECK((sum <= budget || run.size() == 1));
+            // A run within the budget, grown by at most a one-clip run on each side (or made of them).
+            CHECK(sum <= std::max(budget, longest) + 2 * longest);
         }
         CHECK(joined == members);
         const std::size_t total = std::accumulate(frames.begin(), frames.end(), std::size_t{0});
@@ -40,7 +45,17 @@ TEST_CASE("split_by_frames keeps order, whole clips and the budget", "[packing]"
 TEST_CASE("split_by_frames: equal shares, a clip longer than the budget alone, bad arguments", "[packing]") {
     CHECK(split_by_frames({0, 1, 2, 3}, {100, 100, 100, 100}, 200) ==
           std::vector<std::vector<std::size_t>>{{0, 1}, {2, 3}});
-    CHECK(split_by_frames({0, 1, 2}, {10, 500, 10}, 100) == std::vector<std::vector<std::size_t>>{{0}, {1}, {2}});
+    // One-clip runs join the neighbour with fewer frames (here all three end up together).
+    CHECK(split_by_frames({0, 1, 2}, {10, 500, 10}, 100) == std::vector<std::vector<std::size_t>>{{0, 1, 2}});
+    // Two neighbouring one-clip runs pair up rather than both joining the smaller neighbour.
+    CHECK(split_by_frames({0, 1, 2, 3}, {87, 74, 222, 236}, 309) ==
+          std::vector<std::vector<std::size_t>>{{0, 1}, {2, 3}});
+    // A remainder of one clip joins its neighbour instead of forming a group of its own.
+    CHECK(split_by_frames({0, 1, 2, 3, 4}, {100, 100, 100, 100, 10}, 200) ==
+          std::vector<std::vector<std::size_t>>{{0, 1}, {2, 3, 4}});
+    CHECK(split_by_frames({0, 1, 2, 3}, {100, 100, 100, 10}, 300) ==
+          std::vector<std::vector<std::size_t>>{{0, 1}, {2, 3}});
+    CHECK(split_by_frames({7}, {900}, 100) == std::vector<std::vector<std::size_t>>{{7}});
     CHECK(split_by_frames({}, {}, 10) == std::vector<std::vector<std::size_t>>{{}});
     CHECK_THROWS_AS(split_by_frames({0}, {1}, 0), InvalidArgument);
     CHECK_THROWS_AS(split_by_frames({0, 1}, {1}, 10), InvalidArgument);

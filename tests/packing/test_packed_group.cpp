@@ -9,6 +9,7 @@
 #include "mocapdb/core/float32.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/packing/byte_parts.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 #include "mocapdb/procedural/walk.hpp"
@@ -25,6 +26,28 @@ using mocapdb::test::procedural_walks;
 
 namespace {
 
+/// The group's bytes per kind of stored data (issue 36 item 5): every part present, in the format's
+/// order, summing exactly to the bytes; payload and tables agreeing with the other statistics.
+void check_parts(const PackedGroup& packed) {
+    const ByteParts& parts = packed.stats.parts;
+    CHECK(total_bytes(parts) == packed.bytes.size());
+    std::vector<std::string> names;
+    for (const BytePart& p : parts) names.push_back(p.name);
+    CHECK(names == std::vector<std::string>{"header", "topology", "skeletons", "constant_dofs", "bases", "contexts",
+                                            "clip_table", "window_table", "payload", "raw_windows"});
+    auto part = [&](const std::string& name) {
+        for (const BytePart& p : parts)
+            if (p.name == name) return p.bytes;
+        return std::uint64_t{0};
+    };
+    CHECK(part("payload") + part("raw_windows") == packed.stats.payload_bytes);
+    CHECK(part("clip_table") + part("window_table") == packed.stats.table_bytes);
+    CHECK(part("topology") > 0);
+    CHECK(part("skeletons") > 0);
+    // Raw windows hold float64 source rows, nothing else.
+    CHECK((part("raw_windows") > 0) == (packed.stats.raw_windows > 0));
+}
+
 /// Packs `clips` (one group) at each E and checks the bound on every clip, every source frame.
 void check_bound(const std::vector<Clip>& clips, std::size_t max_frames_per_clip) {
     std::vector<Clip> cut;
@@ -39,6 +62,7 @@ void check_bound(const std::vector<Clip>& clips, std::size_t max_frames_per_clip
         const PackedGroup packed = pack_group(ptrs, options);
         INFO("E " << E << ": " << packed.stats.bytes << " bytes, encode-time max " << packed.stats.error.max_cm);
         CHECK(packed.stats.error.max_cm <= E);
+        check_parts(packed);
         const GroupDecoder decoder(packed.bytes);
         REQUIRE(decoder.clip_count() == cut.size());
         double decoded_max = 0.0;
@@ -128,6 +152,9 @@ TEST_CASE("packing refuses a bad bound; an empty group and one short clip work",
     const PackedGroup empty = pack_group({}, PackOptions{});
     CHECK(GroupDecoder(empty.bytes).clip_count() == 0);
     CHECK(empty.bytes.size() < 16);
+    REQUIRE(empty.stats.parts.size() == 1);  // an empty group is its header
+    CHECK(empty.stats.parts[0].name == "header");
+    CHECK(empty.stats.parts[0].bytes == empty.bytes.size());
 
     const Clip short_clip = slice(clips[0], 0, 5);  // shorter than one window
     PackOptions o;
@@ -244,6 +271,7 @@ TEST_CASE("a window no step brings within the bound is stored as its source rows
     o.max_error_cm = 1e-9;
     const PackedGroup packed = pack_group({&clip}, o);
     CHECK(packed.stats.raw_windows == 2);
+    check_parts(packed);
     const GroupDecoder decoder(packed.bytes);
     CHECK(decoder.decode_clip(0).channels == clip.channels);
     std::vector<double> row(clip.skeleton->channel_count());

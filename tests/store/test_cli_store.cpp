@@ -1,7 +1,9 @@
 // The database subcommands through the real executable: exit codes and messages.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
+#include <vector>
 
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/store/database.hpp"
@@ -132,4 +134,47 @@ TEST_CASE("cli: import --keep-going stores the good files and lists the bad ones
     INFO(r.output);
     CHECK(r.exit_code == 0);
     CHECK_THAT(r.output, Contains("15 files skipped: already stored"));
+}
+
+TEST_CASE("cli: empty files in a folder import are reported per file, the others stored, nothing half-made",
+          "[store][cli]") {
+    TempDir dir("import-empty");
+    write_small_bvh(dir, "good1.bvh", 1);
+    write_small_bvh(dir, "good2.bvh", 2);
+    { std::ofstream(dir / "clips/empty.bvh"); }
+    { std::ofstream(dir / "clips/blank.bvh") << "\n  \n"; }
+    const auto db = dir / "db.h5";
+    CommandResult r = run_cli("import " + quoted((dir / "clips").string()) + " -o " + quoted(db.string()));
+    INFO(r.output);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("empty.bvh: the file is empty (0 bytes)") && Contains("blank.bvh: the file is empty") &&
+                          Contains("2 files could not be imported") && Contains("the other clips were stored"));
+    CHECK_THAT(r.out, Contains("imported 2 clips"));
+    CHECK(Database(db).clips().size() == 2);
+
+    // A folder of nothing but empty files: no database, no segment folder, no lock file left behind.
+    std::filesystem::create_directories(dir / "hollow");
+    { std::ofstream(dir / "hollow/a.bvh"); }
+    { std::ofstream(dir / "hollow/b.amc"); }
+    auto listing = [&] {
+        std::vector<std::string> names;
+        for (const auto& e : std::filesystem::directory_iterator(dir.path())) names.push_back(e.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    };
+    const std::vector<std::string> before = listing();
+    const auto hollow = dir / "hollow.h5";
+    r = run_cli("import " + quoted((dir / "hollow").string()) + " -o " + quoted(hollow.string()));
+    INFO(r.output);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Contains("a.bvh: the file is empty") && Contains("b.amc: the file is empty") &&
+                          Contains("no clip was stored"));
+    CHECK_THAT(r.out, Contains("was not created"));
+    CHECK(listing() == before);
+
+    // The same through a failed parse (no --keep-going): the import stops and leaves nothing either.
+    { std::ofstream(dir / "hollow/c.bvh") << "HIERARCHY\nROOT Hips\n{\n"; }
+    r = run_cli("import " + quoted((dir / "hollow").string()) + " -o " + quoted(hollow.string()));
+    CHECK(r.exit_code == 1);
+    CHECK(listing() == before);
 }

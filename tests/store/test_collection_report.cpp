@@ -88,7 +88,7 @@ TEST_CASE("collection report: empty database and bad options", "[store][report]"
     const CollectionReport r = collection_report(db, o);
     CHECK(r.clips == 0);
     CHECK(r.groups == 0);
-    REQUIRE(r.targets.size() == 3);
+    REQUIRE(r.targets.size() == 5);  // 1, 0.5, 0.1, 0.03, 0.01 cm by default
     for (const TargetFigures& t : r.targets) {
         CHECK(t.total.bytes == 0);
         CHECK(t.total.ratio_float32() == 0.0);

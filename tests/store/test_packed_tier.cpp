@@ -193,7 +193,7 @@ TEST_CASE("packed tier: E <= 0 or NaN refused; empty and one-clip databases pack
             INFO(bad);
             const CommandResult r = run_cli("pack " + quoted(empty.string()) + " --max-error-cm " + bad);
             CHECK(r.exit_code == 1);
-            CHECK(r.err.find("--max-error-cm must be a finite number > 0") != std::string::npos);
+            CHECK(r.err.find("max error must be a finite number > 0") != std::string::npos);
         }
         // The empty database packs to an empty tier.
         const CommandResult r = run_cli("pack " + quoted(empty.string()) + " --max-error-cm 1 --json");

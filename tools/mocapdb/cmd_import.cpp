@@ -38,7 +38,8 @@ void run_import(const ImportArgs& args) {
     std::cout << describe_import(db, outcome);
     if (outcome.summary.failed > 0)
         throw Error(std::to_string(outcome.summary.failed) + (outcome.summary.failed == 1 ? " file" : " files") +
-                    " could not be imported (errors above); the other clips were stored");
+                    " could not be imported (errors above); " +
+                    (outcome.summary.added > 0 ? "the other clips were stored" : "no clip was stored"));
 }
 
 }  // namespace
@@ -50,7 +51,8 @@ void setup_import(CLI::App& app) {
         "Folders are searched recursively for *.bvh and *.amc; NN_MM.amc uses NN.asf beside it unless --asf\n"
         "is given. An existing database is appended to (a file whose sha256 is already stored is skipped);\n"
         "--force starts a new database instead. The file is replaced atomically at the end: an interrupted\n"
-        "import leaves it as it was.\n"
+        "import leaves it as it was. An empty or unreadable file is reported and skipped, the others are\n"
+        "stored, and the exit code is 1; when nothing is stored, nothing is created.\n"
         "Manifest CSV: header row with column 'file' (name or stem) and any of subject, description,\n"
         "labels (';'-separated), fps.\n"
         "Examples:\n"

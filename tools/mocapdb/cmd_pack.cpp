@@ -1,6 +1,10 @@
-// mocapdb pack DB.h5 --max-error-cm E: store every clip in the database's error-bounded packed tier.
+// mocapdb pack DB.h5 --max-error-cm E | --max-bytes N: store every clip in the database's error-bounded
+// packed tier (at E, or at the smallest E whose bytes fit N).
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 
+#include "byte_parts_output.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/store/pack.hpp"
@@ -12,11 +16,12 @@ namespace {
 struct PackArgs {
     std::string db;
     double max_error_cm = 0.0;
+    std::uint64_t max_bytes = 0;  ///< --max-bytes (0: not given)
     int threads = 2;
     bool json = false;
     bool force = false;
     bool drop_lossless = false;
-    bool has_bound = false;  ///< --max-error-cm was given
+    bool has_bound = false;  ///< --max-error-cm or --max-bytes was given
 };
 
 void write_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, double ratio_float32, std::size_t clips,
@@ -44,6 +49,27 @@ void print_json(const std::string& db, const PackDatabaseOutcome& o) {
     j.key("dropped_lossless_clips").value(o.dropped_lossless);
     j.key("file_bytes").value(static_cast<std::size_t>(o.file_bytes));
     j.key("seconds").value(o.seconds);
+    write_parts_json(j, o.parts);
+    j.key("budget");
+    if (o.budget) {
+        j.begin_object();
+        j.key("max_bytes").value(static_cast<std::size_t>(o.budget->max_bytes));
+        j.key("max_error_cm").value(t.max_error_cm);
+        j.key("tried").begin_array();
+        for (const PackDatabaseOutcome::Budget::Try& e : o.budget->tried) {
+            j.begin_object();
+            j.key("max_error_cm").value(e.max_error_cm);
+            j.key("bytes");
+            if (e.bytes > 0 || e.fits) j.value(static_cast<std::size_t>(e.bytes));
+            else j.null();
+            j.key("fits").value(e.fits);
+            j.end_object();
+        }
+        j.end_array();
+        j.end_object();
+    } else {
+        j.null();
+    }
     j.key("groups").begin_array();
     for (std::size_t g = 0; g < t.groups.size(); ++g) {
         const PackedGroupRecord& r = t.groups[g];
@@ -55,6 +81,7 @@ void print_json(const std::string& db, const PackDatabaseOutcome& o) {
         write_figures(j, r.bytes, o.group_float32_bytes.at(g), o.group_ratio_float32(g), r.clips.size(), r.frames, r.max_cm,
                       r.p99_cm, r.rmse_cm);
         j.key("seconds").value(o.group_seconds.at(g));
+        write_parts_json(j, o.group_parts.at(g));
         j.end_object();
     }
     j.end_array();
@@ -70,6 +97,11 @@ void print_text(const std::string& db, const PackDatabaseOutcome& o) {
                 o.replaced ? " (replacing the earlier packed tier)" : "", static_cast<std::size_t>(t.bytes),
                 o.ratio_float32(), t.max_cm, t.p99_cm, t.rmse_cm, o.seconds,
                 static_cast<double>(o.file_bytes) / 1e6);
+    if (o.budget)
+        std::printf("budget %zu bytes: the smallest max error that fits is %g cm (%zu bytes, %zu E tried)\n",
+                    static_cast<std::size_t>(o.budget->max_bytes), t.max_error_cm, static_cast<std::size_t>(t.bytes),
+                    o.budget->tried.size());
+    std::printf("bytes by part: %s\n", parts_text(o.parts).c_str());
     if (o.dropped_lossless > 0)
         std::printf("dropped the lossless channels of %zu clips: they are now stored within %g cm only\n",
                     o.dropped_lossless, t.max_error_cm);
@@ -103,6 +135,7 @@ void run_pack(const PackArgs& a) {
     PackDatabaseOptions options;
     options.drop_lossless = a.drop_lossless;
     options.max_error_cm = a.max_error_cm;
+    options.max_bytes = a.max_bytes;
     options.threads = a.threads;
     options.replace = a.force;
     PackDatabaseOutcome o;
@@ -128,26 +161,39 @@ void setup_pack(CLI::App& app) {
         "world frame), and stores the groups under /packed (schemas/format-v4.md §9) in one atomic\n"
         "session. The lossless clips stay; the figures are measured by decoding the stored bytes.\n"
         "An existing packed tier is replaced only with --force.\n"
+        "--max-bytes N instead packs to a byte budget: the smallest E (3 significant digits, to about 2 %,\n"
+        "between 0.001 and 100 cm) whose bytes fit N, found by packing the collection in memory at several E\n"
+        "(only the E chosen is written); it prints the E reached and fails, naming the smallest size\n"
+        "reachable, when even 100 cm does not fit.\n"
         "--drop-lossless then removes the lossless channels of every packed clip, so the file is small;\n"
         "those clips are afterwards decoded from the packed tier (within E), the tier can no longer be\n"
         "replaced or removed, and export needs --from-packed for them. Without --max-error-cm it drops\n"
         "against the tier already stored.\n"
         "JSON keys: file, max_error_cm, bytes (everything the decoder needs), float32_bytes,\n"
         "ratio_float32, clips, frames, max_cm, p99_cm, rmse_cm, motion_seconds, bytes_per_second,\n"
-        "replaced, dropped_lossless_clips, file_bytes, seconds, groups[] (name, path, skeleton, frame_rate and the same figures).\n"
+        "replaced, dropped_lossless_clips, file_bytes, seconds, parts (bytes per kind of stored data:\n"
+        "header, topology, skeletons, constant_dofs, bases, contexts, clip_table, window_table, payload,\n"
+        "raw_windows; they sum to bytes), budget ({max_bytes, max_error_cm, tried[] {max_error_cm, bytes,\n"
+        "fits}} or null), groups[] (name, path, skeleton, frame_rate, the same figures and parts).\n"
         "Examples:\n"
         "  mocapdb pack cmu.h5 --max-error-cm 1\n"
         "  mocapdb pack cmu.h5 --max-error-cm 0.5 --force --json\n"
         "  mocapdb pack cmu.h5 --max-error-cm 0.5 --drop-lossless\n"
+        "  mocapdb pack cmu.h5 --max-bytes 5000000 --force\n"
         "  mocapdb export cmu.h5 --clip 16_15 --from-packed -o 16_15.bvh");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     auto* bound = cmd->add_option("--max-error-cm", a->max_error_cm, "E: bound on every joint's position error (cm, > 0)");
+    auto* budget = cmd->add_option("--max-bytes", a->max_bytes,
+                                   "N: pack at the smallest max error whose bytes fit N (instead of --max-error-cm)")
+                       ->check(CLI::Range(std::uint64_t{1}, std::numeric_limits<std::uint64_t>::max()))
+                       ->excludes(bound);
     auto* drop = cmd->add_flag("--drop-lossless", a->drop_lossless,
                                "remove the lossless channels of the packed clips (irreversible)");
-    cmd->callback([a, bound, drop] {
-        if (bound->count() == 0 && drop->count() == 0)
-            throw CLI::RequiredError("--max-error-cm (or --drop-lossless alone, to drop against the stored tier)");
-        a->has_bound = bound->count() > 0;
+    cmd->callback([a, bound, budget, drop] {
+        if (bound->count() == 0 && budget->count() == 0 && drop->count() == 0)
+            throw CLI::RequiredError(
+                "--max-error-cm or --max-bytes (or --drop-lossless alone, to drop against the stored tier)");
+        a->has_bound = bound->count() > 0 || budget->count() > 0;
         run_pack(*a);
     });
     cmd->add_option("--threads", a->threads, "encoder threads")->check(CLI::Range(1, 64));

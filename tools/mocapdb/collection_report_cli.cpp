@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "byte_parts_output.hpp"
 #include "json_writer.hpp"
 #include "mocapdb/eval/collection_acl.hpp"
 #include "mocapdb/io/text_file.hpp"
@@ -33,14 +34,15 @@ std::string general(double v, int digits = 6) {
     return b;
 }
 
-std::string opt_bytes(const std::optional<double>& v, bool usable) {
+// ">=" marks a lower bound (our error below ACL's most precise setting, AclComparison).
+std::string opt_bytes(const std::optional<double>& v, bool usable, bool lower_bound) {
     if (!usable) return "n/a";
-    return v ? fixed(*v, 0) : "outside";
+    return v ? (lower_bound ? ">=" : "") + fixed(*v, 0) : "outside";
 }
 
-std::string opt_ratio(const std::optional<double>& v, bool usable) {
+std::string opt_ratio(const std::optional<double>& v, bool usable, bool lower_bound) {
     if (!usable) return "n/a";
-    return v ? fixed(*v, 2) + "x" : "outside";
+    return v ? (lower_bound ? ">=" : "") + fixed(*v, 2) + "x" : "outside";
 }
 
 void json_optional(JsonWriter& j, const char* key, const std::optional<double>& v) {
@@ -65,6 +67,7 @@ void json_figures(JsonWriter& j, const PackedFigures& f) {
     j.key("stream_mb_per_second").value(f.stream_mb_per_second());
     j.key("raw_windows").value(f.raw_windows);
     j.key("pack_attempts").value(f.attempts);
+    write_parts_json(j, f.parts);
 }
 
 std::string render_json(const CollectionReportArgs& a, const CollectionReport& r, const Reference& ref) {
@@ -96,6 +99,8 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
             json_optional(j, "smaller_at_max", c.smaller_at_max);
             json_optional(j, "bytes_at_rmse", c.bytes_at_rmse);
             json_optional(j, "smaller_at_rmse", c.smaller_at_rmse);
+            j.key("max_lower_bound").value(c.max_lower_bound);
+            j.key("rmse_lower_bound").value(c.rmse_lower_bound);
             j.end_object();
         } else {
             j.null();
@@ -116,6 +121,7 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
     const LosslessFigures& l = r.lossless;
     j.key("lossless").begin_object();
     j.key("bytes").value(static_cast<std::size_t>(l.bytes));
+    j.key("channel_bytes").value(static_cast<std::size_t>(l.channel_bytes));
     j.key("float32_bytes").value(static_cast<std::size_t>(l.float32_bytes));
     j.key("ratio_float32").value(l.ratio_float32());
     j.key("gzip9_available").value(l.gzip_available);
@@ -168,7 +174,8 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
     s.precision(9);
     s << "tier,max_error_cm,bytes,float32_bytes,ratio_float32,bytes_per_second,bits_per_joint_frame,max_cm,p99_cm,"
          "rmse_cm,encode_s,decode_pose_us,stream_mb_s,acl_bytes_at_max,x_smaller_at_max,acl_bytes_at_rmse,"
-         "x_smaller_at_rmse,gzip9_bytes,gzip9_ratio_float32,indexed_local_pose_us,index_bytes\n";
+         "x_smaller_at_rmse,gzip9_bytes,gzip9_ratio_float32,indexed_local_pose_us,index_bytes,acl_at_max_lower_bound,"
+         "acl_at_rmse_lower_bound\n";
     auto cell = [](const std::optional<double>& v) { return v ? general(*v, 9) : std::string(); };
     for (std::size_t t = 0; t < r.targets.size(); ++t) {
         const TargetFigures& tf = r.targets[t];
@@ -178,13 +185,14 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
           << f.bytes_per_second() << ',' << f.bits_per_joint_frame() << ',' << f.max_cm << ',' << f.p99_cm << ','
           << f.rmse_cm << ',' << f.encode_seconds << ',' << tf.pose_microseconds << ',' << f.stream_mb_per_second()
           << ',' << cell(c.bytes_at_max) << ',' << cell(c.smaller_at_max) << ',' << cell(c.bytes_at_rmse) << ','
-          << cell(c.smaller_at_rmse) << ",,," << tf.indexed_pose_microseconds << ',' << tf.index_bytes << '\n';
+          << cell(c.smaller_at_rmse) << ",,," << tf.indexed_pose_microseconds << ',' << tf.index_bytes << ','
+          << (c.max_lower_bound ? 1 : 0) << ',' << (c.rmse_lower_bound ? 1 : 0) << '\n';
     }
     const LosslessFigures& l = r.lossless;
     const double bps = r.lossless_bytes_per_second();
     s << "lossless,0," << l.bytes << ',' << l.float32_bytes << ',' << l.ratio_float32() << ',' << bps << ",,0,0,0,,,,,,,,"
       << (l.gzip_available ? std::to_string(l.gzip_bytes) : "") << ','
-      << (l.gzip_available ? general(l.gzip_ratio_float32(), 9) : "") << ",,\n";
+      << (l.gzip_available ? general(l.gzip_ratio_float32(), 9) : "") << ",,,,\n";
     return s.str();
 }
 
@@ -269,14 +277,18 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
                       general(tf.max_error_cm).c_str(), static_cast<unsigned long long>(f.bytes), f.ratio_float32(),
                       f.bytes_per_second(), f.bits_per_joint_frame(), f.max_cm, f.p99_cm, f.rmse_cm, f.encode_seconds,
                       tf.pose_microseconds, tf.indexed_pose_microseconds, f.stream_mb_per_second(),
-                      opt_bytes(c.bytes_at_max, usable).c_str(),
-                      opt_ratio(c.smaller_at_max, usable).c_str(), opt_bytes(c.bytes_at_rmse, usable).c_str(),
-                      opt_ratio(c.smaller_at_rmse, usable).c_str());
+                      opt_bytes(c.bytes_at_max, usable, c.max_lower_bound).c_str(),
+                      opt_ratio(c.smaller_at_max, usable, c.max_lower_bound).c_str(),
+                      opt_bytes(c.bytes_at_rmse, usable, c.rmse_lower_bound).c_str(),
+                      opt_ratio(c.smaller_at_rmse, usable, c.rmse_lower_bound).c_str());
         out += line;
     }
     const LosslessFigures& l = r.lossless;
-    std::snprintf(line, sizeof line, "\nlossless tier: %llu bytes, %.2f:1 against float32 channels; ",
-                  static_cast<unsigned long long>(l.bytes), l.ratio_float32());
+    std::snprintf(line, sizeof line,
+                  "\nlossless tier: %llu bytes in the file (channel data %llu, HDF5 objects %llu), %.2f:1 against float32 "
+                  "channels; ",
+                  static_cast<unsigned long long>(l.bytes), static_cast<unsigned long long>(l.channel_bytes),
+                  static_cast<unsigned long long>(l.bytes - std::min(l.bytes, l.channel_bytes)), l.ratio_float32());
     out += line;
     if (l.gzip_available) {
         std::snprintf(line, sizeof line, "gzip -9 of the source text: %llu bytes, %.2f:1 (lossless tier %.2fx smaller)\n",
@@ -311,7 +323,8 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
     out += "); MB/s: float32 channels decoded per second, streaming.\n";
     if (ref.given && ref.unusable.empty())
         out += "ACL: bytes interpolated log-linearly at our measured error over the same clips (as compare.py); "
-               "'outside': our error is outside ACL's measured range (no extrapolation).\n";
+               "'outside': our error is above ACL's measured range (no extrapolation); '>=': our error is below "
+               "that of ACL's most precise setting, whose bytes are given (a lower bound on ACL's bytes at our error).\n";
     return out;
 }
 

@@ -83,6 +83,11 @@ ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<st
 std::string describe_import(const std::filesystem::path& db, const ImportOutcome& o) {
     const ImportSummary& s = o.summary;
     char line[512];
+    if (s.added == 0 && !o.existed) {
+        std::snprintf(line, sizeof line, "imported no clip (%zu file%s failed); %s was not created\n", s.failed,
+                      s.failed == 1 ? "" : "s", db.string().c_str());
+        return line;
+    }
     std::snprintf(line, sizeof line,
                   "imported %zu clip%s (%zu skipped as duplicates): %zu frames, %.1f s of motion; read %s in %.2f s "
                   "(%.1f MB/s, %.1f clips/s); %s now holds %zu clips, %s\n",

@@ -148,9 +148,22 @@ AclComparison compare_with_acl(const AclCollection& acl, double bytes, double ma
         at_max.emplace_back(s.max_cm, static_cast<double>(s.bytes));
         at_rmse.emplace_back(s.rmse_cm, static_cast<double>(s.bytes));
     }
+    // Below the most precise setting's error: its bytes, a lower bound when it is the largest.
+    auto below_range = [](const std::vector<std::pair<double, double>>& points, double error, bool& bound) {
+        std::optional<double> out = bytes_at_error(points, error);
+        if (out || points.empty() || !(error > 0.0)) return out;
+        const auto finest = std::min_element(points.begin(), points.end());
+        const bool largest = std::all_of(points.begin(), points.end(),
+                                         [&](const std::pair<double, double>& p) { return p.second <= finest->second; });
+        if (error < finest->first && largest) {
+            bound = true;
+            out = finest->second;
+        }
+        return out;
+    };
     AclComparison c;
-    c.bytes_at_max = bytes_at_error(at_max, max_cm);
-    c.bytes_at_rmse = bytes_at_error(at_rmse, rmse_cm);
+    c.bytes_at_max = below_range(at_max, max_cm, c.max_lower_bound);
+    c.bytes_at_rmse = below_range(at_rmse, rmse_cm, c.rmse_lower_bound);
     if (bytes > 0.0) {
         if (c.bytes_at_max) c.smaller_at_max = *c.bytes_at_max / bytes;
         if (c.bytes_at_rmse) c.smaller_at_rmse = *c.bytes_at_rmse / bytes;

@@ -382,14 +382,21 @@ SkeletonEntry stored_entry(std::vector<Joint> joints, const SourceUnits& units, 
     return e;
 }
 
-void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
+void GroupModel::write_header(std::vector<std::uint8_t>& out, ByteParts* parts) const {
     ByteWriter w(out);
+    // Each section's bytes, named as PackStats::parts reports them.
+    std::size_t section_start = out.size();
+    auto section = [&](const char* name) {
+        if (parts) add_part(*parts, name, out.size() - section_start);
+        section_start = out.size();
+    };
     w.raw<std::uint32_t>(0x5042444Du);  // "MDBP"
     w.u8(kFormatVersion);
     w.varint(clips.size());
-    if (clips.empty()) return;
+    if (clips.empty()) return section("header");
     w.raw<double>(frame_rate);
     w.varint(static_cast<std::uint64_t>(window));
+    section("header");
     // Topology (from the first skeleton).
     const Skeleton& s = *skeletons.front().skeleton;
     w.varint(s.size());
@@ -401,6 +408,7 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
         w.u8(static_cast<std::uint8_t>(j.rotation_order));
     }
     w.varint(s.motion_root());
+    section("topology");
     w.varint(skeletons.size());
     for (const SkeletonEntry& e : skeletons) {
         const Skeleton& k = *e.skeleton;
@@ -419,6 +427,7 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
                 for (float c : e.stored_axes[j]) w.f32(c);
         }
     }
+    section("skeletons");
     std::vector<std::uint8_t> mask((static_cast<std::size_t>(dofs) + 7) / 8, 0);
     for (int d : active) mask[static_cast<std::size_t>(d) / 8] |= static_cast<std::uint8_t>(1u << (d % 8));
     w.bytes(mask);
@@ -430,6 +439,7 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
         }
         w.raw<double>(constant[static_cast<std::size_t>(d)]);
     }
+    section("constant_dofs");
     for (const MatX* basis : {&dof_basis, &time_basis}) {
         const std::vector<std::uint8_t> coded = encode_basis(*basis);
         w.varint(coded.size());
@@ -437,6 +447,7 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
     }
     for (float v : dof_energy) w.raw<float>(v);
     for (float v : time_energy) w.raw<float>(v);
+    section("bases");
     // Trained contexts: a bit mask of those used, then 8 bits each (to_contexts' precision).
     std::vector<std::uint8_t> used((contexts.p.size() + 7) / 8, 0);
     for (std::size_t i = 0; i < contexts.p.size(); ++i)
@@ -444,6 +455,7 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
     w.bytes(used);
     for (BitContext c : contexts.p)
         if (c != kProbabilityHalf) w.u8(static_cast<std::uint8_t>(c >> (kProbabilityBits - 8)));
+    section("contexts");
     for (const ClipEntry& c : clips) {
         w.varint(c.skeleton);
         w.varint(c.frames);
@@ -451,10 +463,12 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out) const {
         w.f32(c.canonical.translation.z());
         w.f32(c.canonical.yaw);
     }
+    section("clip_table");
     for (const WindowEntry& e : windows) {
         w.u8(e.step);
         w.varint(e.size);
     }
+    section("window_table");
 }
 
 std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) {

@@ -12,6 +12,7 @@
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
+#include "mocapdb/packing/byte_parts.hpp"
 #include "mocapdb/packing/coefficient_coder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 #include "channel_writer.hpp"
@@ -166,8 +167,10 @@ struct GroupModel {
     void reconstruct(const ClipEntry& clip, int step_index, const std::vector<std::int32_t>& q, int count,
                      WindowScratch& s, FrameMatrix& out_rows) const;
 
-    /// Header and tables (everything but the window payloads) and their parse.
-    void write_header(std::vector<std::uint8_t>& out) const;
+    /// Header and tables (everything but the window payloads) and their parse. With `parts`, the
+    /// bytes of each section are added to it by name (header, topology, skeletons, constant_dofs,
+    /// bases, contexts, clip_table, window_table).
+    void write_header(std::vector<std::uint8_t>& out, ByteParts* parts = nullptr) const;
     /// Parses a header; returns the offset of the payload.
     std::size_t read_header(const std::uint8_t* data, std::size_t size);
 };

@@ -28,6 +28,32 @@ std::vector<std::vector<std::size_t>> split_by_frames(const std::vector<std::siz
         out.back().push_back(members[i]);
         run += frames[i];
     }
+    // A run of one clip would spend a whole group's overhead (topology, skeletons, bases, contexts)
+    // on it: it joins a neighbouring run of one clip if there is one (two problems solved at once),
+    // otherwise the neighbour whose frames are fewer (the first on a tie).
+    std::vector<std::uint64_t> sums;
+    std::size_t k = 0;
+    for (const auto& r : out) {
+        std::uint64_t sum = 0;
+        for (std::size_t n = 0; n < r.size(); ++n) sum += frames[k++];
+        sums.push_back(sum);
+    }
+    for (std::size_t i = 0; i < out.size() && out.size() > 1;) {
+        if (out[i].size() != 1) {
+            ++i;
+            continue;
+        }
+        bool left = i > 0 && (i + 1 == out.size() || sums[i - 1] <= sums[i + 1]);
+        if (i > 0 && i + 1 < out.size() && (out[i - 1].size() == 1) != (out[i + 1].size() == 1))
+            left = out[i - 1].size() == 1;
+        const std::size_t into = left ? i - 1 : i + 1;
+        if (left) out[into].push_back(out[i].front());
+        else out[into].insert(out[into].begin(), out[i].front());
+        sums[into] += sums[i];
+        out.erase(out.begin() + static_cast<std::ptrdiff_t>(i));
+        sums.erase(sums.begin() + static_cast<std::ptrdiff_t>(i));
+        if (left) i = into;  // the grown run is checked again (it has two clips now)
+    }
     return out;
 }
 

@@ -188,7 +188,7 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     result.stats.time_basis = options.time_basis == TimeBasis::Auto ? TimeBasis::Learned : options.time_basis;
     result.stats.dof_basis = options.dof_basis == DofBasis::Auto ? DofBasis::Learned : options.dof_basis;
     if (clips.empty()) {
-        m.write_header(result.bytes);
+        m.write_header(result.bytes, &result.stats.parts);
         result.stats.bytes = result.stats.header_bytes = result.bytes.size();
         return result;
     }
@@ -557,9 +557,15 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         results[w].q = {};
         results[w].raw = {};
     }
-    m.write_header(result.bytes);
+    m.write_header(result.bytes, &result.stats.parts);
     const std::size_t before_payload = result.bytes.size();
-    for (const auto& p : payloads) result.stats.payload_bytes += p.size();
+    std::uint64_t coded_bytes = 0, raw_bytes = 0;
+    for (std::size_t w = 0; w < window_total; ++w) {
+        result.stats.payload_bytes += payloads[w].size();
+        (m.windows[w].step == detail::kRawStep ? raw_bytes : coded_bytes) += payloads[w].size();
+    }
+    add_part(result.stats.parts, "payload", coded_bytes);
+    add_part(result.stats.parts, "raw_windows", raw_bytes);
     result.bytes.reserve(before_payload + result.stats.payload_bytes);
     for (const auto& p : payloads) result.bytes.insert(result.bytes.end(), p.begin(), p.end());
 

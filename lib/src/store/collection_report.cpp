@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <random>
 #include <string>
 #include <system_error>
@@ -52,28 +53,39 @@ void measure_gzip(const std::vector<ClipRecord>& records, const std::vector<std:
         out.gzip_reason = "no source folder given (the database records each clip's file name and SHA-256, not its folder)";
         return;
     }
+    // Every regular file under the folders (subfolders included), by name: folders in the order
+    // given, each in sorted path order.
+    std::map<std::string, std::vector<std::filesystem::path>> by_name;
+    for (const auto& d : dirs) {
+        std::vector<std::filesystem::path> files;
+        std::error_code ec;
+        for (std::filesystem::recursive_directory_iterator it(d, std::filesystem::directory_options::skip_permission_denied, ec), end;
+             !ec && it != end; it.increment(ec))
+            if (it->is_regular_file(ec)) files.push_back(it->path());
+        if (ec) throw IoError(d.string() + ": cannot list the folder: " + ec.message());
+        std::sort(files.begin(), files.end());
+        for (auto& f : files) by_name[f.filename().string()].push_back(std::move(f));
+    }
     std::string first_missing, first_changed;
     std::uint64_t gzip = 0, text_bytes = 0;
     for (const ClipRecord& r : records) {
         step(r.frames, r.id);
-        std::filesystem::path found;
-        for (const auto& d : dirs) {
-            std::error_code ec;
-            const auto candidate = d / r.source.file_name;
-            if (!r.source.file_name.empty() && std::filesystem::is_regular_file(candidate, ec)) {
-                found = candidate;
-                break;
-            }
-        }
-        if (found.empty()) {
+        const auto candidates = r.source.file_name.empty() ? by_name.end() : by_name.find(r.source.file_name);
+        if (candidates == by_name.end()) {
             ++out.sources_missing;
             if (first_missing.empty()) first_missing = r.source.file_name.empty() ? r.id : r.source.file_name;
             continue;
         }
-        const std::string text = read_text_file(found);
-        if (sha256_hex(text) != r.source.sha256) {
+        // The first file of that name with the recorded SHA-256 (several folders may hold the name).
+        std::string text;
+        bool same = false;
+        for (const std::filesystem::path& candidate : candidates->second) {
+            text = read_text_file(candidate);
+            if ((same = sha256_hex(text) == r.source.sha256)) break;
+        }
+        if (!same) {
             ++out.sources_changed;
-            if (first_changed.empty()) first_changed = found.string();
+            if (first_changed.empty()) first_changed = candidates->second.front().string();
             continue;
         }
         ++out.sources_found;
@@ -147,11 +159,12 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
         out.frames += r.frames;
         out.motion_seconds += static_cast<double>(r.frames) / r.frame_rate;
         out.float32_bytes += static_cast<std::uint64_t>(r.frames) * r.channels * 4u;
-        out.lossless.bytes += r.stored_bytes;
+        out.lossless.channel_bytes += r.stored_bytes;
         const std::string stem = std::filesystem::path(r.source.file_name).stem().string();
         out.clip_names.push_back(stem.empty() ? r.id : stem);
     }
     out.lossless.float32_bytes = out.float32_bytes;
+    out.lossless.bytes = db.clips_file_bytes();
     std::vector<std::vector<std::size_t>> groups;  // as pack_database groups them
     for (const std::vector<std::size_t>& g : packing::group_clips(head_ptrs)) {
         std::vector<std::size_t> frames;
@@ -229,6 +242,7 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
             f.encode_seconds = m.encode_seconds;
             f.stream_seconds = m.decode_seconds;
             f.raw_windows = m.packed.stats.raw_windows;
+            f.parts = m.packed.stats.parts;
             f.attempts = m.attempts;
             all_errors[t].merge(m.errors);
             TargetFigures& target = out.targets[t];
@@ -242,6 +256,7 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
             total.encode_seconds += f.encode_seconds;
             total.stream_seconds += f.stream_seconds;
             total.raw_windows += f.raw_windows;
+            packing::add_parts(total.parts, f.parts);
             total.attempts = std::max(total.attempts, f.attempts);
             target.groups.push_back(std::move(g));
             decoders[t].emplace_back(std::move(m.packed.bytes));

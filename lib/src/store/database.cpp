@@ -2,6 +2,8 @@
 #include "mocapdb/store/database.hpp"
 
 #include <algorithm>
+#include <functional>
+#include <set>
 
 #include "clip_codec.hpp"
 #include "database_impl.hpp"
@@ -282,6 +284,27 @@ std::optional<synthesis::KernelFit> Database::load_kernel_fit(const std::string&
 std::uint64_t Database::file_size() const {
     QuietScope quiet;
     return store::referenced_bytes(impl_->path, store::referenced_segments(impl_->f()));
+}
+
+std::uint64_t Database::clips_file_bytes() const {
+    QuietScope quiet;
+    const store::h5::File& f = impl_->f();
+    std::uint64_t bytes = f.object_file_bytes(store::kClips);  // the index's (or the one file's) links to the clips
+    std::set<std::filesystem::path> segments;  // other files holding clips: their /clips groups too
+    const std::function<void(const std::string&)> subtree = [&](const std::string& path) {
+        bytes += f.object_file_bytes(path);
+        if (f.type_of(path) == store::h5::ObjectType::Group)
+            for (const std::string& child : f.children(path)) subtree(path + "/" + child);
+    };
+    for (const std::string& id : f.children(store::kClips)) {
+        const std::string g = store::clip_path(id);
+        subtree(g);
+        segments.insert(f.file_holding(g));
+    }
+    segments.erase(f.file_holding(store::kClips));
+    for (const std::filesystem::path& segment : segments)
+        bytes += store::h5::File::open(segment, false).object_file_bytes(store::kClips);
+    return bytes;
 }
 
 std::uint64_t database_disk_bytes(const std::filesystem::path& path) { return store::disk_bytes(path); }

@@ -184,6 +184,11 @@ struct DatabaseWriter::Impl {
         std::filesystem::remove(temp, ec);
         if (!segment_path.empty()) std::filesystem::remove(segment_path, ec);
         if (!legacy_path.empty()) std::filesystem::remove(legacy_path, ec);  // a second name of the target
+        // A database that was never published leaves nothing: its empty segment folder and its lock.
+        if (!target.empty() && !std::filesystem::exists(target, ec)) {
+            std::filesystem::remove(store::segment_dir(target), ec);  // only when empty
+            if (lock) lock->remove_file();
+        }
     }
 };
 

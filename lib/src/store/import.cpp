@@ -47,6 +47,12 @@ std::vector<std::filesystem::path> collect_clip_files(const std::vector<std::fil
 
 namespace {
 
+// A file that cannot be read or holds nothing: reported and skipped whatever keep_going says.
+class UnusableFile : public IoError {
+public:
+    using IoError::IoError;
+};
+
 // Reads and parses one file into `clip` and `source`. False when its SHA-256 is already stored
 // (imported.result says so). Throws the reader's errors.
 bool read_source(const std::filesystem::path& path, const ImportOptions& options, const DatabaseWriter& db,
@@ -60,7 +66,14 @@ bool read_source(const std::filesystem::path& path, const ImportOptions& options
     if (!format)
         throw InvalidArgument(path.string() + ": unsupported file type '" + path.extension().string() +
                               "' (expected .bvh or .amc)");
-    std::string text = read_text_file(path);
+    std::string text;
+    try {
+        text = read_text_file(path);
+    } catch (const IoError& e) {
+        throw UnusableFile(e.what());
+    }
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+        throw UnusableFile(path.string() + ": the file is empty (" + std::to_string(text.size()) + " bytes)");
     imported.bytes = text.size();
     const std::string sha = sha256_hex(text);
     ++summary.files;
@@ -143,6 +156,11 @@ ImportSummary import_files(DatabaseWriter& db, const std::vector<std::filesystem
                 if (on_file) on_file(imported);
                 continue;
             }
+        } catch (const UnusableFile& e) {
+            imported.error = e.what();
+            ++summary.failed;
+            if (on_file) on_file(imported);
+            continue;
         } catch (const Error& e) {
             if (!options.keep_going) throw;
             imported.error = e.what();

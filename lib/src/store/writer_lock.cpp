@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -22,12 +23,25 @@ std::filesystem::path WriterLock::lock_path(const std::filesystem::path& target)
 WriterLock::WriterLock(const std::filesystem::path& target, double wait_seconds) {
     if (!(wait_seconds >= 0.0) || !std::isfinite(wait_seconds))
         throw InvalidArgument("database writer: the lock wait must be a finite number of seconds >= 0");
-    const std::filesystem::path path = lock_path(target);
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw IoError(path.string() + ": cannot open the writer lock: " + std::strerror(errno));
+    path_ = lock_path(target);
+    const std::filesystem::path& path = path_;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_seconds);
     for (;;) {
-        if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+        if (fd_ < 0) {
+            fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+            if (fd_ < 0) throw IoError(path.string() + ": cannot open the writer lock: " + std::strerror(errno));
+        }
+        if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) {
+            // The holder before us may have removed the file (remove_file): then the lock is on an
+            // inode nobody else will open, and the name is locked afresh.
+            struct stat held {}, named {};
+            if (::fstat(fd_, &held) == 0 && ::stat(path.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+                held.st_ino == named.st_ino)
+                return;
+            ::close(fd_);
+            fd_ = -1;
+            continue;
+        }
         const int err = errno;
         if (err != EWOULDBLOCK && err != EINTR) {
             ::close(fd_);
@@ -47,6 +61,13 @@ WriterLock::WriterLock(const std::filesystem::path& target, double wait_seconds)
 
 WriterLock::~WriterLock() {
     if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+}
+
+void WriterLock::remove_file() noexcept {
+    if (fd_ < 0) return;
+    ::unlink(path_.c_str());  // while still held: a waiter then finds the name gone and locks afresh
+    ::close(fd_);
+    fd_ = -1;
 }
 
 }  // namespace mocapdb::store

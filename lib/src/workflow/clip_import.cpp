@@ -33,12 +33,16 @@ ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<st
             o.not_added.push_back(f.file.string() + ": " + f.result.message);
         }
     });
-    if (o.summary.added > 0 || !o.existed || force) writer->commit();
+    // Nothing added: nothing to publish (a new database is not created empty, an existing one is
+    // left as it was, even with force).
+    if (o.summary.added > 0) writer->commit();
     writer.reset();
     o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const Database view(db);
-    o.clips_in_db = view.clip_count();
-    o.file_bytes = view.file_size();
+    if (std::filesystem::exists(db, ec)) {
+        const Database view(db);
+        o.clips_in_db = view.clip_count();
+        o.file_bytes = view.file_size();
+    }
     return o;
 }
 

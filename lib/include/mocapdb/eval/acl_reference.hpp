@@ -78,11 +78,18 @@ AclCollection aggregate_acl(const AclTable& table, const std::vector<std::string
 std::optional<double> bytes_at_error(std::vector<std::pair<double, double>> points, double error);
 
 /// ACL's bytes at our measured max error and RMSE, and how many times smaller `bytes` is.
+/// Below ACL's range (our error smaller than that of ACL's most precise setting, e.g. E = 0.01 cm
+/// against ACL's default precision, whose max error is 0.012-0.026 cm) the figure is ACL's bytes at
+/// that most precise setting, flagged as a lower bound (`*_lower_bound`): reaching a smaller error
+/// costs ACL at least those bytes, as its bytes grow with every finer setting; given only when the
+/// most precise setting is also the largest. Above ACL's range: nullopt, never an extrapolation.
 struct AclComparison {
     std::optional<double> bytes_at_max;   ///< nullopt: outside ACL's measured range
     std::optional<double> bytes_at_rmse;
     std::optional<double> smaller_at_max;   ///< ACL bytes / our bytes
     std::optional<double> smaller_at_rmse;
+    bool max_lower_bound = false;   ///< bytes_at_max (so smaller_at_max) is a lower bound
+    bool rmse_lower_bound = false;  ///< bytes_at_rmse (so smaller_at_rmse) is a lower bound
 };
 
 AclComparison compare_with_acl(const AclCollection& acl, double bytes, double max_cm, double rmse_cm);

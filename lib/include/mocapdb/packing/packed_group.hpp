@@ -32,6 +32,7 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/core/progress.hpp"
 #include "mocapdb/motion/clip.hpp"
+#include "mocapdb/packing/byte_parts.hpp"
 #include "mocapdb/packing/error_stats.hpp"
 
 namespace mocapdb::packing {
@@ -76,6 +77,10 @@ struct PackStats {
     std::size_t header_bytes = 0;    ///< topology, skeletons, bases, contexts
     std::size_t table_bytes = 0;     ///< per-clip and per-window entries
     std::size_t payload_bytes = 0;   ///< coded coefficients
+    /// Bytes per kind of stored data, summing exactly to `bytes`: header, topology, skeletons,
+    /// constant_dofs, bases, contexts, clip_table, window_table, payload (coded windows), raw_windows
+    /// (windows stored as source rows). An empty group has only "header".
+    ByteParts parts;
     std::size_t probes = 0;          ///< window decodes tried while choosing steps
     std::size_t raw_windows = 0;     ///< windows stored as source rows (no step met the bound)
     ErrorStats error;

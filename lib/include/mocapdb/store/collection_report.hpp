@@ -17,11 +17,14 @@
 // - pose µs: wall time of GroupDecoder::decode_pose at `random_poses` frames drawn uniformly from
 //   the collection's frames (fixed seed, one thread), per pose; indexed pose µs: the same frames as
 //   local transforms through a PoseIndex of their group (built one group at a time, not timed).
-// Lossless tier: the stored channels of every clip (`channels_packed` datasets, docs/storage.md; the
-// stored skeletons are not counted, as gzip is not charged the ASF files). gzip -9: zlib level 9
+// Lossless tier: everything the database's files spend on the clips (Database::clips_file_bytes:
+// the `channels_packed` data of docs/storage.md plus each clip's HDF5 objects, about 7 kB a clip);
+// channel_bytes: the channel data alone. The stored skeletons are not counted, as gzip is not charged
+// the ASF files. gzip -9: zlib level 9
 // deflate of each clip's source file plus gzip's container (10-byte header, the file name, 8-byte
-// trailer), only when every clip's source file is found in `source_dirs` under its recorded name
-// with its recorded SHA-256; otherwise `gzip_available` is false and the reason says why.
+// trailer), only when every clip's source file is found in `source_dirs` (subfolders included) under
+// its recorded name with its recorded SHA-256; otherwise `gzip_available` is false and the reason
+// says why.
 //
 // The database is only read (not thread-safe: one Database per thread). Memory: one group's clips
 // and their FK positions at a time, plus every E's packed bytes. Errors: InvalidArgument for bad
@@ -33,17 +36,18 @@
 #include <vector>
 
 #include "mocapdb/core/progress.hpp"
+#include "mocapdb/packing/byte_parts.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb {
 
 struct CollectionReportOptions {
-    std::vector<double> max_error_cm{1.0, 0.5, 0.1};  ///< the bounds E, cm
+    std::vector<double> max_error_cm{1.0, 0.5, 0.1, 0.03, 0.01};  ///< the bounds E, cm
     int threads = 2;                                  ///< encoder threads
     std::size_t random_poses = 20000;                 ///< poses timed per E (0: no timing)
     std::uint32_t seed = 7;                           ///< of the random poses
-    /// Folders searched for the clips' source files (by recorded file name) for gzip -9; empty: not
-    /// measured.
+    /// Folders searched, subfolders included, for the clips' source files (by recorded file name,
+    /// the first with the recorded SHA-256) for gzip -9; empty: not measured.
     std::vector<std::filesystem::path> source_dirs;
 };
 
@@ -59,6 +63,7 @@ struct PackedFigures {
     double encode_seconds = 0.0;
     double stream_seconds = 0.0;  ///< decode_clip wall time
     std::size_t raw_windows = 0;  ///< windows stored as source rows (no step met E)
+    packing::ByteParts parts;     ///< bytes per kind of stored data (PackStats::parts), summing to bytes
     int attempts = 0;             ///< max over groups of pack attempts
 
     double ratio_float32() const;
@@ -88,7 +93,8 @@ struct TargetFigures {
 };
 
 struct LosslessFigures {
-    std::uint64_t bytes = 0;          ///< stored channel bytes of every clip
+    std::uint64_t bytes = 0;          ///< file bytes spent on the clips (Database::clips_file_bytes)
+    std::uint64_t channel_bytes = 0;  ///< of which the stored channel data (ClipRecord::stored_bytes)
     std::uint64_t float32_bytes = 0;
     bool gzip_available = false;
     std::uint64_t gzip_bytes = 0;         ///< gzip -9 of every clip's source file (when available)

@@ -216,6 +216,13 @@ public:
     /// Bytes of the database: its index file plus the segments the index links to (format 4), or
     /// the one file (older formats).
     std::uint64_t file_size() const;
+    /// Bytes the database's files spend on its clips: for every clip its group and datasets (object
+    /// headers with their attributes, link and chunk indexes, heaps, stored chunks, the global-heap
+    /// text of string attributes), plus the /clips groups that link to them (in the index and in each
+    /// segment holding clips). What a lossless figure must count besides the channel data
+    /// (ClipRecord::stored_bytes), about 7 kB a clip. Not counted: the files' fixed parts (superblock,
+    /// root group) and unused space.
+    std::uint64_t clips_file_bytes() const;
 
 private:
     friend class DatabaseWriter;

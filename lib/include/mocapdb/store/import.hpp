@@ -59,11 +59,12 @@ struct ImportSummary {
 std::vector<std::filesystem::path> collect_clip_files(const std::vector<std::filesystem::path>& inputs);
 
 /// Reads each file and adds it to `db` (duplicates by SHA-256 are skipped before parsing).
-/// `progress` is called with bytes done of the total; `on_file` after each file. The first error
-/// (ParseError, IoError, InvalidArgument naming the file) stops the import, and the caller then simply
-/// does not commit; with options.keep_going a file that cannot be read or parsed is counted in
-/// `failed`, passed to `on_file` with its error, and the import goes on (errors while storing a
-/// parsed clip still stop it).
+/// `progress` is called with bytes done of the total; `on_file` after each file. A file that cannot
+/// be read (IoError) or is empty (nothing but white space) is always counted in `failed`, passed to
+/// `on_file` with its error, and the import goes on. Otherwise the first error (ParseError,
+/// InvalidArgument naming the file) stops the import, and the caller then simply does not commit;
+/// with options.keep_going a file that cannot be parsed is counted in `failed` and passed to
+/// `on_file` too (errors while storing a parsed clip still stop it).
 ImportSummary import_files(DatabaseWriter& db, const std::vector<std::filesystem::path>& files,
                            const ImportOptions& options, const ProgressCallback& progress = {},
                            const std::function<void(const ImportedFile&)>& on_file = {});

@@ -1,9 +1,11 @@
 #pragma once
 // `mocapdb import` as a library step (issue #17): the clip files found under the inputs stored in a
 // database, appending (or replacing the file with a new database when `force`), committed when
-// anything was added or the file is new. Nothing is printed: the readers' warnings, the errors of the
-// files skipped with ImportOptions::keep_going and the reasons files were not added (duplicates) are
-// in the outcome, in file order.
+// anything was added (otherwise the file is left as it was, or not created, and no segment folder or
+// lock file of a new database is left behind). Nothing is printed: the readers' warnings, the errors
+// of the files skipped (empty or unreadable files always, unparsable ones with
+// ImportOptions::keep_going) and the reasons files were not added (duplicates) are in the outcome,
+// in file order.
 //
 // Errors: InvalidArgument when no clip file is found; IoError for an input that does not exist;
 // StoreError when the target is not a mocapdb database (the message says --force replaces it); without

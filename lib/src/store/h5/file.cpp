@@ -314,4 +314,20 @@ std::filesystem::path File::file_holding(const std::string& path) const {
     return name;
 }
 
+std::uint64_t File::object_file_bytes(const std::string& path) const {
+    Handle obj(open_object(path), H5Oclose);
+    H5O_info_t info;
+    check(H5Oget_info2(obj.get(), &info, H5O_INFO_HDR | H5O_INFO_META_SIZE), name_, path,
+          "cannot read the object's storage");
+    std::uint64_t bytes = info.hdr.space.total + info.meta_size.obj.index_size + info.meta_size.obj.heap_size +
+                          info.meta_size.attr.index_size + info.meta_size.attr.heap_size;
+    if (H5Iget_type(obj.get()) == H5I_DATASET) bytes += H5Dget_storage_size(obj.get());
+    const Attributes a = read_attributes(path);
+    auto heap_object = [](const std::string& text) { return 16u + (text.size() + 7u) / 8u * 8u; };
+    for (const auto& [name, text] : a.strings) bytes += heap_object(text);
+    for (const auto& [name, list] : a.string_lists)
+        for (const std::string& text : list) bytes += heap_object(text);
+    return bytes;
+}
+
 }  // namespace mocapdb::store::h5

@@ -111,6 +111,11 @@ public:
     std::optional<std::pair<std::string, std::string>> external_target(const std::string& path) const;
     /// The file that holds the object at `path` (this file, or the target of an external link on the way).
     std::filesystem::path file_holding(const std::string& path) const;
+    /// Bytes the object at `path` takes in the file holding it, its members not included: its object
+    /// header (compact attributes in it), its link index and heap (groups), attribute index and heap,
+    /// chunk index and stored data (datasets), and the global-heap objects of its variable-length
+    /// string attributes (16 bytes each plus the text rounded up to 8).
+    std::uint64_t object_file_bytes(const std::string& path) const;
 
     // Attributes of the object at `path`.
     std::vector<std::string> attribute_names(const std::string& path) const;
