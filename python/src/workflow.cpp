@@ -274,6 +274,7 @@ py::dict collection_report_dict(const std::filesystem::path& path, const std::ve
     for (const TargetFigures& t : r.targets) {
         py::dict target = packed_figures(t.total);
         target["max_error_cm"] = t.max_error_cm;
+        target["resident_bytes"] = t.resident_bytes;
         targets.append(target);
     }
     d["targets"] = targets;

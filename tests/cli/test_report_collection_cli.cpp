@@ -59,7 +59,7 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
         CHECK(row["max_error_cm"].number == E[t]);
         for (const char* key : {"bytes", "float32_bytes", "ratio_float32", "bytes_per_second", "bits_per_joint_frame",
                                 "max_cm", "p99_cm", "rmse_cm", "encode_seconds", "stream_mb_per_second",
-                                "decode_pose_us", "indexed_local_pose_us", "index_bytes", "poses_timed", "clips", "frames", "motion_seconds", "raw_windows",
+                                "decode_pose_us", "resident_bytes", "indexed_local_pose_us", "index_bytes", "poses_timed", "clips", "frames", "motion_seconds", "raw_windows",
                                 "pack_attempts", "acl", "group_figures"})
             CHECK(row.has(key));
         const double bytes = row["bytes"].number;
@@ -75,6 +75,7 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
         CHECK(row["bytes_per_second"].number == Approx(bytes / j["motion_seconds"].number));
         CHECK(row["bits_per_joint_frame"].number == Approx(8.0 * bytes / (j["frames"].number * 57)));  // 43 joints + 14 end sites
         CHECK(row["decode_pose_us"].number > 0.0);
+        CHECK(row["resident_bytes"].number > 0.0);
         CHECK(row["indexed_local_pose_us"].number > 0.0);
         CHECK(row["index_bytes"].number > 0.0);
         CHECK(row["poses_timed"].number == 500);

@@ -306,3 +306,22 @@ TEST_CASE("packing meets the bound on a 100-joint rig at 24 Hz, clips of 1 s and
         CHECK(packed.stats.bytes * 4 < packed.stats.frames * packed.stats.channels * 4);
     }
 }
+
+TEST_CASE("GroupDecoder::resident_bytes counts what the decoder holds beyond the bytes: it grows with clips and windows",
+          "[packing]") {
+    const std::vector<Clip> walks = procedural_walks();
+    std::vector<const Clip*> one{&walks[0]}, all;
+    for (const Clip& c : walks) all.push_back(&c);
+    PackOptions o;
+    o.max_error_cm = 1.0;
+    o.time_basis = TimeBasis::Learned;
+    o.dof_basis = DofBasis::Learned;
+    const GroupDecoder small(pack_group(one, o).bytes);
+    const GroupDecoder large(pack_group(all, o).bytes);
+    CHECK(small.resident_bytes() > 0);
+    // Every clip and window adds an entry; the bases and scratch are the same size for one rig.
+    CHECK(large.resident_bytes() > small.resident_bytes());
+    std::size_t windows = 0;
+    for (std::size_t c = 0; c < large.clip_count(); ++c) windows += large.window_count(c);
+    CHECK(large.resident_bytes() - small.resident_bytes() >= (windows - small.window_count(0)) * sizeof(std::uint64_t));
+}

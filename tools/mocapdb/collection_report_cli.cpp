@@ -88,6 +88,7 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
         j.key("max_error_cm").value(tf.max_error_cm);
         json_figures(j, tf.total);
         j.key("decode_pose_us").value(tf.pose_microseconds);
+        j.key("resident_bytes").value(static_cast<std::size_t>(tf.resident_bytes));
         j.key("poses_timed").value(tf.poses_timed);
         j.key("indexed_local_pose_us").value(tf.indexed_pose_microseconds);
         j.key("index_bytes").value(static_cast<std::size_t>(tf.index_bytes));

@@ -341,4 +341,11 @@ void ChannelWriter::set_position(int column, double value, LocalPose& out) const
     out.translations[j][a] = adds_ ? offsets_[j][a] + value : value;
 }
 
+std::size_t ChannelWriter::memory_bytes() const {
+    return rest_.capacity() * sizeof(double) + joints_.capacity() * sizeof(RotationJoint) +
+           two_channel_lanes_.capacity() * sizeof(TwoChannelLanes) + one_channel_lanes_.capacity() * sizeof(OneChannelLanes) +
+           rest_rotations_.capacity() * sizeof(Quat) + rest_translations_.capacity() * sizeof(Vec3) +
+           offsets_.capacity() * sizeof(Vec3) + (column_joint_.capacity() + column_axis_.capacity()) * sizeof(int);
+}
+
 }  // namespace mocapdb::packing::detail

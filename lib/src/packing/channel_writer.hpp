@@ -57,6 +57,8 @@ public:
     void set_position(int column, double value, LocalPose& out) const;
     /// Joints of the skeleton (LocalPose sizes).
     std::size_t size() const { return rest_rotations_.size(); }
+    /// Heap bytes held (containers' capacities).
+    std::size_t memory_bytes() const;
 
 private:
     struct RotationJoint {

@@ -55,6 +55,31 @@ std::size_t GroupDecoder::clip_payload_bytes(std::size_t clip) const {
     return total;
 }
 
+std::size_t GroupDecoder::resident_bytes() const {
+    const detail::GroupModel& m = *model_;
+    std::size_t total = sizeof(detail::GroupModel);
+    total += m.extra_columns.capacity() * sizeof(int) + m.active.capacity() * sizeof(int) +
+             m.constant.capacity() * sizeof(double);
+    total += static_cast<std::size_t>(m.dof_basis.size() + m.time_basis.size()) * sizeof(double);
+    total += (m.dof_energy.capacity() + m.time_energy.capacity() + m.sigma.capacity()) * sizeof(float) +
+             m.scan.capacity() * sizeof(std::uint32_t) + m.scan_row.capacity() * sizeof(std::uint16_t) +
+             m.levels.capacity() * sizeof(double);
+    total += m.clips.capacity() * sizeof(detail::ClipEntry) + m.windows.capacity() * sizeof(detail::WindowEntry);
+    for (const detail::SkeletonEntry& e : m.skeletons) {
+        total += sizeof(e) + sizeof(Skeleton) + e.skeleton->size() * sizeof(Joint) +
+                 static_cast<std::size_t>(e.weights.size()) * sizeof(double) + e.active_weights.capacity() * sizeof(double) +
+                 e.stored_axes.capacity() * sizeof(e.stored_axes[0]) + e.writer.memory_bytes();
+        for (const Joint& j : e.skeleton->joints()) total += j.name.capacity() + j.channels.capacity() * sizeof(ChannelType);
+    }
+    for (const auto& c : classes_) total += c.capacity();
+    // One thread's scratch, as prepare() sizes it.
+    const std::size_t da = m.active.size(), cells = da * static_cast<std::size_t>(m.window);
+    total += cells * (sizeof(std::int32_t) + sizeof(std::uint8_t) + sizeof(std::uint32_t) + sizeof(double)) +
+             da * (2 + 2 * detail::kFrameBlock) * sizeof(double) + static_cast<std::size_t>(m.dofs) * sizeof(double) +
+             sizeof(detail::WindowScratch);
+    return total;
+}
+
 std::shared_ptr<const Skeleton> GroupDecoder::skeleton(std::size_t clip) const {
     check(clip);
     return model_->skeletons[model_->clips[clip].skeleton].skeleton;

@@ -260,6 +260,7 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
             total.attempts = std::max(total.attempts, f.attempts);
             target.groups.push_back(std::move(g));
             decoders[t].emplace_back(std::move(m.packed.bytes));
+            target.resident_bytes += decoders[t].back().resident_bytes();
             done = before + group_frames;
             report(done, {});
         }

@@ -1,7 +1,6 @@
 #pragma once
-// Running independent tasks on worker threads (issue #16: the compress rank search's forward
-// kinematics and projections over 10 000 samples; issue #36: every worker's exception reaches the
-// caller). Plain std::thread workers that take the next task index in order; no pool lives between
+// Running independent tasks on worker threads (the compress rank search, packing, GP fits). Plain
+// std::thread workers that take the next task index in order; no pool lives between
 // calls. An exception in any worker is carried to the caller: the one of the lowest task index that
 // threw, which is the one a single thread would have thrown (tasks are handed out in index order, so
 // every task before it was started and ran to its end).

@@ -61,6 +61,10 @@ public:
     std::size_t window_count(std::size_t clip) const;
     /// Coded bytes of the clip's windows (payload only: the header and tables are shared).
     std::size_t clip_payload_bytes(std::size_t clip) const;
+    /// Memory the decoder holds beyond its copy of the stored bytes, counted from its containers'
+    /// capacities (allocator overhead not counted): the parsed model (bases, scan and context tables,
+    /// skeletons, per-clip and per-window entries, scan classes) plus one thread's decode scratch.
+    std::size_t resident_bytes() const;
     /// The clip's skeleton as decoded (offsets and axes rounded to float32).
     std::shared_ptr<const Skeleton> skeleton(std::size_t clip) const;
 

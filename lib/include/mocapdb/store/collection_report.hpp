@@ -84,6 +84,9 @@ struct TargetFigures {
     PackedFigures total;
     std::vector<GroupFigures> groups;
     double pose_microseconds = 0.0;  ///< random access, per pose (GroupDecoder::decode_pose, channel row)
+    /// What the groups' decoders hold in memory beyond the stored bytes (GroupDecoder::resident_bytes):
+    /// what decode_pose needs besides the bytes.
+    std::uint64_t resident_bytes = 0;
     std::size_t poses_timed = 0;
     /// The same poses as local transforms through a PoseIndex (packing/pose_index.hpp: each group
     /// range-decoded once and held in memory; built one group at a time), per pose; and the bytes the
