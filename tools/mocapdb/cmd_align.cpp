@@ -2,6 +2,8 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "json_writer.hpp"
+#include "mocapdb_json/step_json.hpp"
 #include "pipeline.hpp"
 
 namespace mocapdb::cli {
@@ -13,6 +15,7 @@ struct AlignArgs {
     long long frames = 100;
     std::string method = "dtw";
     std::string reference;
+    bool json = false;
 };
 
 void run_align(const AlignArgs& a) {
@@ -21,7 +24,14 @@ void run_align(const AlignArgs& a) {
     r.frames = a.frames;
     r.method = a.method;
     r.reference = a.reference;
-    std::fputs(describe_alignment(a.set, align_set(a.db, r)).c_str(), stdout);
+    const AlignOutcome o = align_set(a.db, r);
+    if (a.json) {
+        JsonWriter j;
+        json::write_alignment(j, a.set, o);
+        std::fputs(j.str().c_str(), stdout);
+        return;
+    }
+    std::fputs(describe_alignment(a.set, o).c_str(), stdout);
 }
 
 }  // namespace
@@ -40,6 +50,7 @@ void setup_align(CLI::App& app) {
     cmd->add_option("--frames", a->frames, "aligned frames T")->check(CLI::Range(2LL, 100000LL));
     cmd->add_option("--method", a->method, "dtw | linear")->check(CLI::IsMember({"dtw", "linear"}));
     cmd->add_option("--reference", a->reference, "reference sample label (CLIP or CLIP:BEGIN-END)");
+    cmd->add_flag("--json", a->json, "print one JSON object (the keys of Python's mocapdb.align)");
     cmd->callback([a] { run_align(*a); });
 }
 

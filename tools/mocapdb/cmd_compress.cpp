@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/step_json.hpp"
 #include "pipeline.hpp"
 
 namespace mocapdb::cli {
@@ -32,10 +33,7 @@ void run_compress(const CompressArgs& a) {
     const CompressOutcome o = compress_set(a.db, r);
     if (a.json) {
         JsonWriter j;
-        j.begin_object();
-        j.key("set").value(a.set);
-        write_compression_json(j, o);
-        j.end_object();
+        json::write_compression(j, a.set, o);
         std::fputs(j.str().c_str(), stdout);
         return;
     }

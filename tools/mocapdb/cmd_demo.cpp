@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/step_json.hpp"
 #include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
@@ -311,9 +312,8 @@ void run_demo(const DemoArgs& a) {
     j.key("dofs").value(static_cast<long long>(aligned.aligned.dofs()));
     j.key("reference").value(aligned.labels[aligned.aligned.reference]);
     j.key("mean_distance_cm").value(aligned.distance).key("seconds").value(aligned.seconds).end_object();
-    j.key("compress").begin_object();
-    write_compression_json(j, compressed);
-    j.end_object();
+    j.key("compress");
+    json::write_compression(j, set_name, compressed);
     j.key("rate_distortion").begin_object();
     j.key("raw_bytes").value(static_cast<long long>(rate.report.raw_bytes));
     j.key("side_bytes").value(static_cast<long long>(rate.report.side_bytes));

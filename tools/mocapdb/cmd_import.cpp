@@ -3,6 +3,8 @@
 
 #include "clip_options.hpp"
 #include "commands.hpp"
+#include "json_writer.hpp"
+#include "mocapdb_json/step_json.hpp"
 #include "pipeline.hpp"
 
 namespace mocapdb::cli {
@@ -18,6 +20,7 @@ struct ImportArgs {
     bool force = false;
     bool keep_going = false;
     std::string bvh_positions = "replace";
+    bool json = false;
 };
 
 void run_import(const ImportArgs& args) {
@@ -34,8 +37,14 @@ void run_import(const ImportArgs& args) {
     options.bvh_positions = bvh_positions_from_option(args.bvh_positions);
     options.keep_going = args.keep_going;
     const std::filesystem::path db = args.output;
-    const ImportOutcome outcome = import_clips(db, inputs, options, args.force, std::cout);
-    std::cout << describe_import(db, outcome);
+    const ImportOutcome outcome = import_clips(db, inputs, options, args.force, args.json ? std::cerr : std::cout);
+    if (args.json) {
+        JsonWriter j;
+        json::write_import(j, db.string(), outcome);
+        std::cout << j.str();
+    } else {
+        std::cout << describe_import(db, outcome);
+    }
     if (outcome.summary.failed > 0)
         throw Error(std::to_string(outcome.summary.failed) + (outcome.summary.failed == 1 ? " file" : " files") +
                     " could not be imported (errors above); " +
@@ -71,6 +80,7 @@ void setup_import(CLI::App& app) {
     cmd->add_flag("--keep-going", args->keep_going,
                   "store the files that can be read, list the others with their errors (exit code 1 if any failed)");
     cmd->add_flag("--force", args->force, "replace an existing output file with a new database");
+    cmd->add_flag("--json", args->json, "print one JSON object (the keys of Python's mocapdb.import_files)");
     cmd->callback([args] { run_import(*args); });
 }
 

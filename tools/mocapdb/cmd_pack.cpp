@@ -7,6 +7,7 @@
 #include "byte_parts_output.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/step_json.hpp"
 #include "mocapdb/workflow/pack_collection.hpp"
 #include "progress_bar.hpp"
 
@@ -24,68 +25,9 @@ struct PackArgs {
     bool has_bound = false;  ///< --max-error-cm or --max-bytes was given
 };
 
-void write_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, double ratio_float32, std::size_t clips,
-                   std::size_t frames, double max_cm, double p99_cm, double rmse_cm) {
-    j.key("bytes").value(static_cast<std::size_t>(bytes));
-    j.key("float32_bytes").value(static_cast<std::size_t>(float32));
-    j.key("ratio_float32").value(ratio_float32);
-    j.key("clips").value(clips);
-    j.key("frames").value(frames);
-    j.key("max_cm").value(max_cm);
-    j.key("p99_cm").value(p99_cm);
-    j.key("rmse_cm").value(rmse_cm);
-}
-
 void print_json(const std::string& db, const workflow::PackDatabaseOutcome& o) {
-    const PackedTierRecord& t = o.tier;
     JsonWriter j;
-    j.begin_object();
-    j.key("file").value(db);
-    j.key("max_error_cm").value(t.max_error_cm);
-    write_figures(j, t.bytes, o.float32_bytes, o.ratio_float32(), t.clips, t.frames, t.max_cm, t.p99_cm, t.rmse_cm);
-    j.key("motion_seconds").value(o.motion_seconds);
-    j.key("bytes_per_second").value(o.bytes_per_second());
-    j.key("replaced").value(o.replaced);
-    j.key("dropped_lossless_clips").value(o.dropped_lossless);
-    j.key("file_bytes").value(static_cast<std::size_t>(o.file_bytes));
-    j.key("seconds").value(o.seconds);
-    write_parts_json(j, o.parts);
-    j.key("budget");
-    if (o.budget) {
-        j.begin_object();
-        j.key("max_bytes").value(static_cast<std::size_t>(o.budget->max_bytes));
-        j.key("max_error_cm").value(t.max_error_cm);
-        j.key("tried").begin_array();
-        for (const workflow::PackDatabaseOutcome::Budget::Try& e : o.budget->tried) {
-            j.begin_object();
-            j.key("max_error_cm").value(e.max_error_cm);
-            j.key("bytes");
-            if (e.bytes > 0 || e.fits) j.value(static_cast<std::size_t>(e.bytes));
-            else j.null();
-            j.key("fits").value(e.fits);
-            j.end_object();
-        }
-        j.end_array();
-        j.end_object();
-    } else {
-        j.null();
-    }
-    j.key("groups").begin_array();
-    for (std::size_t g = 0; g < t.groups.size(); ++g) {
-        const PackedGroupRecord& r = t.groups[g];
-        j.begin_object();
-        j.key("name").value(r.name);
-        j.key("path").value("/packed/" + r.name);
-        j.key("skeleton").value(r.skeleton);
-        j.key("frame_rate").value(r.frame_rate);
-        write_figures(j, r.bytes, o.group_float32_bytes.at(g), o.group_ratio_float32(g), r.clips.size(), r.frames, r.max_cm,
-                      r.p99_cm, r.rmse_cm);
-        j.key("seconds").value(o.group_seconds.at(g));
-        write_parts_json(j, o.group_parts.at(g));
-        j.end_object();
-    }
-    j.end_array();
-    j.end_object();
+    json::write_pack(j, db, o);
     std::fputs(j.str().c_str(), stdout);
 }
 

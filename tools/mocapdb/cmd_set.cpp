@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/step_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/dropout_repair.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
@@ -24,6 +25,7 @@ struct CreateArgs {
     std::string segment = "auto";
     std::string feet;
     bool replace = false;
+    bool json = false;
 };
 
 void run_create(const CreateArgs& a) {
@@ -36,7 +38,14 @@ void run_create(const CreateArgs& a) {
     r.segment = a.segment;
     r.feet = a.feet;
     r.replace = a.replace;
-    std::fputs(describe_set(create_set(a.db, r)).c_str(), stdout);
+    const SetOutcome o = create_set(a.db, r);
+    if (a.json) {
+        JsonWriter j;
+        json::write_set(j, o);
+        std::fputs(j.str().c_str(), stdout);
+        return;
+    }
+    std::fputs(describe_set(o).c_str(), stdout);
 }
 
 void print_set(const Database& db, const std::string& name, bool json) {
@@ -150,6 +159,7 @@ void setup_set(CLI::App& app) {
     create->add_option("--segment", c->segment, "auto | none | gait[:N] | window:LENGTH[:HOP] | flight[:BEFORE[:AFTER]] (default auto)");
     create->add_option("--feet", c->feet, "left,right foot joints for gait cycles and contacts, e.g. ltoes,rtoes (default: found by name)");
     create->add_flag("--force,--replace", c->replace, "replace an existing set of that name");
+    create->add_flag("--json", c->json, "print one JSON object (the keys of Python's mocapdb.create_set)");
     create->callback([c] { run_create(*c); });
 
     auto list_db = std::make_shared<std::string>();

@@ -1,41 +1,7 @@
 #pragma once
-// --json output: a document built in the order written (keys keep that order) and serialized by
-// nlohmann::json (Debian nlohmann-json3-dev). Numbers round-trip; a whole double below 2^53 is written
-// without a fraction ("120", as before); non-finite numbers are written as null (JSON has no NaN) so the
-// output always parses; strings that are not valid UTF-8 get U+FFFD for the bad bytes.
-#include <memory>
-#include <string>
-#include <string_view>
+// The CLI's --json documents: the shared JsonWriter (json/mocapdb_json/json_writer.hpp).
+#include "mocapdb_json/json_writer.hpp"
 
 namespace mocapdb::cli {
-
-class JsonWriter {
-public:
-    JsonWriter();
-    ~JsonWriter();
-    JsonWriter(const JsonWriter&) = delete;
-    JsonWriter& operator=(const JsonWriter&) = delete;
-
-    JsonWriter& begin_object();
-    JsonWriter& end_object();
-    JsonWriter& begin_array();
-    JsonWriter& end_array();
-    JsonWriter& key(std::string_view name);
-    JsonWriter& value(std::string_view text);
-    JsonWriter& value(const char* text) { return value(std::string_view(text)); }
-    JsonWriter& value(double number);
-    JsonWriter& value(long long number);
-    JsonWriter& value(std::size_t number) { return value(static_cast<long long>(number)); }
-    JsonWriter& value(int number) { return value(static_cast<long long>(number)); }
-    JsonWriter& value(bool flag);
-    JsonWriter& null();
-
-    /// The document, compact, followed by a newline.
-    std::string str() const;
-
-private:
-    struct Document;  // the nlohmann tree and the path to the open container
-    std::unique_ptr<Document> doc_;
-};
-
+using json::JsonWriter;
 }  // namespace mocapdb::cli

@@ -9,6 +9,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/dropout_repair.hpp"
+#include "mocapdb_json/step_json.hpp"
 #include "option_lists.hpp"
 #include "progress_bar.hpp"
 #include "svg_plot.hpp"
@@ -39,20 +40,6 @@ std::string target_text(double t) {
     std::ostringstream s;
     s << "<=" << t << "cm";
     return s.str();
-}
-
-// The joint-error figures of a JointErrorStats, as keys of the current JSON object.
-void write_joint_error_json(JsonWriter& j, const compression::JointErrorStats& e) {
-    j.key("dof_rmse").value(e.dof_rmse);
-    j.key("rmse_cm").value(e.rmse_cm);
-    j.key("mean_cm").value(e.mean_cm);
-    j.key("max_cm").value(e.max_cm);
-    j.key("p99_cm").value(e.p99_cm);
-    j.key("worst").begin_object();
-    j.key("sample").value(static_cast<long long>(e.worst.sample));
-    j.key("frame").value(static_cast<long long>(e.worst.frame));
-    j.key("joint").value(e.worst.joint);
-    j.end_object();
 }
 
 }  // namespace
@@ -254,41 +241,6 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
     return text;
 }
 
-void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
-    const tensor::TuckerModel& t = o.model.tucker;
-    j.key("criterion").value(o.criterion);
-    j.key("target_met").value(o.target_met);
-    j.key("method").value(tensor::to_string(t.method));
-    j.key("status").value(tensor::to_string(t.status));
-    j.key("iterations").value(t.iterations);
-    j.key("dims").begin_array();
-    for (Eigen::Index d : o.dims) j.value(static_cast<long long>(d));
-    j.end_array();
-    j.key("ranks").begin_array();
-    for (Eigen::Index r : t.ranks) j.value(static_cast<long long>(r));
-    j.end_array();
-    j.key("raw_bytes").value(static_cast<long long>(o.raw_bytes));
-    j.key("bytes").value(static_cast<long long>(o.bytes));
-    j.key("ratio").value(o.ratio());
-    j.key("file_bytes").value(static_cast<long long>(o.stored_bytes));
-    j.key("relative_error").value(1.0 - t.fit);
-    j.key("relative_error_bound").value(t.error_bound / t.data_norm);
-    write_joint_error_json(j, o.stats);
-    j.key("load_s").value(o.load_s);
-    j.key("bases_s").value(o.bases_s);
-    j.key("search_s").value(o.search_s);
-    j.key("precompute_s").value(o.fit_s);
-    j.key("kernel_s").value(o.kernel_s);
-    j.key("kernel_stored").value(o.kernel_stored);
-    if (o.kernel_stored) {
-        j.key("kernel_variogram").value(o.kernel_variogram);
-        j.key("kernel_status").value(o.kernel_status);
-    }
-    j.key("us_per_pose").value(o.us_per_pose);
-    j.key("store_s").value(o.store_s);
-    j.key("total_s").value(o.total_s);
-}
-
 // ---- rate-distortion report ---------------------------------------------------------------------
 
 std::string rate_table_text(const std::string& set, const RateOutcome& o) {
@@ -371,7 +323,7 @@ void write_rate_rows_json(JsonWriter& j, const RateOutcome& o) {
         j.key("bits_per_joint_frame")
             .value(8.0 * static_cast<double>(row.bytes) /
                    (static_cast<double>(o.joints) * static_cast<double>(r.dims[1] * r.dims[2])));
-        write_joint_error_json(j, row.stats);
+        json::write_joint_error(j, row.stats);
         j.key("precompute_s").value(row.precompute_s);
         j.key("us_per_pose").value(row.us_per_pose);
         j.key("access").value(row.access);

@@ -87,7 +87,6 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& reque
 std::string ranks_text(const tensor::Ranks& r);
 std::string describe_compression(const std::string& set, const CompressOutcome& o);
 /// The outcome's fields as members of the open JSON object.
-void write_compression_json(JsonWriter& j, const CompressOutcome& o);
 
 // ---- rate-distortion report ---------------------------------------------------------------------
 

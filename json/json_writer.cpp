@@ -1,4 +1,4 @@
-#include "json_writer.hpp"
+#include "mocapdb_json/json_writer.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace mocapdb::cli {
+namespace mocapdb::json {
 
 struct JsonWriter::Document {
     nlohmann::ordered_json root;
@@ -94,8 +94,10 @@ JsonWriter& JsonWriter::null() {
     return *this;
 }
 
+const nlohmann::ordered_json& JsonWriter::tree() const { return doc_->root; }
+
 std::string JsonWriter::str() const {
     return doc_->root.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
-}  // namespace mocapdb::cli
+}  // namespace mocapdb::json
