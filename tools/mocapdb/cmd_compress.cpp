@@ -11,33 +11,19 @@ namespace {
 
 struct CompressArgs {
     std::string db;
-    std::string set;
-    std::vector<long long> ranks;
-    double max_error_cm = 0.0;
-    double rmse = -1.0;
-    double ratio = 0.0;
-    std::string method = "hosvd";
-    int max_iterations = 50;
+    CompressRequest request;
     bool json = false;
 };
 
 void run_compress(const CompressArgs& a) {
-    CompressRequest r;
-    r.set = a.set;
-    r.ranks = a.ranks;
-    r.max_error_cm = a.max_error_cm;
-    r.rmse = a.rmse;
-    r.ratio = a.ratio;
-    r.method = a.method;
-    r.max_iterations = a.max_iterations;
-    const CompressOutcome o = compress_set(a.db, r);
+    const CompressOutcome o = compress_set(a.db, a.request);
     if (a.json) {
         JsonWriter j;
-        json::write_compression(j, a.set, o);
+        json::write_compression(j, a.request.set, o);
         std::fputs(j.str().c_str(), stdout);
         return;
     }
-    std::fputs(describe_compression(a.set, o).c_str(), stdout);
+    std::fputs(describe_compression(a.request.set, o).c_str(), stdout);
 }
 
 }  // namespace
@@ -54,21 +40,23 @@ void setup_compress(CLI::App& app) {
         "centred and weighted per dof by the length of the chain it moves (lib/include/mocapdb/compression/\n"
         "dof_weights.hpp); --rmse is in those weighted units. Replaces the set's previous model.");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
-    cmd->add_option("--set", a->set, "motion set (aligned)")->required();
-    auto* ranks = cmd->add_option("--ranks", a->ranks, "explicit ranks R1,R2,R3 (dof, time, sample)")
+    cmd->add_option("--set", a->request.set, "motion set (aligned)")->required();
+    auto* ranks = cmd->add_option_function<std::vector<long long>>(
+                          "--ranks", [a](const std::vector<long long>& r) { a->request.ranks = tensor::Ranks{r[0], r[1], r[2]}; },
+                          "explicit ranks R1,R2,R3 (dof, time, sample)")
                       ->delimiter(',')
                       ->expected(3);
-    auto* max_error = cmd->add_option("--max-error-cm", a->max_error_cm, "target max joint-position error (cm)")
+    auto* max_error = cmd->add_option("--max-error-cm", a->request.max_error_cm, "target max joint-position error (cm)")
                           ->check(CLI::PositiveNumber);
-    auto* rmse = cmd->add_option("--rmse", a->rmse, "target RMSE of the weighted, centred tensor")
+    auto* rmse = cmd->add_option("--rmse", a->request.rmse, "target RMSE of the weighted, centred tensor")
                      ->check(CLI::NonNegativeNumber);
-    auto* ratio = cmd->add_option("--ratio", a->ratio, "target compression ratio of the Tucker parameters")
+    auto* ratio = cmd->add_option("--ratio", a->request.ratio, "target compression ratio of the Tucker parameters")
                       ->check(CLI::PositiveNumber);
     ranks->excludes(max_error, rmse, ratio);
     max_error->excludes(rmse, ratio);
     rmse->excludes(ratio);
-    cmd->add_option("--method", a->method, "hosvd | sthosvd | hooi")->check(CLI::IsMember({"hosvd", "sthosvd", "hooi"}));
-    cmd->add_option("--max-iterations", a->max_iterations, "HOOI sweeps at most")->check(CLI::Range(0, 10000));
+    cmd->add_option("--method", a->request.method, "hosvd | sthosvd | hooi")->transform(CLI::CheckedTransformer(tucker_methods()));
+    cmd->add_option("--max-iterations", a->request.max_iterations, "HOOI sweeps at most")->check(CLI::Range(0, 10000));
     cmd->add_flag("--json", a->json, "print one JSON object");
     cmd->callback([a] { run_compress(*a); });
 }

@@ -155,7 +155,7 @@ void run_demo(const DemoArgs& a) {
         generate_s = seconds_since(t);
         inputs.push_back(out / "samples");
         set_request.clips = {generated.kind + "_*"};
-        set_request.params_csv = paths.back().string();
+        set_request.params_csv = paths.back();
         progress("wrote " + std::to_string(generated.clips.size()) + " BVH files and " + paths.back().string() + "\n");
     } else {
         set_name = "motions";

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "option_lists.hpp"
 #include "json_writer.hpp"
 #include "mocapdb_json/step_json.hpp"
 #include "mocapdb/core/error.hpp"
@@ -17,28 +18,16 @@ namespace {
 
 struct CreateArgs {
     std::string db;
-    std::string name;
-    std::vector<std::string> clips;
-    std::string params_csv;
-    std::vector<std::string> extract;
-    std::vector<std::string> periodic;
-    std::string segment = "auto";
-    std::string feet;
-    bool replace = false;
+    SetRequest request;
+    std::vector<std::string> periodic;  ///< NAME=PERIOD, parsed into request.periodic
+    std::string feet;                   ///< left,right, split into request.feet
     bool json = false;
 };
 
-void run_create(const CreateArgs& a) {
-    SetRequest r;
-    r.name = a.name;
-    r.clips = a.clips;
-    r.params_csv = a.params_csv;
-    r.extract = a.extract;
-    r.periodic = a.periodic;
-    r.segment = a.segment;
-    r.feet = a.feet;
-    r.replace = a.replace;
-    const SetOutcome o = create_set(a.db, r);
+void run_create(CreateArgs a) {
+    a.request.periodic = periodic_parameters(a.periodic);
+    if (!a.feet.empty()) a.request.feet = split_names(a.feet, "--feet");
+    const SetOutcome o = create_set(a.db, a.request);
     if (a.json) {
         JsonWriter j;
         json::write_set(j, o);
@@ -151,14 +140,14 @@ void setup_set(CLI::App& app) {
         "'sample,name[unit],...', one row per sample\n"
         "labelled CLIP (whole clip) or CLIP:BEGIN-END.");
     create->add_option("db", c->db, "database file")->required();
-    create->add_option("--name", c->name, "set name")->required();
-    create->add_option("--clips", c->clips, "clip ids or shell patterns (quoted), in sample order")->required();
-    create->add_option("--params", c->params_csv, "control parameters from a CSV")->check(CLI::ExistingFile);
-    create->add_option("--extract", c->extract, "control parameters measured from the motion");
+    create->add_option("--name", c->request.name, "set name")->required();
+    create->add_option("--clips", c->request.clips, "clip ids or shell patterns (quoted), in sample order")->required();
+    create->add_option("--params", c->request.params_csv, "control parameters from a CSV")->check(CLI::ExistingFile);
+    create->add_option("--extract", c->request.extract, "control parameters measured from the motion");
     create->add_option("--periodic", c->periodic, "NAME=PERIOD: a periodic parameter (e.g. bearing=360 for degrees); 'bearing' extracted is periodic by itself");
-    create->add_option("--segment", c->segment, "auto | none | gait[:N] | window:LENGTH[:HOP] | flight[:BEFORE[:AFTER]] (default auto)");
+    create->add_option("--segment", c->request.segment, "auto | none | gait[:N] | window:LENGTH[:HOP] | flight[:BEFORE[:AFTER]] (default auto)");
     create->add_option("--feet", c->feet, "left,right foot joints for gait cycles and contacts, e.g. ltoes,rtoes (default: found by name)");
-    create->add_flag("--force,--replace", c->replace, "replace an existing set of that name");
+    create->add_flag("--force,--replace", c->request.replace, "replace an existing set of that name");
     create->add_flag("--json", c->json, "print one JSON object (the keys of Python's mocapdb.create_set)");
     create->callback([c] { run_create(*c); });
 

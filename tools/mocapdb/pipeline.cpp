@@ -23,12 +23,6 @@ std::string megabytes(std::uint64_t bytes) {
     return buffer;
 }
 
-tensor::TuckerMethod method_of(const std::string& name) {
-    if (name == "sthosvd") return tensor::TuckerMethod::StHosvd;
-    if (name == "hooi") return tensor::TuckerMethod::Hooi;
-    return tensor::TuckerMethod::Hosvd;
-}
-
 std::string row_ranks_text(const std::vector<long long>& r) {
     std::string s;
     for (std::size_t i = 0; i < r.size(); ++i) s += (i ? "x" : "") + std::to_string(r[i]);
@@ -43,6 +37,12 @@ std::string target_text(double t) {
 }
 
 }  // namespace
+
+const std::map<std::string, tensor::TuckerMethod>& tucker_methods() {
+    static const std::map<std::string, tensor::TuckerMethod> methods{
+        {"hosvd", tensor::TuckerMethod::Hosvd}, {"sthosvd", tensor::TuckerMethod::StHosvd}, {"hooi", tensor::TuckerMethod::Hooi}};
+    return methods;
+}
 
 // ---- import -------------------------------------------------------------------------------------
 
@@ -87,15 +87,9 @@ std::string describe_import(const std::filesystem::path& db, const ImportOutcome
 
 // ---- set create ---------------------------------------------------------------------------------
 
-SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
-    workflow::SetRequest r;
-    r.name = a.name;
-    r.clips = a.clips;
-    r.params_csv = a.params_csv;
-    r.extract = a.extract;
-    r.segment = a.segment;
-    if (!a.feet.empty()) r.feet = split_names(a.feet, "--feet");
-    for (const std::string& spec : a.periodic) {
+std::vector<std::pair<std::string, double>> periodic_parameters(const std::vector<std::string>& specs) {
+    std::vector<std::pair<std::string, double>> out;
+    for (const std::string& spec : specs) {
         const auto eq = spec.find('=');
         double period = 0.0;
         std::size_t used = 0;
@@ -106,15 +100,18 @@ SetOutcome create_set(const std::string& db_path, const SetRequest& a) {
         }
         if (eq == std::string::npos || eq == 0 || used == 0 || eq + 1 + used != spec.size())
             throw InvalidArgument("--periodic '" + spec + "': expected NAME=PERIOD, e.g. bearing=360");
-        r.periodic.emplace_back(spec.substr(0, eq), period);
+        out.emplace_back(spec.substr(0, eq), period);
     }
-    r.replace = a.replace;
+    return out;
+}
+
+SetOutcome create_set(const std::string& db_path, SetRequest r) {
     ProgressBar bar("set create");
     r.progress = bar.callback();
     SetOutcome o = workflow::create_set(db_path, r);
     bar.clear();
     for (const std::string& id : o.skipped)
-        std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << a.segment << ") and is left out\n";
+        std::cerr << "mocapdb: warning: clip '" << id << "' yields no sample (" << r.segment << ") and is left out\n";
     return o;
 }
 
@@ -199,18 +196,7 @@ std::string ranks_text(const tensor::Ranks& r) {
     return std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
 }
 
-CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
-    workflow::CompressRequest r;
-    r.set = a.set;
-    if (!a.ranks.empty()) {
-        if (a.ranks.size() != 3) throw InvalidArgument("--ranks: expected three ranks R1,R2,R3");
-        r.ranks = tensor::Ranks{a.ranks[0], a.ranks[1], a.ranks[2]};
-    }
-    r.max_error_cm = a.max_error_cm;
-    r.rmse = a.rmse;
-    r.ratio = a.ratio;
-    r.method = method_of(a.method);
-    r.max_iterations = a.max_iterations;
+CompressOutcome compress_set(const std::string& db, CompressRequest r) {
     ProgressBar bar("compress");
     r.progress = bar.callback();
     return workflow::compress_set(db, r);

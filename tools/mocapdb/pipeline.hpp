@@ -6,6 +6,8 @@
 // reliability) and `mocapdb demo` print.
 #include <filesystem>
 #include <iosfwd>
+#include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -35,21 +37,14 @@ std::string describe_import(const std::filesystem::path& db, const ImportOutcome
 
 // ---- set create ---------------------------------------------------------------------------------
 
-struct SetRequest {
-    std::string name;
-    std::vector<std::string> clips;      ///< clip ids or fnmatch patterns, in sample order
-    std::string params_csv;              ///< parameters from a CSV ...
-    std::vector<std::string> extract;    ///< ... or measured by these extractors (not both)
-    std::vector<std::string> periodic;   ///< "NAME=PERIOD": periodic parameters (bearing is by itself)
-    std::string segment = "auto";
-    std::string feet;
-    bool replace = false;
-};
+using SetRequest = workflow::SetRequest;
 
 using SetOutcome = workflow::SetOutcome;
 
 /// workflow::create_set with a progress bar; warnings for skipped clips go to stderr.
-SetOutcome create_set(const std::string& db, const SetRequest& request);
+SetOutcome create_set(const std::string& db, SetRequest request);
+/// `--periodic NAME=PERIOD ...` as the request's (name, period) pairs; InvalidArgument naming the flag.
+std::vector<std::pair<std::string, double>> periodic_parameters(const std::vector<std::string>& specs);
 
 /// "set 'NAME': N samples (KIND) from C clips, P parameters (SOURCE)\n", then, when dropouts were
 /// repaired, "repaired solver dropouts in K clips (R joint runs of up to F frames): CLIPS; ...\n".
@@ -69,20 +64,14 @@ std::string describe_alignment(const std::string& set, const AlignOutcome& o);
 
 // ---- compress -----------------------------------------------------------------------------------
 
-struct CompressRequest {
-    std::string set;
-    std::vector<long long> ranks;  ///< explicit ranks (3), or one of the targets below
-    double max_error_cm = 0.0;     ///< default target when nothing else is given: 1 cm
-    double rmse = -1.0;
-    double ratio = 0.0;
-    std::string method = "hosvd";  ///< hosvd | sthosvd | hooi
-    int max_iterations = 50;
-};
+using CompressRequest = workflow::CompressRequest;
 
 using CompressOutcome = workflow::CompressOutcome;
 
-/// workflow::compress_set with a progress bar; InvalidArgument for ranks that are not three.
-CompressOutcome compress_set(const std::string& db, const CompressRequest& request);
+/// workflow::compress_set with a progress bar.
+CompressOutcome compress_set(const std::string& db, CompressRequest request);
+/// `--method` names of tensor::TuckerMethod (for CLI11's CheckedTransformer).
+const std::map<std::string, tensor::TuckerMethod>& tucker_methods();
 
 std::string ranks_text(const tensor::Ranks& r);
 std::string describe_compression(const std::string& set, const CompressOutcome& o);
