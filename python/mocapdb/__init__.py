@@ -10,7 +10,8 @@
         ...
 
 Arrays are float64 and frames come first. Errors are mocapdb.Error subclasses carrying the library's
-one-line messages (InvalidArgument and ParseError are ValueErrors, IoError is an OSError).
+one-line messages (InvalidArgument and ParseError are ValueErrors, IoError is an OSError, NotFoundError
+- a clip, set or skeleton name the database does not hold - is a KeyError).
 """
 
 from ._core import (  # noqa: F401  (the public names)
@@ -22,11 +23,13 @@ from ._core import (  # noqa: F401  (the public names)
     InvalidArgument,
     IoError,
     MotionSet,
+    NotFoundError,
     PackedClip,
     PackedGroup,
     PackedTier,
     ParseError,
     Sample,
+    ShortClipsWarning,
     SetInfo,
     Skeleton,
     StoreError,
@@ -45,7 +48,12 @@ from ._core import (  # noqa: F401  (the public names)
 
 
 def open(path):  # noqa: A001  (mocapdb.open mirrors the built-in on purpose)
-    """Opens a database file read-only: a Database (also a context manager that closes it)."""
+    """Opens a database file read-only: a Database (also a context manager that closes it).
+
+    Example:
+        >>> with mocapdb.open("walks.h5") as db:
+        ...     print(len(db.clips()))
+    """
     return Database(path)
 
 
@@ -54,7 +62,12 @@ def _sampler(self, length=64, batch=32, seed=0, values="pose_vectors", clips=Non
 
     values: 'pose_vectors' (D per frame) or 'joint_positions' (3 J per frame); clips: ids or fnmatch
     patterns (default: every clip; one rig and frame rate); source: 'auto', 'packed' or 'lossless'.
-    The same seed gives the same batches.
+    The same seed gives the same batches. Bad arguments raise TypeError or ValueError naming them; selected
+    clips shorter than `length` give no windows and are counted in a ShortClipsWarning.
+
+    Example:
+        >>> sampler = db.sampler(length=64, batch=256, seed=1)
+        >>> batch = next(sampler)              # (256, 64, D)
     """
     return WindowSampler(self, length=length, batch=batch, seed=seed, values=values, clips=clips, source=source,
                          cache_clips=cache_clips)

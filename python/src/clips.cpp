@@ -69,7 +69,7 @@ void write_bvh_file(const Clip& clip, const std::filesystem::path& path, int pre
 }  // namespace
 
 void bind_clips(py::module_& m) {
-    py::class_<Skeleton, SkeletonPtr>(m, "Skeleton", "A rig: joints (end sites included) with parents, offsets and channels.")
+    py::class_<Skeleton, SkeletonPtr>(m, "Skeleton", "A rig: joints (end sites included) with parents, offsets and channels." "\n\nExample:\n    >>> skeleton = mocapdb.read_clip('16_11.amc').skeleton\n    >>> skeleton.joint_names[:2], len(skeleton)")
         .def_property_readonly(
             "joint_names",
             [](const Skeleton& s) {
@@ -130,7 +130,7 @@ void bind_clips(py::module_& m) {
             return "<mocapdb.Skeleton " + std::to_string(s.size()) + " joints, " + std::to_string(s.channel_count()) + " channels>";
         });
 
-    py::class_<Clip, std::shared_ptr<Clip>>(m, "Clip", "One motion: a skeleton, a frame rate and a row of channels per frame.")
+    py::class_<Clip, std::shared_ptr<Clip>>(m, "Clip", "One motion: a skeleton, a frame rate and a row of channels per frame." "\n\nExample:\n    >>> clip = mocapdb.read_clip('16_11.amc')\n    >>> clip.channels.shape, clip.joint_positions().shape   # (F, C), (F, J, 3)")
         .def(py::init([](const SkeletonPtr& skeleton, const Array& channels, double frame_rate, const std::string& name) {
                  return std::make_shared<Clip>(make_clip(skeleton, channels, frame_rate, name));
              }),
@@ -200,9 +200,9 @@ void bind_clips(py::module_& m) {
         "Reads a .bvh file, or an .amc file with its .asf (found beside it by the CMU naming unless given). "
         "Defects the reader works around become UserWarnings (strict=True refuses them); ParseError names "
         "the file and line. bvh_positions: 'replace_offset' (position channels are the local translation) "
-        "or 'add_to_offset'.");
+        "or 'add_to_offset'." "\n\nExample:\n    >>> clip = mocapdb.read_clip('16_11.amc')          # 16.asf beside it\n    >>> clip = mocapdb.read_clip('walk.bvh', strict=True)");
     m.def("write_bvh", &write_bvh_file, py::arg("clip"), py::arg("path"), py::arg("precision") = 9,
-          "Writes a clip as BVH (atomically; an existing file is replaced).");
+          "Writes a clip as BVH (atomically; an existing file is replaced)." "\n\nExample:\n    >>> mocapdb.write_bvh(mocapdb.read_clip('16_11.amc'), '16_11.bvh')");
 }
 
 }  // namespace mocapdb::python

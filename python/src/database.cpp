@@ -18,7 +18,7 @@ namespace mocapdb::python {
 namespace {
 
 void bind_records(py::module_& m) {
-    py::class_<ClipRecord>(m, "ClipInfo", "A stored clip's record (no motion read).")
+    py::class_<ClipRecord>(m, "ClipInfo", "A stored clip's record (no motion read)." "\n\nExample:\n    >>> [(c.name, c.frames) for c in db.clips()]")
         .def_readonly("name", &ClipRecord::id, "The clip id (the source file's stem, made unique).")
         .def_readonly("skeleton", &ClipRecord::skeleton, "Skeleton id.")
         .def_readonly("frames", &ClipRecord::frames, "F, frames of the clip.")
@@ -37,7 +37,7 @@ void bind_records(py::module_& m) {
             return "<mocapdb.ClipInfo '" + r.id + "' " + std::to_string(r.frames) + " frames at " + std::to_string(r.frame_rate) + " Hz>";
         });
 
-    py::class_<SetRecord>(m, "SetInfo", "A motion set's record.")
+    py::class_<SetRecord>(m, "SetInfo", "A motion set's record." "\n\nExample:\n    >>> [s.name for s in db.sets()]")
         .def_readonly("name", &SetRecord::name, "The set's name.")
         .def_readonly("samples", &SetRecord::samples, "N.")
         .def_readonly("parameter_names", &SetRecord::parameter_names, "The P control parameters.")
@@ -56,7 +56,7 @@ void bind_records(py::module_& m) {
                    (s.model ? ", model" : "") + ">";
         });
 
-    py::class_<SampleRef>(m, "Sample", "One sample of a motion set: frames [begin, end) of a clip.")
+    py::class_<SampleRef>(m, "Sample", "One sample of a motion set: frames [begin, end) of a clip." "\n\nExample:\n    >>> s = db.set('walks').samples[0]\n    >>> db.clip(s.clip, begin=s.begin, end=s.end)")
         .def_readonly("clip", &SampleRef::clip, "The clip's name.")
         .def_readonly("begin", &SampleRef::begin, "First frame.")
         .def_readonly("end", &SampleRef::end, "One past the last frame.")
@@ -64,7 +64,7 @@ void bind_records(py::module_& m) {
             return "<mocapdb.Sample " + s.clip + "[" + std::to_string(s.begin) + ":" + std::to_string(s.end) + "]>";
         });
 
-    py::class_<MotionSet>(m, "MotionSet", "A motion set: samples with control parameters.")
+    py::class_<MotionSet>(m, "MotionSet", "A motion set: samples with control parameters." "\n\nExample:\n    >>> walks = db.set('walks')\n    >>> walks.parameter_names, len(walks.samples)")
         .def_readonly("name", &MotionSet::name, "The set's name.")
         .def_readonly("samples", &MotionSet::samples, "The N Samples, in order.")
         .def_readonly("parameter_names", &MotionSet::parameter_names, "The P control parameters.")
@@ -73,14 +73,14 @@ void bind_records(py::module_& m) {
         .def_property_readonly("parameters", [](const MotionSet& s) { return copy_rows(s.parameters); },
                                "(N, P) control parameters of the samples.");
 
-    py::class_<PackedClipRecord>(m, "PackedClip", "A clip of the packed tier and its measured errors (cm).")
+    py::class_<PackedClipRecord>(m, "PackedClip", "A clip of the packed tier and its measured errors (cm)." "\n\nExample:\n    >>> [(c.name, c.max_cm) for c in db.packed().groups[0].clips]")
         .def_readonly("name", &PackedClipRecord::id, "The clip's name.")
         .def_readonly("frames", &PackedClipRecord::frames, "F.")
         .def_readonly("payload_bytes", &PackedClipRecord::payload_bytes, "Its windows' coded bytes (the group's tables are shared).")
         .def_readonly("max_cm", &PackedClipRecord::max_cm, "Max FK joint error against the source, every frame.")
         .def_readonly("p99_cm", &PackedClipRecord::p99_cm, "99th percentile of the joint errors.")
         .def_readonly("rmse_cm", &PackedClipRecord::rmse_cm, "Root mean square joint error.");
-    py::class_<PackedGroupRecord>(m, "PackedGroup", "Clips of one rig and frame rate packed together.")
+    py::class_<PackedGroupRecord>(m, "PackedGroup", "Clips of one rig and frame rate packed together." "\n\nExample:\n    >>> [(g.name, len(g.clips)) for g in db.packed().groups]")
         .def_readonly("name", &PackedGroupRecord::name, "Its name under /packed ('g0', ...).")
         .def_readonly("skeleton", &PackedGroupRecord::skeleton, "Skeleton id of its first clip.")
         .def_readonly("frame_rate", &PackedGroupRecord::frame_rate, "Hz.")
@@ -90,7 +90,7 @@ void bind_records(py::module_& m) {
         .def_readonly("p99_cm", &PackedGroupRecord::p99_cm, "99th percentile.")
         .def_readonly("rmse_cm", &PackedGroupRecord::rmse_cm, "Root mean square.")
         .def_readonly("clips", &PackedGroupRecord::clips, "Its PackedClips in packing order.");
-    py::class_<PackedTierRecord>(m, "PackedTier", "The packed tier: every clip within max_error_cm (FK, every joint, cm).")
+    py::class_<PackedTierRecord>(m, "PackedTier", "The packed tier: every clip within max_error_cm (FK, every joint, cm)." "\n\nExample:\n    >>> tier = db.packed()\n    >>> tier.max_error_cm, tier.bytes")
         .def_readonly("max_error_cm", &PackedTierRecord::max_error_cm, "E, the bound.")
         .def_readonly("bytes", &PackedTierRecord::bytes, "Sum of the groups' bytes.")
         .def_readonly("clips", &PackedTierRecord::clips, "Clips in the tier.")
@@ -137,12 +137,12 @@ void bind_database(py::module_& m) {
         py::arg("source"), py::arg("destination"),
         "Copies a database to a new path: its file and (format 4) the segments it links to, into "
         "'destination.d/' (a copy of the file alone would still read the original's segments). IoError when "
-        "destination exists.");
+        "destination exists." "\n\nExample:\n    >>> mocapdb.copy_database('walks.h5', 'scratch.h5')");
     py::class_<DatabaseHandle, std::shared_ptr<DatabaseHandle>>(
         m, "Database",
         "A mocapdb database file, read-only (mocapdb.open). Writing steps (import_files, create_set, align, "
         "compress, pack) take the file's path and commit atomically; open the file again to see their result. "
-        "Not thread-safe: use one Database per thread.")
+        "Not thread-safe: use one Database per thread." "\n\nExample:\n    >>> with mocapdb.open('walks.h5') as db:\n    ...     clip = db.clip('16_11')")
         .def(py::init([](const std::filesystem::path& path) {
                  auto h = std::make_shared<DatabaseHandle>();
                  h->path = path;

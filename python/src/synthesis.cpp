@@ -29,7 +29,7 @@ void bind_synthesis(py::module_& m) {
     py::class_<ModelHandle, std::shared_ptr<ModelHandle>>(
         m, "SynthesisModel",
         "A motion set's synthesis model (kriging of its samples at control parameters c). Immutable; "
-        "every method may be called from several threads (the batched ones release the GIL).")
+        "every method may be called from several threads (the batched ones release the GIL)." "\n\nExample:\n    >>> model = db.synthesis_model('walks')\n    >>> poses = model.poses([[0.0, 1.2]], t=20.0)   # (1, D)")
         .def_property_readonly("kind", [](const ModelHandle& h) { return std::string(h.model->kind()); },
                                "'tucker' (the compressed model) or 'naive' (the uncompressed aligned tensor).")
         .def_property_readonly("dofs", [](const ModelHandle& h) { return h.model->dofs(); }, "D, values per pose vector.")

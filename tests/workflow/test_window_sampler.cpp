@@ -9,6 +9,7 @@
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/import.hpp"
+#include "mocapdb/store/not_found_error.hpp"
 #include "mocapdb/store/pack.hpp"
 #include "mocapdb/workflow/window_sampler.hpp"
 #include "shared_data.hpp"
@@ -112,6 +113,8 @@ TEST_CASE("workflow: windows from subject 16's walks, lossless and packed", "[wo
         bad = o;
         bad.clips = {"17_*"};
         CHECK_THROWS_WITH(workflow::WindowSampler(db, bad), Contains("no clip matches '17_*'"));
+        bad.clips = {"17_01"};  // a plain name: a missing clip, not an empty match
+        CHECK_THROWS_AS(workflow::WindowSampler(db, bad), NotFoundError);
         bad = o;
         bad.source = workflow::WindowSource::Packed;
         CHECK_THROWS_WITH(workflow::WindowSampler(db, bad), Contains("is not in the packed tier"));

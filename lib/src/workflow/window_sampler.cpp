@@ -16,6 +16,7 @@
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/pose_sampler.hpp"
 #include "mocapdb/store/database.hpp"
+#include "mocapdb/store/not_found_error.hpp"
 #include "mocapdb/workflow/set_creation.hpp"
 
 namespace mocapdb::workflow {
@@ -55,6 +56,7 @@ struct WindowSampler::Impl {
     WindowSamplerOptions options;
     std::vector<SampledClip> clips;
     std::vector<std::string> ids;
+    std::vector<std::string> short_ids;
     std::vector<std::uint64_t> ends;  ///< running totals of the clips' window counts
     double rate = 0.0;
     bool packed = false;
@@ -165,8 +167,12 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
     std::vector<std::string> selected;
     if (options.clips.empty())
         for (const auto& [id, r] : records) selected.push_back(id);
-    else
+    else {
+        for (const std::string& p : options.clips)
+            if (p.find_first_of("*?[") == std::string::npos && records.count(p) == 0)
+                throw NotFoundError(name, "/clips/" + p, "no such clip");
         selected = select_clips(db, name, options.clips);
+    }
 
     // One rig and one frame rate, so that every batch is one array of one meaning.
     const ClipRecord* first = nullptr;
@@ -175,7 +181,10 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
     std::uint64_t total = 0;
     for (const std::string& id : selected) {
         const ClipRecord& r = records.at(id);
-        if (r.frames < options.length) continue;
+        if (r.frames < options.length) {
+            m.short_ids.push_back(id);
+            continue;
+        }
         if (first == nullptr) {
             first = &r;
             rig = db.load_skeleton(r.skeleton);
@@ -256,6 +265,7 @@ WindowSampler& WindowSampler::operator=(WindowSampler&&) noexcept = default;
 const WindowSamplerOptions& WindowSampler::options() const { return impl_->options; }
 std::size_t WindowSampler::values_per_frame() const { return impl_->values; }
 const std::vector<std::string>& WindowSampler::clip_ids() const { return impl_->ids; }
+const std::vector<std::string>& WindowSampler::short_clip_ids() const { return impl_->short_ids; }
 std::uint64_t WindowSampler::window_count() const { return impl_->ends.back(); }
 double WindowSampler::frame_rate() const { return impl_->rate; }
 bool WindowSampler::from_packed() const { return impl_->packed; }

@@ -15,7 +15,8 @@
 //                   included), by forward kinematics, then the same rigid motion about +Y.
 // From the packed tier, every joint is within the tier's max_error_cm of the source (its bound).
 //
-// Errors (construction): InvalidArgument when L or B is 0, a pattern matches nothing, no selected clip
+// Errors (construction): NotFoundError when a selected name without wildcards (*?[) is not a stored
+// clip; InvalidArgument when L or B is 0, a pattern matches nothing, no selected clip
 // has L frames, Source::Packed is asked and a selected clip is not in the packed tier, or the selected
 // clips differ in pose layout (joints, parents, rotation joints) or frame rate (naming two clips that
 // differ: select clips of one rig and rate); StoreError / ChecksumError from the database.
@@ -70,6 +71,8 @@ public:
     std::size_t values_per_frame() const;
     /// The selected clips that offer at least one window, in selection order.
     const std::vector<std::string>& clip_ids() const;
+    /// The selected clips shorter than L frames (they give no windows), in selection order.
+    const std::vector<std::string>& short_clip_ids() const;
     /// Windows to draw from: sum over clips of F - L + 1.
     std::uint64_t window_count() const;
     /// The first selected clip's rate (the others are within 0.01 % of it).
