@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -64,6 +65,46 @@ void write_bvh_file(const Clip& clip, const std::filesystem::path& path, int pre
     BvhWriteOptions options;
     options.precision = precision;
     write_bvh(path, clip, options);
+}
+
+/// A skeleton's whole definition as plain Python values (pickle's state): per joint (name, parent,
+/// offset, channel types, rotation order, ASF axis w x y z, end site), then source units, forward,
+/// position-channel mode and motion root.
+py::tuple skeleton_state(const Skeleton& s) {
+    py::list joints;
+    for (const Joint& j : s.joints()) {
+        py::list channels;
+        for (ChannelType c : j.channels) channels.append(static_cast<int>(c));
+        joints.append(py::make_tuple(j.name, j.parent, py::make_tuple(j.offset.x(), j.offset.y(), j.offset.z()), channels,
+                                     static_cast<int>(j.rotation_order),
+                                     py::make_tuple(j.axis.w(), j.axis.x(), j.axis.y(), j.axis.z()), j.end_site));
+    }
+    const Vec3& f = s.forward();
+    return py::make_tuple(joints, py::make_tuple(s.source_units().cm_per_unit, s.source_units().degrees),
+                          py::make_tuple(f.x(), f.y(), f.z()), to_string(s.position_channels()), s.motion_root());
+}
+
+SkeletonPtr skeleton_from_state(const py::tuple& t) {
+    if (t.size() != 5) throw InvalidArgument("Skeleton: not a pickled skeleton's state");
+    std::vector<Joint> joints;
+    for (const py::handle item : t[0].cast<py::list>()) {
+        const auto j = item.cast<py::tuple>();
+        Joint joint;
+        joint.name = j[0].cast<std::string>();
+        joint.parent = j[1].cast<int>();
+        const auto o = j[2].cast<std::array<double, 3>>();
+        joint.offset = Vec3(o[0], o[1], o[2]);
+        for (int c : j[3].cast<std::vector<int>>()) joint.channels.push_back(static_cast<ChannelType>(c));
+        joint.rotation_order = static_cast<EulerOrder>(j[4].cast<int>());
+        const auto q = j[5].cast<std::array<double, 4>>();
+        joint.axis = Quat(q[0], q[1], q[2], q[3]);
+        joint.end_site = j[6].cast<bool>();
+        joints.push_back(std::move(joint));
+    }
+    const auto units = t[1].cast<std::pair<double, bool>>();
+    const auto f = t[2].cast<std::array<double, 3>>();
+    return std::make_shared<Skeleton>(std::move(joints), SourceUnits{units.first, units.second}, Vec3(f[0], f[1], f[2]),
+                                      position_mode(t[3].cast<std::string>()), t[4].cast<std::size_t>());
 }
 
 }  // namespace
@@ -128,7 +169,8 @@ void bind_clips(py::module_& m) {
         .def("__len__", &Skeleton::size)
         .def("__repr__", [](const Skeleton& s) {
             return "<mocapdb.Skeleton " + std::to_string(s.size()) + " joints, " + std::to_string(s.channel_count()) + " channels>";
-        });
+        })
+        .def(py::pickle(&skeleton_state, &skeleton_from_state));
 
     py::class_<Clip, std::shared_ptr<Clip>>(m, "Clip", "One motion: a skeleton, a frame rate and a row of channels per frame." "\n\nExample:\n    >>> clip = mocapdb.read_clip('16_11.amc')\n    >>> clip.channels.shape, clip.joint_positions().shape   # (F, C), (F, J, 3)")
         .def(py::init([](const SkeletonPtr& skeleton, const Array& channels, double frame_rate, const std::string& name) {
@@ -174,7 +216,16 @@ void bind_clips(py::module_& m) {
         .def("__repr__", [](const Clip& c) {
             return "<mocapdb.Clip '" + c.name + "' " + std::to_string(c.frame_count()) + " frames at " +
                    std::to_string(c.frame_rate) + " Hz>";
-        });
+        })
+        .def(py::pickle(
+            [](const Clip& c) {
+                return py::make_tuple(std::const_pointer_cast<Skeleton>(c.skeleton), copy_rows(c.channels), c.frame_rate, c.name);
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 4) throw InvalidArgument("Clip: not a pickled clip's state");
+                return std::make_shared<Clip>(make_clip(t[0].cast<SkeletonPtr>(), t[1].cast<Array>(), t[2].cast<double>(),
+                                                        t[3].cast<std::string>()));
+            }));
 
     m.def(
         "read_clip",

@@ -116,13 +116,7 @@ std::shared_ptr<Clip> load_clip(const DatabaseHandle& h, const std::string& name
 }
 
 std::shared_ptr<ModelHandle> synthesis_model(const DatabaseHandle& h, const std::string& set, bool naive) {
-    const Database& db = h.get();
-    auto handle = std::make_shared<ModelHandle>();
-    if (naive)
-        handle->model = workflow::load_naive_motion_model(db, set);
-    else
-        handle->model = workflow::load_motion_model(db, set);
-    return handle;
+    return load_model_handle(h.get(), set, naive);
 }
 
 }  // namespace
@@ -175,7 +169,15 @@ void bind_database(py::module_& m) {
              "Lets go of the file (samplers made from it keep their own view until they are dropped).")
         .def("__enter__", [](const std::shared_ptr<DatabaseHandle>& h) { return h; })
         .def("__exit__", [](DatabaseHandle& h, py::args) { h.db.reset(); })
-        .def("__repr__", [](const DatabaseHandle& h) { return "<mocapdb.Database '" + h.path.string() + "'" + (h.db ? "" : " closed") + ">"; });
+        .def("__repr__", [](const DatabaseHandle& h) { return "<mocapdb.Database '" + h.path.string() + "'" + (h.db ? "" : " closed") + ">"; })
+        .def(py::pickle([](const DatabaseHandle& h) { return py::make_tuple(h.path); },  // reopened by path, read-only
+                        [](const py::tuple& t) {
+                            if (t.size() != 1) throw InvalidArgument("Database: not a pickled database's state");
+                            auto h = std::make_shared<DatabaseHandle>();
+                            h->path = t[0].cast<std::filesystem::path>();
+                            h->db = std::make_shared<const Database>(h->path);
+                            return h;
+                        }));
 }
 
 }  // namespace mocapdb::python

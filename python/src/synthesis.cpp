@@ -3,12 +3,14 @@
 #include "mocapdb/synthesis/synthesis_model.hpp"
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <memory>
 #include <mutex>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "mocapdb/workflow/load_model.hpp"
 #include "model_handle.hpp"
 
 namespace mocapdb::python {
@@ -25,11 +27,29 @@ MatX characters_of(const ModelHandle& h, const Array& c) {
 
 }  // namespace
 
+std::shared_ptr<ModelHandle> load_model_handle(const Database& db, const std::string& set, bool naive) {
+    auto handle = std::make_shared<ModelHandle>();
+    if (naive)
+        handle->model = workflow::load_naive_motion_model(db, set);
+    else
+        handle->model = workflow::load_motion_model(db, set);
+    handle->path = db.path();
+    handle->set = set;
+    handle->naive = naive;
+    return handle;
+}
+
 void bind_synthesis(py::module_& m) {
     py::class_<ModelHandle, std::shared_ptr<ModelHandle>>(
         m, "SynthesisModel",
         "A motion set's synthesis model (kriging of its samples at control parameters c). Immutable; "
         "every method may be called from several threads (the batched ones release the GIL)." "\n\nExample:\n    >>> model = db.synthesis_model('walks')\n    >>> poses = model.poses([[0.0, 1.2]], t=20.0)   # (1, D)")
+        .def(py::pickle([](const ModelHandle& h) { return py::make_tuple(h.path, h.set, h.naive); },  // loaded again
+                        [](const py::tuple& t) {
+                            if (t.size() != 3) throw InvalidArgument("SynthesisModel: not a pickled model's state");
+                            const Database db(t[0].cast<std::filesystem::path>());
+                            return load_model_handle(db, t[1].cast<std::string>(), t[2].cast<bool>());
+                        }))
         .def_property_readonly("kind", [](const ModelHandle& h) { return std::string(h.model->kind()); },
                                "'tucker' (the compressed model) or 'naive' (the uncompressed aligned tensor).")
         .def_property_readonly("dofs", [](const ModelHandle& h) { return h.model->dofs(); }, "D, values per pose vector.")
