@@ -255,6 +255,49 @@ void bind_sampler(py::module_& m) {
             },
             py::arg("clip"), py::arg("begin"), "One given window (L, V): frames [begin, begin + L) of a clip.")
         .def(
+            "windows",
+            [](SamplerHandle& h, const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& clip_indices,
+               const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& begins) {
+                if (clip_indices.ndim() != 1 || begins.ndim() != 1 || clip_indices.shape(0) != begins.shape(0))
+                    throw InvalidArgument("windows: expected two 1-D integer arrays of one length");
+                const std::size_t n = static_cast<std::size_t>(begins.shape(0)), clips = h.sampler->clip_ids().size();
+                std::vector<workflow::WindowRef> refs(n);
+                for (std::size_t i = 0; i < n; ++i) {
+                    const std::int64_t c = clip_indices.at(static_cast<py::ssize_t>(i)), b = begins.at(static_cast<py::ssize_t>(i));
+                    if (c < 0 || static_cast<std::size_t>(c) >= clips || b < 0)
+                        throw InvalidArgument("windows: window " + std::to_string(i) + " (clip " + std::to_string(c) + ", frame " +
+                                              std::to_string(b) + ") is not one of the sampler's");
+                    refs[i] = {static_cast<std::size_t>(c), static_cast<std::size_t>(b)};
+                }
+                const std::size_t L = h.sampler->options().length, V = h.sampler->values_per_frame();
+                py::array out(h.dtype, std::vector<py::ssize_t>{static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(L),
+                                                                static_cast<py::ssize_t>(V)});
+                char* data = static_cast<char*>(out.mutable_data());
+                const std::size_t chunk = h.sampler->options().batch, bytes = L * V * static_cast<std::size_t>(h.dtype.itemsize());
+                py::gil_scoped_release release;
+                const std::lock_guard<std::mutex> lock(h.busy);
+                for (std::size_t i = 0; i < n; i += chunk) {
+                    const std::size_t k = std::min(chunk, n - i);
+                    {
+                        py::gil_scoped_acquire acquire;
+                        h.sampler->load(refs.data() + i, k);
+                    }
+                    if (single(h))
+                        h.sampler->fill(refs.data() + i, k, reinterpret_cast<float*>(data + i * bytes));
+                    else
+                        h.sampler->fill(refs.data() + i, k, reinterpret_cast<double*>(data + i * bytes));
+                }
+                return out;
+            },
+            py::arg("clip_indices"), py::arg("begins"),
+            "Given windows (N, L, V): window i is frames [begins[i], begins[i] + L) of clip clips[clip_indices[i]] "
+            "(what a dataset without repeats asks for).\n\nExample:\n"
+            "    >>> sampler.windows([0, 0, 1], [0, 10, 5]).shape   # (3, L, V)")
+        .def_property_readonly(
+            "window_counts",
+            [](const SamplerHandle& h) { return h.sampler->window_counts(); },
+            "Windows each clip offers (F - L + 1), in the order of clips.")
+        .def(
             "set_epoch",
             [](SamplerHandle& h, const py::object& epoch, const py::object& worker) {
                 const std::uint64_t e = integer_arg(epoch, "epoch", 0), w = integer_arg(worker, "worker", 0);

@@ -393,6 +393,11 @@ const WindowSamplerOptions& WindowSampler::options() const { return impl_->optio
 std::size_t WindowSampler::values_per_frame() const { return impl_->values; }
 const std::vector<std::string>& WindowSampler::clip_ids() const { return impl_->ids; }
 const std::vector<std::string>& WindowSampler::short_clip_ids() const { return impl_->short_ids; }
+std::vector<std::uint64_t> WindowSampler::window_counts() const {
+    std::vector<std::uint64_t> out(impl_->ends.size());
+    for (std::size_t c = 0; c < out.size(); ++c) out[c] = impl_->ends[c] - (c > 0 ? impl_->ends[c - 1] : 0);
+    return out;
+}
 std::uint64_t WindowSampler::window_count() const { return impl_->ends.back(); }
 double WindowSampler::frame_rate() const { return impl_->rate; }
 bool WindowSampler::from_packed() const { return impl_->packed; }
@@ -443,8 +448,16 @@ void WindowSampler::draw(WindowRef* refs) {
         const std::size_t c = static_cast<std::size_t>(std::upper_bound(m.ends.begin(), m.ends.end(), u) - m.ends.begin());
         refs[b] = WindowRef{c, static_cast<std::size_t>(u - (c > 0 ? m.ends[c - 1] : 0))};
     }
-    // A batch's clips are all decoded at once: the cache keeps at least B clips, the most recent.
-    for (std::size_t b = 0; b < m.options.batch; ++b) m.decoded(refs[b].clip);
+    load(refs, m.options.batch);
+}
+
+void WindowSampler::load(const WindowRef* refs, std::size_t count) {
+    Impl& m = *impl_;
+    if (count > std::max(m.options.cache_clips, m.options.batch))
+        throw InvalidArgument("window sampler: " + std::to_string(count) + " windows at once; at most max(batch, cache_clips)");
+    for (std::size_t b = 0; b < count; ++b) m.check(refs[b]);
+    // The windows' clips are all decoded at once: the cache keeps at least that many, the most recent.
+    for (std::size_t b = 0; b < count; ++b) m.decoded(refs[b].clip);
 }
 
 void WindowSampler::fill(const WindowRef* refs, std::size_t count, double* out) const { impl_->fill(refs, count, out); }

@@ -87,6 +87,8 @@ public:
     const std::vector<std::string>& clip_ids() const;
     /// The selected clips shorter than L frames (they give no windows), in selection order.
     const std::vector<std::string>& short_clip_ids() const;
+    /// Windows each of clip_ids() offers: F - L + 1.
+    std::vector<std::uint64_t> window_counts() const;
     /// Windows to draw from: sum over clips of F - L + 1.
     std::uint64_t window_count() const;
     /// The first selected clip's rate (the others are within 0.01 % of it).
@@ -116,7 +118,10 @@ public:
 
     /// Draws the next batch's B windows into refs and decodes the clips they need (reads the database).
     void draw(WindowRef* refs);
-    /// Writes windows whose clips are decoded (those of the last draw()) into out (count x L x V
+    /// Decodes the clips of `count` <= max(B, cache_clips) given windows (reads the database), for fill();
+    /// InvalidArgument for a window outside its clip.
+    void load(const WindowRef* refs, std::size_t count);
+    /// Writes windows whose clips are decoded (those of the last draw() or load()) into out (count x L x V
     /// values), from the decoded clips only: no file access, no allocation. InvalidArgument otherwise.
     void fill(const WindowRef* refs, std::size_t count, double* out) const;
     void fill(const WindowRef* refs, std::size_t count, float* out) const;
