@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/motion/local_pose_arrays.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 
 namespace mocapdb::python {
@@ -107,10 +109,98 @@ SkeletonPtr skeleton_from_state(const py::tuple& t) {
                                       position_mode(t[3].cast<std::string>()), t[4].cast<std::size_t>());
 }
 
+/// A rig from arrays (Skeleton's constructor): channels per joint by BVH name (default: joint 0
+/// Xposition Yposition Zposition Zrotation Xrotation Yrotation, other joints Zrotation Xrotation
+/// Yrotation, end sites none), rotation order from the order of the rotation channels, position
+/// channels replacing the offset (BVH's meaning).
+SkeletonPtr skeleton_from_arrays(const std::vector<std::string>& names, const std::vector<int>& parents, const Array& offsets,
+                                 const std::optional<std::vector<std::vector<std::string>>>& channels,
+                                 const std::optional<std::vector<bool>>& end_sites) {
+    const std::size_t n = names.size();
+    if (parents.size() != n || offsets.ndim() != 2 || offsets.shape(0) != static_cast<py::ssize_t>(n) || offsets.shape(1) != 3 ||
+        (channels && channels->size() != n) || (end_sites && end_sites->size() != n))
+        throw InvalidArgument("Skeleton: expected " + std::to_string(n) + " parents, offsets of shape (" + std::to_string(n) +
+                              ", 3) and as many channel lists and end-site flags as joint names");
+    std::vector<Joint> joints(n);
+    for (std::size_t j = 0; j < n; ++j) {
+        Joint& joint = joints[j];
+        joint.name = names[j];
+        joint.parent = parents[j];
+        joint.offset = Vec3(offsets.at(static_cast<py::ssize_t>(j), 0), offsets.at(static_cast<py::ssize_t>(j), 1),
+                            offsets.at(static_cast<py::ssize_t>(j), 2));
+        joint.end_site = end_sites && (*end_sites)[j];
+        std::vector<std::string> types;
+        if (channels)
+            types = (*channels)[j];
+        else if (!joint.end_site)
+            types = j == 0 ? std::vector<std::string>{"Xposition", "Yposition", "Zposition", "Zrotation", "Xrotation", "Yrotation"}
+                           : std::vector<std::string>{"Zrotation", "Xrotation", "Yrotation"};
+        std::vector<Axis> axes;
+        for (const std::string& t : types) {
+            const auto c = channel_type_from_string(t);
+            if (!c) throw InvalidArgument("Skeleton: joint '" + joint.name + "': unknown channel '" + t + "' (expected Xposition .. Zrotation)");
+            joint.channels.push_back(*c);
+            if (is_rotation(*c)) axes.push_back(channel_axis(*c));
+        }
+        // The channels' rotation axes in order, outermost first; a missing axis comes last.
+        for (Axis a : {Axis::X, Axis::Y, Axis::Z})
+            if (std::find(axes.begin(), axes.end(), a) == axes.end()) axes.push_back(a);
+        const auto order = euler_order_from_axes(axes[0], axes[1], axes[2]);
+        if (!order) throw InvalidArgument("Skeleton: joint '" + joint.name + "': a rotation axis appears twice in its channels");
+        joint.rotation_order = *order;
+    }
+    return std::make_shared<Skeleton>(std::move(joints), SourceUnits{}, Vec3::UnitZ(), PositionChannels::replace_offset);
+}
+
+/// (F, J, 4) quaternions from an (F, J, 4) quaternion or (F, J, 3, 3) matrix array.
+Array rotation_quaternions(const Skeleton& s, const Array& rotations) {
+    const auto j = static_cast<py::ssize_t>(s.size());
+    const bool quats = rotations.ndim() == 3 && rotations.shape(1) == j && rotations.shape(2) == 4;
+    const bool matrices = rotations.ndim() == 4 && rotations.shape(1) == j && rotations.shape(2) == 3 && rotations.shape(3) == 3;
+    if (!quats && !matrices)
+        throw InvalidArgument("rotations: expected (F, " + std::to_string(j) + ", 4) quaternions (w, x, y, z) or (F, " +
+                              std::to_string(j) + ", 3, 3) rotation matrices");
+    if (quats) return rotations;
+    Array out({rotations.shape(0), j, py::ssize_t{4}});
+    quaternions_of_matrices(rotations.data(), static_cast<std::size_t>(rotations.shape(0) * j), out.mutable_data());
+    return out;
+}
+
+std::size_t checked_root_positions(const Array& rotations, const Array& root_positions) {
+    if (root_positions.ndim() != 2 || root_positions.shape(1) != 3 || root_positions.shape(0) != rotations.shape(0))
+        throw InvalidArgument("root_positions: expected shape (" + std::to_string(rotations.shape(0)) + ", 3), one row per frame");
+    return static_cast<std::size_t>(rotations.shape(0));
+}
+
 }  // namespace
 
 void bind_clips(py::module_& m) {
     py::class_<Skeleton, SkeletonPtr>(m, "Skeleton", "A rig: joints (end sites included) with parents, offsets and channels." "\n\nExample:\n    >>> skeleton = mocapdb.read_clip('16_11.amc').skeleton\n    >>> skeleton.joint_names[:2], len(skeleton)")
+        .def(py::init(&skeleton_from_arrays), py::arg("joint_names"), py::arg("parents"), py::arg("offsets"),
+             py::arg("channels") = py::none(), py::arg("end_sites") = py::none(),
+             "A rig from arrays, with the names of a stored skeleton's attributes: joint names, parent indices "
+             "(-1 for joint 0; parents before children), (J, 3) offsets in cm, per joint its channels by BVH name "
+             "(default: joint 0 Xposition Yposition Zposition Zrotation Xrotation Yrotation, the others Zrotation "
+             "Xrotation Yrotation, end sites none; rotations compose in channel order) and end-site flags. Position "
+             "channels replace the offset (BVH).\n\nExample:\n"
+             "    >>> rig = mocapdb.Skeleton(['hips', 'knee', 'foot'], [-1, 0, 1],\n"
+             "    ...                        [[0, 90, 0], [0, -45, 0], [0, -45, 0]], end_sites=[False, False, True])")
+        .def(
+            "fk",
+            [](const Skeleton& s, const Array& rotations, const Array& root_positions) {
+                const Array q = rotation_quaternions(s, rotations);
+                const std::size_t frames = checked_root_positions(q, root_positions);
+                Array out({frames, s.size(), std::size_t{3}});
+                py::gil_scoped_release release;
+                forward_kinematics_of_arrays(s, q.data(), root_positions.data(), frames, out.mutable_data());
+                return out;
+            },
+            py::arg("local_rotations"), py::arg("root_positions"),
+            "Joint positions (F, J, 3) in cm from local rotations ((F, J, 4) quaternions w x y z or (F, J, 3, 3) "
+            "matrices, Clip.local_rotations) and root positions ((F, 3) cm, Clip.root_positions): joint 0 at the root "
+            "position, the other joints at their offsets (Clip.joint_positions for rigs with position channels on "
+            "joint 0 only).\n\nExample:\n"
+            "    >>> xyz = clip.skeleton.fk(clip.local_rotations(), clip.root_positions())")
         .def_property_readonly(
             "joint_names",
             [](const Skeleton& s) {
@@ -188,6 +278,49 @@ void bind_clips(py::module_& m) {
         .def_property_readonly(
             "channels", [](const Clip& c) { return copy_rows(c.channels); },
             "(F, C) channel values, positions in cm and rotations in radians (a copy).")
+        .def(
+            "local_rotations",
+            [](const Clip& c) {
+                Array out({c.frame_count(), c.skeleton->size(), std::size_t{4}});
+                local_rotations_of(c, out.mutable_data());
+                return out;
+            },
+            "(F, J, 4) unit quaternions (w, x, y, z): each joint's whole local rotation, whatever the rig's channel "
+            "order or ASF axes (identity for joints without rotation channels).\n\nExample:\n"
+            "    >>> q = clip.local_rotations()     # (F, J, 4)")
+        .def(
+            "root_positions",
+            [](const Clip& c) {
+                Array out({c.frame_count(), std::size_t{3}});
+                root_positions_of(c, out.mutable_data());
+                return out;
+            },
+            "(F, 3) cm: joint 0's position (its local translation) in every frame.\n\nExample:\n"
+            "    >>> path = clip.root_positions()   # (F, 3)")
+        .def_static(
+            "from_arrays",
+            [](const SkeletonPtr& skeleton, double frame_rate, const Array& rotations, const Array& root_positions,
+               const std::string& name) {
+                if (!skeleton) throw InvalidArgument("Clip.from_arrays: a skeleton is required");
+                const Array q = rotation_quaternions(*skeleton, rotations);
+                const std::size_t frames = checked_root_positions(q, root_positions);
+                auto clip = std::make_shared<Clip>();
+                clip->skeleton = skeleton;
+                clip->frame_rate = frame_rate;
+                clip->name = name;
+                clip->channels = channels_from_local_rotations(*skeleton, q.data(), root_positions.data(), frames);
+                validate(*clip);
+                return clip;
+            },
+            py::arg("skeleton"), py::arg("frame_rate"), py::kw_only(), py::arg("rotations"), py::arg("root_positions"),
+            py::arg("name") = "",
+            "A clip of the skeleton from local rotations ((F, J, 4) quaternions w x y z or (F, J, 3, 3) matrices) and "
+            "root positions ((F, 3) cm): the channel values giving them (Euler angles continuous in time; a rotation "
+            "a joint's channels cannot express loses its missing axes), the inverse of local_rotations() and "
+            "root_positions().\n\nExample:\n"
+            "    >>> copy = mocapdb.Clip.from_arrays(clip.skeleton, clip.frame_rate,\n"
+            "    ...                                 rotations=clip.local_rotations(), root_positions=clip.root_positions())\n"
+            "    >>> mocapdb.write_bvh(copy, 'copy.bvh')")
         .def("joint_positions", &joint_positions_array,
              "Global joint positions (F, J, 3) in cm by forward kinematics, every joint and end site "
              "(Skeleton.joint_names order); the GIL is released.")
