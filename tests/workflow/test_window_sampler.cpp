@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <vector>
 
 #include "mocapdb/core/error.hpp"
@@ -141,4 +142,45 @@ TEST_CASE("workflow: windows from subject 16's walks, lossless and packed", "[wo
         std::vector<double> out(L * s.values_per_frame());
         CHECK_THROWS_WITH(s.window({0, 10000}, out.data()), Contains("beyond clip"));
     }
+}
+
+TEST_CASE("workflow: windows of a joint that turns past half a turn start on the principal branch",
+          "[workflow]") {
+    // A two-joint BVH rig whose child turns 2 full turns about Y: its exp map, continuous along the clip,
+    // passes |v| = pi; a window starting beyond that starts on the principal branch, as the window's own
+    // pose vectors do (the sampler re-tracks it from the decoded clip).
+    TempDir dir("workflow_windows_turn");
+    const auto bvh = dir / "turn.bvh";
+    {
+        std::ofstream out(bvh);
+        out << "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation "
+               "Yrotation\n JOINT Arm\n {\n  OFFSET 0 10 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n  End Site\n  {\n"
+               "   OFFSET 10 0 0\n  }\n }\n}\nMOTION\nFrames: 200\nFrame Time: 0.0333333\n";
+        for (int f = 0; f < 200; ++f)
+            out << 0.5 * f << " 90 " << 0.25 * f << " 0 0 " << 0.1 * f << " 5 10 " << 3.6 * f << "\n";
+    }
+    const auto db_path = dir / "turn.h5";
+    {
+        DatabaseWriter w(db_path, DatabaseWriter::Mode::OpenOrCreate);
+        import_files(w, {bvh}, ImportOptions{});
+        w.commit();
+    }
+    const Database db(db_path);
+    workflow::WindowSamplerOptions o;
+    o.length = 30;
+    o.source = workflow::WindowSource::Lossless;
+    workflow::WindowSampler s(db, o);
+    const Clip clip = db.load_clip(s.clip_ids()[0]);
+    const std::size_t V = s.values_per_frame();
+    std::vector<double> window(o.length * V);
+    double worst = 0.0, largest = 0.0;
+    for (std::size_t begin = 0; begin + o.length <= clip.frame_count(); begin += 7) {
+        s.window({0, begin}, window.data());
+        const std::vector<double> expected = window_of(clip, begin, o.length);
+        for (std::size_t i = 0; i < window.size(); ++i) worst = std::max(worst, std::abs(window[i] - expected[i]));
+        for (std::size_t f = 0; f < o.length; ++f)
+            largest = std::max(largest, Vec3(window[f * V + 6], window[f * V + 7], window[f * V + 8]).norm());
+    }
+    CHECK(worst < 1e-9);
+    CHECK(largest > kPi);  // windows do follow the joint past the principal branch's end
 }
