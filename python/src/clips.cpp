@@ -255,7 +255,7 @@ void bind_clips(py::module_& m) {
             },
             py::arg("poses"),
             "Channel rows (F, C) of pose vectors (F, D) in the canonical frame: the inverse of "
-            "Clip.pose_vectors(canonical=False).")
+            "Clip.pose_vectors(canonical=False)." "\n\nExample:\n    >>> rows = clip.skeleton.channels_from_pose_vectors(clip.pose_vectors(canonical=False))")
         .def("__len__", &Skeleton::size)
         .def("__repr__", [](const Skeleton& s) {
             return "<mocapdb.Skeleton " + std::to_string(s.size()) + " joints, " + std::to_string(s.channel_count()) + " channels>";
@@ -323,7 +323,7 @@ void bind_clips(py::module_& m) {
             "    >>> mocapdb.write_bvh(copy, 'copy.bvh')")
         .def("joint_positions", &joint_positions_array,
              "Global joint positions (F, J, 3) in cm by forward kinematics, every joint and end site "
-             "(Skeleton.joint_names order); the GIL is released.")
+             "(Skeleton.joint_names order); the GIL is released." "\n\nExample:\n    >>> xyz = clip.joint_positions()   # (F, J, 3)\n    >>> head = xyz[:, clip.skeleton.joint_names.index('head')]")
         .def(
             "pose_vectors",
             [](const Clip& c, bool canonical) {
@@ -338,13 +338,13 @@ void bind_clips(py::module_& m) {
             py::arg("canonical") = true,
             "Pose vectors (F, D): the motion root's position (cm) and heading-relative orientation, then "
             "every other rotating joint's local rotation as an exponential map. canonical: first frame at "
-            "the origin facing +Z (else the world frame).")
+            "the origin facing +Z (else the world frame)." "\n\nExample:\n    >>> poses = clip.pose_vectors()      # (F, D)")
         .def(
             "slice", [](const Clip& c, std::size_t begin, std::size_t end) { return slice(c, begin, end); },
-            py::arg("begin"), py::arg("end"), "Frames [begin, end) as a clip of their own.")
+            py::arg("begin"), py::arg("end"), "Frames [begin, end) as a clip of their own." "\n\nExample:\n    >>> first_second = clip.slice(0, 120)")
         .def("write_bvh", &write_bvh_file, py::arg("path"), py::arg("precision") = 9,
              "Writes the clip as BVH (atomically; an existing file is replaced). precision: significant digits "
-             "(17 is lossless).")
+             "(17 is lossless)." "\n\nExample:\n    >>> clip.write_bvh('walk.bvh', precision=17)")
         .def("__len__", &Clip::frame_count)
         .def("__repr__", [](const Clip& c) {
             return "<mocapdb.Clip '" + c.name + "' " + std::to_string(c.frame_count()) + " frames at " +

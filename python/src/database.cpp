@@ -147,26 +147,26 @@ void bind_database(py::module_& m) {
         .def_property_readonly("path", [](const DatabaseHandle& h) { return h.path; }, "The file.")
         .def_property_readonly("format_version", [](const DatabaseHandle& h) { return h.get().format_version(); }, "The file format's version (schemas/).")
         .def_property_readonly("file_size", [](const DatabaseHandle& h) { return h.get().file_size(); }, "Bytes.")
-        .def("clips", [](const DatabaseHandle& h) { return h.get().clips(); }, "Every stored clip's ClipInfo, sorted by name.")
+        .def("clips", [](const DatabaseHandle& h) { return h.get().clips(); }, "Every stored clip's ClipInfo, sorted by name." "\n\nExample:\n    >>> [c.name for c in db.clips()][:3]")
         .def("clip", &load_clip, py::arg("name"), py::arg("tier") = "lossless", py::arg("begin") = 0,
              py::arg("end") = py::none(),
              "A stored clip, frames [begin, end): tier 'lossless' (the source values exactly; a clip whose lossless "
              "channels were dropped comes from the packed tier) or 'packed' (decoded from the packed tier, within "
-             "its max_error_cm, with the packed skeleton).")
-        .def("skeletons", [](const DatabaseHandle& h) { return h.get().skeletons(); }, "Skeleton ids.")
+             "its max_error_cm, with the packed skeleton). NotFoundError (a KeyError) for a name it does not hold." "\n\nExample:\n    >>> clip = db.clip('16_11', tier='packed', begin=0, end=120)")
+        .def("skeletons", [](const DatabaseHandle& h) { return h.get().skeletons(); }, "Skeleton ids." "\n\nExample:\n    >>> db.skeletons()")
         .def(
             "skeleton", [](const DatabaseHandle& h, const std::string& id) { return std::const_pointer_cast<Skeleton>(h.get().load_skeleton(id)); },
-            py::arg("id"), "A stored Skeleton.")
-        .def("sets", [](const DatabaseHandle& h) { return h.get().sets(); }, "Every motion set's SetInfo, sorted by name.")
+            py::arg("id"), "A stored Skeleton." "\n\nExample:\n    >>> rig = db.skeleton(db.clips()[0].skeleton)")
+        .def("sets", [](const DatabaseHandle& h) { return h.get().sets(); }, "Every motion set's SetInfo, sorted by name." "\n\nExample:\n    >>> [s.name for s in db.sets()]")
         .def("set", [](const DatabaseHandle& h, const std::string& name) { return h.get().load_set(name); }, py::arg("name"),
-             "A MotionSet: its samples and control parameters.")
+             "A MotionSet: its samples and control parameters." "\n\nExample:\n    >>> walks = db.set('walks')")
         .def("packed", [](const DatabaseHandle& h) { return h.get().packed(); },
-             "The PackedTier's records, or None when the file has none (mocapdb pack).")
+             "The PackedTier's records, or None when the file has none (mocapdb pack)." "\n\nExample:\n    >>> tier = db.packed()")
         .def("synthesis_model", &synthesis_model, py::arg("set"), py::arg("naive") = false,
              "The set's SynthesisModel: the stored Tucker model (mocapdb compress) with its stored kernel, or with "
-             "naive=True kriging of the uncompressed aligned tensor (needs only mocapdb align).")
+             "naive=True kriging of the uncompressed aligned tensor (needs only mocapdb align)." "\n\nExample:\n    >>> model = db.synthesis_model('walks')")
         .def("close", [](DatabaseHandle& h) { h.db.reset(); },
-             "Lets go of the file (samplers made from it keep their own view until they are dropped).")
+             "Lets go of the file (samplers made from it keep their own view until they are dropped)." "\n\nExample:\n    >>> db.close()")
         .def("__enter__", [](const std::shared_ptr<DatabaseHandle>& h) { return h; })
         .def("__exit__", [](DatabaseHandle& h, py::args) { h.db.reset(); })
         .def("__repr__", [](const DatabaseHandle& h) { return "<mocapdb.Database '" + h.path.string() + "'" + (h.db ? "" : " closed") + ">"; })

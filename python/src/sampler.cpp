@@ -231,7 +231,7 @@ void bind_sampler(py::module_& m) {
                 for (const auto& r : refs) windows.append(py::make_tuple(h.sampler->clip_ids()[r.clip], r.begin));
                 return py::make_tuple(out, windows);
             },
-            "The next batch and where each window comes from: (array (B, L, V), [(clip name, first frame), ...]).")
+            "The next batch and where each window comes from: (array (B, L, V), [(clip name, first frame), ...])." "\n\nExample:\n    >>> batch, windows = sampler.next_with_windows()")
         .def(
             "window",
             [](SamplerHandle& h, const std::string& clip, const py::object& first) {
@@ -253,7 +253,7 @@ void bind_sampler(py::module_& m) {
                     h.sampler->window(ref, static_cast<double*>(out.mutable_data()));
                 return out;
             },
-            py::arg("clip"), py::arg("begin"), "One given window (L, V): frames [begin, begin + L) of a clip.")
+            py::arg("clip"), py::arg("begin"), "One given window (L, V): frames [begin, begin + L) of a clip; KeyError for a clip not among clips." "\n\nExample:\n    >>> w = sampler.window(sampler.clips[0], 10)")
         .def(
             "windows",
             [](SamplerHandle& h, const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& clip_indices,

@@ -81,7 +81,7 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"), py::arg("t"), py::arg("level") = 0,
             "The pose vector (D,) at control parameters c (P,) and fractional aligned frame t in [0, T - 1], in "
-            "the canonical frame.")
+            "the canonical frame." "\n\nExample:\n    >>> pose = model.pose(model.sample_parameters[0], t=10.5)   # (D,)")
         .def(
             "poses",
             [](ModelHandle& h, const Array& c, double t, Eigen::Index level) {
@@ -103,7 +103,7 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"), py::arg("t"), py::arg("level") = 0,
             "Poses (Q, D) of Q characters with control parameters c (Q, P) at aligned frame t, in one batched "
-            "call (the GIL is released).")
+            "call (the GIL is released)." "\n\nExample:\n    >>> poses = model.poses(model.sample_parameters, t=10.0)  # (N, D)")
         .def(
             "motion",
             [](const ModelHandle& h, const Array& c, Eigen::Index level) {
@@ -113,7 +113,7 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"), py::arg("level") = 0,
             "The synthesized motion at c as a Clip of the set's skeleton and frame rate, with its kriged "
-            "timing (starts at the origin facing +Z; ready for write_bvh).")
+            "timing (starts at the origin facing +Z; ready for write_bvh)." "\n\nExample:\n    >>> model.motion(model.sample_parameters[0]).write_bvh('walk.bvh')")
         .def(
             "reliability",
             [](const ModelHandle& h, const Array& c) -> py::object {
@@ -128,7 +128,7 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"),
             "Reliability rho(c) in [0, 1] (1 at a sample, falling where the samples do not support the "
-            "result): a float for c of shape (P,), an array (Q,) for c of shape (Q, P).")
+            "result): a float for c of shape (P,), an array (Q,) for c of shape (Q, P)." "\n\nExample:\n    >>> rho = model.reliability(model.sample_parameters)   # (N,), 1 at the samples")
         .def(
             "weights",
             [](const ModelHandle& h, const Array& c) {
@@ -137,10 +137,10 @@ void bind_synthesis(py::module_& m) {
                 h.model->weights(parameters_of(h, c), w, ws);
                 return copy_vector(w);
             },
-            py::arg("c"), "Kriging weights (N,) of the samples at c (they sum to 1).")
+            py::arg("c"), "Kriging weights (N,) of the samples at c (they sum to 1)." "\n\nExample:\n    >>> w = model.weights(model.sample_parameters[0])")
         .def(
             "timing", [](const ModelHandle& h, const Array& c) { return copy_vector(h.model->timing(parameters_of(h, c)).warp); },
-            py::arg("c"), "The synthesized timing (T,): the source frame shown at each aligned frame (starts at 0).")
+            py::arg("c"), "The synthesized timing (T,): the source frame shown at each aligned frame (starts at 0)." "\n\nExample:\n    >>> warp = model.timing(model.sample_parameters[0])")
         .def("__repr__", [](const ModelHandle& h) {
             return "<mocapdb.SynthesisModel " + std::string(h.model->kind()) + ", " + std::to_string(h.model->samples()) +
                    " samples, " + std::to_string(h.model->frames()) + " frames, " + std::to_string(h.model->dofs()) + " dofs>";

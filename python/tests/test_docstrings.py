@@ -1,5 +1,5 @@
-"""Every public function, method and property of the package has a docstring; every public class and
-module-level function has one with an example (a `>>>` line)."""
+"""Every public function, method and property of the package has a docstring; every public class,
+function and method has one with an example (a `>>>` line)."""
 import inspect
 
 import mocapdb
@@ -36,7 +36,17 @@ def test_every_public_name_is_documented():
     assert not missing, f"without a docstring: {missing}"
 
 
-def test_every_public_class_and_function_has_an_example():
-    missing = [name for name, obj in public_names()
-               if (inspect.isclass(obj) or callable(obj)) and ">>> " not in (getattr(obj, "__doc__", None) or "")]
+def test_every_public_class_function_and_method_has_an_example():
+    missing = []
+    for name, obj in public_names():
+        if not (inspect.isclass(obj) or callable(obj)):
+            continue
+        if ">>> " not in (obj.__doc__ or ""):
+            missing.append(name)
+        if inspect.isclass(obj) and not issubclass(obj, BaseException):
+            for member, value in vars(obj).items():
+                if member.startswith("_") or isinstance(value, property) or not callable(getattr(obj, member)):
+                    continue
+                if ">>> " not in (getattr(obj, member).__doc__ or ""):
+                    missing.append(f"{name}.{member}")
     assert not missing, f"without an example: {missing}"
