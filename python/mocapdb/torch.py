@@ -58,8 +58,8 @@ class WindowDataset(IterableDataset):
 
     The epoch's windows are the first N of a permutation of all windows drawn from (seed, epoch); worker k
     of n takes every n-th of them, so the workers of a DataLoader together yield each exactly once. The
-    same seed and epoch give the same windows (set_epoch before iterating; with persistent workers, before
-    creating the iterator). with_refs=True yields (window, clip name, first frame) instead.
+    same seed and epoch give the same windows (set_epoch before each iteration; not with persistent_workers,
+    whose copies keep the epoch they started with). with_refs=True yields (window, clip name, first frame).
     source 'auto', 'packed' or 'lossless'; values 'pose_vectors' or 'joint_positions'; clips: names or
     fnmatch patterns (default every clip); dtype numpy.float32 (default) or numpy.float64.
 
