@@ -301,6 +301,7 @@ void bind_sampler(py::module_& m) {
             "set_epoch",
             [](SamplerHandle& h, const py::object& epoch, const py::object& worker) {
                 const std::uint64_t e = integer_arg(epoch, "epoch", 0), w = integer_arg(worker, "worker", 0);
+                py::gil_scoped_release release;  // a thread holding the lock may be waiting for the GIL
                 const std::lock_guard<std::mutex> lock(h.busy);
                 h.sampler->set_stream(e, w);
                 h.epoch = e;
