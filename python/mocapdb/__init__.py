@@ -60,7 +60,7 @@ def open(path):  # noqa: A001  (mocapdb.open mirrors the built-in on purpose)
 
 
 def _sampler(self, length=64, batch=32, seed=0, values="pose_vectors", clips=None, source="auto", cache_clips=256,
-             dtype=_np.float32):
+             dtype=_np.float32, pad=False):
     """A WindowSampler of this database: random windows of `length` frames, `batch` per batch.
 
     values: 'pose_vectors' (D per frame) or 'joint_positions' (3 J per frame); clips: ids or fnmatch
@@ -68,14 +68,15 @@ def _sampler(self, length=64, batch=32, seed=0, values="pose_vectors", clips=Non
     dtype: numpy.float32 (default) or numpy.float64, end to end (each drawn clip is decoded once, whole,
     into a cache of that type: sampler.cache_bytes; at most max(cache_clips, batch) clips).
     The same seed gives the same batches. Bad arguments raise TypeError or ValueError naming them; selected
-    clips shorter than `length` give no windows and are counted in a ShortClipsWarning.
+    clips shorter than `length` give no windows and are counted in a ShortClipsWarning, or with pad=True
+    one window each, from frame 0, whose missing rows repeat the clip's last frame.
 
     Example:
         >>> sampler = db.sampler(length=64, batch=256, seed=1)
         >>> batch = next(sampler)              # (256, 64, D)
     """
     return WindowSampler(self, length=length, batch=batch, seed=seed, values=values, clips=clips, source=source,
-                         cache_clips=cache_clips, dtype=dtype)
+                         cache_clips=cache_clips, dtype=dtype, pad=pad)
 
 
 Database.sampler = _sampler

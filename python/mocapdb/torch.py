@@ -25,10 +25,10 @@ from . import Database, WindowSampler
 __all__ = ["WindowDataset", "WindowMapDataset"]
 
 
-def _sampler(path, length, clips, source, dtype, values, batch):
+def _sampler(path, length, clips, source, dtype, values, batch, pad):
     with Database(path) as db:
         return WindowSampler(db, length=length, batch=batch, seed=0, values=values, clips=clips, source=source,
-                             dtype=dtype)
+                             dtype=dtype, pad=pad)
 
 
 class _Windows:
@@ -61,7 +61,8 @@ class WindowDataset(IterableDataset):
     same seed and epoch give the same windows (set_epoch before each iteration; not with persistent_workers,
     whose copies keep the epoch they started with). with_refs=True yields (window, clip name, first frame).
     source 'auto', 'packed' or 'lossless'; values 'pose_vectors' or 'joint_positions'; clips: names or
-    fnmatch patterns (default every clip); dtype numpy.float32 (default) or numpy.float64.
+    fnmatch patterns (default every clip); dtype numpy.float32 (default) or numpy.float64; pad: clips
+    shorter than L give one window, padded with their last frame (WindowSampler's pad).
 
     Example:
         >>> data = WindowDataset("walks.h5", length=64, seed=0, windows_per_epoch=4096)
@@ -71,9 +72,9 @@ class WindowDataset(IterableDataset):
     """
 
     def __init__(self, path, length=64, seed=0, windows_per_epoch=None, clips=None, source="auto",
-                 dtype=np.float32, values="pose_vectors", with_refs=False, chunk=256):
+                 dtype=np.float32, values="pose_vectors", with_refs=False, chunk=256, pad=False):
         super().__init__()
-        self.sampler = _sampler(path, length, clips, source, dtype, values, chunk)
+        self.sampler = _sampler(path, length, clips, source, dtype, values, chunk, pad)
         self._windows = _Windows(self.sampler)
         total = len(self._windows)
         n = total if windows_per_epoch is None else windows_per_epoch
@@ -135,9 +136,9 @@ class WindowMapDataset(Dataset):
         >>> data[0].shape, data["16_11", 10].shape     # torch.Size([64, 90]) twice
     """
 
-    def __init__(self, path, length=64, clips=None, source="auto", dtype=np.float32, values="pose_vectors"):
+    def __init__(self, path, length=64, clips=None, source="auto", dtype=np.float32, values="pose_vectors", pad=False):
         super().__init__()
-        self.sampler = _sampler(path, length, clips, source, dtype, values, 256)
+        self.sampler = _sampler(path, length, clips, source, dtype, values, 256, pad)
         self._windows = _Windows(self.sampler)
         self.clips = self.sampler.clips
 

@@ -144,11 +144,11 @@ py::tuple sampler_state(const SamplerHandle& h) {
     const auto& o = h.sampler->options();
     return py::make_tuple(h.db->path(), o.length, o.batch, o.seed, values_name(o.values), o.clips, source_name(o.source),
                           o.cache_clips, h.f32 ? "float32" : "float64", h.epoch, h.worker,
-                          py::bytes(h.sampler->stream_state()));
+                          py::bytes(h.sampler->stream_state()), o.pad);
 }
 
 std::shared_ptr<SamplerHandle> sampler_from_state(const py::tuple& t) {
-    if (t.size() != 12) throw InvalidArgument("WindowSampler: not a pickled sampler's state");
+    if (t.size() != 13) throw InvalidArgument("WindowSampler: not a pickled sampler's state");
     workflow::WindowSamplerOptions o;
     o.length = t[1].cast<std::size_t>();
     o.batch = t[2].cast<std::size_t>();
@@ -157,6 +157,7 @@ std::shared_ptr<SamplerHandle> sampler_from_state(const py::tuple& t) {
     o.clips = t[5].cast<std::vector<std::string>>();
     o.source = source_of(t[6].cast<std::string>());
     o.cache_clips = t[7].cast<std::size_t>();
+    o.pad = t[12].cast<bool>();
     auto h = std::make_shared<SamplerHandle>();
     h->dtype = dtype_arg(t[8]);
     h->f32 = h->dtype.equal(py::dtype::of<float>());
@@ -189,7 +190,7 @@ void bind_sampler(py::module_& m) {
         "made without the GIL, so other threads run meanwhile)." "\n\nExample:\n    >>> sampler = db.sampler(length=64, batch=32, seed=1)\n    >>> batch = next(sampler)              # (32, 64, D)")
         .def(py::init([](const DatabaseHandle& db, const py::object& length, const py::object& batch, const py::object& seed,
                          const py::object& values, const py::object& clips, const py::object& source,
-                         const py::object& cache_clips, const py::object& dtype) {
+                         const py::object& cache_clips, const py::object& dtype, const py::object& pad) {
                  workflow::WindowSamplerOptions o;
                  o.length = integer_arg(length, "length", 1);
                  o.batch = integer_arg(batch, "batch", 1);
@@ -198,6 +199,10 @@ void bind_sampler(py::module_& m) {
                  o.clips = clips_arg(clips);
                  o.source = source_of(text_arg(source, "source"));
                  o.cache_clips = integer_arg(cache_clips, "cache_clips", 1);
+                 if (!PyBool_Check(pad.ptr()))
+                     throw py::type_error("sampler: pad must be True or False, got " +
+                                          std::string(py::str(py::type::of(pad).attr("__name__"))));
+                 o.pad = pad.cast<bool>();
                  auto h = std::make_shared<SamplerHandle>();
                  h->dtype = dtype_arg(dtype);
                  h->f32 = h->dtype.equal(py::dtype::of<float>());
@@ -205,16 +210,18 @@ void bind_sampler(py::module_& m) {
                  db.get();  // refuses a closed database
                  h->db = db.db;
                  h->sampler = std::make_unique<workflow::WindowSampler>(*h->db, o);
-                 warn_short_clips(*h->sampler);
+                 if (!o.pad) warn_short_clips(*h->sampler);
                  return h;
              }),
              py::arg("db"), py::arg("length") = 64, py::arg("batch") = 32, py::arg("seed") = 0,
              py::arg("values") = "pose_vectors", py::arg("clips") = py::none(), py::arg("source") = "auto",
-             py::arg("cache_clips") = 256, py::arg("dtype") = py::dtype::of<float>(),
+             py::arg("cache_clips") = 256, py::arg("dtype") = py::dtype::of<float>(), py::arg("pad") = false,
              "length L frames per window, batch B windows, values 'pose_vectors' or 'joint_positions', clips: ids or "
              "fnmatch patterns (default every clip; they must share one rig and frame rate), source 'auto', "
              "'packed' or 'lossless'; cache_clips: clips kept decoded (at least batch); dtype: numpy.float32 (default) or "
-             "numpy.float64, the batches' and the decoded clips' element type.")
+             "numpy.float64, the batches' and the decoded clips' element type; pad: clips shorter than L give one window "
+             "each, from frame 0, its missing rows repeating the clip's last frame (else they give none and a "
+             "ShortClipsWarning counts them).")
         .def("next", &next_array, py::arg("out") = py::none(),
              "The next batch (B, L, V) of the sampler's dtype, written into `out` when given (an array of that "
              "shape and dtype, reused across batches) or into a new array.\n\nExample:\n"
@@ -327,7 +334,7 @@ void bind_sampler(py::module_& m) {
                                "Names of the clips windows are drawn from (those with at least L frames).")
         .def_property_readonly("short_clips", [](const SamplerHandle& h) { return h.sampler->short_clip_ids(); },
                                "Names of the selected clips shorter than L frames: they give no windows (a "
-                               "ShortClipsWarning counted them).")
+                               "ShortClipsWarning counted them), or with pad=True one padded window each.")
         .def_property_readonly("window_count", [](const SamplerHandle& h) { return h.sampler->window_count(); },
                                "Distinct windows: sum over clips of F - L + 1.")
         .def_property_readonly("frame_rate", [](const SamplerHandle& h) { return h.sampler->frame_rate(); }, "Hz of the clips.")

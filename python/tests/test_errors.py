@@ -81,3 +81,30 @@ def test_a_key_error_reads_as_the_library_message(test_db):
         with pytest.raises(KeyError) as caught:
             db.clip("no_such_clip")
     assert str(caught.value) == f"{test_db}: /clips/no_such_clip: no such clip"
+
+
+def test_short_clips_padded_on_request(test_db):
+    with mocapdb.open(test_db) as db:
+        frames = {c.name: c.frames for c in db.clips()}
+        length = sorted(frames.values())[len(frames) // 2]
+        short = sorted(name for name, f in frames.items() if f < length)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # padded: nothing to warn about
+            padded = db.sampler(length=length, batch=64, seed=2, pad=True, source="lossless", dtype=np.float64)
+        assert sorted(padded.short_clips) == short and sorted(padded.clips) == sorted(frames)
+        assert padded.window_count == sum(f - length + 1 for f in frames.values() if f >= length) + len(short)
+        for name in short:
+            f = frames[name]
+            w = padded.window(name, 0)
+            assert w.shape == (length, padded.values_per_frame)
+            # The clip's own frames in its canonical frame, then its last frame repeated.
+            assert np.allclose(w[:f], db.clip(name).pose_vectors(), rtol=0, atol=1e-9)
+            assert np.array_equal(w[f:], np.repeat(w[f - 1:f], length - f, axis=0))
+            with pytest.raises(ValueError, match="beyond clip"):
+                padded.window(name, 1)
+        drawn = set()
+        for _ in range(20):
+            drawn |= {n for n, _ in padded.next_with_windows()[1]}
+        assert drawn & set(short)  # short clips are drawn too
+        with pytest.raises(TypeError, match="pad must be True or False"):
+            db.sampler(pad=1)

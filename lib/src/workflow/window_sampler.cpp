@@ -199,6 +199,9 @@ struct WindowSampler::Impl {
     void window_values(const DecodedClip& clip, const WindowRef& ref, Out* out) const {
         const std::size_t L = options.length, V = values;
         const T* in = clip.values<T>().data() + ref.begin * V;
+        // Row of window frame f: a padded window repeats the clip's last frame.
+        const std::size_t last = clips[ref.clip].frames - 1 - ref.begin;
+        const auto row = [&](std::size_t f) { return in + std::min(f, last) * V; };
         const double yaw = clip.root[3 * ref.begin];
         // Pose vectors: the root's own (perhaps float-rounded) x, z, so that the window starts at exactly 0.
         const bool poses = options.values == WindowValues::PoseVectors;
@@ -207,11 +210,15 @@ struct WindowSampler::Impl {
         const double c = std::cos(yaw), s = std::sin(yaw);
         // R_y(-yaw) on (x, z): (c x - s z, s x + c z).
         if (!poses) {
-            for (std::size_t i = 0; i < L * V; i += 3) {
-                const double x = static_cast<double>(in[i]) - tx, z = static_cast<double>(in[i + 2]) - tz;
-                out[i] = static_cast<Out>(c * x - s * z);
-                out[i + 1] = static_cast<Out>(in[i + 1]);
-                out[i + 2] = static_cast<Out>(s * x + c * z);
+            for (std::size_t f = 0; f < L; ++f) {
+                const T* a = row(f);
+                Out* b = out + f * V;
+                for (std::size_t i = 0; i < V; i += 3) {
+                    const double x = static_cast<double>(a[i]) - tx, z = static_cast<double>(a[i + 2]) - tz;
+                    b[i] = static_cast<Out>(c * x - s * z);
+                    b[i + 1] = static_cast<Out>(a[i + 1]);
+                    b[i + 2] = static_cast<Out>(s * x + c * z);
+                }
             }
             return;
         }
@@ -220,7 +227,7 @@ struct WindowSampler::Impl {
         const double psi0 = static_cast<double>(in[4]) - yaw;
         const double turn = psi0 - kTwoPi * std::round(psi0 / kTwoPi) - static_cast<double>(in[4]);
         for (std::size_t f = 0; f < L; ++f) {
-            const T* a = in + f * V;
+            const T* a = row(f);
             Out* b = out + f * V;
             const double x = static_cast<double>(a[0]) - tx, z = static_cast<double>(a[2]) - tz;
             b[0] = static_cast<Out>(c * x - s * z);
@@ -240,7 +247,7 @@ struct WindowSampler::Impl {
             if (first.norm() < kPi) continue;
             Vec3 near = Vec3::Zero();
             for (std::size_t f = 0; f < L; ++f) {
-                const T* a = in + f * V + r;
+                const T* a = row(f) + r;
                 const Vec3 v(static_cast<double>(a[0]), static_cast<double>(a[1]), static_cast<double>(a[2]));
                 near = log_map_near(exp_map(v), near);
                 for (int k = 0; k < 3; ++k) out[f * V + r + static_cast<std::size_t>(k)] = static_cast<Out>(near[k]);
@@ -253,7 +260,7 @@ struct WindowSampler::Impl {
         const std::size_t stride = options.length * values;
         for (std::size_t b = 0; b < count; ++b) {
             const auto it = cache.find(refs[b].clip);
-            if (it == cache.end() || refs[b].begin + options.length > clips[refs[b].clip].frames)
+            if (it == cache.end() || !valid(refs[b]))
                 throw InvalidArgument("window sampler: fill of a window that draw() did not give");
             if (options.dtype == WindowDType::Float32)
                 window_values<float>(it->second.first, refs[b], out + b * stride);
@@ -262,10 +269,17 @@ struct WindowSampler::Impl {
         }
     }
 
+    /// A window of a clip: within it, or (pad) from frame 0 of a clip shorter than L.
+    bool valid(const WindowRef& ref) const {
+        if (ref.clip >= clips.size()) return false;
+        const std::size_t frames = clips[ref.clip].frames;
+        return ref.begin + options.length <= frames || (options.pad && frames < options.length && ref.begin == 0);
+    }
+
     void check(const WindowRef& ref) const {
         if (ref.clip >= clips.size())
             throw InvalidArgument("window sampler: clip index " + std::to_string(ref.clip) + " of " + std::to_string(clips.size()));
-        if (ref.begin + options.length > clips[ref.clip].frames)
+        if (!valid(ref))
             throw InvalidArgument("window sampler: frames " + std::to_string(ref.begin) + ".." +
                                   std::to_string(ref.begin + options.length - 1) + " are beyond clip '" + clips[ref.clip].id +
                                   "' (" + std::to_string(clips[ref.clip].frames) + " frames)");
@@ -310,7 +324,7 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
         const ClipRecord& r = records.at(id);
         if (r.frames < options.length) {
             m.short_ids.push_back(id);
-            continue;
+            if (!options.pad || r.frames == 0) continue;
         }
         if (first == nullptr) {
             first = &r;
@@ -330,7 +344,7 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
         }
         m.clips.push_back({id, r.frames, 0, 0});
         m.ids.push_back(id);
-        total += r.frames - options.length + 1;
+        total += r.frames < options.length ? 1 : r.frames - options.length + 1;
         m.ends.push_back(total);
     }
     if (m.clips.empty())

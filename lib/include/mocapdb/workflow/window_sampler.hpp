@@ -4,7 +4,8 @@
 // for every selected clip (else from the lossless clips).
 //
 // Draw: a window is chosen uniformly among all windows of the selected clips (a clip of F frames
-// offers F - L + 1 start frames; shorter clips offer none), with replacement, by a 64-bit Mersenne
+// offers F - L + 1 start frames; shorter clips offer none, or with `pad` one, from frame 0, whose
+// missing rows repeat the clip's last frame), with replacement, by a 64-bit Mersenne
 // twister seeded with `seed`: the same database, options and seed give the same batches (with this
 // library build's standard library). set_stream(epoch, worker) restarts it on the stream of
 // (seed, epoch, worker) (stream_seed), so that data-loader workers draw distinct, reproducible streams.
@@ -61,6 +62,7 @@ struct WindowSamplerOptions {
     WindowSource source = WindowSource::Auto;
     std::size_t cache_clips = 256;      ///< clips kept decoded (least recently used evicted; at least batch)
     WindowDType dtype = WindowDType::Float64;  ///< the decoded clips' element type
+    bool pad = false;                   ///< clips shorter than L give one window, padded with their last frame
 };
 
 /// Where a drawn window comes from.
@@ -85,9 +87,9 @@ public:
     std::size_t values_per_frame() const;
     /// The selected clips that offer at least one window, in selection order.
     const std::vector<std::string>& clip_ids() const;
-    /// The selected clips shorter than L frames (they give no windows), in selection order.
+    /// The selected clips shorter than L frames (they give no windows, or with pad one), in selection order.
     const std::vector<std::string>& short_clip_ids() const;
-    /// Windows each of clip_ids() offers: F - L + 1.
+    /// Windows each of clip_ids() offers: F - L + 1 (1 for a padded short clip).
     std::vector<std::uint64_t> window_counts() const;
     /// Windows to draw from: sum over clips of F - L + 1.
     std::uint64_t window_count() const;
