@@ -9,17 +9,17 @@
 #include <vector>
 
 #include "bench_timing.hpp"
-#include "mocapdb/codec/deflate.hpp"
-#include "mocapdb/codec/pca_baseline.hpp"
-#include "mocapdb/codec/residual_layer.hpp"
-#include "mocapdb/codec/zfp_codec.hpp"
+#include "mocapdb/compression/codecs/deflate.hpp"
+#include "mocapdb/compression/codecs/pca_baseline.hpp"
+#include "mocapdb/compression/codecs/residual_layer.hpp"
+#include "mocapdb/compression/codecs/zfp_codec.hpp"
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/dataset/alignment.hpp"
 #include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/io/clip_file.hpp"
 
 using namespace mocapdb;
-using namespace mocapdb::codec;
+using namespace mocapdb::compression::codecs;
 using bench::best_of;
 
 namespace {

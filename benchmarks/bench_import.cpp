@@ -13,7 +13,7 @@
 #include <string>
 
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/store/import.hpp"
+#include "mocapdb/workflow/import_files.hpp"
 #include "mocapdb/store/validate.hpp"
 
 using namespace mocapdb;
@@ -38,7 +38,7 @@ double cpu_seconds() {
 }
 
 struct Phase {
-    ImportSummary summary;
+    workflow::ImportSummary summary;
     double seconds = 0.0;      // wall clock
     double cpu = 0.0;          // user + system time of this process
 };
@@ -47,10 +47,10 @@ Phase import_folder(const fs::path& db, const fs::path& folder, std::optional<do
     const auto start = Clock::now();
     const double cpu = cpu_seconds();
     DatabaseWriter writer(db, mode);
-    ImportOptions options;
+    workflow::ImportOptions options;
     options.frame_rate = fps;
     Phase p;
-    p.summary = import_files(writer, collect_clip_files({folder}), options);
+    p.summary = workflow::import_files(writer, workflow::collect_clip_files({folder}), options);
     writer.commit();
     p.seconds = seconds_since(start);
     p.cpu = cpu_seconds() - cpu;

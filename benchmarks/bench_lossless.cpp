@@ -1,7 +1,7 @@
 // The lossless tier (format v3 channels_packed) on the shared CMU folders: for each folder, the
 // database `mocapdb import` writes (file bytes, import time) against the clips as float32 channels
 // and against gzip -9 of the source text; then the alternatives behind the defaults of
-// pack_channels (zstd level, predictor order, decimal detection), packing every clip of the folder
+// packing::pack_channels (zstd level, predictor order, decimal detection), packing every clip of the folder
 // again and summing the zstd bytes and CPU time. Prints one "folder name value unit" line per figure.
 // Usage: bench_lossless [SHARED_DIR]   (default: ../shared beside the repository)
 #include "bench_timing.hpp"
@@ -16,9 +16,9 @@
 #include <optional>
 #include <string>
 
-#include "mocapdb/store/channel_packing.hpp"
+#include "mocapdb/packing/lossless_channels.hpp"
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/store/import.hpp"
+#include "mocapdb/workflow/import_files.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::bench;
@@ -58,9 +58,9 @@ void run_folder(const fs::path& folder, const std::string& ext, std::optional<do
     const double cpu0 = cpu_seconds();
     {
         DatabaseWriter writer(db_path, DatabaseWriter::Mode::Create);
-        ImportOptions options;
+        workflow::ImportOptions options;
         options.frame_rate = fps;
-        import_files(writer, collect_clip_files({folder}), options);
+        workflow::import_files(writer, workflow::collect_clip_files({folder}), options);
         writer.commit();
     }
     const double wall = seconds_since(start);
@@ -91,22 +91,22 @@ void run_folder(const fs::path& folder, const std::string& ext, std::optional<do
 
     struct Variant {
         const char* label;
-        PackOptions options;
+        packing::LosslessOptions options;
     };
     std::vector<Variant> variants;
     for (const int level : {3, 9, 15, 19, 22}) {
-        PackOptions o;
+        packing::LosslessOptions o;
         o.zstd_level = level;
         variants.push_back({level == 3 ? "best-order_zstd3" : level == 9 ? "best-order_zstd9" : level == 15 ? "best-order_zstd15"
                                                              : level == 19 ? "best-order_zstd19" : "best-order_zstd22", o});
     }
     for (const int order : {1, 2}) {
-        PackOptions o;
+        packing::LosslessOptions o;
         o.predictor = order;
         variants.push_back({order == 1 ? "order1_zstd19" : "order2_zstd19", o});
     }
     {
-        PackOptions o;
+        packing::LosslessOptions o;
         o.detect_decimals = false;
         variants.push_back({"float64-bits-xor_zstd19", o});
     }
@@ -115,10 +115,10 @@ void run_folder(const fs::path& folder, const std::string& ext, std::optional<do
         std::array<std::uint64_t, 4> sections{};
         const double c0 = cpu_seconds();
         for (const Clip& clip : clips) {
-            const PackedChannels p = pack_channels(clip.channels, reader_scales(*clip.skeleton), v.options);
+            const packing::PackedChannels p = packing::pack_channels(clip.channels, packing::reader_scales(*clip.skeleton), v.options);
             bytes += p.bytes.size();
             for (std::size_t i = 0; i < sections.size(); ++i) sections[i] += p.section_bytes[i];
-            for (const std::int64_t d : p.decimals) raw_channels += d == kRawChannel;
+            for (const std::int64_t d : p.decimals) raw_channels += d == packing::kRawChannel;
             channels += p.channels();
         }
         std::printf("%s %s %llu bytes %.2f s_cpu_encode_and_verify %llu/%llu raw_channels sections_before_zstd %llu %llu "
@@ -129,10 +129,10 @@ void run_folder(const fs::path& folder, const std::string& ext, std::optional<do
                     static_cast<unsigned long long>(sections[2]), static_cast<unsigned long long>(sections[3]));
     }
     // Decoding the default form of every clip (what Database::load_clip adds to the HDF5 read).
-    std::vector<PackedChannels> packed;
-    for (const Clip& clip : clips) packed.push_back(pack_channels(clip.channels, reader_scales(*clip.skeleton)));
+    std::vector<packing::PackedChannels> packed;
+    for (const Clip& clip : clips) packed.push_back(packing::pack_channels(clip.channels, packing::reader_scales(*clip.skeleton)));
     const double decode = best_of(3, [&] {
-        for (const PackedChannels& p : packed) g_sink = g_sink + unpack_channels(p)(0, 0);
+        for (const packing::PackedChannels& p : packed) g_sink = g_sink + packing::unpack_channels(p)(0, 0);
     });
     std::printf("%s decode_all_clips %.3f s (%.1f M values/s)\n", name.c_str(), decode,
                 1e-6 * static_cast<double>(float32 / 4) / decode);

@@ -8,7 +8,7 @@
 # `namespace mocapdb {` only for forward declarations (`class Database;`).
 # Run: cmake -DLIB_DIR=<repo>/lib -P cmake/module_graph.cmake
 set(MOCAPDB_MODULE_ORDER
-    core motion io kriging tensor gp procedural align dataset codec compression packing synthesis store
+    core motion io kriging tensor gp procedural dataset compression packing synthesis store
     workflow eval)
 set(MOCAPDB_VOCABULARY_MODULES core motion io dataset store)
 

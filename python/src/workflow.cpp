@@ -10,8 +10,8 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "mocapdb/store/collection_report.hpp"
-#include "mocapdb/store/pack.hpp"
+#include "mocapdb/eval/collection_report.hpp"
+#include "mocapdb/workflow/pack_collection.hpp"
 #include "mocapdb/workflow/clip_import.hpp"
 #include "mocapdb/workflow/set_alignment.hpp"
 #include "mocapdb/workflow/set_compression.hpp"
@@ -34,7 +34,7 @@ const char* segmentation_name(Segmentation s) {
 py::dict import_files(const std::filesystem::path& db, const std::vector<std::filesystem::path>& inputs,
                       std::optional<std::filesystem::path> asf, std::optional<double> frame_rate, bool strict,
                       bool keep_going, bool force) {
-    ImportOptions options;
+    workflow::ImportOptions options;
     if (asf) options.asf = *asf;
     options.frame_rate = frame_rate;
     options.strict = strict;
@@ -107,16 +107,16 @@ py::dict pack(const std::filesystem::path& db, std::optional<double> max_error_c
               int threads, bool replace, bool drop_lossless) {
     if (max_error_cm && max_bytes) throw InvalidArgument("pack: give max_error_cm or max_bytes, not both");
     if (max_bytes && *max_bytes == 0) throw InvalidArgument("pack: max_bytes must be >= 1");
-    PackDatabaseOptions options;
+    workflow::PackDatabaseOptions options;
     options.max_error_cm = max_error_cm.value_or(1.0);
     options.max_bytes = max_bytes.value_or(0);
     options.threads = threads;
     options.replace = replace;
     options.drop_lossless = drop_lossless;
-    PackDatabaseOutcome o;
+    workflow::PackDatabaseOutcome o;
     {
         py::gil_scoped_release release;
-        o = pack_database(db, options);
+        o = workflow::pack_database(db, options);
     }
     const PackedTierRecord& t = o.tier;
     py::dict d;
@@ -144,7 +144,7 @@ py::dict pack(const std::filesystem::path& db, std::optional<double> max_error_c
         budget["max_bytes"] = o.budget->max_bytes;
         budget["max_error_cm"] = t.max_error_cm;
         py::list tried;
-        for (const PackDatabaseOutcome::Budget::Try& e : o.budget->tried)
+        for (const workflow::PackDatabaseOutcome::Budget::Try& e : o.budget->tried)
             tried.append(py::dict(py::arg("max_error_cm") = e.max_error_cm,
                                   py::arg("bytes") = e.bytes > 0 || e.fits ? py::object(py::int_(e.bytes)) : py::none(),
                                   py::arg("fits") = e.fits));
@@ -230,7 +230,7 @@ py::dict compress(const std::filesystem::path& db, const std::string& set, std::
     return d;
 }
 
-py::dict packed_figures(const PackedFigures& f) {
+py::dict packed_figures(const eval::PackedFigures& f) {
     py::dict d;
     d["clips"] = f.clips;
     d["frames"] = f.frames;
@@ -246,16 +246,16 @@ py::dict packed_figures(const PackedFigures& f) {
 
 py::dict collection_report_dict(const std::filesystem::path& path, const std::vector<double>& max_error_cm, int threads,
                                 const std::vector<std::filesystem::path>& source_dirs) {
-    CollectionReportOptions options;
+    eval::CollectionReportOptions options;
     options.max_error_cm = max_error_cm;
     options.threads = threads;
     options.random_poses = 0;
     options.source_dirs = source_dirs;
     const Database db(path);
-    CollectionReport r;
+    eval::CollectionReport r;
     {
         py::gil_scoped_release release;
-        r = collection_report(db, options);
+        r = eval::collection_report(db, options);
     }
     py::dict d;
     d["clips"] = r.clips;
@@ -271,7 +271,7 @@ py::dict collection_report_dict(const std::filesystem::path& path, const std::ve
     if (r.lossless.gzip_available) lossless["gzip_bytes"] = r.lossless.gzip_bytes;
     d["lossless"] = lossless;
     py::list targets;
-    for (const TargetFigures& t : r.targets) {
+    for (const eval::TargetFigures& t : r.targets) {
         py::dict target = packed_figures(t.total);
         target["max_error_cm"] = t.max_error_cm;
         target["resident_bytes"] = t.resident_bytes;

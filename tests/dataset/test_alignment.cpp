@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
-#include "mocapdb/align/dtw.hpp"
+#include "mocapdb/dataset/dtw.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/alignment.hpp"
 #include "mocapdb/dataset/segmentation.hpp"

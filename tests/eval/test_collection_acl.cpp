@@ -18,17 +18,17 @@ TEST_CASE("collection beside ACL: comparison per E, or why there is none", "[eva
     MOCAPDB_REQUIRE_SHARED(acl_dir / "cmu-walkrun-pfnn.csv");
     test::TempDir dir("collection-acl");
     const auto db_path = dir / "db.h5";
-    ImportOptions io;
+    workflow::ImportOptions io;
     io.frame_rate = 60.0;
     workflow::import_clips(db_path, {bvh / "02_01_60fps.bvh", bvh / "02_03_60fps.bvh", bvh / "16_39_60fps.bvh"}, io, false);
-    CollectionReportOptions options;
+    eval::CollectionReportOptions options;
     options.max_error_cm = {1.0};
     options.random_poses = 10;
     options.source_dirs = {bvh};
-    CollectionReport report;
+    eval::CollectionReport report;
     {
         const Database db(db_path);
-        report = collection_report(db, options);
+        report = eval::collection_report(db, options);
     }
     REQUIRE(report.clips == 3);
     CHECK(report.lossless_bytes_per_second() == Approx(static_cast<double>(report.lossless.bytes) / report.motion_seconds));

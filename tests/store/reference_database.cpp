@@ -3,7 +3,7 @@
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/pack_collection.hpp"
 #include "mocapdb/store/sha256.hpp"
 
 namespace mocapdb::test {
@@ -84,10 +84,10 @@ void write_reference_database(const std::filesystem::path& path) {
     w.put_aligned(r.set.name, r.aligned);
     w.put_model(r.set.name, r.model, r.figures);
     w.commit();
-    PackDatabaseOptions o;
+    workflow::PackDatabaseOptions o;
     o.max_error_cm = kReferencePackedErrorCm;
     o.threads = 1;
-    pack_database(path, o);
+    workflow::pack_database(path, o);
 }
 
 }  // namespace mocapdb::test

@@ -11,7 +11,7 @@
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/pack_collection.hpp"
 #include "mocapdb/store/storage_extents.hpp"
 #include "mocapdb/store/validate.hpp"
 #include "fk_error.hpp"
@@ -144,9 +144,9 @@ TEST_CASE("packed tier: a corrupted packed dataset gives a checksum error naming
         w.add_clip(synthetic_clip(200, 6, 4), synthetic_source("other.bvh", "packed other"));
         w.commit();
     }
-    PackDatabaseOptions o;
+    workflow::PackDatabaseOptions o;
     o.max_error_cm = 0.5;
-    const PackDatabaseOutcome outcome = pack_database(file, o);
+    const workflow::PackDatabaseOutcome outcome = workflow::pack_database(file, o);
     REQUIRE(outcome.tier.groups.size() == 1);
     CHECK(outcome.tier.max_cm <= 0.5);
     REQUIRE(validate_database(file).ok());
@@ -183,9 +183,9 @@ TEST_CASE("packed tier: E <= 0 or NaN refused; empty and one-clip databases pack
         w.commit();
     }
     for (const double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
-        PackDatabaseOptions o;
+        workflow::PackDatabaseOptions o;
         o.max_error_cm = bad;
-        CHECK_THROWS_AS(pack_database(empty, o), InvalidArgument);
+        CHECK_THROWS_AS(workflow::pack_database(empty, o), InvalidArgument);
     }
     CHECK_FALSE(Database(empty).packed());  // nothing was written
     if (!cli_path().empty()) {
@@ -205,8 +205,8 @@ TEST_CASE("packed tier: E <= 0 or NaN refused; empty and one-clip databases pack
         CHECK(j["bytes"].number == 0);
         CHECK(j["groups"].items.empty());
     } else {
-        PackDatabaseOptions o;
-        pack_database(empty, o);
+        workflow::PackDatabaseOptions o;
+        workflow::pack_database(empty, o);
     }
     const auto tier = Database(empty).packed();
     REQUIRE(tier);
@@ -223,9 +223,9 @@ TEST_CASE("packed tier: E <= 0 or NaN refused; empty and one-clip databases pack
         w.add_clip(clip, synthetic_source("solo.bvh", "packed solo"));
         w.commit();
     }
-    PackDatabaseOptions o;
+    workflow::PackDatabaseOptions o;
     o.max_error_cm = 0.25;
-    const PackDatabaseOutcome outcome = pack_database(one, o);
+    const workflow::PackDatabaseOutcome outcome = workflow::pack_database(one, o);
     CHECK(outcome.tier.clips == 1);
     CHECK(outcome.tier.frames == 150);
     CHECK(outcome.tier.max_cm <= 0.25);

@@ -11,7 +11,7 @@
 
 #include "mocapdb/packing/packed_group.hpp"
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/pack_collection.hpp"
 #include "shared_data.hpp"
 #include "store_test_support.hpp"
 
@@ -74,10 +74,10 @@ TEST_CASE("a clip that cannot pack on a worker thread: rc 1, one line, the datab
 
     // The library call (what Python's mocapdb.pack runs): PackingFailed, nothing left behind.
     const std::string before = folder_listing(dir.path());
-    PackDatabaseOptions options;
+    workflow::PackDatabaseOptions options;
     options.max_error_cm = 1e-9;
     options.threads = 2;
     options.replace = true;
-    CHECK_THROWS_AS(pack_database(db, options), packing::PackingFailed);
+    CHECK_THROWS_AS(workflow::pack_database(db, options), packing::PackingFailed);
     CHECK(folder_listing(dir.path()) == before);
 }

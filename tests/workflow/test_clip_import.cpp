@@ -25,7 +25,7 @@ TEST_CASE("workflow: import_clips stores new clips, reports duplicates, replaces
 
     std::uint64_t last_done = 0, total = 0;
     const workflow::ImportOutcome first =
-        workflow::import_clips(db, files, ImportOptions{}, false, [&](const Progress& p) {
+        workflow::import_clips(db, files, workflow::ImportOptions{}, false, [&](const Progress& p) {
             last_done = p.done;
             total = p.total;
         });
@@ -53,7 +53,7 @@ TEST_CASE("workflow: import_clips stores new clips, reports duplicates, replaces
     // Appending: the four are already stored (same sha256), one is new.
     std::vector<std::filesystem::path> more = files;
     more.push_back(datasets_dir() / "cmu-asfamc" / "16_15.amc");
-    const workflow::ImportOutcome second = workflow::import_clips(db, more, ImportOptions{}, false);
+    const workflow::ImportOutcome second = workflow::import_clips(db, more, workflow::ImportOptions{}, false);
     CHECK(second.existed);
     CHECK(second.summary.added == 1);
     CHECK(second.summary.skipped == 4);
@@ -64,13 +64,13 @@ TEST_CASE("workflow: import_clips stores new clips, reports duplicates, replaces
 
     // Nothing new: the file is left as it was (no commit).
     const auto bytes = database_disk_bytes(db);
-    const workflow::ImportOutcome again = workflow::import_clips(db, files, ImportOptions{}, false);
+    const workflow::ImportOutcome again = workflow::import_clips(db, files, workflow::ImportOptions{}, false);
     CHECK(again.summary.added == 0);
     CHECK(again.clips_in_db == 5);
     CHECK(database_disk_bytes(db) == bytes);
 
     // force: a new database with only the given clips.
-    const workflow::ImportOutcome fresh = workflow::import_clips(db, {files[0]}, ImportOptions{}, true);
+    const workflow::ImportOutcome fresh = workflow::import_clips(db, {files[0]}, workflow::ImportOptions{}, true);
     CHECK(fresh.existed);
     CHECK(fresh.summary.added == 1);
     CHECK(fresh.clips_in_db == 1);
@@ -83,7 +83,7 @@ TEST_CASE("workflow: import_clips puts the readers' warnings and the failed file
     MOCAPDB_REQUIRE_SHARED(pfnn);
     TempDir dir("workflow_import_warn");
     const auto db = dir / "pfnn.h5";
-    ImportOptions options;
+    workflow::ImportOptions options;
     options.frame_rate = 60.0;
     const workflow::ImportOutcome o = workflow::import_clips(db, {pfnn / "16_13_60fps.bvh"}, options, false);
     CHECK(o.summary.added == 1);
@@ -116,14 +116,14 @@ TEST_CASE("workflow: import_clips refuses no clip files and a file that is not a
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
     TempDir dir("workflow_import_refuse");
     std::filesystem::create_directories(dir / "empty");
-    CHECK_THROWS_AS(workflow::import_clips(dir / "x.h5", {dir / "empty"}, ImportOptions{}, false), InvalidArgument);
-    CHECK_THROWS_WITH(workflow::import_clips(dir / "x.h5", {dir / "empty"}, ImportOptions{}, false),
+    CHECK_THROWS_AS(workflow::import_clips(dir / "x.h5", {dir / "empty"}, workflow::ImportOptions{}, false), InvalidArgument);
+    CHECK_THROWS_WITH(workflow::import_clips(dir / "x.h5", {dir / "empty"}, workflow::ImportOptions{}, false),
                       Contains("no .bvh or .amc files"));
     const auto clip = walk_files().front();
     const auto text = dir / "notes.h5";
     std::ofstream(text) << "not a database\n";
-    CHECK_THROWS_WITH(workflow::import_clips(text, {clip}, ImportOptions{}, false),
+    CHECK_THROWS_WITH(workflow::import_clips(text, {clip}, workflow::ImportOptions{}, false),
                       Contains("notes.h5") && Contains("--force replaces the file"));
-    const workflow::ImportOutcome forced = workflow::import_clips(text, {clip}, ImportOptions{}, true);
+    const workflow::ImportOutcome forced = workflow::import_clips(text, {clip}, workflow::ImportOptions{}, true);
     CHECK(forced.clips_in_db == 1);
 }

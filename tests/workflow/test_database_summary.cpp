@@ -2,7 +2,7 @@
 // skeletons, sets, and each clip's packed-tier entry once the database is packed.
 #include <catch2/catch.hpp>
 
-#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/pack_collection.hpp"
 #include "mocapdb/workflow/database_summary.hpp"
 #include "walk_database.hpp"
 
@@ -36,9 +36,9 @@ TEST_CASE("workflow: the summary of a database, before and after packing", "[wor
     CHECK(s.file_bytes > stored / 2);
     CHECK(s.format_version >= 1);
 
-    PackDatabaseOptions po;
+    workflow::PackDatabaseOptions po;
     po.max_error_cm = 1.0;
-    const PackDatabaseOutcome po_out = pack_database(w.path, po);
+    const workflow::PackDatabaseOutcome po_out = workflow::pack_database(w.path, po);
     CHECK(po_out.ratio_float32() == Approx(static_cast<double>(po_out.float32_bytes) / static_cast<double>(po_out.tier.bytes)));
     CHECK(po_out.bytes_per_second() == Approx(static_cast<double>(po_out.tier.bytes) / po_out.motion_seconds));
     REQUIRE(!po_out.tier.groups.empty());

@@ -6,7 +6,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/store/import.hpp"
+#include "mocapdb/workflow/import_files.hpp"
 #include "mocapdb/workflow/set_creation.hpp"
 #include "shared_data.hpp"
 #include "test_support.hpp"
@@ -25,7 +25,7 @@ TEST_CASE("workflow: create_set builds and stores a set of subject 16's walks", 
         std::vector<std::filesystem::path> files;
         for (int t = 11; t <= 20; ++t) files.push_back(amc / ("16_" + std::to_string(t) + ".amc"));
         files.push_back(amc / "16_33.amc");  // a walk that stops: no gait cycle
-        import_files(w, files, ImportOptions{});
+        workflow::import_files(w, files, workflow::ImportOptions{});
         w.commit();
     }
 

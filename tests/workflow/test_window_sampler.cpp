@@ -11,9 +11,9 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/store/import.hpp"
 #include "mocapdb/store/not_found_error.hpp"
-#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/import_files.hpp"
+#include "mocapdb/workflow/pack_collection.hpp"
 #include "mocapdb/workflow/window_sampler.hpp"
 #include "shared_data.hpp"
 #include "test_support.hpp"
@@ -40,7 +40,7 @@ TEST_CASE("workflow: windows from subject 16's walks, lossless and packed", "[wo
     const auto db_path = dir / "walks.h5";
     {
         DatabaseWriter w(db_path, DatabaseWriter::Mode::OpenOrCreate);
-        import_files(w, {amc / "16_11.amc", amc / "16_12.amc", amc / "16_13.amc"}, ImportOptions{});
+        workflow::import_files(w, {amc / "16_11.amc", amc / "16_12.amc", amc / "16_13.amc"}, workflow::ImportOptions{});
         w.commit();
     }
     const std::size_t L = 40, B = 6;
@@ -97,9 +97,9 @@ TEST_CASE("workflow: windows from subject 16's walks, lossless and packed", "[wo
     }
 
     SECTION("packed: every joint within the tier's bound of the lossless window") {
-        PackDatabaseOptions pack;
+        workflow::PackDatabaseOptions pack;
         pack.max_error_cm = 0.5;
-        pack_database(db_path, pack);
+        workflow::pack_database(db_path, pack);
         const Database db(db_path);
         workflow::WindowSamplerOptions lossless = o, packed = o;
         lossless.values = packed.values = workflow::WindowValues::JointPositions;
@@ -162,7 +162,7 @@ TEST_CASE("workflow: windows of a joint that turns past half a turn start on the
     const auto db_path = dir / "turn.h5";
     {
         DatabaseWriter w(db_path, DatabaseWriter::Mode::OpenOrCreate);
-        import_files(w, {bvh}, ImportOptions{});
+        workflow::import_files(w, {bvh}, workflow::ImportOptions{});
         w.commit();
     }
     const Database db(db_path);

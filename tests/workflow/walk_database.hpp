@@ -38,7 +38,7 @@ inline WalkDatabase make_walk_database(const std::string& tag, WalkStage upto) {
     WalkDatabase w;
     w.dir = std::make_unique<TempDir>(tag);
     w.path = w.dir->path() / "walks.h5";
-    w.imported = workflow::import_clips(w.path, walk_files(), ImportOptions{}, false);
+    w.imported = workflow::import_clips(w.path, walk_files(), workflow::ImportOptions{}, false);
     if (upto == WalkStage::Imported) return w;
     workflow::SetRequest set;
     set.name = "walks";

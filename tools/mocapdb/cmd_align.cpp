@@ -33,7 +33,7 @@ void setup_align(CLI::App& app) {
         "Example:\n"
         "  mocapdb align db.h5 --set walks --frames 100 --method dtw\n"
         "dtw warps every sample onto the reference (default: the sample of median length) with the pose\n"
-        "distance of lib/include/mocapdb/align/pose_distance.hpp; linear resamples each sample uniformly.\n"
+        "distance of lib/include/mocapdb/dataset/pose_distance.hpp; linear resamples each sample uniformly.\n"
         "Replaces the set's previous alignment.");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     cmd->add_option("--set", a->set, "motion set")->required();

@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/text_file.hpp"
@@ -45,8 +46,6 @@ struct DemoArgs {
     bool quick = false;
     bool force = false;
 };
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 void progress(const std::string& line) {
     std::fflush(stdout);
@@ -166,7 +165,7 @@ void run_demo(const DemoArgs& a) {
     set_request.name = set_name;
 
     // 2. Import.
-    ImportOptions import_options;
+    workflow::ImportOptions import_options;
     if (a.fps > 0.0) import_options.frame_rate = a.fps;
     const ImportOutcome imported = import_clips(db, inputs, import_options, true, std::cerr);
     progress(describe_import(db, imported));

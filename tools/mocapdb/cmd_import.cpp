@@ -22,10 +22,10 @@ struct ImportArgs {
 
 void run_import(const ImportArgs& args) {
     std::vector<std::filesystem::path> inputs(args.inputs.begin(), args.inputs.end());
-    Manifest manifest;
-    ImportOptions options;
+    workflow::Manifest manifest;
+    workflow::ImportOptions options;
     if (!args.manifest.empty()) {
-        manifest = Manifest::read(args.manifest);
+        manifest = workflow::Manifest::read(args.manifest);
         options.manifest = &manifest;
     }
     options.asf = args.asf;

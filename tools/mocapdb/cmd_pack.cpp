@@ -7,7 +7,7 @@
 #include "byte_parts_output.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
-#include "mocapdb/store/pack.hpp"
+#include "mocapdb/workflow/pack_collection.hpp"
 #include "progress_bar.hpp"
 
 namespace mocapdb::cli {
@@ -36,7 +36,7 @@ void write_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, do
     j.key("rmse_cm").value(rmse_cm);
 }
 
-void print_json(const std::string& db, const PackDatabaseOutcome& o) {
+void print_json(const std::string& db, const workflow::PackDatabaseOutcome& o) {
     const PackedTierRecord& t = o.tier;
     JsonWriter j;
     j.begin_object();
@@ -56,7 +56,7 @@ void print_json(const std::string& db, const PackDatabaseOutcome& o) {
         j.key("max_bytes").value(static_cast<std::size_t>(o.budget->max_bytes));
         j.key("max_error_cm").value(t.max_error_cm);
         j.key("tried").begin_array();
-        for (const PackDatabaseOutcome::Budget::Try& e : o.budget->tried) {
+        for (const workflow::PackDatabaseOutcome::Budget::Try& e : o.budget->tried) {
             j.begin_object();
             j.key("max_error_cm").value(e.max_error_cm);
             j.key("bytes");
@@ -89,7 +89,7 @@ void print_json(const std::string& db, const PackDatabaseOutcome& o) {
     std::fputs(j.str().c_str(), stdout);
 }
 
-void print_text(const std::string& db, const PackDatabaseOutcome& o) {
+void print_text(const std::string& db, const workflow::PackDatabaseOutcome& o) {
     const PackedTierRecord& t = o.tier;
     std::printf("packed %zu clips (%zu frames, %.1f s of motion) of %s at max error %g cm%s: %zu bytes, %.1f:1 against "
                 "float32 channels; max %.4f cm, p99 %.4f cm, RMSE %.4f cm; %.2f s; file now %.2f MB\n",
@@ -118,7 +118,7 @@ void print_text(const std::string& db, const PackDatabaseOutcome& o) {
 
 void run_pack(const PackArgs& a) {
     if (!a.has_bound && a.drop_lossless) {  // no --max-error-cm: drop against the stored tier
-        const std::size_t dropped = drop_lossless_tier(a.db);
+        const std::size_t dropped = workflow::drop_lossless_tier(a.db);
         if (a.json) {
             JsonWriter j;
             j.begin_object();
@@ -132,16 +132,16 @@ void run_pack(const PackArgs& a) {
         }
         return;
     }
-    PackDatabaseOptions options;
+    workflow::PackDatabaseOptions options;
     options.drop_lossless = a.drop_lossless;
     options.max_error_cm = a.max_error_cm;
     options.max_bytes = a.max_bytes;
     options.threads = a.threads;
     options.replace = a.force;
-    PackDatabaseOutcome o;
+    workflow::PackDatabaseOutcome o;
     {
         ProgressBar bar("pack");
-        o = pack_database(a.db, options, bar.callback());
+        o = workflow::pack_database(a.db, options, bar.callback());
     }
     if (a.json) {
         print_json(a.db, o);

@@ -11,7 +11,7 @@
 #include "json_writer.hpp"
 #include "mocapdb/eval/collection_acl.hpp"
 #include "mocapdb/io/text_file.hpp"
-#include "mocapdb/store/collection_report.hpp"
+#include "mocapdb/eval/collection_report.hpp"
 #include "output_files.hpp"
 #include "progress_bar.hpp"
 #include "svg_plot.hpp"
@@ -51,7 +51,7 @@ void json_optional(JsonWriter& j, const char* key, const std::optional<double>& 
     else j.null();
 }
 
-void json_figures(JsonWriter& j, const PackedFigures& f) {
+void json_figures(JsonWriter& j, const eval::PackedFigures& f) {
     j.key("clips").value(f.clips);
     j.key("frames").value(f.frames);
     j.key("bytes").value(static_cast<std::size_t>(f.bytes));
@@ -70,7 +70,7 @@ void json_figures(JsonWriter& j, const PackedFigures& f) {
     write_parts_json(j, f.parts);
 }
 
-std::string render_json(const CollectionReportArgs& a, const CollectionReport& r, const Reference& ref) {
+std::string render_json(const CollectionReportArgs& a, const eval::CollectionReport& r, const Reference& ref) {
     JsonWriter j;
     j.begin_object();
     j.key("file").value(a.db);
@@ -83,7 +83,7 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
     j.key("random_poses").value(r.random_poses);
     j.key("targets").begin_array();
     for (std::size_t t = 0; t < r.targets.size(); ++t) {
-        const TargetFigures& tf = r.targets[t];
+        const eval::TargetFigures& tf = r.targets[t];
         j.begin_object();
         j.key("max_error_cm").value(tf.max_error_cm);
         json_figures(j, tf.total);
@@ -107,7 +107,7 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
             j.null();
         }
         j.key("group_figures").begin_array();
-        for (const GroupFigures& g : tf.groups) {
+        for (const eval::GroupFigures& g : tf.groups) {
             j.begin_object();
             j.key("skeleton").value(g.skeleton);
             j.key("first_clip").value(g.first_clip);
@@ -119,7 +119,7 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
         j.end_object();
     }
     j.end_array();
-    const LosslessFigures& l = r.lossless;
+    const eval::LosslessFigures& l = r.lossless;
     j.key("lossless").begin_object();
     j.key("bytes").value(static_cast<std::size_t>(l.bytes));
     j.key("channel_bytes").value(static_cast<std::size_t>(l.channel_bytes));
@@ -170,7 +170,7 @@ std::string render_json(const CollectionReportArgs& a, const CollectionReport& r
     return j.str();
 }
 
-std::string render_csv(const CollectionReport& r, const Reference& ref) {
+std::string render_csv(const eval::CollectionReport& r, const Reference& ref) {
     std::ostringstream s;
     s.precision(9);
     s << "tier,max_error_cm,bytes,float32_bytes,ratio_float32,bytes_per_second,bits_per_joint_frame,max_cm,p99_cm,"
@@ -179,8 +179,8 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
          "acl_at_rmse_lower_bound\n";
     auto cell = [](const std::optional<double>& v) { return v ? general(*v, 9) : std::string(); };
     for (std::size_t t = 0; t < r.targets.size(); ++t) {
-        const TargetFigures& tf = r.targets[t];
-        const PackedFigures& f = tf.total;
+        const eval::TargetFigures& tf = r.targets[t];
+        const eval::PackedFigures& f = tf.total;
         const eval::AclComparison c = ref.given && ref.unusable.empty() ? ref.per_target[t] : eval::AclComparison{};
         s << "packed," << tf.max_error_cm << ',' << f.bytes << ',' << f.float32_bytes << ',' << f.ratio_float32() << ','
           << f.bytes_per_second() << ',' << f.bits_per_joint_frame() << ',' << f.max_cm << ',' << f.p99_cm << ','
@@ -189,7 +189,7 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
           << cell(c.smaller_at_rmse) << ",,," << tf.indexed_pose_microseconds << ',' << tf.index_bytes << ','
           << (c.max_lower_bound ? 1 : 0) << ',' << (c.rmse_lower_bound ? 1 : 0) << '\n';
     }
-    const LosslessFigures& l = r.lossless;
+    const eval::LosslessFigures& l = r.lossless;
     const double bps = r.lossless_bytes_per_second();
     s << "lossless,0," << l.bytes << ',' << l.float32_bytes << ',' << l.ratio_float32() << ',' << bps << ",,0,0,0,,,,,,,,"
       << (l.gzip_available ? std::to_string(l.gzip_bytes) : "") << ','
@@ -197,13 +197,13 @@ std::string render_csv(const CollectionReport& r, const Reference& ref) {
     return s.str();
 }
 
-std::string render_svg(const CollectionReportArgs& a, const CollectionReport& r, const Reference& ref) {
+std::string render_svg(const CollectionReportArgs& a, const eval::CollectionReport& r, const Reference& ref) {
     PlotSpec spec;
     spec.title = "Whole collection: bytes against max joint-position error";
     spec.x_label = "measured max joint-position error (cm, forward kinematics, every joint and frame), log";
     spec.y_label = "bytes (everything the decoder needs), log";
     PlotSeries ours{"packed tier (ours)", {}, {}};
-    for (const TargetFigures& t : r.targets) {
+    for (const eval::TargetFigures& t : r.targets) {
         ours.x.push_back(t.total.max_cm);
         ours.y.push_back(static_cast<double>(t.total.bytes));
     }
@@ -239,7 +239,7 @@ std::string render_svg(const CollectionReportArgs& a, const CollectionReport& r,
     return render_line_plot(spec);
 }
 
-std::string render_text(const CollectionReportArgs& a, const CollectionReport& r, const Reference& ref) {
+std::string render_text(const CollectionReportArgs& a, const eval::CollectionReport& r, const Reference& ref) {
     std::string out;
     char line[512];
     std::snprintf(line, sizeof line,
@@ -270,8 +270,8 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
                   "ACL B @max", "x smaller", "ACL B @rmse", "x smaller");
     out += line;
     for (std::size_t t = 0; t < r.targets.size(); ++t) {
-        const TargetFigures& tf = r.targets[t];
-        const PackedFigures& f = tf.total;
+        const eval::TargetFigures& tf = r.targets[t];
+        const eval::PackedFigures& f = tf.total;
         const bool usable = ref.given && ref.unusable.empty();
         const eval::AclComparison c = usable ? ref.per_target[t] : eval::AclComparison{};
         std::snprintf(line, sizeof line, "%6s %11llu %7.2f:1 %8.0f %8.3f %9.5f %9.5f %9.5f %7.2f %8.1f %7.2f %7.1f %12s %9s %12s %9s\n",
@@ -284,7 +284,7 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
                       opt_ratio(c.smaller_at_rmse, usable, c.rmse_lower_bound).c_str());
         out += line;
     }
-    const LosslessFigures& l = r.lossless;
+    const eval::LosslessFigures& l = r.lossless;
     std::snprintf(line, sizeof line,
                   "\nlossless tier: %llu bytes in the file (channel data %llu, HDF5 objects %llu), %.2f:1 against float32 "
                   "channels; ",
@@ -304,8 +304,8 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
         std::snprintf(line, sizeof line, "%6s %-16s %-14s %8s %6s %9s %11s %8s %9s %9s\n", "E cm", "skeleton",
                       "first clip", "rate Hz", "clips", "frames", "bytes", "vs f32", "max cm", "rmse cm");
         out += line;
-        for (const TargetFigures& tf : r.targets)
-            for (const GroupFigures& g : tf.groups) {
+        for (const eval::TargetFigures& tf : r.targets)
+            for (const eval::GroupFigures& g : tf.groups) {
                 std::snprintf(line, sizeof line, "%6s %-16s %-14s %8.6g %6zu %9zu %11llu %6.2f:1 %9.5f %9.5f\n",
                               general(tf.max_error_cm).c_str(), g.skeleton.c_str(), g.first_clip.c_str(), g.frame_rate,
                               g.figures.clips, g.figures.frames, static_cast<unsigned long long>(g.figures.bytes),
@@ -333,17 +333,17 @@ std::string render_text(const CollectionReportArgs& a, const CollectionReport& r
 
 void run_collection_report(const CollectionReportArgs& a) {
     refuse_existing({a.csv, a.svg}, a.force);
-    CollectionReportOptions options;
+    eval::CollectionReportOptions options;
     if (!a.max_error_cm.empty()) options.max_error_cm = a.max_error_cm;
     options.threads = a.threads;
     options.random_poses = a.poses;
     for (const std::string& d : a.source_dirs) options.source_dirs.emplace_back(d);
     Reference ref = eval::read_collection_acl(a.references);
-    CollectionReport r;
+    eval::CollectionReport r;
     {
         const Database db(a.db);
         ProgressBar bar("report");
-        r = collection_report(db, options, bar.callback());
+        r = eval::collection_report(db, options, bar.callback());
     }
     eval::compare_collection_with_acl(ref, r);
     if (!a.csv.empty()) {

@@ -1,6 +1,6 @@
 #pragma once
 // `mocapdb report DB.h5 --collection`: runs the library's whole-collection benchmark
-// (store/collection_report.hpp), places it beside ACL (eval/acl_reference.hpp) and formats it as a
+// (eval/collection_report.hpp), places it beside ACL (eval/acl_reference.hpp) and formats it as a
 // text table, JSON, CSV and an SVG chart. Only parsing and formatting live here.
 #include <string>
 #include <vector>

@@ -28,7 +28,7 @@ using ImportOutcome = workflow::ImportOutcome;
 /// ("mocapdb: warning: ..."), and the files not added (duplicates) to `notes`: each, or their count
 /// past a few.
 ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<std::filesystem::path>& inputs,
-                           const ImportOptions& options, bool force, std::ostream& notes);
+                           const workflow::ImportOptions& options, bool force, std::ostream& notes);
 
 /// "imported N clips (...) ...; DB now holds M clips, S MB" (one line, newline-terminated).
 std::string describe_import(const std::filesystem::path& db, const ImportOutcome& o);

@@ -1,3 +1,4 @@
+#include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/core/float32.hpp"
 #include "mocapdb/compression/rate_distortion.hpp"
 
@@ -6,11 +7,11 @@
 #include <cmath>
 #include <functional>
 
-#include "mocapdb/codec/deflate.hpp"
-#include "mocapdb/codec/pca_baseline.hpp"
-#include "mocapdb/codec/quantize.hpp"
-#include "mocapdb/codec/residual_layer.hpp"
-#include "mocapdb/codec/zfp_codec.hpp"
+#include "mocapdb/compression/codecs/deflate.hpp"
+#include "mocapdb/compression/codecs/pca_baseline.hpp"
+#include "mocapdb/compression/codecs/quantize.hpp"
+#include "mocapdb/compression/codecs/residual_layer.hpp"
+#include "mocapdb/compression/codecs/zfp_codec.hpp"
 #include "mocapdb/compression/byte_accounting.hpp"
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/compression/rank_search.hpp"
@@ -22,11 +23,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
 // The model as a float32 file would hold it.
 tensor::TuckerModel rounded_to_float32(tensor::TuckerModel m) {
-    m.core = codec::round_to_float32(m.core);
+    m.core = compression::codecs::round_to_float32(m.core);
     for (MatX& u : m.U) round_entries_to_float32(u);
     return m;
 }
@@ -95,11 +94,11 @@ RateRow tucker_row(const Context& c, double target) {
 // The "tucker" row's ranks with core and bases quantized and deflated (no residual): what
 // quantization alone saves, and what it costs in error.
 RateRow quantized_row(const Context& c, const RateRow& tucker, int bits) {
-    codec::QuantizeTuckerOptions q;
+    compression::codecs::QuantizeTuckerOptions q;
     q.core_bits = q.basis_bits = bits;
     const auto start = Clock::now();
     SetModel m = hosvd_model(c.prepared, {tucker.ranks[0], tucker.ranks[1], tucker.ranks[2]});
-    const codec::QuantizedTucker quantized = codec::quantize_tucker(m.tucker, q);
+    const compression::codecs::QuantizedTucker quantized = compression::codecs::quantize_tucker(m.tucker, q);
     const double precompute = seconds_since(start);
     m.tucker = quantized.model;
     RateRow r = c.row("tucker-q" + std::to_string(bits), tucker.target_cm, quantized.best_bytes() + c.mean_weight_bytes);
@@ -156,7 +155,7 @@ RateRow best_with_residual(const Context& c, const std::string& method, double t
         for (int i = 0; i < 8; ++i) {
             const double s = i == 0 ? 1.0 : std::exp(0.5 * (lo + hi));
             const auto encode_start = Clock::now();
-            const codec::ResidualEncoding enc = codec::encode_residual(residual, s * target);
+            const compression::codecs::ResidualEncoding enc = compression::codecs::encode_residual(residual, s * target);
             const double encode_seconds = seconds_since(encode_start);
             const compression::JointErrorStats stats = c.meter.measure(c.poses_of(add(cand.x_hat, enc.decoded)));
             const bool ok = stats.max_cm <= target;
@@ -173,7 +172,7 @@ RateRow best_with_residual(const Context& c, const std::string& method, double t
             best.access = "stream";
             best.us_per_pose = stream_us_per_pose(
                 [&] {
-                    if (add(cand.decode(), codec::decode_residual(enc.stream.bytes)).size() == 0)
+                    if (add(cand.decode(), compression::codecs::decode_residual(enc.stream.bytes)).size() == 0)
                         throw Error("empty decode");
                 },
                 c.pose_count);
@@ -188,7 +187,7 @@ RateRow best_with_residual(const Context& c, const std::string& method, double t
 }
 
 RateRow tucker_residual_row(const Context& c, double target, int bits) {
-    codec::QuantizeTuckerOptions q;
+    compression::codecs::QuantizeTuckerOptions q;
     q.core_bits = q.basis_bits = bits;
     // Rungs of the rank ladder: the fewest-parameter ranks for each relative bound.
     std::vector<tensor::Ranks> rungs;
@@ -199,21 +198,21 @@ RateRow tucker_residual_row(const Context& c, double target, int bits) {
     std::vector<LossyCandidate> candidates;
     for (const tensor::Ranks& ranks : rungs) {
         const auto start = Clock::now();
-        const codec::QuantizedTucker quantized = codec::quantize_tucker(hosvd_model(c.prepared, ranks).tucker, q);
+        const compression::codecs::QuantizedTucker quantized = compression::codecs::quantize_tucker(hosvd_model(c.prepared, ranks).tucker, q);
         LossyCandidate cand;
         cand.ranks = {ranks[0], ranks[1], ranks[2]};
         cand.x_hat = quantized.model.reconstruct();
         cand.fit_seconds = seconds_since(start);
         cand.payload = quantized.best_bytes();
-        const codec::Bytes stream = quantized.deflated.bytes;
-        cand.decode = [stream] { return codec::decode_quantized_tucker(stream).reconstruct(); };
+        const compression::codecs::Bytes stream = quantized.deflated.bytes;
+        cand.decode = [stream] { return compression::codecs::decode_quantized_tucker(stream).reconstruct(); };
         candidates.push_back(std::move(cand));
     }
     RateRow r = best_with_residual(c, "tucker+residual", target, candidates);
     return r;
 }
 
-RateRow pca_residual_row(const Context& c, const codec::SamplePca& pca, double target) {
+RateRow pca_residual_row(const Context& c, const compression::codecs::SamplePca& pca, double target) {
     std::vector<LossyCandidate> candidates;
     for (Eigen::Index k = 0; k <= pca.max_components(); k = k == 0 ? 1 : 2 * k) {
         LossyCandidate cand;
@@ -226,7 +225,7 @@ RateRow pca_residual_row(const Context& c, const codec::SamplePca& pca, double t
     return best_with_residual(c, "pca+residual", target, candidates);
 }
 
-RateRow pca_row(const Context& c, const codec::SamplePca& pca, double target) {
+RateRow pca_row(const Context& c, const compression::codecs::SamplePca& pca, double target) {
     // Linear scan: with float32 storage the error need not fall monotonically with k.
     RateRow best;
     for (Eigen::Index k = 0; k <= pca.max_components(); ++k) {
@@ -251,9 +250,9 @@ RateRow zfp_row(const Context& c, double target) {
     for (int i = 0; i < 14; ++i) {
         const double tol = std::exp(0.5 * (lo + hi));
         const auto start = Clock::now();
-        const codec::EncodedStream s = codec::zfp_encode(c.prepared.x, tol);
+        const compression::codecs::EncodedStream s = compression::codecs::zfp_encode(c.prepared.x, tol);
         const double seconds = seconds_since(start);
-        const compression::JointErrorStats stats = c.meter.measure(c.poses_of(codec::zfp_decode(s.bytes)));
+        const compression::JointErrorStats stats = c.meter.measure(c.poses_of(compression::codecs::zfp_decode(s.bytes)));
         if (stats.max_cm <= target) {
             lo = 0.5 * (lo + hi);
             if (!found || s.payload_bytes() + c.mean_weight_bytes + c.side_bytes < best.bytes) {
@@ -262,7 +261,7 @@ RateRow zfp_row(const Context& c, double target) {
                 best.stats = stats;
                 best.precompute_s = seconds;
                 best.access = "stream";
-                best.us_per_pose = stream_us_per_pose([&] { (void)codec::zfp_decode(s.bytes); }, c.pose_count);
+                best.us_per_pose = stream_us_per_pose([&] { (void)compression::codecs::zfp_decode(s.bytes); }, c.pose_count);
                 found = true;
             }
         } else {
@@ -330,22 +329,22 @@ RateReport rate_distortion(const Tensor3& poses, std::shared_ptr<const Skeleton>
     };
     {  // the paper's "full" row: the aligned poses as float32
         RateRow r = c.row("raw-float32", 0.0, report.raw_bytes);
-        r.stats = meter.measure(codec::round_to_float32(poses));
+        r.stats = meter.measure(compression::codecs::round_to_float32(poses));
         r.access = "pose";
         emit(r);
     }
     {  // lossless float32 deflate of the poses
         const auto start = Clock::now();
-        const codec::EncodedStream s = codec::encode_float32_deflate(poses);
+        const compression::codecs::EncodedStream s = compression::codecs::encode_float32_deflate(poses);
         RateRow r = c.row("deflate", 0.0, s.payload_bytes());
         r.precompute_s = seconds_since(start);
-        r.stats = meter.measure(codec::decode_float32_deflate(s.bytes));
+        r.stats = meter.measure(compression::codecs::decode_float32_deflate(s.bytes));
         r.access = "stream";
-        r.us_per_pose = stream_us_per_pose([&] { (void)codec::decode_float32_deflate(s.bytes); }, c.pose_count);
+        r.us_per_pose = stream_us_per_pose([&] { (void)compression::codecs::decode_float32_deflate(s.bytes); }, c.pose_count);
         emit(r);
     }
     const auto pca_start = Clock::now();
-    const codec::SamplePca pca(prepared.x);
+    const compression::codecs::SamplePca pca(prepared.x);
     const double pca_seconds = seconds_since(pca_start);
     for (double target : options.max_cm) {
         const RateRow tucker = tucker_row(c, target);

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "mocapdb/align/dtw.hpp"
-#include "mocapdb/align/pose_distance.hpp"
+#include "mocapdb/dataset/dtw.hpp"
+#include "mocapdb/dataset/pose_distance.hpp"
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb {

@@ -1,3 +1,4 @@
+#include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/eval/synthesis_method.hpp"
 
 #include <algorithm>
@@ -19,8 +20,6 @@ namespace mocapdb::eval {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // N by (D*T): row i = sample i, column t*D + k (the tensor's storage order per sample).
 MatX sample_rows(const AlignedSet& a) {

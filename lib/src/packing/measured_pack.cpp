@@ -1,3 +1,4 @@
+#include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/packing/measured_pack.hpp"
 
 #include <chrono>
@@ -9,10 +10,6 @@
 
 namespace mocapdb::packing {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 

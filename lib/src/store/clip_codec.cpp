@@ -6,7 +6,7 @@
 #include <tuple>
 
 #include "layout.hpp"
-#include "mocapdb/store/channel_packing.hpp"
+#include "mocapdb/packing/lossless_channels.hpp"
 #include "mocapdb/store/store_error.hpp"
 
 namespace mocapdb::store {
@@ -51,8 +51,8 @@ void write_clip(h5::File& file, const std::string& id, const Clip& clip, const s
     if (!source.subject.empty()) file.write_string_attribute(g, "subject", source.subject);
     if (!source.description.empty()) file.write_string_attribute(g, "description", source.description);
     if (!source.labels.empty()) file.write_strings_attribute(g, "labels", source.labels);
-    // Exact to the bit (pack_channels verifies its own output), in a few bytes per value.
-    const PackedChannels p = pack_channels(clip.channels, reader_scales(*clip.skeleton));
+    // Exact to the bit (packing::pack_channels verifies its own output), in a few bytes per value.
+    const packing::PackedChannels p = packing::pack_channels(clip.channels, packing::reader_scales(*clip.skeleton));
     const std::string d = g + "/" + kPackedChannels;
     file.write_compressed_bytes(d, p.bytes, "byte", "zstd");
     file.write_string_attribute(d, "codec", kPackedCodec);
@@ -180,7 +180,7 @@ FrameMatrix read_packed_channels(const h5::File& file, const std::string& path, 
     const std::string codec = file.read_string_attribute(path, "codec");
     if (codec != kPackedCodec)
         throw StoreError(file.name(), path, "attribute 'codec': expected \"" + std::string(kPackedCodec) + "\", found \"" + codec + "\"");
-    PackedChannels p;
+    packing::PackedChannels p;
     std::size_t columns = 0;
     std::tie(p.frames, columns) = packed_shape(file, path);
     if (columns != channels)
@@ -193,7 +193,7 @@ FrameMatrix read_packed_channels(const h5::File& file, const std::string& path, 
     p.section_bytes = section_sizes(file, path);
     p.bytes = file.read_array<std::uint8_t>(path, 1).data;  // ChecksumError on a corrupted chunk
     try {
-        return unpack_channels(p);
+        return packing::unpack_channels(p);
     } catch (const StoreError&) {
         throw;
     } catch (const Error& e) {

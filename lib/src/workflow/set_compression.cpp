@@ -1,3 +1,4 @@
+#include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/workflow/set_compression.hpp"
 
 #include <chrono>
@@ -17,8 +18,6 @@ namespace mocapdb::workflow {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string ranks_text(const tensor::Ranks& r) {
     return std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "mocapdb/eval/acl_reference.hpp"
-#include "mocapdb/store/collection_report.hpp"
+#include "mocapdb/eval/collection_report.hpp"
 
 namespace mocapdb::eval {
 

@@ -6,7 +6,7 @@
 // position land above E all the same (a compiler folding away the float32 rounding of the stored
 // skeleton once made them differ by up to 1e-5 cm, core/float32.hpp), the group is packed again with
 // E lowered by twice the excess, up to three attempts (the rule `mocapdb pack` applies,
-// store/pack.cpp), so the figures are those of bytes that meet E.
+// workflow/pack_collection.cpp), so the figures are those of bytes that meet E.
 //
 // Inputs are borrowed for the call. Thread-safety: pack_group's threads (options.threads); the
 // measurement runs on the calling thread. Errors: those of pack_group; Error when the decoded group

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "mocapdb/core/progress.hpp"
-#include "mocapdb/store/import.hpp"
+#include "mocapdb/workflow/import_files.hpp"
 
 namespace mocapdb::workflow {
 
