@@ -19,6 +19,7 @@ packages=(
   liblapacke-dev libopenblas-dev  # LAPACK's divide-and-conquer eigensolver for large Gram matrices (OpenBLAS)
   pybind11-dev python3-dev   # the Python module (python/), built when found
   python3-numpy python3-pytest  # its arrays and its tests, run by ctest
+  python3-torch              # mocapdb.torch, its tests and examples/training_windows.py's model
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
 )
 

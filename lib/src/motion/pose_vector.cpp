@@ -4,6 +4,7 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/motion/local_pose_arrays.hpp"
 #include "mocapdb/motion/pose_vector_positions.hpp"
 #include "mocapdb/motion/rotation.hpp"
 
@@ -11,37 +12,6 @@ namespace mocapdb {
 namespace {
 
 Quat yaw_rotation(double yaw) { return Quat(Eigen::AngleAxisd(yaw, Vec3::UnitY())); }
-
-// Writes the Euler angles of `rotation` for joint j into `row`, unwrapped against `near_row`.
-void write_rotation_channels(const Skeleton& skeleton, std::size_t j, const Quat& local, const double* near_row,
-                             double* row) {
-    const Joint& joint = skeleton.joint(j);
-    const Quat r = joint.axis.conjugate() * local * joint.axis;  // undo C · R · C⁻¹
-    const auto ax = axes_of(joint.rotation_order);
-    int cols[3];
-    Vec3 near, weights;
-    for (int k = 0; k < 3; ++k) {
-        cols[k] = skeleton.channel_column(j, static_cast<ChannelType>(3 + static_cast<int>(ax[k])));
-        near[k] = cols[k] >= 0 ? near_row[cols[k]] : 0.0;
-        // An axis without a channel must come out at 0 (mod 2π), or dropping it would change the rotation.
-        weights[k] = cols[k] >= 0 ? 1.0 : 1e6;
-    }
-    const Vec3 angles = matrix_to_euler_near(r.toRotationMatrix(), joint.rotation_order, near, weights);
-    for (int k = 0; k < 3; ++k)
-        if (cols[k] >= 0) row[cols[k]] = angles[k];
-}
-
-// A frame row with every channel the pose vector does not carry at its rest value: position
-// channels at the offset (non-root translations), joints above the motion root at rest.
-VecX rest_row(const Skeleton& s) {
-    VecX rest = VecX::Zero(static_cast<Eigen::Index>(s.channel_count()));
-    for (std::size_t j = 0; j < s.size(); ++j)
-        for (int a = 0; a < 3; ++a) {
-            const int col = s.channel_column(j, static_cast<ChannelType>(a));
-            if (col >= 0) rest[col] = s.rest_position_value(j, static_cast<Axis>(a));
-        }
-    return rest;
-}
 
 // World transform of the motion root's parent at rest.
 JointTransform above_motion_root(const Skeleton& s, const VecX& rest) {

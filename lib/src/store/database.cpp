@@ -13,6 +13,7 @@
 #include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/store/not_found_error.hpp"
 #include "packed_codec.hpp"
 #include "root.hpp"
 #include "set_codec.hpp"
@@ -86,7 +87,7 @@ std::optional<std::string> Database::find_sha256(const std::string& sha256) cons
 Clip Database::load_clip(const std::string& id) const {
     QuietScope quiet;
     const auto& f = impl_->f();
-    if (!has_clip(id)) throw StoreError(f.name(), store::clip_path(id), "no such clip");
+    if (!has_clip(id)) throw NotFoundError(f.name(), store::clip_path(id), "no such clip");
     const ClipRecord record = store::read_clip_record(f, id);
     Clip clip;
     clip.skeleton = load_skeleton(record.skeleton);
@@ -142,7 +143,7 @@ Clip Database::load_clip_packed(const std::string& id, std::size_t begin, std::s
     const auto tier = packed();
     if (!tier) throw StoreError(f.name(), store::kPacked, "no packed tier (run: mocapdb pack " + f.name() + " --max-error-cm E)");
     const auto where = tier->find(id);
-    if (!where) throw StoreError(f.name(), store::kPacked, "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
+    if (!where) throw NotFoundError(f.name(), store::kPacked, "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
     const PackedGroupRecord& g = tier->groups[where->first];
     const std::string path = store::packed_group_path(g.name) + "/bytes";
     const std::shared_ptr<const packing::GroupDecoder> decoder = packed_group_decoder(g.name);
@@ -181,6 +182,9 @@ std::shared_ptr<const Skeleton> Database::load_skeleton(const std::string& id) c
     const auto it = impl_->skeletons.find(id);
     if (it != impl_->skeletons.end()) return it->second;
     store::check_link_name(id, "skeleton id");
+    const auto ids = skeletons();
+    if (std::find(ids.begin(), ids.end(), id) == ids.end())
+        throw NotFoundError(impl_->f().name(), store::skeleton_path(id), "no such skeleton");
     auto skeleton = std::make_shared<const Skeleton>(store::read_skeleton(impl_->f(), id));
     impl_->skeletons.emplace(id, skeleton);
     return skeleton;
@@ -237,14 +241,14 @@ std::vector<SetRecord> Database::sets() const {
 
 MotionSet Database::load_set(const std::string& name) const {
     QuietScope quiet;
-    if (!has_set(name)) throw StoreError(impl_->f().name(), store::set_path(name), "no such motion set");
+    if (!has_set(name)) throw NotFoundError(impl_->f().name(), store::set_path(name), "no such motion set");
     return store::read_set(impl_->f(), name);
 }
 
 std::optional<AlignedSet> Database::load_aligned(const std::string& set) const {
     QuietScope quiet;
     const auto& f = impl_->f();
-    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    if (!has_set(set)) throw NotFoundError(f.name(), store::set_path(set), "no such motion set");
     if (f.type_of(store::aligned_path(set)) != store::h5::ObjectType::Group) return std::nullopt;
     return store::read_aligned(f, set);
 }
@@ -252,7 +256,7 @@ std::optional<AlignedSet> Database::load_aligned(const std::string& set) const {
 std::optional<AlignedTiming> Database::load_aligned_timing(const std::string& set) const {
     QuietScope quiet;
     const auto& f = impl_->f();
-    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    if (!has_set(set)) throw NotFoundError(f.name(), store::set_path(set), "no such motion set");
     if (f.type_of(store::aligned_path(set)) != store::h5::ObjectType::Group) return std::nullopt;
     return store::read_aligned_timing(f, set);
 }
@@ -260,7 +264,7 @@ std::optional<AlignedTiming> Database::load_aligned_timing(const std::string& se
 std::optional<StoredModel> Database::load_model(const std::string& set) const {
     QuietScope quiet;
     const auto& f = impl_->f();
-    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    if (!has_set(set)) throw NotFoundError(f.name(), store::set_path(set), "no such motion set");
     const store::h5::ObjectType t = f.type_of(store::model_path(set));
     if (t == store::h5::ObjectType::None) return std::nullopt;
     if (t != store::h5::ObjectType::Group)
@@ -271,7 +275,7 @@ std::optional<StoredModel> Database::load_model(const std::string& set) const {
 std::optional<synthesis::KernelFit> Database::load_kernel_fit(const std::string& set) const {
     QuietScope quiet;
     const auto& f = impl_->f();
-    if (!has_set(set)) throw StoreError(f.name(), store::set_path(set), "no such motion set");
+    if (!has_set(set)) throw NotFoundError(f.name(), store::set_path(set), "no such motion set");
     if (f.type_of(store::model_path(set)) != store::h5::ObjectType::Group) return std::nullopt;
     const std::string g = store::kernel_path(set);
     const store::h5::ObjectType t = f.type_of(g);

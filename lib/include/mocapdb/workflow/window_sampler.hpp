@@ -4,9 +4,11 @@
 // for every selected clip (else from the lossless clips).
 //
 // Draw: a window is chosen uniformly among all windows of the selected clips (a clip of F frames
-// offers F - L + 1 start frames; shorter clips offer none), with replacement, by a 64-bit Mersenne
+// offers F - L + 1 start frames; shorter clips offer none, or with `pad` one, from frame 0, whose
+// missing rows repeat the clip's last frame), with replacement, by a 64-bit Mersenne
 // twister seeded with `seed`: the same database, options and seed give the same batches (with this
-// library build's standard library).
+// library build's standard library). set_stream(epoch, worker) restarts it on the stream of
+// (seed, epoch, worker) (stream_seed), so that data-loader workers draw distinct, reproducible streams.
 //
 // Values, per frame, in the window's own canonical frame (its first frame's motion root at x = z = 0,
 // facing +Z; motion/pose_vector.hpp), as a model trained on windows wants them:
@@ -15,14 +17,21 @@
 //                   included), by forward kinematics, then the same rigid motion about +Y.
 // From the packed tier, every joint is within the tier's max_error_cm of the source (its bound).
 //
-// Errors (construction): InvalidArgument when L or B is 0, a pattern matches nothing, no selected clip
+// Errors (construction): NotFoundError when a selected name without wildcards (*?[) is not a stored
+// clip; InvalidArgument when L or B is 0, a pattern matches nothing, no selected clip
 // has L frames, Source::Packed is asked and a selected clip is not in the packed tier, or the selected
 // clips differ in pose layout (joints, parents, rotation joints) or frame rate (naming two clips that
 // differ: select clips of one rig and rate); StoreError / ChecksumError from the database.
+// Decoding: each clip a window needs is decoded once, whole, into a per-clip cache of its values in the
+// world frame (pose vectors with exp-map branches continuous from its first frame, or joint positions)
+// stored as `dtype`, plus the root's heading and floor position per frame; a window is then a copy of
+// L rows with the rigid motion removed, written straight into the caller's float or double array.
+// Windows equal the clip's own canonical window within rounding (1e-9 in float64; float32 rounds).
 // Threads and ownership: not thread-safe (one sampler per thread). It reads `db` (lossless clips), which
-// must outlive it and not be written meanwhile. Memory: the bytes of the packed groups it draws from
-// (each group's decoder, read once), a few decoded windows per group; lossless: up to
-// `cache_clips` clips as float64.
+// must outlive it and not be written meanwhile; only draw() (and next(), window()) read it, fill() never
+// does. Memory: the bytes of the packed groups it draws from (each group's decoder, read once) and up to
+// max(cache_clips, batch) decoded clips: F x V values of dtype + 24 bytes per frame each (all 182 CMU ASF
+// clips, 188 705 frames of 90 pose values: 68 MB + 4.5 MB in float32).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -36,6 +45,8 @@ class Database;
 namespace mocapdb::workflow {
 
 enum class WindowValues { PoseVectors, JointPositions };
+/// The element type of the decoded clip cache (either can be written to float and double arrays).
+enum class WindowDType { Float32, Float64 };
 enum class WindowSource {
     Auto,      ///< the packed tier when it holds every selected clip, else the lossless clips
     Packed,    ///< the packed tier (InvalidArgument when a selected clip is not in it)
@@ -49,7 +60,9 @@ struct WindowSamplerOptions {
     std::vector<std::string> clips;     ///< clip ids or fnmatch patterns; empty: every clip
     WindowValues values = WindowValues::PoseVectors;
     WindowSource source = WindowSource::Auto;
-    std::size_t cache_clips = 256;      ///< lossless clips kept decoded (least recently used evicted)
+    std::size_t cache_clips = 256;      ///< clips kept decoded (least recently used evicted; at least batch)
+    WindowDType dtype = WindowDType::Float64;  ///< the decoded clips' element type
+    bool pad = false;                   ///< clips shorter than L give one window, padded with their last frame
 };
 
 /// Where a drawn window comes from.
@@ -57,6 +70,10 @@ struct WindowRef {
     std::size_t clip = 0;   ///< index into WindowSampler::clip_ids()
     std::size_t begin = 0;  ///< its first source frame
 };
+
+/// The generator seed of stream (seed, epoch, worker): `seed` itself for (0, 0), else a SplitMix64
+/// mix of the three.
+std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t epoch, std::uint64_t worker);
 
 class WindowSampler {
 public:
@@ -70,20 +87,46 @@ public:
     std::size_t values_per_frame() const;
     /// The selected clips that offer at least one window, in selection order.
     const std::vector<std::string>& clip_ids() const;
+    /// The selected clips shorter than L frames (they give no windows, or with pad one), in selection order.
+    const std::vector<std::string>& short_clip_ids() const;
+    /// Windows each of clip_ids() offers: F - L + 1 (1 for a padded short clip).
+    std::vector<std::uint64_t> window_counts() const;
     /// Windows to draw from: sum over clips of F - L + 1.
     std::uint64_t window_count() const;
     /// The first selected clip's rate (the others are within 0.01 % of it).
     double frame_rate() const;
     /// True when the windows are decoded from the packed tier.
     bool from_packed() const;
+    /// Bytes held by the decoded clips now.
+    std::size_t cache_bytes() const;
     /// Joint names (Skeleton::joints() order) of the rig: JointPositions' j-th triple.
     const std::vector<std::string>& joint_names() const;
 
     /// The next batch: out holds B x L x V values (window, frame, value; C order); refs, when not null,
-    /// B entries.
+    /// B entries. draw() then fill().
     void next(double* out, WindowRef* refs = nullptr);
+    void next(float* out, WindowRef* refs = nullptr);
     /// One given window (L x V values into out); InvalidArgument when it lies outside its clip.
     void window(const WindowRef& ref, double* out);
+    void window(const WindowRef& ref, float* out);
+
+    /// Restarts the draw on the stream of (options().seed, epoch, worker); (0, 0) is the stream a new
+    /// sampler draws.
+    void set_stream(std::uint64_t epoch, std::uint64_t worker);
+    /// The draw's exact position (the generator's state as text) and its restoration: a copy made
+    /// elsewhere from the same options continues with the same batches. InvalidArgument for bad text.
+    std::string stream_state() const;
+    void set_stream_state(const std::string& state);
+
+    /// Draws the next batch's B windows into refs and decodes the clips they need (reads the database).
+    void draw(WindowRef* refs);
+    /// Decodes the clips of `count` <= max(B, cache_clips) given windows (reads the database), for fill();
+    /// InvalidArgument for a window outside its clip.
+    void load(const WindowRef* refs, std::size_t count);
+    /// Writes windows whose clips are decoded (those of the last draw() or load()) into out (count x L x V
+    /// values), from the decoded clips only: no file access, no allocation. InvalidArgument otherwise.
+    void fill(const WindowRef* refs, std::size_t count, double* out) const;
+    void fill(const WindowRef* refs, std::size_t count, float* out) const;
 
 private:
     struct Impl;
