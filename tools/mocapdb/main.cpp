@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/version.hpp"
 
 int main(int argc, char** argv) {
 #if defined(__GLIBC__)
@@ -22,7 +23,7 @@ int main(int argc, char** argv) {
 #endif
     CLI::App app{"mocapdb: store, compress and synthesize motion capture"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "mocapdb 0.1.0");
+    app.set_version_flag("--version", mocapdb::creator_string);
 
     mocapdb::cli::setup_info(app);
     mocapdb::cli::setup_convert(app);
