@@ -84,7 +84,7 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
 
     // The chosen ranks, decomposed with the requested method. HOSVD is the search's own model (the
     // model fit_set_model would compute from the same bases) with its measured errors: no second
-    // pass over the set (#16).
+    // pass over the set.
     const auto fit_start = Clock::now();
     tensor::HooiOptions hooi;
     hooi.max_iterations = a.max_iterations;

@@ -1,28 +1,9 @@
 #pragma once
-// Training data from a database (issue #17): random windows of L consecutive source frames, B per
+// Training data from a database: random windows of L consecutive source frames, B per
 // batch, as pose vectors or joint positions, decoded from the packed tier where the database has one
 // for every selected clip (else from the lossless clips).
 //
-// Draw: a window is chosen uniformly among all windows of the selected clips (a clip of F frames
-// offers F - L + 1 start frames; shorter clips offer none), with replacement, by a 64-bit Mersenne
-// twister seeded with `seed`: the same database, options and seed give the same batches (with this
-// library build's standard library).
-//
-// Values, per frame, in the window's own canonical frame (its first frame's motion root at x = z = 0,
-// facing +Z; motion/pose_vector.hpp), as a model trained on windows wants them:
-//   PoseVectors     D values (motion/pose_vector.hpp's layout);
-//   JointPositions  3 J values: x, y, z in cm of every joint of Skeleton::joints() (end sites
-//                   included), by forward kinematics, then the same rigid motion about +Y.
-// From the packed tier, every joint is within the tier's max_error_cm of the source (its bound).
-//
-// Errors (construction): InvalidArgument when L or B is 0, a pattern matches nothing, no selected clip
-// has L frames, Source::Packed is asked and a selected clip is not in the packed tier, or the selected
-// clips differ in pose layout (joints, parents, rotation joints) or frame rate (naming two clips that
-// differ: select clips of one rig and rate); StoreError / ChecksumError from the database.
-// Threads and ownership: not thread-safe (one sampler per thread). It reads `db` (lossless clips), which
-// must outlive it and not be written meanwhile. Memory: the bytes of the packed groups it draws from
-// (each group's decoder, read once), a few decoded windows per group; lossless: up to
-// `cache_clips` clips as float64.
+// Details: docs/headers/workflow.md (mocapdb/workflow/window_sampler.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
