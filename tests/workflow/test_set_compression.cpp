@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/load_model.hpp"
 #include "walk_database.hpp"
@@ -95,8 +96,8 @@ TEST_CASE("workflow: compress_set with explicit ranks and HOOI, and its errors",
     workflow::create_set(w.path, unaligned);
     r.set = "few";
     r.ranks.reset();
-    CHECK_THROWS_WITH(workflow::compress_set(w.path, r), Contains("set 'few'") && Contains("is not aligned") &&
-                                                             Contains("mocapdb align"));
+    CHECK_THROWS_WITH(workflow::compress_set(w.path, r), Contains("set 'few'") && Contains("is not aligned"));
+    CHECK_THROWS_AS(workflow::compress_set(w.path, r), Remediable);
     CHECK(Database(w.path).load_model("walks")->model.tucker.method == tensor::TuckerMethod::Hooi);
     CHECK_FALSE(Database(w.path).load_model("few").has_value());
 }
