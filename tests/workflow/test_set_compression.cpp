@@ -15,7 +15,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& set_compression_walks() {
     static const WalkDatabase w = make_walk_database("workflow_compress", WalkStage::Aligned);
     return w;
 }
@@ -24,7 +24,7 @@ const WalkDatabase& walks() {
 
 TEST_CASE("workflow: compress_set meets a max joint error and stores the model with its kernel", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_compression_walks();
     workflow::CompressRequest r;
     r.set = "walks";
     r.max_error_cm = 1.0;
@@ -71,7 +71,7 @@ TEST_CASE("workflow: compress_set meets a max joint error and stores the model w
 
 TEST_CASE("workflow: compress_set with explicit ranks and HOOI, and its errors", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_compression_walks();
     workflow::CompressRequest r;
     r.set = "walks";
     r.ranks = tensor::Ranks{10, 6, 4};

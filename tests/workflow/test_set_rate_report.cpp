@@ -17,7 +17,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& set_rate_report_walks() {
     static const WalkDatabase w = make_walk_database("workflow_rate", WalkStage::Aligned);
     return w;
 }
@@ -26,7 +26,7 @@ const WalkDatabase& walks() {
 
 TEST_CASE("workflow: load_aligned_set gives the set, its tensor, skeleton and source size", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_rate_report_walks();
     const Database db(w.path);
     const workflow::AlignedSetData d = workflow::load_aligned_set(db, "walks");
     CHECK(d.set.samples.size() == 12);
@@ -59,7 +59,7 @@ TEST_CASE("workflow: load_aligned_set gives the set, its tensor, skeleton and so
 
 TEST_CASE("workflow: rate_report measures every method on the set at the targets", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_rate_report_walks();
     const workflow::AlignedSetData d = workflow::load_aligned_set(Database(w.path), "walks");
     compression::RateOptions options;
     options.max_cm = {1.0};
