@@ -24,7 +24,11 @@ if [ "$fast" = 1 ]; then
 fi
 
 echo "== sanitizer build (clang, ASan + UBSan, libFuzzer targets)"
+# Line tables only: the sanitizers' reports name file and line; full debug info would add a third to the
+# compile time (benchmarks/RESULTS.md, "Build and CI time").
 CC=clang CXX=clang++ cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
   -DMOCAPDB_SANITIZE=ON -DMOCAPDB_FUZZ=ON -DMOCAPDB_WERROR=ON -DMOCAPDB_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/sanitize -j "$jobs"
 echo "== sanitizer tests and bounded fuzz runs"

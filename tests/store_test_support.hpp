@@ -31,4 +31,7 @@ void flip_bytes(const std::filesystem::path& file, std::uint64_t offset, std::si
 /// The bytes of a file.
 std::string file_bytes(const std::filesystem::path& path);
 
+/// Same shape and the same bits in every value (NaN payloads and signed zeros included).
+bool same_bits(const FrameMatrix& a, const FrameMatrix& b);
+
 }  // namespace mocapdb::test

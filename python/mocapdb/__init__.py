@@ -37,6 +37,7 @@ from ._core import (  # noqa: F401  (the public names)
     StoreError,
     SynthesisModel,
     WindowSampler,
+    __version__,
     align,
     collection_report,
     compress,

@@ -6,6 +6,7 @@
 #include "bindings.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/store/not_found_error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/store_error.hpp"
 
 namespace mocapdb::python {
@@ -26,6 +27,27 @@ PyObject* add_class(py::module_& m, const char* name, const char* doc, py::tuple
     if (cls == nullptr) throw py::error_already_set();
     m.add_object(name, py::handle(cls));  // the module takes its own reference; ours stays for the translator
     return cls;
+}
+
+// The library says what is wrong; Python adds the keyword or call that fixes it.
+std::string with_hint(const Error& e) {
+    std::string text = e.what();
+    const auto* r = dynamic_cast<const Remediable*>(&e);
+    if (r == nullptr) return text;
+    switch (r->remedy()) {
+        case Remedy::Overwrite: return text + "; pass replace=True to replace it";
+        case Remedy::ReplaceFile: return text + "; force=True replaces the file with a new one";
+        case Remedy::NameSkeletonFile: return text + "; pass asf=PATH";
+        case Remedy::PackFirst: return text + "; run mocapdb.pack(db, max_error_cm=E) first";
+        case Remedy::CompressFirst: return text + "; run mocapdb.compress(db, set) first";
+        case Remedy::AlignFirst: return text + "; run mocapdb.align(db, set) first";
+        case Remedy::GiveParameters: return text + "; create the set with extract= or params_csv=";
+        case Remedy::ParametersOrExtract: return text + " (extract= or params_csv=)";
+        case Remedy::Ranks: return text + " (ranks=)";
+        case Remedy::Segmentation: return text + " (segment=)";
+        case Remedy::Feet: return text + " (feet=[LEFT, RIGHT])";
+    }
+    return text;
 }
 
 void raise_parse_error(const ParseError& e) {
@@ -74,17 +96,17 @@ void bind_errors(py::module_& m) {
         } catch (const NotFoundError& e) {
             PyErr_SetString(not_found_error_class, e.what());
         } catch (const ChecksumError& e) {
-            PyErr_SetString(checksum_error_class, e.what());
+            PyErr_SetString(checksum_error_class, with_hint(e).c_str());
         } catch (const StoreError& e) {
-            PyErr_SetString(store_error_class, e.what());
+            PyErr_SetString(store_error_class, with_hint(e).c_str());
         } catch (const ParseError& e) {
             raise_parse_error(e);
         } catch (const IoError& e) {
-            PyErr_SetString(io_error_class, e.what());
+            PyErr_SetString(io_error_class, with_hint(e).c_str());
         } catch (const InvalidArgument& e) {
-            PyErr_SetString(invalid_argument_class, e.what());
+            PyErr_SetString(invalid_argument_class, with_hint(e).c_str());
         } catch (const Error& e) {
-            PyErr_SetString(error_class, e.what());
+            PyErr_SetString(error_class, with_hint(e).c_str());
         }
     });
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "mini_json.hpp"
+#include "mocapdb/io/text_file.hpp"
 #include "mocapdb/io/clip_file.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/store/database.hpp"
@@ -35,13 +36,6 @@ std::string build_runs_db(const TempDir& dir) {
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     return db;
-}
-
-std::string read_all(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 }  // namespace
@@ -115,10 +109,10 @@ TEST_CASE("report: one run, every baseline, JSON, CSV and SVG", "[cli][compress]
     // 2 lossless rows + 2 targets x 6 methods.
     CHECK(j["rows"].items.size() == 14);
 
-    const std::string table = read_all(csv);
+    const std::string table = read_text_file(csv);
     CHECK_THAT(table, Contains("method,target_cm"));
     CHECK(std::count(table.begin(), table.end(), '\n') == 15);
-    const std::string picture = read_all(svg);
+    const std::string picture = read_text_file(svg);
     CHECK_THAT(picture, Contains("<svg") && Contains("tucker+residual") && Contains("zfp") && Contains("</svg>"));
     // #16: the CSV and SVG are not overwritten without --force.
     r = run_cli("report " + db + " --set runs --targets 2 --no-hooi --csv " + quoted(csv.string()));

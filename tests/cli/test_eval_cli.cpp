@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "mini_json.hpp"
+#include "mocapdb/io/text_file.hpp"
 #include "shared_data.hpp"
 #include "test_support.hpp"
 
@@ -17,13 +18,6 @@ using namespace mocapdb::test;
 using Catch::Matchers::Contains;
 
 namespace {
-
-std::string read_all(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // Counts numbers; fails on null (the writer turns NaN/inf into null) or a non-finite number.
 void check_finite(const Json& j, const std::string& where, long& numbers) {
@@ -52,7 +46,7 @@ TEST_CASE("eval writes the report with every section and finite numbers", "[cli]
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
 
-    const std::string report = read_all(out / "REPORT.md");
+    const std::string report = read_text_file(out / "REPORT.md");
     for (const char* header : {"# mocapdb evaluation report", "## Data", "## 1. Leave-one-out whole-motion prediction",
                                "## 2. Constraint accuracy", "## 3. Reliability against error", "## 4. Sample reduction",
                                "## 5. Foot skating", "## 6. Compression", "## 7. Runtime", "## Where our kriging loses",
@@ -70,7 +64,7 @@ TEST_CASE("eval writes the report with every section and finite numbers", "[cli]
     CHECK_THAT(report, Contains("In all: a baseline beats every kriging variant in "));
     CHECK(report.find("n/a") == std::string::npos);
 
-    const Json j = parse_json(read_all(out / "results.json"));
+    const Json j = parse_json(read_text_file(out / "results.json"));
     long numbers = 0;
     check_finite(j, "results", numbers);
     CHECK(numbers > 100);
@@ -103,7 +97,7 @@ TEST_CASE("eval writes the report with every section and finite numbers", "[cli]
         CHECK(std::filesystem::file_size(out / f) > 100);
         CHECK_THAT(report, Contains(f));
     }
-    CHECK_THAT(read_all(out / "loo_walks16.svg"), Contains("<svg"));
+    CHECK_THAT(read_text_file(out / "loo_walks16.svg"), Contains("<svg"));
 }
 
 TEST_CASE("eval refuses a data folder without the CMU clips", "[cli][eval]") {

@@ -9,21 +9,13 @@
 #include <sstream>
 
 #include "mini_json.hpp"
+#include "mocapdb/io/text_file.hpp"
 #include "mocapdb/store/database.hpp"
 #include "shared_data.hpp"
 #include "test_support.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::test;
-
-namespace {
-
-std::string read_all(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-}  // namespace
 
 TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gzip -9", "[cli][report][shared]") {
     MOCAPDB_REQUIRE_CLI();
@@ -107,7 +99,7 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
     CHECK(l["gzip9_ratio_float32"].number == Approx(float32 / gzip));
 
     // CSV: a header, one row per E and the lossless row; SVG: ours, ACL and the flat exact tiers.
-    const std::string csv_text = read_all(csv);
+    const std::string csv_text = read_text_file(csv);
     CHECK(csv_text.rfind("tier,max_error_cm,bytes,", 0) == 0);
     CHECK(std::count(csv_text.begin(), csv_text.end(), '\n') == 4);
     CHECK(csv_text.find("\nlossless,0,") != std::string::npos);
@@ -117,7 +109,7 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
         std::getline(lines, header);
         while (std::getline(lines, row)) CHECK(std::count(row.begin(), row.end(), ',') == std::count(header.begin(), header.end(), ','));
     }
-    const std::string svg_text = read_all(svg);
+    const std::string svg_text = read_text_file(svg);
     CHECK(svg_text.find("<svg") == 0);
     CHECK(svg_text.find("packed tier (ours)") != std::string::npos);
     CHECK(svg_text.find("ACL (reference table)") != std::string::npos);
@@ -160,7 +152,7 @@ TEST_CASE("report --collection: figures per E on shared clips, beside ACL and gz
     const auto bad = dir / "bad.csv";
     {
         std::ofstream out(bad);
-        const std::string table = read_all(acl);
+        const std::string table = read_text_file(acl);
         out << table.substr(0, table.find('\n') + 1) << "cmu-walkrun-pfnn,02_01_60fps,0.1,ok,43,14\n";
     }
     const CommandResult refused = run_cli("report " + quoted(db) + " --collection --reference " + quoted(bad.string()));

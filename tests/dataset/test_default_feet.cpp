@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/dataset/foot_contacts.hpp"
 
 using namespace mocapdb;
@@ -45,7 +46,13 @@ TEST_CASE("default feet: side words before or after, camelCase, prefixes, CMU na
           std::vector<std::string>{"L_Foot", "R_Foot"});
 }
 
-TEST_CASE("default feet: none found names the option", "[dataset][feet]") {
+TEST_CASE("default feet: none found says to name them, with the remedy for the front end", "[dataset][feet]") {
     const Skeleton s = legs({"a1", "a2", "a3", "b1", "b2", "b3"});
-    CHECK_THROWS_WITH(default_feet(s), Contains("--feet LEFT,RIGHT"));
+    CHECK_THROWS_WITH(default_feet(s), Contains("name them explicitly") && !Contains("--feet"));
+    try {
+        (void)default_feet(s);
+        FAIL("feet found in a skeleton without foot names");
+    } catch (const Remediable& e) {
+        CHECK(e.remedy() == Remedy::Feet);  // the CLI adds --feet LEFT,RIGHT
+    }
 }

@@ -13,7 +13,7 @@ using namespace mocapdb;
 
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
+constexpr double kDegree = kPi / 180.0;
 
 std::vector<std::string> walks16() {
     std::vector<std::string> out;
@@ -53,11 +53,11 @@ TEST_CASE("travel frame: walks16 start along +Z whatever their phase", "[align][
         by_heading.push_back(canonical_direction(c, canonicalization_of(c), f));
         CHECK(t.canonical.translation == canonicalization_of(c).translation);
     }
-    INFO("initial travel direction spread: first-frame heading " << spread(by_heading) / kDeg << " deg, travel frame "
-                                                                 << spread(by_travel) / kDeg << " deg");
+    INFO("initial travel direction spread: first-frame heading " << spread(by_heading) / kDegree << " deg, travel frame "
+                                                                 << spread(by_travel) / kDegree << " deg");
     // Measured so: 20.5 degrees by the first frame's heading, 8.0 in the travel frame.
-    CHECK(spread(by_heading) > 15.0 * kDeg);
-    CHECK(spread(by_travel) < 10.0 * kDeg);
+    CHECK(spread(by_heading) > 15.0 * kDegree);
+    CHECK(spread(by_travel) < 10.0 * kDegree);
     CHECK(spread(by_travel) < 0.5 * spread(by_heading));
 }
 

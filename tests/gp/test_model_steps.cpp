@@ -46,7 +46,7 @@ TEST_CASE("gp child selection: subjects, groups, children by name or index, obse
 namespace {
 
 MotionData three_walks() {
-    const auto dir = test::datasets_dir() / "cmu-asfamc";
+    const auto dir = mocapdb::test::datasets_dir() / "cmu-asfamc";
     const workflow::GpChildren children = workflow::clip_file_children(
         {(dir / "02_01.amc").string(), (dir / "02_02.amc").string(), (dir / "35_01.amc").string()}, 0.0);
     MotionDataOptions o;
@@ -64,7 +64,7 @@ FitOptions short_fit() {
 }  // namespace
 
 TEST_CASE("gp steps on three CMU walks: fit, interpolate a child, sample, summary", "[gp][shared]") {
-    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc" / "35_01.amc");
+    MOCAPDB_REQUIRE_SHARED(mocapdb::test::datasets_dir() / "cmu-asfamc" / "35_01.amc");
     const MotionData md = three_walks();
     REQUIRE(md.child_names == std::vector<std::string>{"02_01", "02_02", "35_01"});
     ModelSpec spec;
@@ -112,7 +112,7 @@ TEST_CASE("gp steps on three CMU walks: fit, interpolate a child, sample, summar
 }
 
 TEST_CASE("gp replicate experiment: split into training children and real motions", "[gp][shared]") {
-    MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc" / "35_01.amc");
+    MOCAPDB_REQUIRE_SHARED(mocapdb::test::datasets_dir() / "cmu-asfamc" / "35_01.amc");
     const MotionData md = three_walks();
     const ReplicateSplit split = split_replicates(md.data, 2);
     REQUIRE(split.training.child_count() == 2);

@@ -69,7 +69,7 @@ TEST_CASE("BVH files written for the adding convention read right with the optio
     const Clip collapsed = read_fixture("six_channels_add.bvh", PositionChannels::replace_offset);
     const double small = figure_height(*collapsed.skeleton, collapsed.frame(0));
     CHECK(small < kPlausibleFigureMinCm);
-    CHECK_THAT(figure_height_warning(small), Catch::Matchers::Contains("--bvh-positions"));
+    CHECK_THAT(figure_height_warning(small), Catch::Matchers::Contains("whether position channels replace OFFSET"));
 }
 
 TEST_CASE("Turn and speed come from the joint that carries the body", "[io][bvh]") {

@@ -13,17 +13,13 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/packing/lossless_channels.hpp"
+#include "store_test_support.hpp"
 
 using namespace mocapdb;
 
 namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
-
-bool same_bits(const FrameMatrix& a, const FrameMatrix& b) {
-    return a.rows() == b.rows() && a.cols() == b.cols() &&
-           std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
-}
 
 // A value as a reader makes it: the decimal text parsed, times the unit factor.
 double read_as_reader(const std::string& text, double scale) { return std::strtod(text.c_str(), nullptr) * scale; }

@@ -1,4 +1,4 @@
-// Acceptance 6: the README's h5py snippet decodes a packed clip (schemas/format-v3.md §5.1) to the
+// The h5py snippet of docs/database.md decodes a packed clip (schemas/format-v3.md §5.1) to the
 // library's values bit for bit (same sha256 of the float64 bytes), reads the tensor, the parameters
 // and the model of a database, and its reconstruction formula of the model (§8) gives back the
 // aligned tensor of the reference file (whose model is exact); it lists the packed tier's groups. It runs on the reference file with
@@ -16,8 +16,8 @@
 
 using namespace mocapdb::test;
 
-TEST_CASE("README: the h5py snippet reads the tensor and the control parameters", "[store][readme]") {
-    const std::string readme = file_bytes(test_data_dir().parent_path().parent_path() / "README.md");
+TEST_CASE("docs/database.md: the h5py snippet reads the tensor and the control parameters", "[store][readme]") {
+    const std::string readme = file_bytes(test_data_dir().parent_path().parent_path() / "docs" / "database.md");
     const std::string begin = "<!-- h5py-snippet:begin -->\n```python\n";
     const auto b = readme.find(begin);
     REQUIRE(b != std::string::npos);

@@ -94,11 +94,6 @@ std::size_t compare_numbers(const std::string& clip, const TextNumbers& source, 
     return values;
 }
 
-bool same_bits(const FrameMatrix& a, const FrameMatrix& b) {
-    return a.rows() == b.rows() && a.cols() == b.cols() &&
-           std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
-}
-
 std::uint64_t gzip9_bytes(const std::filesystem::path& folder, const std::string& ext) {
     const CommandResult r = run_command("for f in " + quoted(folder.string()) + "/*." + ext +
                                         "; do gzip -9 -c \"$f\" | wc -c; done | awk '{s += $1} END {print s}'");

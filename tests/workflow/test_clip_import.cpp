@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/clip_import.hpp"
 #include "walk_database.hpp"
@@ -123,7 +124,13 @@ TEST_CASE("workflow: import_clips refuses no clip files and a file that is not a
     const auto text = dir / "notes.h5";
     std::ofstream(text) << "not a database\n";
     CHECK_THROWS_WITH(workflow::import_clips(text, {clip}, workflow::ImportOptions{}, false),
-                      Contains("notes.h5") && Contains("--force replaces the file"));
+                      Contains("notes.h5") && Contains("import appends to a mocapdb database") && !Contains("--"));
+    try {
+        workflow::import_clips(text, {clip}, workflow::ImportOptions{}, false);
+        FAIL("a file that is not a database was appended to");
+    } catch (const Remediable& e) {
+        CHECK(e.remedy() == Remedy::ReplaceFile);  // the CLI adds --force, Python force=True
+    }
     const workflow::ImportOutcome forced = workflow::import_clips(text, {clip}, workflow::ImportOptions{}, true);
     CHECK(forced.clips_in_db == 1);
 }

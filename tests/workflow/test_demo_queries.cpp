@@ -17,7 +17,7 @@ using namespace mocapdb::test;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& demo_queries_walks() {
     static const WalkDatabase w = make_walk_database("workflow_demo_queries", WalkStage::Compressed);
     return w;
 }
@@ -56,7 +56,7 @@ TEST_CASE("workflow: demo points between samples and at the reach grid's cells",
 
 TEST_CASE("workflow: the demo's outside point and measurement on subject 16's walks", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = demo_queries_walks();
     const Database db(w.path);
     const auto model = workflow::load_motion_model(db, "walks");
     const MatX& samples = model->sample_parameters();

@@ -21,7 +21,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& load_model_walks() {
     static const WalkDatabase w = make_walk_database("workflow_load_model", WalkStage::Compressed);
     return w;
 }
@@ -81,7 +81,7 @@ void damage(const std::filesystem::path& file, const std::string& dataset) {
 
 TEST_CASE("workflow: load_aligned_timing gives the aligned set's warps and shape", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const Database db(walks().path);
+    const Database db(load_model_walks().path);
     const workflow::AlignedSetData full = workflow::load_aligned_set(db, "walks");
     const workflow::AlignedTimingData timing = workflow::load_aligned_timing(db, "walks");
     CHECK(timing.timing.dofs() == full.aligned.dofs());
@@ -97,7 +97,7 @@ TEST_CASE("workflow: load_aligned_timing gives the aligned set's warps and shape
 TEST_CASE("workflow: the compressed model loaded without the aligned tensor equals the one from the whole set",
           "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const Database db(walks().path);
+    const Database db(load_model_walks().path);
     const workflow::AlignedSetData full = workflow::load_aligned_set(db, "walks");
     const auto stored = db.load_model("walks");
     REQUIRE(stored.has_value());
@@ -119,7 +119,7 @@ TEST_CASE("workflow: load_motion_model does not read the aligned tensor (damage 
     const std::filesystem::path path = dir / "walks.h5";
     const std::string tensor = "/sets/walks/aligned/tensor", warps = "/sets/walks/aligned/warps";
 
-    copy_database(walks().path, path);
+    copy_database(load_model_walks().path, path);
     damage(path, tensor);
     {
         const Database db(path);
@@ -128,13 +128,13 @@ TEST_CASE("workflow: load_motion_model does not read the aligned tensor (damage 
         CHECK_THROWS_AS(workflow::load_aligned_set(db, "walks"), ChecksumError);
         // The compressed model does not read the tensor's values: the same model as from the intact file.
         const auto loaded = workflow::load_motion_model(db, "walks");
-        const auto intact = workflow::load_motion_model(Database(walks().path), "walks");
+        const auto intact = workflow::load_motion_model(Database(load_model_walks().path), "walks");
         check_same_model(*loaded, *intact, db.load_set("walks"));
     }
 
     std::filesystem::remove(path);
     std::filesystem::remove_all(path.string() + ".d");
-    copy_database(walks().path, path);
+    copy_database(load_model_walks().path, path);
     damage(path, warps);
     const Database db(path);
     CHECK_THROWS_AS(workflow::load_motion_model(db, "walks"), ChecksumError);

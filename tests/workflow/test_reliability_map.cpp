@@ -12,7 +12,7 @@ using namespace mocapdb::test;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& reliability_map_walks() {
     static const WalkDatabase w = make_walk_database("workflow_reliability", WalkStage::Compressed);
     return w;
 }
@@ -21,7 +21,7 @@ const WalkDatabase& walks() {
 
 TEST_CASE("workflow: reliability_map is 1 at a sample and falls off outside the samples", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = reliability_map_walks();
     const Database db(w.path);
     // Exact kriging (the nugget not filtered), so that rho is 1 at the samples.
     synthesis::SynthesisOptions exact;

@@ -16,7 +16,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& set_alignment_walks() {
     static const WalkDatabase w = make_walk_database("workflow_align", WalkStage::SetCreated);
     return w;
 }
@@ -25,7 +25,7 @@ const WalkDatabase& walks() {
 
 TEST_CASE("workflow: align_set stores the aligned tensor of the set", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_alignment_walks();
     const std::size_t n = w.set.set.samples.size();
     REQUIRE(n == 12);
 
@@ -72,7 +72,7 @@ TEST_CASE("workflow: align_set stores the aligned tensor of the set", "[workflow
 
 TEST_CASE("workflow: align_set with a chosen reference, linear, and its errors", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_alignment_walks();
     workflow::AlignRequest r;
     r.set = "walks";
     r.frames = 24;

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/load_model.hpp"
 #include "walk_database.hpp"
@@ -14,7 +15,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& set_compression_walks() {
     static const WalkDatabase w = make_walk_database("workflow_compress", WalkStage::Aligned);
     return w;
 }
@@ -23,7 +24,7 @@ const WalkDatabase& walks() {
 
 TEST_CASE("workflow: compress_set meets a max joint error and stores the model with its kernel", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_compression_walks();
     workflow::CompressRequest r;
     r.set = "walks";
     r.max_error_cm = 1.0;
@@ -70,7 +71,7 @@ TEST_CASE("workflow: compress_set meets a max joint error and stores the model w
 
 TEST_CASE("workflow: compress_set with explicit ranks and HOOI, and its errors", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_compression_walks();
     workflow::CompressRequest r;
     r.set = "walks";
     r.ranks = tensor::Ranks{10, 6, 4};
@@ -95,8 +96,8 @@ TEST_CASE("workflow: compress_set with explicit ranks and HOOI, and its errors",
     workflow::create_set(w.path, unaligned);
     r.set = "few";
     r.ranks.reset();
-    CHECK_THROWS_WITH(workflow::compress_set(w.path, r), Contains("set 'few'") && Contains("is not aligned") &&
-                                                             Contains("mocapdb align"));
+    CHECK_THROWS_WITH(workflow::compress_set(w.path, r), Contains("set 'few'") && Contains("is not aligned"));
+    CHECK_THROWS_AS(workflow::compress_set(w.path, r), Remediable);
     CHECK(Database(w.path).load_model("walks")->model.tucker.method == tensor::TuckerMethod::Hooi);
     CHECK_FALSE(Database(w.path).load_model("few").has_value());
 }

@@ -17,7 +17,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const WalkDatabase& walks() {
+const WalkDatabase& synthesis_step_walks() {
     static const WalkDatabase w = make_walk_database("workflow_synth", WalkStage::Compressed);
     return w;
 }
@@ -36,7 +36,7 @@ TEST_CASE("workflow: source_extractors reads a set's parameter source", "[workfl
 
 TEST_CASE("workflow: synthesize at a sample's parameters gives its motion back, measured", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = synthesis_step_walks();
     const Database db(w.path);
     const MotionSet set = db.load_set("walks");
     REQUIRE(set.parameter_source == "extract:turn,speed");

@@ -1,4 +1,4 @@
-// mocapdb eval: builds the evaluation sets from the CMU clips, runs every experiment of issue #7
+// mocapdb eval: builds the evaluation sets from the CMU clips, runs every experiment of the evaluation
 // (leave-one-out prediction, constraint accuracy, reliability against error, sample reduction, foot
 // skating, compression, runtime; mocapdb/eval/evaluation.hpp) and writes eval/REPORT.md with its
 // figures and the numbers as CSV and JSON (eval_report.hpp). This file converts the arguments, draws

@@ -127,7 +127,7 @@ void setup_info(CLI::App& app) {
         const Clip clip = load_clip(args->file, args->clip, std::cerr);
         const std::string tall =
             clip.frame_count() > 0 ? figure_height_warning(figure_height(*clip.skeleton, clip.frame(0))) : std::string();
-        if (!tall.empty()) std::cerr << "mocapdb: warning: " << args->file << ": " << tall << "\n";
+        if (!tall.empty()) std::cerr << "mocapdb: warning: " << args->file << ": " << tall << " (--bvh-positions)\n";
         if (args->json) {
             print_json(args->file, clip);
         } else {

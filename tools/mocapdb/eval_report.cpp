@@ -50,7 +50,7 @@ std::string report_md(const EvalResults& e) {
       << "\nA set has one skeleton: the first clip's (column *skeleton*). Clips of other subjects (the `jumps` set: "
          "subjects 13, 16, 105) are replayed on it (same CMU joints and channels; their parameters were measured on their "
          "own skeletons before the swap), so their joint positions use subject 13's bone lengths.\n\n";
-    // Issue #15: solver dropouts are repaired before segmentation and alignment, and named here.
+    // Solver dropouts are repaired before segmentation and alignment, and named here.
     {
         std::string repaired;
         for (const SetResults& r : e.sets) {
@@ -88,7 +88,7 @@ std::string report_md(const EvalResults& e) {
         const eval::EvalSet& s = *r.set;
         const auto durations = eval::duration_range(s);
         o << "### " << s.spec.name << "\n\n";
-        // Gain over the linear trend alone (issue #15): 1 - pose mean / trend-only pose mean.
+        // Gain over the linear trend alone: 1 - pose mean / trend-only pose mean.
         const std::vector<double> gains = eval::gain_over_trend(r);
         Table lt{{"method", "pose mean cm", "gain over trend-only", "pose max cm", "worst (sample, frame, joint)", "motion mean cm", "motion max cm", "duration err s", "build s/fold", "synth ms"}, {}};
         for (std::size_t k = 0; k < r.loo.methods.size(); ++k) {
@@ -208,7 +208,7 @@ std::string report_md(const EvalResults& e) {
           << short_caption(info, "the grids of section 2",
                            "each method's own ρ (Tucker, naive kriging), else the naive kriging kernel's ρ on all samples; "
                            "error normalized per axis");
-        // Issue #15: rho must fall to 0.5 or below 3 standard deviations outside the samples' box.
+        // The check: rho must fall to 0.5 or below 3 standard deviations outside the samples' box.
         Table ot{{"set", "LOO mean z² (naive kernel)", "ρ 3 sd outside (naive kernel)"}, {}};
         std::vector<std::string> own;
         for (const SetResults& r : e.sets)

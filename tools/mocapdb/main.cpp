@@ -1,6 +1,7 @@
 // mocapdb: command-line front end. The library returns values and throws mocapdb::Error; this layer
 // formats results and turns errors into one line on stderr and a non-zero exit code.
 #include <exception>
+#include <string>
 #include <iostream>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -8,6 +9,32 @@
 
 #include "commands.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
+#include "mocapdb/core/version.hpp"
+
+namespace {
+
+// The library says what is wrong; the command line adds the flag or command that fixes it.
+std::string hint(const mocapdb::Error& e) {
+    const auto* r = dynamic_cast<const mocapdb::Remediable*>(&e);
+    if (r == nullptr) return {};
+    switch (r->remedy()) {
+        case mocapdb::Remedy::Overwrite: return "; pass --force to overwrite it";
+        case mocapdb::Remedy::ReplaceFile: return "; --force replaces the file with a new one";
+        case mocapdb::Remedy::NameSkeletonFile: return "; pass --asf FILE";
+        case mocapdb::Remedy::PackFirst: return "; run: mocapdb pack DB --max-error-cm E";
+        case mocapdb::Remedy::CompressFirst: return "; run: mocapdb compress DB --set SET";
+        case mocapdb::Remedy::AlignFirst: return "; run: mocapdb align DB --set SET";
+        case mocapdb::Remedy::GiveParameters: return "; create the set with --extract or --params";
+        case mocapdb::Remedy::ParametersOrExtract: return " (--params or --extract)";
+        case mocapdb::Remedy::Ranks: return " (--ranks)";
+        case mocapdb::Remedy::Segmentation: return " (--segment)";
+        case mocapdb::Remedy::Feet: return " (--feet LEFT,RIGHT)";
+    }
+    return {};
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
 #if defined(__GLIBC__)
@@ -22,7 +49,7 @@ int main(int argc, char** argv) {
 #endif
     CLI::App app{"mocapdb: store, compress and synthesize motion capture"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "mocapdb 0.1.0");
+    app.set_version_flag("--version", mocapdb::creator_string);
 
     mocapdb::cli::setup_info(app);
     mocapdb::cli::setup_convert(app);
@@ -50,7 +77,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const mocapdb::Error& e) {
-        std::cerr << "mocapdb: error: " << e.what() << "\n";
+        std::cerr << "mocapdb: error: " << e.what() << hint(e) << "\n";
         return 1;
     } catch (const std::exception& e) {
         std::cerr << "mocapdb: internal error: " << e.what() << "\n";

@@ -1,6 +1,6 @@
 #pragma once
 // The CLI's side of the steps of the main job (the steps themselves are the library's workflow
-// module, issue #17): each wrapper turns command-line shaped arguments into the library's request,
+// module): each wrapper turns command-line shaped arguments into the library's request,
 // draws a progress bar, prints what the step reports (warnings), and describe_* / *_json / rate_*
 // format the outcomes the single-step commands (import, set create, align, compress, report, synth,
 // reliability) and `mocapdb demo` print.

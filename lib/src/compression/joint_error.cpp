@@ -70,7 +70,7 @@ void note_suspect(std::vector<Eigen::Index>* suspects, Eigen::Index n) {
 }  // namespace
 
 MatX pose_joint_positions(const Skeleton& skeleton, const Eigen::Ref<const MatX>& poses) {
-    // Without the Euler round trip for joints with three rotation channels (issue #16).
+    // Without the Euler round trip for joints with three rotation channels.
     return pose_vector_joint_positions(skeleton, poses, Canonicalization{});
 }
 

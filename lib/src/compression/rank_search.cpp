@@ -136,7 +136,7 @@ constexpr int kScreenedRounds = 3;
 // Samples most changed by a probe's sample-mode truncation that join its screen.
 constexpr Eigen::Index kTruncationScreen = 32;
 // Samples farthest from the mean (largest weighted, centred energy) that join every screen: at 10 000
-// windows the one sample a 512-sample screen missed was the 44th farthest of them (#16).
+// windows the one sample a 512-sample screen missed was the 44th farthest of them.
 constexpr Eigen::Index kOutlierScreen = 128;
 // At most this many of the samples found beyond the target by failed full checks join every screen.
 constexpr std::size_t kFoundScreen = 256;

@@ -51,7 +51,7 @@ Tensor3 from_weighted_centred(const Tensor3& x, const VecX& mean, const VecX& we
 }
 
 Tensor3 SetModel::reconstruct() const {
-    // In place: one D x T x N tensor at a time (issue #16: sets of 10 000 windows).
+    // In place: one D x T x N tensor at a time (sets of 10 000 windows).
     Tensor3 a = tucker.reconstruct();
     check_dof_vector(a, mean, "mean");
     check_dof_vector(a, weight, "weight");

@@ -1,6 +1,6 @@
 #pragma once
 // Internal to the compression module: a rank-search probe's pose vectors from what its sample-mode
-// truncation leaves out (#16).
+// truncation leaves out.
 //
 // For bases whose sample basis spans the projected samples (HosvdBases::spans_projected_samples) the
 // HOSVD model's terms over all K sample columns add up to each sample's projection, so the model at

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 
@@ -59,8 +60,9 @@ std::vector<std::string> default_feet(const Skeleton& s) {
         const auto right = find_foot(s, "r", "right", part);
         if (left && right) return {*left, *right};
     }
-    throw InvalidArgument("no left/right foot joints found by name (a joint named with toe or foot and left/right, "
-                          "L/R); name them explicitly (command line: --feet LEFT,RIGHT)");
+    throw Refused<InvalidArgument>(Remedy::Feet,
+                                   "no left/right foot joints found by name (a joint named with toe or foot and "
+                                   "left/right, L/R); name them explicitly");
 }
 
 Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> foot_contacts(const Clip& clip, const FootContactOptions& options) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 
 namespace mocapdb {
 
@@ -55,8 +56,8 @@ void set_parameter_period(MotionSet& set, const std::string& name, double period
 void check_distinguishable(const MotionSet& set) {
     const std::string who = "motion set '" + set.name + "'";
     if (set.samples.size() < 2)
-        throw InvalidArgument(who + ": " + std::to_string(set.samples.size()) +
-                              " sample; a set needs at least 2 (select more clips or a finer --segment)");
+        throw Refused<InvalidArgument>(Remedy::Segmentation, who + ": " + std::to_string(set.samples.size()) +
+                              " sample; a set needs at least 2 (select more clips or segment finer)");
     if (set.parameters.cols() == 0) return;
     const auto first = set.parameters.row(0);
     for (Eigen::Index i = 1; i < set.parameters.rows(); ++i)

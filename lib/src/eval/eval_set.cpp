@@ -91,7 +91,7 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
     ao.frames = spec.frames;
     // The first frame's heading, not the travel frame (align's default): with travel-framed walks the
     // per-pose kriging no longer reproduces a training sample exactly (1.6 cm at 16_15 in
-    // test_eval_blocks), a fragility of its per-frame kernels (issue #15 item 4) to fix before the
+    // test_eval_blocks), a fragility of its per-frame kernels to fix before the
     // evaluation switches.
     ao.canonical = "first-frame";
     out.aligned = align_samples(out.samples, ao);

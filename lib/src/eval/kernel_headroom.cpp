@@ -78,7 +78,7 @@ KernelHeadroom kernel_headroom(const EvalSet& set, const KernelHeadroomOptions& 
             for (double range : options.ranges)
                 for (double share : options.nugget_shares) {
                     if (progress) progress({++done, total, ""});
-                    if (p == 2.0 && share == 0.0) continue;  // a Gaussian model needs a nugget (issue #15)
+                    if (p == 2.0 && share == 0.0) continue;  // a Gaussian model needs a nugget
                     const kriging::VariogramModel model = kriging::VariogramModel::from_paper_p(p, share, 1.0 - share, range);
                     double sum = 0.0;
                     for (const Fold& f : folds) {

@@ -31,7 +31,7 @@ std::string figure_height_warning(double height_cm) {
     std::snprintf(text, sizeof text,
                   "the figure is %.1f cm tall at frame 0 (lowest to highest joint), outside %.0f-%.0f cm: check "
                   "the file's length unit and, for BVH, whether position channels replace OFFSET "
-                  "(--bvh-positions)",
+                  "(the import's BVH position convention)",
                   height_cm, kPlausibleFigureMinCm, kPlausibleFigureMaxCm);
     return text;
 }

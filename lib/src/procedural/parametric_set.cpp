@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/text_file.hpp"
 
@@ -195,7 +196,7 @@ std::vector<std::filesystem::path> write_parametric_set(const std::filesystem::p
     paths.push_back(dir / "params.csv");
     if (!overwrite)
         for (const fs::path& p : paths)
-            if (fs::exists(p)) throw IoError(p.string() + ": exists; pass --force to overwrite it");
+            if (fs::exists(p)) throw Refused<IoError>(Remedy::Overwrite, p.string() + ": exists");
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw IoError("cannot create folder " + dir.string() + ": " + ec.message());

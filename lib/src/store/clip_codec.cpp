@@ -75,8 +75,8 @@ std::string clip_channels_path(const h5::File& file, const std::string& id) {
     const bool has_packed = file.type_of(packed) != h5::ObjectType::None;
     if (!has_plain && !has_packed && lossless_dropped(file, id))
         throw StoreError(file.name(), clip_path(id),
-                         "the clip's lossless channels were dropped (mocapdb pack --drop-lossless); it is stored in the "
-                         "packed tier only");
+                         "the clip's lossless channels were dropped when the database was packed; it is stored in "
+                         "the packed tier only");
     if (has_plain == has_packed)
         throw StoreError(file.name(), clip_path(id),
                          "expected one of the datasets '" + kPackedChannels + "' and 'channels', found " +

@@ -12,6 +12,7 @@
 #include "kernel_codec.hpp"
 #include "model_codec.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/store/not_found_error.hpp"
 #include "packed_codec.hpp"
@@ -141,7 +142,7 @@ Clip Database::load_clip_packed(const std::string& id, std::size_t begin, std::s
     QuietScope quiet;
     const auto& f = impl_->f();
     const auto tier = packed();
-    if (!tier) throw StoreError(f.name(), store::kPacked, "no packed tier (run: mocapdb pack " + f.name() + " --max-error-cm E)");
+    if (!tier) throw Refused<StoreError>(Remedy::PackFirst, f.name(), store::kPacked, "no packed tier (the database was not packed)");
     const auto where = tier->find(id);
     if (!where) throw NotFoundError(f.name(), store::kPacked, "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
     const PackedGroupRecord& g = tier->groups[where->first];

@@ -1,6 +1,7 @@
 #include "root.hpp"
 
 #include "layout.hpp"
+#include "mocapdb/core/version.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/store/store_error.hpp"
 
@@ -10,7 +11,7 @@ void write_root_attributes(h5::File& file) {
     file.write_string_attribute("/", "format", "mocapdb");
     file.write_int_attribute("/", "format_version", kDatabaseFormatVersion);
     file.write_string_attribute("/", "kind", "database");
-    file.write_string_attribute("/", "creator", "mocapdb 0.1.0");
+    file.write_string_attribute("/", "creator", creator_string);
 }
 
 void write_root(h5::File& file) {
@@ -24,7 +25,7 @@ void write_segment_root(h5::File& file) {
     file.write_string_attribute("/", "format", "mocapdb");
     file.write_int_attribute("/", "format_version", kDatabaseFormatVersion);
     file.write_string_attribute("/", "kind", "segment");
-    file.write_string_attribute("/", "creator", "mocapdb 0.1.0");
+    file.write_string_attribute("/", "creator", creator_string);
     file.create_group(kSkeletons, "skeletons");
     file.create_group(kClips, "clips");
     file.create_group(kSets, "sets");

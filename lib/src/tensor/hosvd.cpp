@@ -48,7 +48,7 @@ void make_signs_canonical(MatX& u, MatX* companion = nullptr) {
     }
 }
 
-// The Eigen products of the sample-basis computation on the machine's cores (issue #16). Every product
+// The Eigen products of the sample-basis computation on the machine's cores. Every product
 // is cut into blocks of a fixed size (not a function of the thread count) and each block is one Eigen
 // product, so the values do not depend on how many threads ran them. (The largest operations go to
 // OpenBLAS instead: see lower_gram below.)

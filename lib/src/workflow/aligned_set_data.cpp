@@ -3,14 +3,14 @@
 #include <map>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb::workflow {
 namespace {
 
 [[noreturn]] void not_aligned(const Database& db, const std::string& name) {
-    throw InvalidArgument("set '" + name + "' in " + db.path().string() + " is not aligned (run: mocapdb align " +
-                          db.path().string() + " --set " + name + ")");
+    throw Refused<InvalidArgument>(Remedy::AlignFirst, "set '" + name + "' in " + db.path().string() + " is not aligned");
 }
 
 // The skeleton and frame rate of the set's first clip and the source size; every sample's clip must exist.

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb::workflow {
@@ -21,8 +22,8 @@ ImportOutcome import_clips(const std::filesystem::path& db, const std::vector<st
     try {
         writer = std::make_unique<DatabaseWriter>(db, mode);
     } catch (const StoreError& e) {
-        throw StoreError(e.file(), e.object_path(),
-                         e.message() + " (import appends to a mocapdb database; --force replaces the file with a new one)");
+        throw Refused<StoreError>(Remedy::ReplaceFile, e.file(), e.object_path(),
+                                  e.message() + " (import appends to a mocapdb database)");
     }
     const auto start = std::chrono::steady_clock::now();
     o.summary = import_files(*writer, files, options, progress, [&](const ImportedFile& f) {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/io/asf_amc.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/clip_file.hpp"
@@ -107,8 +108,9 @@ bool read_source(const std::filesystem::path& path, const ImportOptions& options
         if (asf.empty()) {
             const auto found = find_asf_for_amc(path);
             if (!found)
-                throw InvalidArgument(path.string() + ": no skeleton given and none found beside it by the CMU "
-                                      "naming (NN_MM.amc -> NN.asf); pass --asf");
+                throw Refused<InvalidArgument>(Remedy::NameSkeletonFile, path.string() +
+                                               ": no skeleton given and none found beside it by the CMU naming "
+                                               "(NN_MM.amc -> NN.asf)");
             asf = *found;
         }
         auto& skeleton = asf_cache[asf];

@@ -6,6 +6,7 @@
 
 #include "mocapdb/compression/dof_weights.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
 
 namespace mocapdb::workflow {
@@ -15,9 +16,8 @@ namespace {
 // Synthesis interpolates over the set's control parameters: a set without any has nothing to ask for.
 void require_parameters(const Database& db, const std::string& name) {
     if (db.load_set(name).parameters.cols() == 0)
-        throw InvalidArgument("set '" + name + "' in " + db.path().string() +
-                              " has no control parameters, so there is nothing to synthesize at (create the set with "
-                              "--extract or --params)");
+        throw Refused<InvalidArgument>(Remedy::GiveParameters, "set '" + name + "' in " + db.path().string() +
+                                       " has no control parameters, so there is nothing to synthesize at");
 }
 
 }  // namespace
@@ -28,9 +28,8 @@ std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, co
     AlignedTimingData d = load_aligned_timing(db, name);  // the model has its own poses: not the tensor's values
     auto stored = db.load_model(name);
     if (!stored)
-        throw InvalidArgument("set '" + name + "' in " + db.path().string() +
-                              " has no compressed model (run: mocapdb compress " + db.path().string() + " --set " +
-                              name + ")");
+        throw Refused<InvalidArgument>(Remedy::CompressFirst,
+                                       "set '" + name + "' in " + db.path().string() + " has no compressed model");
     synthesis::SynthesisOptions with_fit = options;
     if (!with_fit.kernel_fit) with_fit.kernel_fit = db.load_kernel_fit(name);  // nullopt for models stored without one
     return std::make_unique<synthesis::MotionModel>(std::move(stored->model), d.timing, d.set, std::move(d.skeleton), d.frame_rate,

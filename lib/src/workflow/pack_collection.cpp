@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/error_stats.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
@@ -249,9 +250,9 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
     double replaced_max_error_cm = 0.0;
     if (const auto old = view.packed()) {
         if (!options.replace)
-            throw StoreError(db.string(), "/packed",
-                             "the database already has a packed tier (max error " + number(old->max_error_cm) +
-                                 " cm); replace it explicitly (mocapdb pack --force)");
+            throw Refused<StoreError>(Remedy::Overwrite, db.string(), "/packed",
+                                      "the database already has a packed tier (max error " +
+                                          number(old->max_error_cm) + " cm), replaced only on request");
         for (const ClipRecord& r : view.clips())
             if (!r.lossless)
                 throw StoreError(db.string(), "/packed",

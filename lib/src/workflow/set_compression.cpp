@@ -9,6 +9,7 @@
 #include "mocapdb/compression/rank_search.hpp"
 #include "mocapdb/compression/rate_distortion.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/synthesis/kernel_fit.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
@@ -34,9 +35,9 @@ compression::RankSearchResult choose_ranks(compression::PreparedSet prepared, co
         const tensor::Ranks& r = *a.ranks;
         for (std::size_t n = 0; n < 3; ++n)
             if (r[n] < 1 || r[n] > o.dims[n])
-                throw InvalidArgument("--ranks: rank " + std::to_string(n + 1) + " must be in [1, " +
-                                      std::to_string(o.dims[n]) + "] for a tensor of " + ranks_text(o.dims) +
-                                      " (dofs x frames x samples)");
+                throw Refused<InvalidArgument>(Remedy::Ranks, "ranks: rank " + std::to_string(n + 1) +
+                                                   " must be in [1, " + std::to_string(o.dims[n]) + "] for a tensor of " +
+                                                   ranks_text(o.dims) + " (dofs x frames x samples)");
         chosen.model = compression::hosvd_model(prepared, r);
         chosen.target_met = true;
         o.criterion = "ranks " + ranks_text(r);
@@ -83,7 +84,7 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
 
     // The chosen ranks, decomposed with the requested method. HOSVD is the search's own model (the
     // model fit_set_model would compute from the same bases) with its measured errors: no second
-    // pass over the set (#16).
+    // pass over the set.
     const auto fit_start = Clock::now();
     tensor::HooiOptions hooi;
     hooi.max_iterations = a.max_iterations;

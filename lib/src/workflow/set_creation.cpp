@@ -6,6 +6,7 @@
 #include <set>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/remedy.hpp"
 #include "mocapdb/io/csv_table.hpp"
 #include "mocapdb/store/database.hpp"
 
@@ -75,12 +76,12 @@ std::vector<std::string> select_clips(const Database& db, const std::string& db_
 
 SetOutcome create_set(const std::filesystem::path& db_file, const SetRequest& a) {
     const std::string db_path = db_file.string();
-    if (!a.params_csv.empty() && !a.extract.empty()) throw InvalidArgument("give either --params or --extract, not both");
+    if (!a.params_csv.empty() && !a.extract.empty()) throw Refused<InvalidArgument>(Remedy::ParametersOrExtract, "give either a parameter table or extractors, not both");
     DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
     const Database& db = writer.view();
     if (db.clips().empty()) throw InvalidArgument(db_path + ": the database holds no clips; import some first");
     if (db.has_set(a.name) && !a.replace)
-        throw InvalidArgument(db_path + ": set '" + a.name + "' exists; pass --force to replace it");
+        throw Refused<InvalidArgument>(Remedy::Overwrite, db_path + ": set '" + a.name + "' exists");
     SetOutcome o;
     SetBuildOptions options;
     options.name = a.name;

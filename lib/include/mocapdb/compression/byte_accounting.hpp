@@ -1,5 +1,5 @@
 #pragma once
-// Honest byte accounting (issue #4): a compressed set is charged for everything needed to rebuild
+// Honest byte accounting: a compressed set is charged for everything needed to rebuild
 // its samples with their timing and control parameters, at float32 unless a codec says otherwise.
 #include <cstdint>
 

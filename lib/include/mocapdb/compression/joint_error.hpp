@@ -43,7 +43,7 @@ struct JointErrorStats {
 /// value is not finite.
 MatX pose_joint_positions(const Skeleton& skeleton, const Eigen::Ref<const MatX>& poses);
 
-/// An approximation of a D by T by N pose tensor given sample by sample (issue #16: the whole
+/// An approximation of a D by T by N pose tensor given sample by sample (the whole
 /// approximation of 10 000 windows need not be in memory). Called as approx(samples, out): writes the
 /// pose vectors of the listed samples side by side into out, resized to D by (T samples.size())
 /// (sample samples[i] in columns [i T, (i + 1) T), the tensor's storage order). The meter calls it

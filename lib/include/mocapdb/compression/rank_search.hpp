@@ -1,33 +1,9 @@
 #pragma once
-// Choosing Tucker ranks of a set model by a target on the measured error (issue #4): the smallest
+// Choosing Tucker ranks of a set model by a target on the measured error: the smallest
 // model whose max joint-position error (cm, after forward kinematics) or dof-space RMSE meets the
 // target, or the model with the best error at a target compression ratio.
 //
-// The candidates are the rank triples with the fewest parameters whose HOSVD bound is ≤ e·‖X‖ for a
-// relative error e (tensor::ranks_for_error_bound): one triple per e, so the search is a bisection
-// over e. The max joint error is not exactly monotone in e; the bisection keeps the best triple it
-// has measured that meets the target, so the result always meets it (full ranks reproduce the data;
-// they are measured, and returned, only when no probe meets the target).
-//
-// Screening (max error target, sets of more than 4 x screen_samples samples; issue #16): checking
-// that a probe meets the target means forward kinematics of every pose of every sample, while
-// finding one joint beyond it proves it does not. So the bisection first decides each probe on a
-// screen of its samples (screen_for in rank_search.cpp: screen_samples spread evenly over the set,
-// the 128 farthest from the mean, the 32 that dropping the probe's sample-basis columns moves most,
-// and those found beyond the target before): a joint beyond the target there fails the probe for
-// good; none passes it provisionally. The triple the bisection picks is then checked on every pose of every sample. If
-// one is beyond the target, that triple fails for good, every sample beyond the target joins every
-// later screen, and the bisection runs again; after three such rounds every probe is checked on
-// every pose (the search without screening). So the returned model has always been measured pose by
-// pose within the target (its errors are that measurement), whatever the screen missed. The triple
-// can differ from the unscreened search's only where the max error is not monotone along the
-// bisection's path (a provisional pass the full search would have failed, on a probe other than the
-// chosen one): then the bisection continues from a different interval; the result still meets the
-// target and is still the fewest-parameter passing triple among those the bisection visited.
-// Screened probes and the candidate's first full check run on the cheaper truncation reconstruction
-// where it applies (lib/src/compression/truncation_reconstruction.hpp); a candidate that passes there
-// is measured again on its own reconstruction, and those are the errors returned.
-// docs/synthesis.md (Compression, "How the ranks are found") says the same for users.
+// Details: docs/headers/compression.md (mocapdb/compression/rank_search.hpp).
 #include <functional>
 
 #include "mocapdb/compression/set_model.hpp"

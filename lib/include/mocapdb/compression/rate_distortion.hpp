@@ -1,26 +1,9 @@
 #pragma once
-// The compression report's engine (issue #4): on one aligned set, in one run, the bytes each method
+// The compression report's engine: on one aligned set, in one run, the bytes each method
 // needs to reach each max joint-error target, measured the same way for all of them
 // (eval/joint_error.hpp: forward kinematics, every joint, frame and sample).
 //
-// Methods (all see the same weighted, centred tensor X of set_model.hpp, so every one spends its
-// error budget in centimetres; all are charged the same side information, byte_accounting.hpp):
-//  - "tucker":          HOSVD, ranks searched (rank_search.hpp), core and bases stored as float32.
-//  - "tucker-hooi":     HOOI refinement at the same ranks (float32).
-//  - "tucker-qB":       the same ranks with core and bases quantized to B bits and deflated (the
-//                       decoded model is measured: quantization may break the target; no residual).
-//  - "tucker+residual": HOSVD at a ladder of ranks, core and bases quantized (codec/quantize.hpp)
-//                       and deflated, plus the error-bounded residual layer (codec/residual_layer.hpp)
-//                       whose step is searched; the cheapest rung wins.
-//  - "pca":             per-sample PCA (codec/pca_baseline.hpp), components searched, float32.
-//  - "pca+residual":    PCA at k = 0, 1, 2, 4, ... components plus the residual layer (k = 0 is the
-//                       per-(dof, frame) mean plus residuals), the cheapest wins.
-//  - "zfp":             zfp fixed accuracy (codec/zfp_codec.hpp), tolerance searched.
-//  - "raw-float32":     the aligned poses as float32 (the paper's "full" row; no target).
-//  - "deflate":         lossless deflate of the float32 poses (one row, no target).
-// Searches keep the cheapest measured setting that meets the target; a row says when none did.
-// Timing: "pose" rows report the time to synthesize one pose from the model (random access);
-// "stream" rows the time to decode the whole set divided by its T N poses.
+// Details: docs/headers/compression.md (mocapdb/compression/rate_distortion.hpp).
 #include <memory>
 #include <string>
 #include <vector>

@@ -36,7 +36,7 @@ struct SetModel {
 
 /// A model's pose vectors a few samples at a time (for JointErrorMeter::measure_within): the values
 /// SetModel::reconstruct() gives (both decode through tensor::SampleDecoder), without a D x T x N
-/// tensor (issue #16). Sample n is the decoder's sample n, divided by the weights, plus the mean.
+/// tensor. Sample n is the decoder's sample n, divided by the weights, plus the mean.
 /// Keeps a pointer to model: the model must outlive it. Thread-safe (const).
 class SampleReconstruction {
 public:

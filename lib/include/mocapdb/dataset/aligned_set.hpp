@@ -17,8 +17,8 @@ struct AlignedSet {
     /// frame, shown at aligned frame t. Strictly increasing in t, from 0 to frames_n − 1.
     MatX warps;
     /// D by T by N pose vectors (pose_vector.hpp layout), each sample canonicalized by itself (see
-    /// `canonical`; by its initial travel direction since issue #15, by its first frame's heading
-    /// before), exp-map branches consistent across samples.
+    /// `canonical`; by its initial travel direction, formerly by its first frame's heading), exp-map
+    /// branches consistent across samples.
     Tensor3 tensor;
     /// Per dof (D): the normalized tensor is (tensor − mean) / scale.
     VecX mean;

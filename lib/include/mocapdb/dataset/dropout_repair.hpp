@@ -4,32 +4,9 @@
 // the clip. Detected and repaired when samples are taken from a stored clip (set building, eval
 // sets); the stored clip itself is never changed, so its lossless tier still reproduces the source.
 //
-// A maximal run of frames [begin, end) of joint j is a dropout when
-//  (1) every rotation channel of j is exactly 0 in each frame of the run, and j has frames where
-//      it is not (a joint that never moves has nothing to repair);
-//  (2) in each frame of the run, the group of exactly-zero joints around j (parent / children,
-//      through joints without rotation channels) borders a joint that is not zero: a whole body at
-//      rest is a rest pose, not a dropout;
-//  and either
-//  (3a) j jumps into the run: at the clean frame before or after it, j's local rotation is at least
-//       `min_jump` from the identity (a signal that passes through 0 smoothly is not a dropout), and
-//       0 is not the limit of j's range: not every rotation channel's clean values stay on one side
-//       of 0 while reaching within `limit_tolerance` of it (a knee pinned straight at its limit by the
-//       solver, as CMU's tibiae are in single frames, is a genuine pose);
-//  or
-//  (3b) the run overlaps a dropout run of an adjacent joint (a whole limb drops out together; its
-//       distal joints may sit near 0 anyway, e.g. a wrist).
-// On the shared CMU clips this finds the arm / hand / toe dropouts at the start of 16_15, 16_23,
-// 16_28, 16_33, 16_54 (and 02_03, 10_04) and none of the single-frame knee or clavicle zeros.
-//
-// Repair (per run, per joint, rotation channels only): between the clean frames on either side,
-// joints with three rotation channels are interpolated by quaternion slerp of the channels' rotation
-// (converted back to Euler angles nearest the linearly interpolated, unwrapped angles, so no 2π
-// jumps); joints with one or two channels interpolate their angles linearly after unwrapping (exact
-// for one axis; the only path two channels can express). A run at the clip's start or end holds the
-// nearest clean frame.
-//
 // Pure functions, no state; safe to call from several threads.
+//
+// Details: docs/headers/dataset.md (mocapdb/dataset/dropout_repair.hpp).
 #include <string>
 #include <vector>
 

@@ -1,18 +1,10 @@
 #pragma once
 // Phase check of an aligned locomotion set: at each aligned frame, do the samples have the same foot
 // forward? Whole walks aligned with both ends pinned can put left-foot-forward and right-foot-forward
-// poses at one aligned frame (issue #15: 60 % agreement at the ends of walks16), and every blend of
+// poses at one aligned frame (60 % agreement at the ends of walks16), and every blend of
 // them is then wrong.
 //
-// At aligned frame t, sample n is read at its warped frame (rounded) and its forward foot is the one
-// whose joint lies further along the root's heading ((p_left − p_right) · heading > 0: left). While
-// the feet pass each other (less than `passing_cm` apart along the heading) a sample has no forward
-// foot and is left out at that frame. The share at t is the larger of the left and right counts over
-// the samples that have one (1 when none has). Feet default to default_feet(skeleton)
-// (foot_contacts.hpp).
-//
-// Pure function. InvalidArgument when the samples and the aligned set disagree in count, or the feet
-// are not found (callers for non-locomotion sets may skip the check on that error).
+// Details: docs/headers/dataset.md (mocapdb/dataset/phase_check.hpp).
 #include <string>
 #include <utility>
 #include <vector>

@@ -30,7 +30,7 @@ struct FlightWindowOptions {
     double after_seconds = 0.5;   ///< kept after landing (the absorption)
 };
 
-/// The jump of a clip as one sample (issue #15: phase-consistent samples): from before_seconds before
+/// The jump of a clip as one sample (phase-consistent samples): from before_seconds before
 /// the take-off of its longest flight (foot_contacts.hpp: longest_flight) to after_seconds after the
 /// landing, clipped to the clip. Whole clips of jumps hold different amounts of standing before and
 /// after, which a both-ends-pinned alignment then mixes with the jump itself. None when the clip has no

@@ -3,16 +3,10 @@
 // CMU clips (../shared/reference/acl/*.csv, one row per clip and precision setting, errors measured
 // with our FK metric) aggregated over a collection, and ACL's bytes at a given error.
 //
-// The method is the peer tool's (../shared/reference/acl/compare.py), figure for figure: rows with
-// status "ok" and a numeric precision are kept ("raw" is ACL's uncompressed container); per precision
-// the selected clips' bytes are summed, the max error is the max of the per-clip maxima, the RMSE is
-// pooled over every joint position (each clip weighted by frames x (joints + end_sites)); ACL's bytes
-// at an error e are interpolated log-linearly (log bytes against log error) between the two settings
-// whose measured errors bracket e. Outside the measured range there is no figure (nullopt), never an
-// extrapolation.
-//
 // Pure functions; no state, thread-safe. Errors: IoError when a table cannot be read, ParseError
 // ("FILE:LINE:COLUMN: ...") naming the column and what was expected for a malformed table.
+//
+// Details: docs/headers/eval.md (mocapdb/eval/acl_reference.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

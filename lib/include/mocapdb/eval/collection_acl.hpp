@@ -1,5 +1,5 @@
 #pragma once
-// The whole collection's packed tier beside ACL (issue #14 item 4, `mocapdb report --collection
+// The whole collection's packed tier beside ACL (`mocapdb report --collection
 // --reference`): the per-clip ACL tables read and appended, aggregated over the report's clips, and
 // per max-error bound E the comparison of our bytes with ACL's at our measured error; or why no
 // comparison is possible (no clips, clips without a row, an incomplete table). Nothing is printed.

@@ -1,34 +1,16 @@
 #pragma once
-// The whole-collection benchmark of a database (issue 14 item 4): for each bound E, every clip packed
+// The whole-collection benchmark of a database: for each bound E, every clip packed
 // in memory as `mocapdb pack` would store it (grouped by skeleton topology and frame rate,
 // packing::pack_measured per group; nothing is written), with bytes, ratio to float32 channels,
 // bytes per second of motion, bits per joint per frame, max / p99 / RMSE cm measured on the decoded
 // bytes, encode time, random-access decode time per pose and streaming decode speed; and the lossless
 // tier beside gzip -9 of the clips' source text.
 //
-// Definitions (as benchmarks/bench_packing.cpp):
-// - bytes: everything the decoder needs (topology, skeletons, bases, contexts, tables, payloads);
-// - float32 bytes: frames x channels x 4 of every clip; seconds of motion: frames / frame rate;
-// - bits per joint per frame: 8 x bytes / (frames x joints), joints counting end sites;
-// - errors: FK positions of every joint and end site, every source frame, decoded vs source, cm
-//   (p99 pooled over the collection from a histogram of resolution E / 8192);
-// - encode s: pack_group wall time (every attempt, see measured_pack.hpp);
-// - stream MB/s: float32 channel bytes / wall time of GroupDecoder::decode_clip over every clip;
-// - pose µs: wall time of GroupDecoder::decode_pose at `random_poses` frames drawn uniformly from
-//   the collection's frames (fixed seed, one thread), per pose; indexed pose µs: the same frames as
-//   local transforms through a PoseIndex of their group (built one group at a time, not timed).
-// Lossless tier: everything the database's files spend on the clips (Database::clips_file_bytes:
-// the `channels_packed` data of docs/storage.md plus each clip's HDF5 objects, about 7 kB a clip);
-// channel_bytes: the channel data alone. The stored skeletons are not counted, as gzip is not charged
-// the ASF files. gzip -9: zlib level 9
-// deflate of each clip's source file plus gzip's container (10-byte header, the file name, 8-byte
-// trailer), only when every clip's source file is found in `source_dirs` (subfolders included) under
-// its recorded name with its recorded SHA-256; otherwise `gzip_available` is false and the reason
-// says why.
-//
 // The database is only read (not thread-safe: one Database per thread). Memory: one group's clips
 // and their FK positions at a time, plus every E's packed bytes. Errors: InvalidArgument for bad
 // options (no E, E <= 0 or not finite, threads < 1); the database's StoreError; pack errors.
+//
+// Details: docs/headers/eval.md (mocapdb/eval/collection_report.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

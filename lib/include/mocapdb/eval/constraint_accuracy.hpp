@@ -49,7 +49,7 @@ struct ConstraintMethodResult {
     VecX reliability;
     bool own_reliability = false;  ///< reliability is the method's own
     /// The largest own rho at the 2P points 3 standard deviations outside the samples' box (from the box's
-    /// centre along each axis, both sides; issue #15: must be <= 0.5); NaN without an own rho.
+    /// centre along each axis, both sides: must be <= 0.5); NaN without an own rho.
     double rho_outside_3sd = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// The motion sets of the evaluation (issue #7), built in memory from CMU ASF/AMC files: samples (whole
+// The motion sets of the evaluation, built in memory from CMU ASF/AMC files: samples (whole
 // clips or gait cycles), control parameters measured by the extractors of param_extractors.hpp, and
 // the DTW-aligned D x T x N pose tensor.
 //

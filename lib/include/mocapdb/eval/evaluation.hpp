@@ -1,5 +1,5 @@
 #pragma once
-// The evaluation as a library step (issue #7, `mocapdb eval`): builds the sets of a plan
+// The evaluation as a library step (`mocapdb eval`): builds the sets of a plan
 // (evaluation_plan.hpp) from the CMU clips and runs every experiment on them (leave-one-out prediction,
 // constraint accuracy, sample reduction, compression, runtime), returning every number; the verdicts
 // drawn from them are verdicts.hpp, the renderings (REPORT.md, CSV, JSON, SVG) are the caller's.

@@ -1,5 +1,5 @@
 #pragma once
-// What one run of the evaluation (issue #7, `mocapdb eval`) does: which sets of CMU clips it builds,
+// What one run of the evaluation (`mocapdb eval`) does: which sets of CMU clips it builds,
 // which experiments it runs on each, and with which options, for the three sizes of run (full, quick
 // for smoke tests, tiny for sanitizer builds), and the methods compared on a set (the Tucker ranks
 // resolved against the set's error targets). Pure data; evaluation.hpp runs a plan.

@@ -1,17 +1,13 @@
 #pragma once
 // How much the choice of a stationary kernel could lower kriging's leave-one-out pose error on a set
-// (issue #15, acceptance 1: "kriging beats RBF and the trend"): every kernel of a fixed grid (model
+// (the evaluation's claim "kriging beats RBF and the trend"): every kernel of a fixed grid (model
 // exponent, range, nugget share and, with two or more linear parameters, the relative scale of the
 // axes after the first) is used in every fold of a naive-kriging leave-one-out, and the best mean
 // error over the grid is kept. The best is chosen on the very errors it is scored on, so no choice
 // among these kernels made from the training samples alone can beat it: when it does not reach a
 // baseline, fitting the variogram better will not either (unless it leaves the grid's families).
 //
-// Folds as loo_prediction.hpp (left-out sample i, the others train; DTW alignment shared), prediction
-// as synthesis::NaiveMotionModel blends them (weights of the universal kriging with the linear OLS
-// trend and the nugget filtered, applied to the aligned samples), error as the root-relative "pose"
-// error (frame_joint_errors with root_relative).
-// Errors: InvalidArgument for fewer than 4 samples, an empty grid or values out of range. Threads: pure.
+// Details: docs/headers/eval.md (mocapdb/eval/kernel_headroom.hpp).
 #include <vector>
 
 #include "mocapdb/core/progress.hpp"

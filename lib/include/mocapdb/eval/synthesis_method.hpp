@@ -3,23 +3,7 @@
 // then synthesize the motion at control parameters c as D x T aligned poses plus its timing (the warp:
 // source frame shown at each aligned frame), and from those a clip at the set's frame rate.
 //
-//   PerPoseKriging     kriging::MotionKriging, KernelScope::PerPose (the geostatistical paper §3.4): one
-//                      kernel per aligned frame on the pose signal d_p(q_i(t), q_0(0)) (heading-frame joint
-//                      positions, RMS over joints, cm), root position and heading dofs per element.
-//   PerElementKriging  MotionKriging, KernelScope::PerElement (§3.2): one kernel per dof and frame.
-//   TuckerKriging      synthesis::MotionModel (multilinear paper) on a HOSVD of the training tensor at the
-//                      given ranks (R3 clamped to the training size): the basis IS refitted per training set.
-//   NaiveKriging       synthesis::NaiveMotionModel: per-set kriging of the uncompressed aligned samples.
-//   Rbf                MotionKriging with InterpolationMethod::Rbf: Rose et al.'s linear + cubic B-spline
-//                      radial basis, one interpolator for every column.
-//   NearestNeighbour   eval::NearestNeighbourBlend over the k nearest samples in normalized c.
-//   TrendOnly          the linear trend alone (issue #15): per element of the motion (and of the timing),
-//                      the least-squares hyperplane in the normalized parameters, no kriging of the
-//                      residuals; the baseline every kriging method must beat ("gain over trend-only").
-// Timing: Tucker and naive use their own kriged inverse-warp increments (shared kernel); the
-// MotionKriging methods krige the increments with a per-set kernel of the same method (Kriging or Rbf);
-// nearest neighbour blends them with its weights. Increments are clamped to [0.05 mean, 4 max] of the
-// training increments, as synthesis_model.hpp does.
+// Details: docs/headers/eval.md (mocapdb/eval/synthesis_method.hpp).
 #include <memory>
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The evaluation's verdicts (issue #7, "Where our kriging loses"): for every set and metric, the best
+// The evaluation's verdicts ("Where our kriging loses"): for every set and metric, the best
 // method overall against the best of the kriging methods, judged a kriging win, a tie (within 5 % or
 // the metric's resolution) or a loss to a baseline; per compression target, the best ratio against
 // plain Tucker; at the largest runtime size, the fastest preprocessing and synthesis; and the totals.

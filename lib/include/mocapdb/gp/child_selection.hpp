@@ -1,5 +1,5 @@
 #pragma once
-// Choosing children of replicate data by name (issue #17, `mocapdb gp`): the CMU subject of a child's
+// Choosing children of replicate data by name (`mocapdb gp`): the CMU subject of a child's
 // name, groups of children by subject (the middle layer of a three-layer model), a child by name or
 // index, the group of a subject, and which frames of a child are observed (a seeded random choice).
 // Pure functions. Errors: InvalidArgument as stated. Threads: no shared state.

@@ -1,20 +1,7 @@
 #pragma once
 // Accuracy of interpolation (MSE, SMSE, MSLL) and similarity of synthesized motions (MCC, MLC).
 //
-// Interpolation (Rasmussen & Williams 2006, §2.5), D outputs, per output d over its test points:
-//   MSE   mean (y − μ)²                                       (over all outputs and test points)
-//   SMSE  MSE_d / var(y_test,d), averaged over the outputs    (the test targets' own variance)
-//   MSLL  mean of  ½ log(2π σ²) + (y − μ)²/(2σ²) − [½ log(2π v_d) + (y − m_d)²/(2 v_d)],
-//         m_d, v_d the mean and variance of output d's training values (R&W's trivial model), σ² the
-//         predictive variance of y (latent variance + noise). The squared deviation in the trivial
-//         model's term is R&W's; the thesis's eq. 26 drops the square (a typo).
-// Synthesis (Gil López 2017, §4.3): every output of every motion is first normalized to [0, 1] by its
-// own minimum and maximum (this reproduces the thesis's magnitudes: about 26–29 for a 90-frame walk
-// against itself). For a generated motion s and a real motion n:
-//   MCC(s, n) = mean over outputs of max over lags of the full discrete cross-correlation Σ_m n[m] s[m+lag]
-//   MLC(s, n) = mean over outputs of the Pearson correlation of n and s (outputs constant in either are
-//               skipped)
-// and each real motion gets the mean ± standard deviation over the generated ones.
+// Details: docs/headers/gp.md (mocapdb/gp/gp_metrics.hpp).
 #include <vector>
 
 #include "mocapdb/core/types.hpp"

@@ -7,42 +7,8 @@
 // with LMC covariances K_g, K_f (lmc.hpp). Two values of one child covary by K_g + K_f (+ noise), of
 // different children by K_g. The MOA baseline is the same LMC without the hierarchy: children are
 // independent draws of one GP(0, K_f) (+ noise); `hierarchical = false` selects it.
-// Three layers (`grouped`, trend → group → child, e.g. trend → subject → trial): each child belongs to
-// a group s (HgpData::groups) with its own function h_s ~ GP(g, K_h) and f_r ~ GP(h_s, K_f). Values of
-// one child covary by K_g + K_h + K_f (+ noise), of two children of one group by K_g + K_h, of
-// different groups by K_g.
 //
-// Data: all children share the sample times `times` (T values); each child is a D by T matrix,
-// optionally with a per-frame mask of observed frames (all outputs of a frame observed together).
-//
-// Implementations of the log marginal likelihood and its gradient:
-//   dense       builds the full covariance over every observed value of every child (the oracle;
-//               any masks and groups), O((R·D·T)³);
-//   structured  all children complete (three layers: and every group of the same size m): rotating
-//               the children within their groups and the groups around their mean splits the
-//               likelihood into independent Gaussian "levels", each over D·T values with one
-//               covariance: two layers, A = K_f + noise for the R − 1 deviations from the mean and
-//               A + R·K_g for √R·ȳ; three layers, A for the R − S deviations from the group means,
-//               A + m·K_h for the S − 1 deviations of √m·ȳ_s from √m·ȳ, A + m·K_h + R·K_g for √R·ȳ.
-//               Only the deviations' scatter enters each level: one factorization of size D·T per
-//               level, O(levels·(D·T)³) independent of R. The levels run on two threads. Groups of
-//               unequal size: the deviations within each size class are levels as above, and the K
-//               classes' means ȳ_c = g + N(0, (A + n_c·K_h) / R_c) are one coupled Gaussian (Woodbury
-//               without inverting K_g; about 12 (D·T)³ flops).
-//   low rank    the same levels, but each covariance is written as P + L Lᵀ: P block diagonal over
-//               the outputs (the diag(κ_q) ⊗ k_q terms and the noise, D blocks T×T) and
-//               L = [w_qj ⊗ S_q] with k_q = S_q S_qᵀ (rank(W_q)·T columns per term); determinant lemma
-//               and Woodbury with an M×M capacitance, M = Σ_q rank(W_q)·T, and gradient contractions
-//               that never form a (D·T)² matrix: O(D·T³ + D·T²·M + D·T·M² + M³) per level. The coupled
-//               size classes are an LMC over D outputs at K·T (class, time) inputs with kernels
-//               I ⊗ k, diag(n_c) ⊗ k and v vᵀ ⊗ k (v_c = √R_c): the same algebra with K·T for T.
-// Children with missing frames break the structure: the likelihood then falls back to the dense path
-// (Auto), while the posterior of a partially observed child given complete siblings
-// stays structured (the siblings enter through the posterior of g and of the child's group function,
-// conditioned group by group).
-//
-// Numerical outcomes are values, never exceptions: a covariance that is not positive definite gives
-// ok = false with a message. Arguments of the wrong shape throw InvalidArgument.
+// Details: docs/headers/gp.md (mocapdb/gp/hierarchical_gp.hpp).
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The steps of `mocapdb gp` as library functions (issue #17) on prepared replicate data
+// The steps of `mocapdb gp` as library functions on prepared replicate data
 // (motion_data.hpp): fit a model, interpolate a partially observed child from its siblings, sample new
 // children around the fitted trend, split data into training children and real motions and run the
 // thesis's replicate experiment (experiment.hpp) on them, and the summary of a fitted model that the

@@ -3,15 +3,7 @@
 // every child to N frames over a common duration, min–max normalize, and reassemble predictions or
 // samples into full clips (for BVH export).
 //
-// The children are pose-vector sequences (motion/pose_vector.hpp: root position and heading-relative
-// orientation in each clip's canonical frame, joint exponential maps), so clips of different subjects
-// with the same joint structure (CMU ASF skeletons) are comparable. Dofs are selected in three steps:
-// joints excluded by name (default: the thesis's manual rejection — clavicles, wrists, hands,
-// fingers, thumbs, toes), then constant dofs (range over every child ≤ constant_tolerance), then
-// noisy dofs: log SNR < 0 where SNR = var(x) / (½ var(Δx)), pooled over the children's subsampled
-// sequences (for white noise var(Δx) = 2 var(x), so SNR ≈ 1; for a smooth signal SNR ≫ 1).
-// Normalization maps each selected dof to [0, 1] by its minimum and maximum over all children; it is
-// inverted exactly by denormalize().
+// Details: docs/headers/gp.md (mocapdb/gp/motion_data.hpp).
 #include <memory>
 #include <optional>
 #include <string>

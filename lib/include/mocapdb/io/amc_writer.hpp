@@ -3,17 +3,7 @@
 // asf_amc.hpp (joints at bone starts, bone vector = the offset of the bone's children or of its end
 // site "<bone>_end", axis C, dof order = channel order, cm = value / (:units length) · 2.54).
 //
-// Only skeletons that mapping can produce are written (asf_incompatibility() says why not): joint 0
-// is "root"; every other joint is a bone or the end site of a leaf bone; a bone hanging from the root
-// starts at the root (zero offset); all children of a bone start at its end (equal offsets); each
-// joint's rotation_order is the ASF composition of its rotation channels (listed first = applied
-// first) and translation channels sit on bones whose axis is the identity. Other skeletons (BVH
-// rigs) are exported as BVH instead.
-//
-// Numbers: ASF values are written with 15 significant digits, so a written skeleton reads back to
-// Skeleton::same_structure (1e-9). AMC values are converted to the
-// skeleton's SourceUnits (length unit, degrees or radians) and written with `precision` significant
-// digits (10 by default: reproduces values printed with up to 10 digits, as CMU's are, exactly).
+// Details: docs/headers/io.md (mocapdb/io/amc_writer.hpp).
 #include <filesystem>
 #include <iosfwd>
 #include <string>

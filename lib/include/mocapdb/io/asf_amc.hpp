@@ -1,31 +1,7 @@
 #pragma once
 // CMU / Acclaim skeleton (ASF) and motion (AMC) files.
 //
-// The ASF skeleton becomes a Skeleton whose joints sit at the START of each ASF bone: joint "root",
-// then one joint per bone (named as the bone, ordered parents first by the :hierarchy section), and
-// an end site "<bone>_end" after every leaf bone. A bone's joint offset is its parent bone's vector
-// (direction · length), so bone b's own vector is the offset of its children / end site. Each joint's
-// rotation is C · R(dof) · C⁻¹ with C the bone's `axis` and R the dof rotations composed in the ASF
-// sense (the dof listed first is applied first: "rx ry rz" means R = Rz·Ry·Rx).
-// Units: lengths are converted to centimetres as cm = value / (:units length) · 2.54 (CMU's FAQ:
-// the file's lengths are inches times the length factor); angles by `:units angle` (deg or rad).
-//
-// Reading choices (the Acclaim text leaves them open):
-// - `axis a b c ORDER` (and the root's `orientation` with its `axis ORDER`): a, b, c are the angles
-//   about X, Y, Z; ORDER is the sequence, first letter applied first ("XYZ": C = Rz(c)·Ry(b)·Rx(a)).
-// - Root `order`: any subset/permutation of TX TY TZ RX RY RZ; it is the root's channel order. The
-//   root's offset is its `position`; position channels add to it.
-// - dof `l` (bone stretch) is refused (ParseError): skeletons have fixed bone lengths. Bone dofs tx,
-//   ty, tz become position channels, accepted only on bones with axis 0 0 0 (otherwise they would move
-//   along the wrong axes). `limits` are checked for syntax (one pair per dof, ±inf allowed) and dropped.
-// - '#' starts a comment anywhere on a line; LF and CRLF are accepted; keywords are case-insensitive.
-// - AMC: a bone line holds the joint's channel values in channel order (the ASF dof order). End sites
-//   are not bones. :DEGREES / :RADIANS state the AMC's angle unit and win over the ASF's; a clash is a
-//   warning. Frame numbers that do not count up by one are a warning (frames are kept in file order).
-//   Every bone with dofs must appear exactly once per frame: a missing bone is a ParseError, except in
-//   the file's last frame, which the file may have been cut inside: non-strict drops that frame with a
-//   warning (the complete frames are kept, as the BVH reader does), strict refuses. Strict mode turns
-//   every warning into a ParseError. No complete frame at all is a ParseError.
+// Details: docs/headers/io.md (mocapdb/io/asf_amc.hpp).
 #include <filesystem>
 #include <memory>
 #include <optional>

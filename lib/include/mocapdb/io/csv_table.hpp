@@ -1,5 +1,5 @@
 #pragma once
-// The one CSV reader of mocapdb (issue #17): a header row of column names, then data rows, every row
+// The one CSV reader of mocapdb: a header row of column names, then data rows, every row
 // with the header's number of comma-separated cells. Cells may be quoted (RFC 4180: commas, quotes as
 // "" and line breaks inside quotes); blank lines are skipped; cells are trimmed of spaces and tabs;
 // CRLF line ends and a UTF-8 byte order mark are accepted. Used for control parameters, the kriging

@@ -1,69 +1,10 @@
 #pragma once
 // Ordinary and universal kriging with a fixed variogram model (paper Sections 3, 4.3, Appendix B).
 //
-// Kriging is built once from the control points and the model ("factorize once"); after that a query
-// costs one vector of gamma values and one matrix-vector product (no solve) with a precomputed M by
-// (M + K) operator applied to [gamma(c); g(c)] (for OLS the trend correction is folded into it; with
-// AVX2 + FMA a single query reads the symmetric M by M block of the operator packed as its lower
-// triangle, half the bytes, and applies the trend correction by the constraint projection), and a
-// batch of queries is one matrix product (GEMM) per block of 256 queries. The weights depend on the
-// control points only, so the same object blends any number of signals (pose vectors, whole motions,
-// tensor coefficients); for fixed signals, KrigingPredictor (kriging_predictor.hpp) folds them into the
-// operator so that a query costs one (signal size) by (M + K) product.
-//
-// Trend handling (TrendFit), with trend = TrendKind::Linear:
-//   OLS (the paper): the hyperplane m(c) is fitted by ordinary least squares, its residuals
-//       r_i = s_i - m(c_i) are kriged with the ordinary-kriging kernel b(c) of the paper's Equation 3
-//       (sum b = 1), and s*(c) = m(c) + sum_i b_i(c) r_i. That is again a linear combination
-//       s*(c) = sum_i w_i(c) s_i with w = b + H-correction; `weights` returns w, `kernel` returns b.
-//   GLS (standard universal kriging, as gstat, geoR, ...): one system with the unbiasedness
-//       constraints G^T w = g(c); the trend is implicitly estimated by generalized least squares.
-//       Here `weights` and `kernel` coincide.
-// With TrendKind::None both are ordinary kriging.
-//
-// Outputs per query:
-//   weights w (N): partition of unity, exact interpolation at the samples (w(c_j) = e_j),
-//   variance: the prediction-error variance E[(Z(c) - sum_i w_i Z_i)^2] implied by the variogram,
-//       2 w^T gamma(c) - w^T Gamma w. For ordinary kriging and GLS this is the standard kriging
-//       variance (computed as w^T gamma(c) + mu^T g(c) with the Lagrange multipliers mu), the number gstat
-//       reports as var1.var; for OLS it is the variance of the paper's detrend-then-krige predictor.
-//   paper_variance sigma^2(c) = sum_i b_i gamma(|c - c_i|) (Appendix B; no Lagrange term; it goes
-//       negative when extrapolating a trend, and is then clipped at 0), and the
-//   reliability rho(c) = 1 - V(c) / (theta0 + theta1), clipped to [0, 1] (rho(c_i) = 1, rho -> 0 far from
-//       the samples), where V is `variance` (ReliabilityVariance::Prediction, the default: the predictor's
-//       own error variance, with the trend terms, never negative: it grows when the trend is
-//       extrapolated) or the paper's sigma^2 (ReliabilityVariance::Paper, what reduction.hpp uses).
-//
-// Filtered kriging (KrigingOptions::filter_nugget, issue #15): the nugget is measurement noise, not a
-// discontinuity of the signal. The system keeps it (covariance nugget + sill on the diagonal), but the
-// query's variogram vector uses the continuous part sill * shape(h) only, so the predictor smooths the
-// samples instead of interpolating them and w(c) is continuous in c (no jump when c moves off a sample).
-// (Adding a constant to gamma(c) does not change the weights, so this equals covariance-form kriging
-// with c(h) = sill (1 - shape(h)).) `variance` is then the error variance of the noise-free signal,
-//   2 w^T gamma_s(c) + nugget - w^T Gamma w,
-// and leave_one_out is unchanged (the left-out point is never one of the others).
-//
-// Numerical robustness (all reported in KrigingStatus, never thrown):
-//   * the system is solved in covariance form C = covariance(|c_i - c_j|) (symmetric positive definite
-//     for a valid model) by Cholesky; the same weights as the variogram form;
-//   * if Cholesky fails or its reciprocal condition estimate is below min_rcond (default 1e-10), a jitter
-//     delta = total_sill * 1e-12, 1e-11, ... (up to max_jitter * total_sill) is added to the diagonal
-//     (a tiny nugget: interpolation is then exact only up to that order);
-//   * if that does not suffice (e.g. a spherical model in more than 3 dimensions), the covariance
-//     matrix is replaced by its nearest positive definite matrix (eigenvalues clamped);
-//   * duplicate control points (distance <= duplicate_tolerance) are merged (Merge: one point whose
-//     value is the mean, its weight split evenly among the duplicates) or kept (Keep: relies on a
-//     nugget or the jitter);
-//   * collinear / coplanar control points make the linear trend rank deficient: the flat directions are
-//     dropped (see trend.hpp);
-//   * the constraints G^T w = g(c) (G the trend basis at the samples: sum w = 1 and, with a linear trend,
-//     exact reproduction of the hyperplane; both OLS and GLS weights satisfy them) are re-imposed on the
-//     computed weights by a cheap projection, so rounding errors of an ill-conditioned system cannot
-//     break the partition of unity;
-//   * variances are clipped at 0; no output is ever NaN for finite inputs.
-//
 // The object is immutable after build() and safe to query from several threads (one QueryWorkspace
 // per thread).
+//
+// Details: docs/headers/kriging.md (mocapdb/kriging/kriging.hpp).
 #include <memory>
 #include <vector>
 

@@ -6,18 +6,9 @@
 // (Op the M by (M + K) weight operator on the unique points, P = I - G D G^T the constraint projection,
 // D = diag(1/M, 1, ..., 1), E the expansion of merged duplicates to the N samples),
 //     s*(c) = F [gamma(c); g(c)],   F = (P E^T V)^T Op + [0, (E^T V)^T G D]   (S by M + K),
-// computed once here. A query then costs S (M + K) multiply-adds instead of the weights' M (M + K) plus
-// the N S of the blend: for the synthesis model's R3 = 24 coefficients of N = 92 samples (P = 4),
-// 24 x 97 instead of 92 x 97 + 92 x 24, and F (18 KiB) stays in the L1 cache.
+// computed once here.
 //
-// The result equals V^T weights(c) up to rounding (the same products in another order; tested to
-// ~1e-12 relative). The constraint projection is folded too, so the unbiasedness constraints hold only
-// to the rounding of F (~1e-16 |Op| instead of ~1e-16 |w|): exact weights for ill-conditioned systems
-// remain the Kriging object's job. Variances and reliability need the weights: use Kriging.
-//
-// Immutable after build() and independent of the Kriging object it was built from (it keeps its own
-// copy of the unique points, the model and the trend basis); safe to query from several threads (one
-// QueryWorkspace or scratch matrix per thread).
+// Details: docs/headers/kriging.md (mocapdb/kriging/kriging_predictor.hpp).
 #include <Eigen/Core>
 
 #include "mocapdb/kriging/interpolator.hpp"

@@ -1,27 +1,7 @@
 #pragma once
-// Kriging of whole motions on plain Eigen inputs, with the kernel variants of the paper, selectable:
+// Kriging of whole motions on plain Eigen inputs, with the kernel variants of the paper, selectable.
 //
-//   PerElement (paper 3.2): one kernel per dof and frame. The variogram of each column is estimated
-//       from the OLS-trend residuals of that column.
-//   PerPose (paper 3.4): one kernel per frame, estimated from the residuals of a scalar pose signal
-//       (the pose distance d_p(q_i(t), q_1(0)) to a reference pose), shared by all dofs of the frame;
-//       the root dofs (position and heading, which the pose distance ignores) get per-element kernels,
-//       with an exponent chosen on the root columns (not the pose signal's).
-//   PerSet (multilinear paper): one kernel for whole-motion coefficient vectors (e.g. rows of the
-//       sample-mode basis, or flattened core slices), estimated on a pairwise dissimilarity between the
-//       samples (given, e.g. core-tensor slice distances, or the Euclidean distance of the OLS residual rows).
-//
-// Layout of samples: N by (D*T), row i = sample i, column t*D + k = dof k at frame t ("frame-major
-// blocks"); PerSet ignores the frame structure (any N by M matrix). pose_signal: N by T (PerPose only).
-//
-// The model exponent p is chosen once by closed-form leave-one-out on a representative signal (the
-// column / frame with the largest residual variance, or a given one) and theta is then fitted for every
-// kernel with p fixed (paper Appendix A). Control parameters are normalized per axis before any
-// distance (ControlScaling::from_data, i.e. zero mean / unit standard deviation per axis) unless
-// normalize_controls is false or a scaling is given; queries are normalized the same way.
-//
-// Every variant blends the raw samples linearly, so the RBF baseline (method = Rbf: one Rose-style
-// interpolator shared by every column) drops in for comparisons.
+// Details: docs/headers/kriging.md (mocapdb/kriging/motion_kriging.hpp).
 #include <memory>
 #include <optional>
 #include <vector>

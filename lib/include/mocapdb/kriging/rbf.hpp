@@ -8,14 +8,7 @@
 // h(c) the least-squares trend weights and H the hat matrix, so it implements the same Interpolator
 // interface (partition of unity, exact at the samples) and can be swapped in for any comparison.
 //
-// Radial functions (r = distance):
-//   CubicBSpline  phi_j(r) = B(2 r / rho_j), B the uniform cubic B-spline (support |x| <= 2), with the
-//                 radius rho_j = radius_scale * (distance from c_j to its nearest other sample): the
-//                 dilation rule of Rose et al. 1998 (radius_scale = 2 there);
-//   Gaussian      phi(r) = exp(-(r / width)^2);
-//   Linear        phi(r) = r;   Cubic  phi(r) = r^3;   ThinPlate  phi(r) = r^2 log r (polyharmonic).
-// Duplicate control points are merged as in kriging (mean value, weight split evenly); a singular
-// radial matrix is handled by a small ridge (reported in the status), never an exception.
+// Details: docs/headers/kriging.md (mocapdb/kriging/rbf.hpp).
 #include <Eigen/Core>
 
 #include "mocapdb/kriging/interpolator.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Kriging of a plain table (issue #17; `mocapdb variogram` and `mocapdb krige`, the geostatistics
+// Kriging of a plain table (`mocapdb variogram` and `mocapdb krige`, the geostatistics
 // checks against gstat): a CSV table's coordinates and values (normalized per axis when asked), the
 // experimental variogram of the values or of their OLS-trend residuals, the variogram model fitted with
 // a fixed exponent or chosen by leave-one-out, and the predictions, variances and reliabilities at

@@ -78,7 +78,7 @@ Eigen::MatrixXd evaluate_trend(const TrendBasis& basis, const Eigen::Ref<const E
 /// The motion pipeline normalizes so that every axis contributes comparably to distances (the paper
 /// requires normalized parameters for intrinsic stationarity); users may override the scales.
 ///
-/// Periodic axes (issue #15: a bearing, period 2 pi rad or 360 deg): such an axis becomes two coordinates,
+/// Periodic axes (a bearing, period 2 pi rad or 360 deg): such an axis becomes two coordinates,
 /// the point at angle 2 pi (c - offset) / period on a circle of radius period / (2 pi scale). Distances
 /// along it are chords, so c and c + period coincide, and two values delta apart are
 /// (period / (pi scale)) sin(pi delta / period) ~ delta / scale apart for small delta, as on a linear

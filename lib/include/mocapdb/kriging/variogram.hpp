@@ -3,21 +3,7 @@
 // between their control parameters, and each bin gets a robust (Cressie-Hawkins) or a classical
 // (Matheron) estimate of the semivariance from the pairwise differences d_ij of the samples.
 //
-// For scalar samples d_ij = |r_i - r_j|; for vector-valued samples d_ij is a distance between the two
-// samples (a pose distance, or the distance between two core-tensor slices): the estimators below work
-// on a pairwise-difference matrix, so any dissimilarity can be plugged in.
-//
-// Estimators, for the n pairs of a bin:
-//   Matheron:        gamma = 1/2 * mean(d_ij^2)
-//   Cressie-Hawkins: gamma = 1/2 * mean(d_ij^(1/2))^4 / (0.457 + 0.494/n + 0.045/n^2)
-// The Cressie-Hawkins denominator has the three terms of Cressie & Hawkins (1980) and of the paper.
-// gstat omits the 0.045/n^2 term; cressie_gstat_to_three_term() converts its numbers.
-//
-// Bins: N_I bins of equal width w = cutoff / N_I over [0, cutoff]. A pair with distance h > 0 belongs to
-// bin u (1-based) when (u-1) w < h <= u w, the convention of gstat; pairs at distance exactly 0
-// (duplicate control points) are counted in the first bin and also reported in zero_distance_pairs.
-// Pairs with h > cutoff are ignored. The default cutoff is h_max / 2 (the paper, after Wackernagel),
-// h_max being the largest pairwise distance.
+// Details: docs/headers/kriging.md (mocapdb/kriging/variogram.hpp).
 #include <cstddef>
 #include <vector>
 

@@ -2,22 +2,7 @@
 // Fitting a variogram model to an experimental variogram (paper Appendix A) and choosing the model's
 // exponent p by leave-one-out cross validation.
 //
-// Objective (Cressie 1985 weighted least squares, the paper's Equation 4), over the non-empty bins u:
-//     R(theta) = sum_u  w_u (gammabar_u - gamma*(h_u; theta))^2
-// with the weighting chosen by FitWeighting:
-//   Cressie       w_u = n_u / gamma*(h_u; theta)^2 RE-EVALUATED at every theta: the true Cressie
-//                 objective, R = sum_u n_u (gammabar_u / gamma*_u - 1)^2 (default);
-//   CressieFixed  w_u = n_u / gamma*(h_u; theta_start)^2 evaluated ONCE at the start model and then
-//                 held fixed (what gstat's fit.method = 2 does);
-//   Npairs        w_u = n_u;  Unweighted  w_u = 1.
-// Guard against gamma* -> 0: in the weights gamma* is floored at gamma_floor * max_u gammabar_u, so a
-// model passing through 0 at small lags cannot produce infinite weights.
-//
-// Parameters: theta0 = nugget >= 0 (or fixed at 0), theta1 = sill >= 0, theta2 = range within
-// [range_min_factor, range_max_factor] * h_ref, h_ref being the largest abscissa of a non-empty bin.
-// Minimizer: a scan over log(range) (the nugget and sill solved exactly by 2-variable non-negative
-// weighted least squares at each range) supplies start points; a bound-constrained Levenberg-Marquardt
-// on (theta0, theta1, log theta2) with analytic derivatives polishes the best of them.
+// Details: docs/headers/kriging.md (mocapdb/kriging/variogram_fit.hpp).
 #include <optional>
 #include <vector>
 
@@ -56,7 +41,7 @@ struct VariogramFitOptions {
     double max_total_sill = 0.0;
 };
 
-/// What a fit is worth (issue #15, like gstat's "singular model" / "no convergence" warnings). A fit that is
+/// What a fit is worth (like gstat's "singular model" / "no convergence" warnings). A fit that is
 /// not Ok is still a valid model, but the caller must report the status, never use it silently.
 enum class FitStatus {
     Ok,

@@ -1,27 +1,7 @@
 #pragma once
 // The pose-vector representation the later math works in, and its exact inverse.
 //
-// Layout of one pose vector (D = 6 + 3·(K − 1) values; K − 1 = joints with rotation channels below
-// or beside the motion root, Skeleton::motion_root()):
-//   [0..2]  the motion root's world position, cm, in the canonical frame
-//   [3..5]  its world orientation in the canonical frame, heading-relative: (s_x, ψ, s_z) where the
-//           orientation is swing · R_y(ψ), (s_x, 0, s_z) the swing's exponential map and ψ the
-//           unwrapped heading twist (swing_twist_log): the sum of the swing's and the twist's
-//           exponential maps. A plain exponential map cannot follow a root that spins (pirouettes,
-//           360° turns) without jumping at the 2π shell; this one can.
-//   then    for every other joint with rotation channels, in skeleton order: its local rotation
-//           (C · R(channels) · C⁻¹) as an exponential map. Joints above the motion root (a static
-//           ROOT over Hips) have no rows: their motion, if any, is in the motion root's transform.
-// Not carried: position channels of joints other than the motion root (bones of fixed length; a
-// channel that stays equal to its offset loses nothing) and the rest of the chain above the motion
-// root; from_pose_vectors gives them their rest values.
-// Exp-map branches are chosen continuous in time (each frame nearest the previous one); the first
-// frame is chosen nearest a caller-given reference so samples of one set can be made consistent.
-//
-// Canonicalization is a rigid motion about the vertical (Y) axis: the first frame's motion root is moved to
-// x = z = 0 (its height is kept: "on the floor" means above the origin of the floor plane) and turned
-// so that the skeleton's forward direction, carried by the first frame's root orientation and
-// projected on the floor, points along +Z.
+// Details: docs/headers/motion.md (mocapdb/motion/pose_vector.hpp).
 #include <vector>
 
 #include "mocapdb/core/types.hpp"

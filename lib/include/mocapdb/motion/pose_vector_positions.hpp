@@ -1,5 +1,5 @@
 #pragma once
-// World joint positions straight from pose vectors (issue #16: the compress rank search runs forward
+// World joint positions straight from pose vectors (the compress rank search runs forward
 // kinematics on 600 000 poses per probe). The same poses as forward_kinematics of
 // from_pose_vectors' channel rows, without the Euler round trip where it changes nothing: a joint
 // with all three rotation channels takes its exp map's rotation directly (C R(euler(C^-1 q C)) C^-1

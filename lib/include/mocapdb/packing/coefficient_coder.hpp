@@ -1,19 +1,7 @@
 #pragma once
 // Entropy coding of one window's quantized core coefficients with a context model.
 //
-// A window's coefficients are visited in a fixed scan order (largest expected magnitude first). Each
-// position has a class: how large its coefficient is expected to be relative to the quantization step
-// (class = clamp(floor(2 log2(sigma / step)) + kClassBias, 0, kClasses - 1), sigma the position's
-// expected RMS from the group's learned bases). Coded per window:
-//   - the number L of scan positions up to the last nonzero one (Elias-gamma, adaptive bits);
-//   - for each of the first L positions: nonzero? (context: class, previous position nonzero?, and
-//     the neighbourhood n = min(|q|, 2) of the coefficient one row up plus the one one column left in
-//     the window's coefficient grid, both coded before it since the scan runs down both axes' energy);
-//     if nonzero: sign (at 1/2), |q| > 1? (class, n), then |q| - 2 in Elias-gamma (prefix bits
-//     adaptive per class and bit position, the suffix's highest bit adaptive per class and length,
-//     the other suffix bits at 1/2).
-// Contexts start from per-group trained probabilities (ContextSet::initial), so a window codes on its
-// own (random access) without paying for re-learning the statistics in every window.
+// Details: docs/headers/packing.md (mocapdb/packing/coefficient_coder.hpp).
 #include <array>
 #include <cstdint>
 #include <vector>

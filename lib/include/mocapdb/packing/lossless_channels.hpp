@@ -2,16 +2,7 @@
 // Lossless packing of a clip's channel matrix (frames by channels, cm and radians) into a few bytes
 // per value, exact to the bit: what `import` stores (schemas/format-v3.md §5, docs/storage.md).
 //
-// Mocap text stores decimals: the readers parse a decimal v and keep x = v * scale (scale = pi/180
-// for degrees, cm_per_unit for lengths, 1 otherwise). Each value is written as an integer N and a
-// decimal count d with x == (double(N) / 10^d) * scale bit for bit (a correctly rounded division of
-// exact numbers, so it equals the reader's strtod; the same multiplication follows). Per channel a
-// base count k is chosen; a value with more decimals (small numbers written as %g) is split into a
-// coarse part c at k decimals and a refinement r. The coarse parts are predicted along time (first or
-// second difference, per channel), zigzag coded as byte planes and everything is compressed with zstd.
-// Channels that are not decimals (computed clips) store their float64 bits, xor-ed with the previous
-// frame, as byte planes. Negative zero and any value without a short decimal form are kept exactly.
-// pack_channels verifies its output by decoding it: the round trip is bitwise or it throws.
+// Details: docs/headers/packing.md (mocapdb/packing/lossless_channels.hpp).
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -1,29 +1,7 @@
 #pragma once
 // Error-bounded packing of a group of clips (one skeleton topology, one frame rate) into bytes.
 //
-// Contract: decoding the bytes (GroupDecoder) gives, for every clip and every SOURCE frame, channel
-// rows whose forward-kinematics positions of every joint and end site (world frame) are within
-// max_error_cm of the source clip's (as given to pack_group). The bound is guaranteed, not targeted:
-// every window is decoded at encode time with the decoder's own routine and its quantization step is
-// made finer until the bound holds (a window no step can bring within it is stored as its source
-// channel rows; PackingFailed only if even those miss it with the stored skeleton).
-//
-// Representation (docs/packing.md says why): each clip in its pose-vector form (pose_vector.hpp;
-// canonical frame, root heading-relative swing-twist, continuous exp maps) plus every non-root
-// position channel, each dof weighted by its effect in cm (dof_weights.hpp; translations 3x), dofs
-// constant over the group stored once; cut into windows of W source frames (the last one padded by
-// repeating its last frame); each window X (Da by W) is projected on a dof basis U (Da by Da) and a
-// time basis V (W by W): learned from the group (the eigenvectors of the summed second moments:
-// ST-HOSVD at full rank), or the DCT-II / identity (PackOptions), entries rounded to 1/4096:
-// G = U⁻¹ X V⁻ᵀ. G is quantized with one uniform step per window (2^(k/12 − 14), k stored in a
-// byte), trailing ±1s dropped while the bound holds, and entropy-coded with an adaptive binary range
-// coder whose contexts are trained on the group (coefficient_coder.hpp). Each window decodes on its
-// own.
-//
-// Bytes count everything the decoder needs: topology and motion root, every distinct skeleton
-// (offsets, axes, position-channel convention: the clips' own skeleton in all but float32 rounding),
-// bases, energies, trained contexts, per-clip canonicalization and frame count, per-window step and
-// size, payloads. Clip names are not stored (the caller keeps them in the same order).
+// Details: docs/headers/packing.md (mocapdb/packing/packed_group.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>

@@ -5,23 +5,7 @@
 // decoding (GroupDecoder::decode_pose spends 15-60 µs there) and no window cache to miss
 // (RESULTS.md: about 1.5 µs per local pose at 1 cm on the 31-joint ASF rig).
 //
-// Layout: a window's coefficient grid G (Da dof rows by W time columns, rows and columns ordered by
-// energy, so the nonzeros crowd the top left) is cut into blocks of 16 dof rows; a block keeps its
-// quantized levels for the time columns up to its last nonzero one, 16 per column, as 32-bit, then
-// 16-bit, then 8-bit integers (each column the fewest bits that hold its levels and those of every
-// later column). y = G v_t then runs four rows to a vector with no index arithmetic; the zeros kept
-// cost about 2-3 cells per nonzero coefficient at 1 cm and 1.3-1.6 at 0.1 cm (docs/packing.md).
-//
-// Contract: pose / local_pose give exactly the bits of GroupDecoder::decode_pose / decode_local_pose
-// (the bits the encoder verified against the bound): every y element sums its terms in ascending
-// time column as GroupModel::frame_pose does, and the zero terms change no bits. InvalidArgument on
-// a bad clip or frame; mocapdb::Error from the constructor on malformed window bytes (every window
-// is decoded there).
-// Ownership and threads: refers to `decoder` (must outlive the index; only read). Immutable after
-// construction; every const method is thread-safe (per-thread scratch, allocated on a thread's first
-// call, none per pose after that).
-// Memory: memory_bytes(); a few bytes per nonzero coefficient (docs/packing.md), plus the W x W time
-// basis. Windows of up to 65535 frames.
+// Details: docs/headers/packing.md (mocapdb/packing/pose_index.hpp).
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -1,22 +1,7 @@
 #pragma once
 // Poses of a packed group for playback-style access: a per-thread cache of decoded windows.
 //
-// GroupDecoder::decode_pose range-decodes a pose's whole window every time (tens of µs); a sampler
-// keeps the last `capacity` windows it touched (their dequantized coefficients, least recently used
-// evicted) and turns a frame into its channel row once, on first request. Consecutive frames of a
-// clip, or many clips sampled at advancing times (a crowd), then pay the window's range decoding
-// once per W frames and one frame reconstruction per new frame; a repeated frame is a lookup. A
-// request for the frame after one already reconstructed (sequential access) reconstructs the rest of
-// the window, four frames per blocked product (cheaper per frame, and the window's coefficients are
-// read once while cached); any other request reconstructs its frame alone.
-//
-// Contract: pose(clip, frame) gives the same bits as decoder.decode_pose(clip, frame) (and as that
-// row of decode_window). InvalidArgument on a bad clip or frame; mocapdb::Error on malformed bytes.
-// Ownership and threads: the sampler refers to `decoder` (which must outlive it and is only read)
-// and is NOT thread-safe: one sampler per thread, any number of samplers per decoder. Memory:
-// capacity x (Da x W + W x channels + W x D) doubles (about 56 kB per window for the 31-joint CMU ASF
-// rig at W = 32: coefficients, channel rows, and each frame's pose dofs, which rows and local poses
-// share) plus 4 bytes per window of the group; allocated at construction, none per pose.
+// Details: docs/headers/packing.md (mocapdb/packing/pose_sampler.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <memory>

@@ -2,19 +2,7 @@
 // The built-in humanoid skeleton the procedural generators animate: 170 cm tall, Y up, facing +Z,
 // rest pose a T-pose (arms along ±X, palms down, legs straight, feet flat and pointing +Z).
 //
-// Hierarchy (joint names follow the common BVH/Mixamo naming so that Blender and the project's foot
-// detection (default_feet: "LeftToeBase", "RightToeBase") recognize them):
-//   Hips (root: Xposition Yposition Zposition Yrotation Xrotation Zrotation, heading outermost)
-//     Spine - Spine1 - Spine2 - Neck - Head - Head_end
-//     Spine2 - LeftShoulder (clavicle) - LeftArm - LeftForeArm - LeftHand - LeftHand_end   (and Right*)
-//     Hips - LeftUpLeg - LeftLeg - LeftFoot - LeftToeBase - LeftToeBase_end                 (and Right*)
-// Every other joint has three rotation channels (arms, clavicles, spine, neck, head: Z X Y; legs: Z Y X,
-// so that the middle, gimbal-limited angle is the bone's twist). End sites are named PARENT_end, as
-// the BVH reader names them, so a written and re-read skeleton compares equal (same_structure).
-//
-// Rest geometry (cm, floor at y = 0): hips 95, hip joints at (±9, 91, 0), knees 49, ankles 8, balls of
-// the feet (toe bases) at (±9, 1, 13), toe tips 19 cm ahead of the ankle; spine 104/116/128, neck 143,
-// head 152, top of the head 170; shoulder joints at (±17, 140, 0); upper arm 28, forearm 25, hand 18.
+// Details: docs/headers/procedural.md (mocapdb/procedural/humanoid.hpp).
 #include <memory>
 #include <string>
 #include <vector>

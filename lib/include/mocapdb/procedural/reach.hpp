@@ -4,20 +4,7 @@
 // (leg IK keeps them fixed while the pelvis turns, shifts and crouches); the torso twists and bends,
 // the head looks at the target ahead of the hand, the left arm hangs under gravity.
 //
-// Timing varies with the target: the reach lasts a + b·log2(1 + D/W) (Fitts' law; D the hand's
-// travel, W = target_width_cm) plus a term for the body's turn; the return takes return_ratio of it.
-// Every movement follows a minimum-jerk profile (10τ³ − 15τ⁴ + 6τ⁵), so velocities and accelerations
-// are zero at the start and at contact. The hand's path bows away from the body.
-//
-// Geometry (character at the origin facing +Z, floor y = 0): the target is at bearing `angle_deg`
-// around the vertical axis through the root (0 = straight ahead, +90 = to the character's left (+X),
-// −90 = right; the same sign as the `turn` extractor), `distance_cm` horizontally from that axis,
-// `height_cm` above the floor. Reachable ranges (InvalidArgument beyond): |angle| ≤ 150°, height
-// 30…200 cm, distance 20…95 cm, and the target must be within the arm's reach once the body has
-// turned, leaned and crouched as far as it can (the message says so).
-//
-// Exactness: at every frame in [contact_frame, release_frame] the right hand's end site (FK of the
-// generated channels) is on the target up to floating-point rounding (tests: ≤ 1e-6 cm).
+// Details: docs/headers/procedural.md (mocapdb/procedural/reach.hpp).
 #include <cstddef>
 #include <optional>
 

@@ -5,18 +5,7 @@
 // and list; thorax counter-rotation; arm swing opposite the legs; a head that stays level and looks
 // into the turn.
 //
-// Contract with the project's extractors (param_extractors.hpp) on the whole clip:
-//   speed  = horizontal root path length / duration equals speed_m_s · 100 cm/s (the progression speed
-//            is calibrated so that the path, pelvis sway included, has exactly that length), and
-//   turn   = root heading change equals turn_deg (the clip spans whole gait cycles, so the pelvis's
-//            rotation oscillation is in the same phase at both ends).
-// Both hold to floating-point rounding in the generated channels (the tests state the tolerance).
-//
-// Stride: when stride_m is 0 it follows speed (stride = 0.8 m + 0.4 s · speed: 1.32 m at 1.3 m/s, a
-// cadence of 118 steps/min); the gait period is rounded to whole frames, so the stride actually used
-// (WalkMotion::stride_m) can differ from the requested one by up to speed / (2 · frame_rate).
-// The pelvis height and its bob are chosen as high as the legs allow (knees never straighter than
-// max_leg_extension), which is what makes long strides lower the body.
+// Details: docs/headers/procedural.md (mocapdb/procedural/walk.hpp).
 #include <cstddef>
 #include <vector>
 

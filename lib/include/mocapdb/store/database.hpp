@@ -2,27 +2,7 @@
 // The motion database (HDF5, format "mocapdb" version 4, specified in schemas/format-v4.md; files
 // of versions 1 to 3 are read too): a read view `Database`, and an atomic edit session `DatabaseWriter`.
 //
-// Nothing here exposes HDF5: the only code that includes HDF5 headers is in lib/src/store/h5/.
-//
-// Layout (format 4): the file the user names is a small index whose top-level objects (skeletons,
-// clips, sets, the packed tier) are external links into segments, HDF5 files in the folder
-// "TARGET.d" beside it. A segment is written by one session and never modified afterwards.
-//
-// Atomicity: a DatabaseWriter never opens its target or a published segment for writing. What it
-// creates goes into one new segment; the index it edits is a copy ("TARGET.tmp-mocapdb-PID-XXXXXXXX").
-// commit() closes both, fsyncs the segment, then fsyncs the index copy and renames it over the target
-// (then fsyncs the folder), so a crash or kill -9 at any instant leaves either the previous database
-// or the complete new one; a commit costs what the session wrote plus the index (links), not the
-// database. An object the session changes (a set that gets its aligned form or model) is first copied
-// into the session's segment. A session destroyed without commit() removes its files; one that was
-// killed leaves them behind, and the next DatabaseWriter removes them. An older one-file database
-// becomes the first segment of a new index at its first writing session (a hard link, no copy).
-// One writing session per target at a time: a session holds an exclusive lock on "TARGET.lock"
-// from before it reads the target until it ends, and a second one waits for it (up to a limit, then
-// refuses with StoreError), so no session's commit is ever lost. Readers never wait for writers: a
-// Database holds a shared lock on "TARGET.d/readers.lock" so that segments it may still read (replaced
-// by a later commit) are removed only once no reader is open; a commit that finds readers leaves
-// them for a later commit.
+// Details: docs/headers/store.md (mocapdb/store/database.hpp).
 #include <array>
 #include <cstdint>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #pragma once
 // SHA-256, used to recognise a source file that was imported before. Computed by OpenSSL's EVP
-// interface (Debian libssl-dev; issue #17: a well-kept library instead of a hand-written digest).
+// interface (Debian libssl-dev: a well-kept library instead of a hand-written digest).
 //
 // Errors: std::bad_alloc when OpenSSL cannot allocate its context, mocapdb::Error if it reports a failure.
 // Threads: one object per thread; sha256_hex is thread-safe.

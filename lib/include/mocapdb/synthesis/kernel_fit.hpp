@@ -1,22 +1,9 @@
 #pragma once
-// The coefficient kernel's variogram of a compressed synthesis model, fitted once and stored (issue #16).
-//
-// Building a synthesis model (synthesis_model.hpp) chooses the variogram of its coefficient kernel:
-// pairwise distances between the N samples' core slices (N^2 R1 R2), the experimental variogram, and
-// the closed-form leave-one-out over the paper's exponent grid (11 kriging systems, N^3 and N^2 R1 R2
-// each). At N = 645 that is ~30 s, against well under a second for the rest of the model. The result
-// is a handful of numbers (the VariogramModel) that depend only on the model's inputs, so `compress`
-// stores them beside the Tucker model (/sets/{set}/model/kernel, schemas/format-v3.md §8.1) and
-// workflow::load_motion_model hands them to the model, which then only builds the kriging system from them.
-// The variogram is stored bit for bit, so a model built from a stored fit is identical to one that
-// fitted it (same doubles in, same operations).
-//
-// The key: a 64-bit digest of everything the fit depends on (the options that shape the kernel and
-// the bytes of the set's parameters, the sample basis and the core, kernel_key below). A fit whose key
-// differs from the model's inputs is ignored and the kernel is fitted again, so a stale or foreign fit
-// can slow a model down but never change it.
+// The coefficient kernel's variogram of a compressed synthesis model, fitted once and stored.
 //
 // Thread safety: plain data and pure functions.
+//
+// Details: docs/headers/synthesis.md (mocapdb/synthesis/kernel_fit.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -85,7 +72,7 @@ std::string kernel_options_text(const SynthesisOptions& options);
 MatX core_slice_values(const compression::SetModel& model);
 
 /// The coefficient kernel's variogram from the normalized control parameters xc (N by P) and the
-/// samples' values (N by S, finite), fitted as gstat's variogram(z ~ x + y) (issue #15): the
+/// samples' values (N by S, finite), fitted as gstat's variogram(z ~ x + y): the
 /// experimental variogram of the residuals of the linear trend (OLS; the raw values with
 /// TrendKind::None), range <= options.max_range_factor * the largest lag, nugget + sill <=
 /// options.max_sill_factor * the residual variance, a nugget >= options.gaussian_nugget_fraction * that

@@ -1,5 +1,5 @@
 #pragma once
-// The compressed synthesis model (issue #6; the multilinear paper): a set's Tucker model
+// The compressed synthesis model (the multilinear paper): a set's Tucker model
 //     X = (A - mean) w  ~  G x_1 U_dof x_2 U_time x_3 U_sample
 // plus universal kriging of the sample-mode coefficient rows u_i (rows of U_sample, N by R3). A pose
 // at control parameters c and fractional aligned frame t is

@@ -1,55 +1,10 @@
 #pragma once
-// Motion synthesis at control parameters c (issue #6): the interface shared by the compressed model
+// Motion synthesis at control parameters c: the interface shared by the compressed model
 // (motion_model.hpp: kriging of the Tucker sample-mode coefficients, the multilinear paper) and the
 // naive baseline (naive_motion_model.hpp: kriging of the uncompressed aligned tensor), so benchmarks,
 // evaluations and the CLI swap one for the other.
 //
-// Both models are linear in the samples: with the kriging weights w(c) (N, partition of unity,
-// w(c_i) = e_i) the synthesized pose at aligned frame t is
-//     q(c, t) = sum_i w_i(c) q_i(t)        (naive: q_i the aligned samples;
-//                                           compressed: q_i the Tucker reconstruction of sample i),
-// evaluated through a per-motion COEFFICIENT vector: the compressed model's is the kriged sample-mode
-// row u(c) = sum_i w_i(c) u_i (R3 values), the naive model's the weight vector itself (N values). A
-// crowd computes a character's coefficients once (coefficients()) and then only poses per frame
-// (pose_from_coefficients()). The compressed model folds its N by R3 coefficient rows into the kriging
-// operator at construction (kriging::KrigingPredictor): coefficients(c) is then one R3 by (N + P + 1)
-// product with [gamma(c); 1; c-terms], not N weights followed by the blend (equal up to rounding; the
-// weights are still computed where they are needed: weights(), timing(), reliability()).
-//
-// The kriging kernel (shared by both models): universal kriging with a linear trend in the normalized
-// control parameters (per axis zero mean, unit standard deviation, kriging::ControlScaling), the
-// paper's OLS-trend form; the variogram is estimated on the distances between whole samples,
-//     d_ij = || G x_3 (u_i - u_j) ||_F   (compressed: between the samples' core slices),
-//     d_ij = || X_i - X_j ||_F           (naive: between the weighted, centred samples X = (A - mean) w),
-// equal at full ranks (orthonormal bases); the model exponent p is chosen by closed-form leave-one-out
-// over the paper's grid 0.0, 0.2, ..., 2.0 (p = 0 spherical) unless given, then nugget, sill and
-// range are fitted (Cressie weighted least squares); by default (ShapeSelection::LeaveOneOut) a bounded
-// grid of ranges and nugget shares competes with those fits by the same leave-one-out error
-// (kernel_fit.hpp: fit_coefficient_kernel).
-//
-// Timing (the geostatistical paper Section 3.5): the inverse-warp increments Delta A_i(t) =
-// warps(t + 1, i) - warps(t, i) (T - 1 values per sample: source frames per aligned frame) are kriged
-// over the same normalized parameters, clamped to [min_increment_fraction * mean,
-// max_increment_factor * max] of the sample increments so that the synthesized time
-// A_c(t) = sum_{s < t} Delta A_c(s) is strictly increasing, and motion(c) samples the synthesized poses
-// at the frames f = 0, 1, ... of the set's frame rate through the inverse of A_c. Two timing kernels:
-//   Shared (default): the coefficient kernel's weights w(c) also blend the increments, so the poses
-//       and the timing of a synthesized motion are one blend of the samples;
-//   Separate (the paper): a second per-set kriging model whose variogram is estimated on the
-//       increments themselves.
-// Why Shared is the default: on subject 16's 25 walks (turn, speed; 60 aligned frames; model at 1 cm)
-// synthesizing midway between a sample and its nearest neighbour, the measured speed of the result
-// misses the requested one by 8.4 % on average (23 % at worst) with Separate, 0.9 % (2.7 %) with
-// Shared (tests/cli/test_synthesis_cli.cpp prints both): with two kernels the root's path comes from
-// one blend and the duration from another, and their ratio (the speed) belongs to neither. The
-// measured turn is within 0.005 rad either way.
-//
-// Reliability rho(c) in [0, 1] (paper Appendix B) comes from the coefficient kernel: rho(c_i) = 1.
-//
-// Thread safety: immutable after construction; every const member may be called from several threads
-// at once, each with its own Workspace / BatchWorkspace. pose(), coefficients() and
-// pose_from_coefficients() do not allocate once the workspace has been used for a query of the same
-// model and level.
+// Details: docs/headers/synthesis.md (mocapdb/synthesis/synthesis_model.hpp).
 #include <functional>
 #include <memory>
 #include <optional>
@@ -83,7 +38,7 @@ struct SynthesisOptions {
     /// Timing kernel (see the header comment): Shared = the coefficient kernel's weights blend the
     /// increments too; Separate = a second per-set kriging of the increments (the paper's Section 3.5).
     enum class TimingKernel { Shared, Separate } timing_kernel = TimingKernel::Shared;
-    /// The experimental variogram of the coefficient kernel, estimated on the trend residuals (issue #15).
+    /// The experimental variogram of the coefficient kernel, estimated on the trend residuals.
     /// Matheron by default: the Cressie-Hawkins constant 0.457 assumes scalar Gaussian differences, and for
     /// a distance between many-dimensional vectors it overstates gamma by up to 1 / 0.457 = 2.2.
     kriging::VariogramOptions variogram = matheron_variogram();
@@ -103,7 +58,7 @@ struct SynthesisOptions {
     double max_sill_factor = 2.0;
     /// Smallest nugget of a Gaussian (p = 2) model, as a fraction of the residual variance.
     double gaussian_nugget_fraction = 0.01;
-    /// How range and nugget share of the coefficient kernel are chosen (issue #15): LeastSquares = the
+    /// How range and nugget share of the coefficient kernel are chosen: LeastSquares = the
     /// weighted least-squares fit to the experimental variogram only; LeaveOneOut (default) = that fit and a
     /// bounded grid of ranges (range_fractions of the range bound) and nugget shares, the candidate with the
     /// smallest closed-form leave-one-out error of the sample values wins (kernel_fit.hpp).

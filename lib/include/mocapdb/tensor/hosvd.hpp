@@ -1,31 +1,7 @@
 #pragma once
 // Truncated HOSVD and sequentially truncated HOSVD (ST-HOSVD) of a D by T by N tensor.
 //
-// Each basis comes from the symmetric eigendecomposition of a mode Gram matrix G_n = A_(n) A_(n)^T
-// (I_n by I_n, at most 100 or so here) instead of an SVD of the wide unfolding: the eigenvectors are
-// the left singular vectors and the eigenvalues the squared singular values. The dof and time Gram
-// matrices are sums over the samples of per-slice terms,
-//     G_dof = sum_n S_n S_n^T,   G_time = sum_n S_n^T S_n,   S_n = A(:, :, n) (D by T),
-// so they are accumulated over chunks of the sample mode (GramAccumulator), which lets a tensor
-// larger than memory stream through one slice at a time. The sample Gram G_sample(n, m) = <S_n, S_m>
-// couples every pair of samples; in memory it is one product of the (D T) by N storage.
-//
-// Many samples (issue #16): the sample basis never needs an N by N matrix when N is larger than the
-// other side. With M the L by N matrix whose column n is sample n expressed in the leading k0 dof and
-// k1 time basis vectors (L = k0 k1; k0, k1 the smallest counts whose discarded dof and time energy
-// is <= projection_tolerance ||A||^2, so M M^T equals the sample Gram's nonzero part to rounding),
-// the sample basis is V = M^T W Sigma^-1 from the eigendecomposition W Sigma^2 W^T of the L by L
-// matrix M M^T (re-orthonormalized by Cholesky-QR: one pass, a second when needed). When L > 256 and
-// M's energy lies in k <= L / 2 dimensions up to half the tolerance, a blocked randomized range
-// finder with exact energy accounting gives M ~ Q B (Q: L by k) and the k by k matrix B B^T replaces
-// M M^T. Only the columns that can carry energy are kept (at most min(N, L)); the spectrum is padded
-// with zeros to N values, and a rank above the kept columns gets an orthonormal completion (those
-// directions carry no energy). Memory O(N R + L^2) (O(N k + L k) on the randomized path), time O(L^2 N + L^3)
-// (O(L N k + k^3)) instead of O(N^2 L + N^3).
-//
-// Accuracy: eigenvalues of a Gram matrix carry absolute errors of about eps * sigma_1^2, so singular
-// values below about 1e-8 sigma_1 are not resolved (their bases are still orthonormal, and full-rank
-// reconstructions are exact to rounding).
+// Details: docs/headers/tensor.md (mocapdb/tensor/hosvd.hpp).
 #include <array>
 
 #include <Eigen/Core>
@@ -149,7 +125,7 @@ TuckerModel hosvd_from_bases(const Tensor3& a, const HosvdBases& bases, const Ra
 /// The core at every column of the bases: a x_0 U_0^T x_1 U_1^T x_2 U_2^T with the whole of
 /// bases.U (D by T by K, K = bases.U[2].cols()). A truncated HOSVD at ranks with ranks[2] <= K has
 /// the leading ranks[0] x ranks[1] x ranks[2] block of it as its core (hosvd_from_core), so a rank
-/// search projects the data once instead of once per probe (#16). Computed over chunks of samples,
+/// search projects the data once instead of once per probe. Computed over chunks of samples,
 /// on the machine's cores: memory D T K doubles plus a few chunks, no tensor of a's size.
 /// a: D by T by N, the tensor the bases came from. Throws InvalidArgument on a shape mismatch.
 Tensor3 hosvd_full_core(const Tensor3& a, const HosvdBases& bases);

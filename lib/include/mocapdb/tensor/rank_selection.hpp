@@ -1,18 +1,7 @@
 #pragma once
 // Choosing the multilinear ranks (R1, R2, R3) of a Tucker model of a D by T by N tensor A.
 //
-//  - explicit: the caller's ranks, validated.
-//  - target error: relative error e = ||A - A_hat||_F / ||A||_F, which is also the relative RMSE
-//    (RMSE of the residual over RMS of the data). Among all rank triples whose HOSVD bound
-//    (sum of discarded squared singular values) is <= e^2 ||A||^2, the one with the fewest parameters
-//    is chosen (exhaustive search, O(D T log N) with tail sums). The bound is pessimistic, so the
-//    choice is then verified by measuring: the HOSVD at those ranks is computed, and, when
-//    refine_by_measurement is on, the smallest rank prefix whose MEASURED error is <= e is taken
-//    (for HOSVD a prefix is the lower-rank HOSVD, and its error follows from the core's energy).
-//  - target compression ratio rho = D T N / (R1 R2 R3 + D R1 + T R2 + N R3): among all rank triples
-//    with a ratio >= rho, the one with the smallest HOSVD bound.
-//  - tolerance: per-mode numerical rank, the number of singular values above tol * sigma_1^(n).
-// Every search keeps each rank <= the product of the other two (a larger rank adds nothing).
+// Details: docs/headers/tensor.md (mocapdb/tensor/rank_selection.hpp).
 #include <Eigen/Core>
 
 #include "mocapdb/tensor/hosvd.hpp"

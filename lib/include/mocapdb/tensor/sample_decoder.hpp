@@ -1,6 +1,6 @@
 #pragma once
 // Samples of a Tucker model, a few at a time: the values TuckerModel::reconstruct() gives (it decodes
-// through this class), without a D x T x N tensor (issue #16: the rank search measures 10 000
+// through this class), without a D x T x N tensor (the rank search measures 10 000
 // windows chunk by chunk).
 #include <vector>
 

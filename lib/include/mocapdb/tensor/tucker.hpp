@@ -9,10 +9,7 @@
 // block of the core; the columns are ordered by decreasing singular value, so a prefix is the
 // truncated model of lower rank (exactly so for HOSVD).
 //
-// Error bound (truncated HOSVD, De Lathauwer et al. 2000, property 10):
-//     ||A - A_hat||_F^2 <= sum_n sum_{i > r_n} sigma_i^(n)^2,
-// sigma_i^(n) the singular values of the mode-n unfolding A_(n) (the square roots of the eigenvalues
-// of the mode Gram matrix A_(n) A_(n)^T).
+// Details: docs/headers/tensor.md (mocapdb/tensor/tucker.hpp).
 #include <array>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// What the steps working on an aligned set load from a database (issue #17): the set, its aligned
+// What the steps working on an aligned set load from a database: the set, its aligned
 // tensor, its skeleton and frame rate (those of the first sample's clip), and the size of the source
 // motion the set covers (what the rate report compares against). Used by compression, the rate
 // report, the naive synthesis model (load_model.hpp) and `mocapdb export`. The compressed synthesis

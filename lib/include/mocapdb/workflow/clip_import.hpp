@@ -1,5 +1,5 @@
 #pragma once
-// `mocapdb import` as a library step (issue #17): the clip files found under the inputs stored in a
+// `mocapdb import` as a library step: the clip files found under the inputs stored in a
 // database, appending (or replacing the file with a new database when `force`), committed when
 // anything was added (otherwise the file is left as it was, or not created, and no segment folder or
 // lock file of a new database is left behind). Nothing is printed: the readers' warnings, the errors

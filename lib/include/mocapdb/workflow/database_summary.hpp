@@ -1,5 +1,5 @@
 #pragma once
-// What a database holds, summarized (issue #17; `mocapdb info DB`): its clips and their totals (frames,
+// What a database holds, summarized (`mocapdb info DB`): its clips and their totals (frames,
 // seconds of motion, stored lossless bytes), each clip's packed-tier entry, the skeletons, the sets and
 // the packed tier. Nothing is printed; the text and JSON renderings are the caller's.
 // Errors: IoError / StoreError opening the database. Threads: opens it read-only for the call.

@@ -1,5 +1,5 @@
 #pragma once
-// The choices and measurements of `mocapdb demo` (issue #17): where to synthesize (between samples,
+// The choices and measurements of `mocapdb demo`: where to synthesize (between samples,
 // at the cells of the procedural reach grid, and the least trusted point outside the samples), what
 // the parameters of a synthesized motion are measured with (the set's extractors, extractors named
 // like its CSV parameters, or where the procedural reach lands) and that measurement, and the padded

@@ -1,5 +1,5 @@
 #pragma once
-// The children of `mocapdb gp` (issue #17): the samples of a stored motion set (their frames with the
+// The children of `mocapdb gp`: the samples of a stored motion set (their frames with the
 // set's dropout repairs, named "CLIP:BEGIN-END") or clip files (named by their file stem), as clips
 // ready for gp::prepare_motion_data. Nothing is printed.
 // Errors: IoError / FormatError from the database, IoError / ParseError from the clip files.

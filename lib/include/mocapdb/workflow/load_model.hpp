@@ -1,5 +1,5 @@
 #pragma once
-// Synthesis models built from what a database stores (the first step of the workflow module, issue #17:
+// Synthesis models built from what a database stores (the first step of the workflow module:
 // it depends on the store and on synthesis, which do not depend on each other's loading).
 // Thread safety: the Database must not be written meanwhile; the returned models are immutable.
 #include <memory>

@@ -1,5 +1,5 @@
 #pragma once
-// A sample of an aligned set back at its own timing (issue #17; `mocapdb export --set S --sample I`):
+// A sample of an aligned set back at its own timing (`mocapdb export --set S --sample I`):
 // its aligned poses (from the set's tensor or a model's reconstruction) resampled at the sample's own
 // frames through its warp, and placed back where it was (its canonical transform), as a clip.
 // Errors: InvalidArgument for a sample out of range or poses of another shape. Threads: reads only.

@@ -1,5 +1,5 @@
 #pragma once
-// `mocapdb align` as a library step (issue #17): read a stored set's samples (with its dropout
+// `mocapdb align` as a library step: read a stored set's samples (with its dropout
 // repairs), time-align them (dataset/alignment.hpp), check that aligned frames agree on the forward
 // foot (dataset/phase_check.hpp, legged figures only) and store the D × T × N tensor, committed
 // (replacing the set's previous alignment). Nothing is printed.

@@ -1,5 +1,5 @@
 #pragma once
-// `mocapdb compress` as a library step (issue #17): choose the Tucker ranks of a set's aligned tensor
+// `mocapdb compress` as a library step: choose the Tucker ranks of a set's aligned tensor
 // (explicit, or the smallest meeting a max joint error, a weighted RMSE or a compression ratio;
 // compression/rank_search.hpp), decompose with the requested method, measure the joint-position
 // errors after forward kinematics, fit the synthesis kernel's variogram (synthesis/kernel_fit.hpp; not

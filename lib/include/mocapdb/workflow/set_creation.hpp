@@ -1,5 +1,5 @@
 #pragma once
-// `mocapdb set create` as a library step (issue #17): select stored clips by id or pattern, build the
+// `mocapdb set create` as a library step: select stored clips by id or pattern, build the
 // motion set (segmentation, parameters measured by extractors or read from a CSV, periodic parameters,
 // dropout repairs; dataset/set_builder.hpp) and store it, committed. Nothing is printed: the clips that
 // gave no sample are in the outcome.

@@ -1,5 +1,5 @@
 #pragma once
-// The rate–distortion table of an aligned set as a library step (issue #17; `mocapdb report --set`
+// The rate–distortion table of an aligned set as a library step (`mocapdb report --set`
 // and the demo): compression::rate_distortion on the set's tensor with the set's parameters charged as
 // side information, plus the size of the source motion the rows are compared against. Nothing is
 // printed and nothing is stored; the text, CSV, JSON and SVG renderings are the callers'.

@@ -1,5 +1,5 @@
 #pragma once
-// Greedy sample reduction of a stored set as a library step (issue #17; `mocapdb reduce`, the
+// Greedy sample reduction of a stored set as a library step (`mocapdb reduce`, the
 // geostatistical paper §5.2): the samples removed one by one while the best-predicted one's
 // leave-one-out reliability (with the set's synthesis kernel) stays at or above tau, and storing the
 // kept samples as a new set aligned like the original. Nothing is printed.

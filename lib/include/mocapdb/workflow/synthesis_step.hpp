@@ -1,5 +1,5 @@
 #pragma once
-// One synthesis as a library step (issue #17; `mocapdb synth` and the demo): the motion of a set at
+// One synthesis as a library step (`mocapdb synth` and the demo): the motion of a set at
 // control parameters c from a loaded model (load_model.hpp), its timing and reliability, and, when the
 // set's parameters were measured by extractors, the same measurement on the result, so callers can
 // tell how close the motion came to what was asked. Nothing is printed or written.

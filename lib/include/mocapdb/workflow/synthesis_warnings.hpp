@@ -1,5 +1,5 @@
 #pragma once
-// What a synthesis deserves a warning for (issue #15/#17; `mocapdb synth`, `query`, the demo): a
+// What a synthesis deserves a warning for (`mocapdb synth`, `query`, the demo): a
 // reliability below kLowReliability (the motion is extrapolated), a coefficient kernel whose variogram
 // fit is not clean (synthesis::fit_status_warning), and a kriging system that had to be regularized or
 // jittered (beyond rounding). The judgement only; the wording of the warnings is the caller's.

@@ -1,37 +1,12 @@
 #pragma once
-// Training data from a database (issue #17): random windows of L consecutive source frames, B per
+// Training data from a database: random windows of L consecutive source frames, B per
 // batch, as pose vectors or joint positions, decoded from the packed tier where the database has one
-// for every selected clip (else from the lossless clips).
+// for every selected clip (else from the lossless clips). Each clip drawn is decoded once into a
+// per-clip cache (its memory: docs); windows are written into the caller's float or double array.
+// Not thread-safe (one sampler per thread); `db` must outlive it and not be written meanwhile.
+// Errors: NotFoundError for a named clip not stored; InvalidArgument for bad options.
 //
-// Draw: a window is chosen uniformly among all windows of the selected clips (a clip of F frames
-// offers F - L + 1 start frames; shorter clips offer none, or with `pad` one, from frame 0, whose
-// missing rows repeat the clip's last frame), with replacement, by a 64-bit Mersenne
-// twister seeded with `seed`: the same database, options and seed give the same batches (with this
-// library build's standard library). set_stream(epoch, worker) restarts it on the stream of
-// (seed, epoch, worker) (stream_seed), so that data-loader workers draw distinct, reproducible streams.
-//
-// Values, per frame, in the window's own canonical frame (its first frame's motion root at x = z = 0,
-// facing +Z; motion/pose_vector.hpp), as a model trained on windows wants them:
-//   PoseVectors     D values (motion/pose_vector.hpp's layout);
-//   JointPositions  3 J values: x, y, z in cm of every joint of Skeleton::joints() (end sites
-//                   included), by forward kinematics, then the same rigid motion about +Y.
-// From the packed tier, every joint is within the tier's max_error_cm of the source (its bound).
-//
-// Errors (construction): NotFoundError when a selected name without wildcards (*?[) is not a stored
-// clip; InvalidArgument when L or B is 0, a pattern matches nothing, no selected clip
-// has L frames, Source::Packed is asked and a selected clip is not in the packed tier, or the selected
-// clips differ in pose layout (joints, parents, rotation joints) or frame rate (naming two clips that
-// differ: select clips of one rig and rate); StoreError / ChecksumError from the database.
-// Decoding: each clip a window needs is decoded once, whole, into a per-clip cache of its values in the
-// world frame (pose vectors with exp-map branches continuous from its first frame, or joint positions)
-// stored as `dtype`, plus the root's heading and floor position per frame; a window is then a copy of
-// L rows with the rigid motion removed, written straight into the caller's float or double array.
-// Windows equal the clip's own canonical window within rounding (1e-9 in float64; float32 rounds).
-// Threads and ownership: not thread-safe (one sampler per thread). It reads `db` (lossless clips), which
-// must outlive it and not be written meanwhile; only draw() (and next(), window()) read it, fill() never
-// does. Memory: the bytes of the packed groups it draws from (each group's decoder, read once) and up to
-// max(cache_clips, batch) decoded clips: F x V values of dtype + 24 bytes per frame each (all 182 CMU ASF
-// clips, 188 705 frames of 90 pose values: 68 MB + 4.5 MB in float32).
+// Details: docs/headers/workflow.md (mocapdb/workflow/window_sampler.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <memory>

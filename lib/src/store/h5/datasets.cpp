@@ -53,7 +53,7 @@ constexpr std::size_t kChunksPerBatch = 32;
 // A dataset whose first kProbeChunks chunks deflate to more than kWorthDeflatingPercent of their bytes
 // has its other chunks stored (deflate level 0, still a deflate stream that every reader inflates).
 // Float64 noise, such as a Tucker model's bases, deflates to about 88 % at about 40 MB/s per core
-// whatever the level: 5 s of a 383 MB model's store for 11 % of its bytes (#16).
+// whatever the level: 5 s of a 383 MB model's store for 11 % of its bytes.
 constexpr std::size_t kProbeChunks = 4;
 constexpr std::uint64_t kWorthDeflatingPercent = 80;
 

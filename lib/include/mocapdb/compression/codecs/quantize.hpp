@@ -2,25 +2,7 @@
 // Uniform scalar quantization of matrices and of Tucker models (core + three bases) to b bits with
 // one offset and one step per column, and its compact serialization.
 //
-// Column c of a matrix is stored as float32 offset o_c and step s_c, and one b-bit code q per element:
-//     x_hat = o_c + q * s_c,   q in [0, 2^b - 1],
-// with o_c = min of the column rounded down to float32 and s_c = (max - o_c) / (2^b - 1) rounded up to
-// float32, so every element is in range and
-//     |x - x_hat| <= s_c / 2 <= (max - min) / 2^b      (up to float32 rounding of o_c, ~2^-24 |min|).
-// A constant column has step 0 and errs only by the float32 rounding of its value.
-//
-// Groups: a basis matrix (D by R1, T by R2, N by R3) is quantized per column (one singular vector
-// each). The core (R1 by R2 by R3) is quantized per group, chosen by CoreGrouping; the default is the
-// frontal slice G(:, :, k) (R3 groups of R1 R2 values): by all-orthogonality the slices' norms are the
-// sample-mode singular values, so each slice gets a step matched to its own magnitude at a cost of
-// 8 bytes per slice. Mode0Fibre (R2 R3 groups of R1 values) adapts more finely but pays 8 bytes per R1
-// values; Whole uses one step for the core.
-//
-// Two serializations (both decoded by the same function):
-//  - BitPacked: the float32 parameters, then the codes packed b bits each, LSB first, per part padded
-//    to a whole byte. No entropy coding.
-//  - Deflated: the parameters and the codes as byte planes (b <= 8: one byte per code; b > 8: the low
-//    bytes of every code, then the high bytes), all deflated in one zlib stream.
+// Details: docs/headers/compression.md (mocapdb/compression/codecs/quantize.hpp).
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -5,13 +5,7 @@
 // 2^-24 relative error on top of zfp's own, breaking the bound for small tolerances; the compressed
 // size in fixed-accuracy mode depends on the tolerance, not on the input type.
 //
-// Bound: zfp's fixed-accuracy mode keeps every absolute error <= tolerance. In fact it codes down to
-// bit plane 2^floor(log2 tolerance), so tolerances between two powers of two give the same stream
-// and the errors measured are usually well under the tolerance.
-//
-// Per-dof tolerances (eps_d): each dof row is divided by its stored eps_d and the scaled tensor is
-// compressed at tolerance 1, so |A - A_hat| <= eps_d (1 + 1e-15) for every element, and the
-// tolerances need not be powers of two. The eps_d are part of the payload (4 D bytes).
+// Details: docs/headers/compression.md (mocapdb/compression/codecs/zfp_codec.hpp).
 #include <cstdint>
 
 #include "mocapdb/compression/codecs/encoded_stream.hpp"

@@ -1,0 +1,47 @@
+# Installs the built project into a fresh prefix and builds examples/ against it as an outside project
+# (find_package(mocapdb), mocapdb::mocapdb), then runs one example on DB when given. CTest runs it.
+# Run: cmake -DBUILD_DIR=<build> -DSOURCE_DIR=<repo> -DWORK_DIR=<scratch> -DGENERATOR=Ninja
+#            [-DCXX=<compiler>] [-DLAUNCHER=ccache] [-DDB=<database>] -P cmake/check_install.cmake
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR)
+  if(NOT ${var})
+    message(FATAL_ERROR "check_install.cmake: pass -D${var}=...")
+  endif()
+endforeach()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    string(REPLACE ";" " " cmd "${ARGN}")
+    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
+foreach(file include/mocapdb/core/version.hpp include/mocapdb/store/database.hpp)
+  if(NOT EXISTS "${prefix}/${file}")
+    message(FATAL_ERROR "install: ${prefix}/${file} is missing")
+  endif()
+endforeach()
+file(GLOB_RECURSE configs "${prefix}/*/mocapdbConfig.cmake")
+if(NOT configs)
+  message(FATAL_ERROR "install: no mocapdbConfig.cmake under ${prefix}")
+endif()
+
+set(configure ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples" -B "${WORK_DIR}/build" -G "${GENERATOR}"
+    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
+if(CXX)
+  list(APPEND configure "-DCMAKE_CXX_COMPILER=${CXX}")
+endif()
+if(LAUNCHER)
+  list(APPEND configure "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+endif()
+run(${configure})
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
+message(STATUS "examples/ built against ${prefix}")
+if(DB)
+  run("${WORK_DIR}/build/example_open_database" "${DB}")
+  message(STATUS "${last_output}")
+endif()
