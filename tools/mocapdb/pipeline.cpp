@@ -198,10 +198,14 @@ std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
         std::string ranges;
         for (const auto& [a, b] : low)
             ranges += (ranges.empty() ? "" : ", ") + std::to_string(a) + (a == b ? "" : "-" + std::to_string(b));
+        // The remedy (samples cut at one gait phase) is named only when the samples are not cut so already.
+        const std::string remedy = o.cut_at_gait_phase
+                                       ? "; the samples already start at one gait phase)\n"
+                                       : "; for locomotion, samples that start at one gait phase avoid it: set create "
+                                         "--segment gait)\n";
         out += low.empty() ? std::string("; no aligned frame below 80 %\n")
                            : "; below 80 % at aligned frames " + ranges +
-                                 " (left-foot-forward and right-foot-forward poses blend there; for locomotion, samples "
-                                 "that start at one gait phase avoid it: set create --segment gait)\n";
+                                 " (left-foot-forward and right-foot-forward poses blend there" + remedy;
     }
     return out;
 }
