@@ -230,6 +230,7 @@ CompressOutcome compress_set(const std::string& db, const CompressRequest& a) {
     r.max_iterations = a.max_iterations;
     ProgressBar bar("compress");
     r.progress = bar.callback();
+    r.kernel_progress = bar.callback();  // item "kernel": the synthesis kernel's candidates
     return workflow::compress_set(db, r);
 }
 
@@ -253,7 +254,14 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                   o.kernel_stored ? "" : (" (not stored: " + o.kernel_not_stored_reason + ")").c_str(), o.us_per_pose,
                   o.store_s, o.total_s);
     std::string text = buffer;
-    if (o.kernel_stored) text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status + ")\n";
+    if (o.kernel_stored) {
+        const auto n = static_cast<std::size_t>(o.dims[2]);
+        text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status +
+                (o.kernel_fit_samples < n ? "; variogram chosen on " + std::to_string(o.kernel_fit_samples) + " of the " +
+                                                std::to_string(n) + " samples"
+                                          : std::string()) +
+                ")\n";
+    }
     if (!o.kernel_warning.empty()) text += "  warning: " + o.kernel_warning + "\n";
     return text;
 }
@@ -287,6 +295,7 @@ void write_compression_json(JsonWriter& j, const CompressOutcome& o) {
     if (o.kernel_stored) {
         j.key("kernel_variogram").value(o.kernel_variogram);
         j.key("kernel_status").value(o.kernel_status);
+        j.key("kernel_fit_samples").value(static_cast<long long>(o.kernel_fit_samples));
     }
     j.key("us_per_pose").value(o.us_per_pose);
     j.key("store_s").value(o.store_s);

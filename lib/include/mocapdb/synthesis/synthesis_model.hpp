@@ -56,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/aligned_timing.hpp"
@@ -132,6 +133,13 @@ struct SynthesisOptions {
     double min_increment_fraction = 0.05;
     /// Upper clamp of a kriged inverse-warp increment, as a multiple (>= 1) of the largest sample increment.
     double max_increment_factor = 4.0;
+    /// Sets of more samples choose their coefficient kernel's variogram on this many of them, evenly spread
+    /// in sample order (a subset of data: the leave-one-out choice costs O(n^3) and O(n^2) memory per
+    /// candidate; docs/synthesis-scale.md). The kriging system keeps every sample. >= 2.
+    std::size_t max_fit_samples = 1000;
+    /// Called while the coefficient kernel is fitted (one item per candidate variogram scored by
+    /// leave-one-out); not part of the kernel's key; may be empty. The library never prints.
+    ProgressCallback fit_progress;
     /// Compressed model only: a precomputed coefficient kernel (kernel_fit.hpp; workflow::load_motion_model reads
     /// the stored one). Used when its key equals kernel_key of the model's inputs and these options,
     /// ignored otherwise (the kernel is then fitted as without it). The naive model ignores it.
