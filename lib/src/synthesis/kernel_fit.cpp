@@ -376,6 +376,9 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     // What the model built from this fit reports (SynthesisModel's precomputed path, on the same inputs
     // and hence the same key), so that loading a stored fit need not recompute it.
     if (values.allFinite()) fit.assessed_status = assess_coefficient_kernel(xc, values, fit.variogram, options);
+    if (static_cast<std::size_t>(n) <= options.max_stored_system_samples)
+        fit.system = std::make_shared<const kriging::CovarianceInverse>(
+            kriging::Kriging::covariance_inverse(xc, fit.variogram, options.kriging));
     return fit;
 }
 

@@ -20,10 +20,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "mocapdb/core/types.hpp"
+#include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/kriging/variogram_model.hpp"
 
@@ -63,6 +65,12 @@ struct KernelFit {
     double loo_mean_z2 = std::numeric_limits<double>::quiet_NaN();
     /// Samples the variogram was chosen on (not stored; 0 when read): N, or max_fit_samples of them.
     std::size_t fit_samples = 0;
+    /// The coefficient kernel's kriging system factorized (kriging::Kriging::covariance_inverse of the
+    /// model's normalized parameters, this variogram and options.kriging): set by fit_kernel for sets of
+    /// up to options.max_stored_system_samples samples and stored with the kernel, so that a model of the
+    /// same key builds its kriging in O(N^2) instead of O(N^3) (issue #38: 3 000 samples load in
+    /// seconds). Null otherwise, and when read from a kernel stored without it.
+    std::shared_ptr<const kriging::CovarianceInverse> system;
 };
 
 /// Message for a fit status that is not Ok (what the CLI prints as a warning), "" for Ok.
@@ -118,7 +126,8 @@ kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, c
                                              const kriging::VariogramModel& variogram, const SynthesisOptions& options);
 
 /// What `compress` stores: the fit MotionModel(model, aligned, set, ..., options) would make, with its
-/// key and assessed_status (what that model reports), without building the rest of the model. InvalidArgument when the model does not describe
+/// key and assessed_status (what that model reports) and, up to options.max_stored_system_samples
+/// samples, its factorized system, without building the rest of the model. InvalidArgument when the model does not describe
 /// `aligned` or the set has fewer than 2 samples.
 KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
                      const SynthesisOptions& options);

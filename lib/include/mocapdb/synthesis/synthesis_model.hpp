@@ -137,6 +137,9 @@ struct SynthesisOptions {
     /// in sample order (a subset of data: the leave-one-out choice costs O(n^3) and O(n^2) memory per
     /// candidate; docs/synthesis-scale.md). The kriging system keeps every sample. >= 2.
     std::size_t max_fit_samples = 1000;
+    /// fit_kernel factorizes the kriging system for storage (KernelFit::system: N^2 doubles, 74 MB at
+    /// N = 3 043) for sets of up to this many samples; larger sets factorize it at every load (O(N^3)).
+    std::size_t max_stored_system_samples = 6000;
     /// Called while the coefficient kernel is fitted (one item per candidate variogram scored by
     /// leave-one-out); not part of the kernel's key; may be empty. The library never prints.
     ProgressCallback fit_progress;
@@ -156,6 +159,7 @@ struct SynthesisReport {
     double timing_exponent = 0.0;          ///< p of the timing kernel (Shared: the coefficient kernel's)
     double precompute_seconds = 0.0;       ///< construction time of the two kriging kernels
     bool kernel_precomputed = false;       ///< the coefficient kernel's variogram came from options.kernel_fit
+    bool system_precomputed = false;       ///< and its factorized system (KernelFit::system) too
 };
 
 /// The synthesized timing of one motion.
