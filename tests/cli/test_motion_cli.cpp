@@ -1,6 +1,8 @@
 // The motion-file commands through the built CLI: info and convert.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "shared_data.hpp"
 #include "test_support.hpp"
 #include "mini_json.hpp"
@@ -41,6 +43,29 @@ TEST_CASE("info on a PFNN BVH warns about the short file; --strict refuses it", 
     r = run_cli("info " + file + " --strict");
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.output, Contains("16_13_60fps.bvh") && Contains("declares 223 frames"));
+}
+
+TEST_CASE("--fps: a rate the BVH's Frame Time contradicts warns with both; <= 0, absurd or NaN is a one-line error",
+          "[cli][shared]") {
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
+    const std::string file = quoted((datasets_dir() / "cmu-walkrun-pfnn" / "16_13_60fps.bvh").string());
+    const TempDir dir("cli_fps");
+    const std::filesystem::path never = dir.path() / "never.h5";
+    // The PFNN files say 1/15 s per frame; the true rate is 60 Hz: the override is used and flagged.
+    CommandResult r = run_cli("info " + file + " --fps 60");
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.output, Contains("warning") && Contains("60 Hz") && Contains("(15 Hz)"));
+    for (const char* bad : {"0", "-5", "1e6", "nan", "inf", "fast"}) {
+        for (const std::string& command : {"info " + file, "import " + file + " -o " + quoted(never.string())}) {
+            r = run_cli(command + " --fps " + bad);
+            CHECK(r.exit_code != 0);
+            CHECK_THAT(r.output, Contains("--fps") && Contains(std::string(bad) == "fast" ? "expected a frame rate in Hz"
+                                                                             : "must be > 0 and <= 10000 Hz"));
+            CHECK(r.output.size() < 200);  // one line, not CLI11's 309-digit range
+            CHECK(std::count(r.output.begin(), r.output.end(), '\n') <= 2);
+        }
+    }
+    CHECK_FALSE(std::filesystem::exists(never));
 }
 
 TEST_CASE("convert writes a BVH with the AMC's joint positions, and never overwrites without --force", "[cli][shared]") {

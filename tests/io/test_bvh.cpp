@@ -1,8 +1,11 @@
 #include <catch2/catch.hpp>
+
+#include <limits>
 #include <sstream>
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
+#include "mocapdb/io/frame_rate.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 
 using namespace mocapdb;
@@ -132,6 +135,46 @@ TEST_CASE("BVH: a wrong Frame Time can be overridden", "[bvh]") {
     const std::string zero = sample_with("Frame Time:\t0.0083333333", "Frame Time:\t0");
     CHECK_THROWS_WITH(parse_bvh(zero, "z.bvh"), Contains("Frame Time must be positive"));
     CHECK(parse_bvh(zero, "z.bvh", options).frame_rate == 60.0);
+}
+
+TEST_CASE("BVH: a given frame rate that disagrees with the Frame Time by more than 1 % warns, naming both", "[bvh]") {
+    // kSample's Frame Time is 0.0083333333 s (120 Hz).
+    BvhReadOptions options;
+    Warnings warnings;
+    options.frame_rate = 30.0;
+    CHECK(parse_bvh(kSample, "s.bvh", options, &warnings).frame_rate == 30.0);
+    REQUIRE(warnings.size() == 1);
+    CHECK_THAT(warnings[0].to_string(), Contains("s.bvh") && Contains("30 Hz") && Contains("0.00833333 s (120 Hz)"));
+    // Within 1 %: no warning (119 Hz is 0.83 % off); just beyond it: a warning.
+    warnings.clear();
+    options.frame_rate = 119.0;
+    parse_bvh(kSample, "s.bvh", options, &warnings);
+    CHECK(warnings.empty());
+    options.frame_rate = 121.3;
+    parse_bvh(kSample, "s.bvh", options, &warnings);
+    CHECK(warnings.size() == 1);
+    // No override: nothing to compare.
+    warnings.clear();
+    parse_bvh(kSample, "s.bvh", {}, &warnings);
+    CHECK(warnings.empty());
+}
+
+TEST_CASE("BVH: a frame rate <= 0, absurd or not finite is a clear error", "[bvh]") {
+    for (const double bad : {0.0, -30.0, 20000.0, std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::quiet_NaN()}) {
+        BvhReadOptions options;
+        options.frame_rate = bad;
+        CHECK_THROWS_AS(parse_bvh(kSample, "s.bvh", options), InvalidArgument);
+        try {
+            parse_bvh(kSample, "s.bvh", options);
+        } catch (const InvalidArgument& e) {
+            const std::string what = e.what();
+            CHECK_THAT(what, Contains("frame rate must be > 0 and <= 10000 Hz, got"));
+            CHECK(what.size() < 120);  // the value as %g, never hundreds of digits
+        }
+    }
+    CHECK_THROWS_WITH(check_frame_rate(0.0, "x"), "x: frame rate must be > 0 and <= 10000 Hz, got 0");
+    CHECK_NOTHROW(check_frame_rate(10000.0, "x"));
 }
 
 TEST_CASE("BVH: bad input names file, line and what was expected", "[bvh]") {

@@ -414,3 +414,31 @@ TEST_CASE("Vectorized gamma of squared distances equals the scalar model", "[kri
     CHECK(VariogramModel::from_paper_p(0.0, 0, 1, 1).family == VariogramFamily::Spherical);
     CHECK(VariogramModel::from_paper_p(0.4, 0, 1, 1).exponent == 0.4);
 }
+
+TEST_CASE("build from a precomputed covariance inverse gives the very same kriging", "[kriging][properties]") {
+    Eigen::MatrixXd pts = random_points(40, 3, 5);
+    pts.row(7) = pts.row(3);  // a duplicate: the inverse is over the unique points
+    const Eigen::MatrixXd queries = random_points(25, 3, 6, -2.0, 12.0);
+    for (const auto& model : test_models()) {
+        for (const auto& opt : test_options()) {
+            INFO(model.to_string() << " " << describe(opt));
+            const Kriging direct = Kriging::build(pts, model, opt);
+            const CovarianceInverse inverse = Kriging::covariance_inverse(pts, model, opt);
+            CHECK(inverse.inverse.rows() == direct.unique_points().rows());
+            CHECK(inverse.factorization == direct.status().factorization);
+            const Kriging reused = Kriging::build(pts, model, opt, &inverse);
+            CHECK(reused.status().factorization == direct.status().factorization);
+            CHECK(reused.status().rcond == direct.status().rcond);
+            const KrigingBatch a = direct.estimate_batch(queries), b = reused.estimate_batch(queries);
+            CHECK(a.weights == b.weights);  // the same doubles through the same operations
+            CHECK(a.reliability == b.reliability);
+            CHECK(a.variance == b.variance);
+        }
+    }
+    // One of another size is ignored: the system is factorized as without it.
+    const VariogramModel model = VariogramModel::stable(1.0, 0.1, 1.0, 2.0);
+    CovarianceInverse wrong;
+    wrong.inverse = Eigen::MatrixXd::Identity(5, 5);
+    const Kriging a = Kriging::build(pts, model, {}), b = Kriging::build(pts, model, {}, &wrong);
+    CHECK(a.estimate_batch(queries).weights == b.estimate_batch(queries).weights);
+}

@@ -84,3 +84,40 @@ TEST_CASE("the leave-one-out shape search predicts the left-out samples at least
     bad.nugget_shares = {1.0};
     CHECK_THROWS_AS(synthesis::fit_coefficient_kernel(c, values, bad, "test"), InvalidArgument);
 }
+
+TEST_CASE("above max_fit_samples the variogram is chosen on that many evenly spread samples", "[synthesis]") {
+    MatX c, values;
+    random_design(60, 40, 11, 0.05, c, values, [](double c0, double c1, double j) {
+        return std::sin(0.8 * c0 + 0.05 * j) + 0.5 * c1;
+    });
+    synthesis::SynthesisOptions options;
+    options.max_fit_samples = 20;
+    int calls = 0;
+    std::uint64_t last_done = 0, total = 0;
+    options.fit_progress = [&](const Progress& p) {
+        ++calls;
+        CHECK(p.done >= last_done);
+        last_done = p.done;
+        total = p.total;
+    };
+    const synthesis::KernelFit sub = synthesis::fit_coefficient_kernel(c, values, options, "test");
+    CHECK(sub.fit_samples == 20);
+    CHECK(calls >= 2);
+    CHECK(last_done == total);  // the last call says done
+    // The same as fitting the rows round(i * 59 / 19) themselves.
+    MatX cs(20, 2), vs(20, values.cols());
+    for (Eigen::Index i = 0; i < 20; ++i) {
+        const auto row = static_cast<Eigen::Index>(std::lround(59.0 * static_cast<double>(i) / 19.0));
+        cs.row(i) = c.row(row);
+        vs.row(i) = values.row(row);
+    }
+    options.fit_progress = {};
+    const synthesis::KernelFit direct = synthesis::fit_coefficient_kernel(cs, vs, options, "test");
+    CHECK(direct.fit_samples == 20);
+    CHECK(direct.variogram.to_string() == sub.variogram.to_string());
+    // All samples: a fit of its own (N of them).
+    options.max_fit_samples = 60;
+    CHECK(synthesis::fit_coefficient_kernel(c, values, options, "test").fit_samples == 60);
+    options.max_fit_samples = 1;
+    CHECK_THROWS_AS(synthesis::fit_coefficient_kernel(c, values, options, "test"), InvalidArgument);
+}

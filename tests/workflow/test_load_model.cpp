@@ -108,7 +108,15 @@ TEST_CASE("workflow: the compressed model loaded without the aligned tensor equa
                                            options);
     const auto loaded = workflow::load_motion_model(db, "walks");
     CHECK(loaded->report().kernel_precomputed);
+    CHECK(loaded->report().system_precomputed);  // the stored factorization was used
     check_same_model(*loaded, from_full, full.set);
+    // The same model when the system is factorized again at load (the stored one dropped).
+    options.kernel_fit->system.reset();
+    const synthesis::MotionModel refactorized(stored->model, full.aligned, full.set, full.skeleton, full.frame_rate,
+                                              options);
+    CHECK(refactorized.report().kernel_precomputed);
+    CHECK_FALSE(refactorized.report().system_precomputed);
+    check_same_model(*loaded, refactorized, full.set);
 }
 
 TEST_CASE("workflow: load_motion_model does not read the aligned tensor (damage there stops only the naive model) "

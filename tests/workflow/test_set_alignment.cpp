@@ -99,3 +99,28 @@ TEST_CASE("workflow: align_set with a chosen reference, linear, and its errors",
     CHECK(database_disk_bytes(w.path) == bytes);
     CHECK(Database(w.path).load_aligned("walks")->frames() == 24);
 }
+
+TEST_CASE("workflow: align_set tells samples cut at one gait phase from whole clips (the phase hint's case)",
+          "[workflow][shared]") {
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
+    const WalkDatabase& w = walks();
+    workflow::AlignRequest r;
+    r.set = "walks";
+    r.frames = 24;
+    // Whole walks start wherever the capture started: the hint to cut them at one phase applies.
+    CHECK_FALSE(workflow::align_set(w.path, r).cut_at_gait_phase);
+
+    // The same clips cut into gait cycles (set create --segment gait): every sample starts at a left-foot
+    // pass, so the hint must not suggest cutting them so again.
+    workflow::SetRequest cycles;
+    cycles.name = "cycles";
+    cycles.clips = {"16_*"};
+    cycles.segment = "gait:2";
+    cycles.extract = {"speed"};
+    workflow::create_set(w.path, cycles);
+    r.set = "cycles";
+    const workflow::AlignOutcome o = workflow::align_set(w.path, r);
+    CHECK(o.aligned.samples() >= 12);
+    REQUIRE(o.phase.has_value());
+    CHECK(o.cut_at_gait_phase);
+}

@@ -48,7 +48,8 @@ TEST_CASE("workflow: compress_set meets a max joint error and stores the model w
     CHECK(o.bytes > 0);
     CHECK(o.ratio() > 1.0);
     CHECK(o.us_per_pose > 0.0);
-    CHECK(o.kernel_stored);  // 12 samples: well under kStoredKernelMaxSamples
+    CHECK(o.kernel_stored);
+    CHECK(o.kernel_fit_samples == 12);  // under SynthesisOptions::max_fit_samples: all of them
     CHECK_FALSE(o.kernel_variogram.empty());
 
     const Database db(w.path);
@@ -56,7 +57,12 @@ TEST_CASE("workflow: compress_set meets a max joint error and stores the model w
     REQUIRE(stored.has_value());
     CHECK(stored->model.tucker.ranks == ranks);
     CHECK(stored->figures.max_cm == o.stats.max_cm);
-    CHECK(db.load_kernel_fit("walks").has_value());
+    const auto kernel = db.load_kernel_fit("walks");
+    REQUIRE(kernel.has_value());
+    // The factorized system is stored with it (12 unique points).
+    REQUIRE(kernel->system);
+    CHECK(kernel->system->inverse.rows() == 12);
+    CHECK(kernel->system->inverse.cols() == 12);
     CHECK(o.stored_bytes > 0);
     for (const SetRecord& s : db.sets())
         if (s.name == "walks") CHECK(s.model_stored_bytes == o.stored_bytes);

@@ -1,6 +1,9 @@
 #include "clip_options.hpp"
 
+#include <cstdlib>
 #include <ostream>
+
+#include "mocapdb/io/frame_rate.hpp"
 
 namespace mocapdb::cli {
 
@@ -11,6 +14,17 @@ ClipReadOptions ClipOptions::to_read_options() const {
     o.strict = strict;
     o.bvh_positions = bvh_positions_from_option(bvh_positions);
     return o;
+}
+
+CLI::Validator frame_rate_check() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double rate = std::strtod(text.c_str(), &end);
+            if (text.empty() || *end != '\0') return "expected a frame rate in Hz, got '" + text + "'";
+            return frame_rate_problem(rate);
+        },
+        "HZ");
 }
 
 void add_bvh_positions_option(CLI::App& command, std::string& value) {
@@ -29,7 +43,7 @@ void add_clip_options(CLI::App& command, ClipOptions& options) {
     command.add_option("--asf", options.asf, "ASF skeleton of an AMC clip (default: NN.asf beside NN_MM.amc)")
         ->check(CLI::ExistingFile);
     command.add_option("--fps", options.fps, "frame rate override in Hz (AMC default 120; BVH: its Frame Time)")
-        ->check(CLI::PositiveNumber);
+        ->check(frame_rate_check());
     command.add_flag("--strict", options.strict, "refuse file defects instead of working around them");
     add_bvh_positions_option(command, options.bvh_positions);
 }

@@ -17,6 +17,10 @@ struct ClipOptions {
     ClipReadOptions to_read_options() const;
 };
 
+/// Checks an --fps value: a number in (0, kMaxFrameRate] Hz (motion/clip.hpp), else a one-line error
+/// naming the value (never CLI11's PositiveNumber range of 309 digits).
+CLI::Validator frame_rate_check();
+
 /// Adds --asf, --fps, --strict and --bvh-positions to `command`.
 void add_clip_options(CLI::App& command, ClipOptions& options);
 

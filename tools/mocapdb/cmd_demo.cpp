@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "clip_options.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mocapdb_json/step_json.hpp"
@@ -388,7 +389,7 @@ void setup_demo(CLI::App& app) {
     cmd->add_flag("--quick", a->quick, "fewer syntheses and a shorter table (for tests)");
     cmd->add_option("--clips", a->clips, "with --data: clip ids or shell patterns (quoted)");
     cmd->add_option("--extract", a->extract, "with --data: parameters measured from the motion (default: turn speed)");
-    cmd->add_option("--fps", a->fps, "with --data: frame rate in Hz for every file")->check(CLI::PositiveNumber);
+    cmd->add_option("--fps", a->fps, "with --data: frame rate in Hz for every file")->check(frame_rate_check());
     cmd->add_option("--frames", a->frames, "aligned frames T")->check(CLI::Range(8LL, 2000LL));
     cmd->add_option("--max-error-cm", a->max_error_cm, "max joint error of the stored model (cm)")
         ->check(CLI::PositiveNumber);

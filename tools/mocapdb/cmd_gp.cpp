@@ -7,6 +7,7 @@
 #include <iostream>
 #include <optional>
 
+#include "clip_options.hpp"
 #include "commands.hpp"
 #include "gp_cli.hpp"
 #include "output_files.hpp"
@@ -175,7 +176,7 @@ void add_source_options(CLI::App* cmd, GpArgs& a) {
     cmd->add_option("db", a.db, "database file (with --set)");
     cmd->add_option("--set", a.set, "motion set: its samples are the children");
     cmd->add_option("--clips", a.clips, "clip files (BVH, or AMC with the ASF beside it) as the children")->check(CLI::ExistingFile);
-    cmd->add_option("--fps", a.fps, "frame rate override for the clip files (Hz)");
+    cmd->add_option("--fps", a.fps, "frame rate override for the clip files (Hz)")->check(frame_rate_check());
     cmd->add_option("--frames", a.frames, "subsampled frames per child (default 90)")->check(CLI::Range(2, 100000));
     cmd->add_option("--duration", a.duration, "seconds from each child's start (default: the shortest child)");
     cmd->add_option("--joints", a.joints, "only these joints' dofs (names; the root name selects the 6 root dofs)")->delimiter(',');

@@ -72,7 +72,7 @@ void setup_import(CLI::App& app) {
     cmd->add_option("--asf", args->asf, "ASF skeleton for every AMC file (default: NN.asf beside NN_MM.amc)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--fps", args->fps, "frame rate in Hz for every file (default: BVH Frame Time, AMC 120)")
-        ->check(CLI::PositiveNumber);
+        ->check(frame_rate_check());
     cmd->add_option("--manifest", args->manifest, "CSV with per-file subject, description, labels, fps")
         ->check(CLI::ExistingFile);
     cmd->add_flag("--strict", args->strict, "refuse file defects instead of working around them");

@@ -182,10 +182,14 @@ std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
         std::string ranges;
         for (const auto& [a, b] : low)
             ranges += (ranges.empty() ? "" : ", ") + std::to_string(a) + (a == b ? "" : "-" + std::to_string(b));
+        // The remedy (samples cut at one gait phase) is named only when the samples are not cut so already.
+        const std::string remedy = o.cut_at_gait_phase
+                                       ? "; the samples already start at one gait phase)\n"
+                                       : "; for locomotion, samples that start at one gait phase avoid it: set create "
+                                         "--segment gait)\n";
         out += low.empty() ? std::string("; no aligned frame below 80 %\n")
                            : "; below 80 % at aligned frames " + ranges +
-                                 " (left-foot-forward and right-foot-forward poses blend there; for locomotion, samples "
-                                 "that start at one gait phase avoid it: set create --segment gait)\n";
+                                 " (left-foot-forward and right-foot-forward poses blend there" + remedy;
     }
     return out;
 }
@@ -199,6 +203,7 @@ std::string ranks_text(const tensor::Ranks& r) {
 CompressOutcome compress_set(const std::string& db, CompressRequest r) {
     ProgressBar bar("compress");
     r.progress = bar.callback();
+    r.kernel_progress = bar.callback();  // item "kernel": the synthesis kernel's candidates
     return workflow::compress_set(db, r);
 }
 
@@ -222,7 +227,14 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                   o.kernel_stored ? "" : (" (not stored: " + o.kernel_not_stored_reason + ")").c_str(), o.us_per_pose,
                   o.store_s, o.total_s);
     std::string text = buffer;
-    if (o.kernel_stored) text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status + ")\n";
+    if (o.kernel_stored) {
+        const auto n = static_cast<std::size_t>(o.dims[2]);
+        text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status +
+                (o.kernel_fit_samples < n ? "; variogram chosen on " + std::to_string(o.kernel_fit_samples) + " of the " +
+                                                std::to_string(n) + " samples"
+                                          : std::string()) +
+                ")\n";
+    }
     if (!o.kernel_warning.empty()) text += "  warning: " + o.kernel_warning + "\n";
     return text;
 }

@@ -10,6 +10,7 @@
 #include "mocapdb/synthesis/naive_motion_model.hpp"
 #include "mocapdb/workflow/load_model.hpp"
 #include "mocapdb/workflow/synthesis_warnings.hpp"
+#include "progress_bar.hpp"
 
 namespace mocapdb::cli {
 
@@ -63,6 +64,9 @@ tensor::Ranks parse_ranks(const std::string& text, const std::string& option) {
 std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& db, const std::string& set, bool naive,
                                                                 const std::string& lod, const std::string& timing) {
     synthesis::SynthesisOptions options;
+    // A model whose stored kernel does not match (or that has none) fits it at load: show its progress.
+    ProgressBar bar("synth: kernel fit");
+    options.fit_progress = bar.callback();
     if (timing == "separate") options.timing_kernel = synthesis::SynthesisOptions::TimingKernel::Separate;
     else if (timing != "shared") throw InvalidArgument("--timing: expected shared or separate, got '" + timing + "'");
     if (naive) {

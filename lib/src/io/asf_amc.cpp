@@ -10,6 +10,7 @@
 
 #include "asf_text.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/io/frame_rate.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "text_scanner.hpp"
 
@@ -254,9 +255,7 @@ private:
 Clip parse_amc(std::string_view text, const std::string& source_name, std::shared_ptr<const Skeleton> skeleton,
                const AmcReadOptions& options, Warnings* out_warnings) {
     if (!skeleton) throw InvalidArgument("parse_amc: a skeleton is required");
-    if (!(options.frame_rate > 0.0 && std::isfinite(options.frame_rate)))
-        throw InvalidArgument("parse_amc: frame_rate must be positive and finite, got " +
-                              std::to_string(options.frame_rate));
+    check_frame_rate(options.frame_rate, "parse_amc");
     Clip clip;
     clip.channels = AmcParser(text, source_name, *skeleton, options, out_warnings).run();
     clip.skeleton = std::move(skeleton);

@@ -1,11 +1,13 @@
 // BVH reader. Policy for real-world defects: a non-strict read works around what it can and says so
 // in a warning (fewer rows than "Frames:" declares, a partial last row); strict mode refuses them.
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
+#include "mocapdb/io/frame_rate.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "text_scanner.hpp"
 
@@ -26,8 +28,7 @@ public:
     Clip parse() {
         if (!(options_.cm_per_unit > 0.0 && std::isfinite(options_.cm_per_unit)))
             throw InvalidArgument("BVH read options: cm_per_unit must be positive and finite");
-        if (options_.frame_rate && !(*options_.frame_rate > 0.0 && std::isfinite(*options_.frame_rate)))
-            throw InvalidArgument("BVH read options: frame_rate must be positive and finite");
+        if (options_.frame_rate) check_frame_rate(*options_.frame_rate, "BVH read options");
         in_.expect("HIERARCHY");
         in_.expect("ROOT");
         parse_joint(-1, 0);
@@ -163,6 +164,18 @@ private:
         const double frame_time = in_.number("frame time (seconds)");
         if (options_.frame_rate) {
             clip.frame_rate = *options_.frame_rate;
+            // An override that disagrees with the header by more than 1 % is most likely a mistake
+            // (everything then plays too fast or too slow), unless the header is known to be wrong: say so.
+            const double header_rate = frame_time > 0.0 ? 1.0 / frame_time : 0.0;
+            if (header_rate > 0.0 && std::abs(clip.frame_rate - header_rate) > 0.01 * header_rate) {
+                char text[200];
+                std::snprintf(text, sizeof text,
+                              "the frame rate given, %g Hz, differs from the file's Frame Time %g s (%g Hz) by "
+                              "%.0f %%; the given rate is used",
+                              clip.frame_rate, frame_time, header_rate,
+                              100.0 * std::abs(clip.frame_rate - header_rate) / header_rate);
+                warn(in_.line(), text);
+            }
         } else {
             if (!(frame_time > 0.0))
                 in_.fail_at_token("Frame Time must be positive, found " + std::to_string(frame_time) +

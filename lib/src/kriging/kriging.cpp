@@ -78,6 +78,23 @@ Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const
 
 Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
                        const KrigingOptions& options) {
+    return build(coords, model, options, nullptr);
+}
+
+CovarianceInverse Kriging::covariance_inverse(const Eigen::Ref<const Eigen::MatrixXd>& coords,
+                                              const VariogramModel& model, const KrigingOptions& options) {
+    Eigen::MatrixXd cov;
+    Kriging k = prepare(coords, model, options, cov);
+    CovarianceInverse out;
+    out.inverse = robust_spd_inverse(cov, model.total_sill(), options, k.status_);
+    out.factorization = k.status_.factorization;
+    out.jitter = k.status_.jitter;
+    out.rcond = k.status_.rcond;
+    return out;
+}
+
+Kriging Kriging::prepare(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
+                         const KrigingOptions& options, Eigen::MatrixXd& cov) {
     detail::validate_coords("Kriging::build", coords);
     model.validate();
     if (!(model.total_sill() > 0.0)) {
@@ -118,7 +135,7 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     // Variogram and covariance matrices of the unique points.
     const double s = model.total_sill();
     k.gamma_.resize(m, m);
-    Eigen::MatrixXd cov(m, m);
+    cov.resize(m, m);
     for (Eigen::Index j = 0; j < m; ++j) {
         k.gamma_(j, j) = 0.0;
         cov(j, j) = s;
@@ -130,7 +147,25 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
             cov(j, i) = s - g;
         }
     }
-    const Eigen::MatrixXd cinv = robust_spd_inverse(cov, s, options, k.status_);
+    return k;
+}
+
+Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
+                       const KrigingOptions& options, const CovarianceInverse* precomputed) {
+    Eigen::MatrixXd cov;
+    Kriging k = prepare(coords, model, options, cov);
+    const Eigen::Index m = k.points_.rows();
+    Eigen::MatrixXd computed;
+    const bool reuse = precomputed && precomputed->inverse.rows() == m && precomputed->inverse.cols() == m;
+    if (reuse) {
+        k.status_.factorization = precomputed->factorization;
+        k.status_.jitter = precomputed->jitter;
+        k.status_.rcond = precomputed->rcond;
+    } else {
+        computed = robust_spd_inverse(cov, model.total_sill(), options, k.status_);
+    }
+    cov.resize(0, 0);
+    const Eigen::MatrixXd& cinv = reuse ? precomputed->inverse : computed;
 
     // Kernel system: F is the trend basis (OK / GLS) or the constant only (OLS kernel, paper Eq. 3).
     const bool ols = options.trend_fit == TrendFit::OLS && options.trend == TrendKind::Linear;

@@ -3,6 +3,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "layout.hpp"
 #include "mocapdb/core/error.hpp"
@@ -58,6 +59,9 @@ void check_kernel_fit(const synthesis::KernelFit& fit, const std::string& who) {
     if (!v.empty()) throw InvalidArgument(who + ": " + v);
     if (fit.assessed_status && !(fit.residual_variance >= 0.0 && std::isfinite(fit.residual_variance)))
         throw InvalidArgument(who + ": the residual variance must be finite and >= 0");
+    if (fit.system && (fit.system->inverse.rows() != fit.system->inverse.cols() || fit.system->inverse.size() == 0 ||
+                       !fit.system->inverse.allFinite()))
+        throw InvalidArgument(who + ": the factorized system must be a square, non-empty, finite matrix");
 }
 
 void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::KernelFit& fit) {
@@ -71,7 +75,51 @@ void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::K
         file.write_string_attribute(g, "fit_status", kriging::to_string(*fit.assessed_status));
         file.write_double_attribute(g, "residual_variance", fit.residual_variance);
     }
+    if (fit.system) {
+        // The factorized system (C order; the library's column-major matrix transposed on the way).
+        const kriging::CovarianceInverse& c = *fit.system;
+        const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = c.inverse;
+        const auto points = static_cast<std::uint64_t>(rows.rows());
+        file.write_array(g + "/covariance_inverse", rows.data(), {points, points}, {"point", "point"}, "1/cm^2");
+        file.write_string_attribute(g + "/covariance_inverse", "factorization", kriging::to_string(c.factorization));
+        file.write_double_attribute(g + "/covariance_inverse", "jitter", c.jitter);
+        file.write_double_attribute(g + "/covariance_inverse", "rcond", c.rcond);
+    }
 }
+
+namespace {
+
+// The stored factorized system (write_kernel_fit), checked: square, finite, a known factorization.
+std::shared_ptr<const kriging::CovarianceInverse> read_system(const h5::File& file, const std::string& g) {
+    const std::string path = g + "/covariance_inverse";
+    auto c = std::make_shared<kriging::CovarianceInverse>();
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows;
+    file.read_array_into<double>(path, 2, [&](const h5::Shape& shape) {
+        if (shape[0] != shape[1] || shape[0] == 0)
+            throw StoreError(file.name(), path, "expected a square, non-empty (point, point) matrix, found " +
+                                                    std::to_string(shape[0]) + "x" + std::to_string(shape[1]));
+        rows.resize(static_cast<Eigen::Index>(shape[0]), static_cast<Eigen::Index>(shape[1]));
+        return rows.data();
+    });
+    if (!rows.allFinite()) throw StoreError(file.name(), path, "expected finite values, found a NaN or infinity");
+    c->inverse = rows;
+    const std::string how = file.read_string_attribute(path, "factorization");
+    bool known = false;
+    for (const auto f : {kriging::FactorizationStatus::Ok, kriging::FactorizationStatus::Jittered,
+                         kriging::FactorizationStatus::Regularized})
+        if (how == kriging::to_string(f)) {
+            c->factorization = f;
+            known = true;
+        }
+    if (!known)
+        throw StoreError(file.name(), path,
+                         "attribute 'factorization': expected \"ok\", \"jittered\" or \"regularized\", found \"" + how + "\"");
+    c->jitter = file.read_double_attribute(path, "jitter");
+    c->rcond = file.read_double_attribute(path, "rcond");
+    return c;
+}
+
+}  // namespace
 
 synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& set) {
     const std::string g = kernel_path(set);
@@ -114,6 +162,7 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
             throw StoreError(file.name(), g, "attribute 'residual_variance': expected a finite number >= 0, found " +
                                                  number_text(fit.residual_variance));
     }
+    if (file.exists(g + "/covariance_inverse")) fit.system = read_system(file, g);
     return fit;
 }
 

@@ -122,6 +122,8 @@ std::uint64_t kernel_key(const compression::SetModel& model, const MotionSet& se
     for (Eigen::Index i = 0; i < t.core.size(); ++i) d.number(core[i]);
     // Periodic parameters change the control-space distances (sets without them keep their keys).
     for (Eigen::Index k = 0; k < set.parameter_periods.size(); ++k) d.number(set.parameter_periods(k));
+    // A subset fit depends on the subset's size (smaller sets, fitted on all samples, keep their keys).
+    if (static_cast<std::size_t>(set.parameters.rows()) > options.max_fit_samples) d.word(options.max_fit_samples);
     return d.h == 0 ? 1 : d.h;
 }
 
@@ -169,6 +171,19 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
     }
     if (options.exponent && !(*options.exponent >= 0.0 && *options.exponent <= 2.0))
         throw InvalidArgument(std::string(where) + ": exponent p must be in [0, 2]");
+    if (options.max_fit_samples < 2) throw InvalidArgument(std::string(where) + ": max_fit_samples must be >= 2");
+    if (static_cast<std::size_t>(xc.rows()) > options.max_fit_samples) {
+        // Subset of data: evenly spread rows (sample order follows the clips, so every clip is represented).
+        const auto m = static_cast<Eigen::Index>(options.max_fit_samples);
+        const double step = static_cast<double>(xc.rows() - 1) / static_cast<double>(m - 1);
+        MatX x_sub(m, xc.cols()), v_sub(m, sample_values.cols());
+        for (Eigen::Index i = 0; i < m; ++i) {
+            const auto row = static_cast<Eigen::Index>(std::lround(step * static_cast<double>(i)));
+            x_sub.row(i) = xc.row(row);
+            v_sub.row(i) = sample_values.row(row);
+        }
+        return fit_coefficient_kernel(x_sub, v_sub, options, where);
+    }
     // Residuals of the trend the kriging will remove (gstat: variogram(z ~ x + y)), so that a variogram
     // rising as h^2 because of the drift is not taken for spatial correlation.
     const kriging::TrendBasis basis =
@@ -184,6 +199,7 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
     const double h_half = std::max(0.5 * h.maxCoeff(), 1e-12);
     KernelFit out;
     out.residual_variance = residual_variance;
+    out.fit_samples = static_cast<std::size_t>(n);
     kriging::VariogramModel model;
     bool degenerate = !(d.maxCoeff() > 0.0) || !(residual_variance > 0.0);
     kriging::FitStatus status = kriging::FitStatus::Ok;
@@ -223,8 +239,13 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
     double best = std::numeric_limits<double>::infinity();
     std::size_t best_k = 0;
     bool grid_chosen = false;  // the best candidate is a grid shape (not a least-squares fit)
+    // Candidates: the exponents' fits, the shape grid, the exponents again at the grid's best (at most).
+    const std::uint64_t candidates =
+        2 * exponents.size() + (shape_search ? options.range_fractions.size() * options.nugget_shares.size() : 0);
+    std::uint64_t scored = 0;
     const auto consider = [&](const kriging::VariogramModel& m, kriging::FitStatus s, std::size_t k) {
         const double e = loo_error(m);
+        if (options.fit_progress) options.fit_progress({++scored, candidates, "kernel"});
         double& slot = mse(static_cast<Eigen::Index>(k));
         slot = std::min(slot, e);
         if (e < best) {
@@ -280,6 +301,7 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
         }
         degenerate = !std::isfinite(best);
         if (!options.exponent) out.exponent_loo_mse = mse;
+        if (options.fit_progress) options.fit_progress({candidates, candidates, "kernel"});
     }
     if (degenerate || !(model.total_sill() > 0.0)) {
         // Samples without variation about the trend: any valid kernel gives the same (trend-only) prediction.
@@ -354,6 +376,9 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     // What the model built from this fit reports (SynthesisModel's precomputed path, on the same inputs
     // and hence the same key), so that loading a stored fit need not recompute it.
     if (values.allFinite()) fit.assessed_status = assess_coefficient_kernel(xc, values, fit.variogram, options);
+    if (static_cast<std::size_t>(n) <= options.max_stored_system_samples)
+        fit.system = std::make_shared<const kriging::CovarianceInverse>(
+            kriging::Kriging::covariance_inverse(xc, fit.variogram, options.kriging));
     return fit;
 }
 

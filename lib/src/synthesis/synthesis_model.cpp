@@ -106,7 +106,12 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     }
     const kriging::VariogramModel& model = kernel_fit_.variogram;
     report_.exponent_loo_mse = kernel_fit_.exponent_loo_mse;
-    kriging_ = kriging::Kriging::build(xc, model, options.kriging);
+    // The stored factorization of the same inputs (same key) spares the O(N^3) step; it is dropped once
+    // used (the model keeps its own operators).
+    const kriging::CovarianceInverse* system = report_.kernel_precomputed ? kernel_fit_.system.get() : nullptr;
+    kriging_ = kriging::Kriging::build(xc, model, options.kriging, system);
+    report_.system_precomputed = system != nullptr && system->inverse.rows() == kriging_.unique_points().rows();
+    kernel_fit_.system.reset();
     report_.model = model;
     report_.status = kriging_.status();
     report_.fit_status = kernel_fit_.status;

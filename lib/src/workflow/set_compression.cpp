@@ -95,21 +95,21 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
     o.stats = reuse && chosen.stats.positions > 0 ? chosen.stats : meter.measure(o.model.reconstruct());
     o.us_per_pose = compression::time_pose_evaluation(o.model.tucker);
 
-    // The synthesis kernel's variogram, fitted once here so that synthesis need not (#16; kernel_fit.hpp).
-    // Its leave-one-out choice is O(N^3) in the samples: above kStoredKernelMaxSamples it is not paid
-    // here, and the model fits it at load as for a model without a stored kernel. A set without
-    // control parameters compresses, but has nothing to synthesize over: no kernel.
+    // The synthesis kernel's variogram, fitted once here so that synthesis need not (#16; kernel_fit.hpp),
+    // for any number of samples: above SynthesisOptions::max_fit_samples it is chosen on a subset, so
+    // its cost is bounded (#38). A set without control parameters compresses, but has nothing to
+    // synthesize over: no kernel.
     const auto kernel_start = Clock::now();
     std::optional<synthesis::KernelFit> kernel;
     // (fit_kernel reads only the aligned tensor's shape, which x keeps.)
-    if (c.set.samples.size() <= synthesis::kStoredKernelMaxSamples && c.set.parameters.cols() > 0)
-        kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, synthesis::SynthesisOptions{});
+    if (c.set.parameters.cols() > 0) {
+        synthesis::SynthesisOptions options;
+        options.fit_progress = a.kernel_progress;
+        kernel = synthesis::fit_kernel(o.model, c.aligned, c.set, options);
+        o.kernel_fit_samples = kernel->fit_samples;
+    }
     o.kernel_stored = kernel.has_value();
-    if (!kernel)
-        o.kernel_not_stored_reason = c.set.parameters.cols() == 0
-                                         ? "the set has no control parameters: nothing to synthesize at"
-                                         : "more than " + std::to_string(synthesis::kStoredKernelMaxSamples) +
-                                               " samples; synth fits it at load";
+    if (!kernel) o.kernel_not_stored_reason = "the set has no control parameters: nothing to synthesize at";
     o.kernel_s = seconds_since(kernel_start);
     if (kernel) {
         o.kernel_variogram = kernel->variogram.to_string();

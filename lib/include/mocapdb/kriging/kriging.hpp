@@ -105,6 +105,17 @@ struct LooResult {
     double mse = 0.0;            ///< mean of residual^2 over all entries (the paper's MSE for D = 1).
 };
 
+/// The O(M^3) part of Kriging::build: the inverse of the covariance matrix of the M unique control
+/// points, robustly factorized (jitter, regularization: see the header comment), and how. A caller that
+/// builds the same system again (same points, model and options) hands it back to build(), which then
+/// costs O(M^2 K): synthesis stores it with a set's kernel (synthesis/kernel_fit.hpp).
+struct CovarianceInverse {
+    Eigen::MatrixXd inverse;  ///< M by M
+    FactorizationStatus factorization = FactorizationStatus::Ok;
+    double jitter = 0.0;
+    double rcond = 0.0;
+};
+
 class KrigingPredictor;
 
 class Kriging final : public Interpolator {
@@ -115,6 +126,13 @@ public:
     /// coordinates, an invalid model, a model with nugget + sill == 0, or out-of-range options.
     static Kriging build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
                          const KrigingOptions& options = {});
+    /// The same with the covariance inverse of these inputs precomputed (covariance_inverse()); one of
+    /// another size (or null) is ignored and the system factorized as without it.
+    static Kriging build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
+                         const KrigingOptions& options, const CovarianceInverse* precomputed);
+    /// What build() factorizes (same errors); O(M^3) time, O(M^2) memory.
+    static CovarianceInverse covariance_inverse(const Eigen::Ref<const Eigen::MatrixXd>& coords,
+                                                const VariogramModel& model, const KrigingOptions& options = {});
 
     Eigen::Index num_samples() const override { return group_.size(); }
     Eigen::Index dimension() const override { return points_.cols(); }
@@ -158,6 +176,10 @@ public:
     const Eigen::MatrixXd& gamma_matrix() const { return gamma_; }
 
 private:
+    // build() up to the covariance matrix of the unique points (validation, duplicates, trend basis,
+    // gamma_): out_cov M by M.
+    static Kriging prepare(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
+                           const KrigingOptions& options, Eigen::MatrixXd& out_cov);
     friend class KrigingPredictor;  // folds sample values into weight_operator() (kriging_predictor.hpp)
 
     // gamma of the query (the continuous part only when filtering the nugget): out M.

@@ -7,10 +7,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "mocapdb/core/types.hpp"
+#include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/kriging/variogram_model.hpp"
 
@@ -48,6 +50,14 @@ struct KernelFit {
     /// over samples of z_i^2 = |s_i - s_-i|^2 / V_i (the squared residual summed over the values, since the
     /// sill is the sum of their variances). Near 1 when the variance is calibrated.
     double loo_mean_z2 = std::numeric_limits<double>::quiet_NaN();
+    /// Samples the variogram was chosen on (not stored; 0 when read): N, or max_fit_samples of them.
+    std::size_t fit_samples = 0;
+    /// The coefficient kernel's kriging system factorized (kriging::Kriging::covariance_inverse of the
+    /// model's normalized parameters, this variogram and options.kriging): set by fit_kernel for sets of
+    /// up to options.max_stored_system_samples samples and stored with the kernel, so that a model of the
+    /// same key builds its kriging in O(N^2) instead of O(N^3) (issue #38: 3 000 samples load in
+    /// seconds). Null otherwise, and when read from a kernel stored without it.
+    std::shared_ptr<const kriging::CovarianceInverse> system;
 };
 
 /// Message for a fit status that is not Ok (what the CLI prints as a warning), "" for Ok.
@@ -59,7 +69,8 @@ std::string fit_status_warning(const KernelFit& fit);
 /// N, P, R1, R2, R3, then the IEEE-754 bit patterns of set.parameters (row after row, the file's
 /// (N, P) C order), of model.tucker.U[2] (row after row, the file's (N, R3) sample_basis) and of the
 /// core (the library's column-major order, the file's (R3, R2, R1) core), then, for a set with periodic
-/// parameters, the bit patterns of set.parameter_periods. Cost: one pass over the core.
+/// parameters, the bit patterns of set.parameter_periods, then, for N > options.max_fit_samples (a subset
+/// fit), that number. Cost: one pass over the core.
 std::uint64_t kernel_key(const compression::SetModel& model, const MotionSet& set, const SynthesisOptions& options);
 
 /// The options that shape the coefficient kernel as text (exponent, scaling, variogram, fit and
@@ -87,8 +98,11 @@ MatX core_slice_values(const compression::SetModel& model);
 /// scaled so that the leave-one-out mean z^2 is 1 (within the sill bound); the weights and rho do not
 /// depend on that scale. At most 2 |exponent_grid| + |range_fractions| |nugget_shares| kriging systems,
 /// O(N^3) each.
+/// N > options.max_fit_samples: all of the above on options.max_fit_samples rows evenly spread over
+/// the N (rows round(i (N - 1) / (m - 1))), so the cost stays bounded; KernelFit::fit_samples says so.
+/// options.fit_progress is told of every candidate scored.
 /// InvalidArgument (prefixed with `where`) for an exponent outside [0, 2], an empty grid, a range fraction
-/// outside (0, 1] or a nugget share outside [0, 1).
+/// outside (0, 1], a nugget share outside [0, 1) or max_fit_samples < 2.
 KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                  const SynthesisOptions& options, const char* where);
 
@@ -98,12 +112,9 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
 kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
                                              const kriging::VariogramModel& variogram, const SynthesisOptions& options);
 
-/// Sets with more samples get no stored kernel from `compress` (the leave-one-out choice is O(N^3):
-/// about 20 s of CPU at N = 645 here); synthesis then fits it at load, as before.
-inline constexpr std::size_t kStoredKernelMaxSamples = 1000;
-
 /// What `compress` stores: the fit MotionModel(model, aligned, set, ..., options) would make, with its
-/// key and assessed_status (what that model reports), without building the rest of the model. InvalidArgument when the model does not describe
+/// key and assessed_status (what that model reports) and, up to options.max_stored_system_samples
+/// samples, its factorized system, without building the rest of the model. InvalidArgument when the model does not describe
 /// `aligned` or the set has fewer than 2 samples.
 KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& aligned, const MotionSet& set,
                      const SynthesisOptions& options);

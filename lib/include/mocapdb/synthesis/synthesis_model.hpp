@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/aligned_timing.hpp"
@@ -87,6 +88,16 @@ struct SynthesisOptions {
     double min_increment_fraction = 0.05;
     /// Upper clamp of a kriged inverse-warp increment, as a multiple (>= 1) of the largest sample increment.
     double max_increment_factor = 4.0;
+    /// Sets of more samples choose their coefficient kernel's variogram on this many of them, evenly spread
+    /// in sample order (a subset of data: the leave-one-out choice costs O(n^3) and O(n^2) memory per
+    /// candidate; docs/synthesis-scale.md). The kriging system keeps every sample. >= 2.
+    std::size_t max_fit_samples = 1000;
+    /// fit_kernel factorizes the kriging system for storage (KernelFit::system: N^2 doubles, 74 MB at
+    /// N = 3 043) for sets of up to this many samples; larger sets factorize it at every load (O(N^3)).
+    std::size_t max_stored_system_samples = 6000;
+    /// Called while the coefficient kernel is fitted (one item per candidate variogram scored by
+    /// leave-one-out); not part of the kernel's key; may be empty. The library never prints.
+    ProgressCallback fit_progress;
     /// Compressed model only: a precomputed coefficient kernel (kernel_fit.hpp; workflow::load_motion_model reads
     /// the stored one). Used when its key equals kernel_key of the model's inputs and these options,
     /// ignored otherwise (the kernel is then fitted as without it). The naive model ignores it.
@@ -103,6 +114,7 @@ struct SynthesisReport {
     double timing_exponent = 0.0;          ///< p of the timing kernel (Shared: the coefficient kernel's)
     double precompute_seconds = 0.0;       ///< construction time of the two kriging kernels
     bool kernel_precomputed = false;       ///< the coefficient kernel's variogram came from options.kernel_fit
+    bool system_precomputed = false;       ///< and its factorized system (KernelFit::system) too
 };
 
 /// The synthesized timing of one motion.

@@ -36,6 +36,10 @@ struct AlignOutcome {
     /// Forward-foot agreement per aligned frame; empty when the skeleton's feet are not found (not a
     /// legged figure, or names default_feet does not know).
     std::optional<PhaseCheck> phase;
+    /// Every sample starts within a frame of a left-foot pass of its clip (gait_phase.hpp), where the
+    /// gait segmentation of set creation cuts: the samples are already cut at one gait phase, so cutting
+    /// them that way cannot be the remedy for low phase agreement. False for figures without feet.
+    bool cut_at_gait_phase = false;
 };
 
 /// Aligns the set's samples and stores the tensor (committed).

@@ -2,8 +2,8 @@
 // `mocapdb compress` as a library step: choose the Tucker ranks of a set's aligned tensor
 // (explicit, or the smallest meeting a max joint error, a weighted RMSE or a compression ratio;
 // compression/rank_search.hpp), decompose with the requested method, measure the joint-position
-// errors after forward kinematics, fit the synthesis kernel's variogram (synthesis/kernel_fit.hpp; not
-// above kStoredKernelMaxSamples samples) and store model and kernel, committed (replacing the set's
+// errors after forward kinematics, fit the synthesis kernel's variogram (synthesis/kernel_fit.hpp; on a
+// subset above SynthesisOptions::max_fit_samples samples) and store model and kernel, committed (replacing the set's
 // previous model). Nothing is printed: every figure is in the outcome.
 //
 // Errors: InvalidArgument (no such set, the set not aligned, a rank outside [1, dimension]),
@@ -31,6 +31,7 @@ struct CompressRequest {
     tensor::TuckerMethod method = tensor::TuckerMethod::Hosvd;
     int max_iterations = 50;             ///< HOOI sweeps at most
     ProgressCallback progress;           ///< the rank search's (max error and rmse targets); may be empty
+    ProgressCallback kernel_progress;    ///< the synthesis kernel's fit (SynthesisOptions::fit_progress); may be empty
 };
 
 struct CompressOutcome {
@@ -50,7 +51,8 @@ struct CompressOutcome {
     double store_s = 0.0;                ///< writing and committing model and kernel
     double total_s = 0.0;
     double kernel_s = 0.0;               ///< fitting the synthesis kernel's variogram stored with the model
-    bool kernel_stored = false;          ///< false above synthesis::kStoredKernelMaxSamples samples, or without parameters
+    bool kernel_stored = false;          ///< false without parameters
+    std::size_t kernel_fit_samples = 0;  ///< samples its variogram was chosen on (KernelFit::fit_samples)
     std::string kernel_not_stored_reason;  ///< why not, when not ("" when stored)
     std::string kernel_variogram;        ///< the stored kernel's variogram (empty when not stored)
     std::string kernel_status = "ok";    ///< its fit status (kriging::to_string(FitStatus))
