@@ -1,4 +1,4 @@
-"""Builds and installs the Python package mocapdb (issue #39): mocapdb/*.py and the compiled module
+"""Builds and installs the Python package mocapdb: mocapdb/*.py and the compiled module
 mocapdb._core, built by CMake from the repository around this folder (its target mocapdb_python, with
 the library; no tests, tools or benchmarks) for the interpreter running pip.
 

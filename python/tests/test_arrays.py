@@ -1,5 +1,5 @@
 """Rigs and files from arrays: local rotations and root positions of a clip, forward kinematics of them,
-clips from them, and BVH written from arrays re-importing to the same joint positions (issue #39 item 6)."""
+clips from them, and BVH written from arrays re-importing to the same joint positions."""
 import numpy as np
 import pytest
 

@@ -33,7 +33,6 @@ namespace mocapdb::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 struct DemoArgs {
     std::string data;
@@ -101,7 +100,7 @@ const char* kReadme =
     "README.txt           this file.\n";
 
 void run_demo(const DemoArgs& a) {
-    const auto start = Clock::now();
+    const auto start = SteadyClock::now();
     const fs::path out = a.out;
     const fs::path db = out / "demo.h5";
     const bool procedural = a.data.empty();
@@ -137,7 +136,7 @@ void run_demo(const DemoArgs& a) {
     std::string set_name;
     double generate_s = 0.0;
     if (procedural) {
-        const auto t = Clock::now();
+        const auto t = SteadyClock::now();
         procedural::ParametricSet generated;
         if (a.motion == "reach") {
             set_name = "reaches";
@@ -192,7 +191,7 @@ void run_demo(const DemoArgs& a) {
 
     // 6. The rate-distortion table.
     progress("rate-distortion table (Tucker, PCA, zfp, deflate) ...\n");
-    const auto rd_start = Clock::now();
+    const auto rd_start = SteadyClock::now();
     compression::RateOptions rate_options;
     std::set<double> targets = a.quick ? std::set<double>{2.0, 1.0} : std::set<double>{5.0, 2.0, 1.0, 0.5, 0.2, 0.1};
     targets.insert(a.max_error_cm);
@@ -209,7 +208,7 @@ void run_demo(const DemoArgs& a) {
     std::fputs(rate_table_text(set_name, rate).c_str(), stdout);
 
     // 7. Synthesis at new parameters.
-    const auto model_start = Clock::now();
+    const auto model_start = SteadyClock::now();
     const auto model = load_synthesis_model(Database(db), set_name, false, "");
     const double model_s = seconds_since(model_start);
     const MatX& samples = model->sample_parameters();

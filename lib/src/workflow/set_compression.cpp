@@ -97,7 +97,7 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
 
     // The synthesis kernel's variogram, fitted once here so that synthesis need not (#16; kernel_fit.hpp),
     // for any number of samples: above SynthesisOptions::max_fit_samples it is chosen on a subset, so
-    // its cost is bounded (#38). A set without control parameters compresses, but has nothing to
+    // its cost is bounded. A set without control parameters compresses, but has nothing to
     // synthesize over: no kernel.
     const auto kernel_start = Clock::now();
     std::optional<synthesis::KernelFit> kernel;

@@ -1,5 +1,5 @@
 #pragma once
-// A clip as arrays of local rotations and a root path, and back (issue #39): what a model predicting
+// A clip as arrays of local rotations and a root path, and back: what a model predicting
 // rotations works with, whatever the rig's channel order or ASF axes. Arrays are C order, frames first:
 //   local rotations  F x J unit quaternions (w, x, y, z): joint j's whole local rotation
 //                    (Skeleton::local_rotation, C · R(channels) · C⁻¹; identity without channels);

@@ -55,7 +55,7 @@ struct KernelFit {
     /// The coefficient kernel's kriging system factorized (kriging::Kriging::covariance_inverse of the
     /// model's normalized parameters, this variogram and options.kriging): set by fit_kernel for sets of
     /// up to options.max_stored_system_samples samples and stored with the kernel, so that a model of the
-    /// same key builds its kriging in O(N^2) instead of O(N^3) (issue #38: 3 000 samples load in
+    /// same key builds its kriging in O(N^2) instead of O(N^3) (3 000 samples load in
     /// seconds). Null otherwise, and when read from a kernel stored without it.
     std::shared_ptr<const kriging::CovarianceInverse> system;
 };
