@@ -103,7 +103,7 @@ TEST_CASE("workflow: align_set with a chosen reference, linear, and its errors",
 TEST_CASE("workflow: align_set tells samples cut at one gait phase from whole clips (the phase hint's case)",
           "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const WalkDatabase& w = walks();
+    const WalkDatabase& w = set_alignment_walks();
     workflow::AlignRequest r;
     r.set = "walks";
     r.frames = 24;
