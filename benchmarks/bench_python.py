@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Python front-end's speed (issue #17, acceptance 5), each figure beside its C++ counterpart in one run.
+"""The Python front-end's speed , each figure beside its C++ counterpart in one run.
 
   crowd     model.poses for 10 000 characters at every aligned frame of the examples' set 'walks',
             against example_crowd_poses (the C++ batch call) on the same database and crowd size;
@@ -9,7 +9,7 @@
             reported apart.
   sampler   WindowSampler batches of 256 64-frame windows, float32, from the packed tier and from the
             lossless CMU ASF/AMC clips (one rig), one thread, against numpy fancy indexing of the same
-            pose vectors in memory, plain and canonicalized (issue #39: >= 50 000 windows/s, within 2x
+            pose vectors in memory, plain and canonicalized (target: >= 50 000 windows/s, within 2x
             of canonicalized numpy).
 
 Usage: PYTHONPATH=BUILD/python /usr/bin/python3 benchmarks/bench_python.py [BUILD=build/release] [WORK=/tmp/mocapdb-bench-python] [crowd|fk|sampler ...]
