@@ -20,6 +20,7 @@ packages=(
   pybind11-dev python3-dev   # the Python module (python/), built when found
   python3-numpy python3-pytest  # its arrays and its tests, run by ctest
   python3-torch              # mocapdb.torch, its tests and examples/training_windows.py's model
+  python3-setuptools python3-pip python3-venv  # pip install --no-build-isolation ./python (README)
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
 )
 
