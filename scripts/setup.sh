@@ -22,6 +22,7 @@ packages=(
   python3-torch              # mocapdb.torch, its tests and examples/training_windows.py's model
   python3-setuptools python3-pip python3-venv  # pip install --no-build-isolation ./python (README)
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
+  clang-format               # the style check of scripts/test.sh (.clang-format)
 )
 
 missing=()

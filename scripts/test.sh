@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: install what is missing, then
+#   0. the style check (.clang-format);
 #   1. Release build (gcc, warnings as errors) and every CTest test;
 #   2. the same suite under AddressSanitizer + UndefinedBehaviorSanitizer (clang), plus bounded
 #      libFuzzer runs of the file parsers on their seed corpora.
@@ -12,6 +13,9 @@ scripts/setup.sh
 jobs=$(nproc)
 fast=0
 [ "${1:-}" = "--fast" ] && fast=1
+
+echo "== style (clang-format --dry-run -Werror on lib/, tools/, python/)"
+scripts/check_format.sh
 
 echo "== release build (warnings are errors)"
 cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DMOCAPDB_WERROR=ON >/dev/null

@@ -47,7 +47,8 @@ Array joint_positions_array(const Clip& clip) {
 Clip make_clip(const SkeletonPtr& skeleton, const Array& channels, double frame_rate, const std::string& name) {
     if (!skeleton) throw InvalidArgument("Clip: a skeleton is required");
     if (channels.ndim() != 2 || channels.shape(1) != static_cast<py::ssize_t>(skeleton->channel_count()))
-        throw InvalidArgument("Clip: expected channels of shape (frames, " + std::to_string(skeleton->channel_count()) + ")");
+        throw InvalidArgument("Clip: expected channels of shape (frames, " + std::to_string(skeleton->channel_count()) +
+                              ")");
     Clip clip;
     clip.skeleton = skeleton;
     clip.frame_rate = frame_rate;
@@ -77,8 +78,8 @@ py::tuple skeleton_state(const Skeleton& s) {
     for (const Joint& j : s.joints()) {
         py::list channels;
         for (ChannelType c : j.channels) channels.append(static_cast<int>(c));
-        joints.append(py::make_tuple(j.name, j.parent, py::make_tuple(j.offset.x(), j.offset.y(), j.offset.z()), channels,
-                                     static_cast<int>(j.rotation_order),
+        joints.append(py::make_tuple(j.name, j.parent, py::make_tuple(j.offset.x(), j.offset.y(), j.offset.z()),
+                                     channels, static_cast<int>(j.rotation_order),
                                      py::make_tuple(j.axis.w(), j.axis.x(), j.axis.y(), j.axis.z()), j.end_site));
     }
     const Vec3& f = s.forward();
@@ -113,14 +114,15 @@ SkeletonPtr skeleton_from_state(const py::tuple& t) {
 /// Xposition Yposition Zposition Zrotation Xrotation Yrotation, other joints Zrotation Xrotation
 /// Yrotation, end sites none), rotation order from the order of the rotation channels, position
 /// channels replacing the offset (BVH's meaning).
-SkeletonPtr skeleton_from_arrays(const std::vector<std::string>& names, const std::vector<int>& parents, const Array& offsets,
+SkeletonPtr skeleton_from_arrays(const std::vector<std::string>& names, const std::vector<int>& parents,
+                                 const Array& offsets,
                                  const std::optional<std::vector<std::vector<std::string>>>& channels,
                                  const std::optional<std::vector<bool>>& end_sites) {
     const std::size_t n = names.size();
-    if (parents.size() != n || offsets.ndim() != 2 || offsets.shape(0) != static_cast<py::ssize_t>(n) || offsets.shape(1) != 3 ||
-        (channels && channels->size() != n) || (end_sites && end_sites->size() != n))
-        throw InvalidArgument("Skeleton: expected " + std::to_string(n) + " parents, offsets of shape (" + std::to_string(n) +
-                              ", 3) and as many channel lists and end-site flags as joint names");
+    if (parents.size() != n || offsets.ndim() != 2 || offsets.shape(0) != static_cast<py::ssize_t>(n) ||
+        offsets.shape(1) != 3 || (channels && channels->size() != n) || (end_sites && end_sites->size() != n))
+        throw InvalidArgument("Skeleton: expected " + std::to_string(n) + " parents, offsets of shape (" +
+                              std::to_string(n) + ", 3) and as many channel lists and end-site flags as joint names");
     std::vector<Joint> joints(n);
     for (std::size_t j = 0; j < n; ++j) {
         Joint& joint = joints[j];
@@ -130,15 +132,17 @@ SkeletonPtr skeleton_from_arrays(const std::vector<std::string>& names, const st
                             offsets.at(static_cast<py::ssize_t>(j), 2));
         joint.end_site = end_sites && (*end_sites)[j];
         std::vector<std::string> types;
-        if (channels)
-            types = (*channels)[j];
+        if (channels) types = (*channels)[j];
         else if (!joint.end_site)
-            types = j == 0 ? std::vector<std::string>{"Xposition", "Yposition", "Zposition", "Zrotation", "Xrotation", "Yrotation"}
+            types = j == 0 ? std::vector<std::string>{"Xposition", "Yposition", "Zposition",
+                                                      "Zrotation", "Xrotation", "Yrotation"}
                            : std::vector<std::string>{"Zrotation", "Xrotation", "Yrotation"};
         std::vector<Axis> axes;
         for (const std::string& t : types) {
             const auto c = channel_type_from_string(t);
-            if (!c) throw InvalidArgument("Skeleton: joint '" + joint.name + "': unknown channel '" + t + "' (expected Xposition .. Zrotation)");
+            if (!c)
+                throw InvalidArgument("Skeleton: joint '" + joint.name + "': unknown channel '" + t +
+                                      "' (expected Xposition .. Zrotation)");
             joint.channels.push_back(*c);
             if (is_rotation(*c)) axes.push_back(channel_axis(*c));
         }
@@ -146,17 +150,21 @@ SkeletonPtr skeleton_from_arrays(const std::vector<std::string>& names, const st
         for (Axis a : {Axis::X, Axis::Y, Axis::Z})
             if (std::find(axes.begin(), axes.end(), a) == axes.end()) axes.push_back(a);
         const auto order = euler_order_from_axes(axes[0], axes[1], axes[2]);
-        if (!order) throw InvalidArgument("Skeleton: joint '" + joint.name + "': a rotation axis appears twice in its channels");
+        if (!order)
+            throw InvalidArgument("Skeleton: joint '" + joint.name +
+                                  "': a rotation axis appears twice in its channels");
         joint.rotation_order = *order;
     }
-    return std::make_shared<Skeleton>(std::move(joints), SourceUnits{}, Vec3::UnitZ(), PositionChannels::replace_offset);
+    return std::make_shared<Skeleton>(std::move(joints), SourceUnits{}, Vec3::UnitZ(),
+                                      PositionChannels::replace_offset);
 }
 
 /// (F, J, 4) quaternions from an (F, J, 4) quaternion or (F, J, 3, 3) matrix array.
 Array rotation_quaternions(const Skeleton& s, const Array& rotations) {
     const auto j = static_cast<py::ssize_t>(s.size());
     const bool quats = rotations.ndim() == 3 && rotations.shape(1) == j && rotations.shape(2) == 4;
-    const bool matrices = rotations.ndim() == 4 && rotations.shape(1) == j && rotations.shape(2) == 3 && rotations.shape(3) == 3;
+    const bool matrices =
+        rotations.ndim() == 4 && rotations.shape(1) == j && rotations.shape(2) == 3 && rotations.shape(3) == 3;
     if (!quats && !matrices)
         throw InvalidArgument("rotations: expected (F, " + std::to_string(j) + ", 4) quaternions (w, x, y, z) or (F, " +
                               std::to_string(j) + ", 3, 3) rotation matrices");
@@ -168,14 +176,18 @@ Array rotation_quaternions(const Skeleton& s, const Array& rotations) {
 
 std::size_t checked_root_positions(const Array& rotations, const Array& root_positions) {
     if (root_positions.ndim() != 2 || root_positions.shape(1) != 3 || root_positions.shape(0) != rotations.shape(0))
-        throw InvalidArgument("root_positions: expected shape (" + std::to_string(rotations.shape(0)) + ", 3), one row per frame");
+        throw InvalidArgument("root_positions: expected shape (" + std::to_string(rotations.shape(0)) +
+                              ", 3), one row per frame");
     return static_cast<std::size_t>(rotations.shape(0));
 }
 
 }  // namespace
 
 void bind_clips(py::module_& m) {
-    py::class_<Skeleton, SkeletonPtr>(m, "Skeleton", "A rig: joints (end sites included) with parents, offsets and channels." "\n\nExample:\n    >>> skeleton = mocapdb.read_clip('16_11.amc').skeleton\n    >>> skeleton.joint_names[:2], len(skeleton)")
+    py::class_<Skeleton, SkeletonPtr>(
+        m, "Skeleton",
+        "A rig: joints (end sites included) with parents, offsets and channels."
+        "\n\nExample:\n    >>> skeleton = mocapdb.read_clip('16_11.amc').skeleton\n    >>> skeleton.joint_names[:2], len(skeleton)")
         .def(py::init(&skeleton_from_arrays), py::arg("joint_names"), py::arg("parents"), py::arg("offsets"),
              py::arg("channels") = py::none(), py::arg("end_sites") = py::none(),
              "A rig from arrays, with the names of a stored skeleton's attributes: joint names, parent indices "
@@ -229,7 +241,8 @@ void bind_clips(py::module_& m) {
             "offsets",
             [](const Skeleton& s) {
                 FrameMatrix o(static_cast<Eigen::Index>(s.size()), 3);
-                for (std::size_t j = 0; j < s.size(); ++j) o.row(static_cast<Eigen::Index>(j)) = s.joint(j).offset.transpose();
+                for (std::size_t j = 0; j < s.size(); ++j)
+                    o.row(static_cast<Eigen::Index>(j)) = s.joint(j).offset.transpose();
                 return copy_rows(o);
             },
             "(J, 3) rest offsets from the parent, cm.")
@@ -255,17 +268,24 @@ void bind_clips(py::module_& m) {
             },
             py::arg("poses"),
             "Channel rows (F, C) of pose vectors (F, D) in the canonical frame: the inverse of "
-            "Clip.pose_vectors(canonical=False)." "\n\nExample:\n    >>> rows = clip.skeleton.channels_from_pose_vectors(clip.pose_vectors(canonical=False))")
+            "Clip.pose_vectors(canonical=False)."
+            "\n\nExample:\n    >>> rows = clip.skeleton.channels_from_pose_vectors(clip.pose_vectors(canonical=False))")
         .def("__len__", &Skeleton::size)
-        .def("__repr__", [](const Skeleton& s) {
-            return "<mocapdb.Skeleton " + std::to_string(s.size()) + " joints, " + std::to_string(s.channel_count()) + " channels>";
-        })
+        .def("__repr__",
+             [](const Skeleton& s) {
+                 return "<mocapdb.Skeleton " + std::to_string(s.size()) + " joints, " +
+                        std::to_string(s.channel_count()) + " channels>";
+             })
         .def(py::pickle(&skeleton_state, &skeleton_from_state));
 
-    py::class_<Clip, std::shared_ptr<Clip>>(m, "Clip", "One motion: a skeleton, a frame rate and a row of channels per frame." "\n\nExample:\n    >>> clip = mocapdb.read_clip('16_11.amc')\n    >>> clip.channels.shape, clip.joint_positions().shape   # (F, C), (F, J, 3)")
-        .def(py::init([](const SkeletonPtr& skeleton, const Array& channels, double frame_rate, const std::string& name) {
-                 return std::make_shared<Clip>(make_clip(skeleton, channels, frame_rate, name));
-             }),
+    py::class_<Clip, std::shared_ptr<Clip>>(
+        m, "Clip",
+        "One motion: a skeleton, a frame rate and a row of channels per frame."
+        "\n\nExample:\n    >>> clip = mocapdb.read_clip('16_11.amc')\n    >>> clip.channels.shape, clip.joint_positions().shape   # (F, C), (F, J, 3)")
+        .def(py::init(
+                 [](const SkeletonPtr& skeleton, const Array& channels, double frame_rate, const std::string& name) {
+                     return std::make_shared<Clip>(make_clip(skeleton, channels, frame_rate, name));
+                 }),
              py::arg("skeleton"), py::arg("channels"), py::arg("frame_rate"), py::arg("name") = "",
              "A clip of the skeleton from channel rows (F, C) in cm and radians; InvalidArgument for a wrong "
              "shape, a non-positive rate or a non-finite value.")
@@ -321,9 +341,11 @@ void bind_clips(py::module_& m) {
             "    >>> copy = mocapdb.Clip.from_arrays(clip.skeleton, clip.frame_rate,\n"
             "    ...                                 rotations=clip.local_rotations(), root_positions=clip.root_positions())\n"
             "    >>> mocapdb.write_bvh(copy, 'copy.bvh')")
-        .def("joint_positions", &joint_positions_array,
-             "Global joint positions (F, J, 3) in cm by forward kinematics, every joint and end site "
-             "(Skeleton.joint_names order); the GIL is released." "\n\nExample:\n    >>> xyz = clip.joint_positions()   # (F, J, 3)\n    >>> head = xyz[:, clip.skeleton.joint_names.index('head')]")
+        .def(
+            "joint_positions", &joint_positions_array,
+            "Global joint positions (F, J, 3) in cm by forward kinematics, every joint and end site "
+            "(Skeleton.joint_names order); the GIL is released."
+            "\n\nExample:\n    >>> xyz = clip.joint_positions()   # (F, J, 3)\n    >>> head = xyz[:, clip.skeleton.joint_names.index('head')]")
         .def(
             "pose_vectors",
             [](const Clip& c, bool canonical) {
@@ -338,32 +360,38 @@ void bind_clips(py::module_& m) {
             py::arg("canonical") = true,
             "Pose vectors (F, D): the motion root's position (cm) and heading-relative orientation, then "
             "every other rotating joint's local rotation as an exponential map. canonical: first frame at "
-            "the origin facing +Z (else the world frame)." "\n\nExample:\n    >>> poses = clip.pose_vectors()      # (F, D)")
+            "the origin facing +Z (else the world frame)."
+            "\n\nExample:\n    >>> poses = clip.pose_vectors()      # (F, D)")
         .def(
             "slice", [](const Clip& c, std::size_t begin, std::size_t end) { return slice(c, begin, end); },
-            py::arg("begin"), py::arg("end"), "Frames [begin, end) as a clip of their own." "\n\nExample:\n    >>> first_second = clip.slice(0, 120)")
+            py::arg("begin"), py::arg("end"),
+            "Frames [begin, end) as a clip of their own."
+            "\n\nExample:\n    >>> first_second = clip.slice(0, 120)")
         .def("write_bvh", &write_bvh_file, py::arg("path"), py::arg("precision") = 9,
              "Writes the clip as BVH (atomically; an existing file is replaced). precision: significant digits "
-             "(17 is lossless)." "\n\nExample:\n    >>> clip.write_bvh('walk.bvh', precision=17)")
+             "(17 is lossless)."
+             "\n\nExample:\n    >>> clip.write_bvh('walk.bvh', precision=17)")
         .def("__len__", &Clip::frame_count)
-        .def("__repr__", [](const Clip& c) {
-            return "<mocapdb.Clip '" + c.name + "' " + std::to_string(c.frame_count()) + " frames at " +
-                   std::to_string(c.frame_rate) + " Hz>";
-        })
+        .def("__repr__",
+             [](const Clip& c) {
+                 return "<mocapdb.Clip '" + c.name + "' " + std::to_string(c.frame_count()) + " frames at " +
+                        std::to_string(c.frame_rate) + " Hz>";
+             })
         .def(py::pickle(
             [](const Clip& c) {
-                return py::make_tuple(std::const_pointer_cast<Skeleton>(c.skeleton), copy_rows(c.channels), c.frame_rate, c.name);
+                return py::make_tuple(std::const_pointer_cast<Skeleton>(c.skeleton), copy_rows(c.channels),
+                                      c.frame_rate, c.name);
             },
             [](const py::tuple& t) {
                 if (t.size() != 4) throw InvalidArgument("Clip: not a pickled clip's state");
-                return std::make_shared<Clip>(make_clip(t[0].cast<SkeletonPtr>(), t[1].cast<Array>(), t[2].cast<double>(),
-                                                        t[3].cast<std::string>()));
+                return std::make_shared<Clip>(make_clip(t[0].cast<SkeletonPtr>(), t[1].cast<Array>(),
+                                                        t[2].cast<double>(), t[3].cast<std::string>()));
             }));
 
     m.def(
         "read_clip",
-        [](const std::filesystem::path& path, std::optional<std::filesystem::path> asf, std::optional<double> frame_rate,
-           bool strict, const std::string& bvh_positions) {
+        [](const std::filesystem::path& path, std::optional<std::filesystem::path> asf,
+           std::optional<double> frame_rate, bool strict, const std::string& bvh_positions) {
             ClipReadOptions options;
             if (asf) options.asf = *asf;
             options.frame_rate = frame_rate;
@@ -384,9 +412,11 @@ void bind_clips(py::module_& m) {
         "Reads a .bvh file, or an .amc file with its .asf (found beside it by the CMU naming unless given). "
         "Defects the reader works around become UserWarnings (strict=True refuses them); ParseError names "
         "the file and line. bvh_positions: 'replace_offset' (position channels are the local translation) "
-        "or 'add_to_offset'." "\n\nExample:\n    >>> clip = mocapdb.read_clip('16_11.amc')          # 16.asf beside it\n    >>> clip = mocapdb.read_clip('walk.bvh', strict=True)");
+        "or 'add_to_offset'."
+        "\n\nExample:\n    >>> clip = mocapdb.read_clip('16_11.amc')          # 16.asf beside it\n    >>> clip = mocapdb.read_clip('walk.bvh', strict=True)");
     m.def("write_bvh", &write_bvh_file, py::arg("clip"), py::arg("path"), py::arg("precision") = 9,
-          "Writes a clip as BVH (atomically; an existing file is replaced)." "\n\nExample:\n    >>> mocapdb.write_bvh(mocapdb.read_clip('16_11.amc'), '16_11.bvh')");
+          "Writes a clip as BVH (atomically; an existing file is replaced)."
+          "\n\nExample:\n    >>> mocapdb.write_bvh(mocapdb.read_clip('16_11.amc'), '16_11.bvh')");
 }
 
 }  // namespace mocapdb::python

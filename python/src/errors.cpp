@@ -61,29 +61,46 @@ void raise_parse_error(const ParseError& e) {
 }  // namespace
 
 void bind_errors(py::module_& m) {
-    error_class = add_class(m, "Error", "Base of every error mocapdb raises; str(e) is a complete one-line message." "\n\nExample:\n    >>> try:\n    ...     mocapdb.open('missing.h5')\n    ... except mocapdb.Error as e:\n    ...     print(e)",
-                            py::make_tuple(py::handle(PyExc_Exception)));
+    error_class = add_class(
+        m, "Error",
+        "Base of every error mocapdb raises; str(e) is a complete one-line message."
+        "\n\nExample:\n    >>> try:\n    ...     mocapdb.open('missing.h5')\n    ... except mocapdb.Error as e:\n    ...     print(e)",
+        py::make_tuple(py::handle(PyExc_Exception)));
     py::handle error(error_class);
-    invalid_argument_class = add_class(m, "InvalidArgument", "A documented precondition was broken (bad option, shape, name)." "\n\nExample:\n    >>> try:\n    ...     db.sampler(length=0)\n    ... except ValueError as e:   # mocapdb.InvalidArgument\n    ...     print(e)",
-                                       py::make_tuple(error, py::handle(PyExc_ValueError)));
-    parse_error_class = add_class(m, "ParseError",
-                                  "Malformed input text; str(e) reads FILE:LINE:COLUMN: MESSAGE, and e.file, e.line, "
-                                  "e.column hold the location." "\n\nExample:\n    >>> try:\n    ...     mocapdb.read_clip('broken.bvh')\n    ... except mocapdb.ParseError as e:\n    ...     print(e.file, e.line)",
-                                  py::make_tuple(error, py::handle(PyExc_ValueError)));
-    io_error_class = add_class(m, "IoError", "A file could not be opened, read or written." "\n\nExample:\n    >>> try:\n    ...     mocapdb.open('missing.h5')\n    ... except OSError as e:   # mocapdb.IoError\n    ...     print(e)",
-                               py::make_tuple(error, py::handle(PyExc_OSError)));
-    store_error_class = add_class(m, "StoreError",
-                                  "A database file is not what it should be; the message names the file and HDF5 path." "\n\nExample:\n    >>> try:\n    ...     mocapdb.open('not_a_database.h5')\n    ... except mocapdb.StoreError as e:\n    ...     print(e)",
-                                  py::make_tuple(error));
-    checksum_error_class = add_class(m, "ChecksumError", "A stored dataset's bytes fail their checksum (damage)." "\n\nExample:\n    >>> try:\n    ...     db.clip('16_11')\n    ... except mocapdb.ChecksumError as e:   # the file is damaged\n    ...     print(e)",
-                                     py::make_tuple(py::handle(store_error_class)));
-    not_found_error_class = add_class(m, "NotFoundError",
-                                      "A clip, motion set or skeleton name the database does not hold; also a KeyError.\n\n"
-                                      "Example:\n    >>> try:\n    ...     db.clip('no such clip')\n"
-                                      "    ... except KeyError as e:\n    ...     print(e)",
-                                      py::make_tuple(py::handle(store_error_class), py::handle(PyExc_KeyError)),
-                                      // str(e) is the message, not KeyError's quoted repr of it
-                                      py::dict(py::arg("__str__") = py::handle(PyExc_Exception).attr("__str__")));
+    invalid_argument_class = add_class(
+        m, "InvalidArgument",
+        "A documented precondition was broken (bad option, shape, name)."
+        "\n\nExample:\n    >>> try:\n    ...     db.sampler(length=0)\n    ... except ValueError as e:   # mocapdb.InvalidArgument\n    ...     print(e)",
+        py::make_tuple(error, py::handle(PyExc_ValueError)));
+    parse_error_class = add_class(
+        m, "ParseError",
+        "Malformed input text; str(e) reads FILE:LINE:COLUMN: MESSAGE, and e.file, e.line, "
+        "e.column hold the location."
+        "\n\nExample:\n    >>> try:\n    ...     mocapdb.read_clip('broken.bvh')\n    ... except mocapdb.ParseError as e:\n    ...     print(e.file, e.line)",
+        py::make_tuple(error, py::handle(PyExc_ValueError)));
+    io_error_class = add_class(
+        m, "IoError",
+        "A file could not be opened, read or written."
+        "\n\nExample:\n    >>> try:\n    ...     mocapdb.open('missing.h5')\n    ... except OSError as e:   # mocapdb.IoError\n    ...     print(e)",
+        py::make_tuple(error, py::handle(PyExc_OSError)));
+    store_error_class = add_class(
+        m, "StoreError",
+        "A database file is not what it should be; the message names the file and HDF5 path."
+        "\n\nExample:\n    >>> try:\n    ...     mocapdb.open('not_a_database.h5')\n    ... except mocapdb.StoreError as e:\n    ...     print(e)",
+        py::make_tuple(error));
+    checksum_error_class = add_class(
+        m, "ChecksumError",
+        "A stored dataset's bytes fail their checksum (damage)."
+        "\n\nExample:\n    >>> try:\n    ...     db.clip('16_11')\n    ... except mocapdb.ChecksumError as e:   # the file is damaged\n    ...     print(e)",
+        py::make_tuple(py::handle(store_error_class)));
+    not_found_error_class =
+        add_class(m, "NotFoundError",
+                  "A clip, motion set or skeleton name the database does not hold; also a KeyError.\n\n"
+                  "Example:\n    >>> try:\n    ...     db.clip('no such clip')\n"
+                  "    ... except KeyError as e:\n    ...     print(e)",
+                  py::make_tuple(py::handle(store_error_class), py::handle(PyExc_KeyError)),
+                  // str(e) is the message, not KeyError's quoted repr of it
+                  py::dict(py::arg("__str__") = py::handle(PyExc_Exception).attr("__str__")));
     add_class(m, "ShortClipsWarning",
               "Some selected clips are shorter than a sampler's window and give no windows (the message counts "
               "them).\n\nExample:\n    >>> import warnings\n"

@@ -3,7 +3,8 @@
 #include "mocapdb/core/version.hpp"
 
 PYBIND11_MODULE(_core, m) {
-    m.doc() = "mocapdb's C++ library: motion capture databases, clips, forward kinematics, synthesis, training windows.";
+    m.doc() =
+        "mocapdb's C++ library: motion capture databases, clips, forward kinematics, synthesis, training windows.";
     m.attr("__version__") = mocapdb::version_string;
     mocapdb::python::bind_errors(m);
     mocapdb::python::bind_clips(m);

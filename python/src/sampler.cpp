@@ -21,9 +21,9 @@ struct SamplerHandle {
     std::shared_ptr<const Database> db;  ///< kept open while the sampler lives
     std::unique_ptr<workflow::WindowSampler> sampler;
     py::dtype dtype;
-    bool f32 = true;  ///< dtype is float32 (read without the GIL)
+    bool f32 = true;                      ///< dtype is float32 (read without the GIL)
     std::uint64_t epoch = 0, worker = 0;  ///< the stream (set_epoch)
-    std::mutex busy;  ///< batches of one sampler from several threads take turns
+    std::mutex busy;                      ///< batches of one sampler from several threads take turns
 };
 
 workflow::WindowValues values_of(const std::string& text) {
@@ -55,10 +55,11 @@ std::uint64_t integer_arg(const py::handle& value, const char* name, std::uint64
                              std::string(py::str(py::type::of(value).attr("__name__"))));
     const py::int_ number(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
     if (number < py::int_(minimum))
-        throw InvalidArgument(std::string("sampler: ") + name + " must be at least " + std::to_string(minimum) + ", got " +
-                              std::string(py::str(static_cast<const py::object&>(number))));
+        throw InvalidArgument(std::string("sampler: ") + name + " must be at least " + std::to_string(minimum) +
+                              ", got " + std::string(py::str(static_cast<const py::object&>(number))));
     if (number > py::int_(std::numeric_limits<std::uint64_t>::max()))
-        throw InvalidArgument(std::string("sampler: ") + name + " must be less than 2**64, got " + std::string(py::str(static_cast<const py::object&>(number))));
+        throw InvalidArgument(std::string("sampler: ") + name + " must be less than 2**64, got " +
+                              std::string(py::str(static_cast<const py::object&>(number))));
     return number.cast<std::uint64_t>();
 }
 
@@ -98,10 +99,12 @@ py::dtype dtype_arg(const py::handle& value) {
     try {
         d = py::dtype::from_args(py::reinterpret_borrow<py::object>(value));
     } catch (const py::error_already_set&) {
-        throw py::type_error("sampler: dtype must be numpy.float32 or numpy.float64, got " + std::string(py::repr(value)));
+        throw py::type_error("sampler: dtype must be numpy.float32 or numpy.float64, got " +
+                             std::string(py::repr(value)));
     }
     if (!d.is(py::dtype::of<float>()) && !d.equal(py::dtype::of<float>()) && !d.equal(py::dtype::of<double>()))
-        throw InvalidArgument("sampler: dtype must be float32 or float64, got " + std::string(py::str(static_cast<const py::object&>(d))));
+        throw InvalidArgument("sampler: dtype must be float32 or float64, got " +
+                              std::string(py::str(static_cast<const py::object&>(d))));
     return d;
 }
 
@@ -117,8 +120,10 @@ py::array batch_array(const SamplerHandle& h, const py::object& out) {
     py::array a = py::reinterpret_borrow<py::array>(out);
     if (!a.dtype().equal(h.dtype) || a.ndim() != 3 || a.shape(0) != shape[0] || a.shape(1) != shape[1] ||
         a.shape(2) != shape[2] || !(a.flags() & py::array::c_style) || !a.writeable())
-        throw InvalidArgument("next: out must be a writeable C-contiguous " + std::string(py::str(static_cast<const py::object&>(h.dtype))) + " array of shape (" +
-                              std::to_string(shape[0]) + ", " + std::to_string(shape[1]) + ", " + std::to_string(shape[2]) + ")");
+        throw InvalidArgument("next: out must be a writeable C-contiguous " +
+                              std::string(py::str(static_cast<const py::object&>(h.dtype))) + " array of shape (" +
+                              std::to_string(shape[0]) + ", " + std::to_string(shape[1]) + ", " +
+                              std::to_string(shape[2]) + ")");
     return a;
 }
 
@@ -133,17 +138,15 @@ void next_batch(SamplerHandle& h, py::array& out, workflow::WindowRef* refs) {
         py::gil_scoped_acquire acquire;
         h.sampler->draw(refs);
     }
-    if (single(h))
-        h.sampler->fill(refs, b, static_cast<float*>(data));
-    else
-        h.sampler->fill(refs, b, static_cast<double*>(data));
+    if (single(h)) h.sampler->fill(refs, b, static_cast<float*>(data));
+    else h.sampler->fill(refs, b, static_cast<double*>(data));
 }
 
 /// Pickle's state: the database's path (reopened read-only), the options, the stream and its position.
 py::tuple sampler_state(const SamplerHandle& h) {
     const auto& o = h.sampler->options();
-    return py::make_tuple(h.db->path(), o.length, o.batch, o.seed, values_name(o.values), o.clips, source_name(o.source),
-                          o.cache_clips, h.f32 ? "float32" : "float64", h.epoch, h.worker,
+    return py::make_tuple(h.db->path(), o.length, o.batch, o.seed, values_name(o.values), o.clips,
+                          source_name(o.source), o.cache_clips, h.f32 ? "float32" : "float64", h.epoch, h.worker,
                           py::bytes(h.sampler->stream_state()), o.pad);
 }
 
@@ -187,41 +190,44 @@ void bind_sampler(py::module_& m) {
         "root at the origin facing +Z). Decoded from the packed tier when it holds every selected clip (within "
         "its max_error_cm), else from the lossless clips. The same database, options and seed give the same "
         "batches. An endless iterator of batches; one sampler per thread (from the packed tier a batch is "
-        "made without the GIL, so other threads run meanwhile)." "\n\nExample:\n    >>> sampler = db.sampler(length=64, batch=32, seed=1)\n    >>> batch = next(sampler)              # (32, 64, D)")
-        .def(py::init([](const DatabaseHandle& db, const py::object& length, const py::object& batch, const py::object& seed,
-                         const py::object& values, const py::object& clips, const py::object& source,
-                         const py::object& cache_clips, const py::object& dtype, const py::object& pad) {
-                 workflow::WindowSamplerOptions o;
-                 o.length = integer_arg(length, "length", 1);
-                 o.batch = integer_arg(batch, "batch", 1);
-                 o.seed = integer_arg(seed, "seed", 0);
-                 o.values = values_of(text_arg(values, "values"));
-                 o.clips = clips_arg(clips);
-                 o.source = source_of(text_arg(source, "source"));
-                 o.cache_clips = integer_arg(cache_clips, "cache_clips", 1);
-                 if (!PyBool_Check(pad.ptr()))
-                     throw py::type_error("sampler: pad must be True or False, got " +
-                                          std::string(py::str(py::type::of(pad).attr("__name__"))));
-                 o.pad = pad.cast<bool>();
-                 auto h = std::make_shared<SamplerHandle>();
-                 h->dtype = dtype_arg(dtype);
-                 h->f32 = h->dtype.equal(py::dtype::of<float>());
-                 o.dtype = single(*h) ? workflow::WindowDType::Float32 : workflow::WindowDType::Float64;
-                 db.get();  // refuses a closed database
-                 h->db = db.db;
-                 h->sampler = std::make_unique<workflow::WindowSampler>(*h->db, o);
-                 if (!o.pad) warn_short_clips(*h->sampler);
-                 return h;
-             }),
-             py::arg("db"), py::arg("length") = 64, py::arg("batch") = 32, py::arg("seed") = 0,
-             py::arg("values") = "pose_vectors", py::arg("clips") = py::none(), py::arg("source") = "auto",
-             py::arg("cache_clips") = 256, py::arg("dtype") = py::dtype::of<float>(), py::arg("pad") = false,
-             "length L frames per window, batch B windows, values 'pose_vectors' or 'joint_positions', clips: ids or "
-             "fnmatch patterns (default every clip; they must share one rig and frame rate), source 'auto', "
-             "'packed' or 'lossless'; cache_clips: clips kept decoded (at least batch); dtype: numpy.float32 (default) or "
-             "numpy.float64, the batches' and the decoded clips' element type; pad: clips shorter than L give one window "
-             "each, from frame 0, its missing rows repeating the clip's last frame (else they give none and a "
-             "ShortClipsWarning counts them).")
+        "made without the GIL, so other threads run meanwhile)."
+        "\n\nExample:\n    >>> sampler = db.sampler(length=64, batch=32, seed=1)\n    >>> batch = next(sampler)              # (32, 64, D)")
+        .def(
+            py::init([](const DatabaseHandle& db, const py::object& length, const py::object& batch,
+                        const py::object& seed, const py::object& values, const py::object& clips,
+                        const py::object& source, const py::object& cache_clips, const py::object& dtype,
+                        const py::object& pad) {
+                workflow::WindowSamplerOptions o;
+                o.length = integer_arg(length, "length", 1);
+                o.batch = integer_arg(batch, "batch", 1);
+                o.seed = integer_arg(seed, "seed", 0);
+                o.values = values_of(text_arg(values, "values"));
+                o.clips = clips_arg(clips);
+                o.source = source_of(text_arg(source, "source"));
+                o.cache_clips = integer_arg(cache_clips, "cache_clips", 1);
+                if (!PyBool_Check(pad.ptr()))
+                    throw py::type_error("sampler: pad must be True or False, got " +
+                                         std::string(py::str(py::type::of(pad).attr("__name__"))));
+                o.pad = pad.cast<bool>();
+                auto h = std::make_shared<SamplerHandle>();
+                h->dtype = dtype_arg(dtype);
+                h->f32 = h->dtype.equal(py::dtype::of<float>());
+                o.dtype = single(*h) ? workflow::WindowDType::Float32 : workflow::WindowDType::Float64;
+                db.get();  // refuses a closed database
+                h->db = db.db;
+                h->sampler = std::make_unique<workflow::WindowSampler>(*h->db, o);
+                if (!o.pad) warn_short_clips(*h->sampler);
+                return h;
+            }),
+            py::arg("db"), py::arg("length") = 64, py::arg("batch") = 32, py::arg("seed") = 0,
+            py::arg("values") = "pose_vectors", py::arg("clips") = py::none(), py::arg("source") = "auto",
+            py::arg("cache_clips") = 256, py::arg("dtype") = py::dtype::of<float>(), py::arg("pad") = false,
+            "length L frames per window, batch B windows, values 'pose_vectors' or 'joint_positions', clips: ids or "
+            "fnmatch patterns (default every clip; they must share one rig and frame rate), source 'auto', "
+            "'packed' or 'lossless'; cache_clips: clips kept decoded (at least batch); dtype: numpy.float32 (default) or "
+            "numpy.float64, the batches' and the decoded clips' element type; pad: clips shorter than L give one window "
+            "each, from frame 0, its missing rows repeating the clip's last frame (else they give none and a "
+            "ShortClipsWarning counts them).")
         .def("next", &next_array, py::arg("out") = py::none(),
              "The next batch (B, L, V) of the sampler's dtype, written into `out` when given (an array of that "
              "shape and dtype, reused across batches) or into a new array.\n\nExample:\n"
@@ -238,7 +244,8 @@ void bind_sampler(py::module_& m) {
                 for (const auto& r : refs) windows.append(py::make_tuple(h.sampler->clip_ids()[r.clip], r.begin));
                 return py::make_tuple(out, windows);
             },
-            "The next batch and where each window comes from: (array (B, L, V), [(clip name, first frame), ...])." "\n\nExample:\n    >>> batch, windows = sampler.next_with_windows()")
+            "The next batch and where each window comes from: (array (B, L, V), [(clip name, first frame), ...])."
+            "\n\nExample:\n    >>> batch, windows = sampler.next_with_windows()")
         .def(
             "window",
             [](SamplerHandle& h, const std::string& clip, const py::object& first) {
@@ -250,37 +257,43 @@ void bind_sampler(py::module_& m) {
                 }
                 const auto& ids = h.sampler->clip_ids();
                 const auto it = std::find(ids.begin(), ids.end(), clip);
-                if (it == ids.end()) throw py::key_error("window: clip '" + clip + "' is not among the sampler's clips");
-                py::array out(h.dtype, std::vector<py::ssize_t>{static_cast<py::ssize_t>(h.sampler->options().length),
-                                                                static_cast<py::ssize_t>(h.sampler->values_per_frame())});
+                if (it == ids.end())
+                    throw py::key_error("window: clip '" + clip + "' is not among the sampler's clips");
+                py::array out(h.dtype,
+                              std::vector<py::ssize_t>{static_cast<py::ssize_t>(h.sampler->options().length),
+                                                       static_cast<py::ssize_t>(h.sampler->values_per_frame())});
                 const workflow::WindowRef ref{static_cast<std::size_t>(it - ids.begin()), begin};
-                if (single(h))
-                    h.sampler->window(ref, static_cast<float*>(out.mutable_data()));
-                else
-                    h.sampler->window(ref, static_cast<double*>(out.mutable_data()));
+                if (single(h)) h.sampler->window(ref, static_cast<float*>(out.mutable_data()));
+                else h.sampler->window(ref, static_cast<double*>(out.mutable_data()));
                 return out;
             },
-            py::arg("clip"), py::arg("begin"), "One given window (L, V): frames [begin, begin + L) of a clip; KeyError for a clip not among clips." "\n\nExample:\n    >>> w = sampler.window(sampler.clips[0], 10)")
+            py::arg("clip"), py::arg("begin"),
+            "One given window (L, V): frames [begin, begin + L) of a clip; KeyError for a clip not among clips."
+            "\n\nExample:\n    >>> w = sampler.window(sampler.clips[0], 10)")
         .def(
             "windows",
-            [](SamplerHandle& h, const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& clip_indices,
+            [](SamplerHandle& h,
+               const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& clip_indices,
                const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& begins) {
                 if (clip_indices.ndim() != 1 || begins.ndim() != 1 || clip_indices.shape(0) != begins.shape(0))
                     throw InvalidArgument("windows: expected two 1-D integer arrays of one length");
                 const std::size_t n = static_cast<std::size_t>(begins.shape(0)), clips = h.sampler->clip_ids().size();
                 std::vector<workflow::WindowRef> refs(n);
                 for (std::size_t i = 0; i < n; ++i) {
-                    const std::int64_t c = clip_indices.at(static_cast<py::ssize_t>(i)), b = begins.at(static_cast<py::ssize_t>(i));
+                    const std::int64_t c = clip_indices.at(static_cast<py::ssize_t>(i)),
+                                       b = begins.at(static_cast<py::ssize_t>(i));
                     if (c < 0 || static_cast<std::size_t>(c) >= clips || b < 0)
-                        throw InvalidArgument("windows: window " + std::to_string(i) + " (clip " + std::to_string(c) + ", frame " +
-                                              std::to_string(b) + ") is not one of the sampler's");
+                        throw InvalidArgument("windows: window " + std::to_string(i) + " (clip " + std::to_string(c) +
+                                              ", frame " + std::to_string(b) + ") is not one of the sampler's");
                     refs[i] = {static_cast<std::size_t>(c), static_cast<std::size_t>(b)};
                 }
                 const std::size_t L = h.sampler->options().length, V = h.sampler->values_per_frame();
-                py::array out(h.dtype, std::vector<py::ssize_t>{static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(L),
-                                                                static_cast<py::ssize_t>(V)});
+                py::array out(h.dtype,
+                              std::vector<py::ssize_t>{static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(L),
+                                                       static_cast<py::ssize_t>(V)});
                 char* data = static_cast<char*>(out.mutable_data());
-                const std::size_t chunk = h.sampler->options().batch, bytes = L * V * static_cast<std::size_t>(h.dtype.itemsize());
+                const std::size_t chunk = h.sampler->options().batch,
+                                  bytes = L * V * static_cast<std::size_t>(h.dtype.itemsize());
                 py::gil_scoped_release release;
                 const std::lock_guard<std::mutex> lock(h.busy);
                 for (std::size_t i = 0; i < n; i += chunk) {
@@ -289,10 +302,8 @@ void bind_sampler(py::module_& m) {
                         py::gil_scoped_acquire acquire;
                         h.sampler->load(refs.data() + i, k);
                     }
-                    if (single(h))
-                        h.sampler->fill(refs.data() + i, k, reinterpret_cast<float*>(data + i * bytes));
-                    else
-                        h.sampler->fill(refs.data() + i, k, reinterpret_cast<double*>(data + i * bytes));
+                    if (single(h)) h.sampler->fill(refs.data() + i, k, reinterpret_cast<float*>(data + i * bytes));
+                    else h.sampler->fill(refs.data() + i, k, reinterpret_cast<double*>(data + i * bytes));
                 }
                 return out;
             },
@@ -301,8 +312,7 @@ void bind_sampler(py::module_& m) {
             "(what a dataset without repeats asks for).\n\nExample:\n"
             "    >>> sampler.windows([0, 0, 1], [0, 10, 5]).shape   # (3, L, V)")
         .def_property_readonly(
-            "window_counts",
-            [](const SamplerHandle& h) { return h.sampler->window_counts(); },
+            "window_counts", [](const SamplerHandle& h) { return h.sampler->window_counts(); },
             "Windows each clip offers (F - L + 1), in the order of clips.")
         .def(
             "set_epoch",
@@ -319,29 +329,42 @@ void bind_sampler(py::module_& m) {
             "another epoch or worker other ones (a data loader's workers each take their own). A new sampler "
             "draws stream (seed, 0, 0).\n\nExample:\n    >>> sampler.set_epoch(3, worker=1)\n"
             "    >>> batch = sampler.next()   # the first batch of epoch 3 for worker 1")
-        .def_property_readonly("epoch", [](const SamplerHandle& h) { return h.epoch; }, "The epoch of set_epoch (0 at first).")
-        .def_property_readonly("worker", [](const SamplerHandle& h) { return h.worker; }, "The worker of set_epoch (0 at first).")
+        .def_property_readonly(
+            "epoch", [](const SamplerHandle& h) { return h.epoch; }, "The epoch of set_epoch (0 at first).")
+        .def_property_readonly(
+            "worker", [](const SamplerHandle& h) { return h.worker; }, "The worker of set_epoch (0 at first).")
         .def(py::pickle(&sampler_state, &sampler_from_state))
         .def("__iter__", [](const std::shared_ptr<SamplerHandle>& h) { return h; })
         .def("__next__", [](SamplerHandle& h) { return next_array(h, py::none()); })
-        .def_property_readonly("dtype", [](const SamplerHandle& h) { return h.dtype; }, "The batches' numpy dtype.")
-        .def_property_readonly("cache_bytes", [](const SamplerHandle& h) { return h.sampler->cache_bytes(); },
-                               "Bytes held by the decoded clips now (each drawn clip is decoded once, whole).")
-        .def_property_readonly("length", [](const SamplerHandle& h) { return h.sampler->options().length; }, "L.")
-        .def_property_readonly("batch", [](const SamplerHandle& h) { return h.sampler->options().batch; }, "B.")
-        .def_property_readonly("values_per_frame", [](const SamplerHandle& h) { return h.sampler->values_per_frame(); }, "V.")
-        .def_property_readonly("clips", [](const SamplerHandle& h) { return h.sampler->clip_ids(); },
-                               "Names of the clips windows are drawn from (those with at least L frames).")
-        .def_property_readonly("short_clips", [](const SamplerHandle& h) { return h.sampler->short_clip_ids(); },
-                               "Names of the selected clips shorter than L frames: they give no windows (a "
-                               "ShortClipsWarning counted them), or with pad=True one padded window each.")
-        .def_property_readonly("window_count", [](const SamplerHandle& h) { return h.sampler->window_count(); },
-                               "Distinct windows: sum over clips of F - L + 1.")
-        .def_property_readonly("frame_rate", [](const SamplerHandle& h) { return h.sampler->frame_rate(); }, "Hz of the clips.")
-        .def_property_readonly("from_packed", [](const SamplerHandle& h) { return h.sampler->from_packed(); },
-                               "True when decoding from the packed tier.")
-        .def_property_readonly("joint_names", [](const SamplerHandle& h) { return h.sampler->joint_names(); },
-                               "The rig's joints: the order of joint_positions' triples.");
+        .def_property_readonly(
+            "dtype", [](const SamplerHandle& h) { return h.dtype; }, "The batches' numpy dtype.")
+        .def_property_readonly(
+            "cache_bytes", [](const SamplerHandle& h) { return h.sampler->cache_bytes(); },
+            "Bytes held by the decoded clips now (each drawn clip is decoded once, whole).")
+        .def_property_readonly(
+            "length", [](const SamplerHandle& h) { return h.sampler->options().length; }, "L.")
+        .def_property_readonly(
+            "batch", [](const SamplerHandle& h) { return h.sampler->options().batch; }, "B.")
+        .def_property_readonly(
+            "values_per_frame", [](const SamplerHandle& h) { return h.sampler->values_per_frame(); }, "V.")
+        .def_property_readonly(
+            "clips", [](const SamplerHandle& h) { return h.sampler->clip_ids(); },
+            "Names of the clips windows are drawn from (those with at least L frames).")
+        .def_property_readonly(
+            "short_clips", [](const SamplerHandle& h) { return h.sampler->short_clip_ids(); },
+            "Names of the selected clips shorter than L frames: they give no windows (a "
+            "ShortClipsWarning counted them), or with pad=True one padded window each.")
+        .def_property_readonly(
+            "window_count", [](const SamplerHandle& h) { return h.sampler->window_count(); },
+            "Distinct windows: sum over clips of F - L + 1.")
+        .def_property_readonly(
+            "frame_rate", [](const SamplerHandle& h) { return h.sampler->frame_rate(); }, "Hz of the clips.")
+        .def_property_readonly(
+            "from_packed", [](const SamplerHandle& h) { return h.sampler->from_packed(); },
+            "True when decoding from the packed tier.")
+        .def_property_readonly(
+            "joint_names", [](const SamplerHandle& h) { return h.sampler->joint_names(); },
+            "The rig's joints: the order of joint_positions' triples.");
 }
 
 }  // namespace mocapdb::python

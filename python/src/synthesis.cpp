@@ -29,10 +29,8 @@ MatX characters_of(const ModelHandle& h, const Array& c) {
 
 std::shared_ptr<ModelHandle> load_model_handle(const Database& db, const std::string& set, bool naive) {
     auto handle = std::make_shared<ModelHandle>();
-    if (naive)
-        handle->model = workflow::load_naive_motion_model(db, set);
-    else
-        handle->model = workflow::load_motion_model(db, set);
+    if (naive) handle->model = workflow::load_naive_motion_model(db, set);
+    else handle->model = workflow::load_motion_model(db, set);
     handle->path = db.path();
     handle->set = set;
     handle->naive = naive;
@@ -43,30 +41,40 @@ void bind_synthesis(py::module_& m) {
     py::class_<ModelHandle, std::shared_ptr<ModelHandle>>(
         m, "SynthesisModel",
         "A motion set's synthesis model (kriging of its samples at control parameters c). Immutable; "
-        "every method may be called from several threads (the batched ones release the GIL)." "\n\nExample:\n    >>> model = db.synthesis_model('walks')\n    >>> poses = model.poses([[0.0, 1.2]], t=20.0)   # (1, D)")
+        "every method may be called from several threads (the batched ones release the GIL)."
+        "\n\nExample:\n    >>> model = db.synthesis_model('walks')\n    >>> poses = model.poses([[0.0, 1.2]], t=20.0)   # (1, D)")
         .def(py::pickle([](const ModelHandle& h) { return py::make_tuple(h.path, h.set, h.naive); },  // loaded again
                         [](const py::tuple& t) {
                             if (t.size() != 3) throw InvalidArgument("SynthesisModel: not a pickled model's state");
                             const Database db(t[0].cast<std::filesystem::path>());
                             return load_model_handle(db, t[1].cast<std::string>(), t[2].cast<bool>());
                         }))
-        .def_property_readonly("kind", [](const ModelHandle& h) { return std::string(h.model->kind()); },
-                               "'tucker' (the compressed model) or 'naive' (the uncompressed aligned tensor).")
-        .def_property_readonly("dofs", [](const ModelHandle& h) { return h.model->dofs(); }, "D, values per pose vector.")
-        .def_property_readonly("frames", [](const ModelHandle& h) { return h.model->frames(); },
-                               "T, aligned frames: t ranges over [0, T - 1].")
-        .def_property_readonly("samples", [](const ModelHandle& h) { return h.model->samples(); }, "N, the set's samples.")
-        .def_property_readonly("parameter_names", [](const ModelHandle& h) { return h.model->parameter_names(); },
-                               "The P control parameters' names.")
-        .def_property_readonly("parameter_units", [](const ModelHandle& h) { return h.model->parameter_units(); },
-                               "Their units.")
-        .def_property_readonly("sample_parameters", [](const ModelHandle& h) { return copy_rows(h.model->sample_parameters()); },
-                               "(N, P) parameters of the samples, in the set's units.")
-        .def_property_readonly("frame_rate", [](const ModelHandle& h) { return h.model->frame_rate(); },
-                               "Frame rate of synthesized motions (the set's).")
-        .def_property_readonly("skeleton", [](const ModelHandle& h) { return std::const_pointer_cast<Skeleton>(h.model->skeleton()); },
-                               "The set's Skeleton.")
-        .def_property_readonly("levels", [](const ModelHandle& h) { return h.model->levels(); }, "Levels of detail (level 0: full).")
+        .def_property_readonly(
+            "kind", [](const ModelHandle& h) { return std::string(h.model->kind()); },
+            "'tucker' (the compressed model) or 'naive' (the uncompressed aligned tensor).")
+        .def_property_readonly(
+            "dofs", [](const ModelHandle& h) { return h.model->dofs(); }, "D, values per pose vector.")
+        .def_property_readonly(
+            "frames", [](const ModelHandle& h) { return h.model->frames(); },
+            "T, aligned frames: t ranges over [0, T - 1].")
+        .def_property_readonly(
+            "samples", [](const ModelHandle& h) { return h.model->samples(); }, "N, the set's samples.")
+        .def_property_readonly(
+            "parameter_names", [](const ModelHandle& h) { return h.model->parameter_names(); },
+            "The P control parameters' names.")
+        .def_property_readonly(
+            "parameter_units", [](const ModelHandle& h) { return h.model->parameter_units(); }, "Their units.")
+        .def_property_readonly(
+            "sample_parameters", [](const ModelHandle& h) { return copy_rows(h.model->sample_parameters()); },
+            "(N, P) parameters of the samples, in the set's units.")
+        .def_property_readonly(
+            "frame_rate", [](const ModelHandle& h) { return h.model->frame_rate(); },
+            "Frame rate of synthesized motions (the set's).")
+        .def_property_readonly(
+            "skeleton", [](const ModelHandle& h) { return std::const_pointer_cast<Skeleton>(h.model->skeleton()); },
+            "The set's Skeleton.")
+        .def_property_readonly(
+            "levels", [](const ModelHandle& h) { return h.model->levels(); }, "Levels of detail (level 0: full).")
         .def(
             "pose",
             [](const ModelHandle& h, const Array& c, double t, Eigen::Index level) {
@@ -81,7 +89,8 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"), py::arg("t"), py::arg("level") = 0,
             "The pose vector (D,) at control parameters c (P,) and fractional aligned frame t in [0, T - 1], in "
-            "the canonical frame." "\n\nExample:\n    >>> pose = model.pose(model.sample_parameters[0], t=10.5)   # (D,)")
+            "the canonical frame."
+            "\n\nExample:\n    >>> pose = model.pose(model.sample_parameters[0], t=10.5)   # (D,)")
         .def(
             "poses",
             [](ModelHandle& h, const Array& c, double t, Eigen::Index level) {
@@ -103,7 +112,8 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"), py::arg("t"), py::arg("level") = 0,
             "Poses (Q, D) of Q characters with control parameters c (Q, P) at aligned frame t, in one batched "
-            "call (the GIL is released)." "\n\nExample:\n    >>> poses = model.poses(model.sample_parameters, t=10.0)  # (N, D)")
+            "call (the GIL is released)."
+            "\n\nExample:\n    >>> poses = model.poses(model.sample_parameters, t=10.0)  # (N, D)")
         .def(
             "motion",
             [](const ModelHandle& h, const Array& c, Eigen::Index level) {
@@ -113,7 +123,8 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"), py::arg("level") = 0,
             "The synthesized motion at c as a Clip of the set's skeleton and frame rate, with its kriged "
-            "timing (starts at the origin facing +Z; ready for write_bvh)." "\n\nExample:\n    >>> model.motion(model.sample_parameters[0]).write_bvh('walk.bvh')")
+            "timing (starts at the origin facing +Z; ready for write_bvh)."
+            "\n\nExample:\n    >>> model.motion(model.sample_parameters[0]).write_bvh('walk.bvh')")
         .def(
             "reliability",
             [](const ModelHandle& h, const Array& c) -> py::object {
@@ -128,7 +139,8 @@ void bind_synthesis(py::module_& m) {
             },
             py::arg("c"),
             "Reliability rho(c) in [0, 1] (1 at a sample, falling where the samples do not support the "
-            "result): a float for c of shape (P,), an array (Q,) for c of shape (Q, P)." "\n\nExample:\n    >>> rho = model.reliability(model.sample_parameters)   # (N,), 1 at the samples")
+            "result): a float for c of shape (P,), an array (Q,) for c of shape (Q, P)."
+            "\n\nExample:\n    >>> rho = model.reliability(model.sample_parameters)   # (N,), 1 at the samples")
         .def(
             "weights",
             [](const ModelHandle& h, const Array& c) {
@@ -137,13 +149,19 @@ void bind_synthesis(py::module_& m) {
                 h.model->weights(parameters_of(h, c), w, ws);
                 return copy_vector(w);
             },
-            py::arg("c"), "Kriging weights (N,) of the samples at c (they sum to 1)." "\n\nExample:\n    >>> w = model.weights(model.sample_parameters[0])")
+            py::arg("c"),
+            "Kriging weights (N,) of the samples at c (they sum to 1)."
+            "\n\nExample:\n    >>> w = model.weights(model.sample_parameters[0])")
         .def(
-            "timing", [](const ModelHandle& h, const Array& c) { return copy_vector(h.model->timing(parameters_of(h, c)).warp); },
-            py::arg("c"), "The synthesized timing (T,): the source frame shown at each aligned frame (starts at 0)." "\n\nExample:\n    >>> warp = model.timing(model.sample_parameters[0])")
+            "timing",
+            [](const ModelHandle& h, const Array& c) { return copy_vector(h.model->timing(parameters_of(h, c)).warp); },
+            py::arg("c"),
+            "The synthesized timing (T,): the source frame shown at each aligned frame (starts at 0)."
+            "\n\nExample:\n    >>> warp = model.timing(model.sample_parameters[0])")
         .def("__repr__", [](const ModelHandle& h) {
-            return "<mocapdb.SynthesisModel " + std::string(h.model->kind()) + ", " + std::to_string(h.model->samples()) +
-                   " samples, " + std::to_string(h.model->frames()) + " frames, " + std::to_string(h.model->dofs()) + " dofs>";
+            return "<mocapdb.SynthesisModel " + std::string(h.model->kind()) + ", " +
+                   std::to_string(h.model->samples()) + " samples, " + std::to_string(h.model->frames()) + " frames, " +
+                   std::to_string(h.model->dofs()) + " dofs>";
         });
 }
 

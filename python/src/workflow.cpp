@@ -24,8 +24,8 @@ namespace mocapdb::python {
 namespace {
 
 py::object import_files(const std::filesystem::path& db, const std::vector<std::filesystem::path>& inputs,
-                      std::optional<std::filesystem::path> asf, std::optional<double> frame_rate, bool strict,
-                      bool keep_going, bool force) {
+                        std::optional<std::filesystem::path> asf, std::optional<double> frame_rate, bool strict,
+                        bool keep_going, bool force) {
     workflow::ImportOptions options;
     if (asf) options.asf = *asf;
     options.frame_rate = frame_rate;
@@ -46,9 +46,9 @@ py::object import_files(const std::filesystem::path& db, const std::vector<std::
 }
 
 py::object create_set(const std::filesystem::path& db, const std::string& name, const std::vector<std::string>& clips,
-                    std::optional<std::vector<std::string>> extract, std::optional<std::filesystem::path> params_csv,
-                    std::optional<std::map<std::string, double>> periodic, const std::string& segment,
-                    std::optional<std::vector<std::string>> feet, bool replace) {
+                      std::optional<std::vector<std::string>> extract, std::optional<std::filesystem::path> params_csv,
+                      std::optional<std::map<std::string, double>> periodic, const std::string& segment,
+                      std::optional<std::vector<std::string>> feet, bool replace) {
     workflow::SetRequest r;
     r.name = name;
     r.clips = clips;
@@ -69,8 +69,8 @@ py::object create_set(const std::filesystem::path& db, const std::string& name, 
     return to_python(j.tree());
 }
 
-py::object pack(const std::filesystem::path& db, std::optional<double> max_error_cm, std::optional<std::uint64_t> max_bytes,
-              int threads, bool replace, bool drop_lossless) {
+py::object pack(const std::filesystem::path& db, std::optional<double> max_error_cm,
+                std::optional<std::uint64_t> max_bytes, int threads, bool replace, bool drop_lossless) {
     if (max_error_cm && max_bytes) throw InvalidArgument("pack: give max_error_cm or max_bytes, not both");
     if (max_bytes && *max_bytes == 0) throw InvalidArgument("pack: max_bytes must be >= 1");
     workflow::PackDatabaseOptions options;
@@ -89,8 +89,8 @@ py::object pack(const std::filesystem::path& db, std::optional<double> max_error
     return to_python(j.tree());
 }
 
-py::object align(const std::filesystem::path& db, const std::string& set, Eigen::Index frames, const std::string& method,
-               const std::string& reference) {
+py::object align(const std::filesystem::path& db, const std::string& set, Eigen::Index frames,
+                 const std::string& method, const std::string& reference) {
     workflow::AlignRequest r;
     r.set = set;
     r.frames = frames;
@@ -113,9 +113,9 @@ tensor::TuckerMethod tucker_method(const std::string& name) {
     throw InvalidArgument("method: expected 'hosvd', 'sthosvd' or 'hooi', got '" + name + "'");
 }
 
-py::object compress(const std::filesystem::path& db, const std::string& set, std::optional<std::array<Eigen::Index, 3>> ranks,
-                  double max_error_cm, std::optional<double> rmse, std::optional<double> ratio, const std::string& method,
-                  int max_iterations) {
+py::object compress(const std::filesystem::path& db, const std::string& set,
+                    std::optional<std::array<Eigen::Index, 3>> ranks, double max_error_cm, std::optional<double> rmse,
+                    std::optional<double> ratio, const std::string& method, int max_iterations) {
     workflow::CompressRequest r;
     r.set = set;
     r.ranks = ranks;
@@ -134,8 +134,8 @@ py::object compress(const std::filesystem::path& db, const std::string& set, std
     return to_python(j.tree());
 }
 
-py::object collection_report_dict(const std::filesystem::path& path, const std::vector<double>& max_error_cm, int threads,
-                                  const std::vector<std::filesystem::path>& source_dirs,
+py::object collection_report_dict(const std::filesystem::path& path, const std::vector<double>& max_error_cm,
+                                  int threads, const std::vector<std::filesystem::path>& source_dirs,
                                   const std::vector<std::string>& references, std::size_t poses) {
     eval::CollectionReportOptions options;
     options.max_error_cm = max_error_cm;
@@ -166,42 +166,51 @@ void bind_workflow(py::module_& m) {
           "SHA-256) are skipped. keep_going: a file that cannot be read is reported in 'errors' instead of "
           "stopping everything. Readers' warnings become UserWarnings. Committed. Returns {'files', 'added', "
           "'skipped', 'failed', 'frames', 'clips_in_db', 'file_bytes', 'errors', 'warnings', 'not_added', ...}: the "
-          "keys of `mocapdb import --json`." "\n\nExample:\n    >>> mocapdb.import_files('walks.h5', ['cmu-asfamc/16_11.amc'])['added']");
-    m.def("create_set", &create_set, py::arg("db"), py::arg("name"), py::arg("clips"), py::arg("extract") = py::none(),
-          py::arg("params_csv") = py::none(), py::arg("periodic") = py::none(), py::arg("segment") = "auto",
-          py::arg("feet") = py::none(), py::arg("replace") = false,
-          "`mocapdb set create`: a motion set of the stored clips matching `clips` (ids or fnmatch patterns), "
-          "its parameters measured by the `extract` extractors (e.g. ['turn', 'speed']) or read from `params_csv`; "
-          "periodic: {name: period}; segment: 'auto', 'none', 'gait[:N]' or 'window:LENGTH[:HOP]'. Committed. Returns "
-          "{'set', 'samples', 'clips', 'skipped', 'segmentation', 'parameter_names', 'parameters', 'repaired_runs'}." "\n\nExample:\n    >>> mocapdb.create_set('walks.h5', 'walks', ['16_*'], extract=['turn', 'speed'])['samples']");
+          "keys of `mocapdb import --json`."
+          "\n\nExample:\n    >>> mocapdb.import_files('walks.h5', ['cmu-asfamc/16_11.amc'])['added']");
+    m.def(
+        "create_set", &create_set, py::arg("db"), py::arg("name"), py::arg("clips"), py::arg("extract") = py::none(),
+        py::arg("params_csv") = py::none(), py::arg("periodic") = py::none(), py::arg("segment") = "auto",
+        py::arg("feet") = py::none(), py::arg("replace") = false,
+        "`mocapdb set create`: a motion set of the stored clips matching `clips` (ids or fnmatch patterns), "
+        "its parameters measured by the `extract` extractors (e.g. ['turn', 'speed']) or read from `params_csv`; "
+        "periodic: {name: period}; segment: 'auto', 'none', 'gait[:N]' or 'window:LENGTH[:HOP]'. Committed. Returns "
+        "{'set', 'samples', 'clips', 'skipped', 'segmentation', 'parameter_names', 'parameters', 'repaired_runs'}."
+        "\n\nExample:\n    >>> mocapdb.create_set('walks.h5', 'walks', ['16_*'], extract=['turn', 'speed'])['samples']");
     m.def("align", &align, py::arg("db"), py::arg("set"), py::arg("frames") = 100, py::arg("method") = "dtw",
           py::arg("reference") = "",
           "`mocapdb align`: the set's samples time-aligned to `frames` aligned frames (method 'dtw' or 'linear'; "
           "reference: a sample label, default the library's choice) and stored (committed). Returns {'samples', "
-          "'frames', 'dofs', 'reference', 'mean_distance_cm', 'labels', 'phase_min', 'phase_mean', ...}." "\n\nExample:\n    >>> mocapdb.align('walks.h5', 'walks', frames=40)['samples']");
-    m.def("compress", &compress, py::arg("db"), py::arg("set"), py::arg("ranks") = py::none(), py::arg("max_error_cm") = 0.0,
-          py::arg("rmse") = py::none(), py::arg("ratio") = py::none(), py::arg("method") = "hosvd",
-          py::arg("max_iterations") = 50,
+          "'frames', 'dofs', 'reference', 'mean_distance_cm', 'labels', 'phase_min', 'phase_mean', ...}."
+          "\n\nExample:\n    >>> mocapdb.align('walks.h5', 'walks', frames=40)['samples']");
+    m.def("compress", &compress, py::arg("db"), py::arg("set"), py::arg("ranks") = py::none(),
+          py::arg("max_error_cm") = 0.0, py::arg("rmse") = py::none(), py::arg("ratio") = py::none(),
+          py::arg("method") = "hosvd", py::arg("max_iterations") = 50,
           "`mocapdb compress`: the aligned set's Tucker model at explicit ranks (R1, R2, R3), or the smallest "
           "ranks meeting max_error_cm (default 1 cm), rmse or ratio; method 'hosvd', 'sthosvd' or 'hooi'. The model "
           "and its synthesis kernel are stored (committed). Returns the keys of `mocapdb compress --json` "
-          "(criterion, target_met, ranks, bytes, ratio, max_cm, p99_cm, rmse_cm, ...)." "\n\nExample:\n    >>> mocapdb.compress('walks.h5', 'walks', max_error_cm=1.0)['ranks']");
+          "(criterion, target_met, ranks, bytes, ratio, max_cm, p99_cm, rmse_cm, ...)."
+          "\n\nExample:\n    >>> mocapdb.compress('walks.h5', 'walks', max_error_cm=1.0)['ranks']");
     m.def("pack", &pack, py::arg("db"), py::arg("max_error_cm") = py::none(), py::arg("max_bytes") = py::none(),
           py::arg("threads") = 2, py::arg("replace") = false, py::arg("drop_lossless") = false,
           "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm, default 1), or with "
           "max_bytes at the smallest max error whose bytes fit max_bytes (not both), stored as the packed tier "
           "(committed). Returns the keys of `mocapdb pack --json` (bytes, max_error_cm, max_cm, p99_cm, rmse_cm, "
           "clips, frames, parts: bytes per kind of stored data summing to bytes, budget: None or {max_bytes, "
-          "max_error_cm, tried}, groups: [{name, bytes, parts, ...}], ...)." "\n\nExample:\n    >>> mocapdb.pack('walks.h5', max_error_cm=1.0)['bytes']");
-    m.def("collection_report", &collection_report_dict, py::arg("db"), py::arg("max_error_cm") = std::vector<double>{1.0, 0.5, 0.1, 0.03, 0.01},
-          py::arg("threads") = 2, py::arg("source_dirs") = std::vector<std::filesystem::path>{},
-          py::arg("references") = std::vector<std::string>{}, py::arg("poses") = 0,
-          "`mocapdb report --collection` (nothing is stored): the lossless tier's bytes and, per bound E, "
-          "the packed bytes (with 'parts'), and measured errors; beside ACL when `references` names its per-clip "
-          "tables; `poses` cold random poses timed per E (0: none). Returns the keys of `mocapdb report "
-          "--collection --json`: {'clips', 'frames', 'groups', 'float32_bytes', 'lossless': {'bytes' (file bytes "
-          "spent on the clips), 'channel_bytes', ...}, 'targets': [{'max_error_cm', 'bytes', 'parts', 'max_cm', "
-          "'acl', ...}], 'reference'}." "\n\nExample:\n    >>> report = mocapdb.collection_report('walks.h5', max_error_cm=[1.0])\n    >>> report['targets'][0]['bytes']");
+          "max_error_cm, tried}, groups: [{name, bytes, parts, ...}], ...)."
+          "\n\nExample:\n    >>> mocapdb.pack('walks.h5', max_error_cm=1.0)['bytes']");
+    m.def(
+        "collection_report", &collection_report_dict, py::arg("db"),
+        py::arg("max_error_cm") = std::vector<double>{1.0, 0.5, 0.1, 0.03, 0.01}, py::arg("threads") = 2,
+        py::arg("source_dirs") = std::vector<std::filesystem::path>{},
+        py::arg("references") = std::vector<std::string>{}, py::arg("poses") = 0,
+        "`mocapdb report --collection` (nothing is stored): the lossless tier's bytes and, per bound E, "
+        "the packed bytes (with 'parts'), and measured errors; beside ACL when `references` names its per-clip "
+        "tables; `poses` cold random poses timed per E (0: none). Returns the keys of `mocapdb report "
+        "--collection --json`: {'clips', 'frames', 'groups', 'float32_bytes', 'lossless': {'bytes' (file bytes "
+        "spent on the clips), 'channel_bytes', ...}, 'targets': [{'max_error_cm', 'bytes', 'parts', 'max_cm', "
+        "'acl', ...}], 'reference'}."
+        "\n\nExample:\n    >>> report = mocapdb.collection_report('walks.h5', max_error_cm=[1.0])\n    >>> report['targets'][0]['bytes']");
 }
 
 }  // namespace mocapdb::python

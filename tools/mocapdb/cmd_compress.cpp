@@ -42,8 +42,11 @@ void setup_compress(CLI::App& app) {
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     cmd->add_option("--set", a->request.set, "motion set (aligned)")->required();
     auto* ranks = cmd->add_option_function<std::vector<long long>>(
-                          "--ranks", [a](const std::vector<long long>& r) { a->request.ranks = tensor::Ranks{r[0], r[1], r[2]}; },
-                          "explicit ranks R1,R2,R3 (dof, time, sample)")
+                         "--ranks",
+                         [a](const std::vector<long long>& r) {
+                             a->request.ranks = tensor::Ranks{r[0], r[1], r[2]};
+                         },
+                         "explicit ranks R1,R2,R3 (dof, time, sample)")
                       ->delimiter(',')
                       ->expected(3);
     auto* max_error = cmd->add_option("--max-error-cm", a->request.max_error_cm, "target max joint-position error (cm)")
@@ -55,7 +58,8 @@ void setup_compress(CLI::App& app) {
     ranks->excludes(max_error, rmse, ratio);
     max_error->excludes(rmse, ratio);
     rmse->excludes(ratio);
-    cmd->add_option("--method", a->request.method, "hosvd | sthosvd | hooi")->transform(CLI::CheckedTransformer(tucker_methods()));
+    cmd->add_option("--method", a->request.method, "hosvd | sthosvd | hooi")
+        ->transform(CLI::CheckedTransformer(tucker_methods()));
     cmd->add_option("--max-iterations", a->request.max_iterations, "HOOI sweeps at most")->check(CLI::Range(0, 10000));
     cmd->add_flag("--json", a->json, "print one JSON object");
     cmd->callback([a] { run_compress(*a); });

@@ -55,10 +55,10 @@ void progress(const std::string& line) {
 
 // One synthesis of the demo: where it was asked, what came back.
 struct DemoSynthesis {
-    std::string label;     // "between samples" / "outside the samples" / "requested"
-    bool inside = true;    // within the samples' bounding box
+    std::string label;   // "between samples" / "outside the samples" / "requested"
+    bool inside = true;  // within the samples' bounding box
     workflow::SynthOutcome outcome;
-    VecX measured;         // by the set's extractors, or the reach target measurement
+    VecX measured;  // by the set's extractors, or the reach target measurement
     fs::path file;
 };
 
@@ -175,7 +175,8 @@ void run_demo(const DemoArgs& a) {
     const SetOutcome built = create_set(db.string(), set_request);
     progress(describe_set(built));
     const MotionSet& set = built.set;
-    if (set.samples.size() < 3) throw InvalidArgument("the demo needs at least 3 samples, the set has " + std::to_string(set.samples.size()));
+    if (set.samples.size() < 3)
+        throw InvalidArgument("the demo needs at least 3 samples, the set has " + std::to_string(set.samples.size()));
     AlignRequest align_request;
     align_request.set = set_name;
     align_request.frames = a.frames;
@@ -235,16 +236,19 @@ void run_demo(const DemoArgs& a) {
     if (measurement.kind == workflow::DemoMeasure::Extractors)
         measured_what = "the extractors (" + measurement.extractor_names + ") on the whole synthesized clip";
     else if (measurement.kind == workflow::DemoMeasure::ReachTarget)
-        measured_what = "the right hand's end site at the hold (its slowest frame among those at least 80% of its "
-                        "largest distance from the start): bearing around the origin's vertical axis [deg], "
-                        "height [cm], horizontal distance [cm]";
+        measured_what =
+            "the right hand's end site at the hold (its slowest frame among those at least 80% of its "
+            "largest distance from the start): bearing around the origin's vertical axis [deg], "
+            "height [cm], horizontal distance [cm]";
 
     std::printf("\n== synthesis at new parameters (%s model, ranks %s; %zu samples; parameters: %s)\n", model->kind(),
-                ranks_text(model->level_ranks(0)).c_str(), set.samples.size(), describe_parameters(names, units).c_str());
+                ranks_text(model->level_ranks(0)).c_str(), set.samples.size(),
+                describe_parameters(names, units).c_str());
     const kriging::VariogramModel& vg = model->report().model;
-    std::printf("   kriging: variogram p = %g, nugget %.4g, sill %.4g, range %.4g (normalized parameters: each axis "
-                "to zero mean, unit deviation); rho = 1 - variance / (nugget + sill)\n",
-                vg.paper_p(), vg.nugget, vg.sill, vg.range);
+    std::printf(
+        "   kriging: variogram p = %g, nugget %.4g, sill %.4g, range %.4g (normalized parameters: each axis "
+        "to zero mean, unit deviation); rho = 1 - variance / (nugget + sill)\n",
+        vg.paper_p(), vg.nugget, vg.sill, vg.range);
     std::printf("   measured: %s\n", measured_what.c_str());
     std::vector<DemoSynthesis> results;
     for (std::size_t q = 0; q < requests.size(); ++q) {
@@ -257,7 +261,8 @@ void run_demo(const DemoArgs& a) {
         std::snprintf(name, sizeof name, "synth_%02zu%s.bvh", q + 1, s.inside ? "" : "_outside");
         s.file = out / name;
         write_bvh(s.file, s.outcome.clip);
-        std::printf("%-20s requested %s\n", (std::string(name)).c_str(), values_text(s.outcome.requested, units).c_str());
+        std::printf("%-20s requested %s\n", (std::string(name)).c_str(),
+                    values_text(s.outcome.requested, units).c_str());
         std::printf("%-20s measured  %s\n", "",
                     s.measured.size() == s.outcome.requested.size() ? values_text(s.measured, units).c_str() : "-");
         std::printf("%-20s rho %.4f, %zu frames (%.2f s), synthesized in %.4f s; %s%s\n", "", s.outcome.reliability,
@@ -368,7 +373,8 @@ void run_demo(const DemoArgs& a) {
 
 void setup_demo(CLI::App& app) {
     auto a = std::make_shared<DemoArgs>();
-    CLI::App* cmd = app.add_subcommand("demo", "The main job end to end: import, set, align, compress, report, synthesize");
+    CLI::App* cmd =
+        app.add_subcommand("demo", "The main job end to end: import, set, align, compress, report, synthesize");
     cmd->footer(
         "Examples:\n"
         "  mocapdb demo --out demo-out\n"

@@ -56,12 +56,13 @@ void print_stage(const eval::EvalStageDone& d) {
     const char* name = set.spec.name.c_str();
     switch (d.stage) {
         case eval::EvalStage::BuildSet:
-            say("[eval] set %s: %lld samples, %lld dofs x %lld frames (%.1f s)\n", name, static_cast<long long>(set.size()),
-                static_cast<long long>(set.aligned.dofs()), static_cast<long long>(set.aligned.frames()), d.seconds);
+            say("[eval] set %s: %lld samples, %lld dofs x %lld frames (%.1f s)\n", name,
+                static_cast<long long>(set.size()), static_cast<long long>(set.aligned.dofs()),
+                static_cast<long long>(set.aligned.frames()), d.seconds);
             break;
         case eval::EvalStage::LeaveOneOut:
-            say("[eval] %s: leave-one-out over %zu samples x %zu methods (%.1f s)\n", name, d.results->loo.samples.size(),
-                d.results->methods.size(), d.seconds);
+            say("[eval] %s: leave-one-out over %zu samples x %zu methods (%.1f s)\n", name,
+                d.results->loo.samples.size(), d.results->methods.size(), d.seconds);
             break;
         case eval::EvalStage::KernelHeadroom:
             say("[eval] %s: kernel headroom over %lld kernels (%.1f s)\n", name,
@@ -85,7 +86,8 @@ void run_eval(const EvalArgs& a) {
     const auto start = Clock::now();
     const std::filesystem::path cmu = std::filesystem::path(a.data) / "cmu-asfamc";
     if (!std::filesystem::is_directory(cmu))
-        throw InvalidArgument("--data " + a.data + ": no folder cmu-asfamc inside (expected the shared datasets folder)");
+        throw InvalidArgument("--data " + a.data +
+                              ": no folder cmu-asfamc inside (expected the shared datasets folder)");
     const eval::EvalMode mode = a.tiny ? eval::EvalMode::Tiny : a.quick ? eval::EvalMode::Quick : eval::EvalMode::Full;
     std::unique_ptr<ProgressBar> bar;
     eval::EvalObserver observer;
@@ -100,14 +102,16 @@ void run_eval(const EvalArgs& a) {
     const eval::EvalResults results =
         eval::run_evaluation(eval::make_eval_plan(mode), cmu, eval::describe_run(a.command, mode), observer);
     write_eval_report(results, a.out);
-    say("[eval] wrote %s (%.1f s in all)\n", (std::filesystem::path(a.out) / "REPORT.md").string().c_str(), since(start));
+    say("[eval] wrote %s (%.1f s in all)\n", (std::filesystem::path(a.out) / "REPORT.md").string().c_str(),
+        since(start));
 }
 
 }  // namespace
 
 void setup_eval(CLI::App& app) {
     auto a = std::make_shared<EvalArgs>();
-    CLI::App* cmd = app.add_subcommand("eval", "Evaluate the interpolators and compressors against the baselines (REPORT.md)");
+    CLI::App* cmd =
+        app.add_subcommand("eval", "Evaluate the interpolators and compressors against the baselines (REPORT.md)");
     cmd->footer(
         "Examples:\n"
         "  mocapdb eval --data ../shared/datasets --out eval/\n"

@@ -39,8 +39,8 @@ Clip sample_clip(const Database& db, const ExportArgs& args) {
     if (args.from_model) {
         auto stored = db.load_model(args.set);
         if (!stored)
-            throw InvalidArgument("set '" + args.set + "' in " + args.file +
-                                  " has no model (run: mocapdb compress " + args.file + " --set " + args.set + ")");
+            throw InvalidArgument("set '" + args.set + "' in " + args.file + " has no model (run: mocapdb compress " +
+                                  args.file + " --set " + args.set + ")");
         poses = stored->model.reconstruct();
     } else {
         poses = c.aligned.tensor;
@@ -82,7 +82,8 @@ void run_export(const ExportArgs& args) {
         // A BVH source is written back in its own length unit; other sources in centimetres.
         if (db.find_clip(args.clip)->source.format == "bvh") o.cm_per_unit = clip.skeleton->source_units().cm_per_unit;
         write_bvh(out, clip, o);
-        std::cout << "wrote " << out.string() << " (" << clip.frame_count() << " frames at " << clip.frame_rate << " Hz";
+        std::cout << "wrote " << out.string() << " (" << clip.frame_count() << " frames at " << clip.frame_rate
+                  << " Hz";
         if (args.from_packed)
             std::cout << ", decoded from the packed tier: every joint within " << db.packed()->max_error_cm
                       << " cm of the source";
@@ -132,8 +133,9 @@ void setup_export(CLI::App& app) {
     set->needs(sample);
     sample->needs(set);
     from_model->needs(set);
-    auto* from_packed = cmd->add_flag("--from-packed", args->from_packed,
-                                      "decode the clip from the packed tier (mocapdb pack) instead of the lossless one");
+    auto* from_packed =
+        cmd->add_flag("--from-packed", args->from_packed,
+                      "decode the clip from the packed tier (mocapdb pack) instead of the lossless one");
     from_packed->needs(clip);
     cmd->add_option("-o,--output", args->output, "output file: .bvh or .amc")->required();
     cmd->add_option("--asf-out", args->asf_output, "where to write the skeleton of an AMC export (default OUT.asf)");

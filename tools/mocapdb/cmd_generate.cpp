@@ -20,21 +20,28 @@ struct GenerateArgs {
     bool json = false;
 };
 
-void report(const procedural::ParametricSet& set, const std::vector<std::filesystem::path>& paths, const GenerateArgs& a) {
+void report(const procedural::ParametricSet& set, const std::vector<std::filesystem::path>& paths,
+            const GenerateArgs& a) {
     if (a.json) {
         JsonWriter j;
         j.begin_object().key("kind").value(set.kind).key("folder").value(a.out);
         j.key("params_csv").value(paths.back().string());
         j.key("parameters").begin_array();
         for (std::size_t p = 0; p < set.parameter_names.size(); ++p)
-            j.begin_object().key("name").value(set.parameter_names[p]).key("unit").value(set.parameter_units[p]).end_object();
+            j.begin_object()
+                .key("name")
+                .value(set.parameter_names[p])
+                .key("unit")
+                .value(set.parameter_units[p])
+                .end_object();
         j.end_array().key("clips").begin_array();
         for (std::size_t i = 0; i < set.clips.size(); ++i) {
             j.begin_object().key("name").value(set.clips[i].name).key("file").value(paths[i].string());
             j.key("frames").value(static_cast<long long>(set.clips[i].frame_count()));
             j.key("frame_rate").value(set.clips[i].frame_rate);
             j.key("values").begin_array();
-            for (Eigen::Index p = 0; p < set.parameters.cols(); ++p) j.value(set.parameters(static_cast<Eigen::Index>(i), p));
+            for (Eigen::Index p = 0; p < set.parameters.cols(); ++p)
+                j.value(set.parameters(static_cast<Eigen::Index>(i), p));
             j.end_array().end_object();
         }
         j.end_array().end_object();
@@ -55,7 +62,8 @@ void report(const procedural::ParametricSet& set, const std::vector<std::filesys
     }
     std::printf("wrote %zu BVH files and %s\n", set.clips.size(), paths.back().string().c_str());
     std::printf("next: mocapdb import %s -o DB.h5 && mocapdb set create DB.h5 --name %s --clips '%s_*' --params %s\n",
-                a.out.c_str(), set.kind == "reach" ? "reaches" : "walks", set.kind.c_str(), paths.back().string().c_str());
+                a.out.c_str(), set.kind == "reach" ? "reaches" : "walks", set.kind.c_str(),
+                paths.back().string().c_str());
 }
 
 void add_common(CLI::App& cmd, GenerateArgs& a) {
@@ -64,13 +72,16 @@ void add_common(CLI::App& cmd, GenerateArgs& a) {
     cmd.add_option("--fps", a.fps, "frame rate, Hz")->check(CLI::Range(10.0, 1000.0));
     cmd.add_option("--precision", a.precision, "significant digits written in the BVH files")->check(CLI::Range(1, 17));
     cmd.add_flag("--force", a.force, "overwrite existing files");
-    cmd.add_flag("--json", a.json, "print JSON: {kind, folder, params_csv, parameters:[{name,unit}], clips:[{name,file,frames,frame_rate,values}]}");
+    cmd.add_flag(
+        "--json", a.json,
+        "print JSON: {kind, folder, params_csv, parameters:[{name,unit}], clips:[{name,file,frames,frame_rate,values}]}");
 }
 
 }  // namespace
 
 void setup_generate(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand("generate", "Generate a procedural parametric motion set (BVH files + params.csv)");
+    CLI::App* cmd =
+        app.add_subcommand("generate", "Generate a procedural parametric motion set (BVH files + params.csv)");
     cmd->require_subcommand(1);
     cmd->footer(
         "The built-in humanoid (170 cm, Y up, facing +Z) walks or reaches; every grid point becomes one BVH\n"
@@ -79,7 +90,8 @@ void setup_generate(CLI::App& app) {
         "--name walks --clips 'walk_*' --params DIR/params.csv (or --extract speed turn: same values).");
 
     auto w = std::make_shared<GenerateArgs>();
-    CLI::App* walk = cmd->add_subcommand("walk", "Walks along arcs: speed (m/s) x turn (deg over the clip) [x stride (m)]");
+    CLI::App* walk =
+        cmd->add_subcommand("walk", "Walks along arcs: speed (m/s) x turn (deg over the clip) [x stride (m)]");
     walk->footer(
         "Examples:\n"
         "  mocapdb generate walk --out gen/walks --grid speed=0.9:1.7:3 turn=-60:60:5\n"
@@ -99,7 +111,8 @@ void setup_generate(CLI::App& app) {
     });
 
     auto r = std::make_shared<GenerateArgs>();
-    CLI::App* reach = cmd->add_subcommand("reach", "Right-hand reaches to targets: angle (deg) x height (cm) x distance (cm)");
+    CLI::App* reach =
+        cmd->add_subcommand("reach", "Right-hand reaches to targets: angle (deg) x height (cm) x distance (cm)");
     reach->footer(
         "Examples:\n"
         "  mocapdb generate reach --out gen/reach --grid angle=-90:90:5 height=60:160:3\n"

@@ -22,7 +22,6 @@ namespace gp_cli {
 namespace fs = std::filesystem;
 using namespace mocapdb::gp;
 
-
 namespace {
 
 /// The group of --subject: a subject of the CMU names (e.g. 16), or with --groups a group index.
@@ -87,7 +86,8 @@ void run_interpolate(const GpArgs& a) {
     const std::vector<bool>& mask = interpolation.observed;
     const InterpolationScores& s = interpolation.scores;
     const GaussianPrediction& p = interpolation.prediction;
-    if (!a.out.empty()) write_bvh(fs::path(a.out), reassemble_clip(md, p.mean, md.child_names[child] + "-interpolated"));
+    if (!a.out.empty())
+        write_bvh(fs::path(a.out), reassemble_clip(md, p.mean, md.child_names[child] + "-interpolated"));
     if (a.json) {
         JsonWriter w;
         w.begin_object();
@@ -145,7 +145,8 @@ void run_sample(const GpArgs& a) {
     so.seed = a.seed;
     so.group = group;
     ProgressBar bar("gp sample");
-    const NewChildren drawn = sample_new_children(md.data, model_spec(a, !a.mo_baseline), fit_options(a, &bar), a.n, so);
+    const NewChildren drawn =
+        sample_new_children(md.data, model_spec(a, !a.mo_baseline), fit_options(a, &bar), a.n, so);
     bar.clear();
     const FitResult& f = drawn.fit;
     const std::vector<MatX>& samples = drawn.samples;
@@ -175,11 +176,13 @@ void run_sample(const GpArgs& a) {
 void add_source_options(CLI::App* cmd, GpArgs& a) {
     cmd->add_option("db", a.db, "database file (with --set)");
     cmd->add_option("--set", a.set, "motion set: its samples are the children");
-    cmd->add_option("--clips", a.clips, "clip files (BVH, or AMC with the ASF beside it) as the children")->check(CLI::ExistingFile);
+    cmd->add_option("--clips", a.clips, "clip files (BVH, or AMC with the ASF beside it) as the children")
+        ->check(CLI::ExistingFile);
     cmd->add_option("--fps", a.fps, "frame rate override for the clip files (Hz)")->check(frame_rate_check());
     cmd->add_option("--frames", a.frames, "subsampled frames per child (default 90)")->check(CLI::Range(2, 100000));
     cmd->add_option("--duration", a.duration, "seconds from each child's start (default: the shortest child)");
-    cmd->add_option("--joints", a.joints, "only these joints' dofs (names; the root name selects the 6 root dofs)")->delimiter(',');
+    cmd->add_option("--joints", a.joints, "only these joints' dofs (names; the root name selects the 6 root dofs)")
+        ->delimiter(',');
     cmd->add_option("--exclude-joints", a.exclude,
                     "joints left out (default: clavicles, wrists, hands, fingers, thumbs, toes; 'none' keeps all)")
         ->delimiter(',');
@@ -191,12 +194,16 @@ void add_model_options(CLI::App* cmd, GpArgs& a) {
                     "2: trend -> child (default); 3: trend -> subject -> trial, subjects from the CMU names "
                     "(02_01 -> 02) or --groups")
         ->check(CLI::IsMember({2, 3}));
-    cmd->add_option("--groups", a.groups, "with --layers 3: one group index per child (0-based), e.g. 0,0,1,1")->delimiter(',');
+    cmd->add_option("--groups", a.groups, "with --layers 3: one group index per child (0-based), e.g. 0,0,1,1")
+        ->delimiter(',');
     cmd->add_option("--q", a.q, "LMC terms per layer (default 1 = ICM)")->check(CLI::Range(1, 10));
     cmd->add_option("--rank", a.rank, "rank of every W_q (default 1)")->check(CLI::Range(1, 50));
-    cmd->add_option("--kernel", a.kernel, "rbf | matern32 (default matern32)")->check(CLI::IsMember({"rbf", "matern32"}));
-    cmd->add_option("--restarts", a.restarts, "optimizer restarts (deterministic; default 1)")->check(CLI::Range(1, 100));
-    cmd->add_option("--max-iterations", a.max_iterations, "L-BFGS iterations per restart (default 300)")->check(CLI::Range(1, 100000));
+    cmd->add_option("--kernel", a.kernel, "rbf | matern32 (default matern32)")
+        ->check(CLI::IsMember({"rbf", "matern32"}));
+    cmd->add_option("--restarts", a.restarts, "optimizer restarts (deterministic; default 1)")
+        ->check(CLI::Range(1, 100));
+    cmd->add_option("--max-iterations", a.max_iterations, "L-BFGS iterations per restart (default 300)")
+        ->check(CLI::Range(1, 100000));
     cmd->add_option("--seed", a.seed, "seed of restarts, observed frames and samples (default 1)");
     cmd->add_flag("--json", a.json, "machine-readable output on stdout");
 }
@@ -221,9 +228,10 @@ void setup_gp(CLI::App& app) {
     add_source_options(fitc, *a);
     add_model_options(fitc, *a);
     fitc->add_flag("--mo-baseline", a->mo_baseline, "fit the flat multi-output GP (MOA) instead");
-    fitc->footer("Example:\n  mocapdb gp fit db.h5 --set walks --q 1 --kernel matern32 --json\n"
-                 "JSON keys: model, children, frames, duration_s, dofs, log_likelihood, status, seconds, evaluations,\n"
-                 "restarts[], noise_variance[], parameters{name: value}.");
+    fitc->footer(
+        "Example:\n  mocapdb gp fit db.h5 --set walks --q 1 --kernel matern32 --json\n"
+        "JSON keys: model, children, frames, duration_s, dofs, log_likelihood, status, seconds, evaluations,\n"
+        "restarts[], noise_variance[], parameters{name: value}.");
     fitc->callback([a] {
         keep_freed_memory();
         run_fit(*a);
@@ -237,10 +245,11 @@ void setup_gp(CLI::App& app) {
     interp->add_option("--observed", a->observed, "observed frames of that child, chosen at random (--seed)");
     interp->add_option("-o,--output", a->out, "write the interpolated child as BVH");
     interp->add_flag("--force", a->force, "overwrite the output");
-    interp->footer("Example:\n  mocapdb gp interpolate --clips 02_01.amc 02_02.amc 35_01.amc --child 02_01 --observed 40\n"
-                   "The model is fitted to the other children; the child's observed frames condition its posterior.\n"
-                   "JSON keys: model, children, frames, duration_s, dofs, child, observed_frames[], mse, smse, msll,\n"
-                   "predicted_values, fit{...}, mean[D][T] (normalized units).");
+    interp->footer(
+        "Example:\n  mocapdb gp interpolate --clips 02_01.amc 02_02.amc 35_01.amc --child 02_01 --observed 40\n"
+        "The model is fitted to the other children; the child's observed frames condition its posterior.\n"
+        "JSON keys: model, children, frames, duration_s, dofs, child, observed_frames[], mse, smse, msll,\n"
+        "predicted_values, fit{...}, mean[D][T] (normalized units).");
     interp->callback([a] {
         keep_freed_memory();
         run_interpolate(*a);
@@ -251,14 +260,16 @@ void setup_gp(CLI::App& app) {
     add_model_options(samp, *a);
     samp->add_flag("--mo-baseline", a->mo_baseline, "use the flat multi-output GP (MOA)");
     samp->add_option("--n", a->n, "number of samples (default 10)")->check(CLI::Range(1, 10000));
-    samp->add_option("--subject", a->subject,
-                     "with --layers 3: new trials of this subject (e.g. 16; with --groups a group index) instead of a new subject");
+    samp->add_option(
+        "--subject", a->subject,
+        "with --layers 3: new trials of this subject (e.g. 16; with --groups a group index) instead of a new subject");
     samp->add_option("-o,--output", a->out, "output folder (sample_001.bvh ..., trend.bvh)")->required();
     samp->add_flag("--force", a->force, "overwrite existing files");
-    samp->footer("Example:\n  mocapdb gp sample db.h5 --set walks --n 5 -o samples/\n"
-                 "Samples are the parent's posterior mean plus a draw of the child process (thesis §5.2). With --layers 3\n"
-                 "a sample is a new trial of a new subject (trend + subject and trial processes), or with --subject S a\n"
-                 "new trial of subject S (its posterior mean + the trial process).");
+    samp->footer(
+        "Example:\n  mocapdb gp sample db.h5 --set walks --n 5 -o samples/\n"
+        "Samples are the parent's posterior mean plus a draw of the child process (thesis §5.2). With --layers 3\n"
+        "a sample is a new trial of a new subject (trend + subject and trial processes), or with --subject S a\n"
+        "new trial of subject S (its posterior mean + the trial process).");
     samp->callback([a] {
         keep_freed_memory();
         run_sample(*a);
@@ -268,22 +279,24 @@ void setup_gp(CLI::App& app) {
     add_source_options(exp, *a);
     add_model_options(exp, *a);
     exp->add_flag("--artificial", a->artificial, "the artificial-data table (thesis §5.1.1, Tables 1-3)");
-    exp->add_option("--tests", a->tests, "with --artificial: which of the 9 tests (1-based; default all)")->delimiter(',');
+    exp->add_option("--tests", a->tests, "with --artificial: which of the 9 tests (1-based; default all)")
+        ->delimiter(',');
     exp->add_option("--runs", a->runs, "validation runs (default 5)")->check(CLI::Range(1, 1000));
     exp->add_option("--child", a->child, "test child for interpolation (name or index; default 0)");
-    exp->add_option("--observed-list", a->observed_list, "observed frames per test (default 40,30,20,10)")->delimiter(',');
-    exp->add_option("--eval-clips", a->eval_clips, "real motions to score synthesized samples against")->check(CLI::ExistingFile);
+    exp->add_option("--observed-list", a->observed_list, "observed frames per test (default 40,30,20,10)")
+        ->delimiter(',');
+    exp->add_option("--eval-clips", a->eval_clips, "real motions to score synthesized samples against")
+        ->check(CLI::ExistingFile);
     exp->add_option("--samples", a->samples, "synthesized samples per model (default 25)");
-    exp->footer("Examples:\n  mocapdb gp experiment --artificial --q 3 --kernel rbf --json\n"
-                "  mocapdb gp experiment --clips 02_01.amc 02_02.amc 35_01.amc --child 02_01 --eval-clips 16_15.amc 16_16.amc\n"
-                "Training uses the complete children; the test child's observed frames enter its posterior only.\n"
-                "Tables print mean ± 2 std over the runs (the thesis's convention); JSON gives mean and std.");
+    exp->footer(
+        "Examples:\n  mocapdb gp experiment --artificial --q 3 --kernel rbf --json\n"
+        "  mocapdb gp experiment --clips 02_01.amc 02_02.amc 35_01.amc --child 02_01 --eval-clips 16_15.amc 16_16.amc\n"
+        "Training uses the complete children; the test child's observed frames enter its posterior only.\n"
+        "Tables print mean ± 2 std over the runs (the thesis's convention); JSON gives mean and std.");
     exp->callback([a] {
         keep_freed_memory();
-        if (a->artificial)
-            run_experiment_artificial(*a);
-        else
-            run_experiment_replicates(*a);
+        if (a->artificial) run_experiment_artificial(*a);
+        else run_experiment_replicates(*a);
     });
 }
 

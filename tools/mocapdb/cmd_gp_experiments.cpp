@@ -15,7 +15,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace mocapdb::gp;
 
-
 void json_runs(JsonWriter& w, const ModelRuns& m) {
     w.begin_object();
     w.key("mse").begin_object().key("mean").value(m.mse.mean).key("std").value(m.mse.std).end_object();
@@ -49,8 +48,9 @@ void json_synthesis(JsonWriter& w, const SynthesisScores& s) {
 
 void run_experiment_artificial(const GpArgs& a) {
     if (a.layers == 3)
-        throw InvalidArgument("--artificial reproduces the thesis's two-layer experiment; --layers 3 needs real children "
-                              "(--set or --clips)");
+        throw InvalidArgument(
+            "--artificial reproduces the thesis's two-layer experiment; --layers 3 needs real children "
+            "(--set or --clips)");
     std::vector<ArtificialConfig> configs = thesis_artificial_configs();
     std::vector<std::size_t> which = a.tests;
     if (which.empty())
@@ -63,7 +63,8 @@ void run_experiment_artificial(const GpArgs& a) {
     ProgressBar bar("gp experiment");
     std::vector<ArtificialResult> results;
     for (std::size_t t : which) {
-        if (t < 1 || t > configs.size()) throw InvalidArgument("--tests: expected numbers 1.." + std::to_string(configs.size()));
+        if (t < 1 || t > configs.size())
+            throw InvalidArgument("--tests: expected numbers 1.." + std::to_string(configs.size()));
         o.progress = bar.callback();
         results.push_back(run_artificial(configs[t - 1], o));
     }
@@ -94,15 +95,16 @@ void run_experiment_artificial(const GpArgs& a) {
         std::cout << w.str();
         return;
     }
-    std::printf("artificial interpolation (thesis §5.1.1): %zu runs, 5 of 50 inputs observed on the test child, "
-                "models LMC Q=%zu %s; mean ± 2 std over runs\n",
-                a.runs, a.q, a.kernel.c_str());
+    std::printf(
+        "artificial interpolation (thesis §5.1.1): %zu runs, 5 of 50 inputs observed on the test child, "
+        "models LMC Q=%zu %s; mean ± 2 std over runs\n",
+        a.runs, a.q, a.kernel.c_str());
     std::printf("%-5s %-6s %-5s %-6s | %-18s %-18s | %-18s %-18s | %-19s %-19s | fit s\n", "test", "noise", "D", "R",
                 "MSE MOHGP", "MSE MOA", "SMSE MOHGP", "SMSE MOA", "MSLL MOHGP", "MSLL MOA");
     for (std::size_t i = 0; i < results.size(); ++i) {
         const auto& r = results[i];
-        std::printf("%-5zu %-6g %-5zu %-6zu | %-18s %-18s | %-18s %-18s | %-19s %-19s | %.1f/%.1f\n", which[i], r.config.noise,
-                    r.config.outputs, r.config.children, pm(r.mohgp.mse).c_str(), pm(r.moa.mse).c_str(),
+        std::printf("%-5zu %-6g %-5zu %-6zu | %-18s %-18s | %-18s %-18s | %-19s %-19s | %.1f/%.1f\n", which[i],
+                    r.config.noise, r.config.outputs, r.config.children, pm(r.mohgp.mse).c_str(), pm(r.moa.mse).c_str(),
                     pm(r.mohgp.smse).c_str(), pm(r.moa.smse).c_str(), pm(r.mohgp.msll).c_str(), pm(r.moa.msll).c_str(),
                     r.mohgp.fit_seconds, r.moa.fit_seconds);
     }
@@ -185,7 +187,8 @@ void run_experiment_replicates(const GpArgs& a) {
                 n_train - 1, a.q, a.kernel.c_str());
     if (!data.groups.empty()) {
         std::printf("groups (three layers):");
-        for (std::size_t r = 0; r < train_names.size(); ++r) std::printf(" %s=%zu", train_names[r].c_str(), data.groups[r]);
+        for (std::size_t r = 0; r < train_names.size(); ++r)
+            std::printf(" %s=%zu", train_names[r].c_str(), data.groups[r]);
         std::printf("\n");
     }
     print_fit_summary(model_label(a), interp.mohgp_fit);
@@ -197,9 +200,10 @@ void run_experiment_replicates(const GpArgs& a) {
                     pm(row.mohgp.smse).c_str(), pm(row.mohgp.msll).c_str(), pm(row.moa.mse, 4).c_str(),
                     pm(row.moa.smse).c_str(), pm(row.moa.msll).c_str());
     if (do_synthesis) {
-        std::printf("synthesis: %zu samples per model (trained on all %zu children), MCC / MLC mean ± 2 std per real motion;\n"
-                    "control = the real motions against each other\n",
-                    a.samples, n_train);
+        std::printf(
+            "synthesis: %zu samples per model (trained on all %zu children), MCC / MLC mean ± 2 std per real motion;\n"
+            "control = the real motions against each other\n",
+            a.samples, n_train);
         std::printf("%-16s | %-16s %-16s %-16s | %-15s %-15s %-15s\n", "real", "MCC MOHGP", "MCC MOA", "MCC control",
                     "MLC MOHGP", "MLC MOA", "MLC control");
         for (std::size_t i = 0; i < real.size(); ++i)

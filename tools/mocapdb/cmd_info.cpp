@@ -28,10 +28,8 @@ void print_json(const std::string& file, const Clip& clip) {
     j.key("frame_rate").value(clip.frame_rate);
     j.key("duration").value(clip.duration());
     j.key("channels").value(s.channel_count());
-    if (clip.frame_count() > 0)
-        j.key("figure_height_cm").value(figure_height(s, clip.frame(0)));
-    else
-        j.key("figure_height_cm").null();  // no frame to measure
+    if (clip.frame_count() > 0) j.key("figure_height_cm").value(figure_height(s, clip.frame(0)));
+    else j.key("figure_height_cm").null();  // no frame to measure
     j.key("root").value(s.joint(0).name);
     j.key("motion_root").value(s.joint(s.motion_root()).name);
     j.key("position_channels").value(to_string(s.position_channels()));
@@ -82,8 +80,7 @@ void print_text(const std::string& file, const Clip& clip, bool tree) {
     std::printf("\n");
     if (clip.frame_count() > 0)
         std::printf("height      %.1f cm (frame 0, lowest to highest joint)\n", figure_height(s, clip.frame(0)));
-    else
-        std::printf("height      - (no frames)\n");
+    else std::printf("height      - (no frames)\n");
     std::printf("channels    %zu per frame\n", s.channel_count());
     std::printf("frames      %zu\n", clip.frame_count());
     std::printf("frame rate  %.6g Hz\n", clip.frame_rate);
@@ -125,8 +122,9 @@ void setup_info(CLI::App& app) {
             return;
         }
         const Clip clip = load_clip(args->file, args->clip, std::cerr);
-        const std::string tall =
-            clip.frame_count() > 0 ? figure_height_warning(figure_height(*clip.skeleton, clip.frame(0))) : std::string();
+        const std::string tall = clip.frame_count() > 0
+                                     ? figure_height_warning(figure_height(*clip.skeleton, clip.frame(0)))
+                                     : std::string();
         if (!tall.empty()) std::cerr << "mocapdb: warning: " << args->file << ": " << tall << " (--bvh-positions)\n";
         if (args->json) {
             print_json(args->file, clip);

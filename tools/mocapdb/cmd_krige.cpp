@@ -20,7 +20,7 @@ struct KrigeArgs {
     double nugget = 0.0;
     double sill = -1.0;
     double range = -1.0;
-    std::string fit;    // sph | stable | stable:P | auto
+    std::string fit;  // sph | stable | stable:P | auto
     bool loo = false;
 };
 
@@ -28,7 +28,8 @@ struct KrigeArgs {
 
 void setup_krige(CLI::App& app) {
     auto args = std::make_shared<KrigeArgs>();
-    CLI::App* cmd = app.add_subcommand("krige", "Ordinary / universal kriging of a table at query points (geostatistics check)");
+    CLI::App* cmd =
+        app.add_subcommand("krige", "Ordinary / universal kriging of a table at query points (geostatistics check)");
     cmd->footer(
         "The variance is the kriging (prediction-error) variance; with --trend-fit gls (default) it is the\n"
         "standard universal-kriging variance that gstat reports. paper_variance = sum_i b_i gamma(|c - c_i|)\n"
@@ -140,20 +141,22 @@ void setup_krige(CLI::App& app) {
         if (st.duplicates_merged > 0) std::cout << ", " << st.duplicates_merged << " duplicate points merged";
         if (st.trend_rank_deficient) std::cout << ", trend rank deficient";
         std::cout << ")\n";
-        std::cout << std::setw(6) << "row" << std::setw(20) << "prediction" << std::setw(20) << "variance" << std::setw(16)
-                  << "reliability" << "\n";
+        std::cout << std::setw(6) << "row" << std::setw(20) << "prediction" << std::setw(20) << "variance"
+                  << std::setw(16) << "reliability"
+                  << "\n";
         for (Eigen::Index q = 0; q < queries.rows(); ++q) {
-            std::cout << std::setw(6) << q + 1 << std::setw(20) << pred(q) << std::setw(20) << b.variance(q) << std::setw(16)
-                      << b.reliability(q) << "\n";
+            std::cout << std::setw(6) << q + 1 << std::setw(20) << pred(q) << std::setw(20) << b.variance(q)
+                      << std::setw(16) << b.reliability(q) << "\n";
         }
         if (loo) {
             std::cout << "leave-one-out: mse " << loo->mse << "\n";
-            std::cout << std::setw(6) << "row" << std::setw(20) << "observed" << std::setw(20) << "prediction" << std::setw(20)
-                      << "variance" << std::setw(20) << "residual" << std::setw(16) << "zscore" << "\n";
+            std::cout << std::setw(6) << "row" << std::setw(20) << "observed" << std::setw(20) << "prediction"
+                      << std::setw(20) << "variance" << std::setw(20) << "residual" << std::setw(16) << "zscore"
+                      << "\n";
             for (Eigen::Index i = 0; i < data.values.size(); ++i) {
-                std::cout << std::setw(6) << i + 1 << std::setw(20) << data.values(i) << std::setw(20) << loo->prediction(i, 0)
-                          << std::setw(20) << loo->variance(i) << std::setw(20) << loo->residual(i, 0) << std::setw(16)
-                          << loo->zscore(i, 0) << "\n";
+                std::cout << std::setw(6) << i + 1 << std::setw(20) << data.values(i) << std::setw(20)
+                          << loo->prediction(i, 0) << std::setw(20) << loo->variance(i) << std::setw(20)
+                          << loo->residual(i, 0) << std::setw(16) << loo->zscore(i, 0) << "\n";
             }
         }
     });

@@ -33,12 +33,12 @@ void print_json(const std::string& db, const workflow::PackDatabaseOutcome& o) {
 
 void print_text(const std::string& db, const workflow::PackDatabaseOutcome& o) {
     const PackedTierRecord& t = o.tier;
-    std::printf("packed %zu clips (%zu frames, %.1f s of motion) of %s at max error %g cm%s: %zu bytes, %.1f:1 against "
-                "float32 channels; max %.4f cm, p99 %.4f cm, RMSE %.4f cm; %.2f s; file now %.2f MB\n",
-                t.clips, t.frames, o.motion_seconds, db.c_str(), t.max_error_cm,
-                o.replaced ? " (replacing the earlier packed tier)" : "", static_cast<std::size_t>(t.bytes),
-                o.ratio_float32(), t.max_cm, t.p99_cm, t.rmse_cm, o.seconds,
-                static_cast<double>(o.file_bytes) / 1e6);
+    std::printf(
+        "packed %zu clips (%zu frames, %.1f s of motion) of %s at max error %g cm%s: %zu bytes, %.1f:1 against "
+        "float32 channels; max %.4f cm, p99 %.4f cm, RMSE %.4f cm; %.2f s; file now %.2f MB\n",
+        t.clips, t.frames, o.motion_seconds, db.c_str(), t.max_error_cm,
+        o.replaced ? " (replacing the earlier packed tier)" : "", static_cast<std::size_t>(t.bytes), o.ratio_float32(),
+        t.max_cm, t.p99_cm, t.rmse_cm, o.seconds, static_cast<double>(o.file_bytes) / 1e6);
     if (o.budget)
         std::printf("budget %zu bytes: the smallest max error that fits is %g cm (%zu bytes, %zu E tried)\n",
                     static_cast<std::size_t>(o.budget->max_bytes), t.max_error_cm, static_cast<std::size_t>(t.bytes),
@@ -53,8 +53,8 @@ void print_text(const std::string& db, const workflow::PackDatabaseOutcome& o) {
     for (std::size_t g = 0; g < t.groups.size(); ++g) {
         const PackedGroupRecord& r = t.groups[g];
         std::printf("%-6s %-16s %8.6g %6zu %9zu %11zu %7.1f:1 %9.4f %9.4f %9.4f\n", r.name.c_str(), r.skeleton.c_str(),
-                    r.frame_rate, r.clips.size(), r.frames, static_cast<std::size_t>(r.bytes),
-                    o.group_ratio_float32(g), r.max_cm, r.p99_cm, r.rmse_cm);
+                    r.frame_rate, r.clips.size(), r.frames, static_cast<std::size_t>(r.bytes), o.group_ratio_float32(g),
+                    r.max_cm, r.p99_cm, r.rmse_cm);
     }
 }
 
@@ -69,8 +69,9 @@ void run_pack(const PackArgs& a) {
             j.end_object();
             std::fputs(j.str().c_str(), stdout);
         } else {
-            std::printf("dropped the lossless channels of %zu clips of %s: they are now stored in the packed tier only\n",
-                        dropped, a.db.c_str());
+            std::printf(
+                "dropped the lossless channels of %zu clips of %s: they are now stored in the packed tier only\n",
+                dropped, a.db.c_str());
         }
         return;
     }
@@ -96,7 +97,8 @@ void run_pack(const PackArgs& a) {
 
 void setup_pack(CLI::App& app) {
     auto a = std::make_shared<PackArgs>();
-    CLI::App* cmd = app.add_subcommand("pack", "Store every clip in the database's error-bounded packed tier (/packed)");
+    CLI::App* cmd =
+        app.add_subcommand("pack", "Store every clip in the database's error-bounded packed tier (/packed)");
     cmd->footer(
         "Groups the clips by skeleton topology and frame rate, packs each group so that every joint and\n"
         "end site of every source frame is within --max-error-cm of the source clip (forward kinematics,\n"
@@ -124,7 +126,8 @@ void setup_pack(CLI::App& app) {
         "  mocapdb pack cmu.h5 --max-bytes 5000000 --force\n"
         "  mocapdb export cmu.h5 --clip 16_15 --from-packed -o 16_15.bvh");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
-    auto* bound = cmd->add_option("--max-error-cm", a->max_error_cm, "E: bound on every joint's position error (cm, > 0)");
+    auto* bound =
+        cmd->add_option("--max-error-cm", a->max_error_cm, "E: bound on every joint's position error (cm, > 0)");
     auto* budget = cmd->add_option("--max-bytes", a->max_bytes,
                                    "N: pack at the smallest max error whose bytes fit N (instead of --max-error-cm)")
                        ->check(CLI::Range(std::uint64_t{1}, std::numeric_limits<std::uint64_t>::max()))

@@ -87,7 +87,8 @@ void run_query(const QueryArgs& a) {
         const MatX p = compression::pose_joint_positions(sk, pose);
         for (std::size_t k = 0; k < sk.size(); ++k) {
             const auto r = static_cast<Eigen::Index>(3 * k);
-            std::printf("  %-16s %10.3f %10.3f %10.3f cm\n", sk.joint(k).name.c_str(), p(r, 0), p(r + 1, 0), p(r + 2, 0));
+            std::printf("  %-16s %10.3f %10.3f %10.3f cm\n", sk.joint(k).name.c_str(), p(r, 0), p(r + 1, 0),
+                        p(r + 2, 0));
         }
     } else {
         const FrameMatrix ch = from_pose_vectors(sk, pose, Canonicalization{});

@@ -76,8 +76,8 @@ void run_reduce(const ReduceArgs& a) {
                 outcome.model_kind.c_str(), outcome.kernel.to_string().c_str(), r.kept.size(), set.samples.size(),
                 r.stopped_on_threshold ? "" : " (stopped on the minimum sample count)");
     for (std::size_t k = 0; k < r.removed.size(); ++k)
-        std::printf("  removed %-20s leave-one-out reliability %.3f\n", labels[static_cast<std::size_t>(r.removed[k])].c_str(),
-                    r.removed_reliability[k]);
+        std::printf("  removed %-20s leave-one-out reliability %.3f\n",
+                    labels[static_cast<std::size_t>(r.removed[k])].c_str(), r.removed_reliability[k]);
     if (!r.max_reliability.empty() && r.stopped_on_threshold)
         std::printf("  next candidate's reliability %.3f < tau\n", r.max_reliability.back());
     if (a.apply) std::printf("  reduced set '%s' %s in %s\n", target.c_str(), applied.c_str(), a.db.c_str());
@@ -101,7 +101,8 @@ void setup_reduce(CLI::App& app) {
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     cmd->add_option("--set", a->set, "motion set")->required();
     cmd->add_option("--tau", a->tau, "reliability threshold in [0, 1]")->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--min-samples", a->min_samples, "never keep fewer samples (0 = trend size + 1)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--min-samples", a->min_samples, "never keep fewer samples (0 = trend size + 1)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--apply", a->apply, "store the reduced set");
     cmd->add_option("--name", a->name, "name of the reduced set (default SET-reduced)");
     cmd->add_flag("--force", a->force, "replace an existing set of that name");

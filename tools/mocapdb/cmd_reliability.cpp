@@ -74,7 +74,8 @@ void run_reliability(const ReliabilityArgs& a) {
         const auto eq = f.rfind('=');
         if (eq == std::string::npos) throw InvalidArgument("--fix: expected AXIS=V, got '" + f + "'");
         const Eigen::Index k = parameter_index(names, f.substr(0, eq), "--fix");
-        if (k == gx.axis || k == gy.axis) throw InvalidArgument("--fix: '" + names[static_cast<std::size_t>(k)] + "' is a grid axis");
+        if (k == gx.axis || k == gy.axis)
+            throw InvalidArgument("--fix: '" + names[static_cast<std::size_t>(k)] + "' is a grid axis");
         base(k) = number(f.substr(eq + 1), "--fix " + names[static_cast<std::size_t>(k)]);
     }
     const workflow::ReliabilityMap m = workflow::reliability_map(*model, gx, gy, base);
@@ -113,10 +114,11 @@ void run_reliability(const ReliabilityArgs& a) {
         std::fputs(j.str().c_str(), stdout);
         return;
     }
-    std::printf("reliability of '%s' over %s x %s (%lld x %lld cells): min %.3f, mean %.3f, max %.3f; "
-                "%.0f%% of the slice has rho >= 0.85\n",
-                a.set.c_str(), spec.x_label.c_str(), spec.y_label.c_str(), static_cast<long long>(gx.count),
-                static_cast<long long>(gy.count), m.rho_min, m.rho_mean, m.rho_max, 100.0 * trusted);
+    std::printf(
+        "reliability of '%s' over %s x %s (%lld x %lld cells): min %.3f, mean %.3f, max %.3f; "
+        "%.0f%% of the slice has rho >= 0.85\n",
+        a.set.c_str(), spec.x_label.c_str(), spec.y_label.c_str(), static_cast<long long>(gx.count),
+        static_cast<long long>(gy.count), m.rho_min, m.rho_mean, m.rho_max, 100.0 * trusted);
     std::printf("  wrote %s%s%s\n", a.svg.c_str(), a.csv.empty() ? "" : " and ", a.csv.c_str());
 }
 

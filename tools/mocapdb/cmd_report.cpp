@@ -78,7 +78,8 @@ void setup_report(CLI::App& app) {
     auto c = std::make_shared<CollectionReportArgs>();
     auto collection = std::make_shared<bool>(false);
     CLI::App* cmd = app.add_subcommand(
-        "report", "Rate-distortion table of a set (Tucker against PCA, zfp, deflate), or of the whole collection's packed tier beside ACL");
+        "report",
+        "Rate-distortion table of a set (Tucker against PCA, zfp, deflate), or of the whole collection's packed tier beside ACL");
     cmd->footer(
         "Examples:\n"
         "  mocapdb report db.h5 --set walks\n"
@@ -110,7 +111,8 @@ void setup_report(CLI::App& app) {
         "reference {files, comparable, reason, clips_missing, settings[]} or null.");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     auto* set = cmd->add_option("--set", a->set, "motion set (aligned)");
-    auto* whole = cmd->add_flag("--collection", *collection, "the whole collection's packed tier (every clip)")->excludes(set);
+    auto* whole =
+        cmd->add_flag("--collection", *collection, "the whole collection's packed tier (every clip)")->excludes(set);
     auto* targets = cmd->add_option("--targets", a->targets, "max-error targets in cm, comma separated")
                         ->delimiter(',')
                         ->check(CLI::PositiveNumber);
@@ -118,18 +120,23 @@ void setup_report(CLI::App& app) {
     cmd->add_option("--bits", a->bits, "quantization bits of tucker+residual")->check(CLI::Range(4, 16));
     cmd->add_flag("--no-hooi", a->no_hooi, "skip the HOOI rows");
     auto collection_only = [&](CLI::Option* o) { o->needs(whole); };
-    collection_only(cmd->add_option("--max-error-cm", c->max_error_cm, "--collection: bounds E in cm, comma separated (default 1,0.5,0.1,0.03,0.01)")
+    collection_only(cmd->add_option("--max-error-cm", c->max_error_cm,
+                                    "--collection: bounds E in cm, comma separated (default 1,0.5,0.1,0.03,0.01)")
                         ->delimiter(',')
                         ->check(CLI::PositiveNumber));
     collection_only(cmd->add_option("--reference", c->references, "--collection: per-clip ACL table (CSV); repeatable")
                         ->check(CLI::ExistingFile));
-    collection_only(cmd->add_option("--source-dir", c->source_dirs,
-                                    "--collection: folder of the clips' source files (subfolders searched), for gzip -9; repeatable")
-                        ->check(CLI::ExistingDirectory));
-    collection_only(cmd->add_option("--threads", c->threads, "--collection: encoder threads")->check(CLI::Range(1, 64)));
+    collection_only(
+        cmd->add_option(
+               "--source-dir", c->source_dirs,
+               "--collection: folder of the clips' source files (subfolders searched), for gzip -9; repeatable")
+            ->check(CLI::ExistingDirectory));
+    collection_only(
+        cmd->add_option("--threads", c->threads, "--collection: encoder threads")->check(CLI::Range(1, 64)));
     collection_only(cmd->add_option("--poses", c->poses, "--collection: random poses timed per E (default 20000)"));
     cmd->add_option("--csv", a->csv, "also write the table as CSV");
-    cmd->add_option("--svg", a->svg, "also write an SVG chart (--set: ratio against max error; --collection: bytes against max error)");
+    cmd->add_option("--svg", a->svg,
+                    "also write an SVG chart (--set: ratio against max error; --collection: bytes against max error)");
     cmd->add_flag("--json", a->json, "print the table as JSON");
     cmd->add_flag("--force", a->force, "overwrite existing --csv/--svg files");
     cmd->callback([a, c, collection, cmd] {

@@ -48,10 +48,10 @@ void print_set(const Database& db, const std::string& name, bool json) {
         j.key("name").value(set.name);
         j.key("parameter_source").value(set.parameter_source);
         j.key("parameters").begin_array();
-        for (std::size_t p = 0; p < set.parameter_names.size(); ++p)
-        {
+        for (std::size_t p = 0; p < set.parameter_names.size(); ++p) {
             j.begin_object().key("name").value(set.parameter_names[p]).key("unit").value(set.parameter_units[p]);
-            if (set.parameter_periods.size() != 0) j.key("period").value(set.parameter_periods(static_cast<Eigen::Index>(p)));
+            if (set.parameter_periods.size() != 0)
+                j.key("period").value(set.parameter_periods(static_cast<Eigen::Index>(p)));
             j.end_object();
         }
         j.end_array();
@@ -68,14 +68,24 @@ void print_set(const Database& db, const std::string& name, bool json) {
             j.begin_object().key("label").value(labels[i]).key("clip").value(s.clip);
             j.key("begin").value(s.begin).key("end").value(s.end);
             j.key("values").begin_array();
-            for (Eigen::Index p = 0; p < set.parameters.cols(); ++p) j.value(set.parameters(static_cast<Eigen::Index>(i), p));
+            for (Eigen::Index p = 0; p < set.parameters.cols(); ++p)
+                j.value(set.parameters(static_cast<Eigen::Index>(i), p));
             j.end_array().end_object();
         }
         j.end_array();
         j.key("dropouts_checked").value(set.dropouts_checked);
         j.key("repairs").begin_array();
         for (const RepairedFrames& r : set.repairs)
-            j.begin_object().key("clip").value(r.clip).key("joint").value(r.joint).key("begin").value(r.begin).key("end").value(r.end).end_object();
+            j.begin_object()
+                .key("clip")
+                .value(r.clip)
+                .key("joint")
+                .value(r.joint)
+                .key("begin")
+                .value(r.begin)
+                .key("end")
+                .value(r.end)
+                .end_object();
         j.end_array().end_object();
         std::cout << j.str();
         return;
@@ -84,16 +94,19 @@ void print_set(const Database& db, const std::string& name, bool json) {
                 set.parameter_source.empty() ? "nowhere" : set.parameter_source.c_str());
     if (aligned)
         std::printf("aligned: %s, %lld frames, %lld dofs, reference sample %zu\n", aligned->method.c_str(),
-                    static_cast<long long>(aligned->frames()), static_cast<long long>(aligned->dofs()), aligned->reference);
+                    static_cast<long long>(aligned->frames()), static_cast<long long>(aligned->dofs()),
+                    aligned->reference);
     std::printf("%-22s", "sample");
     for (std::size_t p = 0; p < set.parameter_names.size(); ++p) {
-        const std::string h = set.parameter_names[p] + (set.parameter_units[p].empty() ? "" : " [" + set.parameter_units[p] + "]");
+        const std::string h =
+            set.parameter_names[p] + (set.parameter_units[p].empty() ? "" : " [" + set.parameter_units[p] + "]");
         std::printf(" %14s", h.c_str());
     }
     std::printf("\n");
     for (std::size_t i = 0; i < set.samples.size(); ++i) {
         std::printf("%-22s", labels[i].c_str());
-        for (Eigen::Index p = 0; p < set.parameters.cols(); ++p) std::printf(" %14.4f", set.parameters(static_cast<Eigen::Index>(i), p));
+        for (Eigen::Index p = 0; p < set.parameters.cols(); ++p)
+            std::printf(" %14.4f", set.parameters(static_cast<Eigen::Index>(i), p));
         std::printf("\n");
     }
     for (Eigen::Index p = 0; p < set.parameter_periods.size(); ++p) {
@@ -144,9 +157,14 @@ void setup_set(CLI::App& app) {
     create->add_option("--clips", c->request.clips, "clip ids or shell patterns (quoted), in sample order")->required();
     create->add_option("--params", c->request.params_csv, "control parameters from a CSV")->check(CLI::ExistingFile);
     create->add_option("--extract", c->request.extract, "control parameters measured from the motion");
-    create->add_option("--periodic", c->periodic, "NAME=PERIOD: a periodic parameter (e.g. bearing=360 for degrees); 'bearing' extracted is periodic by itself");
-    create->add_option("--segment", c->request.segment, "auto | none | gait[:N] | window:LENGTH[:HOP] | flight[:BEFORE[:AFTER]] (default auto)");
-    create->add_option("--feet", c->feet, "left,right foot joints for gait cycles and contacts, e.g. ltoes,rtoes (default: found by name)");
+    create->add_option(
+        "--periodic", c->periodic,
+        "NAME=PERIOD: a periodic parameter (e.g. bearing=360 for degrees); 'bearing' extracted is periodic by itself");
+    create->add_option("--segment", c->request.segment,
+                       "auto | none | gait[:N] | window:LENGTH[:HOP] | flight[:BEFORE[:AFTER]] (default auto)");
+    create->add_option(
+        "--feet", c->feet,
+        "left,right foot joints for gait cycles and contacts, e.g. ltoes,rtoes (default: found by name)");
     create->add_flag("--force,--replace", c->request.replace, "replace an existing set of that name");
     create->add_flag("--json", c->json, "print one JSON object (the keys of Python's mocapdb.create_set)");
     create->callback([c] { run_create(*c); });
@@ -199,9 +217,10 @@ void setup_set(CLI::App& app) {
     CLI::App* show = cmd->add_subcommand("show", "Show a motion set's samples and control parameters");
     show->add_option("db", *show_db, "database file")->required()->check(CLI::ExistingFile);
     show->add_option("name", *show_name, "set name")->required();
-    show->add_flag("--json", *show_json,
-                   "print JSON: {name, parameter_source, parameters:[{name,unit}], aligned, samples:[{label,clip,begin,end,values}],\n"
-                   "dropouts_checked, repairs:[{clip,joint,begin,end}]} (repaired solver dropouts, frames [begin, end))");
+    show->add_flag(
+        "--json", *show_json,
+        "print JSON: {name, parameter_source, parameters:[{name,unit}], aligned, samples:[{label,clip,begin,end,values}],\n"
+        "dropouts_checked, repairs:[{clip,joint,begin,end}]} (repaired solver dropouts, frames [begin, end))");
     show->callback([show_db, show_name, show_json] { print_set(Database(*show_db), *show_name, *show_json); });
 }
 

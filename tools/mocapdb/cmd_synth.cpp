@@ -94,7 +94,8 @@ void run_synth(const SynthArgs& a) {
     if (measured.size() == c.size()) {
         std::printf("  measured:");
         for (Eigen::Index k = 0; k < c.size(); ++k)
-            std::printf("%s %s = %g", k ? "," : "", set.parameter_names[static_cast<std::size_t>(k)].c_str(), measured(k));
+            std::printf("%s %s = %g", k ? "," : "", set.parameter_names[static_cast<std::size_t>(k)].c_str(),
+                        measured(k));
         std::printf("\n");
     }
     std::printf("  time: load + precompute %.3f s, synthesis %.4f s\n", load_s, synth_s);
@@ -117,7 +118,8 @@ void setup_synth(CLI::App& app) {
     cmd->add_option("--param", a->param, "control parameters v1,v2,...")->required();
     cmd->add_option("-o,--output", a->out, "BVH file to write")->required();
     cmd->add_option("--lod", a->lod, "level of detail: ranks R1xR2xR3");
-    cmd->add_option("--timing", a->timing, "timing kernel: shared | separate")->check(CLI::IsMember({"shared", "separate"}));
+    cmd->add_option("--timing", a->timing, "timing kernel: shared | separate")
+        ->check(CLI::IsMember({"shared", "separate"}));
     cmd->add_flag("--naive", a->naive, "kriging on the uncompressed aligned tensor");
     cmd->add_flag("--json", a->json, "machine-readable output");
     cmd->add_flag("--force", a->force, "overwrite an existing output file");

@@ -20,7 +20,8 @@ struct VariogramArgs {
 
 void setup_variogram(CLI::App& app) {
     auto args = std::make_shared<VariogramArgs>();
-    CLI::App* cmd = app.add_subcommand("variogram", "Experimental variogram and model fit of a table (geostatistics check)");
+    CLI::App* cmd =
+        app.add_subcommand("variogram", "Experimental variogram and model fit of a table (geostatistics check)");
     cmd->footer(
         "Bins are (lower, upper] of width cutoff/bins; pairs at distance 0 count in bin 1. The Cressie-Hawkins\n"
         "estimate uses the denominator 0.457 + 0.494/n + 0.045/n^2 (gstat omits the last term).\n"
@@ -31,7 +32,8 @@ void setup_variogram(CLI::App& app) {
         "  mocapdb variogram --data meuse.csv --coords x,y --value logzinc --cutoff 1600\n"
         "  mocapdb variogram --data pts.csv --coords x,y,z --value v --trend linear --fit auto --json");
     add_table_options(*cmd, args->table);
-    cmd->add_option("--fit", args->fit, "fit a model: sph | stable (p by LOO) | stable:P | auto (p in 0,0.2..2 by LOO)");
+    cmd->add_option("--fit", args->fit,
+                    "fit a model: sph | stable (p by LOO) | stable:P | auto (p in 0,0.2..2 by LOO)");
     cmd->callback([args] {
         const TableKrigingArgs& t = args->table;
         const TableData data = load_table(t);
@@ -69,14 +71,18 @@ void setup_variogram(CLI::App& app) {
         }
         std::cout << "experimental variogram (" << kriging::to_string(ev.estimator) << "), " << ev.bins()
                   << " bins of width " << ev.width << " over [0, " << ev.cutoff << "], largest pair distance "
-                  << ev.max_distance << ", trend " << t.trend << (t.normalize ? ", normalized coordinates" : "") << "\n";
-        std::cout << std::setw(5) << "bin" << std::setw(9) << "np" << std::setw(20) << "dist" << std::setw(20) << "gamma" << "\n";
+                  << ev.max_distance << ", trend " << t.trend << (t.normalize ? ", normalized coordinates" : "")
+                  << "\n";
+        std::cout << std::setw(5) << "bin" << std::setw(9) << "np" << std::setw(20) << "dist" << std::setw(20)
+                  << "gamma"
+                  << "\n";
         std::cout << std::setprecision(12);
         for (int u = 0; u < ev.bins(); ++u) {
-            std::cout << std::setw(5) << u + 1 << std::setw(9) << ev.npairs[static_cast<std::size_t>(u)] << std::setw(20)
-                      << ev.dist(u) << std::setw(20) << ev.gamma(u) << "\n";
+            std::cout << std::setw(5) << u + 1 << std::setw(9) << ev.npairs[static_cast<std::size_t>(u)]
+                      << std::setw(20) << ev.dist(u) << std::setw(20) << ev.gamma(u) << "\n";
         }
-        if (ev.zero_distance_pairs > 0) std::cout << "(" << ev.zero_distance_pairs << " pairs at distance 0 in bin 1)\n";
+        if (ev.zero_distance_pairs > 0)
+            std::cout << "(" << ev.zero_distance_pairs << " pairs at distance 0 in bin 1)\n";
         if (fit) std::cout << describe_fit(*fit, t);
     });
 }

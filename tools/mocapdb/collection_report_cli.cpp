@@ -73,8 +73,8 @@ std::string render_csv(const eval::CollectionReport& r, const Reference& ref) {
     }
     const eval::LosslessFigures& l = r.lossless;
     const double bps = r.lossless_bytes_per_second();
-    s << "lossless,0," << l.bytes << ',' << l.float32_bytes << ',' << l.ratio_float32() << ',' << bps << ",,0,0,0,,,,,,,,"
-      << (l.gzip_available ? std::to_string(l.gzip_bytes) : "") << ','
+    s << "lossless,0," << l.bytes << ',' << l.float32_bytes << ',' << l.ratio_float32() << ',' << bps
+      << ",,0,0,0,,,,,,,," << (l.gzip_available ? std::to_string(l.gzip_bytes) : "") << ','
       << (l.gzip_available ? general(l.gzip_ratio_float32(), 9) : "") << ",,,,\n";
     return s.str();
 }
@@ -108,12 +108,16 @@ std::string render_svg(const CollectionReportArgs& a, const eval::CollectionRepo
             }
     if (hi > 0) {
         if (r.lossless.bytes > 0)
-            spec.series.push_back({"lossless tier (exact, flat)", {lo, hi},
+            spec.series.push_back({"lossless tier (exact, flat)",
+                                   {lo, hi},
                                    {static_cast<double>(r.lossless.bytes), static_cast<double>(r.lossless.bytes)}});
         if (r.lossless.gzip_available)
-            spec.series.push_back({"gzip -9 source text (flat)", {lo, hi},
-                                   {static_cast<double>(r.lossless.gzip_bytes), static_cast<double>(r.lossless.gzip_bytes)}});
-        spec.series.push_back({"float32 channels (flat)", {lo, hi},
+            spec.series.push_back(
+                {"gzip -9 source text (flat)",
+                 {lo, hi},
+                 {static_cast<double>(r.lossless.gzip_bytes), static_cast<double>(r.lossless.gzip_bytes)}});
+        spec.series.push_back({"float32 channels (flat)",
+                               {lo, hi},
                                {static_cast<double>(r.float32_bytes), static_cast<double>(r.float32_bytes)}});
     }
     spec.note = a.db + ": " + std::to_string(r.clips) + " clips, " + std::to_string(r.frames) + " frames, " +
@@ -138,8 +142,8 @@ std::string render_text(const CollectionReportArgs& a, const eval::CollectionRep
         if (ref.unusable.empty()) {
             out += " (" + std::to_string(ref.acl.requested) + " clips matched; settings";
             for (const eval::AclSetting& s : ref.acl.settings)
-                out += " " + general(s.precision_cm) + " cm: " + std::to_string(s.bytes) + " B max " + fixed(s.max_cm, 4) +
-                       " rmse " + fixed(s.rmse_cm, 4) + ";";
+                out += " " + general(s.precision_cm) + " cm: " + std::to_string(s.bytes) + " B max " +
+                       fixed(s.max_cm, 4) + " rmse " + fixed(s.rmse_cm, 4) + ";";
             out.back() = ')';
             out += "\n";
         } else {
@@ -148,15 +152,16 @@ std::string render_text(const CollectionReportArgs& a, const eval::CollectionRep
     }
     out += "\n";
     std::snprintf(line, sizeof line, "%6s %11s %8s %8s %8s %9s %9s %9s %7s %8s %7s %7s %12s %9s %12s %9s\n", "E cm",
-                  "bytes", "vs f32", "B/s", "bit/j/f", "max cm", "p99 cm", "rmse cm", "enc s", "pose us", "idx us", "MB/s",
-                  "ACL B @max", "x smaller", "ACL B @rmse", "x smaller");
+                  "bytes", "vs f32", "B/s", "bit/j/f", "max cm", "p99 cm", "rmse cm", "enc s", "pose us", "idx us",
+                  "MB/s", "ACL B @max", "x smaller", "ACL B @rmse", "x smaller");
     out += line;
     for (std::size_t t = 0; t < r.targets.size(); ++t) {
         const eval::TargetFigures& tf = r.targets[t];
         const eval::PackedFigures& f = tf.total;
         const bool usable = ref.given && ref.unusable.empty();
         const eval::AclComparison c = usable ? ref.per_target[t] : eval::AclComparison{};
-        std::snprintf(line, sizeof line, "%6s %11llu %7.2f:1 %8.0f %8.3f %9.5f %9.5f %9.5f %7.2f %8.1f %7.2f %7.1f %12s %9s %12s %9s\n",
+        std::snprintf(line, sizeof line,
+                      "%6s %11llu %7.2f:1 %8.0f %8.3f %9.5f %9.5f %9.5f %7.2f %8.1f %7.2f %7.1f %12s %9s %12s %9s\n",
                       general(tf.max_error_cm).c_str(), static_cast<unsigned long long>(f.bytes), f.ratio_float32(),
                       f.bytes_per_second(), f.bits_per_joint_frame(), f.max_cm, f.p99_cm, f.rmse_cm, f.encode_seconds,
                       tf.pose_microseconds, tf.indexed_pose_microseconds, f.stream_mb_per_second(),
@@ -167,16 +172,17 @@ std::string render_text(const CollectionReportArgs& a, const eval::CollectionRep
         out += line;
     }
     const eval::LosslessFigures& l = r.lossless;
-    std::snprintf(line, sizeof line,
-                  "\nlossless tier: %llu bytes in the file (channel data %llu, HDF5 objects %llu), %.2f:1 against float32 "
-                  "channels; ",
-                  static_cast<unsigned long long>(l.bytes), static_cast<unsigned long long>(l.channel_bytes),
-                  static_cast<unsigned long long>(l.bytes - std::min(l.bytes, l.channel_bytes)), l.ratio_float32());
+    std::snprintf(
+        line, sizeof line,
+        "\nlossless tier: %llu bytes in the file (channel data %llu, HDF5 objects %llu), %.2f:1 against float32 "
+        "channels; ",
+        static_cast<unsigned long long>(l.bytes), static_cast<unsigned long long>(l.channel_bytes),
+        static_cast<unsigned long long>(l.bytes - std::min(l.bytes, l.channel_bytes)), l.ratio_float32());
     out += line;
     if (l.gzip_available) {
-        std::snprintf(line, sizeof line, "gzip -9 of the source text: %llu bytes, %.2f:1 (lossless tier %.2fx smaller)\n",
-                      static_cast<unsigned long long>(l.gzip_bytes), l.gzip_ratio_float32(),
-                      l.gzip_over_lossless());
+        std::snprintf(line, sizeof line,
+                      "gzip -9 of the source text: %llu bytes, %.2f:1 (lossless tier %.2fx smaller)\n",
+                      static_cast<unsigned long long>(l.gzip_bytes), l.gzip_ratio_float32(), l.gzip_over_lossless());
         out += line;
     } else {
         out += "gzip -9 of the source text: not available (" + l.gzip_reason + ")\n";
@@ -205,9 +211,10 @@ std::string render_text(const CollectionReportArgs& a, const eval::CollectionRep
                general(r.targets[t].max_error_cm) + " cm";
     out += "); MB/s: float32 channels decoded per second, streaming.\n";
     if (ref.given && ref.unusable.empty())
-        out += "ACL: bytes interpolated log-linearly at our measured error over the same clips (as compare.py); "
-               "'outside': our error is above ACL's measured range (no extrapolation); '>=': our error is below "
-               "that of ACL's most precise setting, whose bytes are given (a lower bound on ACL's bytes at our error).\n";
+        out +=
+            "ACL: bytes interpolated log-linearly at our measured error over the same clips (as compare.py); "
+            "'outside': our error is above ACL's measured range (no extrapolation); '>=': our error is below "
+            "that of ACL's most precise setting, whose bytes are given (a lower bound on ACL's bytes at our error).\n";
     return out;
 }
 

@@ -9,9 +9,9 @@ namespace mocapdb::cli {
 
 struct CollectionReportArgs {
     std::string db;
-    std::vector<double> max_error_cm;         ///< empty: 1, 0.5, 0.1, 0.03, 0.01
-    std::vector<std::string> references;      ///< per-clip ACL tables
-    std::vector<std::string> source_dirs;     ///< where the clips' source files are (gzip -9)
+    std::vector<double> max_error_cm;      ///< empty: 1, 0.5, 0.1, 0.03, 0.01
+    std::vector<std::string> references;   ///< per-clip ACL tables
+    std::vector<std::string> source_dirs;  ///< where the clips' source files are (gzip -9)
     int threads = 2;
     std::size_t poses = 20000;
     bool json = false;

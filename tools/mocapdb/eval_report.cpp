@@ -39,14 +39,16 @@ std::string report_md(const EvalResults& e) {
             for (const auto& c : s.skipped) clips += " " + c;
             clips += ")";
         }
-        t.rows.push_back({"`" + s.spec.name + "`", s.spec.description + cycles_note(s.spec),
-                          clips, std::to_string(s.size()), std::to_string(s.aligned.frames()), std::to_string(s.aligned.dofs()),
-                          params_text(s), s.skeleton_source, fixed(r.build_seconds, 1)});
+        t.rows.push_back({"`" + s.spec.name + "`", s.spec.description + cycles_note(s.spec), clips,
+                          std::to_string(s.size()), std::to_string(s.aligned.frames()),
+                          std::to_string(s.aligned.dofs()), params_text(s), s.skeleton_source,
+                          fixed(r.build_seconds, 1)});
     }
     o << t.str() << "\n"
-      << short_caption(info, "CMU ASF/AMC clips at 120 Hz from `--data`/cmu-asfamc",
-                       "parameters measured by lib/include/mocapdb/dataset/param_extractors.hpp (turn [rad], speed [cm/s], "
-                       "jump [cm]); DTW alignment to T frames against the median-length sample")
+      << short_caption(
+             info, "CMU ASF/AMC clips at 120 Hz from `--data`/cmu-asfamc",
+             "parameters measured by lib/include/mocapdb/dataset/param_extractors.hpp (turn [rad], speed [cm/s], "
+             "jump [cm]); DTW alignment to T frames against the median-length sample")
       << "\nA set has one skeleton: the first clip's (column *skeleton*). Clips of other subjects (the `jumps` set: "
          "subjects 13, 16, 105) are replayed on it (same CMU joints and channels; their parameters were measured on their "
          "own skeletons before the swap), so their joint positions use subject 13's bone lengths.\n\n";
@@ -57,7 +59,8 @@ std::string report_md(const EvalResults& e) {
             const eval::EvalSet& s = *r.set;
             for (const auto& c : s.clip_ids) {
                 const std::string d = describe_repairs(c, s.set.repairs);
-                if (!d.empty()) repaired += std::string(repaired.empty() ? "" : "; ") + "`" + s.spec.name + "` " + c + ": " + d;
+                if (!d.empty())
+                    repaired += std::string(repaired.empty() ? "" : "; ") + "`" + s.spec.name + "` " + c + ": " + d;
             }
         }
         o << "Solver dropouts (a joint's rotation channels exactly 0 for a few frames while it moves elsewhere; "
@@ -90,43 +93,51 @@ std::string report_md(const EvalResults& e) {
         o << "### " << s.spec.name << "\n\n";
         // Gain over the linear trend alone: 1 - pose mean / trend-only pose mean.
         const std::vector<double> gains = eval::gain_over_trend(r);
-        Table lt{{"method", "pose mean cm", "gain over trend-only", "pose max cm", "worst (sample, frame, joint)", "motion mean cm", "motion max cm", "duration err s", "build s/fold", "synth ms"}, {}};
+        Table lt{{"method", "pose mean cm", "gain over trend-only", "pose max cm", "worst (sample, frame, joint)",
+                  "motion mean cm", "motion max cm", "duration err s", "build s/fold", "synth ms"},
+                 {}};
         for (std::size_t k = 0; k < r.loo.methods.size(); ++k) {
             const auto& m = r.loo.methods[k];
             const std::string gain = std::isfinite(gains[k]) ? fixed(100.0 * gains[k], 1) + " %" : std::string("-");
             lt.rows.push_back({method_label(r.methods[k]), fixed(m.pose_mean_cm, 2), gain, fixed(m.pose_max_cm, 1),
-                               m.pose_worst_sample >= 0 ? s.labels[static_cast<std::size_t>(m.pose_worst_sample)] + ", " +
-                                                              std::to_string(m.pose_worst_frame) + ", " + m.pose_worst_joint
-                                                        : "-",
-                               fixed(m.mean_cm, 2), fixed(m.max_cm, 1),
-                               fixed(eval::mean_or_nan(m.duration_error_s), 3), fmt(m.build_seconds), fmt(1e3 * m.synth_seconds)});
+                               m.pose_worst_sample >= 0
+                                   ? s.labels[static_cast<std::size_t>(m.pose_worst_sample)] + ", " +
+                                         std::to_string(m.pose_worst_frame) + ", " + m.pose_worst_joint
+                                   : "-",
+                               fixed(m.mean_cm, 2), fixed(m.max_cm, 1), fixed(eval::mean_or_nan(m.duration_error_s), 3),
+                               fmt(m.build_seconds), fmt(1e3 * m.synth_seconds)});
         }
         o << lt.str() << "\n";
         for (const auto& m : r.methods)
             if (eval::keeps_full_sample_rank(m, s))
-                o << "Note: " << m.name << " keeps the full sample rank (R3 = " << m.ranks[2] << " >= N - 1, clamped to the "
+                o << "Note: " << m.name << " keeps the full sample rank (R3 = " << m.ranks[2]
+                  << " >= N - 1, clamped to the "
                   << "training size in each fold): meeting the max-error target needs every sample direction, so its "
                      "kriged motions equal naive kriging's up to the dof/time truncation.\n";
         if (r.has_headroom) {
             const eval::KernelHeadroom& h = r.headroom;
             o << "Kernel headroom (lib/include/mocapdb/eval/kernel_headroom.hpp): of " << h.kernels
-              << " fixed kernels tried in the same folds with naive kriging, the best reaches **" << fixed(h.best_pose_mean_cm, 2)
-              << " cm** pose mean (p = " << fmt(h.best.paper_p()) << ", range " << fmt(h.best.range) << " sd, nugget share "
-              << fmt(h.best.nugget) << ", axes after the first scaled by " << fmt(h.best_anisotropy) << "), the median kernel "
-              << fixed(h.median_pose_mean_cm, 2)
+              << " fixed kernels tried in the same folds with naive kriging, the best reaches **"
+              << fixed(h.best_pose_mean_cm, 2) << " cm** pose mean (p = " << fmt(h.best.paper_p()) << ", range "
+              << fmt(h.best.range) << " sd, nugget share " << fmt(h.best.nugget) << ", axes after the first scaled by "
+              << fmt(h.best_anisotropy) << "), the median kernel " << fixed(h.median_pose_mean_cm, 2)
               << " cm. That best is chosen on the very errors it is scored on, so no choice among these kernels made "
                  "from the training samples alone can do better.\n";
         }
         o << "\n"
-          << caption(info, s, std::to_string(r.loo.samples.size()) + " folds (left-out samples" +
-                                  (static_cast<Eigen::Index>(r.loo.samples.size()) < s.size() ? ", every " +
-                                       std::to_string(r.loo.samples.size() > 1 ? r.loo.samples[1] - r.loo.samples[0] : 1) + "th sample" : "") +
-                                  ")")
+          << caption(info, s,
+                     std::to_string(r.loo.samples.size()) + " folds (left-out samples" +
+                         (static_cast<Eigen::Index>(r.loo.samples.size()) < s.size()
+                              ? ", every " +
+                                    std::to_string(r.loo.samples.size() > 1 ? r.loo.samples[1] - r.loo.samples[0] : 1) +
+                                    "th sample"
+                              : "") +
+                         ")")
           << "\nSample durations in this set: " << fixed(durations.first, 2) << " .. " << fixed(durations.second, 2)
           << " s (the parameters do not fix a whole clip's duration, so the root travels different distances in aligned time)."
-          << "\n\n![LOO pose error over time](loo_" << s.spec.name << ".svg) ![LOO motion error over time](loo_motion_" << s.spec.name
-          << ".svg)  \nNumbers: [loo_" << s.spec.name << ".csv](loo_"
-          << s.spec.name << ".csv) (per sample), [loo_frames_" << s.spec.name << ".csv](loo_frames_" << s.spec.name
+          << "\n\n![LOO pose error over time](loo_" << s.spec.name << ".svg) ![LOO motion error over time](loo_motion_"
+          << s.spec.name << ".svg)  \nNumbers: [loo_" << s.spec.name << ".csv](loo_" << s.spec.name
+          << ".csv) (per sample), [loo_frames_" << s.spec.name << ".csv](loo_frames_" << s.spec.name
           << ".csv) (per frame).\n\n";
     }
 
@@ -163,20 +174,22 @@ std::string report_md(const EvalResults& e) {
         }
         std::string scale;
         for (Eigen::Index k = 0; k < c.scale.size(); ++k)
-            scale += (k ? ", " : "") + s.set.parameter_names[static_cast<std::size_t>(k)] + " " + fmt(c.scale(k), 4) + " " +
-                     s.set.parameter_units[static_cast<std::size_t>(k)];
+            scale += (k ? ", " : "") + s.set.parameter_names[static_cast<std::size_t>(k)] + " " + fmt(c.scale(k), 4) +
+                     " " + s.set.parameter_units[static_cast<std::size_t>(k)];
         std::string axis;
         for (const auto& m : c.methods) {
             axis += "; " + m.method + ":";
             for (Eigen::Index k = 0; k < m.all.axis_rmse.size(); ++k)
                 axis += " " + fmt(m.all.axis_rmse(k)) + " " + s.set.parameter_units[static_cast<std::size_t>(k)];
         }
-        o << ct.str() << "\nNormalization (one unit =): " << scale << ". RMSE per axis over the whole grid, in the parameters' own units" << axis
-          << ".\n\n"
-          << caption(info, s, std::to_string(c.grid.rows()) + " grid points (" +
-                                  (s.set.parameters.cols() == 1 ? std::to_string(r.constraint_options.points_1d)
-                                                                 : std::to_string(r.constraint_options.points_per_axis_2d) + " per axis") +
-                                  ")")
+        o << ct.str() << "\nNormalization (one unit =): " << scale
+          << ". RMSE per axis over the whole grid, in the parameters' own units" << axis << ".\n\n"
+          << caption(info, s,
+                     std::to_string(c.grid.rows()) + " grid points (" +
+                         (s.set.parameters.cols() == 1
+                              ? std::to_string(r.constraint_options.points_1d)
+                              : std::to_string(r.constraint_options.points_per_axis_2d) + " per axis") +
+                         ")")
           << "\nNumbers: [constraint_" << s.spec.name << ".csv](constraint_" << s.spec.name << ".csv).\n\n";
     }
 
@@ -205,16 +218,18 @@ std::string report_md(const EvalResults& e) {
             pt.rows.push_back(row);
         }
         o << pt.str() << "\n"
-          << short_caption(info, "the grids of section 2",
-                           "each method's own ρ (Tucker, naive kriging), else the naive kriging kernel's ρ on all samples; "
-                           "error normalized per axis");
+          << short_caption(
+                 info, "the grids of section 2",
+                 "each method's own ρ (Tucker, naive kriging), else the naive kriging kernel's ρ on all samples; "
+                 "error normalized per axis");
         // The check: rho must fall to 0.5 or below 3 standard deviations outside the samples' box.
         Table ot{{"set", "LOO mean z² (naive kernel)", "ρ 3 sd outside (naive kernel)"}, {}};
         std::vector<std::string> own;
         for (const SetResults& r : e.sets)
             if (r.has_constraint)
                 for (const auto& m : r.constraint.methods)
-                    if (m.own_reliability && std::find(own.begin(), own.end(), m.method) == own.end()) own.push_back(m.method);
+                    if (m.own_reliability && std::find(own.begin(), own.end(), m.method) == own.end())
+                        own.push_back(m.method);
         for (const auto& n : own) ot.header.push_back(n);
         for (const SetResults& r : e.sets) {
             if (!r.has_constraint) continue;
@@ -234,8 +249,7 @@ std::string report_md(const EvalResults& e) {
              "(from the box's centre along each axis, both sides), where the reliability should warn (ρ <= 0.5):\n\n"
           << ot.str() << "\n";
         for (const SetResults& r : e.sets)
-            if (r.has_constraint)
-                o << "\n![reliability vs error](reliability_" << r.set->spec.name << ".svg)";
+            if (r.has_constraint) o << "\n![reliability vs error](reliability_" << r.set->spec.name << ".svg)";
         o << "\n\n";
     }
 
@@ -257,20 +271,23 @@ std::string report_md(const EvalResults& e) {
               << fixed(r.reduction.max_reliability.front(), 3) << " < τ, so "
               << "nothing is removed (the paper removes 40 of 69). With this set's fitted variogram no sample is "
               << "predicted reliably enough from the others; the curve below continues past τ to show what removal would cost";
-        else if (at_tau == eval::ReductionAtTau::SomeRemoved)
-            o << " (the paper: 29 of 69)";
+        else if (at_tau == eval::ReductionAtTau::SomeRemoved) o << " (the paper: 29 of 69)";
         o << ".\n\n";
-        Table rt{{"kept", "max LOO ρ", "greedy pose mean cm", "random pose mean cm", "greedy motion mean cm", "greedy motion max cm", "random motion mean cm"}, {}};
+        Table rt{{"kept", "max LOO ρ", "greedy pose mean cm", "random pose mean cm", "greedy motion mean cm",
+                  "greedy motion max cm", "random motion mean cm"},
+                 {}};
         const bool rnd = r.reduction_options.random_orders > 0;
         for (const auto& p : r.reduction.points)
             rt.rows.push_back({std::to_string(p.kept), fixed(p.max_reliability, 3), fixed(p.greedy_pose_mean_cm, 2),
-                               rnd ? fixed(p.random_pose_mean_cm, 2) : "-", fixed(p.greedy_mean_cm, 2), fixed(p.greedy_max_cm, 1),
-                               rnd ? fixed(p.random_mean_cm, 2) : "-"});
+                               rnd ? fixed(p.random_pose_mean_cm, 2) : "-", fixed(p.greedy_mean_cm, 2),
+                               fixed(p.greedy_max_cm, 1), rnd ? fixed(p.random_mean_cm, 2) : "-"});
         o << rt.str() << "\n"
-          << caption(info, s, "τ = " + fmt(r.reduction_options.tau) + ", " + std::to_string(r.reduction_options.random_orders) +
-                                  " random orders (seed " + std::to_string(r.reduction_options.seed) + "), variogram fixed from all samples")
-          << "\n![reduction](reduction_" << s.spec.name << ".svg)  \nNumbers: [reduction_" << s.spec.name << ".csv](reduction_"
-          << s.spec.name << ".csv).\n\n";
+          << caption(info, s,
+                     "τ = " + fmt(r.reduction_options.tau) + ", " + std::to_string(r.reduction_options.random_orders) +
+                         " random orders (seed " + std::to_string(r.reduction_options.seed) +
+                         "), variogram fixed from all samples")
+          << "\n![reduction](reduction_" << s.spec.name << ".svg)  \nNumbers: [reduction_" << s.spec.name
+          << ".csv](reduction_" << s.spec.name << ".csv).\n\n";
     }
 
     // 5. Foot skating
@@ -290,7 +307,8 @@ std::string report_md(const EvalResults& e) {
         for (const auto& n : names) ft.header.push_back(n);
         for (const SetResults& r : e.sets) {
             if (!r.has_loo || r.loo.original_skating_cm_per_s.size() == 0) continue;
-            std::vector<std::string> row{r.set->spec.name, fixed(eval::mean_or_nan(r.loo.original_skating_cm_per_s), 2)};
+            std::vector<std::string> row{r.set->spec.name,
+                                         fixed(eval::mean_or_nan(r.loo.original_skating_cm_per_s), 2)};
             for (const auto& n : names) {
                 std::string v = "-";
                 for (const auto& m : r.loo.methods)
@@ -315,16 +333,24 @@ std::string report_md(const EvalResults& e) {
         if (!r.has_compression) continue;
         const eval::EvalSet& s = *r.set;
         o << "### " << s.spec.name << "\n\n";
-        Table ct{{"method", "target", "ranks", "bytes", "ratio", "max cm", "rmse cm", "precompute s", "µs/pose", "access"}, {}, 3};
+        Table ct{
+            {"method", "target", "ranks", "bytes", "ratio", "max cm", "rmse cm", "precompute s", "µs/pose", "access"},
+            {},
+            3};
         for (const auto& row : r.compression.rows)
-            ct.rows.push_back({row.method, row.target_cm == 0.0 ? "lossless/raw" : "≤ " + fmt(row.target_cm) + " cm" + (row.target_met ? "" : " (not met)"),
-                               ranks_text(row.ranks), std::to_string(row.bytes), fixed(row.ratio, 2), fmt(row.stats.max_cm),
-                               fmt(row.stats.rmse_cm), fmt(row.precompute_s), fmt(row.us_per_pose), row.access});
+            ct.rows.push_back(
+                {row.method,
+                 row.target_cm == 0.0 ? "lossless/raw"
+                                      : "≤ " + fmt(row.target_cm) + " cm" + (row.target_met ? "" : " (not met)"),
+                 ranks_text(row.ranks), std::to_string(row.bytes), fixed(row.ratio, 2), fmt(row.stats.max_cm),
+                 fmt(row.stats.rmse_cm), fmt(row.precompute_s), fmt(row.us_per_pose), row.access});
         std::string targets;
         for (double tcm : r.compression_targets) targets += (targets.empty() ? "" : ", ") + fmt(tcm) + " cm";
         o << ct.str() << "\n"
-          << caption(info, s, "targets " + targets + "; raw aligned float32 " + std::to_string(r.compression.raw_bytes) +
-                                  " bytes; side information " + std::to_string(r.compression.side_bytes) + " bytes charged to every row")
+          << caption(info, s,
+                     "targets " + targets + "; raw aligned float32 " + std::to_string(r.compression.raw_bytes) +
+                         " bytes; side information " + std::to_string(r.compression.side_bytes) +
+                         " bytes charged to every row")
           << "\n![compression](compression_" << s.spec.name << ".svg)  \nNumbers: [compression_" << s.spec.name
           << ".csv](compression_" << s.spec.name << ".csv).\n\n";
     }
@@ -332,13 +358,15 @@ std::string report_md(const EvalResults& e) {
     // 7. Runtime
     o << "## 7. Runtime\n\n"
       << "Preprocessing (building the method on N samples) and synthesis (one whole aligned motion, divided by T) on "
-         "evenly spread subsets of `" << e.runtime_set << "`, single thread, median of repeats (the geostatistical paper's "
+         "evenly spread subsets of `"
+      << e.runtime_set
+      << "`, single thread, median of repeats (the geostatistical paper's "
          "Tables 1-2 report runtime and preprocessing per frame).\n\n";
     {
         Table rt{{"method", "N", "build s", "build µs per frame (÷ N·T)", "synthesis µs per frame"}, {}};
         for (const auto& row : e.runtime)
-            rt.rows.push_back({row.method, std::to_string(row.samples), fmt(row.build_seconds), fmt(row.build_us_per_frame),
-                               fmt(row.synth_us_per_frame)});
+            rt.rows.push_back({row.method, std::to_string(row.samples), fmt(row.build_seconds),
+                               fmt(row.build_us_per_frame), fmt(row.synth_us_per_frame)});
         const eval::EvalSet* rs = nullptr;
         for (const auto& r : e.sets)
             if (r.set->spec.name == e.runtime_set) rs = r.set.get();

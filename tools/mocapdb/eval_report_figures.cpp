@@ -28,9 +28,9 @@ std::string loo_csv(const SetResults& r) {
             const auto kk = static_cast<Eigen::Index>(k);
             o << i << "," << s.labels[static_cast<std::size_t>(i)];
             for (Eigen::Index c = 0; c < s.set.parameters.cols(); ++c) o << "," << s.set.parameters(i, c);
-            o << "," << m.method << "," << m.sample_mean_cm(kk) << "," << m.sample_max_cm(kk) << "," << m.sample_pose_mean_cm(kk)
-              << "," << m.sample_pose_max_cm(kk) << "," << m.duration_error_s(kk)
-              << "," << (m.skating_cm_per_s.size() ? m.skating_cm_per_s(kk) : 0.0) << ","
+            o << "," << m.method << "," << m.sample_mean_cm(kk) << "," << m.sample_max_cm(kk) << ","
+              << m.sample_pose_mean_cm(kk) << "," << m.sample_pose_max_cm(kk) << "," << m.duration_error_s(kk) << ","
+              << (m.skating_cm_per_s.size() ? m.skating_cm_per_s(kk) : 0.0) << ","
               << (r.loo.original_skating_cm_per_s.size() ? r.loo.original_skating_cm_per_s(kk) : 0.0) << "\n";
         }
     return o.str();
@@ -45,7 +45,8 @@ std::string loo_frames_csv(const SetResults& r) {
     o << "\n";
     for (Eigen::Index t = 0; t < r.set->aligned.frames(); ++t) {
         o << t;
-        for (const auto& m : r.loo.methods) o << "," << m.frame_mean_cm(t) << "," << m.frame_max_cm(t) << "," << m.frame_pose_mean_cm(t);
+        for (const auto& m : r.loo.methods)
+            o << "," << m.frame_mean_cm(t) << "," << m.frame_max_cm(t) << "," << m.frame_pose_mean_cm(t);
         o << "\n";
     }
     return o.str();
@@ -77,8 +78,8 @@ std::string reduction_csv(const SetResults& r) {
     o.precision(9);
     o << "kept,max_reliability,greedy_mean_cm,greedy_max_cm,random_mean_cm,greedy_pose_mean_cm,random_pose_mean_cm\n";
     for (const auto& p : r.reduction.points)
-        o << p.kept << "," << p.max_reliability << "," << p.greedy_mean_cm << "," << p.greedy_max_cm << "," << p.random_mean_cm
-          << "," << p.greedy_pose_mean_cm << "," << p.random_pose_mean_cm << "\n";
+        o << p.kept << "," << p.max_reliability << "," << p.greedy_mean_cm << "," << p.greedy_max_cm << ","
+          << p.random_mean_cm << "," << p.greedy_pose_mean_cm << "," << p.random_pose_mean_cm << "\n";
     return o.str();
 }
 
@@ -93,9 +94,10 @@ std::string compression_csv(const SetResults& r) {
     o.precision(9);
     o << "method,target_cm,target_met,ranks,setting,bytes,ratio,rmse_cm,mean_cm,max_cm,precompute_s,us_per_pose,access\n";
     for (const auto& row : r.compression.rows)
-        o << row.method << "," << row.target_cm << "," << (row.target_met ? 1 : 0) << "," << ranks_text(row.ranks) << ","
-          << row.setting << "," << row.bytes << "," << row.ratio << "," << row.stats.rmse_cm << "," << row.stats.mean_cm
-          << "," << row.stats.max_cm << "," << row.precompute_s << "," << row.us_per_pose << "," << row.access << "\n";
+        o << row.method << "," << row.target_cm << "," << (row.target_met ? 1 : 0) << "," << ranks_text(row.ranks)
+          << "," << row.setting << "," << row.bytes << "," << row.ratio << "," << row.stats.rmse_cm << ","
+          << row.stats.mean_cm << "," << row.stats.max_cm << "," << row.precompute_s << "," << row.us_per_pose << ","
+          << row.access << "\n";
     return o.str();
 }
 
@@ -104,8 +106,8 @@ std::string runtime_csv(const EvalResults& e) {
     o.precision(9);
     o << "method,samples,frames,build_seconds,build_us_per_frame,synth_us_per_frame\n";
     for (const auto& row : e.runtime)
-        o << row.method << "," << row.samples << "," << row.frames << "," << row.build_seconds << "," << row.build_us_per_frame
-          << "," << row.synth_us_per_frame << "\n";
+        o << row.method << "," << row.samples << "," << row.frames << "," << row.build_seconds << ","
+          << row.build_us_per_frame << "," << row.synth_us_per_frame << "\n";
     return o.str();
 }
 
@@ -114,8 +116,8 @@ std::string runtime_csv(const EvalResults& e) {
 
 std::string loo_svg(const RunInfo& info, const SetResults& r, bool pose) {
     PlotSpec p;
-    p.title = "Leave-one-out prediction on " + r.set->spec.name + ": " + (pose ? "root-relative pose" : "motion (with root trajectory)") +
-              " error over time";
+    p.title = "Leave-one-out prediction on " + r.set->spec.name + ": " +
+              (pose ? "root-relative pose" : "motion (with root trajectory)") + " error over time";
     p.x_label = "aligned frame";
     p.y_label = "mean joint-position error over left-out samples (cm)";
     p.log_x = false;
@@ -180,7 +182,8 @@ std::string compression_svg(const RunInfo& info, const SetResults& r) {
     p.y_label = "compression ratio, log";
     for (const auto& row : r.compression.rows) {
         if (row.target_cm == 0.0 || !row.target_met) continue;
-        auto it = std::find_if(p.series.begin(), p.series.end(), [&](const PlotSeries& s) { return s.name == row.method; });
+        auto it =
+            std::find_if(p.series.begin(), p.series.end(), [&](const PlotSeries& s) { return s.name == row.method; });
         if (it == p.series.end()) {
             p.series.push_back({row.method, {}, {}});
             it = p.series.end() - 1;
@@ -198,7 +201,8 @@ std::string runtime_svg(const RunInfo& info, const EvalResults& e, bool build) {
     p.x_label = "training samples N, log";
     p.y_label = build ? "build time (s), log" : "time per synthesized frame (us), log";
     for (const auto& row : e.runtime) {
-        auto it = std::find_if(p.series.begin(), p.series.end(), [&](const PlotSeries& s) { return s.name == row.method; });
+        auto it =
+            std::find_if(p.series.begin(), p.series.end(), [&](const PlotSeries& s) { return s.name == row.method; });
         if (it == p.series.end()) {
             p.series.push_back({row.method, {}, {}});
             it = p.series.end() - 1;

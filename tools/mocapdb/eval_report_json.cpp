@@ -45,7 +45,16 @@ std::string results_json(const EvalResults& e) {
         j.key("samples").value(static_cast<long long>(s.size()));
         j.key("repairs").begin_array();
         for (const RepairedFrames& x : s.set.repairs)
-            j.begin_object().key("clip").value(x.clip).key("joint").value(x.joint).key("begin").value(x.begin).key("end").value(x.end).end_object();
+            j.begin_object()
+                .key("clip")
+                .value(x.clip)
+                .key("joint")
+                .value(x.joint)
+                .key("begin")
+                .value(x.begin)
+                .key("end")
+                .value(x.end)
+                .end_object();
         j.end_array();
         j.key("frames").value(static_cast<long long>(s.aligned.frames()));
         j.key("dofs").value(static_cast<long long>(s.aligned.dofs()));
@@ -74,7 +83,10 @@ std::string results_json(const EvalResults& e) {
             const eval::KernelHeadroom& h = r.headroom;
             j.key("kernel_headroom").begin_object();
             j.key("kernels").value(static_cast<long long>(h.kernels));
-            j.key("best_pose_mean_cm").value(h.best_pose_mean_cm).key("median_pose_mean_cm").value(h.median_pose_mean_cm);
+            j.key("best_pose_mean_cm")
+                .value(h.best_pose_mean_cm)
+                .key("median_pose_mean_cm")
+                .value(h.median_pose_mean_cm);
             j.key("best_p").value(h.best.paper_p()).key("best_range").value(h.best.range);
             j.key("best_nugget_share").value(h.best.nugget).key("best_anisotropy").value(h.best_anisotropy);
             j.end_object();
@@ -146,7 +158,11 @@ std::string results_json(const EvalResults& e) {
                 std::vector<eval::RegionStats> all = m.regions;
                 all.push_back(m.all);
                 for (const auto& g : all) {
-                    j.begin_object().key("rho_at_least").value(g.threshold).key("points").value(static_cast<long long>(g.points));
+                    j.begin_object()
+                        .key("rho_at_least")
+                        .value(g.threshold)
+                        .key("points")
+                        .value(static_cast<long long>(g.points));
                     j.key("max").value(g.max).key("rmse").value(g.rmse).key("axis_rmse");
                     json_vec(j, g.axis_rmse);
                     j.end_object();
@@ -173,13 +189,20 @@ std::string results_json(const EvalResults& e) {
             j.key("points").begin_array();
             for (const auto& p : d.points)
                 j.begin_object()
-                    .key("kept").value(static_cast<long long>(p.kept))
-                    .key("max_reliability").value(p.max_reliability)
-                    .key("greedy_mean_cm").value(p.greedy_mean_cm)
-                    .key("greedy_max_cm").value(p.greedy_max_cm)
-                    .key("random_mean_cm").value(p.random_mean_cm)
-                    .key("greedy_pose_mean_cm").value(p.greedy_pose_mean_cm)
-                    .key("random_pose_mean_cm").value(p.random_pose_mean_cm)
+                    .key("kept")
+                    .value(static_cast<long long>(p.kept))
+                    .key("max_reliability")
+                    .value(p.max_reliability)
+                    .key("greedy_mean_cm")
+                    .value(p.greedy_mean_cm)
+                    .key("greedy_max_cm")
+                    .value(p.greedy_max_cm)
+                    .key("random_mean_cm")
+                    .value(p.random_mean_cm)
+                    .key("greedy_pose_mean_cm")
+                    .value(p.greedy_pose_mean_cm)
+                    .key("random_pose_mean_cm")
+                    .value(p.random_pose_mean_cm)
                     .end_object();
             j.end_array().end_object();
         }
@@ -210,12 +233,18 @@ std::string results_json(const EvalResults& e) {
     j.key("rows").begin_array();
     for (const auto& row : e.runtime)
         j.begin_object()
-            .key("method").value(row.method)
-            .key("samples").value(static_cast<long long>(row.samples))
-            .key("frames").value(static_cast<long long>(row.frames))
-            .key("build_seconds").value(row.build_seconds)
-            .key("build_us_per_frame").value(row.build_us_per_frame)
-            .key("synth_us_per_frame").value(row.synth_us_per_frame)
+            .key("method")
+            .value(row.method)
+            .key("samples")
+            .value(static_cast<long long>(row.samples))
+            .key("frames")
+            .value(static_cast<long long>(row.frames))
+            .key("build_seconds")
+            .value(row.build_seconds)
+            .key("build_us_per_frame")
+            .value(row.build_us_per_frame)
+            .key("synth_us_per_frame")
+            .value(row.synth_us_per_frame)
             .end_object();
     j.end_array().end_object();
     j.end_object();

@@ -14,9 +14,11 @@ namespace mocapdb::cli::eval_report {
 
 // How a set's samples were cut, for the data table.
 std::string cycles_note(const eval::EvalSetSpec& spec) {
-    if (spec.flight_windows) return " (the jump of each clip: 0.5 s before take-off to 0.5 s after landing of its longest flight)";
+    if (spec.flight_windows)
+        return " (the jump of each clip: 0.5 s before take-off to 0.5 s after landing of its longest flight)";
     if (!spec.gait_cycles) return "";
-    if (spec.max_cycles_per_clip == 1) return " (one gait cycle per clip, the middle one: every sample starts at the same phase)";
+    if (spec.max_cycles_per_clip == 1)
+        return " (one gait cycle per clip, the middle one: every sample starts at the same phase)";
     if (spec.max_cycles_per_clip == 0) return " (every gait cycle of each clip)";
     return " (at most " + std::to_string(spec.max_cycles_per_clip) + " gait cycles per clip, evenly spread)";
 }
@@ -44,32 +46,33 @@ void put(const std::filesystem::path& path, const std::string& text) {
     write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
-
 std::string params_text(const eval::EvalSet& s) {
     std::string out;
     const auto ranges = eval::parameter_ranges(s);
     for (std::size_t k = 0; k < s.set.parameter_names.size(); ++k)
-        out += (k ? ", " : "") + s.set.parameter_names[k] + " [" + s.set.parameter_units[k] + "] " + fmt(ranges[k].first, 4) +
-               " .. " + fmt(ranges[k].second, 4);
+        out += (k ? ", " : "") + s.set.parameter_names[k] + " [" + s.set.parameter_units[k] + "] " +
+               fmt(ranges[k].first, 4) + " .. " + fmt(ranges[k].second, 4);
     return out;
 }
 
 std::string caption(const RunInfo& info, const eval::EvalSet& s, const std::string& parameters) {
-    return "*Data: set `" + s.spec.name + "` (N = " + std::to_string(s.size()) + " samples, T = " +
-           std::to_string(s.aligned.frames()) + " aligned frames, D = " + std::to_string(s.aligned.dofs()) +
-           " dofs; " + params_text(s) + "). Parameters: " + parameters + ". Machine: " + info.machine + ". Date: " +
-           info.date + ".*\n";
+    return "*Data: set `" + s.spec.name + "` (N = " + std::to_string(s.size()) +
+           " samples, T = " + std::to_string(s.aligned.frames()) +
+           " aligned frames, D = " + std::to_string(s.aligned.dofs()) + " dofs; " + params_text(s) +
+           "). Parameters: " + parameters + ". Machine: " + info.machine + ". Date: " + info.date + ".*\n";
 }
 
 std::string short_caption(const RunInfo& info, const std::string& data, const std::string& parameters) {
-    return "*Data: " + data + ". Parameters: " + parameters + ". Machine: " + info.machine + ". Date: " + info.date + ".*\n";
+    return "*Data: " + data + ". Parameters: " + parameters + ". Machine: " + info.machine + ". Date: " + info.date +
+           ".*\n";
 }
 
 std::string svg_note(const RunInfo& info) { return info.date + "; " + info.machine; }
 
 std::string method_label(const eval::MethodSpec& m) {
     if (m.kind != eval::MethodKind::TuckerKriging) return m.name;
-    return m.name + " (" + std::to_string(m.ranks[0]) + "x" + std::to_string(m.ranks[1]) + "x" + std::to_string(m.ranks[2]) + ")";
+    return m.name + " (" + std::to_string(m.ranks[0]) + "x" + std::to_string(m.ranks[1]) + "x" +
+           std::to_string(m.ranks[2]) + ")";
 }
 
 }  // namespace mocapdb::cli::eval_report

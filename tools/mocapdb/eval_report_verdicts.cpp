@@ -14,7 +14,6 @@ namespace mocapdb::cli::eval_report {
 // ---------------------------------------------------------------------------------------------------
 // REPORT.md
 
-
 MetricText metric_text(const eval::MetricVerdict& v) {
     switch (v.metric) {
         case eval::Metric::LooPoseMean: return {"leave-one-out mean pose error (root-relative)", " cm"};
@@ -23,7 +22,8 @@ MetricText metric_text(const eval::MetricVerdict& v) {
         case eval::Metric::LooMotionMax: return {"leave-one-out max motion error (with root trajectory)", " cm"};
         case eval::Metric::LooDuration: return {"leave-one-out duration error", " s"};
         case eval::Metric::FootSkating: return {"foot skating of the synthesized motions", " cm/s"};
-        case eval::Metric::ConstraintReliableRmse: return {"constraint RMSE |c - c_hat| where rho >= " + fmt(v.threshold), " (normalized)"};
+        case eval::Metric::ConstraintReliableRmse:
+            return {"constraint RMSE |c - c_hat| where rho >= " + fmt(v.threshold), " (normalized)"};
         case eval::Metric::ConstraintRmse: return {"constraint RMSE over the whole grid", " (normalized)"};
     }
     return {"", ""};
@@ -54,7 +54,8 @@ std::string split_text(const eval::MetricVerdict& v) {
     w << "Mean error split by position of the left-out sample: on the " << s.edge_samples
       << " samples at the edge of the parameter range (the fold must extrapolate) " << v.best.method << " "
       << fmt(s.best_edge) << " cm vs " << v.best_kriging.method << " " << fmt(s.kriging_edge) << " cm; on the "
-      << s.interior_samples << " interior samples " << fmt(s.best_interior) << " cm vs " << fmt(s.kriging_interior) << " cm. ";
+      << s.interior_samples << " interior samples " << fmt(s.best_interior) << " cm vs " << fmt(s.kriging_interior)
+      << " cm. ";
     switch (s.location) {
         case eval::LossLocation::BothMoreAtEdge:
             w << "Kriging loses on both groups, more at the edge, where the fold extrapolates. " << contrast;
@@ -86,10 +87,10 @@ std::string why_text(const SetResults& r, const eval::MetricVerdict& v) {
             const auto* kr = loo_method(r, v.best_kriging.method);
             if (!base || !kr || base->pose_worst_sample < 0 || kr->pose_worst_sample < 0) return std::string();
             return "A single worst frame over all folds: " + v.best.method + " at " +
-                   s.labels[static_cast<std::size_t>(base->pose_worst_sample)] + " frame " + std::to_string(base->pose_worst_frame) +
-                   " (" + base->pose_worst_joint + "), " + v.best_kriging.method + " at " +
-                   s.labels[static_cast<std::size_t>(kr->pose_worst_sample)] + " frame " + std::to_string(kr->pose_worst_frame) +
-                   " (" + kr->pose_worst_joint + ").";
+                   s.labels[static_cast<std::size_t>(base->pose_worst_sample)] + " frame " +
+                   std::to_string(base->pose_worst_frame) + " (" + base->pose_worst_joint + "), " +
+                   v.best_kriging.method + " at " + s.labels[static_cast<std::size_t>(kr->pose_worst_sample)] +
+                   " frame " + std::to_string(kr->pose_worst_frame) + " (" + kr->pose_worst_joint + ").";
         }
         case eval::Metric::LooMotionMax:
             return "A single worst frame over all folds; see the per-sample maxima in loo_" + s.spec.name + ".csv.";
@@ -129,31 +130,33 @@ std::string losses_section(const EvalResults& e) {
             const std::string& unit = t.unit;
             switch (v.outcome) {
                 case eval::Outcome::Tie:
-                    o << "- " << t.name << ": tie — " << v.best.method << " " << fmt(v.best.value) << unit << ", best kriging ("
-                      << v.best_kriging.method << ") " << fmt(v.best_kriging.value) << unit << ", within 5 % or "
-                      << fmt(eval::tie_floor(v.metric)) << unit << ".\n";
+                    o << "- " << t.name << ": tie — " << v.best.method << " " << fmt(v.best.value) << unit
+                      << ", best kriging (" << v.best_kriging.method << ") " << fmt(v.best_kriging.value) << unit
+                      << ", within 5 % or " << fmt(eval::tie_floor(v.metric)) << unit << ".\n";
                     break;
                 case eval::Outcome::KrigingWins:
-                    o << "- " << t.name << ": kriging wins (" << v.best.method << " " << fmt(v.best.value) << unit << ").\n";
+                    o << "- " << t.name << ": kriging wins (" << v.best.method << " " << fmt(v.best.value) << unit
+                      << ").\n";
                     break;
                 case eval::Outcome::Loses:
                     o << "- **LOSES** " << t.name << ": " << v.best.method << " " << fmt(v.best.value) << unit
-                      << " against the best kriging variant, " << v.best_kriging.method << ", " << fmt(v.best_kriging.value) << unit
-                      << " (" << percent(v.kriging_worse_percent) << " worse). " << why_text(r, v) << "\n";
+                      << " against the best kriging variant, " << v.best_kriging.method << ", "
+                      << fmt(v.best_kriging.value) << unit << " (" << percent(v.kriging_worse_percent) << " worse). "
+                      << why_text(r, v) << "\n";
                     break;
             }
         }
         for (const eval::CompressionVerdict& c : sv.compression) {
             if (c.tucker_wins) {
-                o << "- compression at max error <= " << fmt(c.target_cm) << " cm: a Tucker variant wins (" << c.best.method
-                  << ", ratio " << fmt(c.best.ratio) << ").\n";
+                o << "- compression at max error <= " << fmt(c.target_cm) << " cm: a Tucker variant wins ("
+                  << c.best.method << ", ratio " << fmt(c.best.ratio) << ").\n";
             } else {
-                o << "- **LOSES** compression at max error <= " << fmt(c.target_cm) << " cm: " << c.best.method << " ratio "
-                  << fmt(c.best.ratio) << " against plain Tucker " << fmt(c.tucker.ratio)
+                o << "- **LOSES** compression at max error <= " << fmt(c.target_cm) << " cm: " << c.best.method
+                  << " ratio " << fmt(c.best.ratio) << " against plain Tucker " << fmt(c.tucker.ratio)
                   << ". The Tucker model is what synthesis needs (pose-level random access in "
                   << fmt(c.tucker.us_per_pose) << " us/pose); " << c.best.method << " is "
-                  << (c.best.access == "stream" ? "a stream codec (decodes the whole set: " : "(") << fmt(c.best.us_per_pose)
-                  << " us/pose).\n";
+                  << (c.best.access == "stream" ? "a stream codec (decodes the whole set: " : "(")
+                  << fmt(c.best.us_per_pose) << " us/pose).\n";
             }
         }
         o << "\n";
@@ -163,11 +166,12 @@ std::string losses_section(const EvalResults& e) {
         o << "### Runtime (" << e.runtime_set << ")\n\n";
         if (v.fastest_build && v.slowest_kriging_build) {
             const eval::RuntimeRow& fb = *v.fastest_build;
-            o << "- " << (v.build_loses ? "**LOSES** preprocessing" : "preprocessing") << " at N = " << v.samples << ": fastest is "
-              << fb.method << " (" << fmt(fb.build_seconds) << " s); the fastest kriging variant, "
+            o << "- " << (v.build_loses ? "**LOSES** preprocessing" : "preprocessing") << " at N = " << v.samples
+              << ": fastest is " << fb.method << " (" << fmt(fb.build_seconds) << " s); the fastest kriging variant, "
               << (v.fastest_kriging_build ? v.fastest_kriging_build->method : std::string("-")) << ", takes "
-              << (v.fastest_kriging_build ? fmt(v.fastest_kriging_build->build_seconds) : std::string("-")) << " s, the slowest, "
-              << v.slowest_kriging_build->method << ", " << fmt(v.slowest_kriging_build->build_seconds)
+              << (v.fastest_kriging_build ? fmt(v.fastest_kriging_build->build_seconds) : std::string("-"))
+              << " s, the slowest, " << v.slowest_kriging_build->method << ", "
+              << fmt(v.slowest_kriging_build->build_seconds)
               << " s. Kriging fits variograms (per-element: one per dof and frame; per-pose: one per frame) and factorizes "
                  "a system per kernel; RBF factorizes one system and the blend only stores the samples.\n";
         }

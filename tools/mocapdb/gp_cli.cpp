@@ -30,7 +30,8 @@ MotionDataOptions data_options(const GpArgs& a) {
     o.frames = a.frames;
     if (a.duration > 0.0) o.duration = a.duration;
     o.include_joints = a.joints;
-    if (!a.exclude.empty()) o.exclude_joints = a.exclude == std::vector<std::string>{"none"} ? std::vector<std::string>{} : a.exclude;
+    if (!a.exclude.empty())
+        o.exclude_joints = a.exclude == std::vector<std::string>{"none"} ? std::vector<std::string>{} : a.exclude;
     o.drop_noisy = !a.keep_noisy;
     return o;
 }
@@ -83,7 +84,9 @@ void assign_groups(const GpArgs& a, const std::vector<std::string>& names, HgpDa
     data.groups = groups_by_subject(names);
 }
 
-const char* model_label(const GpArgs& a) { return a.mo_baseline ? "MOA" : a.layers == 3 ? "MOHGP (3 layers)" : "MOHGP"; }
+const char* model_label(const GpArgs& a) {
+    return a.mo_baseline ? "MOA" : a.layers == 3 ? "MOHGP (3 layers)" : "MOHGP";
+}
 
 void write_model(JsonWriter& w, const FitResult& f) {
     w.key("log_likelihood").value(f.log_likelihood);
@@ -120,12 +123,14 @@ void print_fit_summary(const char* label, const FitResult& f) {
     auto terms = [](const char* layer, const std::vector<TermSummary>& layer_terms) {
         for (std::size_t q = 0; q < layer_terms.size(); ++q)
             std::printf("  %s q%zu: %s lengthscale %.4g s, mean B diagonal %.4g\n", layer, q,
-                        to_string(layer_terms[q].kernel).c_str(), layer_terms[q].lengthscale_s, layer_terms[q].mean_b_diagonal);
+                        to_string(layer_terms[q].kernel).c_str(), layer_terms[q].lengthscale_s,
+                        layer_terms[q].mean_b_diagonal);
     };
     terms("parent", summary.parent);
     terms("group ", summary.group);
     terms(f.model.hierarchical ? "child " : "MOA   ", summary.child);
-    std::printf("  noise variance: mean %.3g (min %.3g, max %.3g)\n", summary.noise_mean, summary.noise_min, summary.noise_max);
+    std::printf("  noise variance: mean %.3g (min %.3g, max %.3g)\n", summary.noise_mean, summary.noise_min,
+                summary.noise_max);
 }
 
 void write_data_json(JsonWriter& w, const MotionData& md) {
@@ -146,7 +151,8 @@ void write_data_json(JsonWriter& w, const MotionData& md) {
 
 void print_data_summary(const MotionData& md) {
     std::printf("children: %zu (", md.child_names.size());
-    for (std::size_t i = 0; i < md.child_names.size(); ++i) std::printf("%s%s", i ? ", " : "", md.child_names[i].c_str());
+    for (std::size_t i = 0; i < md.child_names.size(); ++i)
+        std::printf("%s%s", i ? ", " : "", md.child_names[i].c_str());
     std::printf("); %zu dofs x %zu frames over %.3f s (%zu dofs dropped)\n", md.dofs.size(), md.data.frames(),
                 md.data.times[md.data.times.size() - 1], md.dropped.size());
     if (!md.data.groups.empty()) {

@@ -14,7 +14,6 @@
 
 namespace mocapdb::cli::gp_cli {
 
-
 struct GpArgs {
     // children
     std::string db;

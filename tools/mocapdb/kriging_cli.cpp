@@ -21,7 +21,8 @@ void add_table_options(CLI::App& cmd, TableKrigingArgs& t) {
         ->capture_default_str();
     cmd.add_option("--bins", t.bins, "number of equal-width distance bins")->capture_default_str();
     cmd.add_option("--cutoff", t.cutoff, "largest distance binned (default: half the largest pair distance)");
-    cmd.add_option("--estimator", t.estimator, "cressie (robust, 3-term denominator) | matheron")->capture_default_str();
+    cmd.add_option("--estimator", t.estimator, "cressie (robust, 3-term denominator) | matheron")
+        ->capture_default_str();
     cmd.add_option("--weights", t.weights, "fit weights: cressie (n/gamma*^2, re-evaluated) | npairs | unweighted")
         ->capture_default_str();
     cmd.add_flag("--normalize", t.normalize,

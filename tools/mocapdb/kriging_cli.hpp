@@ -20,10 +20,10 @@ struct TableKrigingArgs {
     std::string data;
     std::string coords;
     std::string value;
-    std::string trend = "none";       ///< none | linear
-    std::string trend_fit = "gls";    ///< gls | ols
+    std::string trend = "none";     ///< none | linear
+    std::string trend_fit = "gls";  ///< gls | ols
     int bins = 10;
-    double cutoff = 0.0;              ///< 0 = h_max / 2
+    double cutoff = 0.0;  ///< 0 = h_max / 2
     std::string estimator = "cressie";
     std::string weights = "cressie";  ///< cressie | npairs | unweighted
     bool normalize = false;

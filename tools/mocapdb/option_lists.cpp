@@ -10,7 +10,8 @@ std::vector<std::string> split_names(const std::string& list, const std::string&
     for (char ch : list + ",") {
         if (ch == ',') {
             const std::string t = trim_blanks(cur);
-            if (t.empty()) throw InvalidArgument(option + ": expected comma-separated column names, found '" + list + "'");
+            if (t.empty())
+                throw InvalidArgument(option + ": expected comma-separated column names, found '" + list + "'");
             out.push_back(t);
             cur.clear();
         } else {

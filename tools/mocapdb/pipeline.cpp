@@ -39,8 +39,9 @@ std::string target_text(double t) {
 }  // namespace
 
 const std::map<std::string, tensor::TuckerMethod>& tucker_methods() {
-    static const std::map<std::string, tensor::TuckerMethod> methods{
-        {"hosvd", tensor::TuckerMethod::Hosvd}, {"sthosvd", tensor::TuckerMethod::StHosvd}, {"hooi", tensor::TuckerMethod::Hooi}};
+    static const std::map<std::string, tensor::TuckerMethod> methods{{"hosvd", tensor::TuckerMethod::Hosvd},
+                                                                     {"sthosvd", tensor::TuckerMethod::StHosvd},
+                                                                     {"hooi", tensor::TuckerMethod::Hooi}};
     return methods;
 }
 
@@ -127,11 +128,12 @@ std::string describe_set(const SetOutcome& o) {
         const std::string share = std::to_string(static_cast<int>(std::lround(100.0 * kAutoGaitShare))) + " %";
         how += o.segmentation == Segmentation::GaitCycles
                    ? ", chosen because most clips have a gait cycle; --segment none for whole clips"
-                   : ", chosen because fewer than " + share + " of the clips have a gait cycle or no parameters are measured";
+                   : ", chosen because fewer than " + share +
+                         " of the clips have a gait cycle or no parameters are measured";
     }
     char line[640];
-    std::snprintf(line, sizeof line, "set '%s': %zu samples (%s) from %zu clips, %zu parameters (%s)\n", o.set.name.c_str(),
-                  o.set.samples.size(), how.c_str(), o.clips, o.set.parameter_names.size(),
+    std::snprintf(line, sizeof line, "set '%s': %zu samples (%s) from %zu clips, %zu parameters (%s)\n",
+                  o.set.name.c_str(), o.set.samples.size(), how.c_str(), o.clips, o.set.parameter_names.size(),
                   o.set.parameter_source.empty() ? "none" : o.set.parameter_source.c_str());
     std::string out = line;
     // Repairs are never silent: one line naming the clips (set show lists joints and frames).
@@ -141,9 +143,9 @@ std::string describe_set(const SetOutcome& o) {
         std::string names;
         for (const std::string& c : clips) names += (names.empty() ? "" : ", ") + c;
         const std::size_t frames = repairs.longest_run;
-        out += "repaired solver dropouts in " + std::to_string(clips.size()) + " clip" + (clips.size() == 1 ? "" : "s") +
-               " (" + std::to_string(o.set.repairs.size()) + " joint runs of up to " + std::to_string(frames) +
-               " frames): " + names + "; 'mocapdb set show' lists them\n";
+        out += "repaired solver dropouts in " + std::to_string(clips.size()) + " clip" +
+               (clips.size() == 1 ? "" : "s") + " (" + std::to_string(o.set.repairs.size()) + " joint runs of up to " +
+               std::to_string(frames) + " frames): " + names + "; 'mocapdb set show' lists them\n";
     }
     return out;
 }
@@ -175,7 +177,8 @@ std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
                   static_cast<long long>(o.aligned.samples()), o.distance, o.seconds);
     std::string out = line;
     if (o.phase) {
-        std::snprintf(line, sizeof line, "phase check (same forward foot per aligned frame, %s/%s): min %.0f %%, mean %.0f %%",
+        std::snprintf(line, sizeof line,
+                      "phase check (same forward foot per aligned frame, %s/%s): min %.0f %%, mean %.0f %%",
                       o.phase->feet[0].c_str(), o.phase->feet[1].c_str(), 100.0 * o.phase->min, 100.0 * o.phase->mean);
         out += line;
         const auto low = o.phase->below(0.8);
@@ -210,28 +213,28 @@ CompressOutcome compress_set(const std::string& db, CompressRequest r) {
 std::string describe_compression(const std::string& set, const CompressOutcome& o) {
     const tensor::TuckerModel& t = o.model.tucker;
     char buffer[2048];
-    std::snprintf(buffer, sizeof buffer,
-                  "compressed set '%s' (%s): %s -> ranks %s, %s%s\n"
-                  "  bytes %llu (float32 model + timing/parameters) vs raw aligned float32 %llu: ratio %.2f:1; "
-                  "model in file %llu bytes\n"
-                  "  relative error %.3g (HOSVD bound %.3g); joint error: rmse %.3f cm, mean %.3f cm, p99 %.3f cm, "
-                  "max %.3f cm (sample %lld, frame %lld, %s)\n"
-                  "  load %.2f s, bases %.2f s, rank search %.2f s, decomposition %.3f s, synthesis kernel %.2f s%s, %.3f us per pose, store %.2f s; %.2f s in all\n",
-                  set.c_str(), o.criterion.c_str(), ranks_text(o.dims).c_str(), ranks_text(t.ranks).c_str(),
-                  tensor::to_string(t.method), o.target_met ? "" : " (target NOT met: closest ranks)",
-                  static_cast<unsigned long long>(o.bytes), static_cast<unsigned long long>(o.raw_bytes), o.ratio(),
-                  static_cast<unsigned long long>(o.stored_bytes), 1.0 - t.fit, t.error_bound / t.data_norm,
-                  o.stats.rmse_cm, o.stats.mean_cm, o.stats.p99_cm, o.stats.max_cm,
-                  static_cast<long long>(o.stats.worst.sample), static_cast<long long>(o.stats.worst.frame),
-                  o.stats.worst.joint.c_str(), o.load_s, o.bases_s, o.search_s, o.fit_s, o.kernel_s,
-                  o.kernel_stored ? "" : (" (not stored: " + o.kernel_not_stored_reason + ")").c_str(), o.us_per_pose,
-                  o.store_s, o.total_s);
+    std::snprintf(
+        buffer, sizeof buffer,
+        "compressed set '%s' (%s): %s -> ranks %s, %s%s\n"
+        "  bytes %llu (float32 model + timing/parameters) vs raw aligned float32 %llu: ratio %.2f:1; "
+        "model in file %llu bytes\n"
+        "  relative error %.3g (HOSVD bound %.3g); joint error: rmse %.3f cm, mean %.3f cm, p99 %.3f cm, "
+        "max %.3f cm (sample %lld, frame %lld, %s)\n"
+        "  load %.2f s, bases %.2f s, rank search %.2f s, decomposition %.3f s, synthesis kernel %.2f s%s, %.3f us per pose, store %.2f s; %.2f s in all\n",
+        set.c_str(), o.criterion.c_str(), ranks_text(o.dims).c_str(), ranks_text(t.ranks).c_str(),
+        tensor::to_string(t.method), o.target_met ? "" : " (target NOT met: closest ranks)",
+        static_cast<unsigned long long>(o.bytes), static_cast<unsigned long long>(o.raw_bytes), o.ratio(),
+        static_cast<unsigned long long>(o.stored_bytes), 1.0 - t.fit, t.error_bound / t.data_norm, o.stats.rmse_cm,
+        o.stats.mean_cm, o.stats.p99_cm, o.stats.max_cm, static_cast<long long>(o.stats.worst.sample),
+        static_cast<long long>(o.stats.worst.frame), o.stats.worst.joint.c_str(), o.load_s, o.bases_s, o.search_s,
+        o.fit_s, o.kernel_s, o.kernel_stored ? "" : (" (not stored: " + o.kernel_not_stored_reason + ")").c_str(),
+        o.us_per_pose, o.store_s, o.total_s);
     std::string text = buffer;
     if (o.kernel_stored) {
         const auto n = static_cast<std::size_t>(o.dims[2]);
         text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + o.kernel_status +
-                (o.kernel_fit_samples < n ? "; variogram chosen on " + std::to_string(o.kernel_fit_samples) + " of the " +
-                                                std::to_string(n) + " samples"
+                (o.kernel_fit_samples < n ? "; variogram chosen on " + std::to_string(o.kernel_fit_samples) +
+                                                " of the " + std::to_string(n) + " samples"
                                           : std::string()) +
                 ")\n";
     }
@@ -245,12 +248,13 @@ std::string rate_table_text(const std::string& set, const RateOutcome& o) {
     const compression::RateReport& r = o.report;
     std::string text;
     char line[1024];
-    std::snprintf(line, sizeof line,
-                  "set '%s': %lld dofs x %lld frames x %lld samples (%.1f s of motion); raw aligned float32 %llu bytes, "
-                  "source channels float32 %llu bytes; every row includes %llu bytes of timing/parameters\n",
-                  set.c_str(), static_cast<long long>(r.dims[0]), static_cast<long long>(r.dims[1]),
-                  static_cast<long long>(r.dims[2]), o.seconds, static_cast<unsigned long long>(r.raw_bytes),
-                  static_cast<unsigned long long>(o.clip_bytes), static_cast<unsigned long long>(r.side_bytes));
+    std::snprintf(
+        line, sizeof line,
+        "set '%s': %lld dofs x %lld frames x %lld samples (%.1f s of motion); raw aligned float32 %llu bytes, "
+        "source channels float32 %llu bytes; every row includes %llu bytes of timing/parameters\n",
+        set.c_str(), static_cast<long long>(r.dims[0]), static_cast<long long>(r.dims[1]),
+        static_cast<long long>(r.dims[2]), o.seconds, static_cast<unsigned long long>(r.raw_bytes),
+        static_cast<unsigned long long>(o.clip_bytes), static_cast<unsigned long long>(r.side_bytes));
     text += line;
     std::snprintf(line, sizeof line, "%-16s %-9s %-10s %10s %8s %9s %9s %9s %11s %11s %s\n", "method", "target",
                   "ranks", "bytes", "ratio", "rmse_cm", "p99_cm", "max_cm", "precomp_s", "us/pose", "");
@@ -289,7 +293,8 @@ std::string rate_svg(const std::string& set, const RateOutcome& o) {
     spec.y_label = "compression ratio (raw aligned float32 / stored bytes), log";
     for (const compression::RateRow& row : r.rows) {
         if (row.target_cm == 0.0 || !row.target_met) continue;
-        auto it = std::find_if(spec.series.begin(), spec.series.end(), [&](const PlotSeries& p) { return p.name == row.method; });
+        auto it = std::find_if(spec.series.begin(), spec.series.end(),
+                               [&](const PlotSeries& p) { return p.name == row.method; });
         if (it == spec.series.end()) {
             spec.series.push_back({row.method, {}, {}});
             it = spec.series.end() - 1;
@@ -298,7 +303,8 @@ std::string rate_svg(const std::string& set, const RateOutcome& o) {
         it->y.push_back(row.ratio);
     }
     spec.note = "tensor " + std::to_string(r.dims[0]) + " dofs x " + std::to_string(r.dims[1]) + " frames x " +
-                std::to_string(r.dims[2]) + " samples; every method charged the same side information; higher is better";
+                std::to_string(r.dims[2]) +
+                " samples; every method charged the same side information; higher is better";
     return render_line_plot(spec);
 }
 

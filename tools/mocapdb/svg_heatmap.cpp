@@ -45,7 +45,8 @@ std::string render_heat_map(const HeatMapSpec& s) {
     o += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(kWidth) + "\" height=\"" + num(kHeight) +
          "\" font-family=\"sans-serif\" font-size=\"13\">\n";
     o += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    o += "<text x=\"" + num(kWidth / 2) + "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" + escape(s.title) + "</text>\n";
+    o += "<text x=\"" + num(kWidth / 2) + "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" + escape(s.title) +
+         "</text>\n";
     const double cw = pw / static_cast<double>(std::max<Eigen::Index>(nx, 1));
     const double ch = ph / static_cast<double>(std::max<Eigen::Index>(ny, 1));
     for (Eigen::Index j = 0; j < ny; ++j)
@@ -63,10 +64,12 @@ std::string render_heat_map(const HeatMapSpec& s) {
         const double xv = x0 + (x1 - x0) * k / 4.0, yv = y0 + (y1 - y0) * k / 4.0;
         o += "<line x1=\"" + num(px(xv)) + "\" y1=\"" + num(kTop + ph) + "\" x2=\"" + num(px(xv)) + "\" y2=\"" +
              num(kTop + ph + 6) + "\" stroke=\"black\"/>\n";
-        o += "<text x=\"" + num(px(xv)) + "\" y=\"" + num(kTop + ph + 22) + "\" text-anchor=\"middle\">" + label(xv) + "</text>\n";
+        o += "<text x=\"" + num(px(xv)) + "\" y=\"" + num(kTop + ph + 22) + "\" text-anchor=\"middle\">" + label(xv) +
+             "</text>\n";
         o += "<line x1=\"" + num(kLeft - 6) + "\" y1=\"" + num(py(yv)) + "\" x2=\"" + num(kLeft) + "\" y2=\"" +
              num(py(yv)) + "\" stroke=\"black\"/>\n";
-        o += "<text x=\"" + num(kLeft - 10) + "\" y=\"" + num(py(yv) + 4) + "\" text-anchor=\"end\">" + label(yv) + "</text>\n";
+        o += "<text x=\"" + num(kLeft - 10) + "\" y=\"" + num(py(yv) + 4) + "\" text-anchor=\"end\">" + label(yv) +
+             "</text>\n";
     }
     o += "<text x=\"" + num(kLeft + pw / 2) + "\" y=\"" + num(kTop + ph + 48) + "\" text-anchor=\"middle\">" +
          escape(s.x_label) + "</text>\n";
@@ -90,17 +93,19 @@ std::string render_heat_map(const HeatMapSpec& s) {
          "\" fill=\"none\" stroke=\"black\"/>\n";
     for (int k = 0; k <= 4; ++k) {
         const double v = s.value_lo + (s.value_hi - s.value_lo) * k / 4.0;
-        o += "<text x=\"" + num(bx + bw + 6) + "\" y=\"" + num(kTop + ph - ph * k / 4.0 + 4) + "\">" + label(v) + "</text>\n";
+        o += "<text x=\"" + num(bx + bw + 6) + "\" y=\"" + num(kTop + ph - ph * k / 4.0 + 4) + "\">" + label(v) +
+             "</text>\n";
     }
     o += "<text x=\"" + num(bx) + "\" y=\"" + num(kTop - 10) + "\">" + escape(s.value_label) + "</text>\n";
     if (!s.point_label.empty()) {
         o += "<circle cx=\"" + num(kLeft + 8) + "\" cy=\"" + num(kHeight - 22) +
              "\" r=\"4\" fill=\"white\" stroke=\"black\" stroke-width=\"1.5\"/>\n";
-        o += "<text x=\"" + num(kLeft + 18) + "\" y=\"" + num(kHeight - 18) + "\">" + escape(s.point_label) + "</text>\n";
+        o += "<text x=\"" + num(kLeft + 18) + "\" y=\"" + num(kHeight - 18) + "\">" + escape(s.point_label) +
+             "</text>\n";
     }
     if (!s.note.empty())
-        o += "<text x=\"" + num(kWidth - 10) + "\" y=\"" + num(kHeight - 18) + "\" text-anchor=\"end\" font-size=\"11\" fill=\"#555\">" +
-             escape(s.note) + "</text>\n";
+        o += "<text x=\"" + num(kWidth - 10) + "\" y=\"" + num(kHeight - 18) +
+             "\" text-anchor=\"end\" font-size=\"11\" fill=\"#555\">" + escape(s.note) + "</text>\n";
     o += "</svg>\n";
     return o;
 }

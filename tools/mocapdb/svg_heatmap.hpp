@@ -14,12 +14,12 @@ struct HeatMapSpec {
     std::string y_label;
     std::string value_label;
     double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;  ///< centres of the first and last cells
-    Eigen::MatrixXd values;       ///< ny by nx (row 0 = y_lo), finite values are coloured, others grey
+    Eigen::MatrixXd values;                 ///< ny by nx (row 0 = y_lo), finite values are coloured, others grey
     double value_lo = 0.0, value_hi = 1.0;  ///< colour scale range
-    std::vector<double> point_x;  ///< marked points (drawn when inside the plot)
+    std::vector<double> point_x;            ///< marked points (drawn when inside the plot)
     std::vector<double> point_y;
-    std::string point_label;      ///< legend text of the points
-    std::string note;             ///< one line under the plot
+    std::string point_label;  ///< legend text of the points
+    std::string note;         ///< one line under the plot
 };
 
 /// The SVG document.

@@ -79,8 +79,8 @@ std::string render_line_plot(const PlotSpec& spec) {
                       num(kHeight) + "\" viewBox=\"0 0 " + num(kWidth) + " " + num(kHeight) +
                       "\" font-family=\"sans-serif\" font-size=\"12\">\n";
     svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    svg += "<text x=\"" + num(kWidth / 2) + "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">" + escape(spec.title) +
-           "</text>\n";
+    svg += "<text x=\"" + num(kWidth / 2) + "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">" +
+           escape(spec.title) + "</text>\n";
     for (double t : ax.ticks()) {
         const double x = ax.map(t, x0, x1);
         svg += "<line x1=\"" + num(x) + "\" y1=\"" + num(y0) + "\" x2=\"" + num(x) + "\" y2=\"" + num(y1) +
@@ -113,11 +113,12 @@ std::string render_line_plot(const PlotSpec& spec) {
             svg += "\"/>\n";
         }
         for (const auto& p : pts)
-            svg += "<circle cx=\"" + num(p.first) + "\" cy=\"" + num(p.second) + "\" r=\"3.5\" fill=\"" + colour + "\"/>\n";
+            svg += "<circle cx=\"" + num(p.first) + "\" cy=\"" + num(p.second) + "\" r=\"3.5\" fill=\"" + colour +
+                   "\"/>\n";
         const double ly = y1 + 10 + 20.0 * static_cast<double>(k);
         svg += "<line x1=\"" + num(x1 + 15) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(x1 + 40) + "\" y2=\"" + num(ly) +
-               "\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n<text x=\"" + num(x1 + 46) + "\" y=\"" + num(ly + 4) +
-               "\">" + escape(s.name) + "</text>\n";
+               "\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n<text x=\"" + num(x1 + 46) + "\" y=\"" +
+               num(ly + 4) + "\">" + escape(s.name) + "</text>\n";
     }
     if (!spec.note.empty())
         svg += "<text x=\"" + num(x0) + "\" y=\"" + num(kHeight - 12) + "\" font-size=\"10\" fill=\"#555\">" +

@@ -77,7 +77,8 @@ std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& 
     return workflow::load_motion_model(db, set, options);
 }
 
-Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name, const std::string& option) {
+Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name,
+                             const std::string& option) {
     for (std::size_t k = 0; k < names.size(); ++k)
         if (names[k] == name) return static_cast<Eigen::Index>(k);
     std::string list;
@@ -103,8 +104,7 @@ std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& mod
     if (!w.kernel_fit.empty()) out.push_back(w.kernel_fit);
     if (w.regularized)
         out.emplace_back("singular kriging system: the covariance matrix was regularized (eigenvalues clamped)");
-    else if (w.jittered)
-        out.emplace_back("near-singular kriging system: a jitter was added to its diagonal");
+    else if (w.jittered) out.emplace_back("near-singular kriging system: a jitter was added to its diagonal");
     return out;
 }
 

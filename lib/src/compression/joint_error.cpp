@@ -51,12 +51,12 @@ void check_dof_count(const Skeleton* skeleton, Eigen::Index values, Eigen::Index
     if (!skeleton) throw InvalidArgument("JointErrorMeter: no skeleton");
     const auto dofs = static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count());
     if (values != dofs || mean != dofs || weight != dofs)
-        throw InvalidArgument("JointErrorMeter: the reference has " + std::to_string(values) +
-                              " pose values per frame" +
-                              (mean == values && weight == values
-                                   ? std::string()
-                                   : ", its mean " + std::to_string(mean) + " and its weight " + std::to_string(weight)) +
-                              "; the skeleton's pose vector has " + std::to_string(dofs));
+        throw InvalidArgument(
+            "JointErrorMeter: the reference has " + std::to_string(values) + " pose values per frame" +
+            (mean == values && weight == values
+                 ? std::string()
+                 : ", its mean " + std::to_string(mean) + " and its weight " + std::to_string(weight)) +
+            "; the skeleton's pose vector has " + std::to_string(dofs));
 }
 
 // Puts sample n at the front of the suspects (at most 64 kept); nothing when there is no list.
@@ -111,7 +111,8 @@ void JointErrorMeter::compute_reference_positions() {
         const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
         MatX buffer;
         for (Eigen::Index n = first; n < std::min(samples, first + kSamplesPerChunk); ++n)
-            reference_positions_[static_cast<std::size_t>(n)] = pose_joint_positions(*skeleton_, reference_poses(n, buffer));
+            reference_positions_[static_cast<std::size_t>(n)] =
+                pose_joint_positions(*skeleton_, reference_poses(n, buffer));
     });
 }
 
@@ -237,7 +238,8 @@ std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleAppro
     const std::unique_ptr<float[]> errors(new float[n_values * static_cast<std::size_t>(per_sample)]);
     std::vector<double> sums(n_values), sums_sq(n_values), dof_sq(n_values), worst(n_values);
     std::vector<Eigen::Index> worst_at(n_values);
-    const SampleFigures figures{errors.get(), sums.data(), sums_sq.data(), dof_sq.data(), worst.data(), worst_at.data()};
+    const SampleFigures figures{errors.get(),  sums.data(),  sums_sq.data(),
+                                dof_sq.data(), worst.data(), worst_at.data()};
     // With `beyond`: per sample, whether it has a joint beyond max_cm (every sample is measured).
     std::vector<char> flagged(beyond ? static_cast<std::size_t>(samples) : 0, 0);
 
@@ -251,8 +253,7 @@ std::optional<JointErrorStats> JointErrorMeter::measure_within(const SampleAppro
         const Eigen::Index first = static_cast<Eigen::Index>(c) * kSamplesPerChunk;
         std::vector<Eigen::Index> ids;
         for (Eigen::Index n = first; n < std::min(samples, first + kSamplesPerChunk); ++n) ids.push_back(n);
-        const Eigen::Index found =
-            check_samples(approx, ids, max_cm, &figures, beyond ? flagged.data() : nullptr);
+        const Eigen::Index found = check_samples(approx, ids, max_cm, &figures, beyond ? flagged.data() : nullptr);
         if (found >= 0) {
             Eigen::Index none = -1;
             exceeded.compare_exchange_strong(none, found);

@@ -21,7 +21,8 @@ double log_error_low() { return std::log(1e-7); }
 constexpr double kLogErrorResolution = 0.01;
 
 std::uint64_t bisection_steps() {
-    return static_cast<std::uint64_t>(std::min(28.0, std::ceil(std::log2((0.0 - log_error_low()) / kLogErrorResolution))));
+    return static_cast<std::uint64_t>(
+        std::min(28.0, std::ceil(std::log2((0.0 - log_error_low()) / kLogErrorResolution))));
 }
 
 // One bisection over log e: decide(ranks) says whether the model at ranks_for_error_bound(e) counts
@@ -175,13 +176,15 @@ std::vector<Eigen::Index> fixed_screen(const Tensor3& x, Eigen::Index spread) {
 std::vector<Eigen::Index> screen_for(const tensor::HosvdBases& bases, const tensor::Ranks& ranks,
                                      const std::vector<Eigen::Index>& fixed, const std::vector<Eigen::Index>& found) {
     std::vector<Eigen::Index> ids = fixed;
-    ids.insert(ids.end(), found.begin(), found.begin() + static_cast<std::ptrdiff_t>(std::min(found.size(), kFoundScreen)));
+    ids.insert(ids.end(), found.begin(),
+               found.begin() + static_cast<std::ptrdiff_t>(std::min(found.size(), kFoundScreen)));
     const MatX& u = bases.U[2];
     const VecX& lambda = bases.spectra.squared_sv[2];
     const Eigen::Index columns = std::min(u.cols(), lambda.size());
     if (ranks[2] < columns) {
         const auto dropped = columns - ranks[2];
-        const VecX energy = u.middleCols(ranks[2], dropped).array().square().matrix() * lambda.segment(ranks[2], dropped);
+        const VecX energy =
+            u.middleCols(ranks[2], dropped).array().square().matrix() * lambda.segment(ranks[2], dropped);
         const std::vector<Eigen::Index> moved = largest_entries(energy, kTruncationScreen);
         ids.insert(ids.end(), moved.begin(), moved.end());
     }
@@ -244,10 +247,11 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
     };
     // Screening pays when the screen is a small part of the set.
     const bool screening = screen_samples > 0 && 4 * screen_samples < samples;
-    const std::vector<Eigen::Index> fixed = screening ? fixed_screen(p.weighted(), screen_samples) : std::vector<Eigen::Index>{};
+    const std::vector<Eigen::Index> fixed =
+        screening ? fixed_screen(p.weighted(), screen_samples) : std::vector<Eigen::Index>{};
 
-    std::set<tensor::Ranks> failed;                       // a joint beyond the target was found
-    std::map<tensor::Ranks, JointErrorStats> passed;      // every pose checked: within the target
+    std::set<tensor::Ranks> failed;                     // a joint beyond the target was found
+    std::map<tensor::Ranks, JointErrorStats> passed;    // every pose checked: within the target
     std::vector<Eigen::Index> suspects, found, beyond;  // suspects: order only; found: joins screens
     int evaluations = 0, full_checks = 0, truncation_checks = 0;
     for (int round = 0;; ++round) {
@@ -263,8 +267,8 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
             if (screened && detail::TruncationReconstruction::cheaper_than_direct(p.bases, ranks)) {
                 ++truncation_checks;
                 const detail::TruncationReconstruction approx(p.weighted(), p.bases, ranks, p.mean, p.weight);
-                const bool over = meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found),
-                                                   max_cm, &suspects);
+                const bool over =
+                    meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found), max_cm, &suspects);
                 if (over) failed.insert(ranks);
                 return !over;
             }
@@ -272,8 +276,8 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
             std::optional<SampleReconstruction> reconstruction;
             const SampleReconstruction& approx = reconstruction_at(p, full_core, ranks, holder, reconstruction);
             if (screened) {
-                const bool over = meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found),
-                                                   max_cm, &suspects);
+                const bool over =
+                    meter.exceeds_on(samples_of(approx), screen_for(p.bases, ranks, fixed, found), max_cm, &suspects);
                 if (over) failed.insert(ranks);
                 return !over;
             }
@@ -286,16 +290,17 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
             passed.emplace(ranks, std::move(*stats));
             return true;
         };
-        const std::optional<tensor::Ranks> candidate =
-            bisection(p.bases.spectra, decide, [&](std::uint64_t i) { if (round == 0) report(i); });
+        const std::optional<tensor::Ranks> candidate = bisection(p.bases.spectra, decide, [&](std::uint64_t i) {
+            if (round == 0) report(i);
+        });
         Choice best;
         if (!candidate) {
             best.ranks = full_ranks(p);
             std::optional<SetModel> holder;
             std::optional<SampleReconstruction> reconstruction;
-            best.stats = *meter.measure_within(
-                samples_of(reconstruction_at(p, full_core, best.ranks, holder, reconstruction)),
-                std::numeric_limits<double>::infinity());
+            best.stats =
+                *meter.measure_within(samples_of(reconstruction_at(p, full_core, best.ranks, holder, reconstruction)),
+                                      std::numeric_limits<double>::infinity());
             ++evaluations;
         } else {
             best.ranks = *candidate;
@@ -329,8 +334,8 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
                 std::optional<SetModel> holder;
                 std::optional<SampleReconstruction> reconstruction;
                 std::optional<JointErrorStats> stats = meter.measure_within(
-                    samples_of(reconstruction_at(p, full_core, *candidate, holder, reconstruction)), max_cm,
-                    &suspects, &beyond);
+                    samples_of(reconstruction_at(p, full_core, *candidate, holder, reconstruction)), max_cm, &suspects,
+                    &beyond);
                 if (!stats) {
                     fail_candidate();
                     continue;
@@ -348,8 +353,9 @@ Choice choose_for_max_error(const PreparedSet& p, const Tensor3& full_core, cons
 
 }  // namespace
 
-RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compression::JointErrorMeter& meter, double max_cm,
-                                            const ProgressCallback& progress, Eigen::Index screen_samples) {
+RankSearchResult search_ranks_for_max_error(const PreparedSet& p, const compression::JointErrorMeter& meter,
+                                            double max_cm, const ProgressCallback& progress,
+                                            Eigen::Index screen_samples) {
     check_max_error_arguments(max_cm, screen_samples);
     Tensor3 computed_core;
     const Tensor3& full_core = core_at_full_ranks(p, computed_core);

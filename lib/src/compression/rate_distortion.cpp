@@ -81,7 +81,8 @@ RateRow tucker_row(const Context& c, double target) {
     SetModel m = hosvd_model(c.prepared, found.model.tucker.ranks);
     const double precompute = seconds_since(start);
     m.tucker = rounded_to_float32(m.tucker);
-    RateRow r = c.row("tucker", target, kFloat32 * static_cast<std::uint64_t>(m.tucker.parameter_count()) + c.mean_weight_bytes);
+    RateRow r = c.row("tucker", target,
+                      kFloat32 * static_cast<std::uint64_t>(m.tucker.parameter_count()) + c.mean_weight_bytes);
     r.ranks = {m.tucker.ranks[0], m.tucker.ranks[1], m.tucker.ranks[2]};
     r.stats = c.meter.measure(m.reconstruct());
     r.target_met = r.stats.max_cm <= target;
@@ -101,7 +102,8 @@ RateRow quantized_row(const Context& c, const RateRow& tucker, int bits) {
     const compression::codecs::QuantizedTucker quantized = compression::codecs::quantize_tucker(m.tucker, q);
     const double precompute = seconds_since(start);
     m.tucker = quantized.model;
-    RateRow r = c.row("tucker-q" + std::to_string(bits), tucker.target_cm, quantized.best_bytes() + c.mean_weight_bytes);
+    RateRow r =
+        c.row("tucker-q" + std::to_string(bits), tucker.target_cm, quantized.best_bytes() + c.mean_weight_bytes);
     r.ranks = tucker.ranks;
     r.setting = bits;
     r.stats = c.meter.measure(m.reconstruct());
@@ -137,8 +139,8 @@ RateRow hooi_row(const Context& c, const RateRow& tucker, int iterations) {
 // A lossy reconstruction of X that the residual layer completes.
 struct LossyCandidate {
     std::vector<long long> ranks;
-    Tensor3 x_hat;                  // what the lossy part's decoder gives
-    std::uint64_t payload = 0;      // its stored bytes
+    Tensor3 x_hat;              // what the lossy part's decoder gives
+    std::uint64_t payload = 0;  // its stored bytes
     double fit_seconds = 0.0;
     std::function<Tensor3()> decode;  // the lossy decoder, for timing
 };
@@ -155,7 +157,8 @@ RateRow best_with_residual(const Context& c, const std::string& method, double t
         for (int i = 0; i < 8; ++i) {
             const double s = i == 0 ? 1.0 : std::exp(0.5 * (lo + hi));
             const auto encode_start = Clock::now();
-            const compression::codecs::ResidualEncoding enc = compression::codecs::encode_residual(residual, s * target);
+            const compression::codecs::ResidualEncoding enc =
+                compression::codecs::encode_residual(residual, s * target);
             const double encode_seconds = seconds_since(encode_start);
             const compression::JointErrorStats stats = c.meter.measure(c.poses_of(add(cand.x_hat, enc.decoded)));
             const bool ok = stats.max_cm <= target;
@@ -198,7 +201,8 @@ RateRow tucker_residual_row(const Context& c, double target, int bits) {
     std::vector<LossyCandidate> candidates;
     for (const tensor::Ranks& ranks : rungs) {
         const auto start = Clock::now();
-        const compression::codecs::QuantizedTucker quantized = compression::codecs::quantize_tucker(hosvd_model(c.prepared, ranks).tucker, q);
+        const compression::codecs::QuantizedTucker quantized =
+            compression::codecs::quantize_tucker(hosvd_model(c.prepared, ranks).tucker, q);
         LossyCandidate cand;
         cand.ranks = {ranks[0], ranks[1], ranks[2]};
         cand.x_hat = quantized.model.reconstruct();
@@ -252,7 +256,8 @@ RateRow zfp_row(const Context& c, double target) {
         const auto start = Clock::now();
         const compression::codecs::EncodedStream s = compression::codecs::zfp_encode(c.prepared.x, tol);
         const double seconds = seconds_since(start);
-        const compression::JointErrorStats stats = c.meter.measure(c.poses_of(compression::codecs::zfp_decode(s.bytes)));
+        const compression::JointErrorStats stats =
+            c.meter.measure(c.poses_of(compression::codecs::zfp_decode(s.bytes)));
         if (stats.max_cm <= target) {
             lo = 0.5 * (lo + hi);
             if (!found || s.payload_bytes() + c.mean_weight_bytes + c.side_bytes < best.bytes) {
@@ -261,7 +266,8 @@ RateRow zfp_row(const Context& c, double target) {
                 best.stats = stats;
                 best.precompute_s = seconds;
                 best.access = "stream";
-                best.us_per_pose = stream_us_per_pose([&] { (void)compression::codecs::zfp_decode(s.bytes); }, c.pose_count);
+                best.us_per_pose =
+                    stream_us_per_pose([&] { (void)compression::codecs::zfp_decode(s.bytes); }, c.pose_count);
                 found = true;
             }
         } else {
@@ -340,7 +346,8 @@ RateReport rate_distortion(const Tensor3& poses, std::shared_ptr<const Skeleton>
         r.precompute_s = seconds_since(start);
         r.stats = meter.measure(compression::codecs::decode_float32_deflate(s.bytes));
         r.access = "stream";
-        r.us_per_pose = stream_us_per_pose([&] { (void)compression::codecs::decode_float32_deflate(s.bytes); }, c.pose_count);
+        r.us_per_pose =
+            stream_us_per_pose([&] { (void)compression::codecs::decode_float32_deflate(s.bytes); }, c.pose_count);
         emit(r);
     }
     const auto pca_start = Clock::now();

@@ -112,10 +112,12 @@ void check(const SetModel& m, const char* where) {
     const tensor::TuckerModel& t = m.tucker;
     const Eigen::Index d = m.mean.size();
     if (d == 0) fail("the model has no dofs");
-    if (m.weight.size() != d) fail("weight has " + std::to_string(m.weight.size()) + " entries, mean " + std::to_string(d));
+    if (m.weight.size() != d)
+        fail("weight has " + std::to_string(m.weight.size()) + " entries, mean " + std::to_string(d));
     if (!(m.weight.array() > 0.0).all() || !m.weight.allFinite()) fail("weights must be finite and > 0");
     if (!m.mean.allFinite()) fail("mean is not finite");
-    if (t.U[0].rows() != d) fail("dof basis has " + std::to_string(t.U[0].rows()) + " rows, expected " + std::to_string(d));
+    if (t.U[0].rows() != d)
+        fail("dof basis has " + std::to_string(t.U[0].rows()) + " rows, expected " + std::to_string(d));
     for (int n = 0; n < 3; ++n) {
         if (t.U[n].cols() != t.ranks[n] || t.core.dimension(n) != t.ranks[n])
             fail("basis " + std::to_string(n) + " is " + std::to_string(t.U[n].rows()) + " x " +

@@ -21,9 +21,7 @@ VecX column_at(const MatX& m, double x) {
     return (1.0 - a) * m.col(i) + a * m.col(i + 1);
 }
 
-VecX uniform(Eigen::Index frames, double last) {
-    return VecX::LinSpaced(frames, 0.0, last);
-}
+VecX uniform(Eigen::Index frames, double last) { return VecX::LinSpaced(frames, 0.0, last); }
 
 std::size_t median_length_sample(const std::vector<Clip>& samples) {
     std::vector<std::size_t> order(samples.size());
@@ -38,7 +36,8 @@ void check_samples(const std::vector<Clip>& samples) {
     for (std::size_t n = 0; n < samples.size(); ++n) {
         validate(samples[n]);
         if (samples[n].frame_count() < 2)
-            throw InvalidArgument("align: sample " + std::to_string(n) + " ('" + samples[n].name + "') has fewer than 2 frames");
+            throw InvalidArgument("align: sample " + std::to_string(n) + " ('" + samples[n].name +
+                                  "') has fewer than 2 frames");
         if (!samples[n].skeleton->same_structure(*samples.front().skeleton))
             throw InvalidArgument("align: sample " + std::to_string(n) + " ('" + samples[n].name +
                                   "') has a different skeleton from sample 0");
@@ -55,7 +54,8 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
     if (options.canonical != "travel" && options.canonical != "first-frame")
         throw InvalidArgument("align: canonical must be 'travel' or 'first-frame', found '" + options.canonical + "'");
     const auto canonical_of = [&](const Clip& c) {
-        return options.canonical == "travel" ? travel_canonicalization(c, options.travel).canonical : canonicalization_of(c);
+        return options.canonical == "travel" ? travel_canonicalization(c, options.travel).canonical
+                                             : canonicalization_of(c);
     };
     // Beyond a few times the longest sample, more aligned frames only interpolate, and the tensor
     // (D x T x N doubles) grows without bound.
@@ -87,7 +87,8 @@ AlignedSet align_samples(const std::vector<Clip>& samples, const AlignOptions& o
     };
     if (options.method == "linear") {
         for (std::size_t n = 0; n < count; ++n)
-            out.warps.col(static_cast<Eigen::Index>(n)) = uniform(frames, static_cast<double>(samples[n].frame_count() - 1));
+            out.warps.col(static_cast<Eigen::Index>(n)) =
+                uniform(frames, static_cast<double>(samples[n].frame_count() - 1));
     } else {
         const MatX ref_features = align::pose_features(samples[ref]);
         for (std::size_t n = 0; n < count; ++n) {
@@ -146,7 +147,7 @@ double mean_alignment_distance(const std::vector<Clip>& samples, const AlignedSe
         const MatX features = align::pose_features(samples[n]);
         for (Eigen::Index t = 0; t < aligned.frames(); ++t) {
             sum += align::pose_distance(column_at(features, aligned.warps(t, static_cast<Eigen::Index>(n))),
-                                 column_at(ref_features, aligned.warps(t, static_cast<Eigen::Index>(ref))));
+                                        column_at(ref_features, aligned.warps(t, static_cast<Eigen::Index>(ref))));
             ++terms;
         }
     }

@@ -135,7 +135,8 @@ std::vector<DropoutRun> detect_dropouts(const Clip& clip, const DropoutOptions& 
             if (b > 0) c.run.jump = channel_rotation_angle(s, j, clip.frame(b - 1));
             if (e < frames) c.run.jump = std::max(c.run.jump, channel_rotation_angle(s, j, clip.frame(e)));
             c.borders_moving = true;
-            for (std::size_t f = b; f < e && c.borders_moving; ++f) c.borders_moving = group_borders_moving(nb, zero, j, f);
+            for (std::size_t f = b; f < e && c.borders_moving; ++f)
+                c.borders_moving = group_borders_moving(nb, zero, j, f);
             if (c.borders_moving && c.run.jump >= options.min_jump) {
                 if (!limit_known) {
                     limit = zero_is_limit(clip, cols, zero[j], options.limit_tolerance);
@@ -245,9 +246,8 @@ std::string describe_repairs(const std::string& clip_id, const std::vector<Repai
     std::vector<std::pair<std::pair<std::size_t, std::size_t>, std::string>> groups;
     for (const RepairedFrames& r : repairs) {
         if (r.clip != clip_id) continue;
-        auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
-            return g.first == std::make_pair(r.begin, r.end);
-        });
+        auto it = std::find_if(groups.begin(), groups.end(),
+                               [&](const auto& g) { return g.first == std::make_pair(r.begin, r.end); });
         if (it == groups.end()) {
             groups.push_back({{r.begin, r.end}, r.joint});
         } else {

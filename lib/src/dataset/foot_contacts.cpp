@@ -23,8 +23,8 @@ std::vector<std::string> name_words(const std::string& name) {
     std::vector<std::string> words(1);
     for (std::size_t i = 0; i < name.size(); ++i) {
         const auto c = static_cast<unsigned char>(name[i]);
-        const bool boundary = !std::isalnum(c) ||
-                              (i > 0 && std::isupper(c) && std::islower(static_cast<unsigned char>(name[i - 1])));
+        const bool boundary =
+            !std::isalnum(c) || (i > 0 && std::isupper(c) && std::islower(static_cast<unsigned char>(name[i - 1])));
         if (boundary && !words.back().empty()) words.emplace_back();
         if (std::isalnum(c)) words.back() += static_cast<char>(std::tolower(c));
     }
@@ -46,7 +46,8 @@ std::optional<std::string> find_foot(const Skeleton& s, const std::string& lette
                                      const char* part) {
     for (const Joint& j : s.joints()) {
         if (j.end_site || lower(j.name).find(part) == std::string::npos) continue;
-        if (on_side(j.name, letter, word) && !on_side(j.name, letter == "l" ? "r" : "l", letter == "l" ? "right" : "left"))
+        if (on_side(j.name, letter, word) &&
+            !on_side(j.name, letter == "l" ? "r" : "l", letter == "l" ? "right" : "left"))
             return j.name;
     }
     return std::nullopt;

@@ -39,13 +39,14 @@ std::vector<std::size_t> left_foot_passes(const VecX& separation, double min_swi
     std::vector<std::size_t> passes;
     if (separation.size() < 3) return passes;
     std::vector<double> magnitude(static_cast<std::size_t>(separation.size()));
-    for (Eigen::Index f = 0; f < separation.size(); ++f) magnitude[static_cast<std::size_t>(f)] = std::abs(separation[f]);
+    for (Eigen::Index f = 0; f < separation.size(); ++f)
+        magnitude[static_cast<std::size_t>(f)] = std::abs(separation[f]);
     const auto p90 = magnitude.begin() + static_cast<std::ptrdiff_t>(magnitude.size() * 9 / 10);
     std::nth_element(magnitude.begin(), p90, magnitude.end());
     if (!(*p90 > min_swing_cm)) return passes;
     const double threshold = std::max(min_swing_cm, 0.3 * *p90);
-    bool was_behind = false;      // been below -threshold since the last pass
-    std::size_t crossing = 0;     // last frame where the separation became >= 0
+    bool was_behind = false;   // been below -threshold since the last pass
+    std::size_t crossing = 0;  // last frame where the separation became >= 0
     bool have_crossing = false;
     for (Eigen::Index f = 1; f < separation.size(); ++f) {
         const double d = separation[f];
@@ -67,7 +68,8 @@ std::vector<std::size_t> left_foot_passes(const VecX& separation, double min_swi
     // each only when the lead grows there at least half as fast as at the confirmed passes (feet
     // that come to rest side by side jitter around 0 without a pass).
     std::vector<double> rates;
-    for (std::size_t p : passes) rates.push_back(separation[static_cast<Eigen::Index>(p)] - separation[static_cast<Eigen::Index>(p) - 1]);
+    for (std::size_t p : passes)
+        rates.push_back(separation[static_cast<Eigen::Index>(p)] - separation[static_cast<Eigen::Index>(p) - 1]);
     std::nth_element(rates.begin(), rates.begin() + static_cast<std::ptrdiff_t>(rates.size() / 2), rates.end());
     const double typical_rate = rates[rates.size() / 2];
     const double first_rise = separation[1] - separation[0];
@@ -75,9 +77,11 @@ std::vector<std::size_t> left_foot_passes(const VecX& separation, double min_swi
         passes.insert(passes.begin(), 0);
     const auto last = static_cast<std::size_t>(separation.size() - 1);
     if (was_behind && have_crossing && crossing > passes.back()) {
-        const double rate = crossing == last ? separation[static_cast<Eigen::Index>(last)] - separation[static_cast<Eigen::Index>(last) - 1]
-                                             : (separation[static_cast<Eigen::Index>(last)] - separation[static_cast<Eigen::Index>(crossing)]) /
-                                                   static_cast<double>(last - crossing);
+        const double rate =
+            crossing == last
+                ? separation[static_cast<Eigen::Index>(last)] - separation[static_cast<Eigen::Index>(last) - 1]
+                : (separation[static_cast<Eigen::Index>(last)] - separation[static_cast<Eigen::Index>(crossing)]) /
+                      static_cast<double>(last - crossing);
         if (rate >= 0.5 * typical_rate) passes.push_back(crossing);
     }
     return passes;

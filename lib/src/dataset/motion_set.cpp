@@ -30,8 +30,8 @@ void validate(const MotionSet& set) {
                               std::to_string(set.parameters.cols()) + ", expected " + std::to_string(n) + " by " +
                               std::to_string(p) + " (samples by parameters)");
     if (!set.parameters.allFinite()) throw InvalidArgument(who + ": non-finite control parameter");
-    if (set.parameter_periods.size() != 0 &&
-        (set.parameter_periods.size() != p || !set.parameter_periods.allFinite() || (set.parameter_periods.array() < 0.0).any()))
+    if (set.parameter_periods.size() != 0 && (set.parameter_periods.size() != p || !set.parameter_periods.allFinite() ||
+                                              (set.parameter_periods.array() < 0.0).any()))
         throw InvalidArgument(who + ": parameter periods must be empty or " + std::to_string(p) +
                               " finite values >= 0 (0 = not periodic)");
 }
@@ -39,13 +39,14 @@ void validate(const MotionSet& set) {
 void set_parameter_period(MotionSet& set, const std::string& name, double period) {
     const std::string who = "motion set '" + set.name + "'";
     if (!(period >= 0.0) || !std::isfinite(period))
-        throw InvalidArgument(who + ": the period of parameter '" + name + "' must be finite and > 0 (0 = not periodic)");
+        throw InvalidArgument(who + ": the period of parameter '" + name +
+                              "' must be finite and > 0 (0 = not periodic)");
     const auto it = std::find(set.parameter_names.begin(), set.parameter_names.end(), name);
     if (it == set.parameter_names.end()) {
         std::string names;
         for (const std::string& n : set.parameter_names) names += (names.empty() ? "" : ", ") + n;
-        throw InvalidArgument(who + ": no parameter '" + name + "' to make periodic (its parameters: " +
-                              (names.empty() ? "none" : names) + ")");
+        throw InvalidArgument(who + ": no parameter '" + name +
+                              "' to make periodic (its parameters: " + (names.empty() ? "none" : names) + ")");
     }
     const auto p = static_cast<Eigen::Index>(set.parameter_names.size());
     if (set.parameter_periods.size() != p) set.parameter_periods = VecX::Zero(p);
@@ -56,13 +57,15 @@ void set_parameter_period(MotionSet& set, const std::string& name, double period
 void check_distinguishable(const MotionSet& set) {
     const std::string who = "motion set '" + set.name + "'";
     if (set.samples.size() < 2)
-        throw Refused<InvalidArgument>(Remedy::Segmentation, who + ": " + std::to_string(set.samples.size()) +
-                              " sample; a set needs at least 2 (select more clips or segment finer)");
+        throw Refused<InvalidArgument>(Remedy::Segmentation,
+                                       who + ": " + std::to_string(set.samples.size()) +
+                                           " sample; a set needs at least 2 (select more clips or segment finer)");
     if (set.parameters.cols() == 0) return;
     const auto first = set.parameters.row(0);
     for (Eigen::Index i = 1; i < set.parameters.rows(); ++i)
         if (set.parameters.row(i) != first) return;
-    throw InvalidArgument(who + ": every sample has the same parameters, so synthesis could not tell them apart "
+    throw InvalidArgument(who +
+                          ": every sample has the same parameters, so synthesis could not tell them apart "
                           "(give parameters that differ between the samples)");
 }
 

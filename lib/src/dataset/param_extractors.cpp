@@ -54,12 +54,14 @@ ParameterExtractor ParameterExtractor::parse(const std::string& spec) {
         const std::string rest = spec.substr(6);
         const auto at = rest.find('@');
         if (at == std::string::npos || at == 0 || at + 1 == rest.size())
-            throw InvalidArgument("extractor '" + spec + "': expected reach:JOINT@FRAME (FRAME: offset, 'end' or 'P%')");
+            throw InvalidArgument("extractor '" + spec +
+                                  "': expected reach:JOINT@FRAME (FRAME: offset, 'end' or 'P%')");
         e.kind = ParameterKind::Reach;
         e.joint = rest.substr(0, at);
         e.at = rest.substr(at + 1);
     } else {
-        throw InvalidArgument("unknown extractor '" + spec + "' (expected displacement, turn, speed, jump, bearing or reach:JOINT@FRAME)");
+        throw InvalidArgument("unknown extractor '" + spec +
+                              "' (expected displacement, turn, speed, jump, bearing or reach:JOINT@FRAME)");
     }
     return e;
 }
@@ -137,11 +139,14 @@ VecX extract_parameters(const Clip& clip, std::size_t begin, std::size_t end,
             }
             case ParameterKind::Reach: {
                 const auto j = clip.skeleton->find(e.joint);
-                if (!j) throw InvalidArgument("reach joint '" + e.joint + "' is not in the skeleton of clip '" + clip.name + "'");
+                if (!j)
+                    throw InvalidArgument("reach joint '" + e.joint + "' is not in the skeleton of clip '" + clip.name +
+                                          "'");
                 const std::size_t f = reach_frame(e.at, begin, end);
                 GlobalPose pose;
                 forward_kinematics(*clip.skeleton, clip.frame(f), pose);
-                const Vec3 local = rotate_about_y(pose.positions[*j] - pose.positions[clip.skeleton->motion_root()], -heading[static_cast<Eigen::Index>(f)]);
+                const Vec3 local = rotate_about_y(pose.positions[*j] - pose.positions[clip.skeleton->motion_root()],
+                                                  -heading[static_cast<Eigen::Index>(f)]);
                 values.insert(values.end(), {local.x(), local.y(), local.z()});
                 break;
             }

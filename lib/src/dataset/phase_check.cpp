@@ -22,8 +22,8 @@ std::vector<std::pair<Eigen::Index, Eigen::Index>> PhaseCheck::below(double thre
     return out;
 }
 
-PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& aligned, const std::vector<std::string>& feet,
-                       double passing_cm) {
+PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& aligned,
+                       const std::vector<std::string>& feet, double passing_cm) {
     if (samples.empty() || static_cast<Eigen::Index>(samples.size()) != aligned.samples())
         throw InvalidArgument("check_phase: " + std::to_string(samples.size()) + " samples for an aligned set of " +
                               std::to_string(aligned.samples()));
@@ -46,7 +46,8 @@ PhaseCheck check_phase(const std::vector<Clip>& samples, const AlignedSet& align
     for (Eigen::Index t = 0; t < frames; ++t) {
         const Eigen::Index left = (out.forward.row(t).array() > 0).count();
         const Eigen::Index right = (out.forward.row(t).array() < 0).count();
-        out.share[t] = left + right == 0 ? 1.0 : static_cast<double>(std::max(left, right)) / static_cast<double>(left + right);
+        out.share[t] =
+            left + right == 0 ? 1.0 : static_cast<double>(std::max(left, right)) / static_cast<double>(left + right);
     }
     out.min = out.share.minCoeff();
     out.mean = out.share.mean();

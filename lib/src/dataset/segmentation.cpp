@@ -36,7 +36,9 @@ std::vector<SampleRef> flight_window(const Clip& clip, const std::string& clip_i
         throw InvalidArgument("flight window: the margins before take-off and after landing must be 0 to 3600 s");
     const std::optional<Flight> flight = longest_flight(foot_contacts(clip, options.contacts));
     if (!flight) return {};
-    const auto margin = [&](double seconds) { return static_cast<Eigen::Index>(std::lround(seconds * clip.frame_rate)); };
+    const auto margin = [&](double seconds) {
+        return static_cast<Eigen::Index>(std::lround(seconds * clip.frame_rate));
+    };
     const Eigen::Index frames = static_cast<Eigen::Index>(clip.frame_count());
     const Eigen::Index begin = std::max<Eigen::Index>(0, flight->takeoff - margin(options.before_seconds));
     const Eigen::Index end = std::min(frames, flight->landing + margin(options.after_seconds) + 1);
@@ -54,7 +56,8 @@ std::vector<SampleRef> spread_evenly(const std::vector<SampleRef>& all, std::siz
     return out;
 }
 
-std::vector<SampleRef> fixed_windows(const Clip& clip, const std::string& clip_id, std::size_t length, std::size_t hop) {
+std::vector<SampleRef> fixed_windows(const Clip& clip, const std::string& clip_id, std::size_t length,
+                                     std::size_t hop) {
     if (length < 2 || hop < 1) throw InvalidArgument("fixed windows: need length >= 2 frames and hop >= 1");
     std::vector<SampleRef> out;
     for (std::size_t b = 0; b + length <= clip.frame_count(); b += hop) out.push_back({clip_id, b, b + length});

@@ -48,8 +48,10 @@ void parse_segmentation(const std::string& spec, SetBuildOptions& options) {
         const auto colon = rest.find(':');
         options.segmentation = Segmentation::Windows;
         options.window_length = parse_count(rest.substr(0, colon), spec);
-        options.window_hop = colon == std::string::npos ? options.window_length : parse_count(rest.substr(colon + 1), spec);
-        if (options.window_length < 2) throw InvalidArgument("segmentation '" + spec + "': windows need at least 2 frames");
+        options.window_hop =
+            colon == std::string::npos ? options.window_length : parse_count(rest.substr(colon + 1), spec);
+        if (options.window_length < 2)
+            throw InvalidArgument("segmentation '" + spec + "': windows need at least 2 frames");
     } else if (spec == "flight" || spec.rfind("flight:", 0) == 0) {
         options.segmentation = Segmentation::Flights;
         if (spec != "flight") {
@@ -95,8 +97,8 @@ void collect_samples(const std::vector<std::string>& clip_ids, const ClipLoader&
             try {
                 rows.push_back(extract_parameters(clip, s.begin, s.end, options.extractors));
             } catch (const InvalidArgument& e) {
-                throw InvalidArgument("motion set '" + options.name + "', sample " + sample_label(s, clip.frame_count()) +
-                                      ": " + e.what());
+                throw InvalidArgument("motion set '" + options.name + "', sample " +
+                                      sample_label(s, clip.frame_count()) + ": " + e.what());
             }
             set.samples.push_back(s);
         }
@@ -107,7 +109,8 @@ void collect_samples(const std::vector<std::string>& clip_ids, const ClipLoader&
 }  // namespace
 
 MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipLoader& load,
-                           const SetBuildOptions& options, std::vector<std::string>* out_skipped, Segmentation* out_used) {
+                           const SetBuildOptions& options, std::vector<std::string>* out_skipped,
+                           Segmentation* out_used) {
     if (clip_ids.empty()) throw InvalidArgument("motion set '" + options.name + "': no clips selected");
     MotionSet set;
     set.name = options.name;
@@ -134,7 +137,8 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
             bool cycles = false;
             try {
                 collect_samples(clip_ids, load, options, Segmentation::GaitCycles, set, rows, &without_cycle);
-                cycles = static_cast<double>(without_cycle.size()) <= (1.0 - kAutoGaitShare) * static_cast<double>(clip_ids.size());
+                cycles = static_cast<double>(without_cycle.size()) <=
+                         (1.0 - kAutoGaitShare) * static_cast<double>(clip_ids.size());
             } catch (const InvalidArgument&) {
                 cycles = false;  // no feet found by name, or a cycle's parameters undefined: whole clips
             }
@@ -156,9 +160,11 @@ MotionSet build_motion_set(const std::vector<std::string>& clip_ids, const ClipL
     if (set.samples.empty())
         throw InvalidArgument("motion set '" + options.name + "': the " + std::to_string(clip_ids.size()) +
                               " selected clips yield no sample");
-    set.parameters.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(set.parameter_names.size()));
+    set.parameters.resize(static_cast<Eigen::Index>(rows.size()),
+                          static_cast<Eigen::Index>(set.parameter_names.size()));
     if (set.parameters.cols() > 0)  // (no columns: the caller supplies the parameters, e.g. from a CSV)
-        for (std::size_t i = 0; i < rows.size(); ++i) set.parameters.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+        for (std::size_t i = 0; i < rows.size(); ++i)
+            set.parameters.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
     if (!options.extractors.empty()) {
         set.parameter_source = "extract:";
         for (std::size_t k = 0; k < options.extractors.size(); ++k)

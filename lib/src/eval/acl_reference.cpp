@@ -13,8 +13,8 @@
 namespace mocapdb::eval {
 namespace {
 
-const char* const kRequired[] = {"clip", "precision_cm", "status", "joints", "end_sites",
-                                 "frames", "acl_bytes", "max_cm", "rmse_cm"};
+const char* const kRequired[] = {"clip",   "precision_cm", "status", "joints", "end_sites",
+                                 "frames", "acl_bytes",    "max_cm", "rmse_cm"};
 
 std::string shown(const std::string& cell) { return cell.empty() ? "an empty cell" : "'" + cell + "'"; }
 
@@ -30,7 +30,8 @@ double real_cell(const std::string& file, std::size_t line, std::size_t column, 
 
 std::uint64_t whole_cell(const std::string& file, std::size_t line, std::size_t column, const std::string& name,
                          const std::string& cell) {
-    const bool digits = !cell.empty() && std::all_of(cell.begin(), cell.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const bool digits =
+        !cell.empty() && std::all_of(cell.begin(), cell.end(), [](char c) { return c >= '0' && c <= '9'; });
     errno = 0;
     const unsigned long long v = digits ? std::strtoull(cell.c_str(), nullptr, 10) : 0;
     if (!digits || errno == ERANGE)
@@ -66,22 +67,26 @@ AclTable read_acl_table(const std::filesystem::path& path) {
         AclClipRow r;
         r.line = line_no;
         r.clip = cell("clip");
-        if (r.clip.empty()) throw ParseError(file, line_no, col("clip"), "column 'clip': expected a clip name, found an empty cell");
+        if (r.clip.empty())
+            throw ParseError(file, line_no, col("clip"), "column 'clip': expected a clip name, found an empty cell");
         if (column.count("dataset")) r.dataset = cell("dataset");
         r.precision_cm = real_cell(file, line_no, col("precision_cm"), "precision_cm", cell("precision_cm"));
         if (!(r.precision_cm > 0.0))
-            throw ParseError(file, line_no, col("precision_cm"),
-                             "column 'precision_cm': expected a precision > 0 or 'raw', found '" + cell("precision_cm") + "'");
+            throw ParseError(
+                file, line_no, col("precision_cm"),
+                "column 'precision_cm': expected a precision > 0 or 'raw', found '" + cell("precision_cm") + "'");
         r.joints = static_cast<std::size_t>(whole_cell(file, line_no, col("joints"), "joints", cell("joints")));
-        r.end_sites = static_cast<std::size_t>(whole_cell(file, line_no, col("end_sites"), "end_sites", cell("end_sites")));
+        r.end_sites =
+            static_cast<std::size_t>(whole_cell(file, line_no, col("end_sites"), "end_sites", cell("end_sites")));
         r.frames = static_cast<std::size_t>(whole_cell(file, line_no, col("frames"), "frames", cell("frames")));
         r.acl_bytes = whole_cell(file, line_no, col("acl_bytes"), "acl_bytes", cell("acl_bytes"));
         r.max_cm = real_cell(file, line_no, col("max_cm"), "max_cm", cell("max_cm"));
         r.rmse_cm = real_cell(file, line_no, col("rmse_cm"), "rmse_cm", cell("rmse_cm"));
         if (r.frames == 0 || r.joints + r.end_sites == 0)
-            throw ParseError(file, line_no, 0, "expected frames > 0 and joints + end_sites > 0 (the RMSE's weight), found " +
-                                                   std::to_string(r.frames) + " frames, " +
-                                                   std::to_string(r.joints + r.end_sites) + " positions per frame");
+            throw ParseError(file, line_no, 0,
+                             "expected frames > 0 and joints + end_sites > 0 (the RMSE's weight), found " +
+                                 std::to_string(r.frames) + " frames, " + std::to_string(r.joints + r.end_sites) +
+                                 " positions per frame");
         table.rows.push_back(std::move(r));
     }
     return table;
@@ -89,7 +94,8 @@ AclTable read_acl_table(const std::filesystem::path& path) {
 
 void append(AclTable& table, AclTable more) {
     table.files.insert(table.files.end(), more.files.begin(), more.files.end());
-    table.rows.insert(table.rows.end(), std::make_move_iterator(more.rows.begin()), std::make_move_iterator(more.rows.end()));
+    table.rows.insert(table.rows.end(), std::make_move_iterator(more.rows.begin()),
+                      std::make_move_iterator(more.rows.end()));
     table.skipped_rows += more.skipped_rows;
 }
 
@@ -153,8 +159,9 @@ AclComparison compare_with_acl(const AclCollection& acl, double bytes, double ma
         std::optional<double> out = bytes_at_error(points, error);
         if (out || points.empty() || !(error > 0.0)) return out;
         const auto finest = std::min_element(points.begin(), points.end());
-        const bool largest = std::all_of(points.begin(), points.end(),
-                                         [&](const std::pair<double, double>& p) { return p.second <= finest->second; });
+        const bool largest = std::all_of(points.begin(), points.end(), [&](const std::pair<double, double>& p) {
+            return p.second <= finest->second;
+        });
         if (error < finest->first && largest) {
             bound = true;
             out = finest->second;

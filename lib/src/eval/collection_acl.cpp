@@ -22,8 +22,7 @@ void compare_collection_with_acl(CollectionAcl& ref, const CollectionReport& r) 
         ref.unusable = std::to_string(ref.acl.missing.size()) + " of " + std::to_string(r.clips) +
                        " clips have no row in the reference (e.g. " + ref.acl.missing.front() +
                        "): ACL's bytes would not be for the same clips";
-    else if (!ref.acl.complete())
-        ref.unusable = "not every clip has a row at every ACL setting in the reference";
+    else if (!ref.acl.complete()) ref.unusable = "not every clip has a row at every ACL setting in the reference";
     for (const TargetFigures& t : r.targets)
         ref.per_target.push_back(ref.unusable.empty() ? compare_with_acl(ref.acl, static_cast<double>(t.total.bytes),
                                                                          t.total.max_cm, t.total.rmse_cm)

@@ -43,14 +43,16 @@ void check_options(const CollectionReportOptions& o) {
 // gzip's container around a raw deflate stream: 10-byte header, the file name and its NUL (gzip
 // stores the name by default), CRC-32 and size (8 bytes). zlib's own wrapper is 2 + 4 bytes.
 std::uint64_t gzip9_size(const std::string& text, const std::string& file_name) {
-    const compression::codecs::Bytes z = compression::codecs::deflate_bytes(reinterpret_cast<const std::uint8_t*>(text.data()), text.size(), 9);
+    const compression::codecs::Bytes z =
+        compression::codecs::deflate_bytes(reinterpret_cast<const std::uint8_t*>(text.data()), text.size(), 9);
     return static_cast<std::uint64_t>(z.size()) - 6u + 10u + file_name.size() + 1u + 8u;
 }
 
 void measure_gzip(const std::vector<ClipRecord>& records, const std::vector<std::filesystem::path>& dirs,
                   LosslessFigures& out, const std::function<void(std::size_t, const std::string&)>& step) {
     if (dirs.empty()) {
-        out.gzip_reason = "no source folder given (the database records each clip's file name and SHA-256, not its folder)";
+        out.gzip_reason =
+            "no source folder given (the database records each clip's file name and SHA-256, not its folder)";
         return;
     }
     // Every regular file under the folders (subfolders included), by name: folders in the order
@@ -59,7 +61,9 @@ void measure_gzip(const std::vector<ClipRecord>& records, const std::vector<std:
     for (const auto& d : dirs) {
         std::vector<std::filesystem::path> files;
         std::error_code ec;
-        for (std::filesystem::recursive_directory_iterator it(d, std::filesystem::directory_options::skip_permission_denied, ec), end;
+        for (std::filesystem::recursive_directory_iterator
+                 it(d, std::filesystem::directory_options::skip_permission_denied, ec),
+             end;
              !ec && it != end; it.increment(ec))
             if (it->is_regular_file(ec)) files.push_back(it->path());
         if (ec) throw IoError(d.string() + ": cannot list the folder: " + ec.message());
@@ -114,7 +118,9 @@ struct PoseRef {
 
 }  // namespace
 
-double PackedFigures::ratio_float32() const { return ratio(static_cast<double>(float32_bytes), static_cast<double>(bytes)); }
+double PackedFigures::ratio_float32() const {
+    return ratio(static_cast<double>(float32_bytes), static_cast<double>(bytes));
+}
 double PackedFigures::bytes_per_second() const {
     return motion_seconds > 0.0 ? static_cast<double>(bytes) / motion_seconds : 0.0;
 }
@@ -124,7 +130,9 @@ double PackedFigures::bits_per_joint_frame() const {
 double PackedFigures::stream_mb_per_second() const {
     return stream_seconds > 0.0 ? static_cast<double>(float32_bytes) / stream_seconds / 1e6 : 0.0;
 }
-double LosslessFigures::ratio_float32() const { return ratio(static_cast<double>(float32_bytes), static_cast<double>(bytes)); }
+double LosslessFigures::ratio_float32() const {
+    return ratio(static_cast<double>(float32_bytes), static_cast<double>(bytes));
+}
 double LosslessFigures::gzip_ratio_float32() const {
     return gzip_available ? ratio(static_cast<double>(float32_bytes), static_cast<double>(gzip_bytes)) : 0.0;
 }
@@ -292,7 +300,8 @@ CollectionReport collection_report(const Database& db, const CollectionReportOpt
         poses.reserve(options.random_poses);
         for (std::size_t p = 0; p < options.random_poses; ++p) {
             const std::uint64_t u = rng() % sum;
-            const std::size_t i = static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), u) - ends.begin());
+            const std::size_t i =
+                static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), u) - ends.begin());
             const std::uint64_t first = i == 0 ? 0 : ends[i - 1];
             poses.push_back({where[i].first, where[i].second, static_cast<std::size_t>(u - first)});
         }

@@ -27,7 +27,8 @@ void check_compatible(const Skeleton& a, const Skeleton& b, const std::string& w
 
 EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu_dir) {
     if (spec.clips.empty()) throw InvalidArgument("build_eval_set: set '" + spec.name + "' lists no clips");
-    if (spec.frames < 2) throw InvalidArgument("build_eval_set: set '" + spec.name + "' needs at least 2 aligned frames");
+    if (spec.frames < 2)
+        throw InvalidArgument("build_eval_set: set '" + spec.name + "' needs at least 2 aligned frames");
     EvalSet out;
     out.spec = spec;
     out.set.name = spec.name;
@@ -38,7 +39,8 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
     }
     out.set.dropouts_checked = true;
     out.set.parameter_source = "extract:";
-    for (std::size_t k = 0; k < spec.extractors.size(); ++k) out.set.parameter_source += (k ? "," : "") + spec.extractors[k];
+    for (std::size_t k = 0; k < spec.extractors.size(); ++k)
+        out.set.parameter_source += (k ? "," : "") + spec.extractors[k];
     std::vector<VecX> rows;
     for (const std::string& id : spec.clips) {
         const std::filesystem::path path = cmu_dir / (id + ".amc");
@@ -83,8 +85,10 @@ EvalSet build_eval_set(const EvalSetSpec& spec, const std::filesystem::path& cmu
     if (out.samples.size() < 3)
         throw InvalidArgument("build_eval_set: set '" + spec.name + "' has " + std::to_string(out.samples.size()) +
                               " samples; at least 3 are needed");
-    out.set.parameters.resize(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(out.set.parameter_names.size()));
-    for (std::size_t i = 0; i < rows.size(); ++i) out.set.parameters.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+    out.set.parameters.resize(static_cast<Eigen::Index>(rows.size()),
+                              static_cast<Eigen::Index>(out.set.parameter_names.size()));
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        out.set.parameters.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
     validate(out.set);
     AlignOptions ao;
     ao.method = "dtw";
@@ -103,8 +107,8 @@ EvalSet subset(const EvalSet& set, const std::vector<Eigen::Index>& keep) {
     std::vector<bool> seen(static_cast<std::size_t>(n), false);
     for (Eigen::Index k : keep) {
         if (k < 0 || k >= n || seen[static_cast<std::size_t>(k)])
-            throw InvalidArgument("eval::subset: index " + std::to_string(k) + " is out of range or repeated (N = " +
-                                  std::to_string(n) + ")");
+            throw InvalidArgument("eval::subset: index " + std::to_string(k) +
+                                  " is out of range or repeated (N = " + std::to_string(n) + ")");
         seen[static_cast<std::size_t>(k)] = true;
     }
     if (keep.empty()) throw InvalidArgument("eval::subset: no sample kept");

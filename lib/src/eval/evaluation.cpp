@@ -61,7 +61,8 @@ template <typename Work>
 void stage(const EvalObserver& observer, EvalStage kind, const EvalSet& set, const SetResults* results, Work work) {
     const auto t0 = Clock::now();
     {
-        ProgressCallback progress = observer.stage_started ? observer.stage_started(kind, set.spec.name) : ProgressCallback{};
+        ProgressCallback progress =
+            observer.stage_started ? observer.stage_started(kind, set.spec.name) : ProgressCallback{};
         work(progress);
     }
     if (observer.stage_done) observer.stage_done({kind, &set, results, since(t0)});
@@ -108,7 +109,8 @@ EvalResults run_evaluation(const EvalPlan& plan, const std::filesystem::path& cm
         r.set = set;
         r.build_seconds = since(t0);
         results.sets.push_back(std::move(r));
-        if (observer.stage_done) observer.stage_done({EvalStage::BuildSet, set.get(), nullptr, results.sets.back().build_seconds});
+        if (observer.stage_done)
+            observer.stage_done({EvalStage::BuildSet, set.get(), nullptr, results.sets.back().build_seconds});
     }
     for (std::size_t k = 0; k < results.sets.size(); ++k) {
         SetResults& r = results.sets[k];
@@ -122,8 +124,9 @@ EvalResults run_evaluation(const EvalPlan& plan, const std::filesystem::path& cm
             LooOptions lo;
             for (Eigen::Index i = 0; i < set.size(); i += sp.loo_stride) lo.samples.push_back(i);
             {
-                ProgressCallback progress =
-                    observer.stage_started ? observer.stage_started(EvalStage::LeaveOneOut, set.spec.name) : ProgressCallback{};
+                ProgressCallback progress = observer.stage_started
+                                                ? observer.stage_started(EvalStage::LeaveOneOut, set.spec.name)
+                                                : ProgressCallback{};
                 r.loo = leave_one_out(set, r.methods, lo, progress);
             }
             r.has_loo = true;

@@ -6,7 +6,8 @@
 namespace mocapdb::eval {
 namespace {
 
-std::vector<std::string> clip_range(const std::string& subject, int first, int last, const std::vector<int>& skip = {}) {
+std::vector<std::string> clip_range(const std::string& subject, int first, int last,
+                                    const std::vector<int>& skip = {}) {
     std::vector<std::string> out;
     for (int t = first; t <= last; ++t) {
         if (std::find(skip.begin(), skip.end(), t) != skip.end()) continue;
@@ -28,7 +29,8 @@ KernelHeadroomOptions small_headroom_grid() {
 EvalSetSpec walks_spec(Eigen::Index frames) {
     EvalSetSpec s;
     s.name = "walks16";
-    s.description = "subject 16 walks: straight, veering and 90-degree turns at two speeds, plus slow walks (speed x turn grid)";
+    s.description =
+        "subject 16 walks: straight, veering and 90-degree turns at two speeds, plus slow walks (speed x turn grid)";
     s.clips = clip_range("16", 11, 34);
     s.clips.push_back("16_47");
     s.gait_cycles = true;  // phase-consistent samples: one gait cycle per clip

@@ -34,7 +34,8 @@ FootSkating foot_skating(const Clip& clip, const FootContactOptions& options) {
     }
     out.contact_seconds = static_cast<double>(pairs) / clip.frame_rate;
     out.cm_per_s = out.contact_seconds > 0.0 ? out.travel_cm / out.contact_seconds : 0.0;
-    out.contact_fraction = static_cast<double>(in_contact) / static_cast<double>(frames * static_cast<Eigen::Index>(o.feet.size()));
+    out.contact_fraction =
+        static_cast<double>(in_contact) / static_cast<double>(frames * static_cast<Eigen::Index>(o.feet.size()));
     return out;
 }
 

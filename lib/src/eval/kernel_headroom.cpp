@@ -29,15 +29,16 @@ void check(const KernelHeadroomOptions& o, Eigen::Index n) {
 
 // One fold: the training samples' scaled parameters, the left-out one's, and the poses to blend.
 struct Fold {
-    MatX coords;                // (N - 1) by embedded P
-    VecX query;                 // embedded P
-    std::vector<MatX> poses;    // N - 1 aligned samples, D by T
-    MatX truth;                 // D by T
+    MatX coords;              // (N - 1) by embedded P
+    VecX query;               // embedded P
+    std::vector<MatX> poses;  // N - 1 aligned samples, D by T
+    MatX truth;               // D by T
 };
 
 }  // namespace
 
-KernelHeadroom kernel_headroom(const EvalSet& set, const KernelHeadroomOptions& options, const ProgressCallback& progress) {
+KernelHeadroom kernel_headroom(const EvalSet& set, const KernelHeadroomOptions& options,
+                               const ProgressCallback& progress) {
     const Eigen::Index n = set.size();
     check(options, n);
     std::vector<Eigen::Index> left_out = options.samples;
@@ -79,7 +80,8 @@ KernelHeadroom kernel_headroom(const EvalSet& set, const KernelHeadroomOptions& 
                 for (double share : options.nugget_shares) {
                     if (progress) progress({++done, total, ""});
                     if (p == 2.0 && share == 0.0) continue;  // a Gaussian model needs a nugget
-                    const kriging::VariogramModel model = kriging::VariogramModel::from_paper_p(p, share, 1.0 - share, range);
+                    const kriging::VariogramModel model =
+                        kriging::VariogramModel::from_paper_p(p, share, 1.0 - share, range);
                     double sum = 0.0;
                     for (const Fold& f : folds) {
                         MatX coords = f.coords;
@@ -88,7 +90,8 @@ KernelHeadroom kernel_headroom(const EvalSet& set, const KernelHeadroomOptions& 
                         query.tail(query.size() - 1) *= a;
                         const VecX w = kriging::Kriging::build(coords, model, ko).estimate(query).weights;
                         blend.setZero();
-                        for (std::size_t k = 0; k < f.poses.size(); ++k) blend += w(static_cast<Eigen::Index>(k)) * f.poses[k];
+                        for (std::size_t k = 0; k < f.poses.size(); ++k)
+                            blend += w(static_cast<Eigen::Index>(k)) * f.poses[k];
                         sum += frame_joint_errors(*set.skeleton, f.truth, blend, true).col(0).mean();
                     }
                     const double mean = sum / static_cast<double>(folds.size());

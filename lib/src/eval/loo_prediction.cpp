@@ -7,8 +7,8 @@
 
 namespace mocapdb::eval {
 
-MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& reference, const Eigen::Ref<const MatX>& approx,
-                        bool root_relative) {
+MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& reference,
+                        const Eigen::Ref<const MatX>& approx, bool root_relative) {
     if (reference.rows() != approx.rows() || reference.cols() != approx.cols() || reference.rows() < 6)
         throw InvalidArgument("frame_joint_errors: the two pose sequences differ in shape");
     MatX qa = reference, qb = approx;
@@ -104,9 +104,12 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
             r.frame_pose_mean_cm += ep.col(0) / static_cast<double>(m);
             const double synth_duration = motion.warp(motion.warp.size() - 1) / set.frame_rate;
             r.duration_error_s(k) = std::abs(synth_duration - original.duration());
-            if (options.foot_skating) r.skating_cm_per_s(k) = foot_skating(motion_clip(motion, set.skeleton, set.frame_rate)).cm_per_s;
+            if (options.foot_skating)
+                r.skating_cm_per_s(k) = foot_skating(motion_clip(motion, set.skeleton, set.frame_rate)).cm_per_s;
         }
-        if (progress) progress({static_cast<std::uint64_t>(k + 1), static_cast<std::uint64_t>(m), set.labels[static_cast<std::size_t>(i)]});
+        if (progress)
+            progress({static_cast<std::uint64_t>(k + 1), static_cast<std::uint64_t>(m),
+                      set.labels[static_cast<std::size_t>(i)]});
     }
     for (LooMethodResult& r : out.methods) {
         r.mean_cm = r.sample_mean_cm.mean();

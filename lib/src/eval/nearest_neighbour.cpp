@@ -53,7 +53,8 @@ void NearestNeighbourBlend::weights(const Eigen::Ref<const Eigen::VectorXd>& c, 
 
 void NearestNeighbourBlend::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries,
                                           Eigen::Ref<Eigen::MatrixXd> out_weights) const {
-    if (queries.cols() != points_.cols() || out_weights.rows() != points_.rows() || out_weights.cols() != queries.rows())
+    if (queries.cols() != points_.cols() || out_weights.rows() != points_.rows() ||
+        out_weights.cols() != queries.rows())
         throw InvalidArgument("NearestNeighbourBlend::weights_batch: queries Q by P, out_weights N by Q");
     kriging::QueryWorkspace ws;
     for (Eigen::Index q = 0; q < queries.rows(); ++q) weights(queries.row(q).transpose(), out_weights.col(q), ws);

@@ -21,7 +21,7 @@ struct RemovedError {
 // Mean (over removed samples) of the mean joint error, the max, and the mean root-relative pose error,
 // predicting `removed` from `kept`.
 RemovedError removed_error(const EvalSet& set, const std::vector<Eigen::Index>& kept,
-                                        const std::vector<Eigen::Index>& removed) {
+                           const std::vector<Eigen::Index>& removed) {
     MethodSpec naive;
     naive.kind = MethodKind::NaiveKriging;
     const auto synth = build_synthesizer(naive, subset(set, kept));
@@ -52,7 +52,8 @@ std::vector<Eigen::Index> complement(Eigen::Index n, const std::vector<Eigen::In
 
 }  // namespace
 
-ReductionCurve reduction_curve(const EvalSet& set, const ReductionCurveOptions& options, const ProgressCallback& progress) {
+ReductionCurve reduction_curve(const EvalSet& set, const ReductionCurveOptions& options,
+                               const ProgressCallback& progress) {
     const Eigen::Index n = set.size();
     if (n < 5) throw InvalidArgument("reduction_curve: at least 5 samples are needed");
     if (options.checkpoints < 1 || options.random_orders < 0)
@@ -76,8 +77,10 @@ ReductionCurve reduction_curve(const EvalSet& set, const ReductionCurveOptions& 
     const Eigen::Index min_kept = std::max<Eigen::Index>(4, n - static_cast<Eigen::Index>(full.removed.size()));
     std::set<Eigen::Index, std::greater<>> sizes;
     for (Eigen::Index k = 0; k < options.checkpoints; ++k) {
-        const double f = options.checkpoints == 1 ? 1.0 : static_cast<double>(k) / static_cast<double>(options.checkpoints - 1);
-        sizes.insert(std::max(min_kept, static_cast<Eigen::Index>(std::lround(static_cast<double>(n - 1) - f * static_cast<double>(n - 1 - min_kept)))));
+        const double f =
+            options.checkpoints == 1 ? 1.0 : static_cast<double>(k) / static_cast<double>(options.checkpoints - 1);
+        sizes.insert(std::max(min_kept, static_cast<Eigen::Index>(std::lround(
+                                            static_cast<double>(n - 1) - f * static_cast<double>(n - 1 - min_kept)))));
     }
     if (out.kept_at_tau >= min_kept && out.kept_at_tau < n) sizes.insert(out.kept_at_tau);
     std::mt19937 rng(options.seed);
@@ -94,7 +97,8 @@ ReductionCurve reduction_curve(const EvalSet& set, const ReductionCurveOptions& 
         p.kept = kept;
         const auto removed_count = static_cast<std::size_t>(n - kept);
         if (removed_count > full.removed.size()) continue;
-        const std::vector<Eigen::Index> removed(full.removed.begin(), full.removed.begin() + static_cast<std::ptrdiff_t>(removed_count));
+        const std::vector<Eigen::Index> removed(full.removed.begin(),
+                                                full.removed.begin() + static_cast<std::ptrdiff_t>(removed_count));
         p.max_reliability = removed_count < full.max_reliability.size() ? full.max_reliability[removed_count] : 0.0;
         const auto g = removed_error(set, complement(n, removed), removed);
         p.greedy_mean_cm = g.mean;

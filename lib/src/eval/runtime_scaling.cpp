@@ -34,7 +34,10 @@ std::vector<RuntimeRow> runtime_scaling(const EvalSet& set, const std::vector<Me
         // Evenly spread samples, so small sets still cover the parameter range.
         std::vector<Eigen::Index> keep;
         for (Eigen::Index k = 0; k < s; ++k) {
-            const Eigen::Index i = s == 1 ? 0 : static_cast<Eigen::Index>(std::lround(static_cast<double>(k) * static_cast<double>(n - 1) / static_cast<double>(s - 1)));
+            const Eigen::Index i =
+                s == 1 ? 0
+                       : static_cast<Eigen::Index>(std::lround(static_cast<double>(k) * static_cast<double>(n - 1) /
+                                                               static_cast<double>(s - 1)));
             if (keep.empty() || keep.back() != i) keep.push_back(i);
         }
         const EvalSet training = subset(set, keep);

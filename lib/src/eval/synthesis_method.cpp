@@ -45,7 +45,8 @@ struct IncrementClamp {
 
 class KrigingSynthesizer final : public Synthesizer {
 public:
-    KrigingSynthesizer(const MethodSpec& m, const EvalSet& s) : clamp_(s.aligned), dofs_(s.aligned.dofs()), frames_(s.aligned.frames()) {
+    KrigingSynthesizer(const MethodSpec& m, const EvalSet& s)
+        : clamp_(s.aligned), dofs_(s.aligned.dofs()), frames_(s.aligned.frames()) {
         kriging::MotionKrigingOptions o;
         o.dofs_per_frame = dofs_;
         MatX signal;
@@ -216,7 +217,8 @@ std::unique_ptr<Synthesizer> build_synthesizer(const MethodSpec& m, const EvalSe
             r[0] = std::min(r[0], s.aligned.dofs());
             r[1] = std::min(r[1], s.aligned.frames());
             r[2] = std::min(r[2], s.size());
-            const compression::SetModel sm = compression::fit_set_model(s.aligned.tensor, weight, r, tensor::TuckerMethod::Hosvd);
+            const compression::SetModel sm =
+                compression::fit_set_model(s.aligned.tensor, weight, r, tensor::TuckerMethod::Hosvd);
             out = std::make_unique<ModelSynthesizer>(
                 std::make_unique<synthesis::MotionModel>(sm, s.aligned, s.set, s.skeleton, s.frame_rate));
             break;

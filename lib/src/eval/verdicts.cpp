@@ -42,7 +42,8 @@ std::optional<std::pair<MethodValue, MethodValue>> best_of(const SetResults& r, 
 
 // Differences within 5 % (or below the metric's resolution) are ties, not losses.
 Outcome outcome_of(Metric metric, const MethodValue& best, const MethodValue& kriging) {
-    if (!best.kriging && (kriging.value - best.value <= 0.05 * kriging.value || kriging.value - best.value <= tie_floor(metric)))
+    if (!best.kriging &&
+        (kriging.value - best.value <= 0.05 * kriging.value || kriging.value - best.value <= tie_floor(metric)))
         return Outcome::Tie;
     return best.kriging ? Outcome::KrigingWins : Outcome::Loses;
 }
@@ -61,12 +62,11 @@ EdgeSplit split_of(const SetResults& r, const MethodValue& best, const MethodVal
     const bool edge_loss = s.edge_samples > 0 && s.kriging_edge > s.best_edge;
     const bool interior_loss = s.interior_samples > 0 && s.kriging_interior > s.best_interior;
     if (edge_loss && interior_loss)
-        s.location = s.kriging_edge - s.best_edge > s.kriging_interior - s.best_interior ? LossLocation::BothMoreAtEdge
-                                                                                        : LossLocation::BothMoreInterior;
-    else if (interior_loss)
-        s.location = LossLocation::InteriorOnly;
-    else if (edge_loss)
-        s.location = LossLocation::EdgeOnly;
+        s.location = s.kriging_edge - s.best_edge > s.kriging_interior - s.best_interior
+                         ? LossLocation::BothMoreAtEdge
+                         : LossLocation::BothMoreInterior;
+    else if (interior_loss) s.location = LossLocation::InteriorOnly;
+    else if (edge_loss) s.location = LossLocation::EdgeOnly;
     return s;
 }
 
@@ -96,25 +96,29 @@ SetVerdicts judge_set(const SetResults& r, Verdicts& totals) {
                 return m ? field(*m) : NAN;
             };
         };
-        if (MetricVerdict* v = add(Metric::LooPoseMean, best_of(r, loo_value([](const LooMethodResult& m) { return m.pose_mean_cm; }))))
+        if (MetricVerdict* v = add(Metric::LooPoseMean,
+                                   best_of(r, loo_value([](const LooMethodResult& m) { return m.pose_mean_cm; }))))
             if (!v->best.kriging) v->split = split_of(r, v->best, v->best_kriging, true);
         add(Metric::LooPoseMax, best_of(r, loo_value([](const LooMethodResult& m) { return m.pose_max_cm; })));
-        if (MetricVerdict* v = add(Metric::LooMotionMean, best_of(r, loo_value([](const LooMethodResult& m) { return m.mean_cm; }))))
+        if (MetricVerdict* v =
+                add(Metric::LooMotionMean, best_of(r, loo_value([](const LooMethodResult& m) { return m.mean_cm; }))))
             if (!v->best.kriging) v->split = split_of(r, v->best, v->best_kriging, false);
         add(Metric::LooMotionMax, best_of(r, loo_value([](const LooMethodResult& m) { return m.max_cm; })));
-        add(Metric::LooDuration, best_of(r, loo_value([](const LooMethodResult& m) { return m.duration_error_s.mean(); })));
+        add(Metric::LooDuration,
+            best_of(r, loo_value([](const LooMethodResult& m) { return m.duration_error_s.mean(); })));
         if (loo.original_skating_cm_per_s.size())
             add(Metric::FootSkating, best_of(r, loo_value([](const LooMethodResult& m) {
-                    return m.skating_cm_per_s.size() ? m.skating_cm_per_s.mean() : NAN;
-                })));
+                                                 return m.skating_cm_per_s.size() ? m.skating_cm_per_s.mean() : NAN;
+                                             })));
     }
     if (r.has_constraint && !r.constraint_options.thresholds.empty()) {
         const ConstraintResult& c = r.constraint;
         const double lowest = r.constraint_options.thresholds.back();
-        if (MetricVerdict* v = add(Metric::ConstraintReliableRmse, best_of(r, [&](const std::string& n) {
-                const ConstraintMethodResult* m = constraint_method(c, n);
-                return m && !m->regions.empty() && m->regions.back().points > 0 ? m->regions.back().rmse : NAN;
-            })))
+        if (MetricVerdict* v =
+                add(Metric::ConstraintReliableRmse, best_of(r, [&](const std::string& n) {
+                        const ConstraintMethodResult* m = constraint_method(c, n);
+                        return m && !m->regions.empty() && m->regions.back().points > 0 ? m->regions.back().rmse : NAN;
+                    })))
             v->threshold = lowest;
         add(Metric::ConstraintRmse, best_of(r, [&](const std::string& n) {
                 const ConstraintMethodResult* m = constraint_method(c, n);
@@ -176,10 +180,13 @@ Verdicts judge(const EvalResults& e) {
     for (const auto& row : e.runtime) {
         if (row.samples != v.samples) continue;
         if (!v.fastest_build || row.build_seconds < v.fastest_build->build_seconds) v.fastest_build = row;
-        if (!v.fastest_synthesis || row.synth_us_per_frame < v.fastest_synthesis->synth_us_per_frame) v.fastest_synthesis = row;
-        if (kriging(row.method) && (!v.slowest_kriging_build || row.build_seconds > v.slowest_kriging_build->build_seconds))
+        if (!v.fastest_synthesis || row.synth_us_per_frame < v.fastest_synthesis->synth_us_per_frame)
+            v.fastest_synthesis = row;
+        if (kriging(row.method) &&
+            (!v.slowest_kriging_build || row.build_seconds > v.slowest_kriging_build->build_seconds))
             v.slowest_kriging_build = row;
-        if (kriging(row.method) && (!v.fastest_kriging_build || row.build_seconds < v.fastest_kriging_build->build_seconds))
+        if (kriging(row.method) &&
+            (!v.fastest_kriging_build || row.build_seconds < v.fastest_kriging_build->build_seconds))
             v.fastest_kriging_build = row;
     }
     if (v.fastest_build && v.slowest_kriging_build) {

@@ -130,7 +130,8 @@ bool BlockLowRank::build(const std::vector<WeightedTerm>& terms, const VecX& noi
 MatX BlockLowRank::apply_p_inverse(const MatX& z) const {
     MatX y(z.rows(), z.cols());
     for (Index i = 0; i < outputs; ++i)
-        y.middleRows(i * frames, frames).noalias() = p_inverse[static_cast<std::size_t>(i)] * z.middleRows(i * frames, frames);
+        y.middleRows(i * frames, frames).noalias() =
+            p_inverse[static_cast<std::size_t>(i)] * z.middleRows(i * frames, frames);
     return y;
 }
 
@@ -173,7 +174,9 @@ std::size_t structured_term_gradient(const LmcTerm& term, const KernelFactor& fa
     const Index t = factor.k.rows();
     const Index m = g.u.cols();
     const MatX& k = factor.k;
-    const MatX dk = factor.dk.size() > 0 ? factor.dk : kernel_matrix_dlog_lengthscale(term.kernel, term.log_lengthscale, times, times);
+    const MatX dk = factor.dk.size() > 0
+                        ? factor.dk
+                        : kernel_matrix_dlog_lengthscale(term.kernel, term.log_lengthscale, times, times);
     const VecX kappa = term.log_kappa.array().exp().matrix();
     const MatX& w = term.W;
     // Block-diagonal part.

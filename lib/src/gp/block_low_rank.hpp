@@ -35,7 +35,8 @@ struct KernelFactor {
     MatX dk;
 };
 /// The factor of A ⊗ k for a K×K matrix A = a aᵀ (a_rank1) or diag(a) (!a_rank1), with dk.
-KernelFactor extended_factor(const LmcTerm& term, const KernelFactor& base, const VecX& times, const VecX& a, bool a_rank1);
+KernelFactor extended_factor(const LmcTerm& term, const KernelFactor& base, const VecX& times, const VecX& a,
+                             bool a_rank1);
 KernelFactor factor_kernel(const LmcTerm& term, const VecX& times);
 
 /// One weighted term c·(B_q ⊗ k_q) of a covariance.

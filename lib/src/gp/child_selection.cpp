@@ -27,7 +27,8 @@ std::vector<std::size_t> groups_by_subject(const std::vector<std::string>& names
     std::vector<std::size_t> groups;
     for (const auto& n : names) {
         const std::string s = subject_of(n);
-        if (s.empty()) throw InvalidArgument("child '" + n + "': no subject in its name (expected a CMU name like 02_01)");
+        if (s.empty())
+            throw InvalidArgument("child '" + n + "': no subject in its name (expected a CMU name like 02_01)");
         const auto it = std::find(subjects.begin(), subjects.end(), s);
         groups.push_back(static_cast<std::size_t>(it - subjects.begin()));
         if (it == subjects.end()) subjects.push_back(s);
@@ -43,13 +44,12 @@ std::optional<std::size_t> find_child(const std::vector<std::string>& names, con
         std::size_t pos = 0;
         const unsigned long v = std::stoul(which, &pos);
         if (pos == which.size() && v < names.size()) return v;
-    } catch (const std::exception&) {
-    }
+    } catch (const std::exception&) {}
     return std::nullopt;
 }
 
-std::optional<std::size_t> group_of_subject(const std::vector<std::string>& names, const std::vector<std::size_t>& groups,
-                                            const std::string& subject) {
+std::optional<std::size_t> group_of_subject(const std::vector<std::string>& names,
+                                            const std::vector<std::size_t>& groups, const std::string& subject) {
     for (std::size_t r = 0; r < names.size() && r < groups.size(); ++r)
         if (subject_of(names[r]) == subject) return groups[r];
     return std::nullopt;

@@ -162,9 +162,11 @@ InterpolationScores score_prediction(const GaussianPrediction& p, const HgpData&
 
 }  // namespace
 
-std::vector<InterpolationScores> score_interpolations(const HgpModel& model, const HgpData& data, std::size_t test_child,
+std::vector<InterpolationScores> score_interpolations(const HgpModel& model, const HgpData& data,
+                                                      std::size_t test_child,
                                                       const std::vector<std::vector<bool>>& masks) {
-    if (test_child >= data.child_count()) throw InvalidArgument("score_interpolation: no child " + std::to_string(test_child));
+    if (test_child >= data.child_count())
+        throw InvalidArgument("score_interpolation: no child " + std::to_string(test_child));
     for (const auto& m : masks)
         if (m.size() != data.frames()) throw InvalidArgument("score_interpolation: a mask needs one flag per frame");
     bool siblings_complete = true;
@@ -182,7 +184,8 @@ std::vector<InterpolationScores> score_interpolations(const HgpModel& model, con
         }
     }
     std::vector<InterpolationScores> out;
-    for (std::size_t i = 0; i < masks.size(); ++i) out.push_back(score_prediction(preds[i], data, test_child, masks[i]));
+    for (std::size_t i = 0; i < masks.size(); ++i)
+        out.push_back(score_prediction(preds[i], data, test_child, masks[i]));
     return out;
 }
 
@@ -231,8 +234,9 @@ ReplicateInterpolation run_replicate_interpolation(const HgpData& data, std::siz
         throw InvalidArgument("run_replicate_interpolation: need ≥ 2 children and a valid test child");
     for (std::size_t k : observed_counts)
         if (k + 2 > data.frames())
-            throw InvalidArgument("run_replicate_interpolation: " + std::to_string(k) + " observed frames leave fewer than 2 of " +
-                                  std::to_string(data.frames()) + " to predict");
+            throw InvalidArgument("run_replicate_interpolation: " + std::to_string(k) +
+                                  " observed frames leave fewer than 2 of " + std::to_string(data.frames()) +
+                                  " to predict");
     ReplicateInterpolation out;
     const HgpData training = without_child(data, test_child);
     out.mohgp_fit = fit_model(training, options, true);
@@ -282,7 +286,8 @@ SynthesisResult run_synthesis(const HgpData& training, const std::vector<MatX>& 
         out.control = synthesis_scores(control, real);
     } else {
         // The real motions against each other (each one against the others, not itself).
-        if (real.size() < 2) throw InvalidArgument("run_synthesis: the real-against-real control needs ≥ 2 real motions");
+        if (real.size() < 2)
+            throw InvalidArgument("run_synthesis: the real-against-real control needs ≥ 2 real motions");
         for (std::size_t i = 0; i < real.size(); ++i) {
             std::vector<MatX> others;
             for (std::size_t j = 0; j < real.size(); ++j)

@@ -13,9 +13,10 @@ using Index = Eigen::Index;
 InterpolationScores interpolation_scores(const MatX& truth, const MatX& mean, const MatX& variance,
                                          const VecX& train_mean, const VecX& train_variance) {
     const Index d = truth.rows(), t = truth.cols();
-    if (mean.rows() != d || mean.cols() != t || variance.rows() != d || variance.cols() != t || train_mean.size() != d ||
-        train_variance.size() != d)
-        throw InvalidArgument("interpolation_scores: truth, mean, variance must be D by T and the training moments D values");
+    if (mean.rows() != d || mean.cols() != t || variance.rows() != d || variance.cols() != t ||
+        train_mean.size() != d || train_variance.size() != d)
+        throw InvalidArgument(
+            "interpolation_scores: truth, mean, variance must be D by T and the training moments D values");
     if (t < 2) throw InvalidArgument("interpolation_scores: need ≥ 2 test frames");
     if (!(variance.array() > 0.0).all() || !(train_variance.array() > 0.0).all())
         throw InvalidArgument("interpolation_scores: predictive and training variances must be > 0");
@@ -39,7 +40,8 @@ InterpolationScores interpolation_scores(const MatX& truth, const MatX& mean, co
             const double s2 = variance(i, f);
             const double model = 0.5 * std::log(2.0 * kPi * s2) + err2(i, f) / (2.0 * s2);
             const double dev = truth(i, f) - train_mean[i];
-            const double trivial = 0.5 * std::log(2.0 * kPi * train_variance[i]) + dev * dev / (2.0 * train_variance[i]);
+            const double trivial =
+                0.5 * std::log(2.0 * kPi * train_variance[i]) + dev * dev / (2.0 * train_variance[i]);
             sll += model - trivial;
         }
     }
@@ -52,10 +54,8 @@ MatX minmax_rows(const MatX& signals) {
     MatX out(signals.rows(), signals.cols());
     for (Index i = 0; i < signals.rows(); ++i) {
         const double lo = signals.row(i).minCoeff(), hi = signals.row(i).maxCoeff();
-        if (hi > lo)
-            out.row(i) = (signals.row(i).array() - lo) / (hi - lo);
-        else
-            out.row(i).setZero();
+        if (hi > lo) out.row(i) = (signals.row(i).array() - lo) / (hi - lo);
+        else out.row(i).setZero();
     }
     return out;
 }
@@ -74,7 +74,8 @@ double max_cross_correlation(const VecX& a, const VecX& b) {
 }
 
 double pearson(const VecX& a, const VecX& b) {
-    if (a.size() != b.size() || a.size() < 2) throw InvalidArgument("pearson: need two sequences of the same length ≥ 2");
+    if (a.size() != b.size() || a.size() < 2)
+        throw InvalidArgument("pearson: need two sequences of the same length ≥ 2");
     const VecX ca = a.array() - a.mean(), cb = b.array() - b.mean();
     const double na = ca.norm(), nb = cb.norm();
     if (!(na > 0.0) || !(nb > 0.0)) return std::numeric_limits<double>::quiet_NaN();

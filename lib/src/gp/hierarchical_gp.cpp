@@ -181,8 +181,9 @@ GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, c
     const MatX sigma = dense_covariance(model, data, l);
     // The target's group (h_s enters the covariance with the values of that group's children).
     const bool with_group = model.grouped && target.kind != Target::Parent;
-    const std::size_t group = target.kind == Target::Group ? target.index
-                              : target.kind == Target::Child ? group_of(data, target.index) : 0;
+    const std::size_t group = target.kind == Target::Group   ? target.index
+                              : target.kind == Target::Child ? group_of(data, target.index)
+                                                             : 0;
     MatX kgs, khs, kfs;
     if (model.hierarchical) kgs = lmc_covariance(model.parent, t_star, data.times);
     if (with_group) khs = lmc_covariance(model.group, t_star, data.times);
@@ -266,7 +267,8 @@ std::vector<Index> all_frames(Index t) {
 /// Conditions g on y = g[sel] + ε, ε ~ N(0, noise_cov). With !full_cov only the diagonal of the
 /// covariance is updated (the last step of a prediction). False when the innovation covariance is not
 /// positive definite.
-bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, const MatX& noise_cov, bool full_cov = true) {
+bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, const MatX& noise_cov,
+               bool full_cov = true) {
     const Index m = static_cast<Index>(sel.size()), n = g.mean.size();
     MatX s = noise_cov;
     MatX c(m, n);
@@ -274,7 +276,8 @@ bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, co
     for (Index i = 0; i < m; ++i) {
         c.row(i) = g.cov.row(sel[static_cast<std::size_t>(i)]);
         r[i] = y[i] - g.mean[sel[static_cast<std::size_t>(i)]];
-        for (Index j = 0; j < m; ++j) s(i, j) += g.cov(sel[static_cast<std::size_t>(i)], sel[static_cast<std::size_t>(j)]);
+        for (Index j = 0; j < m; ++j)
+            s(i, j) += g.cov(sel[static_cast<std::size_t>(i)], sel[static_cast<std::size_t>(j)]);
     }
     Eigen::LLT<MatX> llt(s);
     if (llt.info() != Eigen::Success) return false;
@@ -375,7 +378,8 @@ GridGaussian at_queries(const GridGaussian& g, const Grid& grid, Index d) {
     out.cov.resize(m, m);
     for (Index i = 0; i < m; ++i) {
         out.mean[i] = g.mean[idx[static_cast<std::size_t>(i)]];
-        for (Index j = 0; j < m; ++j) out.cov(i, j) = g.cov(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]);
+        for (Index j = 0; j < m; ++j)
+            out.cov(i, j) = g.cov(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]);
     }
     out.ok = g.ok;
     return out;
@@ -470,8 +474,8 @@ void draw_gaussian(const VecX& mean, const MatX& cov, std::size_t count, std::mt
 VecX HgpModel::noise_variance() const { return (log_noise.array().exp() + noise_floor).matrix(); }
 
 std::size_t HgpModel::parameter_count() const {
-    return child.parameter_count() + (grouped ? group.parameter_count() : 0) + (hierarchical ? parent.parameter_count() : 0) +
-           static_cast<std::size_t>(log_noise.size());
+    return child.parameter_count() + (grouped ? group.parameter_count() : 0) +
+           (hierarchical ? parent.parameter_count() : 0) + static_cast<std::size_t>(log_noise.size());
 }
 
 VecX HgpModel::parameters() const {
@@ -508,7 +512,8 @@ std::vector<std::string> HgpModel::parameter_names() const {
             for (Index j = 0; j < t.W.cols(); ++j)
                 for (Index i = 0; i < t.W.rows(); ++i)
                     names.push_back(pre + "W[" + std::to_string(i) + "," + std::to_string(j) + "]");
-            for (Index i = 0; i < t.log_kappa.size(); ++i) names.push_back(pre + "log_kappa[" + std::to_string(i) + "]");
+            for (Index i = 0; i < t.log_kappa.size(); ++i)
+                names.push_back(pre + "log_kappa[" + std::to_string(i) + "]");
         }
     };
     add(child, "child");
@@ -581,7 +586,8 @@ HgpData without_child(const HgpData& data, std::size_t child) {
     std::sort(present.begin(), present.end());
     present.erase(std::unique(present.begin(), present.end()), present.end());
     for (std::size_t g : kept_groups)
-        out.groups.push_back(static_cast<std::size_t>(std::lower_bound(present.begin(), present.end(), g) - present.begin()));
+        out.groups.push_back(
+            static_cast<std::size_t>(std::lower_bound(present.begin(), present.end(), g) - present.begin()));
     return out;
 }
 
@@ -602,7 +608,8 @@ std::size_t HgpData::balanced_group_size() const {
 }
 
 void validate(const HgpData& data) {
-    if (data.times.size() == 0 || !data.times.allFinite()) throw InvalidArgument("HgpData: expected ≥ 1 finite sample time");
+    if (data.times.size() == 0 || !data.times.allFinite())
+        throw InvalidArgument("HgpData: expected ≥ 1 finite sample time");
     if (data.children.empty()) throw InvalidArgument("HgpData: no children");
     const Index d = data.children.front().rows();
     if (d == 0) throw InvalidArgument("HgpData: children have no outputs");
@@ -621,8 +628,8 @@ void validate(const HgpData& data) {
                                   std::to_string(data.times.size()));
         for (Index f = 0; f < y.cols(); ++f)
             if (data.is_observed(r, static_cast<std::size_t>(f)) && !y.col(f).allFinite())
-                throw InvalidArgument("HgpData: child " + std::to_string(r) + " has a non-finite observed value at frame " +
-                                      std::to_string(f));
+                throw InvalidArgument("HgpData: child " + std::to_string(r) +
+                                      " has a non-finite observed value at frame " + std::to_string(f));
     }
     if (data.observed_value_count() == 0) throw InvalidArgument("HgpData: nothing is observed");
     if (!data.groups.empty()) {
@@ -632,7 +639,8 @@ void validate(const HgpData& data) {
         std::vector<bool> used(data.group_count(), false);
         for (std::size_t g : data.groups) used[g] = true;
         for (std::size_t g = 0; g < used.size(); ++g)
-            if (!used[g]) throw InvalidArgument("HgpData: group " + std::to_string(g) + " has no child (groups are 0..S−1)");
+            if (!used[g])
+                throw InvalidArgument("HgpData: group " + std::to_string(g) + " has no child (groups are 0..S−1)");
     }
 }
 
@@ -656,12 +664,14 @@ LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool 
     check_model_data(model, data, "log_likelihood");
     const bool structured = structure_applies(data);
     if ((path == LikelihoodPath::Structured || path == LikelihoodPath::LowRank) && !structured)
-        throw InvalidArgument("log_likelihood: the structured and low-rank paths need every child complete (use Dense or Auto)");
+        throw InvalidArgument(
+            "log_likelihood: the structured and low-rank paths need every child complete (use Dense or Auto)");
     if (path == LikelihoodPath::Dense || (path == LikelihoodPath::Auto && !structured))
         return dense_likelihood(model, data, with_gradient);
     if (path == LikelihoodPath::Structured) return detail::structured_likelihood(model, data, with_gradient, threads);
     const detail::Levels levels = detail::make_levels(model, data);
-    if (path == LikelihoodPath::LowRank) return detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
+    if (path == LikelihoodPath::LowRank)
+        return detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
     // Auto, every child complete.
     if (detail::low_rank_is_cheaper(model, data, levels)) {
         LikelihoodValue v = detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
@@ -753,7 +763,8 @@ GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std
     bool siblings_complete = true;
     for (std::size_t r = 0; r < data.child_count(); ++r)
         if (r != child && !data.is_complete(r)) siblings_complete = false;
-    if (model.hierarchical && !siblings_complete) return condition_dense(model, data, t_star, Target{Target::Child, child});
+    if (model.hierarchical && !siblings_complete)
+        return condition_dense(model, data, t_star, Target{Target::Child, child});
     const Grid grid = make_grid(data.times, t_star);
     GridGaussian g = child_prior_on_grid(model, data, child, grid);
     if (g.ok) g.ok = condition_on_own_frames(g, model, data, child, nullptr, grid, false);
@@ -847,7 +858,8 @@ std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, co
             mean = vec_output_major(synthesis_trend(model, data, t_star));
         }
     }
-    if (!mean.allFinite()) throw InvalidArgument("sample_children: the trend could not be computed (covariance not positive definite)");
+    if (!mean.allFinite())
+        throw InvalidArgument("sample_children: the trend could not be computed (covariance not positive definite)");
     if (options.add_noise) cov.diagonal() += flat_noise(model.noise_variance(), ts);
     std::mt19937_64 rng(options.seed);
     std::vector<MatX> out;

@@ -21,9 +21,10 @@ FitResult fit_model(const HgpData& data, const ModelSpec& spec, const FitOptions
     return fit(data, initial_model(data, spec), options);
 }
 
-ChildInterpolation interpolate_child(const HgpData& data, std::size_t child, std::size_t observed, const ModelSpec& spec,
-                                     const FitOptions& fit_options, std::uint64_t mask_seed) {
-    if (data.child_count() < 2) throw InvalidArgument("interpolating a child needs at least 2 children (the others train the model)");
+ChildInterpolation interpolate_child(const HgpData& data, std::size_t child, std::size_t observed,
+                                     const ModelSpec& spec, const FitOptions& fit_options, std::uint64_t mask_seed) {
+    if (data.child_count() < 2)
+        throw InvalidArgument("interpolating a child needs at least 2 children (the others train the model)");
     if (child >= data.child_count())
         throw InvalidArgument("child " + std::to_string(child) + " of only " + std::to_string(data.child_count()));
     if (observed + 2 > data.frames())
@@ -52,7 +53,8 @@ NewChildren sample_new_children(const HgpData& data, const ModelSpec& spec, cons
 
 ReplicateSplit split_replicates(const HgpData& all, std::size_t training) {
     if (training > all.child_count())
-        throw InvalidArgument("training children: " + std::to_string(training) + " of only " + std::to_string(all.child_count()));
+        throw InvalidArgument("training children: " + std::to_string(training) + " of only " +
+                              std::to_string(all.child_count()));
     ReplicateSplit out;
     out.training.times = all.times;
     out.training.children.assign(all.children.begin(), all.children.begin() + static_cast<std::ptrdiff_t>(training));
@@ -60,9 +62,9 @@ ReplicateSplit split_replicates(const HgpData& all, std::size_t training) {
     return out;
 }
 
-ReplicateExperiment run_replicate_experiment(const HgpData& training, const std::vector<MatX>& real, std::size_t test_child,
-                                             const std::vector<std::size_t>& observed_counts, std::size_t samples,
-                                             const ExperimentOptions& options) {
+ReplicateExperiment run_replicate_experiment(const HgpData& training, const std::vector<MatX>& real,
+                                             std::size_t test_child, const std::vector<std::size_t>& observed_counts,
+                                             std::size_t samples, const ExperimentOptions& options) {
     ReplicateExperiment out;
     out.interpolation = run_replicate_interpolation(training, test_child, observed_counts, options);
     if (!real.empty()) out.synthesis = run_synthesis(training, real, {}, samples, options);

@@ -11,8 +11,8 @@ namespace mocapdb::gp {
 using Index = Eigen::Index;
 
 std::vector<std::string> thesis_excluded_joints() {
-    return {"lclavicle", "rclavicle", "lwrist", "rwrist", "lhand",  "rhand",
-            "lfingers",  "rfingers",  "lthumb", "rthumb", "ltoes",  "rtoes"};
+    return {"lclavicle", "rclavicle", "lwrist", "rwrist", "lhand", "rhand",
+            "lfingers",  "rfingers",  "lthumb", "rthumb", "ltoes", "rtoes"};
 }
 
 std::vector<std::string> pose_dof_names(const Skeleton& skeleton) {
@@ -68,8 +68,8 @@ MotionData prepare_motion_data(const std::vector<Clip>& children, const std::vec
         if (children[r].frame_count() < 2)
             throw InvalidArgument("prepare_motion_data: child " + names[r] + " has fewer than 2 frames");
         if (rotation_joint_names(*children[r].skeleton) != joints)
-            throw InvalidArgument("prepare_motion_data: child " + names[r] + "'s skeleton has other rotation joints than " +
-                                  names.front() + "'s");
+            throw InvalidArgument("prepare_motion_data: child " + names[r] +
+                                  "'s skeleton has other rotation joints than " + names.front() + "'s");
         shortest = std::min(shortest, children[r].duration());
     }
     double duration = shortest;
@@ -149,7 +149,8 @@ MotionData prepare_motion_data(const std::vector<Clip>& children, const std::vec
     for (const MatX& p : full) {
         MatX y(d, n);
         for (Index i = 0; i < d; ++i)
-            y.row(i) = (p.row(static_cast<Index>(out.dofs[static_cast<std::size_t>(i)])).array() - out.minimum[i]) / out.range[i];
+            y.row(i) = (p.row(static_cast<Index>(out.dofs[static_cast<std::size_t>(i)])).array() - out.minimum[i]) /
+                       out.range[i];
         out.data.children.push_back(y);
     }
     return out;
@@ -160,17 +161,19 @@ MatX denormalize(const MotionData& data, const MatX& normalized) {
         throw InvalidArgument("denormalize: expected " + std::to_string(data.minimum.size()) + " rows, found " +
                               std::to_string(normalized.rows()));
     MatX out(normalized.rows(), normalized.cols());
-    for (Index i = 0; i < normalized.rows(); ++i) out.row(i) = normalized.row(i).array() * data.range[i] + data.minimum[i];
+    for (Index i = 0; i < normalized.rows(); ++i)
+        out.row(i) = normalized.row(i).array() * data.range[i] + data.minimum[i];
     return out;
 }
 
 Clip reassemble_clip(const MotionData& data, const MatX& normalized, const std::string& name) {
     if (normalized.cols() != data.template_pose.cols())
-        throw InvalidArgument("reassemble_clip: expected " + std::to_string(data.template_pose.cols()) + " frames, found " +
-                              std::to_string(normalized.cols()));
+        throw InvalidArgument("reassemble_clip: expected " + std::to_string(data.template_pose.cols()) +
+                              " frames, found " + std::to_string(normalized.cols()));
     MatX full = data.template_pose;
     const MatX values = denormalize(data, normalized);
-    for (Index i = 0; i < values.rows(); ++i) full.row(static_cast<Index>(data.dofs[static_cast<std::size_t>(i)])) = values.row(i);
+    for (Index i = 0; i < values.rows(); ++i)
+        full.row(static_cast<Index>(data.dofs[static_cast<std::size_t>(i)])) = values.row(i);
     Clip clip;
     clip.skeleton = data.skeleton;
     clip.frame_rate = data.frame_rate;

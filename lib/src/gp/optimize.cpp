@@ -26,7 +26,11 @@ constexpr int kLbfgsMemory = 20;
 class Objective {
 public:
     Objective(const HgpData& data, HgpModel model, const FitOptions& options, int& evaluations, const std::string& item)
-        : data_(data), model_(std::move(model)), options_(options), evaluations_(evaluations), item_(item),
+        : data_(data),
+          model_(std::move(model)),
+          options_(options),
+          evaluations_(evaluations),
+          item_(item),
           scale_(1.0 / static_cast<double>(data.observed_value_count())) {}
 
     double operator()(const VecX& x, VecX& grad) {
@@ -99,11 +103,12 @@ std::string to_string(FitStatus status) {
 
 HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
     validate(data);
-    if (spec.child_terms == 0 || (spec.hierarchical && spec.parent_terms == 0) || (spec.grouped && spec.group_terms == 0) ||
-        spec.rank == 0)
+    if (spec.child_terms == 0 || (spec.hierarchical && spec.parent_terms == 0) ||
+        (spec.grouped && spec.group_terms == 0) || spec.rank == 0)
         throw InvalidArgument("initial_model: need ≥ 1 term per layer and rank ≥ 1");
     if (spec.grouped && (!spec.hierarchical || data.groups.empty()))
-        throw InvalidArgument("initial_model: three layers need a hierarchical model and each child's group (HgpData::groups)");
+        throw InvalidArgument(
+            "initial_model: three layers need a hierarchical model and each child's group (HgpData::groups)");
     const Index d = static_cast<Index>(data.outputs());
     const Index t = static_cast<Index>(data.frames());
     // Second-moment matrices (D×D) over the observed frames: of the children's mean per frame (the
@@ -170,7 +175,8 @@ HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
         for (std::size_t q = 0; q < terms; ++q) {
             LmcTerm term;
             term.kernel = spec.kernel;
-            const double frac = terms == 1 ? 0.2 : 0.05 * std::pow(10.0, static_cast<double>(q) / static_cast<double>(terms - 1));
+            const double frac =
+                terms == 1 ? 0.2 : 0.05 * std::pow(10.0, static_cast<double>(q) / static_cast<double>(terms - 1));
             term.log_lengthscale = std::log(frac * span);
             const double share = 1.0 / static_cast<double>(terms);
             term.W.resize(d, static_cast<Index>(spec.rank));
@@ -226,7 +232,8 @@ FitResult fit(const HgpData& data, const HgpModel& start, const FitOptions& opti
     validate(start);
     validate(data);
     if (start.outputs() != data.outputs()) throw InvalidArgument("fit: model and data have different outputs");
-    if (options.restarts < 1 || options.max_iterations < 1) throw InvalidArgument("fit: restarts and max_iterations must be ≥ 1");
+    if (options.restarts < 1 || options.max_iterations < 1)
+        throw InvalidArgument("fit: restarts and max_iterations must be ≥ 1");
     const auto t0 = std::chrono::steady_clock::now();
     FitResult result;
     result.model = start;
@@ -291,8 +298,8 @@ FitResult fit(const HgpData& data, const HgpModel& start, const FitOptions& opti
             }
         }
         report.evaluations = objective.own_evaluations;
-        report.log_likelihood = std::isfinite(objective.best_f) ? -objective.best_f * scale
-                                                                : -std::numeric_limits<double>::infinity();
+        report.log_likelihood =
+            std::isfinite(objective.best_f) ? -objective.best_f * scale : -std::numeric_limits<double>::infinity();
         report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tk).count();
         if (std::isfinite(objective.best_f) && report.log_likelihood > result.log_likelihood) {
             result.log_likelihood = report.log_likelihood;

@@ -210,7 +210,8 @@ Levels make_levels(const HgpModel& model, const HgpData& data) {
     if (data.child_count() > s) {
         MatX e(n, r);
         for (std::size_t c = 0; c < data.child_count(); ++c)
-            e.col(static_cast<Index>(c)) = ys.col(static_cast<Index>(c)) - group_mean.col(static_cast<Index>(data.groups[c]));
+            e.col(static_cast<Index>(c)) =
+                ys.col(static_cast<Index>(c)) - group_mean.col(static_cast<Index>(data.groups[c]));
         lv.independent.push_back({std::move(e), rd - static_cast<double>(s), 0.0, 0.0});
     }
     // Groups of one size n_c: √n_c·ȳ_s ~ N(√n_c·g, C_c), deviations from their class mean: S_c − 1 directions.
@@ -232,8 +233,7 @@ Levels make_levels(const HgpModel& model, const HgpData& data) {
     }
     if (coupled.size() == 1)
         lv.independent.push_back({std::sqrt(rd) * coupled.front().mean, 1.0, coupled.front().group_size, rd});
-    else
-        lv.coupled = std::move(coupled);
+    else lv.coupled = std::move(coupled);
     return lv;
 }
 
@@ -271,7 +271,8 @@ LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data
             x.triangularView<Eigen::Lower>().transpose().solveInPlace(p);
             res.value = -0.5 * (quad + lev.count * logdet);
             res.ok = std::isfinite(res.value);
-            if (!res.ok) res.message = "non-finite log likelihood of " + level_name(lev.group_weight, lev.parent_weight);
+            if (!res.ok)
+                res.message = "non-finite log likelihood of " + level_name(lev.group_weight, lev.parent_weight);
             if (!res.ok || !with_gradient) return;
             invert_from_factor_in_place(x);
             MatX& w = x;  // W = P Pᵀ − count·X⁻¹
@@ -366,7 +367,8 @@ std::vector<LowRankLevel> low_rank_levels(const HgpModel& model, const HgpData& 
     // Reserved: the levels point into `extended`.
     extended.clear();
     extended.reserve(model.child.terms.size() + model.group.terms.size() + model.parent.terms.size());
-    auto add = [&](const Lmc& lmc, const std::vector<KernelFactor>& base, const VecX& a, bool rank1, std::size_t offset) {
+    auto add = [&](const Lmc& lmc, const std::vector<KernelFactor>& base, const VecX& a, bool rank1,
+                   std::size_t offset) {
         for (std::size_t q = 0; q < lmc.terms.size(); ++q) {
             extended.push_back(extended_factor(lmc.terms[q], base[q], data.times, a, rank1));
             l.terms.push_back({&lmc.terms[q], &extended.back(), 1.0});
@@ -414,7 +416,8 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
             const Index cols = p.cols(), m = fx.v.cols(), rows = lev.e.rows();
             StructuredSymmetric g;
             g.blocks.resize(static_cast<std::size_t>(d));
-            for (Index i = 0; i < d; ++i) g.blocks[static_cast<std::size_t>(i)] = -lev.count * fx.p_inverse[static_cast<std::size_t>(i)];
+            for (Index i = 0; i < d; ++i)
+                g.blocks[static_cast<std::size_t>(i)] = -lev.count * fx.p_inverse[static_cast<std::size_t>(i)];
             g.u.resize(rows, cols + m);
             g.x.resize(rows, cols + m);
             g.u.leftCols(cols) = p;

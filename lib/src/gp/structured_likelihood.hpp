@@ -23,9 +23,9 @@ struct Level {
 
 /// The mean of one size class of groups (three layers, groups of unequal size).
 struct CoupledClass {
-    VecX mean;                 ///< ȳ_c, n values
-    double group_size = 0.0;   ///< n_c
-    double children = 0.0;     ///< R_c = n_c × (groups of this size)
+    VecX mean;                ///< ȳ_c, n values
+    double group_size = 0.0;  ///< n_c
+    double children = 0.0;    ///< R_c = n_c × (groups of this size)
 };
 
 struct Levels {

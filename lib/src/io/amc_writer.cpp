@@ -84,8 +84,7 @@ std::string check_and_layout(const Skeleton& s, BoneLayout* out) {
                 return who + ": an end site must be named '" + s.joint(parent).name + "_end'";
             continue;
         }
-        if (joint.name == "root" || joint.name.empty() ||
-            joint.name.find_first_of(" \t\r\n#") != std::string::npos)
+        if (joint.name == "root" || joint.name.empty() || joint.name.find_first_of(" \t\r\n#") != std::string::npos)
             return who + ": not usable as an ASF bone name";
         layout.bone_children[parent].push_back(j);
         if (joint.rotation_order != asf_composition(joint.channels))
@@ -204,7 +203,7 @@ void write_amc(std::ostream& out, const Clip& clip, const AmcWriteOptions& optio
     for (std::size_t j = 0; j < s.size(); ++j)
         for (std::size_t k = 0; k < s.joint(j).channels.size(); ++k)
             scale[s.first_channel(j) + k] = is_rotation(s.joint(j).channels[k]) ? (degrees ? 180.0 / kPi : 1.0)
-                                                                               : 1.0 / s.source_units().cm_per_unit;
+                                                                                : 1.0 / s.source_units().cm_per_unit;
     std::string header = "#!OML:ASF " + (options.asf_name.empty() ? std::string("skeleton.asf") : options.asf_name) +
                          "\n:FULLY-SPECIFIED\n" + (degrees ? ":DEGREES\n" : ":RADIANS\n");
     out << header;

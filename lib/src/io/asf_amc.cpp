@@ -130,7 +130,8 @@ private:
         std::size_t more = 0;
         for (const BoneSlot& b : slots_) {
             if (b.count == 0 || b.seen_in_frame == frames_) continue;
-            if (first == nullptr) first = &b; else ++more;
+            if (first == nullptr) first = &b;
+            else ++more;
         }
         return {first, more};
     }
@@ -178,7 +179,8 @@ private:
         data_.resize((frames_ + 1) * channels_, 0.0);
         if (!s_.at_line_end()) {
             const std::string_view extra = s_.token_on_line();
-            s_.fail_at_token("unexpected " + quoted(extra) + " after the frame number (bone values go on the "
+            s_.fail_at_token("unexpected " + quoted(extra) +
+                             " after the frame number (bone values go on the "
                              "following lines)");
         }
     }

@@ -41,8 +41,8 @@ struct BoneDef {
     std::size_t begin_line = 0;
     std::size_t name_line = 0;
     Vec3 direction = Vec3::Zero();
-    double length = 0.0;  ///< file units
-    Vec3 axis_angles = Vec3::Zero();  ///< about X, Y, Z, in the file's angle unit
+    double length = 0.0;                      ///< file units
+    Vec3 axis_angles = Vec3::Zero();          ///< about X, Y, Z, in the file's angle unit
     EulerOrder axis_order = EulerOrder::XYZ;  ///< letters as written; the first is applied first
     std::vector<Dof> dofs;
     std::size_t dof_line = 0;
@@ -95,8 +95,10 @@ public:
         while (!s_.at_end()) {
             const std::string_view kw = s_.token();
             if (kw.front() != ':')
-                s_.fail_at_token("expected a section keyword (:version, :name, :units, :documentation, :root, "
-                                 ":bonedata, :hierarchy), found " + quoted(kw));
+                s_.fail_at_token(
+                    "expected a section keyword (:version, :name, :units, :documentation, :root, "
+                    ":bonedata, :hierarchy), found " +
+                    quoted(kw));
             if (iequals(kw, ":version")) {
                 if (s_.token_on_line().empty()) s_.fail("expected a version number after ':version'");
                 finish_line(":version");
@@ -320,8 +322,9 @@ private:
                 b.dof_line = s_.token_line();
                 for (std::string_view t = s_.token_on_line(); !t.empty(); t = s_.token_on_line()) {
                     if (iequals(t, "l"))
-                        s_.fail_at_token("dof 'l' (bone stretch) is not supported: mocapdb skeletons have "
-                                         "fixed bone lengths");
+                        s_.fail_at_token(
+                            "dof 'l' (bone stretch) is not supported: mocapdb skeletons have "
+                            "fixed bone lengths");
                     const auto d = dof_from_string(t);
                     if (!d) s_.fail_at_token("unknown dof " + quoted(t) + " (expected rx, ry, rz, tx, ty, tz)");
                     if (std::find(b.dofs.begin(), b.dofs.end(), *d) != b.dofs.end())
@@ -355,8 +358,9 @@ private:
         // the ASF meaning (along the bone's own axis frame) only when the axis is the identity.
         const bool translates = std::any_of(b.dofs.begin(), b.dofs.end(), [](Dof d) { return !is_rotation_dof(d); });
         if (translates && b.axis_angles != Vec3::Zero())
-            fail_at_line(b.dof_line, who + ": translation dofs (tx, ty, tz) are supported only on bones whose "
-                                           "axis is 0 0 0");
+            fail_at_line(b.dof_line, who +
+                                         ": translation dofs (tx, ty, tz) are supported only on bones whose "
+                                         "axis is 0 0 0");
         bone_index_.emplace(b.name, static_cast<int>(bones_.size()));
         bones_.push_back(std::move(b));
     }
@@ -395,8 +399,8 @@ private:
                 // Refusing each cycle-closing link keeps every parent chain finite.
                 for (int a = parent; a != kRootParent && a != kNoParent; a = bones_[static_cast<std::size_t>(a)].parent)
                     if (a == child)
-                        s_.fail_at_token("cycle in :hierarchy: bone " + quoted(t) + " would be its own ancestor (via '" +
-                                         node_name(parent) + "')");
+                        s_.fail_at_token("cycle in :hierarchy: bone " + quoted(t) +
+                                         " would be its own ancestor (via '" + node_name(parent) + "')");
                 c.parent = parent;
                 c.parent_line = s_.token_line();
                 (parent == kRootParent ? root_children_ : bones_[static_cast<std::size_t>(parent)].children)
@@ -412,12 +416,13 @@ private:
         // A bone whose chain does not end at the root (no parent, or under such a bone) is unplaceable.
         for (const BoneDef& b : bones_) {
             int top = bone_index_.at(b.name);
-            while (bones_[static_cast<std::size_t>(top)].parent >= 0) top = bones_[static_cast<std::size_t>(top)].parent;
+            while (bones_[static_cast<std::size_t>(top)].parent >= 0)
+                top = bones_[static_cast<std::size_t>(top)].parent;
             if (bones_[static_cast<std::size_t>(top)].parent == kNoParent)
                 fail_at_line(b.name_line, "bone '" + b.name + "' is not connected to the root in :hierarchy");
             if (b.children.empty() && bone_index_.count(b.name + "_end"))
-                fail_at_line(b.name_line, "bone '" + b.name + "_end' clashes with the end site of leaf bone '" +
-                                              b.name + "'");
+                fail_at_line(b.name_line,
+                             "bone '" + b.name + "_end' clashes with the end site of leaf bone '" + b.name + "'");
         }
 
         const double cm = 2.54 / length_factor_;
@@ -473,9 +478,7 @@ private:
 
 }  // namespace
 
-Skeleton parse_asf(std::string_view text, const std::string& source_name) {
-    return AsfParser(text, source_name).run();
-}
+Skeleton parse_asf(std::string_view text, const std::string& source_name) { return AsfParser(text, source_name).run(); }
 
 std::shared_ptr<const Skeleton> read_asf(const std::filesystem::path& path) {
     return std::make_shared<const Skeleton>(parse_asf(read_text_file(path), path.string()));

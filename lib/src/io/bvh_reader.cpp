@@ -41,7 +41,8 @@ public:
         parse_motion(clip);
         // A static ROOT above the body (exported rigs' "Reference"): its only child carries the motion.
         const std::size_t motion_root = find_motion_root(*clip.skeleton, clip.channels);
-        if (motion_root != 0) clip.skeleton = std::make_shared<const Skeleton>(clip.skeleton->with_motion_root(motion_root));
+        if (motion_root != 0)
+            clip.skeleton = std::make_shared<const Skeleton>(clip.skeleton->with_motion_root(motion_root));
         return clip;
     }
 
@@ -88,17 +89,21 @@ private:
 
     void parse_channels(Joint& joint) {
         const long long n = in_.integer("channel count");
-        if (n > 6) in_.fail_at_token("joint '" + joint.name + "' declares " + std::to_string(n) + " channels, at most 6 allowed");
+        if (n > 6)
+            in_.fail_at_token("joint '" + joint.name + "' declares " + std::to_string(n) +
+                              " channels, at most 6 allowed");
         std::vector<Axis> rotation_axes;
         for (long long i = 0; i < n; ++i) {
             const std::string_view t = in_.token();
             const auto type = channel_type_from_string(t);
             if (!type)
-                in_.fail_at_token("expected a channel name (Xposition, Yposition, Zposition, Xrotation, Yrotation, "
-                                  "Zrotation) for joint '" + joint.name + "', found " +
-                                  (t.empty() ? std::string("end of file") : quoted(t)));
+                in_.fail_at_token(
+                    "expected a channel name (Xposition, Yposition, Zposition, Xrotation, Yrotation, "
+                    "Zrotation) for joint '" +
+                    joint.name + "', found " + (t.empty() ? std::string("end of file") : quoted(t)));
             for (ChannelType c : joint.channels)
-                if (c == *type) in_.fail_at_token("joint '" + joint.name + "' lists channel " + std::string(t) + " twice");
+                if (c == *type)
+                    in_.fail_at_token("joint '" + joint.name + "' lists channel " + std::string(t) + " twice");
             joint.channels.push_back(*type);
             if (is_rotation(*type)) rotation_axes.push_back(channel_axis(*type));
         }
@@ -146,7 +151,8 @@ private:
                                      "duplicate joint name '" + joints_[i].name + "' (first on line " +
                                          std::to_string(names_line_[k]) + ")");
         try {
-            return Skeleton(joints_, SourceUnits{options_.cm_per_unit, true}, Vec3::UnitZ(), options_.position_channels);
+            return Skeleton(joints_, SourceUnits{options_.cm_per_unit, true}, Vec3::UnitZ(),
+                            options_.position_channels);
         } catch (const InvalidArgument& e) {
             throw ParseError(in_.source_name(), 0, 0, e.what());
         }
@@ -202,8 +208,7 @@ private:
                 const std::size_t line = in_.line();
                 if (options_.strict)
                     in_.fail("more data rows than the " + std::to_string(declared) + " declared by 'Frames:'");
-                warn(line, "data rows beyond the " + std::to_string(declared) +
-                               " declared by 'Frames:' were ignored");
+                warn(line, "data rows beyond the " + std::to_string(declared) + " declared by 'Frames:' were ignored");
                 break;
             }
             const std::size_t line = in_.line();

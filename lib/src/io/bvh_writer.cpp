@@ -152,8 +152,8 @@ Clip to_bvh_channels(const Clip& clip, EulerOrder order) {
     Clip out;
     out.name = clip.name;
     out.frame_rate = clip.frame_rate;
-    auto skeleton = std::make_shared<const Skeleton>(joints, s.source_units(), s.forward(), PositionChannels::replace_offset,
-                                                     s.motion_root());
+    auto skeleton = std::make_shared<const Skeleton>(joints, s.source_units(), s.forward(),
+                                                     PositionChannels::replace_offset, s.motion_root());
     const Skeleton& t = *skeleton;
     out.skeleton = skeleton;
     out.channels = FrameMatrix::Zero(clip.channels.rows(), static_cast<Eigen::Index>(t.channel_count()));

@@ -33,7 +33,8 @@ Clip read_clip(const std::filesystem::path& path, const ClipReadOptions& options
     if (asf.empty()) {
         const auto found = find_asf_for_amc(path);
         if (!found)
-            throw InvalidArgument(path.string() + ": no skeleton given and none found beside it by the CMU naming "
+            throw InvalidArgument(path.string() +
+                                  ": no skeleton given and none found beside it by the CMU naming "
                                   "(NN_MM.amc -> NN.asf); pass the ASF file");
         asf = *found;
     }

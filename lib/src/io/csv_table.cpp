@@ -10,7 +10,6 @@
 namespace mocapdb {
 namespace {
 
-
 struct Row {
     std::size_t line = 0;
     std::vector<std::string> cells;
@@ -36,7 +35,8 @@ std::vector<Row> split_rows(std::string_view text, const std::string& source) {
                 ++i;
                 for (;;) {
                     if (i >= text.size())
-                        throw ParseError(source, open_line, open_col, "unterminated quoted field (expected a closing quote)");
+                        throw ParseError(source, open_line, open_col,
+                                         "unterminated quoted field (expected a closing quote)");
                     if (text[i] == '"') {
                         if (i + 1 < text.size() && text[i + 1] == '"') {
                             cell += '"';
@@ -54,7 +54,8 @@ std::vector<Row> split_rows(std::string_view text, const std::string& source) {
                 }
                 while (i < text.size() && (text[i] == ' ' || text[i] == '\t')) ++i;
                 if (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r')
-                    throw ParseError(source, line, i - line_start + 1, "expected ',' or end of line after a quoted field");
+                    throw ParseError(source, line, i - line_start + 1,
+                                     "expected ',' or end of line after a quoted field");
             } else {
                 while (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r') cell += text[i++];
             }
@@ -97,7 +98,8 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
     for (std::size_t r = 1; r < rows.size(); ++r) {
         if (rows[r].cells.size() != t.header.size())
             throw ParseError(source, rows[r].line, 0,
-                             "expected " + std::to_string(t.header.size()) + " comma-separated cells (as in the header), found " +
+                             "expected " + std::to_string(t.header.size()) +
+                                 " comma-separated cells (as in the header), found " +
                                  std::to_string(rows[r].cells.size()));
         t.cells.push_back(std::move(rows[r].cells));
         t.line_of_row.push_back(rows[r].line);

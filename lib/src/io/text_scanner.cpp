@@ -107,14 +107,15 @@ void TextScanner::expect(std::string_view expected) {
 }
 
 double TextScanner::to_number(std::string_view t, std::string_view what) const {
-    if (t.empty()) fail("expected " + std::string(what) + " (a number), found " + (pos_ >= text_.size() ? "end of file" : "end of line"));
+    if (t.empty())
+        fail("expected " + std::string(what) + " (a number), found " +
+             (pos_ >= text_.size() ? "end of file" : "end of line"));
     const char* first = t.data();
     const char* last = t.data() + t.size();
     if (*first == '+') ++first;  // from_chars refuses a leading '+', which some exporters write
     double value = 0.0;
     const auto [ptr, ec] = std::from_chars(first, last, value);
-    if (ec == std::errc::result_out_of_range)
-        fail_at_token(std::string(what) + " " + quoted(t) + " is out of range");
+    if (ec == std::errc::result_out_of_range) fail_at_token(std::string(what) + " " + quoted(t) + " is out of range");
     if (ec != std::errc() || ptr != last)
         fail_at_token("expected " + std::string(what) + " (a number), found " + quoted(t));
     if (!std::isfinite(value)) fail_at_token(std::string(what) + " " + quoted(t) + " is not finite");

@@ -6,8 +6,8 @@
 
 namespace mocapdb::kriging::detail {
 
-void gamma_vector(const Eigen::MatrixXd& points, const VariogramModel& model, const Eigen::Ref<const Eigen::VectorXd>& c,
-                  Eigen::Ref<Eigen::VectorXd> out) {
+void gamma_vector(const Eigen::MatrixXd& points, const VariogramModel& model,
+                  const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) {
     const Eigen::Index p = points.cols();
 #if defined(__AVX2__)
     // One pass over the points (all P coordinates of 4 points at a time) instead of one per coordinate;

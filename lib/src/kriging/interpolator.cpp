@@ -22,8 +22,8 @@ Eigen::MatrixXd Interpolator::weights_batch(const Eigen::Ref<const Eigen::Matrix
 Eigen::MatrixXd Interpolator::predict(const Eigen::Ref<const Eigen::MatrixXd>& queries,
                                       const Eigen::Ref<const Eigen::MatrixXd>& values) const {
     if (values.rows() != num_samples()) {
-        throw InvalidArgument("Interpolator::predict: values must be N by D with N = " +
-                              std::to_string(num_samples()) + ", got " + std::to_string(values.rows()) + " rows");
+        throw InvalidArgument("Interpolator::predict: values must be N by D with N = " + std::to_string(num_samples()) +
+                              ", got " + std::to_string(values.rows()) + " rows");
     }
     const Eigen::MatrixXd w = weights_batch(queries);
     Eigen::MatrixXd out(queries.rows(), values.cols());

@@ -189,7 +189,8 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     k.v_transpose_ = v.transpose();
 #ifdef MOCAPDB_KRIGING_QUERY_KERNELS
     // The single-query operator (query_kernels.hpp): -Wc is exactly symmetric (symmetrized above).
-    k.query_operator_ = std::make_shared<const detail::QueryOperator>(k.operator_.leftCols(m), v, k.basis_.sample_basis());
+    k.query_operator_ =
+        std::make_shared<const detail::QueryOperator>(k.operator_.leftCols(m), v, k.basis_.sample_basis());
 #endif
     if (ols) {
         k.ols_u_ = k.basis_.sample_basis().rightCols(k.basis_.rank());
@@ -318,7 +319,8 @@ namespace {
 constexpr Eigen::Index kBlock = 256;
 }  // namespace
 
-void Kriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out_weights) const {
+void Kriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries,
+                            Eigen::Ref<Eigen::MatrixXd> out_weights) const {
     if (queries.cols() != dimension() || out_weights.rows() != num_samples() || out_weights.cols() != queries.rows()) {
         throw InvalidArgument("Kriging::weights_batch: queries must be Q by P (P = " + std::to_string(dimension()) +
                               ") and out_weights N by Q (N = " + std::to_string(num_samples()) + ")");
@@ -347,7 +349,8 @@ void Kriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries, Ei
 
 KrigingBatch Kriging::estimate_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries) const {
     if (queries.cols() != dimension()) {
-        throw InvalidArgument("Kriging::estimate_batch: queries must be Q by P with P = " + std::to_string(dimension()));
+        throw InvalidArgument("Kriging::estimate_batch: queries must be Q by P with P = " +
+                              std::to_string(dimension()));
     }
     const Eigen::Index m = points_.rows();
     const Eigen::Index nq = queries.rows();

@@ -66,9 +66,9 @@ constexpr Eigen::Index kBlock = 256;  // queries per matrix product (as Kriging:
 void KrigingPredictor::predict_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out,
                                      Eigen::MatrixXd& scratch) const {
     if (queries.cols() != dimension() || out.rows() != output_size() || out.cols() != queries.rows()) {
-        throw InvalidArgument("KrigingPredictor::predict_batch: queries must be Q by P (P = " +
-                              std::to_string(dimension()) + ") and out S by Q (S = " + std::to_string(output_size()) +
-                              ")");
+        throw InvalidArgument(
+            "KrigingPredictor::predict_batch: queries must be Q by P (P = " + std::to_string(dimension()) +
+            ") and out S by Q (S = " + std::to_string(output_size()) + ")");
     }
     const Eigen::Index m = points_.rows();
     const Eigen::Index kk = basis_.size();

@@ -30,7 +30,8 @@ double variance(const Eigen::Ref<const Eigen::VectorXd>& r) { return (r.array() 
 
 }  // namespace
 
-MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Eigen::Ref<const Eigen::MatrixXd>& samples,
+MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords,
+                                   const Eigen::Ref<const Eigen::MatrixXd>& samples,
                                    const Eigen::Ref<const Eigen::MatrixXd>& pose_signal,
                                    const Eigen::Ref<const Eigen::MatrixXd>& dissimilarity,
                                    const MotionKrigingOptions& options) {
@@ -55,21 +56,22 @@ MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coor
     const Eigen::Index t_frames = cols / d;
     if (options.scope == KernelScope::PerPose) {
         if (pose_signal.rows() != n || pose_signal.cols() != t_frames) {
-            throw InvalidArgument("MotionKriging::build: PerPose needs pose_signal N by T = " + std::to_string(n) + " by " +
-                                  std::to_string(t_frames) + ", got " + std::to_string(pose_signal.rows()) + "x" +
-                                  std::to_string(pose_signal.cols()));
+            throw InvalidArgument("MotionKriging::build: PerPose needs pose_signal N by T = " + std::to_string(n) +
+                                  " by " + std::to_string(t_frames) + ", got " + std::to_string(pose_signal.rows()) +
+                                  "x" + std::to_string(pose_signal.cols()));
         }
         if (!pose_signal.allFinite()) throw InvalidArgument("MotionKriging::build: pose_signal must be finite");
         for (Eigen::Index k : options.root_dofs) {
             if (k < 0 || k >= d) {
-                throw InvalidArgument("MotionKriging::build: root dof " + std::to_string(k) + " outside [0, D = " +
-                                      std::to_string(d) + ")");
+                throw InvalidArgument("MotionKriging::build: root dof " + std::to_string(k) +
+                                      " outside [0, D = " + std::to_string(d) + ")");
             }
         }
     }
     if (options.scope == KernelScope::PerSet && dissimilarity.size() > 0 &&
         (dissimilarity.rows() != n || dissimilarity.cols() != n)) {
-        throw InvalidArgument("MotionKriging::build: dissimilarity must be N by N (N = " + std::to_string(n) + ") or empty");
+        throw InvalidArgument("MotionKriging::build: dissimilarity must be N by N (N = " + std::to_string(n) +
+                              ") or empty");
     }
     if (options.representative >= 0) {
         const Eigen::Index limit = options.scope == KernelScope::PerElement ? cols : t_frames;
@@ -141,12 +143,15 @@ MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coor
     }
 
     const Eigen::MatrixXd set_dissimilarity =
-        options.scope == KernelScope::PerSet ? (dissimilarity.size() > 0 ? Eigen::MatrixXd(dissimilarity) : pairwise_distances(res))
-                                             : Eigen::MatrixXd();
+        options.scope == KernelScope::PerSet
+            ? (dissimilarity.size() > 0 ? Eigen::MatrixXd(dissimilarity) : pairwise_distances(res))
+            : Eigen::MatrixXd();
     auto variogram_of = [&](const KernelSpec& s) {
         switch (s.kind) {
-            case KernelSpec::SampleColumn: return experimental_variogram(h, abs_differences(res.col(s.index)), options.variogram);
-            case KernelSpec::PoseFrame: return experimental_variogram(h, abs_differences(pose_res.col(s.index)), options.variogram);
+            case KernelSpec::SampleColumn:
+                return experimental_variogram(h, abs_differences(res.col(s.index)), options.variogram);
+            case KernelSpec::PoseFrame:
+                return experimental_variogram(h, abs_differences(pose_res.col(s.index)), options.variogram);
             case KernelSpec::Set: break;
         }
         return experimental_variogram(h, set_dissimilarity, options.variogram);
@@ -208,12 +213,14 @@ MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coor
     const double h_half = std::max(0.5 * h.maxCoeff(), 1e-12);
 
     // A signal whose residuals are at rounding level (exactly linear in c) has no variogram to estimate.
-    auto negligible = [](const Eigen::Ref<const Eigen::MatrixXd>& residual, const Eigen::Ref<const Eigen::MatrixXd>& raw) {
+    auto negligible = [](const Eigen::Ref<const Eigen::MatrixXd>& residual,
+                         const Eigen::Ref<const Eigen::MatrixXd>& raw) {
         const double scale = raw.cwiseAbs().maxCoeff();
         return residual.cwiseAbs().maxCoeff() <= 1e-12 * scale;
     };
     for (const auto& s : specs) {
-        const double p_kernel = (options.scope == KernelScope::PerPose && s.kind == KernelSpec::SampleColumn) ? p_root : p;
+        const double p_kernel =
+            (options.scope == KernelScope::PerPose && s.kind == KernelSpec::SampleColumn) ? p_root : p;
         const VariogramFamily family = p_kernel == 0.0 ? VariogramFamily::Spherical : VariogramFamily::Stable;
         const double p_fit = p_kernel == 0.0 ? 1.0 : p_kernel;
         bool flat = false;
@@ -261,7 +268,8 @@ void MotionKriging::predict(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::R
 
 Eigen::MatrixXd MotionKriging::predict_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries) const {
     if (queries.cols() != dimension()) {
-        throw InvalidArgument("MotionKriging::predict_batch: queries must be Q by P with P = " + std::to_string(dimension()));
+        throw InvalidArgument("MotionKriging::predict_batch: queries must be Q by P with P = " +
+                              std::to_string(dimension()));
     }
     const Eigen::MatrixXd qn = scaling_.apply(queries);
     Eigen::MatrixXd out(queries.rows(), num_columns());

@@ -129,8 +129,8 @@ void dot_columns(const double* cols, Eigen::Index mp, Eigen::Index kk, const dou
 
 }  // namespace
 
-void packed_symmetric_product(const Eigen::VectorXd& packed, const Eigen::MatrixXd& t, const double* x,
-                              const double* g, double* y) {
+void packed_symmetric_product(const Eigen::VectorXd& packed, const Eigen::MatrixXd& t, const double* x, const double* g,
+                              double* y) {
     const Eigen::Index mp = t.rows();
     const Eigen::Index kk = t.cols();
     // y = T g first, a pass of its own (inside the loop below it cost more).
@@ -194,9 +194,12 @@ Eigen::MatrixXd pad_rows(const Eigen::Ref<const Eigen::MatrixXd>& a) {
 
 }  // namespace
 
-QueryOperator::QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& neg_wc, const Eigen::Ref<const Eigen::MatrixXd>& v,
-                             const Eigen::Ref<const Eigen::MatrixXd>& g)
-    : m(neg_wc.rows()), kernel(pack_symmetric(neg_wc)), trend(pad_rows(v)), basis(pad_rows(g)),
+QueryOperator::QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& neg_wc,
+                             const Eigen::Ref<const Eigen::MatrixXd>& v, const Eigen::Ref<const Eigen::MatrixXd>& g)
+    : m(neg_wc.rows()),
+      kernel(pack_symmetric(neg_wc)),
+      trend(pad_rows(v)),
+      basis(pad_rows(g)),
       basis_sums(basis.colwise().sum().transpose()) {}
 
 void QueryOperator::weights(const double* gamma, const double* g, double* b, double* corr, double* w) const {

@@ -36,8 +36,8 @@ Eigen::VectorXd pack_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& a);
 /// y = A x + T g. packed: pack_symmetric(A), A M by M; t: padded_size(M) by K, column-major, rows past
 /// M zero; x: padded_size(M) finite values (the entries past M are multiplied by 0); g: K values; y:
 /// padded_size(M) values (the entries past M come out 0). x, g and y must not overlap.
-void packed_symmetric_product(const Eigen::VectorXd& packed, const Eigen::MatrixXd& t, const double* x,
-                              const double* g, double* y);
+void packed_symmetric_product(const Eigen::VectorXd& packed, const Eigen::MatrixXd& t, const double* x, const double* g,
+                              double* y);
 
 struct QueryOperator {
     Eigen::Index m = 0;          ///< unique control points

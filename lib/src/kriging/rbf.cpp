@@ -61,8 +61,8 @@ RbfInterpolator RbfInterpolator::build(const Eigen::Ref<const Eigen::MatrixXd>& 
     }
     RbfInterpolator rb;
     rb.options_ = options;
-    detail::PreparedPoints prepared = detail::prepare_points(coords, options.duplicate_tolerance, true, options.trend,
-                                                             options.trend_rank_tolerance);
+    detail::PreparedPoints prepared =
+        detail::prepare_points(coords, options.duplicate_tolerance, true, options.trend, options.trend_rank_tolerance);
     rb.points_ = std::move(prepared.points);
     rb.group_ = std::move(prepared.group);
     rb.group_size_ = std::move(prepared.group_size);
@@ -175,9 +175,9 @@ void RbfInterpolator::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen:
 void RbfInterpolator::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries,
                                     Eigen::Ref<Eigen::MatrixXd> out_weights) const {
     if (queries.cols() != dimension() || out_weights.rows() != num_samples() || out_weights.cols() != queries.rows()) {
-        throw InvalidArgument("RbfInterpolator::weights_batch: queries must be Q by P (P = " +
-                              std::to_string(dimension()) + ") and out_weights N by Q (N = " +
-                              std::to_string(num_samples()) + ")");
+        throw InvalidArgument(
+            "RbfInterpolator::weights_batch: queries must be Q by P (P = " + std::to_string(dimension()) +
+            ") and out_weights N by Q (N = " + std::to_string(num_samples()) + ")");
     }
     const Eigen::Index m = points_.rows();
     const Eigen::Index kk = basis_.size();

@@ -24,7 +24,8 @@ ReductionResult reduce_samples(const Eigen::Ref<const Eigen::MatrixXd>& coords, 
     const Eigen::VectorXi& group = k.unique_index();
     const Eigen::Index trend_size =
         (ko.trend == TrendKind::Linear && ko.trend_fit == TrendFit::GLS) ? k.trend_basis().size() : 1;
-    const Eigen::Index min_keep = std::max<Eigen::Index>(options.min_samples > 0 ? options.min_samples : trend_size + 1, 1);
+    const Eigen::Index min_keep =
+        std::max<Eigen::Index>(options.min_samples > 0 ? options.min_samples : trend_size + 1, 1);
 
     std::vector<bool> alive(static_cast<std::size_t>(n), true);
     Eigen::Index remaining = n;
@@ -73,8 +74,9 @@ ReductionResult reduce_samples(const Eigen::Ref<const Eigen::MatrixXd>& coords, 
                     rho = std::clamp(1.0 - sigma2 / sill, 0.0, 1.0);
                 }
                 // Ties: the lower original index first, for order invariance up to ties.
-                if (rho > best || (rho == best && idx[static_cast<std::size_t>(active[static_cast<std::size_t>(a)])] <
-                                                      idx[static_cast<std::size_t>(active[static_cast<std::size_t>(best_a)])])) {
+                if (rho > best ||
+                    (rho == best && idx[static_cast<std::size_t>(active[static_cast<std::size_t>(a)])] <
+                                        idx[static_cast<std::size_t>(active[static_cast<std::size_t>(best_a)])])) {
                     best = rho;
                     best_a = a;
                 }

@@ -30,7 +30,8 @@ ExperimentalVariogram table_variogram(const ScalarTable& table, TrendKind trend,
 }
 
 VariogramChoice fit_table_variogram(const VariogramFitRequest& request, const ExperimentalVariogram& ev,
-                                    const ScalarTable& table, const KrigingOptions& kriging, const VariogramFitOptions& fit) {
+                                    const ScalarTable& table, const KrigingOptions& kriging,
+                                    const VariogramFitOptions& fit) {
     VariogramChoice out;
     if (request.by_loo) {
         out.selection = select_exponent(ev, table.coords, table.values, kriging, fit, request.grid);

@@ -12,13 +12,12 @@ namespace mocapdb::kriging {
 
 const char* to_string(TrendKind kind) { return kind == TrendKind::None ? "none" : "linear"; }
 
-TrendBasis TrendBasis::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, TrendKind kind,
-                             double rank_tolerance) {
+TrendBasis TrendBasis::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, TrendKind kind, double rank_tolerance) {
     const Eigen::Index n = coords.rows();
     const Eigen::Index p = coords.cols();
     if (n < 1 || p < 1) {
-        throw InvalidArgument("TrendBasis: coords must be N by P with N >= 1 and P >= 1, got " +
-                              std::to_string(n) + "x" + std::to_string(p));
+        throw InvalidArgument("TrendBasis: coords must be N by P with N >= 1 and P >= 1, got " + std::to_string(n) +
+                              "x" + std::to_string(p));
     }
     if (!coords.allFinite()) throw InvalidArgument("TrendBasis: coords must be finite");
     if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0)) {
@@ -64,8 +63,7 @@ void TrendBasis::evaluate(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref
 Eigen::MatrixXd TrendBasis::evaluate_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries) const {
     if (queries.cols() != dimension()) {
         throw InvalidArgument("TrendBasis::evaluate_batch: queries must be Q by P with P = " +
-                              std::to_string(dimension()) + ", got " + std::to_string(queries.cols()) +
-                              " columns");
+                              std::to_string(dimension()) + ", got " + std::to_string(queries.cols()) + " columns");
     }
     Eigen::MatrixXd g(size(), queries.rows());
     g.row(0).setOnes();
@@ -88,8 +86,8 @@ double TrendBasis::to_hyperplane(const Eigen::Ref<const Eigen::VectorXd>& a, Eig
 OlsTrend fit_trend_ols(const TrendBasis& basis, const Eigen::Ref<const Eigen::MatrixXd>& samples) {
     const Eigen::MatrixXd& g = basis.sample_basis();
     if (samples.rows() != g.rows()) {
-        throw InvalidArgument("fit_trend_ols: samples must have N = " + std::to_string(g.rows()) +
-                              " rows, got " + std::to_string(samples.rows()));
+        throw InvalidArgument("fit_trend_ols: samples must have N = " + std::to_string(g.rows()) + " rows, got " +
+                              std::to_string(samples.rows()));
     }
     OlsTrend fit;
     // G = [1, U] with U orthonormal and orthogonal to 1: (G^T G)^-1 = diag(1/N, I).

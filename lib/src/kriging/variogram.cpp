@@ -46,9 +46,8 @@ ExperimentalVariogram experimental_variogram(const Eigen::Ref<const Eigen::Matri
     const Eigen::Index n = distances.rows();
     if (distances.cols() != n || differences.rows() != n || differences.cols() != n) {
         throw InvalidArgument("experimental_variogram: distances and differences must both be N by N (got " +
-                              std::to_string(distances.rows()) + "x" + std::to_string(distances.cols()) +
-                              " and " + std::to_string(differences.rows()) + "x" +
-                              std::to_string(differences.cols()) + ")");
+                              std::to_string(distances.rows()) + "x" + std::to_string(distances.cols()) + " and " +
+                              std::to_string(differences.rows()) + "x" + std::to_string(differences.cols()) + ")");
     }
     if (n < 2) throw InvalidArgument("experimental_variogram: need at least 2 samples, got " + std::to_string(n));
     if (options.bins < 1) {

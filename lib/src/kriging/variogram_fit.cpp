@@ -299,7 +299,8 @@ double fit_objective(const ExperimentalVariogram& ev, const VariogramModel& mode
 VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily family, double exponent,
                            const VariogramFitOptions& options) {
     if (family == VariogramFamily::Stable && !(exponent > 0.0 && exponent <= 2.0)) {
-        throw InvalidArgument("fit_variogram: stable exponent p must satisfy 0 < p <= 2, got " + std::to_string(exponent));
+        throw InvalidArgument("fit_variogram: stable exponent p must satisfy 0 < p <= 2, got " +
+                              std::to_string(exponent));
     }
     if (!(options.gamma_floor > 0.0 && options.gamma_floor < 1.0)) {
         throw InvalidArgument("fit_variogram: gamma_floor must be in (0, 1)");
@@ -311,11 +312,13 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
     if (!(options.min_nugget >= 0.0) || !std::isfinite(options.min_nugget) || !(options.max_total_sill >= 0.0) ||
         !std::isfinite(options.max_total_sill) ||
         (options.max_total_sill > 0.0 && options.min_nugget >= options.max_total_sill)) {
-        throw InvalidArgument("fit_variogram: need finite min_nugget >= 0, max_total_sill >= 0 and, with a cap, "
-                              "min_nugget < max_total_sill");
+        throw InvalidArgument(
+            "fit_variogram: need finite min_nugget >= 0, max_total_sill >= 0 and, with a cap, "
+            "min_nugget < max_total_sill");
     }
     if (options.weighting == FitWeighting::CressieFixed && !options.start) {
-        throw InvalidArgument("fit_variogram: CressieFixed weighting needs options.start (the model the weights come from)");
+        throw InvalidArgument(
+            "fit_variogram: CressieFixed weighting needs options.start (the model the weights come from)");
     }
     if (options.start) options.start->validate();
 
@@ -364,7 +367,8 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
     // Weights for the scan: the fixed ones, or Cressie's evaluated at the data.
     Eigen::VectorXd scan_w = pr.fixed_w;
     if (options.weighting == FitWeighting::Cressie) {
-        for (Eigen::Index u = 0; u < m; ++u) scan_w(u) = pr.bins.n(u) / std::pow(std::max(pr.bins.y(u), pr.floor_value), 2);
+        for (Eigen::Index u = 0; u < m; ++u)
+            scan_w(u) = pr.bins.n(u) / std::pow(std::max(pr.bins.y(u), pr.floor_value), 2);
     }
     struct Start {
         double f;
@@ -425,8 +429,9 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
 }
 
 ExponentSelection select_exponent(const ExperimentalVariogram& ev, const Eigen::Ref<const Eigen::MatrixXd>& coords,
-                                  const Eigen::Ref<const Eigen::MatrixXd>& values, const KrigingOptions& kriging_options,
-                                  const VariogramFitOptions& fit_options, const std::vector<double>& grid) {
+                                  const Eigen::Ref<const Eigen::MatrixXd>& values,
+                                  const KrigingOptions& kriging_options, const VariogramFitOptions& fit_options,
+                                  const std::vector<double>& grid) {
     if (grid.empty()) throw InvalidArgument("select_exponent: the grid of p must not be empty");
     for (double p : grid) {
         if (!(p >= 0.0 && p <= 2.0)) throw InvalidArgument("select_exponent: every p must satisfy 0 <= p <= 2");

@@ -15,9 +15,7 @@
 
 namespace mocapdb::kriging {
 
-const char* to_string(VariogramFamily family) {
-    return family == VariogramFamily::Spherical ? "sph" : "stable";
-}
+const char* to_string(VariogramFamily family) { return family == VariogramFamily::Spherical ? "sph" : "stable"; }
 
 VariogramModel VariogramModel::spherical(double nugget, double sill, double range) {
     VariogramModel m;
@@ -43,8 +41,7 @@ VariogramModel VariogramModel::stable(double p, double nugget, double sill, doub
 
 VariogramModel VariogramModel::from_paper_p(double p, double nugget, double sill, double range) {
     if (!(p >= 0.0 && p <= 2.0)) {
-        throw InvalidArgument("variogram model: p must satisfy 0 <= p <= 2 (0 = spherical), got " +
-                              std::to_string(p));
+        throw InvalidArgument("variogram model: p must satisfy 0 <= p <= 2 (0 = spherical), got " + std::to_string(p));
     }
     return p == 0.0 ? spherical(nugget, sill, range) : stable(p, nugget, sill, range);
 }
@@ -55,12 +52,10 @@ void VariogramModel::validate() const {
                               std::to_string(nugget));
     }
     if (!(std::isfinite(sill) && sill >= 0.0)) {
-        throw InvalidArgument("variogram model: sill (theta1) must be finite and >= 0, got " +
-                              std::to_string(sill));
+        throw InvalidArgument("variogram model: sill (theta1) must be finite and >= 0, got " + std::to_string(sill));
     }
     if (!(std::isfinite(range) && range > 0.0)) {
-        throw InvalidArgument("variogram model: range (theta2) must be finite and > 0, got " +
-                              std::to_string(range));
+        throw InvalidArgument("variogram model: range (theta2) must be finite and > 0, got " + std::to_string(range));
     }
     if (family == VariogramFamily::Stable && !(exponent > 0.0 && exponent <= 2.0)) {
         throw InvalidArgument("variogram model: stable exponent p must satisfy 0 < p <= 2, got " +
@@ -153,7 +148,8 @@ inline __m256d scaled_exp_polynomial(__m256d r, __m256d kd) {
                            1.0 / 120.0, 1.0 / 24.0, 1.0 / 6.0, 0.5, 1.0, 1.0}) {
         p = _mm256_fmadd_pd(p, r, _mm256_set1_pd(c));
     }
-    return _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(_mm256_castpd_si256(kd), 52)));
+    return _mm256_castsi256_pd(
+        _mm256_add_epi64(_mm256_castpd_si256(p), _mm256_slli_epi64(_mm256_castpd_si256(kd), 52)));
 }
 
 // exp_in_place above, four values at a time: the same operations, so the same results (NaN aside).
@@ -195,15 +191,17 @@ inline __m256d log4(__m256d x) {
     const __m256i biased_k =
         _mm256_srli_epi64(_mm256_add_epi64(bits, _mm256_set1_epi64x(0x3FF0000000000000LL - 0x3FE6A09E667F3BCDLL)), 52);
     // k as a double: (2^52 + biased_k) - (2^52 + 1023), both exact.
-    const __m256d k = _mm256_sub_pd(_mm256_castsi256_pd(_mm256_or_si256(biased_k, _mm256_set1_epi64x(0x4330000000000000LL))),
-                                    _mm256_set1_pd(4503599627370496.0 + 1023.0));
+    const __m256d k =
+        _mm256_sub_pd(_mm256_castsi256_pd(_mm256_or_si256(biased_k, _mm256_set1_epi64x(0x4330000000000000LL))),
+                      _mm256_set1_pd(4503599627370496.0 + 1023.0));
     const __m256d m = _mm256_castsi256_pd(
         _mm256_sub_epi64(bits, _mm256_slli_epi64(_mm256_sub_epi64(biased_k, _mm256_set1_epi64x(1023)), 52)));
     const __m256d f = _mm256_sub_pd(m, _mm256_set1_pd(1.0));  // exact (Sterbenz)
     const __m256d s = _mm256_div_pd(f, _mm256_add_pd(_mm256_set1_pd(2.0), f));
     const __m256d z = _mm256_mul_pd(s, s);
     __m256d r = _mm256_set1_pd(2.0 / 19.0);  // R = 2 z / 3 + 2 z^2 / 5 + ... + 2 z^9 / 19
-    for (const double c : {2.0 / 17.0, 2.0 / 15.0, 2.0 / 13.0, 2.0 / 11.0, 2.0 / 9.0, 2.0 / 7.0, 2.0 / 5.0, 2.0 / 3.0}) {
+    for (const double c :
+         {2.0 / 17.0, 2.0 / 15.0, 2.0 / 13.0, 2.0 / 11.0, 2.0 / 9.0, 2.0 / 7.0, 2.0 / 5.0, 2.0 / 3.0}) {
         r = _mm256_fmadd_pd(r, z, _mm256_set1_pd(c));
     }
     r = _mm256_mul_pd(r, z);
@@ -273,9 +271,8 @@ void VariogramModel::gamma_of_squared(const Eigen::Ref<const Eigen::VectorXd>& s
     const Eigen::Index n = squared_distances.size();
     if (family == VariogramFamily::Spherical) {
         const auto d2 = squared_distances.array();
-        out_gamma.array() =
-            (nugget + sill * ((d2 * inv_r2).sqrt().min(1.0) * (1.5 - 0.5 * (d2 * inv_r2).min(1.0)))) *
-            (d2 * inv_dbl_min).min(1.0);
+        out_gamma.array() = (nugget + sill * ((d2 * inv_r2).sqrt().min(1.0) * (1.5 - 0.5 * (d2 * inv_r2).min(1.0)))) *
+                            (d2 * inv_dbl_min).min(1.0);
         return;
     }
 #if defined(__AVX2__) && defined(__FMA__)

@@ -12,16 +12,15 @@ void validate(const Clip& clip) {
         throw InvalidArgument("clip '" + clip.name + "': frame rate must be positive and finite");
     if (static_cast<std::size_t>(clip.channels.cols()) != clip.skeleton->channel_count())
         throw InvalidArgument("clip '" + clip.name + "': " + std::to_string(clip.channels.cols()) +
-                              " channel columns, the skeleton has " +
-                              std::to_string(clip.skeleton->channel_count()));
+                              " channel columns, the skeleton has " + std::to_string(clip.skeleton->channel_count()));
     if (!clip.channels.allFinite()) throw InvalidArgument("clip '" + clip.name + "': non-finite channel value");
 }
 
 Clip slice(const Clip& clip, std::size_t begin, std::size_t end) {
     if (begin >= end || end > clip.frame_count())
         throw InvalidArgument("clip '" + clip.name + "': frame range [" + std::to_string(begin) + ", " +
-                              std::to_string(end) + ") is empty or beyond its " +
-                              std::to_string(clip.frame_count()) + " frames");
+                              std::to_string(end) + ") is empty or beyond its " + std::to_string(clip.frame_count()) +
+                              " frames");
     Clip out;
     out.skeleton = clip.skeleton;
     out.frame_rate = clip.frame_rate;

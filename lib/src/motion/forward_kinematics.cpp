@@ -56,11 +56,12 @@ void forward_kinematics(const Skeleton& skeleton, const double* row, GlobalPose&
         [&](std::size_t j) { return skeleton.local_rotation(j, row); }, out_pose);
 }
 
-void forward_kinematics(const Skeleton& skeleton, const std::vector<Quat>& rotations, const std::vector<Vec3>& translations,
-                        GlobalPose& out_pose) {
+void forward_kinematics(const Skeleton& skeleton, const std::vector<Quat>& rotations,
+                        const std::vector<Vec3>& translations, GlobalPose& out_pose) {
     check_local(skeleton, rotations, translations, "forward_kinematics");
     compose(
-        skeleton, [&](std::size_t j) { return translations[j]; }, [&](std::size_t j) { return rotations[j]; }, out_pose);
+        skeleton, [&](std::size_t j) { return translations[j]; }, [&](std::size_t j) { return rotations[j]; },
+        out_pose);
 }
 
 JointTransform motion_root_transform(const Skeleton& skeleton, const double* row) {

@@ -121,8 +121,10 @@ void quaternions_of_matrices(const double* matrices, std::size_t count, double* 
     for (std::size_t i = 0; i < count; ++i) {
         const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> m(matrices + 9 * i);
         const Mat3 r = m;
-        if (!r.allFinite() || (r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-3 || r.determinant() < 0.0)
-            throw InvalidArgument("rotation matrices: matrix " + std::to_string(i) + " is not a rotation (R^T R = I, det 1)");
+        if (!r.allFinite() || (r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-3 ||
+            r.determinant() < 0.0)
+            throw InvalidArgument("rotation matrices: matrix " + std::to_string(i) +
+                                  " is not a rotation (R^T R = I, det 1)");
         const Quat q = Quat(r).normalized();
         out[4 * i] = q.w();
         out[4 * i + 1] = q.x();

@@ -109,8 +109,9 @@ void pose_vector_from_local(const Skeleton& skeleton, const PoseLayout& layout, 
         out.size() != dofs)
         throw InvalidArgument("pose_vector_from_local: expected " + std::to_string(skeleton.size()) +
                               " local transforms and pose vectors of " + std::to_string(dofs) + " values");
-    pose_vector_of_frame(layout, local_root_transform(skeleton, rotations, translations),
-                         [&](std::size_t j) { return rotations[j]; }, canonical, near, out);
+    pose_vector_of_frame(
+        layout, local_root_transform(skeleton, rotations, translations), [&](std::size_t j) { return rotations[j]; },
+        canonical, near, out);
 }
 
 MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const VecX& reference) {
@@ -126,15 +127,16 @@ MatX to_pose_vectors(const Clip& clip, const Canonicalization& canonical, const 
     VecX near = reference.size() ? reference : VecX::Zero(dofs);
     for (Eigen::Index f = 0; f < frames; ++f) {
         const double* row = clip.frame(static_cast<std::size_t>(f));
-        pose_vector_of_frame(layout, motion_root_transform(s, row), [&](std::size_t j) { return s.local_rotation(j, row); },
-                             canonical, near, out.col(f));
+        pose_vector_of_frame(
+            layout, motion_root_transform(s, row), [&](std::size_t j) { return s.local_rotation(j, row); }, canonical,
+            near, out.col(f));
         near = out.col(f);
     }
     return out;
 }
 
-FrameMatrix from_pose_vectors(const Skeleton& s, const Eigen::Ref<const MatX>& poses,
-                              const Canonicalization& canonical, const VecX& first_near) {
+FrameMatrix from_pose_vectors(const Skeleton& s, const Eigen::Ref<const MatX>& poses, const Canonicalization& canonical,
+                              const VecX& first_near) {
     const PoseLayout layout(s);
     const auto channels = static_cast<Eigen::Index>(s.channel_count());
     if (poses.rows() != static_cast<Eigen::Index>(layout.dof_count()))

@@ -11,13 +11,9 @@ constexpr double kTwoPi = 2.0 * kPi;
 int index(Axis a) { return static_cast<int>(a); }
 
 // +1 when (i, j, k) is a cyclic permutation of (X, Y, Z), -1 otherwise.
-double parity(const std::array<Axis, 3>& ax) {
-    return ((index(ax[1]) - index(ax[0]) + 3) % 3 == 1) ? 1.0 : -1.0;
-}
+double parity(const std::array<Axis, 3>& ax) { return ((index(ax[1]) - index(ax[0]) + 3) % 3 == 1) ? 1.0 : -1.0; }
 
-double wrap_near(double angle, double near) {
-    return angle - kTwoPi * std::round((angle - near) / kTwoPi);
-}
+double wrap_near(double angle, double near) { return angle - kTwoPi * std::round((angle - near) / kTwoPi); }
 
 }  // namespace
 
@@ -34,8 +30,8 @@ std::array<Axis, 3> axes_of(EulerOrder order) {
 }
 
 std::optional<EulerOrder> euler_order_from_axes(Axis a, Axis b, Axis c) {
-    for (EulerOrder o : {EulerOrder::XYZ, EulerOrder::XZY, EulerOrder::YXZ, EulerOrder::YZX, EulerOrder::ZXY,
-                         EulerOrder::ZYX}) {
+    for (EulerOrder o :
+         {EulerOrder::XYZ, EulerOrder::XZY, EulerOrder::YXZ, EulerOrder::YZX, EulerOrder::ZXY, EulerOrder::ZYX}) {
         const auto ax = axes_of(o);
         if (ax[0] == a && ax[1] == b && ax[2] == c) return o;
     }

@@ -8,8 +8,7 @@
 
 namespace mocapdb {
 namespace {
-constexpr const char* kChannelNames[] = {"Xposition", "Yposition", "Zposition",
-                                         "Xrotation", "Yrotation", "Zrotation"};
+constexpr const char* kChannelNames[] = {"Xposition", "Yposition", "Zposition", "Xrotation", "Yrotation", "Zrotation"};
 }
 
 std::string to_string(ChannelType type) { return kChannelNames[static_cast<int>(type)]; }
@@ -77,8 +76,7 @@ Skeleton::Skeleton(std::vector<Joint> joints, SourceUnits units, Vec3 forward, P
     for (std::size_t i = 0; i < joints_.size(); ++i) {
         first_channel_[i] = channel_count_;
         columns_[i].fill(-1);
-        for (ChannelType c : joints_[i].channels)
-            columns_[i][static_cast<int>(c)] = static_cast<int>(channel_count_++);
+        for (ChannelType c : joints_[i].channels) columns_[i][static_cast<int>(c)] = static_cast<int>(channel_count_++);
     }
 
     if (motion_root_ >= joints_.size() || joints_[motion_root_].end_site)

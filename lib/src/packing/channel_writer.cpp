@@ -26,7 +26,8 @@ ChannelWriter::ChannelWriter(const Skeleton& s) {
         above = above * s.local_rotation(j, rest_.data());
     }
     above_inverse_ = above.conjugate();
-    for (int a = 0; a < 3; ++a) root_translation_[static_cast<std::size_t>(a)] = s.channel_column(m, static_cast<ChannelType>(a));
+    for (int a = 0; a < 3; ++a)
+        root_translation_[static_cast<std::size_t>(a)] = s.channel_column(m, static_cast<ChannelType>(a));
     if (s.position_channels() == PositionChannels::add_to_offset) root_offset_ = s.joint(m).offset;
     root_rotates_ = s.has_rotation(m);
     for (std::size_t k = 0; k < layout.rotation_joints().size(); ++k) {
@@ -234,7 +235,8 @@ void ChannelWriter::fold_constants(const std::vector<bool>& varies, const double
 
 void ChannelWriter::plan_lanes() {
     if (joints_.empty()) return;
-    const auto two = std::stable_partition(joints_.begin() + 1, joints_.end(), [](const RotationJoint& j) { return j.present == 2; });
+    const auto two = std::stable_partition(joints_.begin() + 1, joints_.end(),
+                                           [](const RotationJoint& j) { return j.present == 2; });
     const auto one = std::stable_partition(two, joints_.end(), [](const RotationJoint& j) { return j.present == 1; });
     two_channel_joints_ = static_cast<std::size_t>(two - joints_.begin()) - 1;
     one_channel_joints_ = static_cast<std::size_t>(one - two);
@@ -245,7 +247,8 @@ void ChannelWriter::plan_lanes() {
     }
     one_channel_lanes_.assign((one_channel_joints_ + 3) / 4, OneChannelLanes{});
     for (std::size_t k = 0; k < one_channel_joints_; ++k)
-        for (int a = 0; a < 3; ++a) one_channel_lanes_[k / 4].axis[a][k % 4] = joints_[1 + two_channel_joints_ + k].twist_axis[a];
+        for (int a = 0; a < 3; ++a)
+            one_channel_lanes_[k / 4].axis[a][k % 4] = joints_[1 + two_channel_joints_ + k].twist_axis[a];
 }
 
 void ChannelWriter::write(const double* pose, const Placement& placement, double* row) const {
@@ -253,7 +256,8 @@ void ChannelWriter::write(const double* pose, const Placement& placement, double
     const Vec3 local = above_inverse_ * (placement.invert(Vec3(pose[0], pose[1], pose[2])) - above_position_);
     for (std::size_t a = 0; a < 3; ++a)
         if (root_translation_[a] >= 0)
-            row[root_translation_[a]] = local[static_cast<Eigen::Index>(a)] - root_offset_[static_cast<Eigen::Index>(a)];
+            row[root_translation_[a]] =
+                local[static_cast<Eigen::Index>(a)] - root_offset_[static_cast<Eigen::Index>(a)];
     const Quat root_rotation = above_inverse_ * placement.invert(swing_twist_exp(Vec3(pose[3], pose[4], pose[5])));
     if (root_rotates_) write_rotation(joints_.front(), root_rotation, row);
     for (std::size_t k = 1; k < joints_.size(); ++k) {
@@ -264,8 +268,10 @@ void ChannelWriter::write(const double* pose, const Placement& placement, double
 
 void ChannelWriter::write_local(const double* pose, const Placement& placement, LocalPose& out) const {
     // Whole arrays at once (std::copy moved the Vec3s a double at a time).
-    std::memcpy(static_cast<void*>(out.rotations.data()), rest_rotations_.data(), rest_rotations_.size() * sizeof(Quat));
-    std::memcpy(static_cast<void*>(out.translations.data()), rest_translations_.data(), rest_translations_.size() * sizeof(Vec3));
+    std::memcpy(static_cast<void*>(out.rotations.data()), rest_rotations_.data(),
+                rest_rotations_.size() * sizeof(Quat));
+    std::memcpy(static_cast<void*>(out.translations.data()), rest_translations_.data(),
+                rest_translations_.size() * sizeof(Vec3));
     // The motion root: as write() forms its channels, then as Skeleton::local_translation reads them.
     const Vec3 local = above_inverse_ * (placement.invert(Vec3(pose[0], pose[1], pose[2])) - above_position_);
     Vec3& t = out.translations[motion_root_];
@@ -278,14 +284,16 @@ void ChannelWriter::write_local(const double* pose, const Placement& placement, 
     if (root_rotates_) {
         // swing_twist_exp with both exp maps in lanes (libm's sincos was 5 % of a local pose).
         Lane4 w, x, y, z;
-        exp_maps(Lane4{pose[3], 0.0, 0.0, 0.0}, Lane4{0.0, pose[4], 0.0, 0.0}, Lane4{pose[5], 0.0, 0.0, 0.0}, w, x, y, z);
+        exp_maps(Lane4{pose[3], 0.0, 0.0, 0.0}, Lane4{0.0, pose[4], 0.0, 0.0}, Lane4{pose[5], 0.0, 0.0, 0.0}, w, x, y,
+                 z);
         const Quat swing(w[0], x[0], y[0], z[0]), twist(w[1], x[1], y[1], z[1]);
         const Quat root_rotation = above_inverse_ * placement.invert((swing * twist).normalized());
         out.rotations[motion_root_] = channel_rotation(joints_.front(), root_rotation);
     }
     // The other joints four at a time (lanes of one kind of joint), each one's exp map, then its
     // projection onto its channels. Joints with two channels take their exp maps in their Euler frames.
-    const auto put = [&out](const RotationJoint& j, const Lane4& w, const Lane4& x, const Lane4& y, const Lane4& z, std::size_t l) {
+    const auto put = [&out](const RotationJoint& j, const Lane4& w, const Lane4& x, const Lane4& y, const Lane4& z,
+                            std::size_t l) {
         out.rotations[static_cast<std::size_t>(j.joint)] = Quat(w[l], x[l], y[l], z[l]);
     };
     std::size_t first = 1;
@@ -322,7 +330,8 @@ void ChannelWriter::write_local(const double* pose, const Placement& placement, 
         Lane4 w, x, y, z, ow, ox, oy, oz;
         exp_lanes(one_channel_joints_, g, w, x, y, z);
         project_one_channel(one_channel_lanes_[g], w, x, y, z, ow, ox, oy, oz);
-        for (std::size_t l = 0; l < 4 && 4 * g + l < one_channel_joints_; ++l) put(joints_[first + 4 * g + l], ow, ox, oy, oz, l);
+        for (std::size_t l = 0; l < 4 && 4 * g + l < one_channel_joints_; ++l)
+            put(joints_[first + 4 * g + l], ow, ox, oy, oz, l);
     }
     first += one_channel_joints_;
     const std::size_t three = joints_.size() - first;  // three channels: any rotation, no projection
@@ -343,9 +352,10 @@ void ChannelWriter::set_position(int column, double value, LocalPose& out) const
 
 std::size_t ChannelWriter::memory_bytes() const {
     return rest_.capacity() * sizeof(double) + joints_.capacity() * sizeof(RotationJoint) +
-           two_channel_lanes_.capacity() * sizeof(TwoChannelLanes) + one_channel_lanes_.capacity() * sizeof(OneChannelLanes) +
-           rest_rotations_.capacity() * sizeof(Quat) + rest_translations_.capacity() * sizeof(Vec3) +
-           offsets_.capacity() * sizeof(Vec3) + (column_joint_.capacity() + column_axis_.capacity()) * sizeof(int);
+           two_channel_lanes_.capacity() * sizeof(TwoChannelLanes) +
+           one_channel_lanes_.capacity() * sizeof(OneChannelLanes) + rest_rotations_.capacity() * sizeof(Quat) +
+           rest_translations_.capacity() * sizeof(Vec3) + offsets_.capacity() * sizeof(Vec3) +
+           (column_joint_.capacity() + column_axis_.capacity()) * sizeof(int);
 }
 
 }  // namespace mocapdb::packing::detail

@@ -25,7 +25,8 @@ namespace mocapdb::packing::detail {
 /// it, a sincos, on every call); invert gives Canonicalization::invert's bits (the same operations).
 struct Placement {
     Placement() = default;
-    explicit Placement(const Canonicalization& c) : heading(Eigen::AngleAxisd(c.yaw, Vec3::UnitY())), translation(c.translation) {}
+    explicit Placement(const Canonicalization& c)
+        : heading(Eigen::AngleAxisd(c.yaw, Vec3::UnitY())), translation(c.translation) {}
     Vec3 invert(const Vec3& p) const { return heading * p + translation; }
     Quat invert(const Quat& q) const { return heading * q; }
 
@@ -65,14 +66,14 @@ private:
         std::array<int, 3> cols{};  ///< channel column of each Euler axis in order, -1 when absent
         std::array<int, 3> axes{};  ///< the order's axes (0 = x, 1 = y, 2 = z)
         Vec3 weights = Vec3::Ones();
-        double parity = 1.0;        ///< +1 when the order is a cyclic permutation of xyz
-        int single = -1;            ///< index (0..2) in the order of the only channel, when one
+        double parity = 1.0;  ///< +1 when the order is a cyclic permutation of xyz
+        int single = -1;      ///< index (0..2) in the order of the only channel, when one
         Quat axis = Quat::Identity();
-        int pose_row = 0;           ///< first of the joint's 3 values in the pose vector
-        int joint = 0;              ///< skeleton index
-        int present = 0;            ///< rotation channels (1..3; 0 for a motion root without any)
-        int missing = -1;           ///< with two channels: index (0..2) in the order of the absent axis
-        Vec3 twist_axis = Vec3::UnitX();  ///< with one channel: C · its axis (local frame)
+        int pose_row = 0;                     ///< first of the joint's 3 values in the pose vector
+        int joint = 0;                        ///< skeleton index
+        int present = 0;                      ///< rotation channels (1..3; 0 for a motion root without any)
+        int missing = -1;                     ///< with two channels: index (0..2) in the order of the absent axis
+        Vec3 twist_axis = Vec3::UnitX();      ///< with one channel: C · its axis (local frame)
         Mat3 euler_frame = Mat3::Identity();  ///< with two channels: A (channel_lanes.hpp)
     };
     /// The Euler angles write_rotation writes (in the order's axis order; absent axes included).
@@ -92,15 +93,15 @@ private:
         return joints_[first + (k < count ? k : 4 * g)];
     }
 
-    std::vector<double> rest_;             ///< channel row of the rest pose
+    std::vector<double> rest_;  ///< channel row of the rest pose
     std::array<int, 3> root_translation_{-1, -1, -1};
-    Vec3 root_offset_ = Vec3::Zero();      ///< subtracted when position channels add to the offset
+    Vec3 root_offset_ = Vec3::Zero();  ///< subtracted when position channels add to the offset
     Quat above_inverse_ = Quat::Identity();
     Vec3 above_position_ = Vec3::Zero();
     bool root_rotates_ = false;
-    std::vector<RotationJoint> joints_;    ///< motion root first (pose row 3), then the others
-    std::size_t two_channel_joints_ = 0;   ///< joints_[1 .. 1 + this) have two rotation channels,
-    std::size_t one_channel_joints_ = 0;   ///< the next this many one; the rest three
+    std::vector<RotationJoint> joints_;               ///< motion root first (pose row 3), then the others
+    std::size_t two_channel_joints_ = 0;              ///< joints_[1 .. 1 + this) have two rotation channels,
+    std::size_t one_channel_joints_ = 0;              ///< the next this many one; the rest three
     std::vector<TwoChannelLanes> two_channel_lanes_;  ///< those joints four at a time
     std::vector<OneChannelLanes> one_channel_lanes_;
     // LocalPose: rest transforms of every joint (folded constant joints at their constant rotation),
@@ -108,9 +109,9 @@ private:
     std::vector<Quat> rest_rotations_;
     std::vector<Vec3> rest_translations_;
     std::size_t motion_root_ = 0;
-    bool adds_ = true;                     ///< position channels add to the offset
+    bool adds_ = true;  ///< position channels add to the offset
     std::vector<Vec3> offsets_;
-    std::vector<int> column_joint_;        ///< per row column: joint of a position channel, or -1
+    std::vector<int> column_joint_;  ///< per row column: joint of a position channel, or -1
     std::vector<int> column_axis_;
 };
 

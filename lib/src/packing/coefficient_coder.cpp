@@ -70,7 +70,8 @@ std::size_t traverse(Sink& sink, ContextSet& ctx, const std::uint8_t* classes, s
         const std::uint32_t negative = sink.direct(q[i] < 0 ? 1u : 0u, 1);
         const std::uint32_t magnitude = static_cast<std::uint32_t>(std::abs(q[i]));
         std::uint32_t m = 1;
-        if (sink.bit(ctx.greater_one(cls, n), magnitude > 1 ? 1 : 0)) m = gamma(sink, ctx.gamma(cls), ctx.gamma_msb(cls), magnitude - 1) + 1;
+        if (sink.bit(ctx.greater_one(cls, n), magnitude > 1 ? 1 : 0))
+            m = gamma(sink, ctx.gamma(cls), ctx.gamma_msb(cls), magnitude - 1) + 1;
         level[pos] = static_cast<std::uint8_t>(std::min<std::uint32_t>(m, 2));
         if constexpr (Sink::kDecoding) {
             q[i] = negative ? -static_cast<std::int32_t>(m) : static_cast<std::int32_t>(m);
@@ -162,8 +163,9 @@ std::vector<std::uint32_t> identity_scan(std::size_t size) {
     return out;
 }
 
-std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,
-                                              const ScanGrid& grid, ContextSet contexts) {
+std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q,
+                                              const std::vector<std::uint8_t>& classes, const ScanGrid& grid,
+                                              ContextSet contexts) {
     EncodeSink sink;
     std::vector<std::int32_t> copy(q);
     copy.resize(classes.size(), 0);  // q may stop after its last nonzero

@@ -20,17 +20,27 @@ namespace {
 // written with vector types because the compiler left the scalar loop unvectorized.
 inline void sin_cos(Lane4 x, Lane4& s, Lane4& c) {
     constexpr double kTwoOverPi = 0.63661977236758134308;
-    constexpr double kPio2a = 1.57079625129699707031;     // 2 · Cephes DP1
-    constexpr double kPio2b = 7.54978941586159635336e-8;  // 2 · DP2
-    constexpr double kPio2c = 5.39030285815811905290e-15; // 2 · DP3
-    constexpr double kRound = 6755399441055744.0;         // 1.5 · 2^52: x + kRound - kRound rounds x
+    constexpr double kPio2a = 1.57079625129699707031;      // 2 · Cephes DP1
+    constexpr double kPio2b = 7.54978941586159635336e-8;   // 2 · DP2
+    constexpr double kPio2c = 5.39030285815811905290e-15;  // 2 · DP3
+    constexpr double kRound = 6755399441055744.0;          // 1.5 · 2^52: x + kRound - kRound rounds x
     const Lane4 j = (x * kTwoOverPi + kRound) - kRound;
     const Lane4 r = ((x - j * kPio2a) - j * kPio2b) - j * kPio2c;
     const Lane4 z = r * r;
-    const Lane4 ps = ((((1.58962301576546568060e-10 * z - 2.50507477628578072866e-8) * z + 2.75573136213857245213e-6) * z -
-                       1.98412698295895385996e-4) * z + 8.33333333332211858878e-3) * z - 1.66666666666666307295e-1;
-    const Lane4 pc = ((((-1.13585365213876817300e-11 * z + 2.08757008419747316778e-9) * z - 2.75573141792967388112e-7) * z +
-                       2.48015872888517045348e-5) * z - 1.38888888888730564116e-3) * z + 4.16666666666665929218e-2;
+    const Lane4 ps =
+        ((((1.58962301576546568060e-10 * z - 2.50507477628578072866e-8) * z + 2.75573136213857245213e-6) * z -
+          1.98412698295895385996e-4) *
+             z +
+         8.33333333332211858878e-3) *
+            z -
+        1.66666666666666307295e-1;
+    const Lane4 pc =
+        ((((-1.13585365213876817300e-11 * z + 2.08757008419747316778e-9) * z - 2.75573141792967388112e-7) * z +
+          2.48015872888517045348e-5) *
+             z -
+         1.38888888888730564116e-3) *
+            z +
+        4.16666666666665929218e-2;
     const Lane4 sr = r + r * z * ps;
     const Lane4 cr = 1.0 - 0.5 * z + z * z * pc;
     // j mod 4 (j >= 0, a whole number): j/4 has a fraction of 0, 1/4, 1/2 or 3/4, so j/4 - 3/8

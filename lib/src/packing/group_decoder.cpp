@@ -30,12 +30,14 @@ std::size_t GroupDecoder::window_length() const { return static_cast<std::size_t
 
 void GroupDecoder::check(std::size_t clip) const {
     if (clip >= model_->clips.size())
-        throw InvalidArgument("GroupDecoder: clip " + std::to_string(clip) + " of " + std::to_string(model_->clips.size()));
+        throw InvalidArgument("GroupDecoder: clip " + std::to_string(clip) + " of " +
+                              std::to_string(model_->clips.size()));
 }
 
 void GroupDecoder::check(std::size_t clip, std::size_t frame) const {
     if (frame >= frame_count(clip))
-        throw InvalidArgument("GroupDecoder: frame " + std::to_string(frame) + " of " + std::to_string(frame_count(clip)));
+        throw InvalidArgument("GroupDecoder: frame " + std::to_string(frame) + " of " +
+                              std::to_string(frame_count(clip)));
 }
 
 std::size_t GroupDecoder::frame_count(std::size_t clip) const {
@@ -67,9 +69,11 @@ std::size_t GroupDecoder::resident_bytes() const {
     total += m.clips.capacity() * sizeof(detail::ClipEntry) + m.windows.capacity() * sizeof(detail::WindowEntry);
     for (const detail::SkeletonEntry& e : m.skeletons) {
         total += sizeof(e) + sizeof(Skeleton) + e.skeleton->size() * sizeof(Joint) +
-                 static_cast<std::size_t>(e.weights.size()) * sizeof(double) + e.active_weights.capacity() * sizeof(double) +
-                 e.stored_axes.capacity() * sizeof(e.stored_axes[0]) + e.writer.memory_bytes();
-        for (const Joint& j : e.skeleton->joints()) total += j.name.capacity() + j.channels.capacity() * sizeof(ChannelType);
+                 static_cast<std::size_t>(e.weights.size()) * sizeof(double) +
+                 e.active_weights.capacity() * sizeof(double) + e.stored_axes.capacity() * sizeof(e.stored_axes[0]) +
+                 e.writer.memory_bytes();
+        for (const Joint& j : e.skeleton->joints())
+            total += j.name.capacity() + j.channels.capacity() * sizeof(ChannelType);
     }
     for (const auto& c : classes_) total += c.capacity();
     // One thread's scratch, as prepare() sizes it.
@@ -134,7 +138,8 @@ FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) co
     }
     detail::WindowScratch& s = thread_scratch();
     load_window(e, s);
-    for (int t = 0; t < count; ++t) model_->frame_row(model_->clips[clip], s.g.data(), s.columns, s.rows, t, s, rows.row(t).data());
+    for (int t = 0; t < count; ++t)
+        model_->frame_row(model_->clips[clip], s.g.data(), s.columns, s.rows, t, s, rows.row(t).data());
     return rows;
 }
 

@@ -53,7 +53,8 @@ void GroupModel::build_scan() {
     for (std::size_t i = 0; i < scan.size(); ++i) sigma[i] = raw[scan[i]];
     levels = class_levels(sigma);
     scan_row.resize(scan.size());
-    for (std::size_t i = 0; i < scan.size(); ++i) scan_row[i] = static_cast<std::uint16_t>(scan[i] % std::max<std::size_t>(1, d));
+    for (std::size_t i = 0; i < scan.size(); ++i)
+        scan_row[i] = static_cast<std::uint16_t>(scan[i] % std::max<std::size_t>(1, d));
 }
 
 MatX GroupModel::dofs_of(const Clip& clip, const Canonicalization& canonical) const {
@@ -65,7 +66,8 @@ MatX GroupModel::dofs_of(const Clip& clip, const Canonicalization& canonical) co
     return x;
 }
 
-MatX GroupModel::weighted_active(const Clip& clip, const SkeletonEntry& entry, const Canonicalization& canonical) const {
+MatX GroupModel::weighted_active(const Clip& clip, const SkeletonEntry& entry,
+                                 const Canonicalization& canonical) const {
     const MatX x = dofs_of(clip, canonical);
     MatX out(static_cast<Eigen::Index>(active.size()), x.cols());
     for (std::size_t i = 0; i < active.size(); ++i)
@@ -257,7 +259,8 @@ void GroupModel::frame_row(const ClipEntry& clip, const double* g, int columns, 
 void GroupModel::row_of(const ClipEntry& clip, const double* p, double* row) const {
     const SkeletonEntry& entry = skeletons[clip.skeleton];
     entry.writer.write(p, clip.placement, row);
-    for (std::size_t e = 0; e < extra_columns.size(); ++e) row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
+    for (std::size_t e = 0; e < extra_columns.size(); ++e)
+        row[extra_columns[e]] = p[static_cast<std::size_t>(pose_dofs) + e];
 }
 
 void GroupModel::local_of(const ClipEntry& clip, const double* p, LocalPose& out) const {
@@ -503,8 +506,9 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
     // The layout (pose dofs, extra position channels) depends on the topology alone.
     std::shared_ptr<const Skeleton> layout;
     try {
-        layout = std::make_shared<const Skeleton>(topology, SourceUnits{}, Vec3::UnitZ(), PositionChannels::add_to_offset,
-                                                  static_cast<std::size_t>(motion_root));
+        layout =
+            std::make_shared<const Skeleton>(topology, SourceUnits{}, Vec3::UnitZ(), PositionChannels::add_to_offset,
+                                             static_cast<std::size_t>(motion_root));
     } catch (const InvalidArgument& e) {
         throw Error(std::string("packed group: bad topology: ") + e.what());
     }
@@ -542,10 +546,8 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
     std::vector<std::uint8_t> mask((static_cast<std::size_t>(dofs) + 7) / 8);
     for (auto& b : mask) b = r.u8();
     for (int d = 0; d < dofs; ++d) {
-        if (mask[static_cast<std::size_t>(d) / 8] & (1u << (d % 8)))
-            active.push_back(d);
-        else
-            constant[static_cast<std::size_t>(d)] = r.raw<double>();
+        if (mask[static_cast<std::size_t>(d) / 8] & (1u << (d % 8))) active.push_back(d);
+        else constant[static_cast<std::size_t>(d)] = r.raw<double>();
     }
     fold_constant_joints();
     const auto da = static_cast<Eigen::Index>(active.size());

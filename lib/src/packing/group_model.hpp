@@ -41,10 +41,11 @@ constexpr int kMaxStep = 254;
 constexpr std::uint8_t kRawStep = 255;
 
 struct SkeletonEntry {
-    std::shared_ptr<const Skeleton> skeleton;  ///< float32-rounded offsets and axes; the source's convention and motion root
-    VecX weights;                              ///< D weights (pose dofs, then extra position channels)
-    ChannelWriter writer;                      ///< pose vector -> channel row of `skeleton`
-    std::vector<double> active_weights;        ///< weights[active[i]] (set with the active dofs)
+    std::shared_ptr<const Skeleton>
+        skeleton;                        ///< float32-rounded offsets and axes; the source's convention and motion root
+    VecX weights;                        ///< D weights (pose dofs, then extra position channels)
+    ChannelWriter writer;                ///< pose vector -> channel row of `skeleton`
+    std::vector<double> active_weights;  ///< weights[active[i]] (set with the active dofs)
     /// What the bytes hold of each joint's axis (four float32 coefficients) and of the forward
     /// direction (three), which `skeleton` normalizes. Written as they are, so that the decoder
     /// normalizes the same values to the same skeleton (writing the normalized values rounded again
@@ -73,15 +74,15 @@ struct WindowEntry {
 
 /// Caller-owned buffers of one window's decode: sized on first use, then reused without allocating.
 struct WindowScratch {
-    std::vector<std::int32_t> q;    ///< quantized coefficients, scan order
+    std::vector<std::int32_t> q;  ///< quantized coefficients, scan order
     std::vector<std::uint8_t> level;
     std::vector<std::uint32_t> nonzero;  ///< scan positions of the nonzero coefficients (the decoder's)
-    std::vector<double> g;          ///< dequantized coefficients, Da by W, column-major
-    int columns = 0;                ///< time columns of g up to its last nonzero one
-    int rows = 0;                   ///< dof rows of g up to its last nonzero one
-    std::vector<double> y, x, p;    ///< one frame: G v_t (Da), U G v_t (Da), pose dofs (D)
-    std::vector<double> yb, xb;     ///< kFrameBlock frames of y and x (frames_pose), Da each
-    std::vector<double> row;        ///< one channel row (raw windows' local poses)
+    std::vector<double> g;               ///< dequantized coefficients, Da by W, column-major
+    int columns = 0;                     ///< time columns of g up to its last nonzero one
+    int rows = 0;                        ///< dof rows of g up to its last nonzero one
+    std::vector<double> y, x, p;         ///< one frame: G v_t (Da), U G v_t (Da), pose dofs (D)
+    std::vector<double> yb, xb;          ///< kFrameBlock frames of y and x (frames_pose), Da each
+    std::vector<double> row;             ///< one channel row (raw windows' local poses)
     ContextSet contexts;
 };
 
@@ -103,15 +104,15 @@ struct GroupModel {
     /// Dofs that vary in the group (indices into D); the others are constant[d] (pose units) in
     /// every frame of every clip (to within kConstantTolerance) and are not transformed.
     std::vector<int> active;
-    std::vector<double> constant;  ///< D entries (used where not active)
-    MatX dof_basis;   ///< Da by Da (columns: basis vectors), entries multiples of kBasisStep
-    MatX time_basis;  ///< W by W, entries multiples of kBasisStep
-    std::vector<float> dof_energy;   ///< Da, eigenvalues of the dof second moment per window, descending
-    std::vector<float> time_energy;  ///< W
-    std::vector<std::uint32_t> scan;  ///< scan position -> r1 + D * r2
+    std::vector<double> constant;         ///< D entries (used where not active)
+    MatX dof_basis;                       ///< Da by Da (columns: basis vectors), entries multiples of kBasisStep
+    MatX time_basis;                      ///< W by W, entries multiples of kBasisStep
+    std::vector<float> dof_energy;        ///< Da, eigenvalues of the dof second moment per window, descending
+    std::vector<float> time_energy;       ///< W
+    std::vector<std::uint32_t> scan;      ///< scan position -> r1 + D * r2
     std::vector<std::uint16_t> scan_row;  ///< scan position -> r1 (dequantize, without a division)
-    std::vector<float> sigma;         ///< expected RMS per scan position
-    std::vector<double> levels;       ///< class_levels(sigma)
+    std::vector<float> sigma;             ///< expected RMS per scan position
+    std::vector<double> levels;           ///< class_levels(sigma)
     ContextSet contexts;
     std::vector<ClipEntry> clips;
     std::vector<WindowEntry> windows;
@@ -143,10 +144,12 @@ struct GroupModel {
     /// `g` and `columns` as dequantize leaves them in s (or a copy of them); s's frame buffers are used.
     /// `rows` (dequantize's s.rows): rows of g past it are zero, and so are their terms (skipped:
     /// adding U·(+0) to a sum started at +0 never changes its bits).
-    void frame_row(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s, double* row) const;
+    void frame_row(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s,
+                   double* row) const;
     /// The first half of frame_row: frame t's dofs (D values: pose vector, then extra position
     /// channels, pose units) into p. frame_row is frame_pose then row_of.
-    void frame_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s, double* p) const;
+    void frame_pose(const ClipEntry& clip, const double* g, int columns, int rows, int t, WindowScratch& s,
+                    double* p) const;
     /// frame_pose's second half: x = U y (y: Da values, zero from `rows` on, whose terms are skipped),
     /// then the dofs into p. PoseIndex forms y by frame_pose's sums and ends here too.
     void pose_of(const ClipEntry& clip, const double* y, int rows, WindowScratch& s, double* p) const;

@@ -22,7 +22,7 @@
 namespace mocapdb::packing {
 namespace {
 
-constexpr int kMaxDecimals = 22;          // 10^22 is the largest power of ten a double holds exactly
+constexpr int kMaxDecimals = 22;                      // 10^22 is the largest power of ten a double holds exactly
 constexpr double kExactInteger = 9007199254740992.0;  // 2^53: integers below convert exactly
 constexpr std::uint8_t kException = 0xFE;
 constexpr std::uint8_t kNegativeZero = 0xFF;
@@ -203,7 +203,8 @@ std::size_t raw_cost(const FrameMatrix& m, Eigen::Index col) {
 // The LEB128 varints of one payload section, never read past its end.
 class VarintReader {
 public:
-    VarintReader(const std::uint8_t* data, std::size_t size, const char* section) : p_(data), end_(data + size), section_(section) {}
+    VarintReader(const std::uint8_t* data, std::size_t size, const char* section)
+        : p_(data), end_(data + size), section_(section) {}
     std::uint64_t varint() {
         std::uint64_t u = 0;
         for (int shift = 0; shift < 64; shift += 7) {
@@ -257,7 +258,8 @@ std::vector<double> reader_scales(const Skeleton& s) {
     return out;
 }
 
-PackedChannels pack_channels(const FrameMatrix& channels, const std::vector<double>& scales, const LosslessOptions& options) {
+PackedChannels pack_channels(const FrameMatrix& channels, const std::vector<double>& scales,
+                             const LosslessOptions& options) {
     const auto f = static_cast<std::size_t>(channels.rows());
     const auto nc = static_cast<std::size_t>(channels.cols());
     if (f == 0) throw InvalidArgument("pack_channels: expected at least one frame, found 0");
@@ -268,7 +270,8 @@ PackedChannels pack_channels(const FrameMatrix& channels, const std::vector<doub
         if (!(s > 0.0) || !std::isfinite(s)) throw InvalidArgument("pack_channels: scales must be positive and finite");
     if (options.zstd_level < 1 || options.zstd_level > ZSTD_maxCLevel())
         throw InvalidArgument("pack_channels: zstd_level must be in 1.." + std::to_string(ZSTD_maxCLevel()));
-    if (options.predictor < 0 || options.predictor > 2) throw InvalidArgument("pack_channels: predictor must be 0, 1 or 2");
+    if (options.predictor < 0 || options.predictor > 2)
+        throw InvalidArgument("pack_channels: predictor must be 0, 1 or 2");
     if (options.max_decimals < 0 || options.max_decimals > 18)
         throw InvalidArgument("pack_channels: max_decimals must be in 0..18");
 
@@ -336,7 +339,8 @@ PackedChannels pack_channels(const FrameMatrix& channels, const std::vector<doub
     for (int plane = 0; plane < 8; ++plane)
         for (std::size_t i = 0; i < zigzags.size(); ++i)
             if (widths[i] > plane)
-                for (const std::uint64_t u : zigzags[i]) residuals.push_back(static_cast<std::uint8_t>(u >> (8 * plane)));
+                for (const std::uint64_t u : zigzags[i])
+                    residuals.push_back(static_cast<std::uint8_t>(u >> (8 * plane)));
     out.section_bytes = {residuals.size(), extra.size(), refine.size(), raw.size()};
 
     std::vector<std::uint8_t> payload;
@@ -368,8 +372,9 @@ FrameMatrix unpack_channels(const PackedChannels& packed) {
     const std::size_t nc = packed.channels();
     if (f == 0) throw Error("lossless channels: expected at least one frame, found 0");
     if (packed.decimals.size() != nc || packed.predictor.size() != nc)
-        throw Error("lossless channels: expected " + std::to_string(nc) + " decimals and predictors (one per scale), found " +
-                    std::to_string(packed.decimals.size()) + " and " + std::to_string(packed.predictor.size()));
+        throw Error("lossless channels: expected " + std::to_string(nc) +
+                    " decimals and predictors (one per scale), found " + std::to_string(packed.decimals.size()) +
+                    " and " + std::to_string(packed.predictor.size()));
     std::size_t decimal_channels = 0;
     for (std::size_t j = 0; j < nc; ++j) {
         const std::string who = "lossless channels: channel " + std::to_string(j) + ": ";
@@ -384,14 +389,16 @@ FrameMatrix unpack_channels(const PackedChannels& packed) {
     const std::size_t raw_channels = nc - decimal_channels;
     if (packed.section_bytes[1] != decimal_channels * f || packed.section_bytes[3] < raw_channels * f * 8)
         throw Error("lossless channels: section sizes do not match " + std::to_string(f) + " frames of " +
-                    std::to_string(decimal_channels) + " decimal and " + std::to_string(raw_channels) + " raw channels");
+                    std::to_string(decimal_channels) + " decimal and " + std::to_string(raw_channels) +
+                    " raw channels");
     std::uint64_t total = 0;
     for (const std::uint64_t s : packed.section_bytes) total += s;
     const unsigned long long content = ZSTD_getFrameContentSize(packed.bytes.data(), packed.bytes.size());
     if (content == ZSTD_CONTENTSIZE_ERROR || content == ZSTD_CONTENTSIZE_UNKNOWN || content != total)
         throw Error("lossless channels: expected a zstd frame of " + std::to_string(total) + " bytes, found " +
-                    (content == ZSTD_CONTENTSIZE_ERROR || content == ZSTD_CONTENTSIZE_UNKNOWN ? std::string("none")
-                                                                                               : std::to_string(content)));
+                    (content == ZSTD_CONTENTSIZE_ERROR || content == ZSTD_CONTENTSIZE_UNKNOWN
+                         ? std::string("none")
+                         : std::to_string(content)));
     std::vector<std::uint8_t> payload(static_cast<std::size_t>(total));
     const std::size_t n = ZSTD_decompress(payload.data(), payload.size(), packed.bytes.data(), packed.bytes.size());
     if (ZSTD_isError(n) || n != total)

@@ -9,9 +9,7 @@
 #include "mocapdb/packing/group_decoder.hpp"
 
 namespace mocapdb::packing {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 MeasuredGroup pack_measured(const std::vector<const Clip*>& clips, const PackOptions& options,
                             const std::vector<MatX>& source_positions, const ProgressCallback& progress) {
@@ -37,8 +35,7 @@ MeasuredGroup pack_measured(const std::vector<const Clip*>& clips, const PackOpt
             ErrorAccumulator clip_errors(E);
             if (source_positions.empty())
                 add_position_errors(joint_positions(*clips[k]), joint_positions(decoded), clip_errors);
-            else
-                add_position_errors(source_positions[k], joint_positions(decoded), clip_errors);
+            else add_position_errors(source_positions[k], joint_positions(decoded), clip_errors);
             out.clip_errors.push_back(clip_errors.stats());
             out.errors.merge(clip_errors);
         }

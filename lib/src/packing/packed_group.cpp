@@ -52,7 +52,8 @@ void eigen_basis(const MatX& moment, MatX& out_basis, std::vector<double>& out_v
     if (n == 0) return;  // every dof constant
     Eigen::SelfAdjointEigenSolver<MatX> solver(moment);
     for (Eigen::Index i = 0; i < n; ++i) {
-        out_basis.col(i) = (solver.eigenvectors().col(n - 1 - i) / detail::kBasisStep).array().round() * detail::kBasisStep;
+        out_basis.col(i) =
+            (solver.eigenvectors().col(n - 1 - i) / detail::kBasisStep).array().round() * detail::kBasisStep;
         out_values[static_cast<std::size_t>(i)] = std::max(0.0, solver.eigenvalues()[n - 1 - i]);
     }
 }
@@ -92,8 +93,8 @@ void measure_zstd(const std::vector<WindowResult>& results, PackStats& out) {
     std::vector<std::uint8_t> buffer(ZSTD_compressBound(all.size()));
     out.zstd_stream_bytes = ZSTD_compress(buffer.data(), buffer.size(), all.data(), all.size(), level);
     std::vector<std::uint8_t> dictionary(16384);
-    const std::size_t dict_size =
-        ZDICT_trainFromBuffer(dictionary.data(), dictionary.size(), all.data(), sizes.data(), static_cast<unsigned>(sizes.size()));
+    const std::size_t dict_size = ZDICT_trainFromBuffer(dictionary.data(), dictionary.size(), all.data(), sizes.data(),
+                                                        static_cast<unsigned>(sizes.size()));
     const bool have_dict = !ZDICT_isError(dict_size);
     ZSTD_CCtx* cctx = ZSTD_createCCtx();
     ZSTD_CDict* cdict = have_dict ? ZSTD_createCDict(dictionary.data(), dict_size, level) : nullptr;
@@ -101,9 +102,12 @@ void measure_zstd(const std::vector<WindowResult>& results, PackStats& out) {
     out.zstd_dictionary_bytes = have_dict ? dict_size : 0;
     std::size_t offset = 0;
     for (std::size_t size : sizes) {
-        const std::size_t plain = ZSTD_compressCCtx(cctx, buffer.data(), buffer.size(), all.data() + offset, size, level);
+        const std::size_t plain =
+            ZSTD_compressCCtx(cctx, buffer.data(), buffer.size(), all.data() + offset, size, level);
         out.zstd_window_bytes += plain;
-        out.zstd_dictionary_bytes += cdict ? ZSTD_compress_usingCDict(cctx, buffer.data(), buffer.size(), all.data() + offset, size, cdict) : plain;
+        out.zstd_dictionary_bytes +=
+            cdict ? ZSTD_compress_usingCDict(cctx, buffer.data(), buffer.size(), all.data() + offset, size, cdict)
+                  : plain;
         offset += size;
     }
     ZSTD_freeCDict(cdict);
@@ -119,7 +123,8 @@ std::vector<std::vector<std::size_t>> group_clips(const std::vector<const Clip*>
         const Clip& c = *clips[i];
         std::size_t g = 0;
         for (; g < firsts.size(); ++g)
-            if (firsts[g]->frame_rate == c.frame_rate && detail::same_topology(*firsts[g]->skeleton, *c.skeleton)) break;
+            if (firsts[g]->frame_rate == c.frame_rate && detail::same_topology(*firsts[g]->skeleton, *c.skeleton))
+                break;
         if (g == firsts.size()) {
             firsts.push_back(&c);
             groups.emplace_back();
@@ -139,7 +144,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         if (c == nullptr) throw InvalidArgument("pack: null clip");
         validate(*c);
         if (c->frame_count() == 0) throw InvalidArgument("pack: clip '" + c->name + "' has no frames");
-        if (c->frame_rate != clips.front()->frame_rate || !detail::same_topology(*c->skeleton, *clips.front()->skeleton))
+        if (c->frame_rate != clips.front()->frame_rate ||
+            !detail::same_topology(*c->skeleton, *clips.front()->skeleton))
             throw InvalidArgument("pack: clip '" + c->name + "' has another topology or frame rate than '" +
                                   clips.front()->name + "' (use group_clips)");
     }
@@ -238,8 +244,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     auto run_parallel = [&](auto&& per_clip, auto& states) {
         run_on_workers(states.size(), clips.size(), [&](std::size_t i, std::size_t t) { per_clip(i, states[t]); });
     };
-    const std::size_t threads = static_cast<std::size_t>(
-        std::min<std::size_t>(static_cast<std::size_t>(options.threads), clips.size()));
+    const std::size_t threads =
+        static_cast<std::size_t>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), clips.size()));
 
     // Pre-pass: which dofs vary in the group (the others are stored as constants).
     struct Range {
@@ -259,10 +265,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     }
     m.constant.assign(static_cast<std::size_t>(m.dofs), 0.0);
     for (int d = 0; d < m.dofs; ++d) {
-        if (ranges[0].hi[d] - ranges[0].lo[d] > detail::kConstantTolerance)
-            m.active.push_back(d);
-        else
-            m.constant[static_cast<std::size_t>(d)] = 0.5 * (ranges[0].hi[d] + ranges[0].lo[d]);
+        if (ranges[0].hi[d] - ranges[0].lo[d] > detail::kConstantTolerance) m.active.push_back(d);
+        else m.constant[static_cast<std::size_t>(d)] = 0.5 * (ranges[0].hi[d] + ranges[0].lo[d]);
     }
     m.fold_constant_joints();
     const auto D = static_cast<Eigen::Index>(m.active.size());
@@ -280,11 +284,13 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
         [&](std::size_t i, int&) {
             const detail::ClipEntry& e = m.clips[i];
             const MatX x = m.weighted_active(*clips[i], m.skeletons[e.skeleton], e.canonical);
-            const auto nw = static_cast<int>((e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W));
+            const auto nw =
+                static_cast<int>((e.frames + static_cast<std::uint64_t>(W) - 1) / static_cast<std::uint64_t>(W));
             Moments mo{MatX::Zero(D, D), MatX::Zero(W, W), 0};
             for (int w = 0; w < nw; ++w) {
                 ++mo.windows;
-                if (D == 0) continue;  // every dof constant: no moments (and Eigen's rankUpdate of an empty matrix is UB)
+                if (D == 0)
+                    continue;  // every dof constant: no moments (and Eigen's rankUpdate of an empty matrix is UB)
                 const MatX xw = window_of(x, w, W);
                 mo.dof.selfadjointView<Eigen::Lower>().rankUpdate(xw);
                 mo.time.selfadjointView<Eigen::Lower>().rankUpdate(xw.transpose());
@@ -312,15 +318,16 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
             for (int k = 0; k < W; ++k) {
                 const double scale = std::sqrt((k == 0 ? 1.0 : 2.0) / W);
                 for (int t = 0; t < W; ++t)
-                    m.time_basis(t, k) = std::round(scale * std::cos(kPi * (t + 0.5) * k / W) / detail::kBasisStep) *
-                                         detail::kBasisStep;
+                    m.time_basis(t, k) =
+                        std::round(scale * std::cos(kPi * (t + 0.5) * k / W) / detail::kBasisStep) * detail::kBasisStep;
                 time_values[static_cast<std::size_t>(k)] =
                     std::max(0.0, m.time_basis.col(k).dot(time_moment * m.time_basis.col(k)));
             }
         }
         if (options.dof_basis == DofBasis::Identity) {
             m.dof_basis.setIdentity();
-            for (Eigen::Index d = 0; d < D; ++d) dof_values[static_cast<std::size_t>(d)] = std::max(0.0, dof_moment(d, d));
+            for (Eigen::Index d = 0; d < D; ++d)
+                dof_values[static_cast<std::size_t>(d)] = std::max(0.0, dof_moment(d, d));
         }
         double total = 0.0;
         for (double v : dof_values) total += v;
@@ -375,8 +382,9 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                     for (int t = 0; t < count; ++t) {
                         forward_kinematics(decoded_skeleton, rows.row(t).data(), pose);
                         for (Eigen::Index j = 0; j < J; ++j) {
-                            const double d = (pose.positions[static_cast<std::size_t>(j)] -
-                                              source.block<3, 1>(3 * j, f0 + t)).norm();
+                            const double d =
+                                (pose.positions[static_cast<std::size_t>(j)] - source.block<3, 1>(3 * j, f0 + t))
+                                    .norm();
                             if (!(d <= E)) return false;
                             dist.push_back(d);
                         }
@@ -454,7 +462,8 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                         // Drop the last t nonzero +-1 coefficients of the scan (they cost their zero
                         // run too) for the largest t that still passes (bisection).
                         std::vector<std::size_t> tail;
-                        for (std::size_t s = found_q.size(); s-- > 0 && tail.size() < static_cast<std::size_t>(options.trim_tail);) {
+                        for (std::size_t s = found_q.size();
+                             s-- > 0 && tail.size() < static_cast<std::size_t>(options.trim_tail);) {
                             if (found_q[s] == 0) continue;
                             if (std::abs(found_q[s]) > 1) continue;
                             tail.push_back(s);
@@ -496,8 +505,9 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
                     for (int t = 0; t < count; ++t) {
                         forward_kinematics(decoded_skeleton, raw.row(t).data(), pose);
                         for (Eigen::Index j = 0; j < J; ++j) {
-                            const double d = (pose.positions[static_cast<std::size_t>(j)] -
-                                              source.block<3, 1>(3 * j, f0 + t)).norm();
+                            const double d =
+                                (pose.positions[static_cast<std::size_t>(j)] - source.block<3, 1>(3 * j, f0 + t))
+                                    .norm();
                             if (!(d <= E)) {
                                 std::ostringstream message;  // %g-like: E may be far below 1e-6 cm
                                 message << "pack: clip '" << clip.name << "' window " << w << " frame " << f0 + t

@@ -97,16 +97,17 @@ PoseIndex::PoseIndex(const GroupDecoder& decoder) : decoder_(&decoder) {
                               std::to_string(kMaxWindow) + ")");
     time_rows_.resize(W * W);
     for (std::size_t t = 0; t < W; ++t)
-        for (std::size_t c = 0; c < W; ++c) time_rows_[t * W + c] = m.time_basis(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(c));
+        for (std::size_t c = 0; c < W; ++c)
+            time_rows_[t * W + c] = m.time_basis(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(c));
 
     struct Cell {
         std::size_t row, column;
         std::int32_t level;
     };
     std::vector<Cell> cells;
-    std::vector<std::uint8_t> width;      // per (block, column) of the window: its width code
-    std::vector<std::size_t> offset;      // per (block, column): bytes from the window's first cell
-    std::vector<std::size_t> kept;        // per block: time columns up to its last nonzero one
+    std::vector<std::uint8_t> width;  // per (block, column) of the window: its width code
+    std::vector<std::size_t> offset;  // per (block, column): bytes from the window's first cell
+    std::vector<std::size_t> kept;    // per block: time columns up to its last nonzero one
     detail::WindowScratch& s = detail::thread_scratch();
     windows_.resize(m.windows.size());
     for (std::size_t i = 0; i < m.windows.size(); ++i) {
@@ -213,18 +214,14 @@ const double* PoseIndex::frame_dofs(std::size_t clip, std::size_t frame) const {
 
 void PoseIndex::pose(std::size_t clip, std::size_t frame, double* out_row) const {
     const detail::GroupModel& m = *decoder_->model_;
-    if (const double* p = frame_dofs(clip, frame))
-        m.row_of(m.clips[clip], p, out_row);
-    else
-        decoder_->decode_pose(clip, frame, out_row);  // a window stored as source rows
+    if (const double* p = frame_dofs(clip, frame)) m.row_of(m.clips[clip], p, out_row);
+    else decoder_->decode_pose(clip, frame, out_row);  // a window stored as source rows
 }
 
 void PoseIndex::local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const {
     const detail::GroupModel& m = *decoder_->model_;
-    if (const double* p = frame_dofs(clip, frame))
-        m.local_of(m.clips[clip], p, out);
-    else
-        decoder_->decode_local_pose(clip, frame, out);
+    if (const double* p = frame_dofs(clip, frame)) m.local_of(m.clips[clip], p, out);
+    else decoder_->decode_local_pose(clip, frame, out);
 }
 
 }  // namespace mocapdb::packing

@@ -10,15 +10,15 @@ namespace mocapdb::packing {
 struct PoseSampler::Slot {
     std::uint64_t window = std::numeric_limits<std::uint64_t>::max();  ///< index in the group, or none
     std::size_t clip = 0;
-    std::vector<double> g;         ///< dequantized coefficients (coded windows)
+    std::vector<double> g;  ///< dequantized coefficients (coded windows)
     int columns = 0;
-    int dof_rows = 0;              ///< rows of g up to its last nonzero one
-    std::vector<double> rows;      ///< W rows of channels, row-major
-    std::vector<std::uint8_t> done;  ///< per frame: rows holds it
-    std::vector<double> poses;     ///< W frames of dofs (D each), coded windows
+    int dof_rows = 0;                 ///< rows of g up to its last nonzero one
+    std::vector<double> rows;         ///< W rows of channels, row-major
+    std::vector<std::uint8_t> done;   ///< per frame: rows holds it
+    std::vector<double> poses;        ///< W frames of dofs (D each), coded windows
     std::vector<std::uint8_t> posed;  ///< per frame: poses holds it
-    std::uint64_t used = 0;        ///< tick of the last request (least recently used is evicted)
-    bool raw = false;              ///< a raw window: rows hold every frame, poses nothing
+    std::uint64_t used = 0;           ///< tick of the last request (least recently used is evicted)
+    bool raw = false;                 ///< a raw window: rows hold every frame, poses nothing
 };
 
 PoseSampler::PoseSampler(const GroupDecoder& decoder, std::size_t capacity)
@@ -142,10 +142,8 @@ void PoseSampler::local_pose(std::size_t clip, std::size_t frame, LocalPose& out
     Slot& s = slot(clip, frame);
     const detail::GroupModel& m = *decoder_->model_;
     const std::size_t t = frame % static_cast<std::size_t>(m.window);
-    if (s.raw)
-        m.local_of_row(m.clips[clip], s.rows.data() + t * channels_, out);
-    else
-        m.local_of(m.clips[clip], dofs(s, clip, t), out);
+    if (s.raw) m.local_of_row(m.clips[clip], s.rows.data() + t * channels_, out);
+    else m.local_of(m.clips[clip], dofs(s, clip, t), out);
 }
 
 void PoseSampler::pose(std::size_t clip, std::size_t frame, double* out_row) {

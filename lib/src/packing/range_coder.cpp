@@ -10,10 +10,8 @@ void RangeEncoder::shift_low() {
         const auto carry = static_cast<std::uint8_t>(low_ >> 32);
         std::uint8_t temp = cache_;
         do {
-            if (first_)
-                first_ = false;  // always 0 + carry 0: the decoder assumes it
-            else
-                out_.push_back(static_cast<std::uint8_t>(temp + carry));
+            if (first_) first_ = false;  // always 0 + carry 0: the decoder assumes it
+            else out_.push_back(static_cast<std::uint8_t>(temp + carry));
             temp = 0xFF;
         } while (--cache_size_ != 0);
         cache_ = static_cast<std::uint8_t>(low_ >> 24);

@@ -5,9 +5,8 @@
 namespace mocapdb::procedural {
 namespace {
 
-const std::vector<ChannelType> kRootChannels = {ChannelType::Xposition, ChannelType::Yposition,
-                                                ChannelType::Zposition, ChannelType::Yrotation,
-                                                ChannelType::Xrotation, ChannelType::Zrotation};
+const std::vector<ChannelType> kRootChannels = {ChannelType::Xposition, ChannelType::Yposition, ChannelType::Zposition,
+                                                ChannelType::Yrotation, ChannelType::Xrotation, ChannelType::Zrotation};
 const std::vector<ChannelType> kZXY = {ChannelType::Zrotation, ChannelType::Xrotation, ChannelType::Yrotation};
 const std::vector<ChannelType> kZYX = {ChannelType::Zrotation, ChannelType::Yrotation, ChannelType::Xrotation};
 

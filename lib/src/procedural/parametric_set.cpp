@@ -64,7 +64,8 @@ std::vector<Column> varying(const std::vector<Column>& all) {
 
 void check_axis(const GridAxis& a) {
     if (a.count < 1 || a.count > 10000) throw InvalidArgument("grid axis '" + a.name + "': count must be 1…10000");
-    if (!std::isfinite(a.low) || !std::isfinite(a.high)) throw InvalidArgument("grid axis '" + a.name + "': bounds must be finite");
+    if (!std::isfinite(a.low) || !std::isfinite(a.high))
+        throw InvalidArgument("grid axis '" + a.name + "': bounds must be finite");
 }
 
 }  // namespace
@@ -105,7 +106,9 @@ void apply_grid_specs(WalkGrid& grid, const std::vector<std::string>& specs) {
         if (a.name == "speed") grid.speed = a;
         else if (a.name == "turn") grid.turn = a;
         else if (a.name == "stride") grid.stride = a;
-        else throw InvalidArgument("grid axis '" + spec + "': a walk grid has the axes speed (m/s), turn (deg), stride (m)");
+        else
+            throw InvalidArgument("grid axis '" + spec +
+                                  "': a walk grid has the axes speed (m/s), turn (deg), stride (m)");
     }
 }
 
@@ -115,7 +118,9 @@ void apply_grid_specs(ReachGrid& grid, const std::vector<std::string>& specs) {
         if (a.name == "angle") grid.angle = a;
         else if (a.name == "height") grid.height = a;
         else if (a.name == "distance") grid.distance = a;
-        else throw InvalidArgument("grid axis '" + spec + "': a reach grid has the axes angle (deg), height (cm), distance (cm)");
+        else
+            throw InvalidArgument("grid axis '" + spec +
+                                  "': a reach grid has the axes angle (deg), height (cm), distance (cm)");
     }
 }
 
@@ -134,7 +139,8 @@ ParametricSet grid_set(const std::string& kind, const std::array<Column, 3>& axe
         set.parameter_units.push_back(c.unit);
     }
     const GridAxis &a0 = *axes[0].axis, &a1 = *axes[1].axis, &a2 = *axes[2].axis;
-    set.parameters.resize(static_cast<Eigen::Index>(a0.count * a1.count * a2.count), static_cast<Eigen::Index>(columns.size()));
+    set.parameters.resize(static_cast<Eigen::Index>(a0.count * a1.count * a2.count),
+                          static_cast<Eigen::Index>(columns.size()));
     std::set<std::string> taken;
     Eigen::Index row = 0;
     for (std::size_t i = 0; i < a0.count; ++i)
@@ -161,7 +167,8 @@ ParametricSet generate_walk_set(const WalkGrid& grid) {
                         p.turn_deg = turn;
                         p.stride_m = stride;
                         WalkMotion m = generate_walk(p, grid.options);
-                        std::string name = "walk_s" + std::to_string(std::lround(100.0 * speed)) + "_t" + signed_int(turn, 3);
+                        std::string name =
+                            "walk_s" + std::to_string(std::lround(100.0 * speed)) + "_t" + signed_int(turn, 3);
                         if (stride > 0.0) name += "_l" + std::to_string(std::lround(100.0 * stride));
                         m.clip.name = unique(name, taken);
                         return std::move(m.clip);
@@ -176,9 +183,10 @@ ParametricSet generate_reach_set(const ReachGrid& grid) {
                         p.height_cm = height;
                         p.distance_cm = distance;
                         ReachMotion m = generate_reach(p, grid.options);
-                        m.clip.name = unique("reach_a" + signed_int(angle, 3) + "_h" + std::to_string(std::lround(height)) +
-                                                 "_d" + std::to_string(std::lround(distance)),
-                                             taken);
+                        m.clip.name =
+                            unique("reach_a" + signed_int(angle, 3) + "_h" + std::to_string(std::lround(height)) +
+                                       "_d" + std::to_string(std::lround(distance)),
+                                   taken);
                         return std::move(m.clip);
                     });
 }

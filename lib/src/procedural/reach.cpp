@@ -19,13 +19,13 @@ using namespace detail;
 constexpr double kStandDrop = 0.2;        // cm below straight legs when standing
 constexpr double kLegExtension = 0.9995;  // standing legs may be almost straight
 constexpr double kArmExtension = 0.995;
-constexpr double kMaxPelvisYaw = 0.35;    // share of the body turn taken by the pelvis (the spine takes the rest)
-constexpr double kMaxLean = 40.0 * deg;   // hip flexion at full lean
-constexpr double kSpineLean = 12.0 * deg; // per spine joint at full lean
-constexpr double kCrouch = 24.0;          // cm the pelvis sinks at full lean
-constexpr double kHipsBack = 14.0;        // cm the pelvis moves back at full lean (balance)
+constexpr double kMaxPelvisYaw = 0.35;     // share of the body turn taken by the pelvis (the spine takes the rest)
+constexpr double kMaxLean = 40.0 * deg;    // hip flexion at full lean
+constexpr double kSpineLean = 12.0 * deg;  // per spine joint at full lean
+constexpr double kCrouch = 24.0;           // cm the pelvis sinks at full lean
+constexpr double kHipsBack = 14.0;         // cm the pelvis moves back at full lean (balance)
 constexpr double kToeOut = 6.0 * deg;
-constexpr double kAnkleHeight = 8.0;      // cm, feet flat
+constexpr double kAnkleHeight = 8.0;  // cm, feet flat
 
 std::string describe(const ReachParams& p) {
     std::ostringstream s;
@@ -63,8 +63,8 @@ struct BodyPose {
     double yaw = 0.0, lean = 0.0, clavicle = 0.0, look = 0.0, elevation = 0.0;
 };
 
-void pose_body(const Rig& rig, const Stance& stance, const BodyPose& b, const Vec3& look_at, bool hang_right, Pose& pose,
-               Globals& g) {
+void pose_body(const Rig& rig, const Stance& stance, const BodyPose& b, const Vec3& look_at, bool hang_right,
+               Pose& pose, Globals& g) {
     const Skeleton& s = *rig.skeleton;
     const double pelvis_yaw = kMaxPelvisYaw * b.yaw;
     const Quat heading = rot_y(pelvis_yaw);
@@ -128,9 +128,11 @@ Vec3 reach_target(const ReachParams& p) {
 
 ReachMotion generate_reach(const ReachParams& params, const ReachOptions& o) {
     const Vec3 target = reach_target(params);
-    if (!(o.frame_rate >= 10.0 && o.frame_rate <= 1000.0)) throw InvalidArgument("reach: frame rate must be 10…1000 Hz");
+    if (!(o.frame_rate >= 10.0 && o.frame_rate <= 1000.0))
+        throw InvalidArgument("reach: frame rate must be 10…1000 Hz");
     if (!(o.lead_in_s >= 0.0 && o.hold_s >= 0.0 && o.lead_out_s >= 0.0 && o.target_width_cm > 0.0 &&
-          o.return_ratio > 0.1 && o.lead_in_s <= 10.0 && o.hold_s <= 10.0 && o.lead_out_s <= 10.0 && o.return_ratio <= 10.0))
+          o.return_ratio > 0.1 && o.lead_in_s <= 10.0 && o.hold_s <= 10.0 && o.lead_out_s <= 10.0 &&
+          o.return_ratio <= 10.0))
         throw InvalidArgument("reach: durations must be 0…10 s, target width positive, return ratio 0.1…10");
     const Rig& rig = Rig::get();
     const Skeleton& s = *rig.skeleton;
@@ -213,7 +215,8 @@ ReachMotion generate_reach(const ReachParams& params, const ReachOptions& o) {
     m.clip.skeleton = rig.skeleton;
     m.clip.frame_rate = o.frame_rate;
     m.clip.name = "reach";
-    m.clip.channels = FrameMatrix::Zero(static_cast<Eigen::Index>(frames), static_cast<Eigen::Index>(s.channel_count()));
+    m.clip.channels =
+        FrameMatrix::Zero(static_cast<Eigen::Index>(frames), static_cast<Eigen::Index>(s.channel_count()));
     ChannelEncoder encoder(s);
     for (std::size_t f = 0; f < frames; ++f) {
         // Progress s along the reach (0 rest, 1 on the target) and the head's lead.
@@ -238,7 +241,8 @@ ReachMotion generate_reach(const ReachParams& params, const ReachOptions& o) {
         if (progress > 0.0) {
             const bool on_target = progress == 1.0;
             const Vec3 hand_pos =
-                on_target ? target : Vec3(hand_start + progress * (target - hand_start) + std::sin(kPi * progress) * bow);
+                on_target ? target
+                          : Vec3(hand_start + progress * (target - hand_start) + std::sin(kPi * progress) * bow);
             const Quat hand_rot = on_target ? hand_final : hand_rest.slerp(progress, hand_final);
             const Vec3 pole_hang = rot_y(body.yaw) * Vec3(0.0, 0.0, -1.0);
             const Vec3 pole = (1.0 - progress) * pole_hang + progress * pole_reach;
@@ -255,7 +259,8 @@ ReachMotion generate_reach(const ReachParams& params, const ReachOptions& o) {
                     wrist = sh + (wrist - sh) * ((c - weight * (c - pulled)) / c);
                 }
             }
-            const bool reached = solve_arm(rig, kRight, pose, g, wrist, pole, &hand_rot, on_target ? kArmExtension : 1.0);
+            const bool reached =
+                solve_arm(rig, kRight, pose, g, wrist, pole, &hand_rot, on_target ? kArmExtension : 1.0);
             if (on_target && !reached)
                 throw InvalidArgument(describe(params) + " is out of reach of the arm");  // excluded above
         }

@@ -120,8 +120,8 @@ void ChannelEncoder::encode(const Pose& pose, double* row) {
         const Vec3 angles = matrix_to_euler_near(pose.local[j].toRotationMatrix(), joint.rotation_order, previous_[j]);
         const auto axes = axes_of(joint.rotation_order);
         for (int k = 0; k < 3; ++k)
-            row[s.channel_column(j, static_cast<ChannelType>(3 + static_cast<int>(axes[static_cast<std::size_t>(k)])))] =
-                angles[k];
+            row[s.channel_column(
+                j, static_cast<ChannelType>(3 + static_cast<int>(axes[static_cast<std::size_t>(k)])))] = angles[k];
         previous_[j] = angles;
     }
 }

@@ -13,26 +13,28 @@ namespace mocapdb::procedural {
 namespace {
 using namespace detail;
 
-constexpr double kGravity = 981.0;       // cm/s²
-constexpr double kAnkleHeight = 8.0;     // cm, foot flat
-constexpr double kStepHalfWidth = 6.5;   // cm from the path to each ankle
+constexpr double kGravity = 981.0;      // cm/s²
+constexpr double kAnkleHeight = 8.0;    // cm, foot flat
+constexpr double kStepHalfWidth = 6.5;  // cm from the path to each ankle
 constexpr double kToeOut = 6.0 * deg;
-constexpr double kStartPhase = 0.8;      // the clip starts late in the left swing
-constexpr double kAnchor = 0.3;          // the ankle passes under the pelvis path at 30 % of its cycle
-constexpr double kHeelRocker = 0.08;     // heel strike → foot flat, fraction of the cycle
-constexpr double kHeelRise = 0.35;       // foot flat → heel rises about the ball
-constexpr double kToeOff = 0.6;          // stance ends
-constexpr double kClearance = 7.0;       // cm added to the ankle's height at mid swing
+constexpr double kStartPhase = 0.8;   // the clip starts late in the left swing
+constexpr double kAnchor = 0.3;       // the ankle passes under the pelvis path at 30 % of its cycle
+constexpr double kHeelRocker = 0.08;  // heel strike → foot flat, fraction of the cycle
+constexpr double kHeelRise = 0.35;    // foot flat → heel rises about the ball
+constexpr double kToeOff = 0.6;       // stance ends
+constexpr double kClearance = 7.0;    // cm added to the ankle's height at mid swing
 
 double sin_over(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
-double one_minus_cos_over(double x) { return std::abs(x) < 1e-4 ? x / 2.0 - x * x * x / 24.0 : (1.0 - std::cos(x)) / x; }
+double one_minus_cos_over(double x) {
+    return std::abs(x) < 1e-4 ? x / 2.0 - x * x * x / 24.0 : (1.0 - std::cos(x)) / x;
+}
 
 struct Gait {
-    double v = 0.0;          // requested path speed, cm/s
-    double vc = 0.0;         // progression speed of the centre path, cm/s
-    double omega = 0.0;      // turn rate, rad/s
-    double period = 0.0;     // s
-    double speed_m = 0.0;    // m/s, for the style amplitudes
+    double v = 0.0;        // requested path speed, cm/s
+    double vc = 0.0;       // progression speed of the centre path, cm/s
+    double omega = 0.0;    // turn rate, rad/s
+    double period = 0.0;   // s
+    double speed_m = 0.0;  // m/s, for the style amplitudes
     double lateral = 0.0, bob = 0.0, yaw_amp = 0.0, roll_amp = 0.0, pitch = 0.0, toe_off = 0.0, heel_strike = 0.0;
     double arm_amp = 0.0;
 
@@ -65,7 +67,8 @@ struct FootState {
 
 class Feet {
 public:
-    explicit Feet(const Gait& g) : g_(g), ball_(Rig::get().skeleton->joint(Rig::get().toe[0]).offset), heel_(humanoid_heel_point()) {}
+    explicit Feet(const Gait& g)
+        : g_(g), ball_(Rig::get().skeleton->joint(Rig::get().toe[0]).offset), heel_(humanoid_heel_point()) {}
 
     FootState state(Side side, double t) const {
         const double q = g_.phase(t) - (side == kLeft ? 0.0 : 0.5);
@@ -195,9 +198,9 @@ WalkMotion generate_walk(const WalkParams& p, const WalkOptions& o) {
             const Vec3 hip = g.pelvis_xz(t) + r * sk.joint(rig.upleg[side]).offset;  // root at y = 0
             const Vec3 ankle = feet.state(side, t).ankle;
             const double horizontal = std::hypot(hip.x() - ankle.x(), hip.z() - ankle.z());
-            if (horizontal >= e * leg)
-                throw InvalidArgument(describe(p) + ": the stride is too long for the legs");
-            ceiling[f] = std::min(ceiling[f], ankle.y() - hip.y() + std::sqrt(e * e * leg * leg - horizontal * horizontal));
+            if (horizontal >= e * leg) throw InvalidArgument(describe(p) + ": the stride is too long for the legs");
+            ceiling[f] =
+                std::min(ceiling[f], ankle.y() - hip.y() + std::sqrt(e * e * leg * leg - horizontal * horizontal));
         }
     }
     const double nominal_bob = 1.0 + 1.0 * g.speed_m;
@@ -218,7 +221,8 @@ WalkMotion generate_walk(const WalkParams& p, const WalkOptions& o) {
     m.clip.skeleton = rig.skeleton;
     m.clip.frame_rate = o.frame_rate;
     m.clip.name = "walk";
-    m.clip.channels = FrameMatrix::Zero(static_cast<Eigen::Index>(frames), static_cast<Eigen::Index>(sk.channel_count()));
+    m.clip.channels =
+        FrameMatrix::Zero(static_cast<Eigen::Index>(frames), static_cast<Eigen::Index>(sk.channel_count()));
     ChannelEncoder encoder(sk);
     Pose pose(sk.size());
     Globals gl;

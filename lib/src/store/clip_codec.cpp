@@ -18,7 +18,8 @@ std::array<std::uint64_t, 4> section_sizes(const h5::File& file, const std::stri
     const std::vector<std::int64_t> v = file.read_ints_attribute(path, "section_bytes");
     std::array<std::uint64_t, 4> out{};
     if (v.size() != out.size())
-        throw StoreError(file.name(), path, "attribute 'section_bytes': expected 4 values, found " + std::to_string(v.size()));
+        throw StoreError(file.name(), path,
+                         "attribute 'section_bytes': expected 4 values, found " + std::to_string(v.size()));
     for (std::size_t i = 0; i < out.size(); ++i) {
         if (v[i] < 0) throw StoreError(file.name(), path, "attribute 'section_bytes': expected values >= 0");
         out[i] = static_cast<std::uint64_t>(v[i]);
@@ -29,10 +30,12 @@ std::array<std::uint64_t, 4> section_sizes(const h5::File& file, const std::stri
 // The packed form's frames and channels (attributes frames and channel_scale), checked.
 std::pair<std::size_t, std::size_t> packed_shape(const h5::File& file, const std::string& path) {
     const std::int64_t frames = file.read_int_attribute(path, "frames");
-    if (frames < 1) throw StoreError(file.name(), path, "attribute 'frames': expected >= 1, found " + std::to_string(frames));
+    if (frames < 1)
+        throw StoreError(file.name(), path, "attribute 'frames': expected >= 1, found " + std::to_string(frames));
     const h5::AttributeInfo scale = file.attribute_info(path, "channel_scale");
     if (scale.shape.size() != 1)
-        throw StoreError(file.name(), path, "attribute 'channel_scale': expected one dimension, found " + h5::shape_text(scale.shape));
+        throw StoreError(file.name(), path,
+                         "attribute 'channel_scale': expected one dimension, found " + h5::shape_text(scale.shape));
     return {static_cast<std::size_t>(frames), static_cast<std::size_t>(scale.shape[0])};
 }
 
@@ -65,7 +68,8 @@ void write_clip(h5::File& file, const std::string& id, const Clip& clip, const s
 
 bool lossless_dropped(const h5::File& file, const std::string& id) {
     const std::string g = clip_path(id);
-    return file.has_attribute(g, kLosslessAttribute) && file.read_string_attribute(g, kLosslessAttribute) == kLosslessDroppedValue;
+    return file.has_attribute(g, kLosslessAttribute) &&
+           file.read_string_attribute(g, kLosslessAttribute) == kLosslessDroppedValue;
 }
 
 std::string clip_channels_path(const h5::File& file, const std::string& id) {
@@ -106,8 +110,8 @@ ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
     r.skeleton = file.string_attribute(a, "skeleton");
     r.frame_rate = file.double_attribute(a, "frame_rate");
     if (!(r.frame_rate > 0.0) || !std::isfinite(r.frame_rate))
-        throw StoreError(file.name(), g, "attribute 'frame_rate': expected a positive number, found " +
-                                             std::to_string(r.frame_rate));
+        throw StoreError(file.name(), g,
+                         "attribute 'frame_rate': expected a positive number, found " + std::to_string(r.frame_rate));
     r.source.file_name = file.string_attribute(a, "source_file");
     r.source.format = file.string_attribute(a, "source_format");
     r.source.sha256 = file.string_attribute(a, "source_sha256");
@@ -116,13 +120,17 @@ ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
     if (a.has("description")) r.source.description = file.string_attribute(a, "description");
     if (a.has("labels")) r.source.labels = file.strings_attribute(a, "labels");
     const std::vector<std::string> links = file.children(g);
-    const auto has_link = [&](const std::string& name) { return std::find(links.begin(), links.end(), name) != links.end(); };
+    const auto has_link = [&](const std::string& name) {
+        return std::find(links.begin(), links.end(), name) != links.end();
+    };
     if (a.has(kLosslessAttribute) && file.string_attribute(a, kLosslessAttribute) == kLosslessDroppedValue) {
         const std::int64_t frames = file.int_attribute(a, "frames");
         const std::int64_t channels = file.int_attribute(a, "channels");
         if (frames < 1 || channels < 1)
-            throw StoreError(file.name(), g, "attributes 'frames' and 'channels' of a clip without lossless channels: expected >= 1, found " +
-                                                 std::to_string(frames) + " and " + std::to_string(channels));
+            throw StoreError(
+                file.name(), g,
+                "attributes 'frames' and 'channels' of a clip without lossless channels: expected >= 1, found " +
+                    std::to_string(frames) + " and " + std::to_string(channels));
         if (has_link("channels") || has_link(kPackedChannels))
             throw StoreError(file.name(), g, "attribute 'lossless' says \"dropped\" but a channel dataset is present");
         r.frames = static_cast<std::size_t>(frames);
@@ -140,14 +148,18 @@ ClipRecord read_clip_record(const h5::File& file, const std::string& id) {
         const std::string packed = g + "/" + kPackedChannels;
         const h5::DatasetInfo info = file.dataset_info(packed);
         if (info.dtype != "uint8" || info.shape.size() != 1)
-            throw StoreError(file.name(), packed, "expected uint8 (byte), found " + info.dtype + " " + h5::shape_text(info.shape));
+            throw StoreError(file.name(), packed,
+                             "expected uint8 (byte), found " + info.dtype + " " + h5::shape_text(info.shape));
         const h5::Attributes pa = file.read_attributes(packed);
         const std::int64_t frames = file.int_attribute(pa, "frames");
-        if (frames < 1) throw StoreError(file.name(), packed, "attribute 'frames': expected >= 1, found " + std::to_string(frames));
+        if (frames < 1)
+            throw StoreError(file.name(), packed, "attribute 'frames': expected >= 1, found " + std::to_string(frames));
         const h5::AttributeInfo* scale = pa.find_info("channel_scale");
         if (scale == nullptr) throw StoreError(file.name(), packed, "missing attribute 'channel_scale'");
         if (scale->shape.size() != 1)
-            throw StoreError(file.name(), packed, "attribute 'channel_scale': expected one dimension, found " + h5::shape_text(scale->shape));
+            throw StoreError(
+                file.name(), packed,
+                "attribute 'channel_scale': expected one dimension, found " + h5::shape_text(scale->shape));
         r.frames = static_cast<std::size_t>(frames);
         r.channels = static_cast<std::size_t>(scale->shape[0]);
         r.stored_bytes = info.stored_bytes;
@@ -169,9 +181,10 @@ FrameMatrix read_clip_channels(const h5::File& file, const std::string& id, std:
     auto a = file.read_array<double>(path, 2);
     if (a.shape[1] != channels)
         throw StoreError(file.name(), path,
-                         "expected " + std::to_string(channels) + " columns (the channels of its skeleton), found shape " +
-                             h5::shape_text(a.shape));
-    if (a.shape[0] == 0) throw StoreError(file.name(), path, "expected at least one frame, found shape " + h5::shape_text(a.shape));
+                         "expected " + std::to_string(channels) +
+                             " columns (the channels of its skeleton), found shape " + h5::shape_text(a.shape));
+    if (a.shape[0] == 0)
+        throw StoreError(file.name(), path, "expected at least one frame, found shape " + h5::shape_text(a.shape));
     return Eigen::Map<const FrameMatrix>(a.data.data(), static_cast<Eigen::Index>(a.shape[0]),
                                          static_cast<Eigen::Index>(a.shape[1]));
 }
@@ -179,7 +192,8 @@ FrameMatrix read_clip_channels(const h5::File& file, const std::string& id, std:
 FrameMatrix read_packed_channels(const h5::File& file, const std::string& path, std::size_t channels) {
     const std::string codec = file.read_string_attribute(path, "codec");
     if (codec != kPackedCodec)
-        throw StoreError(file.name(), path, "attribute 'codec': expected \"" + std::string(kPackedCodec) + "\", found \"" + codec + "\"");
+        throw StoreError(file.name(), path,
+                         "attribute 'codec': expected \"" + std::string(kPackedCodec) + "\", found \"" + codec + "\"");
     packing::PackedChannels p;
     std::size_t columns = 0;
     std::tie(p.frames, columns) = packed_shape(file, path);

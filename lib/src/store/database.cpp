@@ -98,7 +98,8 @@ Clip Database::load_clip(const std::string& id) const {
         // Only the packed tier holds it: its channels, with the clip's stored skeleton.
         clip.channels = load_clip_packed(id).channels;
         if (clip.channels.cols() != static_cast<Eigen::Index>(clip.skeleton->channel_count()))
-            throw StoreError(f.name(), store::clip_path(id), "the packed tier's channels do not match the clip's skeleton");
+            throw StoreError(f.name(), store::clip_path(id),
+                             "the packed tier's channels do not match the clip's skeleton");
         return clip;
     }
     clip.channels = store::read_clip_channels(f, id, clip.skeleton->channel_count());
@@ -142,23 +143,28 @@ Clip Database::load_clip_packed(const std::string& id, std::size_t begin, std::s
     QuietScope quiet;
     const auto& f = impl_->f();
     const auto tier = packed();
-    if (!tier) throw Refused<StoreError>(Remedy::PackFirst, f.name(), store::kPacked, "no packed tier (the database was not packed)");
+    if (!tier)
+        throw Refused<StoreError>(Remedy::PackFirst, f.name(), store::kPacked,
+                                  "no packed tier (the database was not packed)");
     const auto where = tier->find(id);
-    if (!where) throw NotFoundError(f.name(), store::kPacked, "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
+    if (!where)
+        throw NotFoundError(f.name(), store::kPacked,
+                            "clip '" + id + "' is not in the packed tier (packed before it was imported?)");
     const PackedGroupRecord& g = tier->groups[where->first];
     const std::string path = store::packed_group_path(g.name) + "/bytes";
     const std::shared_ptr<const packing::GroupDecoder> decoder = packed_group_decoder(g.name);
     const std::size_t k = where->second;
     if (decoder->clip_count() != g.clips.size() || decoder->frame_count(k) != g.clips[k].frames)
-        throw StoreError(f.name(), path,
-                         "the bytes hold " + std::to_string(decoder->clip_count()) + " clips, clip " + std::to_string(k) +
-                             " of " + std::to_string(k < decoder->clip_count() ? decoder->frame_count(k) : 0) +
-                             " frames; expected " + std::to_string(g.clips.size()) + " clips, clip '" + id + "' of " +
-                             std::to_string(g.clips[k].frames) + " frames (" + store::packed_group_path(g.name) + "/clip_frames)");
+        throw StoreError(
+            f.name(), path,
+            "the bytes hold " + std::to_string(decoder->clip_count()) + " clips, clip " + std::to_string(k) + " of " +
+                std::to_string(k < decoder->clip_count() ? decoder->frame_count(k) : 0) + " frames; expected " +
+                std::to_string(g.clips.size()) + " clips, clip '" + id + "' of " + std::to_string(g.clips[k].frames) +
+                " frames (" + store::packed_group_path(g.name) + "/clip_frames)");
     const std::size_t frames = decoder->frame_count(k);
     if (begin >= frames)
-        throw InvalidArgument("load_clip_packed: first frame " + std::to_string(begin) + " is beyond clip '" + id + "' (" +
-                              std::to_string(frames) + " frames)");
+        throw InvalidArgument("load_clip_packed: first frame " + std::to_string(begin) + " is beyond clip '" + id +
+                              "' (" + std::to_string(frames) + " frames)");
     end = std::min(end, frames);
     if (end <= begin) throw InvalidArgument("load_clip_packed: empty frame range");
     Clip clip;
@@ -269,7 +275,8 @@ std::optional<StoredModel> Database::load_model(const std::string& set) const {
     const store::h5::ObjectType t = f.type_of(store::model_path(set));
     if (t == store::h5::ObjectType::None) return std::nullopt;
     if (t != store::h5::ObjectType::Group)
-        throw StoreError(f.name(), store::model_path(set), "expected a group of kind 'tucker_model', found another object");
+        throw StoreError(f.name(), store::model_path(set),
+                         "expected a group of kind 'tucker_model', found another object");
     return store::read_model(f, set);
 }
 
@@ -295,7 +302,7 @@ std::uint64_t Database::clips_file_bytes() const {
     QuietScope quiet;
     const store::h5::File& f = impl_->f();
     std::uint64_t bytes = f.object_file_bytes(store::kClips);  // the index's (or the one file's) links to the clips
-    std::set<std::filesystem::path> segments;  // other files holding clips: their /clips groups too
+    std::set<std::filesystem::path> segments;                  // other files holding clips: their /clips groups too
     const std::function<void(const std::string&)> subtree = [&](const std::string& path) {
         bytes += f.object_file_bytes(path);
         if (f.type_of(path) == store::h5::ObjectType::Group)

@@ -15,9 +15,9 @@ namespace mocapdb {
 struct Database::Impl {
     std::filesystem::path path;
     std::unique_ptr<store::ReaderLock> reader_lock;  // taken before the file is opened (segments.hpp)
-    store::h5::File owned;              // the file, when this view opened it itself
-    store::h5::File* file = nullptr;    // the file read (owned, or a writer's session file)
-    int format_version = kDatabaseFormatVersion;  // the root attribute, as checked when opened
+    store::h5::File owned;                           // the file, when this view opened it itself
+    store::h5::File* file = nullptr;                 // the file read (owned, or a writer's session file)
+    int format_version = kDatabaseFormatVersion;     // the root attribute, as checked when opened
     mutable std::map<std::string, std::shared_ptr<const Skeleton>> skeletons;
     mutable std::string decoder_group;  // /packed/{group} of `decoder`; cleared when /packed changes
     mutable std::shared_ptr<const packing::GroupDecoder> decoder;

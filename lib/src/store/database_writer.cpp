@@ -39,7 +39,7 @@ struct DatabaseWriter::Impl {
     std::string segment_name;
     std::filesystem::path segment_path;
     store::h5::File segment;
-    bool segment_garbage = false;  // objects unlinked inside the session's segment: rewrite it at commit
+    bool segment_garbage = false;       // objects unlinked inside the session's segment: rewrite it at commit
     std::filesystem::path legacy_path;  // an older one-file target adopted as a segment (adopt_legacy_file)
     Database view{std::make_unique<Database::Impl>()};
     // Source hash -> clip id, built on first use (only sessions that add clips need it) from one
@@ -47,8 +47,8 @@ struct DatabaseWriter::Impl {
     std::optional<std::unordered_map<std::string, std::string>> sha_to_clip_;
     std::vector<std::pair<std::string, std::shared_ptr<const Skeleton>>> skeletons;  // id, structure
     bool finished = false;
-    bool removed_links = false;  // top-level objects removed: space to reclaim in the index at commit
-    bool moved = false;          // objects copied into the session's segment (their old copies are dead)
+    bool removed_links = false;             // top-level objects removed: space to reclaim in the index at commit
+    bool moved = false;                     // objects copied into the session's segment (their old copies are dead)
     std::set<std::string> losing_segments;  // published segments whose objects this session dropped or moved
 
     std::unordered_map<std::string, std::string>& sha_to_clip() {
@@ -72,7 +72,9 @@ struct DatabaseWriter::Impl {
         if (!segment.is_open()) {
             std::error_code ec;
             std::filesystem::create_directories(store::segment_dir(target), ec);
-            if (ec) throw IoError(store::segment_dir(target).string() + ": cannot create the segment folder: " + ec.message());
+            if (ec)
+                throw IoError(store::segment_dir(target).string() +
+                              ": cannot create the segment folder: " + ec.message());
             segment_name = store::new_segment_name(target);
             segment_path = store::segment_file(target, segment_name);
             segment = store::h5::File::create(segment_path);
@@ -122,7 +124,8 @@ struct DatabaseWriter::Impl {
     void adopt_legacy_file() {
         std::error_code ec;
         std::filesystem::create_directories(store::segment_dir(target), ec);
-        if (ec) throw IoError(store::segment_dir(target).string() + ": cannot create the segment folder: " + ec.message());
+        if (ec)
+            throw IoError(store::segment_dir(target).string() + ": cannot create the segment folder: " + ec.message());
         const std::string name = store::new_segment_name(target);
         const std::filesystem::path legacy = store::segment_file(target, name);
         std::filesystem::create_hard_link(target, legacy, ec);
@@ -145,7 +148,8 @@ struct DatabaseWriter::Impl {
         constexpr std::size_t kMaxSegments = 32;
         std::map<std::string, std::vector<std::string>> live;  // segment -> top-level paths linked there
         for (const std::string& path : store::top_level_objects(f()))
-            if (const auto t = file.external_target(path); t && t->first != segment_name) live[t->first].push_back(path);
+            if (const auto t = file.external_target(path); t && t->first != segment_name)
+                live[t->first].push_back(path);
         std::vector<std::string> move;
         std::vector<std::pair<std::uintmax_t, std::string>> by_size;
         for (const auto& [name, paths] : live) {
@@ -178,8 +182,7 @@ struct DatabaseWriter::Impl {
         try {
             file = store::h5::File();  // closes
             segment = store::h5::File();
-        } catch (...) {
-        }
+        } catch (...) {}
         std::error_code ec;
         std::filesystem::remove(temp, ec);
         if (!segment_path.empty()) std::filesystem::remove(segment_path, ec);
@@ -216,7 +219,8 @@ bool same_skeleton(const Skeleton& a, const Skeleton& b) {
 
 }  // namespace
 
-DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode, double wait_seconds) : impl_(std::make_unique<Impl>()) {
+DatabaseWriter::DatabaseWriter(const std::filesystem::path& target, Mode mode, double wait_seconds)
+    : impl_(std::make_unique<Impl>()) {
     QuietScope quiet;
     Impl& s = *impl_;
     s.target = target;
@@ -327,7 +331,9 @@ void DatabaseWriter::put_set(const MotionSet& set, bool replace) {
     for (std::size_t i = 0; i < set.samples.size(); ++i) {
         const SampleRef& r = set.samples[i];
         const auto clip = s.view.find_clip(r.clip);
-        if (!clip) throw InvalidArgument(who + ": sample " + std::to_string(i) + " names clip '" + r.clip + "', which is not stored");
+        if (!clip)
+            throw InvalidArgument(who + ": sample " + std::to_string(i) + " names clip '" + r.clip +
+                                  "', which is not stored");
         if (r.end > clip->frames)
             throw InvalidArgument(who + ": sample " + std::to_string(i) + " [" + std::to_string(r.begin) + ", " +
                                   std::to_string(r.end) + ") lies beyond clip '" + r.clip + "' (" +
@@ -344,9 +350,10 @@ void DatabaseWriter::put_set(const MotionSet& set, bool replace) {
     for (const RepairedFrames& r : set.repairs) {
         const auto clip = s.view.find_clip(r.clip);
         if (!clip || r.begin >= r.end || r.end > clip->frames)
-            throw InvalidArgument(who + ": a repair record names frames [" + std::to_string(r.begin) + ", " +
-                                  std::to_string(r.end) + ") of clip '" + r.clip + "', which " +
-                                  (clip ? "has " + std::to_string(clip->frames) + " frames" : std::string("is not stored")));
+            throw InvalidArgument(
+                who + ": a repair record names frames [" + std::to_string(r.begin) + ", " + std::to_string(r.end) +
+                ") of clip '" + r.clip + "', which " +
+                (clip ? "has " + std::to_string(clip->frames) + " frames" : std::string("is not stored")));
     }
     const std::string g = store::set_path(set.name);
     if (f.exists(g)) {
@@ -426,17 +433,22 @@ void DatabaseWriter::put_model(const std::string& set_name, const compression::S
                                   ", but the aligned tensor has " + std::to_string(expected));
     }
     const tensor::TuckerModel& t = model.tucker;
-    const std::pair<const char*, double> numbers[] = {
-        {"fit", t.fit}, {"error_bound", t.error_bound}, {"data_norm", t.data_norm},
-        {"figures.dof_rmse", figures.dof_rmse}, {"figures.rmse_cm", figures.rmse_cm},
-        {"figures.mean_cm", figures.mean_cm}, {"figures.max_cm", figures.max_cm}, {"figures.p99_cm", figures.p99_cm}};
+    const std::pair<const char*, double> numbers[] = {{"fit", t.fit},
+                                                      {"error_bound", t.error_bound},
+                                                      {"data_norm", t.data_norm},
+                                                      {"figures.dof_rmse", figures.dof_rmse},
+                                                      {"figures.rmse_cm", figures.rmse_cm},
+                                                      {"figures.mean_cm", figures.mean_cm},
+                                                      {"figures.max_cm", figures.max_cm},
+                                                      {"figures.p99_cm", figures.p99_cm}};
     for (const auto& [name, value] : numbers) {
         const bool may_be_negative = std::string(name) == "fit";
         if (!std::isfinite(value) || (!may_be_negative && value < 0.0))
             throw InvalidArgument(who + ": " + name + " must be finite" + (may_be_negative ? "" : " and >= 0") +
                                   ", found " + std::to_string(value));
     }
-    if (t.iterations < 0) throw InvalidArgument(who + ": iterations must be >= 0, found " + std::to_string(t.iterations));
+    if (t.iterations < 0)
+        throw InvalidArgument(who + ": iterations must be >= 0, found " + std::to_string(t.iterations));
     const std::string g = store::model_path(set_name);
     s.localize(store::set_path(set_name), {g});
     if (s.segment.exists(g)) {
@@ -475,13 +487,15 @@ void refuse_if_only_copy(const Database& view, const std::string& file, const st
         if (!r.lossless && dropped++ == 0) first = r.id;
     if (dropped > 0)
         throw StoreError(file, store::kPacked,
-                         "the packed tier is the only copy of " + std::to_string(dropped) + " clip" + (dropped > 1 ? "s" : "") +
-                             " (first: '" + first + "'; their lossless channels were dropped); it cannot be " + action);
+                         "the packed tier is the only copy of " + std::to_string(dropped) + " clip" +
+                             (dropped > 1 ? "s" : "") + " (first: '" + first +
+                             "'; their lossless channels were dropped); it cannot be " + action);
 }
 
 }  // namespace
 
-void DatabaseWriter::put_packed(const PackedTierRecord& tier_in, const std::vector<std::vector<std::uint8_t>>& group_bytes) {
+void DatabaseWriter::put_packed(const PackedTierRecord& tier_in,
+                                const std::vector<std::vector<std::uint8_t>>& group_bytes) {
     QuietScope quiet;
     Impl& s = *impl_;
     store::h5::File& f = s.f();
@@ -491,7 +505,8 @@ void DatabaseWriter::put_packed(const PackedTierRecord& tier_in, const std::vect
         throw InvalidArgument(who + ": " + std::to_string(tier_in.groups.size()) + " group records but " +
                               std::to_string(group_bytes.size()) + " byte arrays");
     if (!std::isfinite(tier_in.max_error_cm) || !(tier_in.max_error_cm > 0.0))
-        throw InvalidArgument(who + ": max_error_cm must be finite and > 0, found " + std::to_string(tier_in.max_error_cm));
+        throw InvalidArgument(who + ": max_error_cm must be finite and > 0, found " +
+                              std::to_string(tier_in.max_error_cm));
     auto check_figures = [&](const std::string& what, double max_cm, double p99_cm, double rmse_cm) {
         for (double x : {max_cm, p99_cm, rmse_cm})
             if (!std::isfinite(x) || x < 0.0)
@@ -562,8 +577,9 @@ std::size_t DatabaseWriter::drop_lossless() {
     store::h5::File& f = s.f();
     const std::optional<PackedTierRecord> tier = s.view.packed();
     if (!tier)
-        throw StoreError(s.target.string(), store::kPacked,
-                         "no packed tier: the lossless channels are the only copy of the clips (run mocapdb pack first)");
+        throw StoreError(
+            s.target.string(), store::kPacked,
+            "no packed tier: the lossless channels are the only copy of the clips (run mocapdb pack first)");
     std::size_t dropped = 0;
     for (const PackedGroupRecord& g : tier->groups)
         for (const PackedClipRecord& c : g.clips) {

@@ -38,7 +38,8 @@ JsonValue from_nlohmann(const Ordered& j, const std::string& source, int depth =
             break;
         case Ordered::value_t::object:
             v.type = JsonValue::Type::Object;
-            for (auto it = j.begin(); it != j.end(); ++it) v.object.emplace_back(it.key(), from_nlohmann(it.value(), source, depth + 1));
+            for (auto it = j.begin(); it != j.end(); ++it)
+                v.object.emplace_back(it.key(), from_nlohmann(it.value(), source, depth + 1));
             break;
         default: break;  // null (and discarded / binary values, which the text cannot hold)
     }
@@ -86,8 +87,9 @@ std::string JsonValue::dump() const {
         case Type::Object: {
             std::string out = "{";
             for (std::size_t k = 0; k < object.size(); ++k)
-                out += (k ? ", " : "") + Ordered(object[k].first).dump(-1, ' ', false, Ordered::error_handler_t::replace) +
-                       ": " + object[k].second.dump();
+                out += (k ? ", " : "") +
+                       Ordered(object[k].first).dump(-1, ' ', false, Ordered::error_handler_t::replace) + ": " +
+                       object[k].second.dump();
             return out + "}";
         }
     }

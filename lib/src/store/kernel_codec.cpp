@@ -96,8 +96,9 @@ std::shared_ptr<const kriging::CovarianceInverse> read_system(const h5::File& fi
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows;
     file.read_array_into<double>(path, 2, [&](const h5::Shape& shape) {
         if (shape[0] != shape[1] || shape[0] == 0)
-            throw StoreError(file.name(), path, "expected a square, non-empty (point, point) matrix, found " +
-                                                    std::to_string(shape[0]) + "x" + std::to_string(shape[1]));
+            throw StoreError(file.name(), path,
+                             "expected a square, non-empty (point, point) matrix, found " + std::to_string(shape[0]) +
+                                 "x" + std::to_string(shape[1]));
         rows.resize(static_cast<Eigen::Index>(shape[0]), static_cast<Eigen::Index>(shape[1]));
         return rows.data();
     });
@@ -112,8 +113,9 @@ std::shared_ptr<const kriging::CovarianceInverse> read_system(const h5::File& fi
             known = true;
         }
     if (!known)
-        throw StoreError(file.name(), path,
-                         "attribute 'factorization': expected \"ok\", \"jittered\" or \"regularized\", found \"" + how + "\"");
+        throw StoreError(
+            file.name(), path,
+            "attribute 'factorization': expected \"ok\", \"jittered\" or \"regularized\", found \"" + how + "\"");
     c->jitter = file.read_double_attribute(path, "jitter");
     c->rcond = file.read_double_attribute(path, "rcond");
     return c;
@@ -128,24 +130,28 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
     bool hex = key.size() == 16;
     for (const char c : key) hex = hex && ((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'));
     if (!hex)
-        throw StoreError(file.name(), g, "attribute 'key': expected 16 lowercase hexadecimal digits, found \"" + key + "\"");
+        throw StoreError(file.name(), g,
+                         "attribute 'key': expected 16 lowercase hexadecimal digits, found \"" + key + "\"");
     fit.key = std::strtoull(key.c_str(), nullptr, 16);
-    if (fit.key == 0) throw StoreError(file.name(), g, "attribute 'key': expected a non-zero digest, found \"" + key + "\"");
+    if (fit.key == 0)
+        throw StoreError(file.name(), g, "attribute 'key': expected a non-zero digest, found \"" + key + "\"");
     const std::string family = file.read_string_attribute(g, "family");
     if (family == kriging::to_string(kriging::VariogramFamily::Spherical))
         fit.variogram.family = kriging::VariogramFamily::Spherical;
     else if (family == kriging::to_string(kriging::VariogramFamily::Stable))
         fit.variogram.family = kriging::VariogramFamily::Stable;
     else
-        throw StoreError(file.name(), g, "attribute 'family': expected \"sph\" or \"stable\", found \"" + family + "\"");
+        throw StoreError(file.name(), g,
+                         "attribute 'family': expected \"sph\" or \"stable\", found \"" + family + "\"");
     for (int k = 0; k < 4; ++k) *parameter(fit.variogram, k) = file.read_double_attribute(g, kParameters[k]);
     const std::string v = violation(fit);
     if (!v.empty()) throw StoreError(file.name(), g, v);
     // The model's fit status, optional (kernels written before it was stored have neither attribute).
     const bool has_status = file.has_attribute(g, "fit_status");
     if (has_status != file.has_attribute(g, "residual_variance"))
-        throw StoreError(file.name(), g, std::string("attribute '") + (has_status ? "residual_variance" : "fit_status") +
-                                             "': missing (fit_status and residual_variance go together)");
+        throw StoreError(file.name(), g,
+                         std::string("attribute '") + (has_status ? "residual_variance" : "fit_status") +
+                             "': missing (fit_status and residual_variance go together)");
     if (has_status) {
         const std::string status = file.read_string_attribute(g, "fit_status");
         for (const kriging::FitStatus s : kStatuses)
@@ -159,8 +165,9 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
         }
         fit.residual_variance = file.read_double_attribute(g, "residual_variance");
         if (!(fit.residual_variance >= 0.0) || !std::isfinite(fit.residual_variance))
-            throw StoreError(file.name(), g, "attribute 'residual_variance': expected a finite number >= 0, found " +
-                                                 number_text(fit.residual_variance));
+            throw StoreError(file.name(), g,
+                             "attribute 'residual_variance': expected a finite number >= 0, found " +
+                                 number_text(fit.residual_variance));
     }
     if (file.exists(g + "/covariance_inverse")) fit.system = read_system(file, g);
     return fit;

@@ -22,13 +22,13 @@ h5::Shape c_order_shape(const Tensor3& tensor) {
 std::vector<double> to_c_order(const MatX& matrix) {
     std::vector<double> out(static_cast<std::size_t>(matrix.size()));
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(out.data(), matrix.rows(),
-                                                                                         matrix.cols()) = matrix;
+                                                                                       matrix.cols()) = matrix;
     return out;
 }
 
 MatX from_c_order(const std::vector<double>& data, Eigen::Index rows, Eigen::Index cols) {
     return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(data.data(), rows,
-                                                                                                   cols);
+                                                                                                    cols);
 }
 
 std::vector<std::string> split_path(const std::string& path) {

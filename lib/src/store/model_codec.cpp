@@ -37,8 +37,9 @@ Enum parse_enum(const h5::File& file, const std::string& g, const char* attribut
         if (text == tensor::to_string(v)) return v;
         allowed += (allowed.empty() ? "\"" : ", \"") + std::string(tensor::to_string(v)) + "\"";
     }
-    throw StoreError(file.name(), g,
-                     std::string("attribute '") + attribute + "': expected one of " + allowed + ", found \"" + text + "\"");
+    throw StoreError(
+        file.name(), g,
+        std::string("attribute '") + attribute + "': expected one of " + allowed + ", found \"" + text + "\"");
 }
 
 double finite_attribute(const h5::File& file, const std::string& g, const char* name, bool non_negative) {
@@ -87,7 +88,8 @@ void write_model(h5::File& file, const std::string& set, const compression::SetM
     // The column-major R1×R2×R3 core IS the C-order (R3, R2, R1) array (as for the aligned tensor).
     file.write_array(g + "/core", t.core.data(), c_order_shape(t.core), {"sample_rank", "time_rank", "dof_rank"}, "cm");
     const std::vector<double> dof = to_c_order(t.U[0]), time = to_c_order(t.U[1]), sample = to_c_order(t.U[2]);
-    file.write_array(g + "/dof_basis", dof.data(), {static_cast<std::uint64_t>(t.U[0].rows()), r1}, {"dof", "dof_rank"}, "");
+    file.write_array(g + "/dof_basis", dof.data(), {static_cast<std::uint64_t>(t.U[0].rows()), r1}, {"dof", "dof_rank"},
+                     "");
     file.write_array(g + "/time_basis", time.data(), {static_cast<std::uint64_t>(t.U[1].rows()), r2},
                      {"time", "time_rank"}, "");
     file.write_array(g + "/sample_basis", sample.data(), {static_cast<std::uint64_t>(t.U[2].rows()), r3},
@@ -101,7 +103,8 @@ StoredModel read_model(const h5::File& file, const std::string& set) {
     const std::string g = model_path(set);
     const std::string a = aligned_path(set);
     if (file.type_of(a) != h5::ObjectType::Group)
-        throw StoreError(file.name(), g, "a model requires the aligned tensor it describes, but " + a + " does not exist");
+        throw StoreError(file.name(), g,
+                         "a model requires the aligned tensor it describes, but " + a + " does not exist");
     const h5::DatasetInfo tensor_info = file.dataset_info(a + "/tensor");
     if (tensor_info.shape.size() != 3)
         throw StoreError(file.name(), a + "/tensor",
@@ -114,17 +117,19 @@ StoredModel read_model(const h5::File& file, const std::string& set) {
     tm.status = parse_enum(file, g, "status", file.read_string_attribute(g, "status"), kStatuses);
     const std::int64_t iterations = file.read_int_attribute(g, "iterations");
     if (iterations < 0 || iterations > 1000000000)
-        throw StoreError(file.name(), g, "attribute 'iterations': expected 0 <= iterations <= 1e9, found " +
-                                             std::to_string(iterations));
+        throw StoreError(
+            file.name(), g,
+            "attribute 'iterations': expected 0 <= iterations <= 1e9, found " + std::to_string(iterations));
     tm.iterations = static_cast<int>(iterations);
     tm.fit = finite_attribute(file, g, "fit", false);
     tm.error_bound = finite_attribute(file, g, "error_bound", true);
     tm.data_norm = finite_attribute(file, g, "data_norm", true);
     tm.fit_history = {tm.fit};  // the history of a decomposition is not stored
-    for (const FigureField& field : kFigureFields) out.figures.*field.member = finite_attribute(file, g, field.name, true);
+    for (const FigureField& field : kFigureFields)
+        out.figures.*field.member = finite_attribute(file, g, field.name, true);
 
-    const std::string why_dims = "(the aligned tensor " + a + "/tensor is " + h5::shape_text(tensor_info.shape) +
-                                 " = (N, T, D))";
+    const std::string why_dims =
+        "(the aligned tensor " + a + "/tensor is " + h5::shape_text(tensor_info.shape) + " = (N, T, D))";
     // The core (tens of MB) is read straight into the model once its shape is checked.
     std::uint64_t r1 = 0, r2 = 0, r3 = 0;
     const std::uint64_t dims[3] = {d, t, n};
@@ -138,9 +143,9 @@ StoredModel read_model(const h5::File& file, const std::string& set) {
         for (int k = 0; k < 3; ++k)
             if (ranks[k] < 1 || ranks[k] > dims[k])
                 throw StoreError(file.name(), g + "/core",
-                                 std::string("core shape (R3, R2, R1) = ") + h5::shape_text(shape) + ": expected 1 <= " +
-                                     rank_names[k] + " <= " + dim_names[k] + " = " + std::to_string(dims[k]) + " " +
-                                     why_dims);
+                                 std::string("core shape (R3, R2, R1) = ") + h5::shape_text(shape) +
+                                     ": expected 1 <= " + rank_names[k] + " <= " + dim_names[k] + " = " +
+                                     std::to_string(dims[k]) + " " + why_dims);
         tm.ranks = {static_cast<Eigen::Index>(r1), static_cast<Eigen::Index>(r2), static_cast<Eigen::Index>(r3)};
         tm.core = Tensor3(tm.ranks[0], tm.ranks[1], tm.ranks[2]);  // column-major R1xR2xR3 = C-order (R3, R2, R1)
         return tm.core.data();
@@ -148,8 +153,8 @@ StoredModel read_model(const h5::File& file, const std::string& set) {
     expect_finite(file, g + "/core", tm.core.data(), tm.core.data() + tm.core.size());
     const std::uint64_t ranks[3] = {r1, r2, r3};
 
-    const std::string why_core = "(core " + g + "/core is " + h5::shape_text(core_shape) + " = (R3, R2, R1); " +
-                                 why_dims.substr(1);
+    const std::string why_core =
+        "(core " + g + "/core is " + h5::shape_text(core_shape) + " = (R3, R2, R1); " + why_dims.substr(1);
     const char* const bases[3] = {"dof_basis", "time_basis", "sample_basis"};
     for (int k = 0; k < 3; ++k) {
         const std::string path = g + "/" + bases[k];
@@ -168,9 +173,9 @@ StoredModel read_model(const h5::File& file, const std::string& set) {
     expect_finite(file, g + "/weight", weight.data);
     for (std::size_t i = 0; i < weight.data.size(); ++i)
         if (!(weight.data[i] > 0.0))
-            throw StoreError(file.name(), g + "/weight",
-                             "expected weights > 0, found " + std::to_string(weight.data[i]) + " at element " +
-                                 std::to_string(i));
+            throw StoreError(
+                file.name(), g + "/weight",
+                "expected weights > 0, found " + std::to_string(weight.data[i]) + " at element " + std::to_string(i));
     out.model.weight = Eigen::Map<const VecX>(weight.data.data(), static_cast<Eigen::Index>(d));
     try {
         compression::check(out.model, "stored model");

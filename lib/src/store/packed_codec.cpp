@@ -13,14 +13,16 @@ double figure(const h5::File& file, const std::string& path, const char* name, b
     const double v = file.read_double_attribute(path, name);
     if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0))
         throw StoreError(file.name(), path,
-                         std::string("attribute '") + name + "': expected a finite number " + (positive ? "> 0" : ">= 0") +
-                             ", found " + std::to_string(v));
+                         std::string("attribute '") + name + "': expected a finite number " +
+                             (positive ? "> 0" : ">= 0") + ", found " + std::to_string(v));
     return v;
 }
 
 std::size_t count(const h5::File& file, const std::string& path, const char* name) {
     const std::int64_t v = file.read_int_attribute(path, name);
-    if (v < 0) throw StoreError(file.name(), path, std::string("attribute '") + name + "': expected >= 0, found " + std::to_string(v));
+    if (v < 0)
+        throw StoreError(file.name(), path,
+                         std::string("attribute '") + name + "': expected >= 0, found " + std::to_string(v));
     return static_cast<std::size_t>(v);
 }
 
@@ -34,7 +36,8 @@ void expect_rows(const h5::File& file, const std::string& path, const h5::Shape&
 
 }  // namespace
 
-void write_packed(h5::File& file, const PackedTierRecord& tier, const std::vector<std::vector<std::uint8_t>>& group_bytes) {
+void write_packed(h5::File& file, const PackedTierRecord& tier,
+                  const std::vector<std::vector<std::uint8_t>>& group_bytes) {
     file.create_group(kPacked, "packed");
     file.write_double_attribute(kPacked, "max_error_cm", tier.max_error_cm);
     file.write_int_attribute(kPacked, "bytes", static_cast<std::int64_t>(tier.bytes));
@@ -117,18 +120,20 @@ PackedTierRecord read_packed_record(const h5::File& file) {
         if (errors.shape[1] != 3)
             throw StoreError(file.name(), g + "/clip_error",
                              "expected shape (N, 3) (max, p99, rmse per clip), found " + h5::shape_text(errors.shape));
-        for (const std::string& d : {std::string("/clip"), std::string("/clip_frames"), std::string("/clip_payload_bytes"),
-                                     std::string("/clip_error")})
+        for (const std::string& d : {std::string("/clip"), std::string("/clip_frames"),
+                                     std::string("/clip_payload_bytes"), std::string("/clip_error")})
             r.stored_bytes += file.dataset_info(g + d).stored_bytes;
         for (std::size_t i = 0; i < n; ++i) {
             PackedClipRecord c;
             c.id = ids[i];
             if (frames.data[i] < 1)
-                throw StoreError(file.name(), g + "/clip_frames",
-                                 "expected >= 1, found " + std::to_string(frames.data[i]) + " at element " + std::to_string(i));
+                throw StoreError(
+                    file.name(), g + "/clip_frames",
+                    "expected >= 1, found " + std::to_string(frames.data[i]) + " at element " + std::to_string(i));
             if (payload.data[i] < 0)
-                throw StoreError(file.name(), g + "/clip_payload_bytes",
-                                 "expected >= 0, found " + std::to_string(payload.data[i]) + " at element " + std::to_string(i));
+                throw StoreError(
+                    file.name(), g + "/clip_payload_bytes",
+                    "expected >= 0, found " + std::to_string(payload.data[i]) + " at element " + std::to_string(i));
             c.frames = static_cast<std::size_t>(frames.data[i]);
             c.payload_bytes = static_cast<std::uint64_t>(payload.data[i]);
             c.max_cm = errors.data[3 * i];
@@ -136,8 +141,9 @@ PackedTierRecord read_packed_record(const h5::File& file) {
             c.rmse_cm = errors.data[3 * i + 2];
             for (double x : {c.max_cm, c.p99_cm, c.rmse_cm})
                 if (!std::isfinite(x) || x < 0.0)
-                    throw StoreError(file.name(), g + "/clip_error",
-                                     "expected finite values >= 0, found " + std::to_string(x) + " in row " + std::to_string(i));
+                    throw StoreError(
+                        file.name(), g + "/clip_error",
+                        "expected finite values >= 0, found " + std::to_string(x) + " in row " + std::to_string(i));
             r.clips.push_back(std::move(c));
         }
         t.groups.push_back(std::move(r));

@@ -17,7 +17,8 @@ inline const std::string kPackedGroupCodecV2 = "mocapdb-packed-group-2";
 
 /// Writes /packed (which must not exist) with `tier`'s figures and one group per entry; the groups'
 /// names are tier.groups[i].name.
-void write_packed(h5::File& file, const PackedTierRecord& tier, const std::vector<std::vector<std::uint8_t>>& group_bytes);
+void write_packed(h5::File& file, const PackedTierRecord& tier,
+                  const std::vector<std::vector<std::uint8_t>>& group_bytes);
 /// Reads the records (attributes and the small datasets, not the bytes). StoreError naming the
 /// offending object for wrong kinds, dtypes, shapes or values.
 PackedTierRecord read_packed_record(const h5::File& file);

@@ -39,26 +39,29 @@ int check_root(const h5::File& file) {
         throw StoreError(f, "/", "not a mocapdb database: root attribute 'format' is missing (expected \"mocapdb\")");
     const h5::AttributeInfo info = file.attribute_info("/", "format");
     if (info.dtype != "string" || !info.shape.empty())
-        throw StoreError(f, "/", "not a mocapdb database: root attribute 'format' is " + info.dtype + " " +
-                                     h5::shape_text(info.shape) + " (expected the string \"mocapdb\")");
+        throw StoreError(f, "/",
+                         "not a mocapdb database: root attribute 'format' is " + info.dtype + " " +
+                             h5::shape_text(info.shape) + " (expected the string \"mocapdb\")");
     const std::string format = file.read_string_attribute("/", "format");
     if (format != "mocapdb")
-        throw StoreError(f, "/", "not a mocapdb database: root attribute 'format' is \"" + format +
-                                     "\" (expected \"mocapdb\")");
+        throw StoreError(
+            f, "/", "not a mocapdb database: root attribute 'format' is \"" + format + "\" (expected \"mocapdb\")");
     if (!file.has_attribute("/", "format_version"))
-        throw StoreError(f, "/", "root attribute 'format_version' is missing (expected the integer " +
-                                     std::to_string(kDatabaseFormatVersion) + ")");
+        throw StoreError(f, "/",
+                         "root attribute 'format_version' is missing (expected the integer " +
+                             std::to_string(kDatabaseFormatVersion) + ")");
     const std::int64_t version = file.read_int_attribute("/", "format_version");
     if (version > kDatabaseFormatVersion)
-        throw StoreError(f, "/", "format_version is " + std::to_string(version) + ", newer than the version " +
-                                     std::to_string(kDatabaseFormatVersion) +
-                                     " this mocapdb reads (a newer mocapdb wrote it)");
+        throw StoreError(f, "/",
+                         "format_version is " + std::to_string(version) + ", newer than the version " +
+                             std::to_string(kDatabaseFormatVersion) + " this mocapdb reads (a newer mocapdb wrote it)");
     if (version < kOldestDatabaseFormatVersion)
-        throw StoreError(f, "/", "format_version is " + std::to_string(version) + " (expected " +
-                                     std::to_string(kOldestDatabaseFormatVersion) + " to " +
-                                     std::to_string(kDatabaseFormatVersion) + ")");
-    for (const auto& [path, kind] : {std::pair{kSkeletons, "skeletons"}, std::pair{kClips, "clips"},
-                                     std::pair{kSets, "sets"}}) {
+        throw StoreError(f, "/",
+                         "format_version is " + std::to_string(version) + " (expected " +
+                             std::to_string(kOldestDatabaseFormatVersion) + " to " +
+                             std::to_string(kDatabaseFormatVersion) + ")");
+    for (const auto& [path, kind] :
+         {std::pair{kSkeletons, "skeletons"}, std::pair{kClips, "clips"}, std::pair{kSets, "sets"}}) {
         if (file.type_of(path) != h5::ObjectType::Group)
             throw StoreError(f, path, std::string("missing group (expected a group of kind '") + kind + "')");
     }

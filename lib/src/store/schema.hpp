@@ -18,12 +18,12 @@ struct Extent {
 
 /// Constraints on values (an attribute's, or every element of a dataset).
 struct ValueRules {
-    std::optional<JsonValue> value;   ///< must equal
-    std::vector<JsonValue> one_of;    ///< "enum"
-    std::optional<double> min;        ///< >=
+    std::optional<JsonValue> value;       ///< must equal
+    std::vector<JsonValue> one_of;        ///< "enum"
+    std::optional<double> min;            ///< >=
     std::optional<double> exclusive_min;  ///< >
-    std::string pattern;              ///< "hex64"
-    std::string ref;                  ///< "/clips/{}": each value names an existing object
+    std::string pattern;                  ///< "hex64"
+    std::string ref;                      ///< "/clips/{}": each value names an existing object
     bool any() const { return value || !one_of.empty() || min || exclusive_min || !pattern.empty() || !ref.empty(); }
 };
 
@@ -39,15 +39,15 @@ struct ObjectSpec {
     std::string path;                   ///< pattern, e.g. "/clips/{clip}/channels"
     std::vector<std::string> segments;  ///< "clips", "{clip}", "channels"
     bool group = false;
-    std::string kind;                   ///< groups
+    std::string kind;  ///< groups
     bool required = false;
-    std::string dtype;                  ///< datasets
+    std::string dtype;  ///< datasets
     std::vector<std::string> dims;
     std::vector<Extent> shape;
     std::string units;
     std::vector<std::string> filters;
     std::vector<AttributeSpec> attributes;
-    ValueRules rules;                   ///< on every element of a dataset
+    ValueRules rules;  ///< on every element of a dataset
 };
 
 struct Schema {

@@ -112,10 +112,8 @@ void rewrite_live_objects(const std::filesystem::path& file) {
         } else {
             write_root_attributes(to);
             for (const std::string& top : {kSkeletons, kClips, kSets}) from.copy_to(to, top);
-            if (const auto t = from.external_target(kPacked))
-                to.link_external(kPacked, t->first, t->second);
-            else if (from.exists(kPacked))
-                from.copy_to(to, kPacked);
+            if (const auto t = from.external_target(kPacked)) to.link_external(kPacked, t->first, t->second);
+            else if (from.exists(kPacked)) from.copy_to(to, kPacked);
         }
         to.close();
         from.close();
@@ -193,8 +191,7 @@ ReaderLock::ReaderLock(const std::filesystem::path& index) {
     if (fd_ < 0) fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) return;
     // Blocks only while a writer removes unreferenced segments (milliseconds).
-    while (::flock(fd_, LOCK_SH) != 0 && errno == EINTR) {
-    }
+    while (::flock(fd_, LOCK_SH) != 0 && errno == EINTR) {}
 }
 
 ReaderLock::~ReaderLock() {

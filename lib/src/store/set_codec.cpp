@@ -53,7 +53,8 @@ void write_set(h5::File& file, const MotionSet& set) {
                      {"sample", "parameter"}, "parameter_unit");
     if (set.parameter_periods.size() != 0 && (set.parameter_periods.array() > 0.0).any()) {
         // Periodic parameters (format-v3.md §6); absent = every parameter linear.
-        const std::vector<double> periods(set.parameter_periods.data(), set.parameter_periods.data() + set.parameter_periods.size());
+        const std::vector<double> periods(set.parameter_periods.data(),
+                                          set.parameter_periods.data() + set.parameter_periods.size());
         file.write_array(g + "/parameter_period", periods.data(), {static_cast<std::uint64_t>(periods.size())},
                          {"parameter"}, "parameter_unit");
     }
@@ -93,8 +94,8 @@ MotionSet read_set(const h5::File& file, const std::string& name) {
         const std::int64_t b = frames.data[2 * i], e = frames.data[2 * i + 1];
         if (b < 0 || e < b)
             throw StoreError(file.name(), g + "/sample_frames",
-                             "sample " + std::to_string(i) + ": expected 0 <= begin <= end, found [" + std::to_string(b) +
-                                 ", " + std::to_string(e) + ")");
+                             "sample " + std::to_string(i) + ": expected 0 <= begin <= end, found [" +
+                                 std::to_string(b) + ", " + std::to_string(e) + ")");
         set.samples.push_back({clips[i], static_cast<std::size_t>(b), static_cast<std::size_t>(e)});
     }
     set.parameter_names = file.read_strings(g + "/parameter_name");
@@ -113,7 +114,8 @@ MotionSet read_set(const h5::File& file, const std::string& name) {
         for (std::size_t k = 0; k < periods.data.size(); ++k)
             if (periods.data[k] < 0.0)
                 throw StoreError(file.name(), g + "/parameter_period",
-                                 "parameter " + std::to_string(k) + ": expected a period >= 0 (0 = not periodic), found " +
+                                 "parameter " + std::to_string(k) +
+                                     ": expected a period >= 0 (0 = not periodic), found " +
                                      std::to_string(periods.data[k]));
         set.parameter_periods = Eigen::Map<const VecX>(periods.data.data(), static_cast<Eigen::Index>(p));
     }
@@ -122,7 +124,8 @@ MotionSet read_set(const h5::File& file, const std::string& name) {
     if (file.type_of(r) == h5::ObjectType::Group) {
         set.dropouts_checked = true;
         const std::int64_t runs = file.read_int_attribute(r, "runs");
-        if (runs < 0) throw StoreError(file.name(), r, "attribute 'runs': expected >= 0, found " + std::to_string(runs));
+        if (runs < 0)
+            throw StoreError(file.name(), r, "attribute 'runs': expected >= 0, found " + std::to_string(runs));
         if (runs > 0) {
             const auto clip = file.read_strings(r + "/clip");
             const auto joint = file.read_strings(r + "/joint");
@@ -180,12 +183,14 @@ MatX read_warps(const h5::File& file, const std::string& g, std::uint64_t n, std
     MatX out = Eigen::Map<const MatX>(warps.data.data(), static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(n));
     const auto increments = file.read_array<double>(g + "/inverse_warp_increments", 2);
     expect_shape(file, g + "/inverse_warp_increments", {n, t - 1}, why, increments.shape);
-    const Eigen::Map<const MatX> stored(increments.data.data(), static_cast<Eigen::Index>(t - 1), static_cast<Eigen::Index>(n));
+    const Eigen::Map<const MatX> stored(increments.data.data(), static_cast<Eigen::Index>(t - 1),
+                                        static_cast<Eigen::Index>(n));
     const MatX differences = out.bottomRows(out.rows() - 1) - out.topRows(out.rows() - 1);
     const double mismatch = (stored - differences).cwiseAbs().maxCoeff();
     if (!(mismatch <= 1e-9 * std::max(1.0, out.cwiseAbs().maxCoeff())))
-        throw StoreError(file.name(), g + "/inverse_warp_increments",
-                         "expected warps[:, 1:] - warps[:, :-1], found values differing by up to " + std::to_string(mismatch));
+        throw StoreError(
+            file.name(), g + "/inverse_warp_increments",
+            "expected warps[:, 1:] - warps[:, :-1], found values differing by up to " + std::to_string(mismatch));
     return out;
 }
 
@@ -242,7 +247,8 @@ AlignedTiming read_aligned_timing(const h5::File& file, const std::string& set) 
     if (info.dtype != "float64")
         throw StoreError(file.name(), g + "/tensor", "expected dtype float64, found " + info.dtype);
     if (info.shape.size() != 3)
-        throw StoreError(file.name(), g + "/tensor", "expected 3 dimensions, found shape " + h5::shape_text(info.shape));
+        throw StoreError(file.name(), g + "/tensor",
+                         "expected 3 dimensions, found shape " + h5::shape_text(info.shape));
     const std::uint64_t n = info.shape[0], t = info.shape[1], d = info.shape[2];
     AlignedTiming a;
     a.dof_count = static_cast<Eigen::Index>(d);

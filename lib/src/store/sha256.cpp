@@ -17,7 +17,8 @@ struct Sha256::Context {
 Sha256::Sha256() : context_(std::make_unique<Context>()) {
     context_->ctx = EVP_MD_CTX_new();
     if (context_->ctx == nullptr) throw std::bad_alloc();
-    if (EVP_DigestInit_ex(context_->ctx, EVP_sha256(), nullptr) != 1) throw Error("SHA-256: OpenSSL could not start a digest");
+    if (EVP_DigestInit_ex(context_->ctx, EVP_sha256(), nullptr) != 1)
+        throw Error("SHA-256: OpenSSL could not start a digest");
 }
 
 Sha256::~Sha256() = default;
@@ -26,7 +27,8 @@ Sha256& Sha256::operator=(Sha256&&) noexcept = default;
 
 void Sha256::update(std::string_view bytes) {
     if (bytes.empty()) return;
-    if (EVP_DigestUpdate(context_->ctx, bytes.data(), bytes.size()) != 1) throw Error("SHA-256: OpenSSL could not digest the data");
+    if (EVP_DigestUpdate(context_->ctx, bytes.data(), bytes.size()) != 1)
+        throw Error("SHA-256: OpenSSL could not digest the data");
 }
 
 std::string Sha256::hex_digest() {

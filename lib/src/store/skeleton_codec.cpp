@@ -66,8 +66,8 @@ Skeleton read_skeleton(const h5::File& file, const std::string& id) {
             h5::Shape expected{rows};
             if (cols != 0) expected.push_back(cols);
             throw StoreError(fname, path,
-                             "expected shape " + h5::shape_text(expected) + " (one row per joint of " + g + "/joint_name), found " +
-                                 h5::shape_text(shape));
+                             "expected shape " + h5::shape_text(expected) + " (one row per joint of " + g +
+                                 "/joint_name), found " + h5::shape_text(shape));
         }
     };
     const auto parents = file.read_array<std::int32_t>(g + "/joint_parent", 1);
@@ -103,16 +103,19 @@ Skeleton read_skeleton(const h5::File& file, const std::string& id) {
         joint.axis = Quat(axes.data[4 * j], axes.data[4 * j + 1], axes.data[4 * j + 2], axes.data[4 * j + 3]);
         const double norm = joint.axis.norm();
         if (!(std::abs(norm - 1.0) < 1e-6))
-            throw StoreError(fname, g + "/joint_axis",
-                             "joint " + std::to_string(j) + ": expected a unit quaternion, found norm " + std::to_string(norm));
+            throw StoreError(
+                fname, g + "/joint_axis",
+                "joint " + std::to_string(j) + ": expected a unit quaternion, found norm " + std::to_string(norm));
         const auto order = euler_order_from_string(orders[j]);
         if (!order)
-            throw StoreError(fname, g + "/joint_rotation_order",
-                             "joint " + std::to_string(j) + ": expected XYZ, XZY, YXZ, YZX, ZXY or ZYX, found '" + orders[j] + "'");
+            throw StoreError(
+                fname, g + "/joint_rotation_order",
+                "joint " + std::to_string(j) + ": expected XYZ, XZY, YXZ, YZX, ZXY or ZYX, found '" + orders[j] + "'");
         joint.rotation_order = *order;
         if (end_sites.data[j] > 1)
-            throw StoreError(fname, g + "/joint_end_site",
-                             "joint " + std::to_string(j) + ": expected 0 or 1, found " + std::to_string(end_sites.data[j]));
+            throw StoreError(
+                fname, g + "/joint_end_site",
+                "joint " + std::to_string(j) + ": expected 0 or 1, found " + std::to_string(end_sites.data[j]));
         joint.end_site = end_sites.data[j] == 1;
     }
     std::int32_t previous = 0;
@@ -120,22 +123,26 @@ Skeleton read_skeleton(const h5::File& file, const std::string& id) {
         const std::int32_t j = channel_joint.data[c];
         if (j < previous || j < 0 || static_cast<std::uint64_t>(j) >= n)
             throw StoreError(fname, g + "/channel_joint",
-                             "channel " + std::to_string(c) + ": expected a joint index in [" + std::to_string(previous) +
-                                 ", " + count_text(n) + ") (non-decreasing), found " + std::to_string(j));
+                             "channel " + std::to_string(c) + ": expected a joint index in [" +
+                                 std::to_string(previous) + ", " + count_text(n) + ") (non-decreasing), found " +
+                                 std::to_string(j));
         previous = j;
         const auto type = channel_type_from_string(channel_type[c]);
         if (!type)
             throw StoreError(fname, g + "/channel_type",
-                             "channel " + std::to_string(c) + ": expected Xposition, Yposition, Zposition, Xrotation, "
-                             "Yrotation or Zrotation, found '" + channel_type[c] + "'");
+                             "channel " + std::to_string(c) +
+                                 ": expected Xposition, Yposition, Zposition, Xrotation, "
+                                 "Yrotation or Zrotation, found '" +
+                                 channel_type[c] + "'");
         joints[static_cast<std::size_t>(j)].channels.push_back(*type);
     }
 
     SourceUnits units;
     units.cm_per_unit = file.read_double_attribute(g, "cm_per_unit");
     if (!(units.cm_per_unit > 0.0) || !std::isfinite(units.cm_per_unit))
-        throw StoreError(fname, g, "attribute 'cm_per_unit': expected a positive number, found " +
-                                       std::to_string(units.cm_per_unit));
+        throw StoreError(
+            fname, g,
+            "attribute 'cm_per_unit': expected a positive number, found " + std::to_string(units.cm_per_unit));
     const std::string angles = file.read_string_attribute(g, "source_angles");
     if (angles != "deg" && angles != "rad")
         throw StoreError(fname, g, "attribute 'source_angles': expected \"deg\" or \"rad\", found \"" + angles + "\"");
@@ -149,16 +156,19 @@ Skeleton read_skeleton(const h5::File& file, const std::string& id) {
         const std::string text = file.read_string_attribute(g, "position_channels");
         const auto mode = position_channels_from_string(text);
         if (!mode)
-            throw StoreError(fname, g, "attribute 'position_channels': expected \"replace_offset\" or \"add_to_offset\", found \"" +
-                                           text + "\"");
+            throw StoreError(
+                fname, g,
+                "attribute 'position_channels': expected \"replace_offset\" or \"add_to_offset\", found \"" + text +
+                    "\"");
         positions = *mode;
     }
     std::int64_t motion_root = 0;  // formats 1 and 2: joint 0
     if (file.has_attribute(g, "motion_root")) {
         motion_root = file.read_int_attribute(g, "motion_root");
         if (motion_root < 0 || static_cast<std::uint64_t>(motion_root) >= n)
-            throw StoreError(fname, g, "attribute 'motion_root': expected a joint index in [0, " + count_text(n) +
-                                           "), found " + std::to_string(motion_root));
+            throw StoreError(fname, g,
+                             "attribute 'motion_root': expected a joint index in [0, " + count_text(n) + "), found " +
+                                 std::to_string(motion_root));
     }
     try {
         return Skeleton(std::move(joints), units, Vec3(forward[0], forward[1], forward[2]), positions,

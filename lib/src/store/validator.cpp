@@ -123,7 +123,9 @@ private:
         const ObjectSpec& spec = schema_.objects[*index];
         if (spec.group != (type == ObjectType::Group) || (!spec.group && type != ObjectType::Dataset)) {
             add(path, std::string("expected a ") + (spec.group ? "group" : "dataset") + ", found " +
-                          (type == ObjectType::Group ? "a group" : type == ObjectType::Dataset ? "a dataset" : "another kind of object"));
+                          (type == ObjectType::Group     ? "a group"
+                           : type == ObjectType::Dataset ? "a dataset"
+                                                         : "another kind of object"));
             return;
         }
         matched_[*index].push_back(path);
@@ -215,12 +217,9 @@ private:
             add(path, what + ": expected one of " + allowed + ", found " + v.dump());
         }
         if (number && r.min && !(v.number >= *r.min))
-            add(path, what + ": expected >= " + json_number(*r.min).dump() +
-                          ", found " + v.dump());
+            add(path, what + ": expected >= " + json_number(*r.min).dump() + ", found " + v.dump());
         if (number && r.exclusive_min && !(v.number > *r.exclusive_min))
-            add(path, what + ": expected > " +
-                          json_number(*r.exclusive_min).dump() + ", found " +
-                          v.dump());
+            add(path, what + ": expected > " + json_number(*r.exclusive_min).dump() + ", found " + v.dump());
         if (number && !std::isfinite(v.number)) add(path, what + ": expected a finite number, found " + v.dump());
         if (r.pattern == "hex64") {
             const bool ok = v.type == JsonValue::Type::String && v.string.size() == 64 &&
@@ -234,8 +233,7 @@ private:
             bool exists = false;
             try {
                 exists = !v.string.empty() && v.string.find('/') == std::string::npos && f_.exists(target);
-            } catch (const Error&) {
-            }
+            } catch (const Error&) {}
             if (!exists) add(path, what + ": refers to " + target + ", which does not exist");
         }
     }
@@ -326,7 +324,8 @@ private:
             } else {
                 JsonValue found;
                 found.type = JsonValue::Type::Array;
-                for (const std::string& d : f_.read_strings_attribute(path, "dims")) found.array.push_back(json_string(d));
+                for (const std::string& d : f_.read_strings_attribute(path, "dims"))
+                    found.array.push_back(json_string(d));
                 if (found.dump() != dims.dump())
                     add(path, "attribute 'dims': expected " + dims.dump() + ", found " + found.dump());
             }
@@ -410,8 +409,8 @@ private:
 
 // The packed tier: records readable, each clip packed once with its stored frame count, and each
 // group's bytes parse with the clip count, frame counts and rate the records give.
-void check_packed(const std::filesystem::path& file, const Database& db, const std::map<std::string, ClipRecord>& records,
-                  Validator& v) {
+void check_packed(const std::filesystem::path& file, const Database& db,
+                  const std::map<std::string, ClipRecord>& records, Validator& v) {
     std::optional<PackedTierRecord> tier;
     try {
         tier = db.packed();
@@ -423,7 +422,8 @@ void check_packed(const std::filesystem::path& file, const Database& db, const s
     auto check_dropped = [&](const std::map<std::string, std::string>& packed_clips) {
         for (const auto& [id, r] : records)
             if (!r.lossless && packed_clips.count(id) == 0)
-                v.add(store::clip_path(id), "the clip's lossless channels were dropped but it is not in /packed: its motion is lost");
+                v.add(store::clip_path(id),
+                      "the clip's lossless channels were dropped but it is not in /packed: its motion is lost");
     };
     if (!tier) {
         check_dropped({});
@@ -438,7 +438,8 @@ void check_packed(const std::filesystem::path& file, const Database& db, const s
         for (const PackedClipRecord& c : g.clips) {
             group_frames += c.frames;
             const auto [it, fresh] = seen.emplace(c.id, gpath);
-            if (!fresh) v.add(gpath + "/clip", "clip '" + c.id + "' is packed in " + it->second + " too (expected once)");
+            if (!fresh)
+                v.add(gpath + "/clip", "clip '" + c.id + "' is packed in " + it->second + " too (expected once)");
             const auto r = records.find(c.id);
             if (r != records.end() && r->second.frames != c.frames)
                 v.add(gpath + "/clip_frames", "clip '" + c.id + "': expected " + std::to_string(r->second.frames) +
@@ -447,8 +448,8 @@ void check_packed(const std::filesystem::path& file, const Database& db, const s
         clips += g.clips.size();
         frames += group_frames;
         if (group_frames != g.frames)
-            v.add(gpath, "attribute 'frames': expected " + std::to_string(group_frames) + " (the sum of clip_frames), found " +
-                             std::to_string(g.frames));
+            v.add(gpath, "attribute 'frames': expected " + std::to_string(group_frames) +
+                             " (the sum of clip_frames), found " + std::to_string(g.frames));
         const std::string bpath = gpath + "/bytes";
         try {
             const packing::GroupDecoder decoder(store::read_packed_bytes(f, g.name));
@@ -475,12 +476,14 @@ void check_packed(const std::filesystem::path& file, const Database& db, const s
     std::uint64_t bytes = 0;
     for (const PackedGroupRecord& g : tier->groups) bytes += g.bytes;
     if (bytes != tier->bytes)
-        v.add(store::kPacked, "attribute 'bytes': expected " + std::to_string(bytes) + " (the sum of the groups' bytes), found " +
-                                  std::to_string(tier->bytes));
+        v.add(store::kPacked, "attribute 'bytes': expected " + std::to_string(bytes) +
+                                  " (the sum of the groups' bytes), found " + std::to_string(tier->bytes));
     if (clips != tier->clips)
-        v.add(store::kPacked, "attribute 'clips': expected " + std::to_string(clips) + ", found " + std::to_string(tier->clips));
+        v.add(store::kPacked,
+              "attribute 'clips': expected " + std::to_string(clips) + ", found " + std::to_string(tier->clips));
     if (frames != tier->frames)
-        v.add(store::kPacked, "attribute 'frames': expected " + std::to_string(frames) + ", found " + std::to_string(tier->frames));
+        v.add(store::kPacked,
+              "attribute 'frames': expected " + std::to_string(frames) + ", found " + std::to_string(tier->frames));
 }
 
 // Content rules beyond the mirror, through the same loaders the library uses.
@@ -503,7 +506,8 @@ void check_content(const std::filesystem::path& file, Validator& v) {
         const std::string path = store::clip_path(id);
         try {
             const auto [it, fresh] = sha.emplace(records.at(id).source.sha256, id);
-            if (!fresh) v.add(path, "attribute 'source_sha256' repeats clip " + it->second + " (expected unique sources)");
+            if (!fresh)
+                v.add(path, "attribute 'source_sha256' repeats clip " + it->second + " (expected unique sources)");
             db.load_clip(id);
         } catch (const StoreError& e) {
             v.add(e.object_path().empty() ? path : e.object_path(), e.message());
@@ -533,9 +537,10 @@ void check_content(const std::filesystem::path& file, Validator& v) {
                 if (skeleton.empty()) skeleton = it->second.skeleton;
                 if (it->second.skeleton != skeleton &&
                     !db.load_skeleton(it->second.skeleton)->same_structure(*db.load_skeleton(skeleton)))
-                    v.add(path + "/sample_clip", "sample " + std::to_string(i) + ": clip '" + s.clip + "' has skeleton '" +
-                                                     it->second.skeleton + "', whose structure differs from sample 0's '" +
-                                                     skeleton + "' (a set shares one skeleton structure)");
+                    v.add(path + "/sample_clip", "sample " + std::to_string(i) + ": clip '" + s.clip +
+                                                     "' has skeleton '" + it->second.skeleton +
+                                                     "', whose structure differs from sample 0's '" + skeleton +
+                                                     "' (a set shares one skeleton structure)");
             }
             // The model's shapes against the aligned tensor (D, T, N; 1 <= R <= the dimension), its
             // values, and that it has an aligned tensor at all.
@@ -584,9 +589,10 @@ const std::string& builtin_schema_json(int format_version) {
     }();
     const auto it = texts.find(format_version);
     if (it == texts.end())
-        throw InvalidArgument("builtin_schema_json: no schema mirror for format version " + std::to_string(format_version) +
-                              " (this mocapdb reads versions " + std::to_string(store::kOldestDatabaseFormatVersion) +
-                              " to " + std::to_string(kDatabaseFormatVersion) + ")");
+        throw InvalidArgument("builtin_schema_json: no schema mirror for format version " +
+                              std::to_string(format_version) + " (this mocapdb reads versions " +
+                              std::to_string(store::kOldestDatabaseFormatVersion) + " to " +
+                              std::to_string(kDatabaseFormatVersion) + ")");
     return it->second;
 }
 
@@ -613,19 +619,21 @@ ValidationReport validate_database(const std::filesystem::path& file, const Vali
         for (const std::string& path : store::top_level_objects(f)) {
             const auto target = f.external_target(path);
             if (!target) {
-                report.violations.push_back({path, "expected an external link into a segment (format 4), found an object "
-                                                   "stored in the index"});
+                report.violations.push_back({path,
+                                             "expected an external link into a segment (format 4), found an object "
+                                             "stored in the index"});
                 continue;
             }
             const std::filesystem::path segment = store::segment_file(file, target->first);
             if (!is_hdf5_file(segment))
-                report.violations.push_back({path, "links to segment '" + target->first + "', which " +
-                                                       (std::filesystem::exists(segment, ec) ? "is not an HDF5 file"
-                                                                                             : "is missing") +
-                                                       " (a database is its file and the folder " +
-                                                       store::segment_dir(file.filename()).string() + " beside it)"});
+                report.violations.push_back(
+                    {path, "links to segment '" + target->first + "', which " +
+                               (std::filesystem::exists(segment, ec) ? "is not an HDF5 file" : "is missing") +
+                               " (a database is its file and the folder " +
+                               store::segment_dir(file.filename()).string() + " beside it)"});
             else if (target->second != path)
-                report.violations.push_back({path, "links to " + target->second + " in its segment (expected the same path)"});
+                report.violations.push_back(
+                    {path, "links to " + target->second + " in its segment (expected the same path)"});
         }
         if (!report.ok()) return report;
     }

@@ -34,7 +34,8 @@ WriterLock::WriterLock(const std::filesystem::path& target, double wait_seconds)
         if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) {
             // The holder before us may have removed the file (remove_file): then the lock is on an
             // inode nobody else will open, and the name is locked afresh.
-            struct stat held {}, named {};
+            struct stat held {
+            }, named{};
             if (::fstat(fd_, &held) == 0 && ::stat(path.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
                 held.st_ino == named.st_ino)
                 return;

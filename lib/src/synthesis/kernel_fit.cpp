@@ -158,14 +158,16 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
         if (!(p >= 0.0 && p <= 2.0)) throw InvalidArgument(std::string(where) + ": grid exponents must be in [0, 2]");
     if (!(options.max_range_factor > 0.0) || !(options.max_sill_factor > 0.0) ||
         !(options.gaussian_nugget_fraction >= 0.0 && options.gaussian_nugget_fraction < 1.0))
-        throw InvalidArgument(std::string(where) + ": need max_range_factor > 0, max_sill_factor > 0 and "
+        throw InvalidArgument(std::string(where) +
+                              ": need max_range_factor > 0, max_sill_factor > 0 and "
                               "gaussian_nugget_fraction in [0, 1)");
     const bool shape_search = options.shape_selection == SynthesisOptions::ShapeSelection::LeaveOneOut;
     if (shape_search) {
         if (options.range_fractions.empty() || options.nugget_shares.empty())
             throw InvalidArgument(std::string(where) + ": the shape search needs range fractions and nugget shares");
         for (const double f : options.range_fractions)
-            if (!(f > 0.0 && f <= 1.0)) throw InvalidArgument(std::string(where) + ": range fractions must be in (0, 1]");
+            if (!(f > 0.0 && f <= 1.0))
+                throw InvalidArgument(std::string(where) + ": range fractions must be in (0, 1]");
         for (const double a : options.nugget_shares)
             if (!(a >= 0.0 && a < 1.0)) throw InvalidArgument(std::string(where) + ": nugget shares must be in [0, 1)");
     }
@@ -210,7 +212,8 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
     const auto fit_one = [&](double p) {
         kriging::VariogramFitOptions f = fo;
         if (p == 2.0) f.min_nugget = std::max(f.min_nugget, options.gaussian_nugget_fraction * residual_variance);
-        return kriging::fit_variogram(ev, p == 0.0 ? kriging::VariogramFamily::Spherical : kriging::VariogramFamily::Stable,
+        return kriging::fit_variogram(ev,
+                                      p == 0.0 ? kriging::VariogramFamily::Spherical : kriging::VariogramFamily::Stable,
                                       p == 0.0 ? 1.0 : p, f);
     };
     // The range bound of the fit: the largest lag (mean distance of the last non-empty bin) times the factor.
@@ -234,8 +237,8 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
     const std::vector<double> exponents =
         options.exponent ? std::vector<double>{*options.exponent} : options.exponent_grid;
     // Per exponent: the smallest error of the candidates tried with it.
-    Eigen::VectorXd mse = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(exponents.size()),
-                                                    std::numeric_limits<double>::infinity());
+    Eigen::VectorXd mse =
+        Eigen::VectorXd::Constant(static_cast<Eigen::Index>(exponents.size()), std::numeric_limits<double>::infinity());
     double best = std::numeric_limits<double>::infinity();
     std::size_t best_k = 0;
     bool grid_chosen = false;  // the best candidate is a grid shape (not a least-squares fit)
@@ -325,8 +328,10 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
     return out;
 }
 
-kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
-                                             const kriging::VariogramModel& variogram, const SynthesisOptions& options) {
+kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc,
+                                             const Eigen::Ref<const MatX>& sample_values,
+                                             const kriging::VariogramModel& variogram,
+                                             const SynthesisOptions& options) {
     const kriging::TrendBasis basis =
         kriging::TrendBasis::build(xc, options.kriging.trend, options.kriging.trend_rank_tolerance);
     const MatX residuals = kriging::fit_trend_ols(basis, sample_values).residuals;
@@ -360,7 +365,8 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     if (set.parameters.rows() != n)
         throw InvalidArgument(std::string(where) + ": the set '" + set.name + "' has " + idx(set.parameters.rows()) +
                               " samples but the aligned tensor " + idx(n));
-    if (n < 2) throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " + idx(n));
+    if (n < 2)
+        throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " + idx(n));
     kriging::ControlScaling scaling;
     if (options.scaling) {
         options.scaling->validate(set.parameters.cols());

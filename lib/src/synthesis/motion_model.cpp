@@ -16,9 +16,10 @@ std::uint64_t checked_key(const compression::SetModel& model, const AlignedTimin
     compression::check(model, "synthesis model");
     const tensor::Dims3 dims = model.tucker.dims();
     if (dims[0] != aligned.dofs() || dims[1] != aligned.frames() || dims[2] != aligned.samples()) {
-        throw InvalidArgument("synthesis model: the model is " + idx(dims[0]) + "x" + idx(dims[1]) + "x" + idx(dims[2]) +
-                              " but the aligned tensor " + idx(aligned.dofs()) + "x" + idx(aligned.frames()) + "x" +
-                              idx(aligned.samples()) + " (dofs x frames x samples): recompress the set");
+        throw InvalidArgument("synthesis model: the model is " + idx(dims[0]) + "x" + idx(dims[1]) + "x" +
+                              idx(dims[2]) + " but the aligned tensor " + idx(aligned.dofs()) + "x" +
+                              idx(aligned.frames()) + "x" + idx(aligned.samples()) +
+                              " (dofs x frames x samples): recompress the set");
     }
     return kernel_key(model, set, options);
 }
@@ -31,8 +32,9 @@ MotionModel::MotionModel(compression::SetModel model, const AlignedSet& aligned,
 
 MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& aligned, const MotionSet& set,
                          std::shared_ptr<const Skeleton> skeleton, double frame_rate, const SynthesisOptions& options)
-    : SynthesisModel(aligned, set, std::move(skeleton), frame_rate, [&model] { return core_slice_values(model); },
-                     checked_key(model, aligned, set, options), options, "synthesis model"),
+    : SynthesisModel(
+          aligned, set, std::move(skeleton), frame_rate, [&model] { return core_slice_values(model); },
+          checked_key(model, aligned, set, options), options, "synthesis model"),
       model_(std::move(model)),
       u_sample_(model_.tucker.U[2]),
       inv_weight_(model_.weight.cwiseInverse()) {
@@ -40,10 +42,11 @@ MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& align
     level_ranks_.push_back(full);
     for (const tensor::Ranks& lod : options.levels) {
         for (int m = 0; m < 3; ++m) {
-            if (lod[static_cast<std::size_t>(m)] < 1 || lod[static_cast<std::size_t>(m)] > full[static_cast<std::size_t>(m)]) {
-                throw InvalidArgument("synthesis model: level-of-detail ranks " + idx(lod[0]) + "x" + idx(lod[1]) + "x" +
-                                      idx(lod[2]) + " must lie within 1 and the model's ranks " + idx(full[0]) + "x" +
-                                      idx(full[1]) + "x" + idx(full[2]));
+            if (lod[static_cast<std::size_t>(m)] < 1 ||
+                lod[static_cast<std::size_t>(m)] > full[static_cast<std::size_t>(m)]) {
+                throw InvalidArgument("synthesis model: level-of-detail ranks " + idx(lod[0]) + "x" + idx(lod[1]) +
+                                      "x" + idx(lod[2]) + " must lie within 1 and the model's ranks " + idx(full[0]) +
+                                      "x" + idx(full[1]) + "x" + idx(full[2]));
             }
         }
         level_ranks_.push_back(lod);
@@ -55,7 +58,8 @@ MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& align
 
 tensor::Ranks MotionModel::level_ranks(Eigen::Index level) const {
     if (level < 0 || level >= levels())
-        throw InvalidArgument("MotionModel::level_ranks: level " + idx(level) + " outside [0, " + idx(levels() - 1) + "]");
+        throw InvalidArgument("MotionModel::level_ranks: level " + idx(level) + " outside [0, " + idx(levels() - 1) +
+                              "]");
     return level_ranks_[static_cast<std::size_t>(level)];
 }
 

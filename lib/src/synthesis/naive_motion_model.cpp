@@ -26,11 +26,12 @@ MatX weighted_sample_rows(const AlignedSet& aligned, const VecX& weight) {
 NaiveMotionModel::NaiveMotionModel(const AlignedSet& aligned, const MotionSet& set,
                                    std::shared_ptr<const Skeleton> skeleton, double frame_rate, const VecX& weight,
                                    const SynthesisOptions& options)
-    : SynthesisModel(checked_timing(aligned), set, std::move(skeleton), frame_rate,
-                     [&aligned, &weight] { return weighted_sample_rows(aligned, weight); }, 0, options,
-                     "naive synthesis model") {
+    : SynthesisModel(
+          checked_timing(aligned), set, std::move(skeleton), frame_rate,
+          [&aligned, &weight] { return weighted_sample_rows(aligned, weight); }, 0, options, "naive synthesis model") {
     if (!options.levels.empty())
-        throw InvalidArgument("naive synthesis model: the naive model has no levels of detail (options.levels must be empty)");
+        throw InvalidArgument(
+            "naive synthesis model: the naive model has no levels of detail (options.levels must be empty)");
     const Eigen::Index d = aligned.dofs(), t_count = aligned.frames(), n = aligned.samples();
     frames_by_sample_.resize(d, t_count * n);
     for (Eigen::Index t = 0; t < t_count; ++t)
@@ -77,8 +78,8 @@ void NaiveMotionModel::poses_from_coefficients(const Eigen::Ref<const MatX>& coe
     frame_pair(t, level, t0, t1, a, "NaiveMotionModel::poses");
     const Eigen::Index n = samples();
     if (coefficients.rows() != n || out.rows() != dofs() || out.cols() != coefficients.cols()) {
-        throw InvalidArgument("NaiveMotionModel::poses: coefficients must be N = " + idx(n) + " by Q and out D = " +
-                              idx(dofs()) + " by Q");
+        throw InvalidArgument("NaiveMotionModel::poses: coefficients must be N = " + idx(n) +
+                              " by Q and out D = " + idx(dofs()) + " by Q");
     }
     out.noalias() = frames_by_sample_.middleCols(t0 * n, n) * coefficients;
     if (a != 0.0) {

@@ -37,8 +37,9 @@ AlignedTiming SynthesisModel::checked_timing(const AlignedSet& aligned) {
     return timing_of(aligned);
 }
 
-SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& set, std::shared_ptr<const Skeleton> skeleton,
-                               double frame_rate, const std::function<MatX()>& sample_values, std::uint64_t key,
+SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& set,
+                               std::shared_ptr<const Skeleton> skeleton, double frame_rate,
+                               const std::function<MatX()>& sample_values, std::uint64_t key,
                                const SynthesisOptions& options, const char* where) {
     const auto start = std::chrono::steady_clock::now();
     validate(aligned);
@@ -48,7 +49,8 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
         throw InvalidArgument(std::string(where) + ": the set '" + set.name + "' has " + idx(set.parameters.rows()) +
                               " samples but the aligned tensor " + idx(n));
     }
-    if (n < 2) throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " + idx(n));
+    if (n < 2)
+        throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " + idx(n));
     if (!skeleton) throw InvalidArgument(std::string(where) + ": no skeleton");
     if (static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count()) != aligned.dofs()) {
         throw InvalidArgument(std::string(where) + ": the skeleton's pose vector has " +
@@ -136,8 +138,7 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     }
     min_increment_ = options.min_increment_fraction * inc.mean();
     max_increment_ = options.max_increment_factor * inc.maxCoeff();
-    report_.precompute_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report_.precompute_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::size_t SynthesisModel::memory_bytes() const {
@@ -149,8 +150,8 @@ std::size_t SynthesisModel::memory_bytes() const {
     const std::size_t kernel = 2 * n * n + 2 * n * (n + k);
     const std::size_t increments = n * static_cast<std::size_t>(frames_ - 1);
     const bool separate = timing_kernel_ == SynthesisOptions::TimingKernel::Separate;
-    return sizeof(double) * (static_cast<std::size_t>(coords_.size()) + kernel + increments +
-                             (separate ? kernel + increments : 0));
+    return sizeof(double) *
+           (static_cast<std::size_t>(coords_.size()) + kernel + increments + (separate ? kernel + increments : 0));
 }
 
 void SynthesisModel::normalize(const Eigen::Ref<const VecX>& c, VecX& out, const char* where) const {
@@ -202,16 +203,18 @@ VecX SynthesisModel::pose(const Eigen::Ref<const VecX>& c, double t, Eigen::Inde
 void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref<MatX> out, BatchWorkspace& ws,
                            Eigen::Index level) const {
     if (C.cols() != parameters() || !C.allFinite()) {
-        throw InvalidArgument("SynthesisModel::poses: C must be Q by P = " + idx(parameters()) +
-                              " and finite, got " + idx(C.rows()) + "x" + idx(C.cols()));
+        throw InvalidArgument("SynthesisModel::poses: C must be Q by P = " + idx(parameters()) + " and finite, got " +
+                              idx(C.rows()) + "x" + idx(C.cols()));
     }
     const Eigen::Index q = C.rows();
     if (scaling_.has_periodic_axis()) {
         ws.c_normalized = scaling_.apply(C);
     } else {
-        if (ws.c_normalized.rows() != q || ws.c_normalized.cols() != parameters()) ws.c_normalized.resize(q, parameters());
-        ws.c_normalized = ((C.rowwise() - scaling_.offset.transpose()).array().rowwise() /
-                           scaling_.scale.transpose().array()).matrix();
+        if (ws.c_normalized.rows() != q || ws.c_normalized.cols() != parameters())
+            ws.c_normalized.resize(q, parameters());
+        ws.c_normalized =
+            ((C.rowwise() - scaling_.offset.transpose()).array().rowwise() / scaling_.scale.transpose().array())
+                .matrix();
     }
     if (!folded_.empty()) {
         if (ws.coefficients.rows() != coefficient_size() || ws.coefficients.cols() != q)

@@ -38,10 +38,12 @@ TuckerModel hooi(const Tensor3& a, const TuckerModel& start, const HooiOptions& 
     }
     check_ranks(dims, start.ranks, "hooi");
     if (!(options.tolerance >= 0.0) || !std::isfinite(options.tolerance)) {
-        throw InvalidArgument("hooi: options.tolerance must be finite and >= 0, got " + std::to_string(options.tolerance));
+        throw InvalidArgument("hooi: options.tolerance must be finite and >= 0, got " +
+                              std::to_string(options.tolerance));
     }
     if (options.max_iterations < 0) {
-        throw InvalidArgument("hooi: options.max_iterations must be >= 0, got " + std::to_string(options.max_iterations));
+        throw InvalidArgument("hooi: options.max_iterations must be >= 0, got " +
+                              std::to_string(options.max_iterations));
     }
     const Ranks& r = start.ranks;
     const double norm2 = squared_norm(a);

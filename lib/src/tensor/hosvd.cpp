@@ -445,7 +445,8 @@ MatX sample_mode_basis(const Tensor3& b, Eigen::Index rank, VecX& out_eigenvalue
 // ---------------------------------------------------------------------------------------------------
 GramAccumulator::GramAccumulator(Eigen::Index dofs, Eigen::Index frames) : dofs_(dofs), frames_(frames) {
     if (dofs < 1 || frames < 1) {
-        throw InvalidArgument("GramAccumulator: dofs and frames must be >= 1, got " + idx(dofs) + " and " + idx(frames));
+        throw InvalidArgument("GramAccumulator: dofs and frames must be >= 1, got " + idx(dofs) + " and " +
+                              idx(frames));
     }
     dof_gram_ = MatX::Zero(dofs, dofs);
     time_gram_ = MatX::Zero(frames, frames);
@@ -640,8 +641,8 @@ HosvdBases hosvd_bases(const Tensor3& a, const HosvdOptions& options) {
         const auto project = [&](MatX& out) { out = projected_dof_time(a, b.U[0].leftCols(k0), b.U[1].leftCols(k1)); };
         MatX y;
         project(y);
-        b.U[2] = right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y, &coordinates, &reduced,
-                                           project);
+        b.U[2] =
+            right_basis_from_row_gram(y, 2.0 * budget, b.spectra.squared_sv[2], &y, &coordinates, &reduced, project);
     }
     b.projected_dofs = k0;
     b.projected_frames = k1;
@@ -715,9 +716,10 @@ TuckerModel core_block_model(const HosvdBases& bases, const Tensor3& full_core, 
     const Dims3& dims = bases.spectra.dims;
     check_ranks(dims, ranks, "hosvd_from_core");
     for (std::size_t m = 0; m < 3; ++m) {
-        if (full_core.dimension(static_cast<int>(m)) < ranks[m] || bases.U[m].cols() != full_core.dimension(static_cast<int>(m))) {
-            throw InvalidArgument(std::string("hosvd_from_core: the ") + mode_name(static_cast<int>(m)) +
-                                  " rank " + idx(ranks[m]) + " needs a full core of >= " + idx(ranks[m]) +
+        if (full_core.dimension(static_cast<int>(m)) < ranks[m] ||
+            bases.U[m].cols() != full_core.dimension(static_cast<int>(m))) {
+            throw InvalidArgument(std::string("hosvd_from_core: the ") + mode_name(static_cast<int>(m)) + " rank " +
+                                  idx(ranks[m]) + " needs a full core of >= " + idx(ranks[m]) +
                                   " matching the basis' " + idx(bases.U[m].cols()) + " columns, got " +
                                   idx(full_core.dimension(static_cast<int>(m))));
         }
@@ -783,7 +785,8 @@ TuckerModel st_hosvd(const Tensor3& a, const Ranks& ranks, const std::array<int,
     for (const int n : order) {
         VecX ev;
         const auto un = static_cast<std::size_t>(n);
-        m.U[un] = n == 2 ? sample_mode_basis(b, ranks[un], ev) : MatX(gram_eigenbasis(mode_gram(b, n), ev).leftCols(ranks[un]));
+        m.U[un] = n == 2 ? sample_mode_basis(b, ranks[un], ev)
+                         : MatX(gram_eigenbasis(mode_gram(b, n), ev).leftCols(ranks[un]));
         discarded += ev.tail(ev.size() - ranks[un]).sum();
         b = mode_product_transposed(b, m.U[un], n);
     }

@@ -18,14 +18,16 @@ using Index = Eigen::Index;
 // tail[r] = sum_{i >= r} s(i), r = 0..size.
 std::vector<double> tail_sums(const VecX& s) {
     std::vector<double> t(static_cast<std::size_t>(s.size()) + 1, 0.0);
-    for (Index i = s.size() - 1; i >= 0; --i) t[static_cast<std::size_t>(i)] = t[static_cast<std::size_t>(i) + 1] + s(i);
+    for (Index i = s.size() - 1; i >= 0; --i)
+        t[static_cast<std::size_t>(i)] = t[static_cast<std::size_t>(i) + 1] + s(i);
     return t;
 }
 
 void check_spectra(const ModeSpectra& sp, const char* where) {
     for (std::size_t n = 0; n < 3; ++n) {
         if (sp.dims[n] < 1 || sp.squared_sv[n].size() != sp.dims[n]) {
-            throw InvalidArgument(std::string(where) + ": the spectra must hold dims[n] >= 1 values for every mode (mode " +
+            throw InvalidArgument(std::string(where) +
+                                  ": the spectra must hold dims[n] >= 1 values for every mode (mode " +
                                   std::to_string(n) + " has dims " + std::to_string(sp.dims[n]) + " and " +
                                   std::to_string(sp.squared_sv[n].size()) + " values)");
         }
@@ -87,13 +89,15 @@ Ranks ranks_for_error_bound(const ModeSpectra& spectra, double target_relative) 
             Index lo = 1, hi = d[2] + 1;
             while (lo < hi) {
                 const Index mid = (lo + hi) / 2;
-                if (t2[static_cast<std::size_t>(mid)] <= rem) hi = mid; else lo = mid + 1;
+                if (t2[static_cast<std::size_t>(mid)] <= rem) hi = mid;
+                else lo = mid + 1;
             }
             Index r3 = std::max({lo, ceil_div(r1, r2), ceil_div(r2, r1)});
             if (r3 > cap[2] || r3 > r1 * r2) continue;
             const Ranks r{r1, r2, r3};
             const Index p = tucker_parameter_count(d, r);
-            const double b = t0[static_cast<std::size_t>(r1)] + t1[static_cast<std::size_t>(r2)] + t2[static_cast<std::size_t>(r3)];
+            const double b =
+                t0[static_cast<std::size_t>(r1)] + t1[static_cast<std::size_t>(r2)] + t2[static_cast<std::size_t>(r3)];
             if (p < best_params || (p == best_params && b < best_bound)) {
                 best = r;
                 best_params = p;
@@ -129,7 +133,8 @@ Ranks ranks_for_compression(const ModeSpectra& spectra, double target_ratio) {
             const Ranks r{r1, r2, r3};
             const Index p = tucker_parameter_count(d, r);
             if (static_cast<double>(p) > max_params) continue;
-            const double b = t0[static_cast<std::size_t>(r1)] + t1[static_cast<std::size_t>(r2)] + t2[static_cast<std::size_t>(r3)];
+            const double b =
+                t0[static_cast<std::size_t>(r1)] + t1[static_cast<std::size_t>(r2)] + t2[static_cast<std::size_t>(r3)];
             if (b < best_bound || (b == best_bound && p < best_params)) {
                 best = r;
                 best_bound = b;
@@ -177,7 +182,9 @@ RankSelection select_ranks_for_error(const Tensor3& a, double target_relative, b
         // has squared error norm2 - P(i, j, k).
         const Index n0 = rb[0] + 1, n1 = rb[1] + 1, n2 = rb[2] + 1;
         std::vector<double> p(static_cast<std::size_t>(n0 * n1 * n2), 0.0);
-        auto at = [&](Index i, Index j, Index k) -> double& { return p[static_cast<std::size_t>(i + n0 * (j + n1 * k))]; };
+        auto at = [&](Index i, Index j, Index k) -> double& {
+            return p[static_cast<std::size_t>(i + n0 * (j + n1 * k))];
+        };
         for (Index k = 1; k < n2; ++k) {
             for (Index j = 1; j < n1; ++j) {
                 for (Index i = 1; i < n0; ++i) {

@@ -27,7 +27,9 @@ TuckerModel streamed_tucker(const SliceSource& source, const Dims3& dims, const 
     MatX m(r12, n);
     for (Eigen::Index i = 0; i < n; ++i) {
         source(i, slice);
-        if (!slice.allFinite()) throw InvalidArgument("streamed_tucker: slice " + std::to_string(i) + " changed between passes to non-finite values");
+        if (!slice.allFinite())
+            throw InvalidArgument("streamed_tucker: slice " + std::to_string(i) +
+                                  " changed between passes to non-finite values");
         const MatX c = u_dof.transpose() * slice * u_time;
         m.col(i) = Eigen::Map<const VecX>(c.data(), r12);
     }
@@ -68,8 +70,8 @@ TuckerModel streamed_tucker(const SliceSource& source, const Dims3& dims, const 
     const double core2 = core.squaredNorm();
     model.data_norm = std::sqrt(norm2);
     model.fit = norm2 > 0.0 ? 1.0 - std::sqrt(std::max(0.0, norm2 - core2) / norm2) : 1.0;
-    const double discarded = dof_ev.tail(d - ranks[0]).sum() + time_ev.tail(t - ranks[1]).sum() +
-                             std::max(0.0, projected_energy - core2);
+    const double discarded =
+        dof_ev.tail(d - ranks[0]).sum() + time_ev.tail(t - ranks[1]).sum() + std::max(0.0, projected_energy - core2);
     model.error_bound = std::sqrt(discarded);
     model.fit_history = {model.fit};
     return model;

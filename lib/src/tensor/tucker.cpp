@@ -167,8 +167,8 @@ VecX TuckerModel::pose(const Eigen::Ref<const Eigen::RowVectorXd>& u_time,
     check_lod(ranks, lod, "TuckerModel::pose");
     if (u_time.size() != ranks[1] || u_sample.size() != ranks[2]) {
         throw InvalidArgument("TuckerModel::pose: u_time must have R2 = " + idx(ranks[1]) +
-                              " entries and u_sample R3 = " + idx(ranks[2]) + ", got " + idx(u_time.size()) +
-                              " and " + idx(u_sample.size()));
+                              " entries and u_sample R3 = " + idx(ranks[2]) + ", got " + idx(u_time.size()) + " and " +
+                              idx(u_sample.size()));
     }
     const VecX g = contract_core(core, lod, u_time, u_sample);
     VecX q(U[0].rows());
@@ -193,8 +193,8 @@ double absolute_error(const Tensor3& a, const TuckerModel& model) {
     const Dims3 d = model.dims();
     if (a.dimension(0) != d[0] || a.dimension(1) != d[1] || a.dimension(2) != d[2]) {
         throw InvalidArgument("absolute_error: the tensor must be " + idx(d[0]) + " by " + idx(d[1]) + " by " +
-                              idx(d[2]) + " like the model, got " + idx(a.dimension(0)) + " by " +
-                              idx(a.dimension(1)) + " by " + idx(a.dimension(2)));
+                              idx(d[2]) + " like the model, got " + idx(a.dimension(0)) + " by " + idx(a.dimension(1)) +
+                              " by " + idx(a.dimension(2)));
     }
     const Tensor3 r = model.reconstruct();
     if (a.size() == 0) return 0.0;
@@ -223,8 +223,8 @@ PoseEvaluator::PoseEvaluator(const TuckerModel& model, const Ranks& lod, Order o
     }
     order_ = order;
     // The full ranks use the core as it is (no copy of the block: a model's core can be tens of MB).
-    const bool full = lod[0] == model.core.dimension(0) && lod[1] == model.core.dimension(1) &&
-                      lod[2] == model.core.dimension(2);
+    const bool full =
+        lod[0] == model.core.dimension(0) && lod[1] == model.core.dimension(1) && lod[2] == model.core.dimension(2);
     const Tensor3 block = full ? Tensor3() : core_block(model.core, lod);
     const double* core = full ? model.core.data() : block.data();
     if (order_ == Order::DofPrecomputed) {
@@ -241,9 +241,9 @@ void PoseEvaluator::evaluate(const Eigen::Ref<const Eigen::RowVectorXd>& u_time,
                              Workspace& ws) const {
     const Eigen::Index r1 = lod_[0], r2 = lod_[1], r3 = lod_[2];
     if (u_time.size() < r2 || u_sample.size() < r3 || out_pose.size() != dofs_) {
-        throw InvalidArgument("PoseEvaluator::evaluate: u_time needs >= " + idx(r2) + " entries, u_sample >= " +
-                              idx(r3) + ", out_pose exactly " + idx(dofs_) + "; got " + idx(u_time.size()) + ", " +
-                              idx(u_sample.size()) + ", " + idx(out_pose.size()));
+        throw InvalidArgument("PoseEvaluator::evaluate: u_time needs >= " + idx(r2) +
+                              " entries, u_sample >= " + idx(r3) + ", out_pose exactly " + idx(dofs_) + "; got " +
+                              idx(u_time.size()) + ", " + idx(u_sample.size()) + ", " + idx(out_pose.size()));
     }
     if (order_ == Order::DofPrecomputed) {
         if (ws.buffer.size() < r2 * r3) ws.buffer.resize(r2 * r3);

@@ -44,8 +44,9 @@ MatX unfold(const Tensor3& a, int mode) {
 Tensor3 fold(const Eigen::Ref<const MatX>& m, int mode, const Dims3& dims) {
     check_mode(mode, "fold");
     for (int n = 0; n < 3; ++n) {
-        if (dims[n] < 0) throw InvalidArgument("fold: dims must be >= 0, got " + std::to_string(dims[n]) +
-                                               " for mode " + std::to_string(n));
+        if (dims[n] < 0)
+            throw InvalidArgument("fold: dims must be >= 0, got " + std::to_string(dims[n]) + " for mode " +
+                                  std::to_string(n));
     }
     const Eigen::Index i0 = dims[0], i1 = dims[1], i2 = dims[2];
     const Eigen::Index rows = dims[mode];

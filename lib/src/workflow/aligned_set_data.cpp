@@ -10,7 +10,8 @@ namespace mocapdb::workflow {
 namespace {
 
 [[noreturn]] void not_aligned(const Database& db, const std::string& name) {
-    throw Refused<InvalidArgument>(Remedy::AlignFirst, "set '" + name + "' in " + db.path().string() + " is not aligned");
+    throw Refused<InvalidArgument>(Remedy::AlignFirst,
+                                   "set '" + name + "' in " + db.path().string() + " is not aligned");
 }
 
 // The skeleton and frame rate of the set's first clip and the source size; every sample's clip must exist.

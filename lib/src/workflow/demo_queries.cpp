@@ -104,10 +104,8 @@ DemoMeasurement choose_measurement(const MotionSet& set, const Skeleton& skeleto
     const bool reach_names = std::all_of(names.begin(), names.end(), [](const std::string& n) {
         return n == "angle" || n == "height" || n == "distance";
     });
-    if (!m.extractors.empty())
-        m.kind = DemoMeasure::Extractors;
-    else if (reach_names && skeleton.find(procedural::HumanoidNames::right_hand_end))
-        m.kind = DemoMeasure::ReachTarget;
+    if (!m.extractors.empty()) m.kind = DemoMeasure::Extractors;
+    else if (reach_names && skeleton.find(procedural::HumanoidNames::right_hand_end)) m.kind = DemoMeasure::ReachTarget;
     return m;
 }
 

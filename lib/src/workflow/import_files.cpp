@@ -108,9 +108,10 @@ bool read_source(const std::filesystem::path& path, const ImportOptions& options
         if (asf.empty()) {
             const auto found = find_asf_for_amc(path);
             if (!found)
-                throw Refused<InvalidArgument>(Remedy::NameSkeletonFile, path.string() +
-                                               ": no skeleton given and none found beside it by the CMU naming "
-                                               "(NN_MM.amc -> NN.asf)");
+                throw Refused<InvalidArgument>(Remedy::NameSkeletonFile,
+                                               path.string() +
+                                                   ": no skeleton given and none found beside it by the CMU naming "
+                                                   "(NN_MM.amc -> NN.asf)");
             asf = *found;
         }
         auto& skeleton = asf_cache[asf];

@@ -16,8 +16,9 @@ namespace {
 // Synthesis interpolates over the set's control parameters: a set without any has nothing to ask for.
 void require_parameters(const Database& db, const std::string& name) {
     if (db.load_set(name).parameters.cols() == 0)
-        throw Refused<InvalidArgument>(Remedy::GiveParameters, "set '" + name + "' in " + db.path().string() +
-                                       " has no control parameters, so there is nothing to synthesize at");
+        throw Refused<InvalidArgument>(Remedy::GiveParameters,
+                                       "set '" + name + "' in " + db.path().string() +
+                                           " has no control parameters, so there is nothing to synthesize at");
 }
 
 }  // namespace
@@ -32,8 +33,8 @@ std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, co
                                        "set '" + name + "' in " + db.path().string() + " has no compressed model");
     synthesis::SynthesisOptions with_fit = options;
     if (!with_fit.kernel_fit) with_fit.kernel_fit = db.load_kernel_fit(name);  // nullopt for models stored without one
-    return std::make_unique<synthesis::MotionModel>(std::move(stored->model), d.timing, d.set, std::move(d.skeleton), d.frame_rate,
-                                                    with_fit);
+    return std::make_unique<synthesis::MotionModel>(std::move(stored->model), d.timing, d.set, std::move(d.skeleton),
+                                                    d.frame_rate, with_fit);
 }
 
 std::unique_ptr<synthesis::NaiveMotionModel> load_naive_motion_model(const Database& db, const std::string& name,

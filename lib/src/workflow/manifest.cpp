@@ -32,12 +32,14 @@ Manifest Manifest::parse(std::string_view text, const std::string& source_name) 
         } else if (name == "fps") {
             col = Fps;
         } else {
-            throw ParseError(source_name, csv.header_line, csv.header_columns[c],
-                             "unknown manifest column '" + name + "' (expected file, subject, description, labels, fps)");
+            throw ParseError(
+                source_name, csv.header_line, csv.header_columns[c],
+                "unknown manifest column '" + name + "' (expected file, subject, description, labels, fps)");
         }
         for (const Column seen : columns)
             if (seen == col)
-                throw ParseError(source_name, csv.header_line, csv.header_columns[c], "column '" + name + "' appears twice");
+                throw ParseError(source_name, csv.header_line, csv.header_columns[c],
+                                 "column '" + name + "' appears twice");
         columns.push_back(col);
     }
     if (file_column < 0) throw ParseError(source_name, csv.header_line, 1, "the header has no 'file' column");
@@ -79,7 +81,8 @@ Manifest Manifest::parse(std::string_view text, const std::string& source_name) 
                 }
             }
         }
-        if (file.empty()) throw ParseError(source_name, line, at[static_cast<std::size_t>(file_column)], "empty 'file' field");
+        if (file.empty())
+            throw ParseError(source_name, line, at[static_cast<std::size_t>(file_column)], "empty 'file' field");
         if (const auto it = first_line.find(file); it != first_line.end())
             throw ParseError(source_name, line, at[static_cast<std::size_t>(file_column)],
                              "file '" + file + "' is listed twice (first on line " + std::to_string(it->second) + ")");

@@ -186,7 +186,7 @@ PackedCollection pack_to_budget(const Database& view, const Grouping& grouping, 
                                 const ProgressCallback& progress, PackDatabaseOutcome::Budget& budget) {
     const std::uint64_t N = options.max_bytes;
     budget.max_bytes = N;
-    std::optional<PackedCollection> fit;  // the smallest E that fits so far
+    std::optional<PackedCollection> fit;    // the smallest E that fits so far
     double fail_E = 0.0, fail_bytes = 0.0;  // the largest E that does not fit so far (0: none)
     auto attempt = [&](double E) {
         std::optional<PackedCollection> pc;
@@ -214,7 +214,8 @@ PackedCollection pack_to_budget(const Database& view, const Grouping& grouping, 
             if (!fit && E >= kCoarsestBudgetErrorCm)
                 throw BudgetUnreachable("pack: even at a max error of " + number(E) + " cm the packed tier takes " +
                                         number(fail_bytes) + " bytes, over the budget of " + std::to_string(N) +
-                                        " bytes (" + number(fail_bytes) + " bytes is the smallest this collection packs to)");
+                                        " bytes (" + number(fail_bytes) +
+                                        " bytes is the smallest this collection packs to)");
         }
     }
     while (fail_E > 0.0 && fit->outcome.tier.max_error_cm / fail_E > 1.02) {
@@ -238,9 +239,11 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
     const double E = options.max_error_cm;
     const bool to_budget = options.max_bytes > 0;
     if (!to_budget && (!std::isfinite(E) || !(E > 0.0)))
-        throw InvalidArgument("pack: the max error must be a finite number > 0 (the bound on every joint's error, cm), found " +
-                              number(E));
-    if (options.threads < 1) throw InvalidArgument("pack: threads must be >= 1, found " + std::to_string(options.threads));
+        throw InvalidArgument(
+            "pack: the max error must be a finite number > 0 (the bound on every joint's error, cm), found " +
+            number(E));
+    if (options.threads < 1)
+        throw InvalidArgument("pack: threads must be >= 1, found " + std::to_string(options.threads));
     std::error_code ec;
     if (!std::filesystem::exists(db, ec)) throw IoError(db.string() + ": no such file");
 
@@ -251,8 +254,8 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
     if (const auto old = view.packed()) {
         if (!options.replace)
             throw Refused<StoreError>(Remedy::Overwrite, db.string(), "/packed",
-                                      "the database already has a packed tier (max error " +
-                                          number(old->max_error_cm) + " cm), replaced only on request");
+                                      "the database already has a packed tier (max error " + number(old->max_error_cm) +
+                                          " cm), replaced only on request");
         for (const ClipRecord& r : view.clips())
             if (!r.lossless)
                 throw StoreError(db.string(), "/packed",

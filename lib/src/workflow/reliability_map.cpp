@@ -2,7 +2,9 @@
 
 namespace mocapdb::workflow {
 
-VecX samples_mean(const synthesis::SynthesisModel& model) { return model.sample_parameters().colwise().mean().transpose(); }
+VecX samples_mean(const synthesis::SynthesisModel& model) {
+    return model.sample_parameters().colwise().mean().transpose();
+}
 
 ReliabilityMap reliability_map(const synthesis::SynthesisModel& model, const SliceAxis& gx, const SliceAxis& gy,
                                const VecX& base) {

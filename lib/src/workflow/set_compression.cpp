@@ -36,8 +36,9 @@ compression::RankSearchResult choose_ranks(compression::PreparedSet prepared, co
         for (std::size_t n = 0; n < 3; ++n)
             if (r[n] < 1 || r[n] > o.dims[n])
                 throw Refused<InvalidArgument>(Remedy::Ranks, "ranks: rank " + std::to_string(n + 1) +
-                                                   " must be in [1, " + std::to_string(o.dims[n]) + "] for a tensor of " +
-                                                   ranks_text(o.dims) + " (dofs x frames x samples)");
+                                                                  " must be in [1, " + std::to_string(o.dims[n]) +
+                                                                  "] for a tensor of " + ranks_text(o.dims) +
+                                                                  " (dofs x frames x samples)");
         chosen.model = compression::hosvd_model(prepared, r);
         chosen.target_met = true;
         o.criterion = "ranks " + ranks_text(r);

@@ -49,7 +49,9 @@ void apply_params_csv(MotionSet& set, const std::filesystem::path& path, const D
         const std::string label = sample_label(s, db.find_clip(s.clip)->frames);
         auto it = row_of.find(label);
         if (it == row_of.end())
-            throw ParseError(file, 0, 0, "no row for sample '" + label + "' (first column: sample labels as 'CLIP' or 'CLIP:BEGIN-END')");
+            throw ParseError(
+                file, 0, 0,
+                "no row for sample '" + label + "' (first column: sample labels as 'CLIP' or 'CLIP:BEGIN-END')");
         set.parameters.row(static_cast<Eigen::Index>(i)) = values.row(it->second);
     }
     set.parameter_source = "csv:" + std::filesystem::path(file).filename().string();
@@ -69,14 +71,18 @@ std::vector<std::string> select_clips(const Database& db, const std::string& db_
             matched = true;
             if (seen.insert(r.id).second) out.push_back(r.id);
         }
-        if (!matched) throw InvalidArgument(db_name + ": no clip matches '" + pattern + "' (mocapdb info " + db_name + " lists them)");
+        if (!matched)
+            throw InvalidArgument(db_name + ": no clip matches '" + pattern + "' (mocapdb info " + db_name +
+                                  " lists them)");
     }
     return out;
 }
 
 SetOutcome create_set(const std::filesystem::path& db_file, const SetRequest& a) {
     const std::string db_path = db_file.string();
-    if (!a.params_csv.empty() && !a.extract.empty()) throw Refused<InvalidArgument>(Remedy::ParametersOrExtract, "give either a parameter table or extractors, not both");
+    if (!a.params_csv.empty() && !a.extract.empty())
+        throw Refused<InvalidArgument>(Remedy::ParametersOrExtract,
+                                       "give either a parameter table or extractors, not both");
     DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
     const Database& db = writer.view();
     if (db.clips().empty()) throw InvalidArgument(db_path + ": the database holds no clips; import some first");
@@ -96,8 +102,8 @@ SetOutcome create_set(const std::filesystem::path& db_file, const SetRequest& a)
     const auto ids = select_clips(db, db_path, a.clips);
     o.clips = ids.size();
     options.progress = a.progress;
-    o.set = build_motion_set(ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped,
-                             &o.segmentation);
+    o.set = build_motion_set(
+        ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped, &o.segmentation);
     if (!a.params_csv.empty()) apply_params_csv(o.set, a.params_csv, db);
     for (const auto& [name, period] : a.periodic) set_parameter_period(o.set, name, period);
     validate(o.set);

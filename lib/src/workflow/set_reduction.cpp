@@ -45,7 +45,8 @@ MotionSet reduced_set(const MotionSet& set, const std::vector<Eigen::Index>& kep
     // Repair records only of the clips the reduced set still uses.
     reduced.repairs.clear();
     for (const RepairedFrames& x : set.repairs)
-        if (std::any_of(reduced.samples.begin(), reduced.samples.end(), [&](const SampleRef& s) { return s.clip == x.clip; }))
+        if (std::any_of(reduced.samples.begin(), reduced.samples.end(),
+                        [&](const SampleRef& s) { return s.clip == x.clip; }))
             reduced.repairs.push_back(x);
     // parameter_source keeps saying how the values were obtained (synth re-measures with it).
     return reduced;
@@ -55,7 +56,8 @@ bool store_reduced_set(const std::filesystem::path& db_path, const ReductionOutc
                        bool replace) {
     const std::vector<Eigen::Index>& kept = outcome.result.kept;
     if (kept.size() < 2)
-        throw InvalidArgument("reduced set '" + name + "': " + std::to_string(kept.size()) + " kept samples, at least 2 needed");
+        throw InvalidArgument("reduced set '" + name + "': " + std::to_string(kept.size()) +
+                              " kept samples, at least 2 needed");
     const MotionSet reduced = reduced_set(outcome.set, kept, name);
     // Align like the original (method and frames; the reference is the reduced set's median sample).
     std::optional<AlignedSet> aligned;

@@ -124,7 +124,8 @@ struct WindowSampler::Impl {
     }
 
     template <class T>
-    void store(DecodedClip& out, std::size_t f, const double* row, const JointTransform& root, const Skeleton& s) const {
+    void store(DecodedClip& out, std::size_t f, const double* row, const JointTransform& root,
+               const Skeleton& s) const {
         std::vector<T>& v = out.values<T>();
         std::copy(row, row + values, v.begin() + static_cast<std::ptrdiff_t>(f * values));
         const Canonicalization c = canonicalization_of(root, s.forward());
@@ -133,11 +134,10 @@ struct WindowSampler::Impl {
         out.root[3 * f + 2] = c.translation.z();
     }
 
-    void store(DecodedClip& out, std::size_t f, const double* row, const JointTransform& root, const Skeleton& s) const {
-        if (options.dtype == WindowDType::Float32)
-            store<float>(out, f, row, root, s);
-        else
-            store<double>(out, f, row, root, s);
+    void store(DecodedClip& out, std::size_t f, const double* row, const JointTransform& root,
+               const Skeleton& s) const {
+        if (options.dtype == WindowDType::Float32) store<float>(out, f, row, root, s);
+        else store<double>(out, f, row, root, s);
     }
 
     void write_positions(double* row) const {
@@ -165,7 +165,8 @@ struct WindowSampler::Impl {
                 g.sampler->local_pose(sc.index, f, local);
                 const JointTransform root = local_root_transform(s, local.rotations, local.translations);
                 if (poses) {
-                    pose_vector_from_local(s, layout, local.rotations, local.translations, Canonicalization{}, near, row);
+                    pose_vector_from_local(s, layout, local.rotations, local.translations, Canonicalization{}, near,
+                                           row);
                     near = row;
                 } else {
                     forward_kinematics(s, local.rotations, local.translations, pose);
@@ -179,8 +180,7 @@ struct WindowSampler::Impl {
         const Skeleton& s = *clip.skeleton;
         const MatX world = poses ? to_pose_vectors(clip, Canonicalization{}) : MatX();
         for (std::size_t f = 0; f < frames; ++f) {
-            if (poses)
-                row = world.col(static_cast<Eigen::Index>(f));
+            if (poses) row = world.col(static_cast<Eigen::Index>(f));
             else {
                 forward_kinematics(s, clip.frame(f), pose);
                 write_positions(row.data());
@@ -237,13 +237,13 @@ struct WindowSampler::Impl {
             b[3] = static_cast<Out>(c * sx - s * sz);
             b[4] = static_cast<Out>(static_cast<double>(a[4]) + turn);
             b[5] = static_cast<Out>(s * sx + c * sz);
-            if constexpr (std::is_same_v<T, Out>)
-                std::memcpy(b + 6, a + 6, sizeof(T) * (V - 6));
+            if constexpr (std::is_same_v<T, Out>) std::memcpy(b + 6, a + 6, sizeof(T) * (V - 6));
             else
                 for (std::size_t i = 6; i < V; ++i) b[i] = static_cast<Out>(a[i]);
         }
         for (std::size_t r = 6; r < V; r += 3) {
-            const Vec3 first(static_cast<double>(in[r]), static_cast<double>(in[r + 1]), static_cast<double>(in[r + 2]));
+            const Vec3 first(static_cast<double>(in[r]), static_cast<double>(in[r + 1]),
+                             static_cast<double>(in[r + 2]));
             if (first.norm() < kPi) continue;
             Vec3 near = Vec3::Zero();
             for (std::size_t f = 0; f < L; ++f) {
@@ -264,8 +264,7 @@ struct WindowSampler::Impl {
                 throw InvalidArgument("window sampler: fill of a window that draw() did not give");
             if (options.dtype == WindowDType::Float32)
                 window_values<float>(it->second.first, refs[b], out + b * stride);
-            else
-                window_values<double>(it->second.first, refs[b], out + b * stride);
+            else window_values<double>(it->second.first, refs[b], out + b * stride);
         }
     }
 
@@ -278,11 +277,12 @@ struct WindowSampler::Impl {
 
     void check(const WindowRef& ref) const {
         if (ref.clip >= clips.size())
-            throw InvalidArgument("window sampler: clip index " + std::to_string(ref.clip) + " of " + std::to_string(clips.size()));
+            throw InvalidArgument("window sampler: clip index " + std::to_string(ref.clip) + " of " +
+                                  std::to_string(clips.size()));
         if (!valid(ref))
             throw InvalidArgument("window sampler: frames " + std::to_string(ref.begin) + ".." +
-                                  std::to_string(ref.begin + options.length - 1) + " are beyond clip '" + clips[ref.clip].id +
-                                  "' (" + std::to_string(clips[ref.clip].frames) + " frames)");
+                                  std::to_string(ref.begin + options.length - 1) + " are beyond clip '" +
+                                  clips[ref.clip].id + "' (" + std::to_string(clips[ref.clip].frames) + " frames)");
     }
 
     template <class Out>
@@ -293,7 +293,8 @@ struct WindowSampler::Impl {
     }
 };
 
-WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& options) : impl_(std::make_unique<Impl>()) {
+WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& options)
+    : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
     m.db = &db;
     m.options = options;
@@ -332,8 +333,8 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
         } else {
             // Frame Time text rounds (0.0333333 s): rates within 0.01 % are one rate.
             if (std::abs(r.frame_rate - first->frame_rate) > 1e-4 * first->frame_rate)
-                throw InvalidArgument(name + ": clips '" + first->id + "' (" + std::to_string(first->frame_rate) + " Hz) and '" +
-                                      r.id + "' (" + std::to_string(r.frame_rate) +
+                throw InvalidArgument(name + ": clips '" + first->id + "' (" + std::to_string(first->frame_rate) +
+                                      " Hz) and '" + r.id + "' (" + std::to_string(r.frame_rate) +
                                       " Hz) differ in frame rate; select clips of one rate (clip patterns)");
             auto [it, fresh] = rig_checked.emplace(r.skeleton, false);
             if (fresh) it->second = same_rig(*rig, *db.load_skeleton(r.skeleton));
@@ -360,7 +361,8 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
         std::map<std::string, std::pair<std::size_t, std::size_t>> packed_at;  // clip -> (group, index)
         if (tier)
             for (std::size_t g = 0; g < tier->groups.size(); ++g)
-                for (std::size_t k = 0; k < tier->groups[g].clips.size(); ++k) packed_at.emplace(tier->groups[g].clips[k].id, std::make_pair(g, k));
+                for (std::size_t k = 0; k < tier->groups[g].clips.size(); ++k)
+                    packed_at.emplace(tier->groups[g].clips[k].id, std::make_pair(g, k));
         std::vector<std::optional<std::pair<std::size_t, std::size_t>>> where;
         bool all = tier.has_value();
         for (const SampledClip& c : m.clips) {
@@ -369,8 +371,9 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
             if (!where.back()) {
                 all = false;
                 if (options.source == WindowSource::Packed)
-                    throw InvalidArgument(name + ": clip '" + c.id + "' is not in the packed tier" +
-                                          (tier ? " (imported after `mocapdb pack`?)" : " (the database has none: mocapdb pack)"));
+                    throw InvalidArgument(
+                        name + ": clip '" + c.id + "' is not in the packed tier" +
+                        (tier ? " (imported after `mocapdb pack`?)" : " (the database has none: mocapdb pack)"));
             }
         }
         if (all) {
@@ -392,8 +395,8 @@ WindowSampler::WindowSampler(const Database& db, const WindowSamplerOptions& opt
                 if (m.groups[it->second].decoder->frame_count(k) != m.clips[i].frames)
                     throw StoreError(name, "/packed/" + tier->groups[g].name,
                                      "the packed clip '" + m.clips[i].id + "' has " +
-                                         std::to_string(m.groups[it->second].decoder->frame_count(k)) + " frames; expected " +
-                                         std::to_string(m.clips[i].frames));
+                                         std::to_string(m.groups[it->second].decoder->frame_count(k)) +
+                                         " frames; expected " + std::to_string(m.clips[i].frames));
             }
         }
     }
@@ -459,7 +462,8 @@ void WindowSampler::draw(WindowRef* refs) {
     std::uniform_int_distribution<std::uint64_t> draw(0, m.ends.back() - 1);
     for (std::size_t b = 0; b < m.options.batch; ++b) {
         const std::uint64_t u = draw(m.rng);
-        const std::size_t c = static_cast<std::size_t>(std::upper_bound(m.ends.begin(), m.ends.end(), u) - m.ends.begin());
+        const std::size_t c =
+            static_cast<std::size_t>(std::upper_bound(m.ends.begin(), m.ends.end(), u) - m.ends.begin());
         refs[b] = WindowRef{c, static_cast<std::size_t>(u - (c > 0 ? m.ends[c - 1] : 0))};
     }
     load(refs, m.options.batch);
@@ -468,7 +472,8 @@ void WindowSampler::draw(WindowRef* refs) {
 void WindowSampler::load(const WindowRef* refs, std::size_t count) {
     Impl& m = *impl_;
     if (count > std::max(m.options.cache_clips, m.options.batch))
-        throw InvalidArgument("window sampler: " + std::to_string(count) + " windows at once; at most max(batch, cache_clips)");
+        throw InvalidArgument("window sampler: " + std::to_string(count) +
+                              " windows at once; at most max(batch, cache_clips)");
     for (std::size_t b = 0; b < count; ++b) m.check(refs[b]);
     // The windows' clips are all decoded at once: the cache keeps at least that many, the most recent.
     for (std::size_t b = 0; b < count; ++b) m.decoded(refs[b].clip);

@@ -29,11 +29,11 @@ struct WorstJoint {
 };
 
 struct JointErrorStats {
-    double dof_rmse = 0.0;   ///< RMS of the pose-vector difference over every value (cm and rad mixed)
-    double rmse_cm = 0.0;    ///< sqrt(mean |p - p_hat|^2) over joints, frames, samples
-    double mean_cm = 0.0;    ///< mean |p - p_hat|
+    double dof_rmse = 0.0;  ///< RMS of the pose-vector difference over every value (cm and rad mixed)
+    double rmse_cm = 0.0;   ///< sqrt(mean |p - p_hat|^2) over joints, frames, samples
+    double mean_cm = 0.0;   ///< mean |p - p_hat|
     double max_cm = 0.0;
-    double p99_cm = 0.0;     ///< 99th percentile of |p - p_hat| (nearest rank), to float precision
+    double p99_cm = 0.0;  ///< 99th percentile of |p - p_hat| (nearest rank), to float precision
     WorstJoint worst;
     Eigen::Index positions = 0;  ///< number of (joint, frame, sample) positions compared
 };
@@ -113,9 +113,9 @@ public:
 private:
     std::shared_ptr<const Skeleton> skeleton_;
     std::shared_ptr<const Tensor3> owned_;   ///< the copy, when Reference::Copied
-    const Tensor3* reference_ = nullptr;      ///< owned_ or the caller's tensor
+    const Tensor3* reference_ = nullptr;     ///< owned_ or the caller's tensor
     std::vector<MatX> reference_positions_;  ///< per sample: 3J by T
-    VecX mean_, weight_;                      ///< non-empty: *reference_ is weighted and centred by them
+    VecX mean_, weight_;                     ///< non-empty: *reference_ is weighted and centred by them
 
     /// Sample n of the reference poses (D by T): a view of the tensor, or read back into `buffer`.
     Eigen::Map<const MatX> reference_poses(Eigen::Index n, MatX& buffer) const;

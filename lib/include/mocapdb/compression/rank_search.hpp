@@ -15,10 +15,10 @@ namespace mocapdb::compression {
 
 /// The weighted centred tensor with its HOSVD bases, computed once and shared by every search.
 struct PreparedSet {
-    Tensor3 x;                 ///< weighted_centred(poses, mean, weight); empty when in_place is set
+    Tensor3 x;  ///< weighted_centred(poses, mean, weight); empty when in_place is set
     VecX mean;
     VecX weight;
-    tensor::HosvdBases bases;  ///< eigenbases and spectra of x's mode Gram matrices (tensor::hosvd_bases)
+    tensor::HosvdBases bases;           ///< eigenbases and spectra of x's mode Gram matrices (tensor::hosvd_bases)
     const Tensor3* in_place = nullptr;  ///< prepare_set_in_place: the caller's tensor, holding x's values
 
     /// The weighted, centred tensor, wherever it is held.
@@ -37,12 +37,12 @@ PreparedSet prepare_set_in_place(Tensor3& poses, const VecX& weight);
 SetModel hosvd_model(const PreparedSet& prepared, const tensor::Ranks& ranks);
 
 struct RankSearchResult {
-    SetModel model;                 ///< HOSVD at the chosen ranks
-    compression::JointErrorStats stats;    ///< measured for model
+    SetModel model;                      ///< HOSVD at the chosen ranks
+    compression::JointErrorStats stats;  ///< measured for model
     bool target_met = false;
-    int evaluations = 0;            ///< models reconstructed and checked (on a screen or in full)
-    int full_checks = 0;            ///< of them (or the chosen one again), checked on every pose
-    int truncation_checks = 0;      ///< screens and full checks decided on the truncation reconstruction
+    int evaluations = 0;        ///< models reconstructed and checked (on a screen or in full)
+    int full_checks = 0;        ///< of them (or the chosen one again), checked on every pose
+    int truncation_checks = 0;  ///< screens and full checks decided on the truncation reconstruction
 };
 
 /// Samples a probe is screened on by default (see the header comment): about 1/20 of a set of
@@ -70,8 +70,8 @@ RankSearchResult search_ranks_for_max_error(PreparedSet&& prepared, const compre
 
 /// Smallest-bound ranks whose measured RMSE of X (the weighted, centred tensor) is ≤ rmse (≥ 0).
 /// `progress` as for search_ranks_for_max_error.
-RankSearchResult search_ranks_for_rmse(const PreparedSet& prepared, const compression::JointErrorMeter& meter, double rmse,
-                                       const ProgressCallback& progress = {});
+RankSearchResult search_ranks_for_rmse(const PreparedSet& prepared, const compression::JointErrorMeter& meter,
+                                       double rmse, const ProgressCallback& progress = {});
 
 /// The ranks with the smallest HOSVD bound among those with compression ratio ≥ ratio (> 0).
 RankSearchResult ranks_for_ratio(const PreparedSet& prepared, const compression::JointErrorMeter& meter, double ratio);

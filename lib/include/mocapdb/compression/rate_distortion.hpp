@@ -16,15 +16,15 @@ namespace mocapdb::compression {
 
 struct RateRow {
     std::string method;
-    double target_cm = 0.0;          ///< 0 for the lossless row
-    std::vector<long long> ranks;    ///< Tucker: R1, R2, R3; PCA: k; others: empty
-    double setting = 0.0;            ///< zfp tolerance, residual step (in X units), quantization bits
-    std::uint64_t bytes = 0;         ///< payload + side information
-    double ratio = 0.0;              ///< raw aligned float32 bytes / bytes
+    double target_cm = 0.0;        ///< 0 for the lossless row
+    std::vector<long long> ranks;  ///< Tucker: R1, R2, R3; PCA: k; others: empty
+    double setting = 0.0;          ///< zfp tolerance, residual step (in X units), quantization bits
+    std::uint64_t bytes = 0;       ///< payload + side information
+    double ratio = 0.0;            ///< raw aligned float32 bytes / bytes
     compression::JointErrorStats stats;
-    double precompute_s = 0.0;       ///< fitting / encoding at the chosen setting
+    double precompute_s = 0.0;  ///< fitting / encoding at the chosen setting
     double us_per_pose = 0.0;
-    std::string access;              ///< "pose" or "stream" (see the header comment)
+    std::string access;  ///< "pose" or "stream" (see the header comment)
     bool target_met = true;
 };
 

@@ -27,15 +27,15 @@ struct RepairedFrames {
 
 struct MotionSet {
     std::string name;
-    std::vector<SampleRef> samples;                 ///< N samples
-    std::vector<std::string> parameter_names;       ///< P names
-    std::vector<std::string> parameter_units;       ///< P units ("cm", "rad", "cm/s", "" ...)
-    MatX parameters;                                ///< N by P control parameters
+    std::vector<SampleRef> samples;            ///< N samples
+    std::vector<std::string> parameter_names;  ///< P names
+    std::vector<std::string> parameter_units;  ///< P units ("cm", "rad", "cm/s", "" ...)
+    MatX parameters;                           ///< N by P control parameters
     /// Periods of periodic parameters (e.g. 2 pi for a bearing in rad), 0 for a linear one: P values, or
     /// empty when every parameter is linear. Kriging measures distances along a periodic axis on a
     /// circle (kriging/trend.hpp ControlScaling), so c and c + period are the same request.
     VecX parameter_periods;
-    std::string parameter_source;                   ///< how they were obtained ("csv:FILE", "extract:...")
+    std::string parameter_source;  ///< how they were obtained ("csv:FILE", "extract:...")
     /// True when the clips were checked for dropouts as the set was built (sets stored before that
     /// check existed read as false and are taken as stored, unrepaired).
     bool dropouts_checked = false;

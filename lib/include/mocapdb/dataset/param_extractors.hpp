@@ -17,8 +17,8 @@ enum class ParameterKind { Displacement, Turn, Speed, Reach, Jump, Bearing };
 
 struct ParameterExtractor {
     ParameterKind kind = ParameterKind::Turn;
-    std::string joint;     ///< Reach: the end effector
-    std::string at;        ///< Reach: "F", "end" or "P%"
+    std::string joint;            ///< Reach: the end effector
+    std::string at;               ///< Reach: "F", "end" or "P%"
     FootContactOptions contacts;  ///< Jump
 
     /// Parses "displacement", "turn", "speed", "jump", "bearing", "reach:JOINT@F". InvalidArgument otherwise.

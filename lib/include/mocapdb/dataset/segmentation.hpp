@@ -35,7 +35,8 @@ struct FlightWindowOptions {
 /// landing, clipped to the clip. Whole clips of jumps hold different amounts of standing before and
 /// after, which a both-ends-pinned alignment then mixes with the jump itself. None when the clip has no
 /// flight. InvalidArgument for margins outside [0, 3600] s or feet not found.
-std::vector<SampleRef> flight_window(const Clip& clip, const std::string& clip_id, const FlightWindowOptions& options = {});
+std::vector<SampleRef> flight_window(const Clip& clip, const std::string& clip_id,
+                                     const FlightWindowOptions& options = {});
 
 /// `keep` of `all`, evenly spread (first and last included; keep = 1: the middle one); all when
 /// keep = 0 or keep >= all.size().

@@ -8,8 +8,8 @@
 namespace mocapdb {
 
 struct TravelFrameOptions {
-    double distance_cm = 75.0;     ///< displacement whose direction defines the frame
-    double min_travel_cm = 20.0;   ///< below this displacement the first frame's heading is used
+    double distance_cm = 75.0;    ///< displacement whose direction defines the frame
+    double min_travel_cm = 20.0;  ///< below this displacement the first frame's heading is used
 };
 
 struct TravelFrame {

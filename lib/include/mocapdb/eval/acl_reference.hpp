@@ -27,7 +27,7 @@ struct AclClipRow {
     std::uint64_t acl_bytes = 0;  ///< the whole compressed buffer
     double max_cm = 0.0;          ///< FK position errors, our metric
     double rmse_cm = 0.0;
-    std::size_t line = 0;         ///< 1-based line in its file
+    std::size_t line = 0;  ///< 1-based line in its file
 };
 
 /// The usable rows of one or more tables (status "ok", precision not "raw").
@@ -78,9 +78,9 @@ std::optional<double> bytes_at_error(std::vector<std::pair<double, double>> poin
 /// costs ACL at least those bytes, as its bytes grow with every finer setting; given only when the
 /// most precise setting is also the largest. Above ACL's range: nullopt, never an extrapolation.
 struct AclComparison {
-    std::optional<double> bytes_at_max;   ///< nullopt: outside ACL's measured range
+    std::optional<double> bytes_at_max;  ///< nullopt: outside ACL's measured range
     std::optional<double> bytes_at_rmse;
-    std::optional<double> smaller_at_max;   ///< ACL bytes / our bytes
+    std::optional<double> smaller_at_max;  ///< ACL bytes / our bytes
     std::optional<double> smaller_at_rmse;
     bool max_lower_bound = false;   ///< bytes_at_max (so smaller_at_max) is a lower bound
     bool rmse_lower_bound = false;  ///< bytes_at_rmse (so smaller_at_rmse) is a lower bound

@@ -13,11 +13,11 @@
 namespace mocapdb::eval {
 
 struct CollectionAcl {
-    bool given = false;                   ///< tables were given
-    AclTable table;                       ///< every table, appended in order
-    AclCollection acl;                    ///< aggregated over the report's clips
+    bool given = false;                     ///< tables were given
+    AclTable table;                         ///< every table, appended in order
+    AclCollection acl;                      ///< aggregated over the report's clips
     std::vector<AclComparison> per_target;  ///< per report target (empty comparisons when unusable)
-    std::string unusable;                 ///< why there is no comparison ("" when there is one)
+    std::string unusable;                   ///< why there is no comparison ("" when there is one)
     bool usable() const { return given && unusable.empty(); }
 };
 

@@ -25,9 +25,9 @@ namespace mocapdb::eval {
 
 struct CollectionReportOptions {
     std::vector<double> max_error_cm{1.0, 0.5, 0.1, 0.03, 0.01};  ///< the bounds E, cm
-    int threads = 2;                                  ///< encoder threads
-    std::size_t random_poses = 20000;                 ///< poses timed per E (0: no timing)
-    std::uint32_t seed = 7;                           ///< of the random poses
+    int threads = 2;                                              ///< encoder threads
+    std::size_t random_poses = 20000;                             ///< poses timed per E (0: no timing)
+    std::uint32_t seed = 7;                                       ///< of the random poses
     /// Folders searched, subfolders included, for the clips' source files (by recorded file name,
     /// the first with the recorded SHA-256) for gzip -9; empty: not measured.
     std::vector<std::filesystem::path> source_dirs;
@@ -55,7 +55,7 @@ struct PackedFigures {
 };
 
 struct GroupFigures {
-    std::string skeleton;    ///< skeleton id of its first clip
+    std::string skeleton;  ///< skeleton id of its first clip
     std::string first_clip;
     double frame_rate = 0.0;
     PackedFigures figures;

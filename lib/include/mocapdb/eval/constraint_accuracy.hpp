@@ -21,29 +21,29 @@
 namespace mocapdb::eval {
 
 struct ConstraintOptions {
-    Eigen::Index points_per_axis_2d = 12;   ///< grid points per axis when P = 2 (P > 2: the same per axis)
-    Eigen::Index points_1d = 40;            ///< grid points when P = 1
+    Eigen::Index points_per_axis_2d = 12;  ///< grid points per axis when P = 2 (P > 2: the same per axis)
+    Eigen::Index points_1d = 40;           ///< grid points when P = 1
     std::vector<double> thresholds = {0.9, 0.8, 0.7};
 };
 
 struct RegionStats {
     double threshold = 0.0;
-    Eigen::Index points = 0;   ///< valid grid points with rho >= threshold
-    double max = 0.0;          ///< MAX ||c - c_hat|| (normalized)
-    double rmse = 0.0;         ///< RMSE ||c - c_hat|| (normalized)
-    VecX axis_rmse;            ///< P: RMSE of c_p - c_hat_p in the parameter's own unit
+    Eigen::Index points = 0;  ///< valid grid points with rho >= threshold
+    double max = 0.0;         ///< MAX ||c - c_hat|| (normalized)
+    double rmse = 0.0;        ///< RMSE ||c - c_hat|| (normalized)
+    VecX axis_rmse;           ///< P: RMSE of c_p - c_hat_p in the parameter's own unit
 };
 
 struct ConstraintMethodResult {
     std::string method;
-    MatX achieved;             ///< Q by P measured parameters (rows of failures hold the requested c)
-    VecX error;                ///< Q normalized errors (0 for failures)
-    std::vector<bool> valid;   ///< Q
+    MatX achieved;            ///< Q by P measured parameters (rows of failures hold the requested c)
+    VecX error;               ///< Q normalized errors (0 for failures)
+    std::vector<bool> valid;  ///< Q
     Eigen::Index failures = 0;
     std::vector<RegionStats> regions;  ///< one per threshold
-    RegionStats all;           ///< over every valid grid point (threshold 0)
-    double pearson = 0.0;      ///< corr(rho, error) over valid points (0 when undefined)
-    double seconds = 0.0;      ///< build + synthesis + measurement
+    RegionStats all;                   ///< over every valid grid point (threshold 0)
+    double pearson = 0.0;              ///< corr(rho, error) over valid points (0 when undefined)
+    double seconds = 0.0;              ///< build + synthesis + measurement
     /// Q: the rho the regions and pearson use: the method's own (Synthesizer::reliability_batch, its own
     /// kernel) when it has one, else ConstraintResult::reliability.
     VecX reliability;
@@ -54,10 +54,10 @@ struct ConstraintMethodResult {
 };
 
 struct ConstraintResult {
-    MatX grid;          ///< Q by P requested parameters
-    VecX reliability;   ///< Q: rho(c) of the reference kernel (naive kriging on all samples)
-    VecX scale;         ///< P: per-axis normalization (standard deviation of the samples)
-    MatX outside_3sd;   ///< 2P by P: the points 3 standard deviations outside the box (see rho_outside_3sd)
+    MatX grid;                     ///< Q by P requested parameters
+    VecX reliability;              ///< Q: rho(c) of the reference kernel (naive kriging on all samples)
+    VecX scale;                    ///< P: per-axis normalization (standard deviation of the samples)
+    MatX outside_3sd;              ///< 2P by P: the points 3 standard deviations outside the box (see rho_outside_3sd)
     double rho_outside_3sd = 0.0;  ///< the reference kernel's largest rho there
     double loo_mean_z2 = 0.0;      ///< the reference kernel's leave-one-out mean z^2 (synthesis::KernelFit)
     std::vector<ConstraintMethodResult> methods;

@@ -34,13 +34,13 @@ struct EvalSetSpec {
 
 struct EvalSet {
     EvalSetSpec spec;
-    MotionSet set;                          ///< samples and N by P parameters
-    std::vector<std::string> labels;        ///< per sample, "CLIP" or "CLIP:BEGIN-END"
-    std::vector<std::string> clip_ids;      ///< distinct clips used, in order
-    std::vector<std::string> skipped;       ///< clips that gave no sample
-    std::vector<Clip> samples;              ///< per sample, its frames on the set's skeleton
+    MotionSet set;                             ///< samples and N by P parameters
+    std::vector<std::string> labels;           ///< per sample, "CLIP" or "CLIP:BEGIN-END"
+    std::vector<std::string> clip_ids;         ///< distinct clips used, in order
+    std::vector<std::string> skipped;          ///< clips that gave no sample
+    std::vector<Clip> samples;                 ///< per sample, its frames on the set's skeleton
     std::shared_ptr<const Skeleton> skeleton;  ///< the first clip's
-    std::string skeleton_source;            ///< e.g. "13.asf"
+    std::string skeleton_source;               ///< e.g. "13.asf"
     std::vector<ParameterExtractor> extractors;
     AlignedSet aligned;
     double frame_rate = 120.0;

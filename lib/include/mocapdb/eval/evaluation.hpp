@@ -29,12 +29,12 @@ namespace mocapdb::eval {
 
 /// Where and how the run happened (the header of every table).
 struct RunInfo {
-    std::string command;      ///< as the user typed it
-    std::string mode;         ///< "full", "quick" or "tiny"
-    std::string date;         ///< UTC, from the clock
-    std::string machine;      ///< uname -srm, cores, CPU model
-    std::string load;         ///< load average at the start
-    std::string build;        ///< compiler, optimization (of the library)
+    std::string command;  ///< as the user typed it
+    std::string mode;     ///< "full", "quick" or "tiny"
+    std::string date;     ///< UTC, from the clock
+    std::string machine;  ///< uname -srm, cores, CPU model
+    std::string load;     ///< load average at the start
+    std::string build;    ///< compiler, optimization (of the library)
     double wall_seconds = 0.0;
     double cpu_seconds = 0.0;  ///< process CPU time (user + system)
 };
@@ -47,13 +47,13 @@ double process_cpu_seconds();
 
 struct SetResults {
     std::shared_ptr<const EvalSet> set;
-    std::vector<MethodSpec> methods;         ///< LOO / constraint methods (Tucker ranks resolved)
-    std::vector<double> tucker_targets_cm;   ///< per Tucker method, the max-error target its ranks meet
-    double build_seconds = 0.0;              ///< reading, extracting, aligning
+    std::vector<MethodSpec> methods;        ///< LOO / constraint methods (Tucker ranks resolved)
+    std::vector<double> tucker_targets_cm;  ///< per Tucker method, the max-error target its ranks meet
+    double build_seconds = 0.0;             ///< reading, extracting, aligning
     bool has_loo = false;
     LooResult loo;
     double loo_seconds = 0.0;
-    bool has_headroom = false;               ///< run with the leave-one-out, over its left-out samples
+    bool has_headroom = false;  ///< run with the leave-one-out, over its left-out samples
     KernelHeadroom headroom;
     bool has_constraint = false;
     ConstraintResult constraint;
@@ -69,7 +69,7 @@ struct SetResults {
 struct EvalResults {
     RunInfo info;
     std::vector<SetResults> sets;
-    std::string runtime_set;                 ///< name of the set the runtime study used
+    std::string runtime_set;  ///< name of the set the runtime study used
     std::vector<RuntimeRow> runtime;
 };
 

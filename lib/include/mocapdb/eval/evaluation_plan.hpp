@@ -25,7 +25,7 @@ struct EvalPlan {
     struct SetPlan {
         EvalSetSpec spec;
         bool loo = true;
-        Eigen::Index loo_stride = 1;   ///< leave out every k-th sample
+        Eigen::Index loo_stride = 1;  ///< leave out every k-th sample
         bool constraint = true;
         bool reduction = false;
         bool compression = true;
@@ -40,7 +40,7 @@ struct EvalPlan {
     /// The grid of the kernel headroom (kernel_headroom.hpp), run on every set with leave-one-out, over
     /// its left-out samples.
     KernelHeadroomOptions headroom;
-    std::string runtime_set;             ///< the set the runtime study uses
+    std::string runtime_set;  ///< the set the runtime study uses
     RuntimeOptions runtime;
 };
 

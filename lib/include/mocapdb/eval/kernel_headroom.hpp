@@ -18,7 +18,7 @@ namespace mocapdb::eval {
 
 struct KernelHeadroomOptions {
     std::vector<double> exponents = {0.0, 1.0, 1.5, 2.0};  ///< paper p (0 = spherical); p = 2 only with a nugget
-    std::vector<double> ranges = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0};  ///< in standard deviations of the parameters
+    std::vector<double> ranges = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0};   ///< in standard deviations of the parameters
     std::vector<double> nugget_shares = {0.0, 0.1, 0.3, 0.6, 0.9};  ///< nugget / (nugget + sill), in [0, 1)
     /// Scale of the parameter axes after the first relative to it (> 0), tried when the set has two or
     /// more parameters and none is periodic.
@@ -27,11 +27,11 @@ struct KernelHeadroomOptions {
 };
 
 struct KernelHeadroom {
-    Eigen::Index kernels = 0;               ///< grid kernels tried
-    kriging::VariogramModel best;           ///< the kernel with the lowest mean pose error (total sill 1)
+    Eigen::Index kernels = 0;      ///< grid kernels tried
+    kriging::VariogramModel best;  ///< the kernel with the lowest mean pose error (total sill 1)
     double best_anisotropy = 1.0;
-    double best_pose_mean_cm = 0.0;         ///< its leave-one-out mean pose error
-    double median_pose_mean_cm = 0.0;       ///< the median over the grid
+    double best_pose_mean_cm = 0.0;    ///< its leave-one-out mean pose error
+    double median_pose_mean_cm = 0.0;  ///< the median over the grid
 };
 
 /// `progress` counts kernels.

@@ -22,23 +22,23 @@
 namespace mocapdb::eval {
 
 struct LooOptions {
-    bool foot_skating = true;          ///< also measure foot skating of each synthesized clip (foot_skating.hpp)
-    std::vector<Eigen::Index> samples; ///< which samples to leave out (empty = all)
+    bool foot_skating = true;           ///< also measure foot skating of each synthesized clip (foot_skating.hpp)
+    std::vector<Eigen::Index> samples;  ///< which samples to leave out (empty = all)
 };
 
 struct LooMethodResult {
     std::string method;
-    VecX sample_mean_cm;      ///< per left-out sample: mean joint error over joints and frames (motion)
-    VecX sample_max_cm;       ///< per left-out sample: max joint error (motion)
-    VecX frame_mean_cm;       ///< T: per aligned frame, mean over samples of the mean joint error (motion)
-    VecX frame_max_cm;        ///< T: per aligned frame, max over samples and joints (motion)
-    VecX sample_pose_mean_cm; ///< per left-out sample: mean joint error, root-relative pose
-    VecX sample_pose_max_cm;  ///< per left-out sample: max joint error, root-relative pose
-    VecX frame_pose_mean_cm;  ///< T: per aligned frame, mean over samples, root-relative pose
-    VecX duration_error_s;    ///< per sample: |synthesized duration - sample duration| (s)
-    VecX skating_cm_per_s;    ///< per sample: foot skating of the synthesized clip (empty without)
-    double mean_cm = 0.0;     ///< mean of sample_mean_cm
-    double max_cm = 0.0;      ///< max of sample_max_cm
+    VecX sample_mean_cm;        ///< per left-out sample: mean joint error over joints and frames (motion)
+    VecX sample_max_cm;         ///< per left-out sample: max joint error (motion)
+    VecX frame_mean_cm;         ///< T: per aligned frame, mean over samples of the mean joint error (motion)
+    VecX frame_max_cm;          ///< T: per aligned frame, max over samples and joints (motion)
+    VecX sample_pose_mean_cm;   ///< per left-out sample: mean joint error, root-relative pose
+    VecX sample_pose_max_cm;    ///< per left-out sample: max joint error, root-relative pose
+    VecX frame_pose_mean_cm;    ///< T: per aligned frame, mean over samples, root-relative pose
+    VecX duration_error_s;      ///< per sample: |synthesized duration - sample duration| (s)
+    VecX skating_cm_per_s;      ///< per sample: foot skating of the synthesized clip (empty without)
+    double mean_cm = 0.0;       ///< mean of sample_mean_cm
+    double max_cm = 0.0;        ///< max of sample_max_cm
     double pose_mean_cm = 0.0;  ///< mean of sample_pose_mean_cm
     double pose_max_cm = 0.0;   ///< max of sample_pose_max_cm
     /// Where pose_max_cm occurs: left-out sample index, aligned frame, joint name.
@@ -63,7 +63,7 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
 /// `skeleton`: returns T by 3 (column 0 mean, column 1 max, column 2 the skeleton index of the joint
 /// with the max error). root_relative: both with the root's floor
 /// position and heading (pose-vector rows 0, 2, 4) set to 0 first (the "pose" error above).
-MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& reference, const Eigen::Ref<const MatX>& approx,
-                        bool root_relative = false);
+MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& reference,
+                        const Eigen::Ref<const MatX>& approx, bool root_relative = false);
 
 }  // namespace mocapdb::eval

@@ -13,8 +13,8 @@
 namespace mocapdb::eval {
 
 struct NearestNeighbourOptions {
-    Eigen::Index k = 3;   ///< >= 1 (clamped to N)
-    double power = 2.0;   ///< > 0
+    Eigen::Index k = 3;  ///< >= 1 (clamped to N)
+    double power = 2.0;  ///< > 0
 };
 
 class NearestNeighbourBlend final : public kriging::Interpolator {

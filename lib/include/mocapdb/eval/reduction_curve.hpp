@@ -14,27 +14,27 @@ namespace mocapdb::eval {
 
 struct ReductionCurveOptions {
     double tau = 0.85;
-    Eigen::Index checkpoints = 8;   ///< kept sizes measured (spread from N - 1 down to the minimum), >= 1
-    int random_orders = 3;          ///< >= 0
+    Eigen::Index checkpoints = 8;  ///< kept sizes measured (spread from N - 1 down to the minimum), >= 1
+    int random_orders = 3;         ///< >= 0
     unsigned seed = 7;
 };
 
 struct ReductionCurvePoint {
     Eigen::Index kept = 0;
-    double max_reliability = 0.0;   ///< max_i rho_{-i}(c_i) over the kept samples at that size (greedy)
-    double greedy_mean_cm = 0.0;    ///< mean over removed samples of their mean joint error
-    double greedy_max_cm = 0.0;     ///< max joint error over removed samples
-    double random_mean_cm = 0.0;    ///< the same for random removal (mean over orders); 0 without
+    double max_reliability = 0.0;      ///< max_i rho_{-i}(c_i) over the kept samples at that size (greedy)
+    double greedy_mean_cm = 0.0;       ///< mean over removed samples of their mean joint error
+    double greedy_max_cm = 0.0;        ///< max joint error over removed samples
+    double random_mean_cm = 0.0;       ///< the same for random removal (mean over orders); 0 without
     double greedy_pose_mean_cm = 0.0;  ///< as greedy_mean_cm with the root-relative pose error (loo_prediction.hpp)
     double random_pose_mean_cm = 0.0;  ///< as random_mean_cm, root-relative pose error
 };
 
 struct ReductionCurve {
     Eigen::Index samples = 0;
-    std::vector<Eigen::Index> removal_order;   ///< greedy, sample indices
-    std::vector<double> max_reliability;       ///< before each removal (reduction.hpp)
-    Eigen::Index kept_at_tau = 0;              ///< samples left when the greedy loop stops at tau
-    std::vector<ReductionCurvePoint> points;   ///< decreasing kept
+    std::vector<Eigen::Index> removal_order;  ///< greedy, sample indices
+    std::vector<double> max_reliability;      ///< before each removal (reduction.hpp)
+    Eigen::Index kept_at_tau = 0;             ///< samples left when the greedy loop stops at tau
+    std::vector<ReductionCurvePoint> points;  ///< decreasing kept
 };
 
 /// Throws InvalidArgument for fewer than 5 samples or bad options.

@@ -14,11 +14,11 @@ namespace mocapdb::eval {
 
 struct RuntimeRow {
     std::string method;
-    Eigen::Index samples = 0;        ///< N
-    Eigen::Index frames = 0;         ///< T
-    double build_seconds = 0.0;      ///< median preprocessing time
-    double build_us_per_frame = 0.0; ///< build_seconds / (N T), microseconds
-    double synth_us_per_frame = 0.0; ///< median time of one aligned motion / T, microseconds
+    Eigen::Index samples = 0;         ///< N
+    Eigen::Index frames = 0;          ///< T
+    double build_seconds = 0.0;       ///< median preprocessing time
+    double build_us_per_frame = 0.0;  ///< build_seconds / (N T), microseconds
+    double synth_us_per_frame = 0.0;  ///< median time of one aligned motion / T, microseconds
 };
 
 struct RuntimeOptions {

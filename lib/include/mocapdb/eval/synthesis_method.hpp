@@ -14,13 +14,21 @@
 
 namespace mocapdb::eval {
 
-enum class MethodKind { PerPoseKriging, PerElementKriging, TuckerKriging, NaiveKriging, Rbf, NearestNeighbour, TrendOnly };
+enum class MethodKind {
+    PerPoseKriging,
+    PerElementKriging,
+    TuckerKriging,
+    NaiveKriging,
+    Rbf,
+    NearestNeighbour,
+    TrendOnly
+};
 
 struct MethodSpec {
     MethodKind kind = MethodKind::PerPoseKriging;
-    std::string name;                   ///< label in reports (e.g. "tucker-1cm")
-    tensor::Ranks ranks{0, 0, 0};       ///< TuckerKriging: (R1, R2, R3), R3 clamped to the training size
-    NearestNeighbourOptions nn;         ///< NearestNeighbour
+    std::string name;              ///< label in reports (e.g. "tucker-1cm")
+    tensor::Ranks ranks{0, 0, 0};  ///< TuckerKriging: (R1, R2, R3), R3 clamped to the training size
+    NearestNeighbourOptions nn;    ///< NearestNeighbour
     bool is_kriging() const {
         return kind != MethodKind::Rbf && kind != MethodKind::NearestNeighbour && kind != MethodKind::TrendOnly;
     }

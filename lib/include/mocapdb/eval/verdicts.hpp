@@ -64,7 +64,7 @@ struct MetricVerdict {
     Outcome outcome = Outcome::KrigingWins;
     /// LooPoseMean / LooMotionMean when a baseline is best: the split by sample position.
     std::optional<EdgeSplit> split;
-    double threshold = 0.0;    ///< ConstraintReliableRmse: the rho threshold
+    double threshold = 0.0;  ///< ConstraintReliableRmse: the rho threshold
     /// How much worse the best kriging method is than the best method, in % of the best (NaN when the
     /// best value is not positive).
     double kriging_worse_percent = 0.0;
@@ -79,7 +79,7 @@ struct CompressionVerdict {
 
 struct SetVerdicts {
     const SetResults* results = nullptr;
-    std::vector<MetricVerdict> metrics;          ///< in the order of Metric, the ones that apply
+    std::vector<MetricVerdict> metrics;           ///< in the order of Metric, the ones that apply
     std::vector<CompressionVerdict> compression;  ///< per target with both rows
 };
 

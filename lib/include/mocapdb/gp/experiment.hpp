@@ -22,11 +22,11 @@ namespace mocapdb::gp {
 
 /// One row of the thesis's Table 1–3.
 struct ArtificialConfig {
-    double noise = 0.001;        ///< white-noise variance of the children
+    double noise = 0.001;  ///< white-noise variance of the children
     std::size_t outputs = 3;
-    std::size_t children = 5;    ///< including the test child
-    std::size_t inputs = 50;     ///< on [0, 2π]
-    std::size_t observed = 5;    ///< observed inputs of the test child
+    std::size_t children = 5;         ///< including the test child
+    std::size_t inputs = 50;          ///< on [0, 2π]
+    std::size_t observed = 5;         ///< observed inputs of the test child
     std::size_t generator_terms = 3;  ///< ICMs per layer of the generating model
 };
 
@@ -35,11 +35,11 @@ struct ArtificialConfig {
 std::vector<ArtificialConfig> thesis_artificial_configs();
 
 struct ExperimentOptions {
-    std::size_t runs = 5;            ///< validation runs
+    std::size_t runs = 5;  ///< validation runs
     std::uint64_t seed = 1;
-    ModelSpec spec;                  ///< model fitted (hierarchical is set per model: MOHGP and MOA)
+    ModelSpec spec;  ///< model fitted (hierarchical is set per model: MOHGP and MOA)
     FitOptions fit;
-    ProgressCallback progress;       ///< done = fits finished
+    ProgressCallback progress;  ///< done = fits finished
 };
 
 /// A random generative MOHGP as in §5.1.1 (RBF ICMs; the child layer's variance below the parent's).
@@ -52,8 +52,8 @@ std::vector<MatX> sample_hierarchy(const HgpModel& truth, const VecX& times, std
 
 struct ModelRuns {
     std::vector<InterpolationScores> runs;
-    MeanStd mse, smse, msll;         ///< over the runs
-    double fit_seconds = 0.0;        ///< total
+    MeanStd mse, smse, msll;   ///< over the runs
+    double fit_seconds = 0.0;  ///< total
     std::vector<std::string> fit_status;
     void summarize();
 };
@@ -71,7 +71,7 @@ struct InterpolationRow {
     ModelRuns mohgp, moa;
 };
 struct ReplicateInterpolation {
-    FitResult mohgp_fit, moa_fit;    ///< fitted once on the children other than the test child
+    FitResult mohgp_fit, moa_fit;  ///< fitted once on the children other than the test child
     std::vector<InterpolationRow> rows;
 };
 ReplicateInterpolation run_replicate_interpolation(const HgpData& data, std::size_t test_child,
@@ -84,7 +84,8 @@ InterpolationScores score_interpolation(const HgpModel& model, const HgpData& da
                                         const std::vector<bool>& observed);
 /// The same for several masks of one test child (its siblings' share of the posterior computed once when
 /// they are complete).
-std::vector<InterpolationScores> score_interpolations(const HgpModel& model, const HgpData& data, std::size_t test_child,
+std::vector<InterpolationScores> score_interpolations(const HgpModel& model, const HgpData& data,
+                                                      std::size_t test_child,
                                                       const std::vector<std::vector<bool>>& masks);
 
 struct SynthesisResult {

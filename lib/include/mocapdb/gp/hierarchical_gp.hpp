@@ -21,13 +21,13 @@ namespace mocapdb::gp {
 
 /// Parameters of a MOHGP (or of the MOA baseline when !hierarchical).
 struct HgpModel {
-    Lmc child;            ///< K_f: a child's deviation from its parent (MOA: the whole signal covariance)
-    Lmc group;            ///< K_h: a group's deviation from the trend; used (non-empty) only when grouped
-    Lmc parent;           ///< K_g: the parent trend; ignored (and may be empty) when !hierarchical
-    VecX log_noise;       ///< D values; σ²_d = noise_floor + exp(log_noise[d])
+    Lmc child;       ///< K_f: a child's deviation from its parent (MOA: the whole signal covariance)
+    Lmc group;       ///< K_h: a group's deviation from the trend; used (non-empty) only when grouped
+    Lmc parent;      ///< K_g: the parent trend; ignored (and may be empty) when !hierarchical
+    VecX log_noise;  ///< D values; σ²_d = noise_floor + exp(log_noise[d])
     double noise_floor = 1e-6;
     bool hierarchical = true;
-    bool grouped = false; ///< three layers (trend → group → child); needs hierarchical and HgpData::groups
+    bool grouped = false;  ///< three layers (trend → group → child); needs hierarchical and HgpData::groups
 
     /// 1 (MOA), 2 (trend → child) or 3 (trend → group → child).
     int layers() const noexcept { return hierarchical ? (grouped ? 3 : 2) : 1; }
@@ -50,15 +50,17 @@ void validate(const HgpModel& model);
 
 /// Replicate observations sharing sample times.
 struct HgpData {
-    VecX times;                              ///< T sample times (seconds), shared by every child
-    std::vector<MatX> children;              ///< R matrices, D by T
+    VecX times;                  ///< T sample times (seconds), shared by every child
+    std::vector<MatX> children;  ///< R matrices, D by T
     /// Per child: T flags (true = frame observed), or empty = every frame observed. May be empty.
     std::vector<std::vector<bool>> observed;
     /// Per child its group 0..S−1 (three-layer models; every group non-empty). Empty: no groups.
     std::vector<std::size_t> groups;
 
     std::size_t child_count() const noexcept { return children.size(); }
-    std::size_t outputs() const noexcept { return children.empty() ? 0 : static_cast<std::size_t>(children.front().rows()); }
+    std::size_t outputs() const noexcept {
+        return children.empty() ? 0 : static_cast<std::size_t>(children.front().rows());
+    }
     std::size_t frames() const noexcept { return static_cast<std::size_t>(times.size()); }
     bool is_observed(std::size_t child, std::size_t frame) const;
     bool is_complete(std::size_t child) const;
@@ -81,8 +83,8 @@ HgpData without_child(const HgpData& data, std::size_t child);
 void validate(const HgpData& data);
 
 enum class LikelihoodPath {
-    Auto,        ///< structure present: the cheaper of LowRank and Structured (LowRank falls back to
-                 ///< Structured when its block-diagonal part is not positive definite); dense otherwise
+    Auto,  ///< structure present: the cheaper of LowRank and Structured (LowRank falls back to
+           ///< Structured when its block-diagonal part is not positive definite); dense otherwise
     Dense,
     Structured,  ///< one (D·T)² factorization per level; InvalidArgument when a child has missing frames
     LowRank,     ///< the structured decomposition with each level's covariance as block diagonal plus
@@ -90,9 +92,9 @@ enum class LikelihoodPath {
 };
 
 struct LikelihoodValue {
-    bool ok = false;            ///< false: a covariance was not positive definite (see message)
+    bool ok = false;  ///< false: a covariance was not positive definite (see message)
     double log_likelihood = 0.0;
-    VecX gradient;              ///< ∂ log p / ∂ parameters (HgpModel::parameters order); empty unless asked
+    VecX gradient;  ///< ∂ log p / ∂ parameters (HgpModel::parameters order); empty unless asked
     std::string message;
     LikelihoodPath path = LikelihoodPath::Auto;  ///< the path actually used
 };
@@ -117,8 +119,7 @@ struct GaussianPrediction {
 GaussianPrediction predict_parent(const HgpModel& model, const HgpData& data, const VecX& t_star);
 /// Posterior of child `child`'s latent f at `t_star` given every observed value (its own observed frames
 /// and every sibling). Structured when every sibling is complete (the child itself may be partial).
-GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std::size_t child,
-                                 const VecX& t_star);
+GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std::size_t child, const VecX& t_star);
 /// predict_child at the data's times under each of several observation masks of the same child (T flags
 /// each; the child's own mask in `data` is ignored), every sibling complete (InvalidArgument otherwise):
 /// the siblings' share — the posterior of the child's parent function — is computed once.
@@ -157,7 +158,7 @@ struct SampleOptions {
 /// Three layers: each sample is a new child of a new group, synthesis_trend + a draw of GP(0, K_h + K_f),
 /// or with options.group a new child of that group.
 /// Deterministic for a given seed. Each sample is D by T*.
-std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, const VecX& t_star,
-                                  std::size_t count, const SampleOptions& options = {});
+std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, const VecX& t_star, std::size_t count,
+                                  const SampleOptions& options = {});
 
 }  // namespace mocapdb::gp

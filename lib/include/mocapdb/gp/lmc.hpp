@@ -18,8 +18,8 @@ namespace mocapdb::gp {
 struct LmcTerm {
     KernelType kernel = KernelType::Rbf;
     double log_lengthscale = 0.0;
-    MatX W;            ///< D by rank
-    VecX log_kappa;    ///< D values, κ = exp(log_kappa)
+    MatX W;          ///< D by rank
+    VecX log_kappa;  ///< D values, κ = exp(log_kappa)
 
     std::size_t outputs() const noexcept { return static_cast<std::size_t>(log_kappa.size()); }
     /// B = W Wᵀ + diag(κ), D by D.

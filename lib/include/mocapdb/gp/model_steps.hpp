@@ -28,8 +28,8 @@ struct ChildInterpolation {
 /// Fits the model to every child but `child`, observes `observed` of the child's frames (chosen by
 /// random_observed_frames with `mask_seed`) and predicts the child. InvalidArgument for fewer than 2
 /// children, `child` out of range or fewer than 2 frames left to predict.
-ChildInterpolation interpolate_child(const HgpData& data, std::size_t child, std::size_t observed, const ModelSpec& spec,
-                                     const FitOptions& fit_options, std::uint64_t mask_seed);
+ChildInterpolation interpolate_child(const HgpData& data, std::size_t child, std::size_t observed,
+                                     const ModelSpec& spec, const FitOptions& fit_options, std::uint64_t mask_seed);
 
 struct NewChildren {
     FitResult fit;
@@ -59,15 +59,15 @@ struct ReplicateExperiment {
 /// run_replicate_interpolation of `test_child` for each observed count, and with real motions
 /// run_synthesis of `samples` children per model against them (the control: the real motions against
 /// each other).
-ReplicateExperiment run_replicate_experiment(const HgpData& training, const std::vector<MatX>& real, std::size_t test_child,
-                                             const std::vector<std::size_t>& observed_counts, std::size_t samples,
-                                             const ExperimentOptions& options);
+ReplicateExperiment run_replicate_experiment(const HgpData& training, const std::vector<MatX>& real,
+                                             std::size_t test_child, const std::vector<std::size_t>& observed_counts,
+                                             std::size_t samples, const ExperimentOptions& options);
 
 /// What a fitted model looks like, per layer and term, and its noise.
 struct TermSummary {
     KernelType kernel = KernelType::Rbf;
-    double lengthscale_s = 0.0;     ///< exp(log_lengthscale)
-    double mean_b_diagonal = 0.0;   ///< mean of the coregionalization matrix's diagonal
+    double lengthscale_s = 0.0;    ///< exp(log_lengthscale)
+    double mean_b_diagonal = 0.0;  ///< mean of the coregionalization matrix's diagonal
 };
 struct ModelSummary {
     std::vector<TermSummary> parent;  ///< empty unless hierarchical

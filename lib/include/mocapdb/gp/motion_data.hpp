@@ -18,7 +18,7 @@ namespace mocapdb::gp {
 std::vector<std::string> thesis_excluded_joints();
 
 struct MotionDataOptions {
-    std::size_t frames = 90;                  ///< N subsampled frames per child (≥ 2)
+    std::size_t frames = 90;  ///< N subsampled frames per child (≥ 2)
     /// Seconds from each child's start; default (and upper bound): the shortest child's duration.
     std::optional<double> duration;
     std::vector<std::string> exclude_joints = thesis_excluded_joints();  ///< names absent are ignored
@@ -26,21 +26,21 @@ struct MotionDataOptions {
     std::vector<std::string> include_joints;
     bool drop_constant = true;
     double constant_tolerance = 1e-6;
-    bool drop_noisy = true;                   ///< drop dofs with log SNR < 0
+    bool drop_noisy = true;  ///< drop dofs with log SNR < 0
 };
 
 struct MotionData {
-    HgpData data;                         ///< D selected dofs, normalized to [0, 1], N frames, t in seconds
+    HgpData data;  ///< D selected dofs, normalized to [0, 1], N frames, t in seconds
     std::vector<std::string> child_names;
-    std::vector<std::size_t> dofs;        ///< selected pose-vector rows
-    std::vector<std::string> dof_names;   ///< their names ("root.tx", "lfemur.1", ...)
-    VecX minimum;                         ///< D values: normalized = (x − minimum) / range
+    std::vector<std::size_t> dofs;       ///< selected pose-vector rows
+    std::vector<std::string> dof_names;  ///< their names ("root.tx", "lfemur.1", ...)
+    VecX minimum;                        ///< D values: normalized = (x − minimum) / range
     VecX range;
-    std::vector<double> log_snr;          ///< per pose-vector row (all rows)
-    std::vector<std::string> dropped;     ///< "NAME: reason" for every dof not selected
-    MatX template_pose;                   ///< full pose vectors (pose size by N): the children's mean
+    std::vector<double> log_snr;               ///< per pose-vector row (all rows)
+    std::vector<std::string> dropped;          ///< "NAME: reason" for every dof not selected
+    MatX template_pose;                        ///< full pose vectors (pose size by N): the children's mean
     std::shared_ptr<const Skeleton> skeleton;  ///< the first child's (used for reassembly)
-    double frame_rate = 0.0;              ///< of the subsampled frames, (N − 1) / duration
+    double frame_rate = 0.0;                   ///< of the subsampled frames, (N − 1) / duration
 };
 
 /// Names of the pose-vector rows of a skeleton: "ROOT.tx/ty/tz", "ROOT.rx/ry/rz", then "JOINT.0/1/2".

@@ -14,13 +14,13 @@ namespace mocapdb::gp {
 
 /// Shape of a model to fit.
 struct ModelSpec {
-    bool hierarchical = true;            ///< false: the MOA baseline
-    bool grouped = false;                ///< three layers (trend → group → child); needs HgpData::groups
-    std::size_t parent_terms = 1;        ///< Q of the parent LMC (hierarchical only)
-    std::size_t group_terms = 1;         ///< Q of the group LMC (grouped only)
-    std::size_t child_terms = 1;         ///< Q of the child LMC
-    std::size_t rank = 1;                ///< columns of every W_q
-    KernelType kernel = KernelType::Rbf; ///< base kernel of every term
+    bool hierarchical = true;             ///< false: the MOA baseline
+    bool grouped = false;                 ///< three layers (trend → group → child); needs HgpData::groups
+    std::size_t parent_terms = 1;         ///< Q of the parent LMC (hierarchical only)
+    std::size_t group_terms = 1;          ///< Q of the group LMC (grouped only)
+    std::size_t child_terms = 1;          ///< Q of the child LMC
+    std::size_t rank = 1;                 ///< columns of every W_q
+    KernelType kernel = KernelType::Rbf;  ///< base kernel of every term
     double noise_floor = 1e-6;
     /// initial_model: choose the lengthscales by a coarse likelihood scan (5 factors per layer).
     bool scan_lengthscales = true;
@@ -55,7 +55,7 @@ struct FitOptions {
     int past = 5;
     LikelihoodPath path = LikelihoodPath::Auto;
     int threads = 2;
-    ProgressCallback progress;         ///< done = evaluations so far; item = "restart k"
+    ProgressCallback progress;  ///< done = evaluations so far; item = "restart k"
 };
 
 struct RestartReport {
@@ -68,7 +68,7 @@ struct RestartReport {
 };
 
 struct FitResult {
-    HgpModel model;               ///< the best parameters over all restarts
+    HgpModel model;  ///< the best parameters over all restarts
     double log_likelihood = 0.0;
     FitStatus status = FitStatus::NumericalFailure;  ///< of the restart that gave the best model
     std::vector<RestartReport> restarts;

@@ -35,8 +35,7 @@ struct BvhWriteOptions {
 Clip parse_bvh(std::string_view text, const std::string& source_name, const BvhReadOptions& options = {},
                Warnings* out_warnings = nullptr);
 /// Reads a BVH file (IoError when it cannot be read).
-Clip read_bvh(const std::filesystem::path& path, const BvhReadOptions& options = {},
-              Warnings* out_warnings = nullptr);
+Clip read_bvh(const std::filesystem::path& path, const BvhReadOptions& options = {}, Warnings* out_warnings = nullptr);
 
 /// Writes the clip as BVH. Joints whose rotation cannot be written as BVH channels as they are (an ASF
 /// axis, or rotation channels listed out of composition order) are converted first with

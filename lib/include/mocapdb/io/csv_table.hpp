@@ -19,13 +19,13 @@
 namespace mocapdb {
 
 struct CsvTable {
-    std::string file;                             ///< the name errors give
-    std::vector<std::string> header;              ///< column names
-    std::vector<std::vector<std::string>> cells;  ///< data cells, one vector per data row
-    std::vector<std::size_t> line_of_row;         ///< 1-based line number of each data row
+    std::string file;                                      ///< the name errors give
+    std::vector<std::string> header;                       ///< column names
+    std::vector<std::vector<std::string>> cells;           ///< data cells, one vector per data row
+    std::vector<std::size_t> line_of_row;                  ///< 1-based line number of each data row
     std::vector<std::vector<std::size_t>> column_of_cell;  ///< 1-based column where each data cell starts
-    std::size_t header_line = 1;                  ///< 1-based line of the header
-    std::vector<std::size_t> header_columns;      ///< 1-based column where each name starts
+    std::size_t header_line = 1;                           ///< 1-based line of the header
+    std::vector<std::size_t> header_columns;               ///< 1-based column where each name starts
 
     /// Reads and parses a file.
     static CsvTable read(const std::filesystem::path& file);

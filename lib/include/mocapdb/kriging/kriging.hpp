@@ -51,12 +51,12 @@ struct KrigingOptions {
     TrendKind trend = TrendKind::Linear;
     TrendFit trend_fit = TrendFit::OLS;
     DuplicatePolicy duplicates = DuplicatePolicy::Merge;
-    double duplicate_tolerance = 0.0;    ///< >= 0: points at distance <= this are duplicates.
+    double duplicate_tolerance = 0.0;  ///< >= 0: points at distance <= this are duplicates.
     /// In [0, 1): smallest acceptable reciprocal condition estimate of the covariance matrix. Weights are
     /// accurate to about 1e-16 / rcond, so below this the jitter is escalated instead.
     double min_rcond = 1e-10;
-    double max_jitter = 1e-3;            ///< > 0: largest jitter tried, relative to the total sill.
-    double trend_rank_tolerance = 1e-10; ///< see TrendBasis::build.
+    double max_jitter = 1e-3;             ///< > 0: largest jitter tried, relative to the total sill.
+    double trend_rank_tolerance = 1e-10;  ///< see TrendBasis::build.
     /// Filtered kriging: the nugget is noise (see the header comment). false = exact interpolation.
     bool filter_nugget = false;
     ReliabilityVariance reliability = ReliabilityVariance::Prediction;
@@ -64,9 +64,9 @@ struct KrigingOptions {
 
 struct KrigingStatus {
     FactorizationStatus factorization = FactorizationStatus::Ok;
-    double jitter = 0.0;             ///< absolute value added to the covariance diagonal.
-    double rcond = 0.0;              ///< reciprocal condition estimate of the factorized covariance matrix.
-    Eigen::Index unique_points = 0;  ///< number of control points after merging duplicates.
+    double jitter = 0.0;                 ///< absolute value added to the covariance diagonal.
+    double rcond = 0.0;                  ///< reciprocal condition estimate of the factorized covariance matrix.
+    Eigen::Index unique_points = 0;      ///< number of control points after merging duplicates.
     Eigen::Index duplicates_merged = 0;  ///< N - unique_points (0 with DuplicatePolicy::Keep).
     Eigen::Index duplicate_pairs = 0;    ///< pairs of samples within duplicate_tolerance (either policy).
     Eigen::Index trend_rank = 0;         ///< rank of the linear trend part kept (0 for no trend).
@@ -77,11 +77,11 @@ struct KrigingStatus {
 
 /// Everything about one query point.
 struct KrigingEstimate {
-    Eigen::VectorXd weights;     ///< N: w(c), applied to raw samples.
-    Eigen::VectorXd kernel;      ///< N: b(c) of the paper's Equation 3 (== weights for OK / GLS).
-    double variance = 0.0;       ///< kriging (prediction-error) variance, >= 0.
-    double paper_variance = 0.0; ///< sigma^2(c) = sum_i b_i gamma(|c - c_i|), >= 0.
-    double reliability = 0.0;    ///< rho(c) in [0, 1].
+    Eigen::VectorXd weights;      ///< N: w(c), applied to raw samples.
+    Eigen::VectorXd kernel;       ///< N: b(c) of the paper's Equation 3 (== weights for OK / GLS).
+    double variance = 0.0;        ///< kriging (prediction-error) variance, >= 0.
+    double paper_variance = 0.0;  ///< sigma^2(c) = sum_i b_i gamma(|c - c_i|), >= 0.
+    double reliability = 0.0;     ///< rho(c) in [0, 1].
 };
 
 /// Per-query scalars of a batch plus the weights.
@@ -196,15 +196,15 @@ private:
                           Eigen::MatrixXd& scratch) const;
 
     VariogramModel model_;
-    VariogramModel query_model_;   // model_, or model_ without its nugget when filtering (query vectors)
+    VariogramModel query_model_;  // model_, or model_ without its nugget when filtering (query vectors)
     KrigingOptions options_;
     KrigingStatus status_;
-    TrendBasis basis_;             // over the unique points
-    Eigen::MatrixXd points_;       // M by P unique control points
-    Eigen::VectorXi group_;        // N -> unique index
-    Eigen::VectorXd group_size_;   // M
+    TrendBasis basis_;            // over the unique points
+    Eigen::MatrixXd points_;      // M by P unique control points
+    Eigen::VectorXi group_;       // N -> unique index
+    Eigen::VectorXd group_size_;  // M
     bool merged_ = false;
-    Eigen::MatrixXd gamma_;        // M by M variogram matrix (diagonal 0)
+    Eigen::MatrixXd gamma_;  // M by M variogram matrix (diagonal 0)
     // Kernel system (GLS/OK: the full trend basis; OLS: only the constant):
     //   b = -Wc gamma(c) + V g_k(c)   stored as operator_ = [-Wc, V] (M by M + K_k)
     Eigen::MatrixXd operator_;
@@ -212,7 +212,7 @@ private:
     Eigen::MatrixXd v_transpose_;     // V^T (K_k by M)
     Eigen::MatrixXd s_inverse_;       // (F^T C^-1 F)^-1 (K_k by K_k)
     Eigen::Index kernel_trend_size_ = 1;
-    Eigen::MatrixXd ols_u_;           // OLS only: M by r orthonormal trend columns (basis_ without the constant)
+    Eigen::MatrixXd ols_u_;  // OLS only: M by r orthonormal trend columns (basis_ without the constant)
     // OLS only (empty otherwise): weights w = b + U (g_u(c) - U^T b) as one operator on [gamma(c); g(c)],
     //   [(I - U U^T) operator_, U]  (M by M + 1 + r), so a query is a single matrix-vector product.
     Eigen::MatrixXd weight_operator_;

@@ -25,8 +25,8 @@ public:
     /// values: N by S (N = kriging.num_samples(), S >= 1), finite. Throws InvalidArgument otherwise.
     static KrigingPredictor build(const Kriging& kriging, const Eigen::Ref<const Eigen::MatrixXd>& values);
 
-    Eigen::Index num_samples() const { return num_samples_; }  ///< N
-    Eigen::Index dimension() const { return points_.cols(); }  ///< P
+    Eigen::Index num_samples() const { return num_samples_; }    ///< N
+    Eigen::Index dimension() const { return points_.cols(); }    ///< P
     Eigen::Index output_size() const { return folded_.rows(); }  ///< S
     bool empty() const { return folded_.size() == 0; }
 

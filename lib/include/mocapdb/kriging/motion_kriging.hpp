@@ -25,12 +25,12 @@ const char* to_string(KernelScope scope);
 struct MotionKrigingOptions {
     KernelScope scope = KernelScope::PerPose;
     InterpolationMethod method = InterpolationMethod::Kriging;
-    Eigen::Index dofs_per_frame = 0;       ///< D >= 1 for PerElement / PerPose (must divide the columns); 0 = one frame.
-    std::vector<Eigen::Index> root_dofs;   ///< PerPose: dofs in [0, D) kriged per element (e.g. 0,1,2 and heading).
+    Eigen::Index dofs_per_frame = 0;      ///< D >= 1 for PerElement / PerPose (must divide the columns); 0 = one frame.
+    std::vector<Eigen::Index> root_dofs;  ///< PerPose: dofs in [0, D) kriged per element (e.g. 0,1,2 and heading).
     bool normalize_controls = true;
-    std::optional<ControlScaling> scaling; ///< overrides the automatic per-axis scaling.
-    std::optional<double> exponent;        ///< fixed p (0 = spherical); otherwise chosen by LOO.
-    Eigen::Index representative = -1;      ///< column (PerElement) or frame (PerPose) for choosing p; -1 = automatic.
+    std::optional<ControlScaling> scaling;  ///< overrides the automatic per-axis scaling.
+    std::optional<double> exponent;         ///< fixed p (0 = spherical); otherwise chosen by LOO.
+    Eigen::Index representative = -1;       ///< column (PerElement) or frame (PerPose) for choosing p; -1 = automatic.
     VariogramOptions variogram;
     VariogramFitOptions fit;
     KrigingOptions kriging;
@@ -39,11 +39,11 @@ struct MotionKrigingOptions {
 
 /// Summary of what was built.
 struct MotionKrigingReport {
-    double exponent = 0.0;             ///< p used for all kernels (paper convention); PerPose: the pose kernels'.
-    double root_exponent = 0.0;        ///< PerPose: p of the root dofs' per-element kernels (chosen on their own).
-    Eigen::Index kernels = 0;          ///< number of kernels.
+    double exponent = 0.0;                ///< p used for all kernels (paper convention); PerPose: the pose kernels'.
+    double root_exponent = 0.0;           ///< PerPose: p of the root dofs' per-element kernels (chosen on their own).
+    Eigen::Index kernels = 0;             ///< number of kernels.
     Eigen::Index degenerate_kernels = 0;  ///< signals without variation (placeholder model; weights still valid).
-    Eigen::Index inexact_kernels = 0;  ///< kernels whose factorization needed jitter or regularization.
+    Eigen::Index inexact_kernels = 0;     ///< kernels whose factorization needed jitter or regularization.
     Eigen::Index duplicates_merged = 0;
     bool trend_rank_deficient = false;
 };
@@ -55,9 +55,11 @@ public:
     /// coords: N by P; samples: N by (D*T) (or N by M for PerSet); pose_signal: N by T (PerPose, else may be
     /// empty); dissimilarity: N by N symmetric (PerSet, optional: empty = Euclidean on residual rows).
     /// Throws InvalidArgument on inconsistent shapes, non-finite input or invalid options.
-    static MotionKriging build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Eigen::Ref<const Eigen::MatrixXd>& samples,
+    static MotionKriging build(const Eigen::Ref<const Eigen::MatrixXd>& coords,
+                               const Eigen::Ref<const Eigen::MatrixXd>& samples,
                                const Eigen::Ref<const Eigen::MatrixXd>& pose_signal,
-                               const Eigen::Ref<const Eigen::MatrixXd>& dissimilarity, const MotionKrigingOptions& options);
+                               const Eigen::Ref<const Eigen::MatrixXd>& dissimilarity,
+                               const MotionKrigingOptions& options);
 
     Eigen::Index num_samples() const { return samples_.rows(); }
     Eigen::Index dimension() const { return scaling_.scale.size(); }
@@ -78,7 +80,7 @@ public:
 
 private:
     ControlScaling scaling_;
-    Eigen::MatrixXd samples_;                       // N by (D*T)
+    Eigen::MatrixXd samples_;  // N by (D*T)
     std::vector<std::shared_ptr<const Interpolator>> kernels_;
     std::vector<Eigen::Index> kernel_of_column_;
     std::vector<std::vector<Eigen::Index>> columns_of_kernel_;

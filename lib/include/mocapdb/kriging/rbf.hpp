@@ -31,8 +31,8 @@ struct RbfOptions {
 };
 
 struct RbfStatus {
-    double ridge = 0.0;              ///< added to the diagonal of Phi when it was singular (0 normally).
-    double rcond = 0.0;              ///< reciprocal condition estimate of (the factorized) Phi.
+    double ridge = 0.0;  ///< added to the diagonal of Phi when it was singular (0 normally).
+    double rcond = 0.0;  ///< reciprocal condition estimate of (the factorized) Phi.
     Eigen::Index unique_points = 0;
     Eigen::Index duplicates_merged = 0;
     Eigen::Index trend_rank = 0;
@@ -70,8 +70,8 @@ private:
     Eigen::VectorXi group_;       // N
     Eigen::VectorXd group_size_;  // M
     bool merged_ = false;
-    Eigen::VectorXd radii_;       // M
-    Eigen::MatrixXd operator_;    // M by (M + K): [(I - H) Phi^-T, G (G^T G)^-1]
+    Eigen::VectorXd radii_;     // M
+    Eigen::MatrixXd operator_;  // M by (M + K): [(I - H) Phi^-T, G (G^T G)^-1]
 };
 
 }  // namespace mocapdb::kriging

@@ -18,15 +18,15 @@
 namespace mocapdb::kriging {
 
 struct ReductionOptions {
-    double tau = 0.85;              ///< stop when max_i rho_{-i}(c_i) < tau; in [0, 1].
-    Eigen::Index min_samples = 0;   ///< never go below this many samples (0 = trend size + 1). >= 0.
+    double tau = 0.85;             ///< stop when max_i rho_{-i}(c_i) < tau; in [0, 1].
+    Eigen::Index min_samples = 0;  ///< never go below this many samples (0 = trend size + 1). >= 0.
     /// Kernel used for the reliabilities (OLS -> the paper's OK kernel). The reliability is always the
     /// paper's (ReliabilityVariance::Paper, whatever `kriging.reliability` says): its rank-one downdates.
     KrigingOptions kriging;
 };
 
 struct ReductionResult {
-    std::vector<Eigen::Index> removed;  ///< sample indices (0-based, into the input), in removal order.
+    std::vector<Eigen::Index> removed;        ///< sample indices (0-based, into the input), in removal order.
     std::vector<double> removed_reliability;  ///< rho of each removed sample at its removal.
     /// The curve: max_i rho_{-i}(c_i) before each step, removed.size() + 1 entries when the loop stopped on
     /// tau (the last one is the value that fell below tau), removed.size() when it stopped on min_samples.

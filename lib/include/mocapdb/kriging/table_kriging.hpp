@@ -50,12 +50,13 @@ struct VariogramChoice {
 
 /// Fits the request to `ev`; leave-one-out selection krige the table with `kriging`.
 VariogramChoice fit_table_variogram(const VariogramFitRequest& request, const ExperimentalVariogram& ev,
-                                    const ScalarTable& table, const KrigingOptions& kriging, const VariogramFitOptions& fit);
+                                    const ScalarTable& table, const KrigingOptions& kriging,
+                                    const VariogramFitOptions& fit);
 
 struct TableKriging {
-    KrigingBatch batch;                 ///< weights, variances, reliabilities at the queries
-    Eigen::VectorXd prediction;         ///< per query
-    std::optional<LooResult> loo;       ///< leave-one-out of the table's values, when asked
+    KrigingBatch batch;            ///< weights, variances, reliabilities at the queries
+    Eigen::VectorXd prediction;    ///< per query
+    std::optional<LooResult> loo;  ///< leave-one-out of the table's values, when asked
     KrigingStatus status;
 };
 

@@ -55,8 +55,8 @@ public:
 private:
     TrendKind kind_ = TrendKind::None;
     Eigen::Index rank_ = 0;
-    Eigen::VectorXd mean_;        // P
-    Eigen::MatrixXd projection_;  // P by r: V S^-1
+    Eigen::VectorXd mean_;          // P
+    Eigen::MatrixXd projection_;    // P by r: V S^-1
     Eigen::MatrixXd sample_basis_;  // N by K
 };
 

@@ -19,21 +19,21 @@ enum class VariogramEstimator {
 const char* to_string(VariogramEstimator estimator);
 
 struct VariogramOptions {
-    int bins = 10;                                          ///< N_I >= 1.
-    double cutoff = 0.0;                                    ///< > 0; 0 means h_max / 2.
+    int bins = 10;        ///< N_I >= 1.
+    double cutoff = 0.0;  ///< > 0; 0 means h_max / 2.
     VariogramEstimator estimator = VariogramEstimator::Cressie;
 };
 
 /// One experimental variogram. All vectors have `bins` entries; empty bins have npairs == 0 and
 /// dist == gamma == 0 (they are skipped by the fit).
 struct ExperimentalVariogram {
-    Eigen::VectorXd center;            ///< bin centers h_u = w (u - 1/2) (the paper's abscissa).
-    Eigen::VectorXd dist;              ///< mean pair distance in the bin (gstat's "dist").
-    Eigen::VectorXd gamma;             ///< semivariance estimate.
-    std::vector<std::size_t> npairs;   ///< n(I_u): number of pairs in the bin.
-    double cutoff = 0.0;               ///< upper end of the last bin.
-    double width = 0.0;                ///< bin width w.
-    double max_distance = 0.0;         ///< h_max over all pairs.
+    Eigen::VectorXd center;               ///< bin centers h_u = w (u - 1/2) (the paper's abscissa).
+    Eigen::VectorXd dist;                 ///< mean pair distance in the bin (gstat's "dist").
+    Eigen::VectorXd gamma;                ///< semivariance estimate.
+    std::vector<std::size_t> npairs;      ///< n(I_u): number of pairs in the bin.
+    double cutoff = 0.0;                  ///< upper end of the last bin.
+    double width = 0.0;                   ///< bin width w.
+    double max_distance = 0.0;            ///< h_max over all pairs.
     std::size_t zero_distance_pairs = 0;  ///< pairs with h == 0 (counted in bin 1).
     VariogramEstimator estimator = VariogramEstimator::Cressie;
 

@@ -28,11 +28,11 @@ struct VariogramFitOptions {
     /// Start model for CressieFixed (its weights) and an extra LM start point for the others. Its
     /// family/exponent are ignored (the ones passed to fit_variogram are used).
     std::optional<VariogramModel> start;
-    bool fit_nugget = true;         ///< false: theta0 fixed at 0.
-    double gamma_floor = 1e-6;      ///< (0, 1): relative floor of gamma* inside the weights.
-    double range_min_factor = 1e-3; ///< > 0.
-    double range_max_factor = 1e2;  ///< > range_min_factor.
-    int max_iterations = 500;       ///< LM iterations per start point (>= 1).
+    bool fit_nugget = true;          ///< false: theta0 fixed at 0.
+    double gamma_floor = 1e-6;       ///< (0, 1): relative floor of gamma* inside the weights.
+    double range_min_factor = 1e-3;  ///< > 0.
+    double range_max_factor = 1e2;   ///< > range_min_factor.
+    int max_iterations = 500;        ///< LM iterations per start point (>= 1).
     /// >= 0: lower bound of the nugget (with fit_nugget false the nugget is fixed at this value). A Gaussian
     /// (p = 2) model needs one: without a nugget its kriging system is numerically singular.
     double min_nugget = 0.0;
@@ -76,10 +76,10 @@ double fit_objective(const ExperimentalVariogram& ev, const VariogramModel& mode
 std::vector<double> paper_exponent_grid();
 
 struct ExponentSelection {
-    std::vector<double> grid;          ///< candidate p (paper convention: 0 = spherical).
-    std::vector<VariogramFit> fits;    ///< one fit per candidate.
-    Eigen::VectorXd loo_mse;           ///< leave-one-out mean squared error per candidate (inf if unusable).
-    std::size_t best = 0;              ///< index of the smallest loo_mse.
+    std::vector<double> grid;        ///< candidate p (paper convention: 0 = spherical).
+    std::vector<VariogramFit> fits;  ///< one fit per candidate.
+    Eigen::VectorXd loo_mse;         ///< leave-one-out mean squared error per candidate (inf if unusable).
+    std::size_t best = 0;            ///< index of the smallest loo_mse.
     const VariogramModel& model() const { return fits.at(best).model; }
 };
 
@@ -88,8 +88,8 @@ struct ExponentSelection {
 /// coords: N by P; values: N by D (D >= 1: each column is cross-validated with the same kernel).
 /// Throws InvalidArgument on shape mismatch, an empty grid or a p outside [0, 2].
 ExponentSelection select_exponent(const ExperimentalVariogram& ev, const Eigen::Ref<const Eigen::MatrixXd>& coords,
-                                  const Eigen::Ref<const Eigen::MatrixXd>& values, const KrigingOptions& kriging_options,
-                                  const VariogramFitOptions& fit_options = {},
+                                  const Eigen::Ref<const Eigen::MatrixXd>& values,
+                                  const KrigingOptions& kriging_options, const VariogramFitOptions& fit_options = {},
                                   const std::vector<double>& grid = paper_exponent_grid());
 
 }  // namespace mocapdb::kriging

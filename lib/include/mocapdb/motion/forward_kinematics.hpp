@@ -20,8 +20,8 @@ void forward_kinematics(const Skeleton& skeleton, const double* row, GlobalPose&
 
 /// World transform of one joint.
 struct JointTransform {
-    Vec3 position = Vec3::Zero();          ///< cm
-    Quat orientation = Quat::Identity();   ///< world-from-joint rotation
+    Vec3 position = Vec3::Zero();         ///< cm
+    Quat orientation = Quat::Identity();  ///< world-from-joint rotation
 };
 
 /// World transform of the skeleton's motion root (Skeleton::motion_root()) for one frame row: FK
@@ -35,8 +35,8 @@ JointTransform local_root_transform(const Skeleton& skeleton, const std::vector<
 
 /// Global pose from every joint's local transform (as above): world_j = world_parent · local_j.
 /// Allocation-free when out_pose already has skeleton.size() entries.
-void forward_kinematics(const Skeleton& skeleton, const std::vector<Quat>& rotations, const std::vector<Vec3>& translations,
-                        GlobalPose& out_pose);
+void forward_kinematics(const Skeleton& skeleton, const std::vector<Quat>& rotations,
+                        const std::vector<Vec3>& translations, GlobalPose& out_pose);
 
 /// Global joint positions of every frame: a 3·J by F matrix (rows 3j..3j+2 hold joint j).
 MatX joint_positions(const Clip& clip);

@@ -26,8 +26,8 @@ void root_positions_of(const Clip& clip, double* out);
 void forward_kinematics_of_arrays(const Skeleton& skeleton, const double* rotations, const double* root_positions,
                                   std::size_t frames, double* out);
 /// Channel rows (frames x skeleton.channel_count()) from F x J x 4 rotations and F x 3 root positions.
-FrameMatrix channels_from_local_rotations(const Skeleton& skeleton, const double* rotations, const double* root_positions,
-                                          std::size_t frames);
+FrameMatrix channels_from_local_rotations(const Skeleton& skeleton, const double* rotations,
+                                          const double* root_positions, std::size_t frames);
 /// Unit quaternions (w, x, y, z) of `count` row-major 3 x 3 rotation matrices (InvalidArgument for a
 /// matrix that is not a rotation within 1e-3).
 void quaternions_of_matrices(const double* matrices, std::size_t count, double* out);
@@ -35,6 +35,7 @@ void quaternions_of_matrices(const double* matrices, std::size_t count, double* 
 /// rotations 0.
 VecX rest_row(const Skeleton& skeleton);
 /// Joint j's rotation channels in `row` for its whole local rotation, Euler angles nearest `near_row`'s.
-void write_rotation_channels(const Skeleton& skeleton, std::size_t j, const Quat& local, const double* near_row, double* row);
+void write_rotation_channels(const Skeleton& skeleton, std::size_t j, const Quat& local, const double* near_row,
+                             double* row);
 
 }  // namespace mocapdb

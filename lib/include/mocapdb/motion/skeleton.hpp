@@ -22,8 +22,8 @@ Axis channel_axis(ChannelType type);
 
 struct Joint {
     std::string name;
-    int parent = -1;               ///< index of the parent joint; -1 for the root only
-    Vec3 offset = Vec3::Zero();    ///< rest translation from the parent, in the parent's frame, cm
+    int parent = -1;             ///< index of the parent joint; -1 for the root only
+    Vec3 offset = Vec3::Zero();  ///< rest translation from the parent, in the parent's frame, cm
     /// The values this joint contributes to a frame row, in row order. Position channels are cm (they
     /// replace or add to the offset, see PositionChannels); rotation channels are angles (radians).
     std::vector<ChannelType> channels;

@@ -58,8 +58,9 @@ std::vector<std::uint32_t> identity_scan(std::size_t size);
 
 /// The coded coefficients `q` (scan order; may end early, missing entries are 0) of one window.
 /// `contexts` is copied: each window starts from the same initial probabilities.
-std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,
-                                              const ScanGrid& grid, ContextSet contexts);
+std::vector<std::uint8_t> encode_coefficients(const std::vector<std::int32_t>& q,
+                                              const std::vector<std::uint8_t>& classes, const ScanGrid& grid,
+                                              ContextSet contexts);
 
 /// Adds the binary decisions that coding `q` would make, per context (static statistics).
 void count_coefficients(const std::vector<std::int32_t>& q, const std::vector<std::uint8_t>& classes,

@@ -11,7 +11,7 @@ namespace mocapdb::packing {
 
 struct ErrorStats {
     double max_cm = 0.0;
-    double p99_cm = 0.0;   ///< 99th percentile (histogram estimate, resolution range_cm / 8192)
+    double p99_cm = 0.0;  ///< 99th percentile (histogram estimate, resolution range_cm / 8192)
     double rmse_cm = 0.0;
     std::size_t positions = 0;  ///< joint positions measured (frames x joints incl. end sites)
 };

@@ -24,7 +24,7 @@ namespace detail {
 struct GroupModel;
 struct WindowEntry;
 struct WindowScratch;
-}
+}  // namespace detail
 
 class PoseSampler;
 class PoseIndex;

@@ -18,21 +18,21 @@ constexpr std::int64_t kRawChannel = -1;
 /// A packed channel matrix: the zstd frame and the per-channel parameters needed to decode it.
 struct PackedChannels {
     std::size_t frames = 0;
-    std::vector<double> scale;             ///< C: cm or rad per source unit (the reader's factor)
-    std::vector<std::int64_t> decimals;    ///< C: base decimal count k (0..22), or kRawChannel
-    std::vector<std::int64_t> predictor;   ///< C: 1 (previous frame) or 2 (linear extrapolation)
+    std::vector<double> scale;            ///< C: cm or rad per source unit (the reader's factor)
+    std::vector<std::int64_t> decimals;   ///< C: base decimal count k (0..22), or kRawChannel
+    std::vector<std::int64_t> predictor;  ///< C: 1 (previous frame) or 2 (linear extrapolation)
     /// Decompressed bytes of the four sections: coarse residuals, extra decimals, refinements, raw.
     std::array<std::uint64_t, 4> section_bytes{};
-    std::vector<std::uint8_t> bytes;       ///< one zstd frame (with its content checksum)
+    std::vector<std::uint8_t> bytes;  ///< one zstd frame (with its content checksum)
 
     std::size_t channels() const noexcept { return scale.size(); }
 };
 
 struct LosslessOptions {
-    int zstd_level = 19;    ///< 1..22 (docs/storage.md: 19 measured as the default)
+    int zstd_level = 19;  ///< 1..22 (docs/storage.md: 19 measured as the default)
     /// 0: per channel, the order that codes to fewer bytes; 1 or 2: that order for every channel.
     int predictor = 0;
-    int max_decimals = 9;   ///< largest base decimal count k tried (0..18)
+    int max_decimals = 9;  ///< largest base decimal count k tried (0..18)
     /// false: store every channel as float64 bits (the generic fallback; for measurements).
     bool detect_decimals = true;
 };

@@ -23,12 +23,12 @@
 namespace mocapdb::packing {
 
 struct MeasuredGroup {
-    PackedGroup packed;                  ///< the bytes that met E (stats of that attempt)
-    std::vector<ErrorStats> clip_errors; ///< per clip, measured on the decoded bytes
-    ErrorAccumulator errors{1.0};        ///< the whole group (histogram range E)
-    int attempts = 0;                    ///< pack_group calls (1 unless E had to be lowered)
-    double encode_seconds = 0.0;         ///< every pack_group call
-    double decode_seconds = 0.0;         ///< decode_clip of every clip, the accepted attempt only
+    PackedGroup packed;                   ///< the bytes that met E (stats of that attempt)
+    std::vector<ErrorStats> clip_errors;  ///< per clip, measured on the decoded bytes
+    ErrorAccumulator errors{1.0};         ///< the whole group (histogram range E)
+    int attempts = 0;                     ///< pack_group calls (1 unless E had to be lowered)
+    double encode_seconds = 0.0;          ///< every pack_group call
+    double decode_seconds = 0.0;          ///< decode_clip of every clip, the accepted attempt only
 };
 
 /// Packs `clips` at options.max_error_cm and measures the result. `source_positions`, when not

@@ -33,7 +33,7 @@ struct PackOptions {
     /// After a window's step is chosen, drop up to this many of the last nonzero +-1 coefficients in
     /// scan order where the window still meets the bound (0 = off).
     int trim_tail = 64;
-    int threads = 2;            ///< encoder threads (>= 1)
+    int threads = 2;  ///< encoder threads (>= 1)
     /// Bases. With Auto, each candidate combination is packed on a sample of the group (every k-th
     /// clip, k = ceil(clips / 8), each cut to its first 4000 frames) and the one with the fewest
     /// estimated bytes for the whole group is used (about +60% encode time). Both kinds are stored
@@ -50,17 +50,17 @@ struct PackStats {
     std::size_t clips = 0;
     std::size_t frames = 0;
     std::size_t windows = 0;
-    std::size_t channels = 0;        ///< channels per frame (float32 reference = frames·channels·4)
-    std::size_t bytes = 0;           ///< total
-    std::size_t header_bytes = 0;    ///< topology, skeletons, bases, contexts
-    std::size_t table_bytes = 0;     ///< per-clip and per-window entries
-    std::size_t payload_bytes = 0;   ///< coded coefficients
+    std::size_t channels = 0;       ///< channels per frame (float32 reference = frames·channels·4)
+    std::size_t bytes = 0;          ///< total
+    std::size_t header_bytes = 0;   ///< topology, skeletons, bases, contexts
+    std::size_t table_bytes = 0;    ///< per-clip and per-window entries
+    std::size_t payload_bytes = 0;  ///< coded coefficients
     /// Bytes per kind of stored data, summing exactly to `bytes`: header, topology, skeletons,
     /// constant_dofs, bases, contexts, clip_table, window_table, payload (coded windows), raw_windows
     /// (windows stored as source rows). An empty group has only "header".
     ByteParts parts;
-    std::size_t probes = 0;          ///< window decodes tried while choosing steps
-    std::size_t raw_windows = 0;     ///< windows stored as source rows (no step met the bound)
+    std::size_t probes = 0;       ///< window decodes tried while choosing steps
+    std::size_t raw_windows = 0;  ///< windows stored as source rows (no step met the bound)
     ErrorStats error;
     double encode_seconds = 0.0;
     TimeBasis time_basis = TimeBasis::Learned;  ///< the bases used (never Auto)

@@ -38,10 +38,10 @@ private:
     /// Per block: its columns of 32-bit levels, of 32- or 16-bit levels, and of any width (all kept).
     using BlockEntry = std::array<std::uint16_t, 3>;
     struct Window {
-        std::uint64_t begin = 0;    ///< first byte of its blocks' cells in cells_
-        std::uint64_t blocks = 0;   ///< first of its block entries in blocks_
-        double step = 0.0;          ///< quantizer step
-        std::uint32_t rows = 0;     ///< dof rows up to the last nonzero one (+1); 0: raw or all zero
+        std::uint64_t begin = 0;   ///< first byte of its blocks' cells in cells_
+        std::uint64_t blocks = 0;  ///< first of its block entries in blocks_
+        double step = 0.0;         ///< quantizer step
+        std::uint32_t rows = 0;    ///< dof rows up to the last nonzero one (+1); 0: raw or all zero
     };
     /// Frame t's dofs of coded window `global` into the scratch's pose buffer.
     const double* dofs(std::size_t clip, std::size_t global, std::size_t t) const;
@@ -50,10 +50,10 @@ private:
     const double* frame_dofs(std::size_t clip, std::size_t frame) const;
 
     const GroupDecoder* decoder_;
-    std::vector<Window> windows_;               ///< per window of the group (raw windows: rows 0, unused)
-    std::vector<double> time_rows_;             ///< time basis, row t contiguous (W x W)
-    std::vector<BlockEntry> blocks_;            ///< per window, per block
-    std::vector<std::uint8_t> cells_;           ///< per block, per column, kBlockRows levels of the column's width
+    std::vector<Window> windows_;      ///< per window of the group (raw windows: rows 0, unused)
+    std::vector<double> time_rows_;    ///< time basis, row t contiguous (W x W)
+    std::vector<BlockEntry> blocks_;   ///< per window, per block
+    std::vector<std::uint8_t> cells_;  ///< per block, per column, kBlockRows levels of the column's width
     std::size_t coefficients_ = 0;
     std::array<std::size_t, 3> column_widths_{};
 };

@@ -17,7 +17,7 @@ struct HumanoidNames {
     static constexpr const char* root = "Hips";
     static constexpr const char* head_end = "Head_end";
     static constexpr const char* right_hand_end = "RightHand_end";  ///< the reaching end effector
-    static constexpr const char* left_toe = "LeftToeBase";           ///< foot contact joints
+    static constexpr const char* left_toe = "LeftToeBase";          ///< foot contact joints
     static constexpr const char* right_toe = "RightToeBase";
 };
 

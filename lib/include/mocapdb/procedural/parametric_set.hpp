@@ -51,8 +51,8 @@ struct ReachGrid {
 
 /// Generated clips with their control parameters (N by P, row i for clips[i]).
 struct ParametricSet {
-    std::string kind;                          ///< "walk" or "reach"
-    std::vector<Clip> clips;                   ///< named uniquely (walk_s130_t+030, reach_a+045_h120_d55)
+    std::string kind;         ///< "walk" or "reach"
+    std::vector<Clip> clips;  ///< named uniquely (walk_s130_t+030, reach_a+045_h120_d55)
     std::vector<std::string> parameter_names;
     std::vector<std::string> parameter_units;
     MatX parameters;

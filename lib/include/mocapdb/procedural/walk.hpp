@@ -20,15 +20,15 @@ struct WalkParams {
 };
 
 struct WalkOptions {
-    double frame_rate = 60.0;        ///< Hz
-    int cycles = 3;                  ///< whole gait cycles in the clip, 1 … 20
+    double frame_rate = 60.0;          ///< Hz
+    int cycles = 3;                    ///< whole gait cycles in the clip, 1 … 20
     double max_leg_extension = 0.985;  ///< hip–ankle distance / leg length never exceeds this (knees ≥ 20°)
 };
 
 struct WalkMotion {
-    Clip clip;                ///< humanoid_skeleton(), name "walk"
-    double stride_m = 0.0;    ///< stride used (see above)
-    double cycle_s = 0.0;     ///< gait period
+    Clip clip;                      ///< humanoid_skeleton(), name "walk"
+    double stride_m = 0.0;          ///< stride used (see above)
+    double cycle_s = 0.0;           ///< gait period
     double progression_cm_s = 0.0;  ///< forward speed of the path the pelvis sways about
     /// Frames in which each foot (0 = left, 1 = right) is planted flat or pivots on its heel or ball,
     /// as generated (the extractors detect contacts on their own from the motion).

@@ -21,7 +21,7 @@ struct ClipSource {
 
 /// One stored clip as listed by Database::clips().
 struct ClipRecord {
-    std::string id;        ///< clip id (group name under /clips)
+    std::string id;  ///< clip id (group name under /clips)
     ClipSource source;
     std::string skeleton;  ///< skeleton id (group name under /skeletons)
     std::size_t frames = 0;

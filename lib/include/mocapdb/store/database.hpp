@@ -43,10 +43,10 @@ struct SetRecord {
     bool aligned = false;
     /// (samples, time, dofs) of the aligned tensor, as stored (C order); zeros when not aligned.
     std::array<std::size_t, 3> tensor_shape{};
-    std::uint64_t tensor_stored_bytes = 0;  ///< compressed size of the tensor in the file
-    bool model = false;                     ///< a Tucker model is stored (/sets/{set}/model)
+    std::uint64_t tensor_stored_bytes = 0;     ///< compressed size of the tensor in the file
+    bool model = false;                        ///< a Tucker model is stored (/sets/{set}/model)
     std::array<std::size_t, 3> model_ranks{};  ///< (R1, R2, R3); zeros without a model
-    std::uint64_t model_stored_bytes = 0;   ///< storage size of the model's datasets in the file
+    std::uint64_t model_stored_bytes = 0;      ///< storage size of the model's datasets in the file
 };
 
 /// Errors of a stored model, measured against the aligned tensor when the model was stored
@@ -67,7 +67,7 @@ struct StoredModel {
 
 /// One clip of the packed tier (/packed/{group}, schemas/format-v3.md §9).
 struct PackedClipRecord {
-    std::string id;                   ///< clip id (the clip under /clips it was packed from)
+    std::string id;  ///< clip id (the clip under /clips it was packed from)
     std::size_t frames = 0;
     std::uint64_t payload_bytes = 0;  ///< its windows' coded bytes (the group's header and tables are shared)
     double max_cm = 0.0;              ///< FK joint-position errors against the source clip, every frame
@@ -77,11 +77,11 @@ struct PackedClipRecord {
 
 /// One group of the packed tier: clips of one skeleton topology and frame rate packed together.
 struct PackedGroupRecord {
-    std::string name;                 ///< link name under /packed ("g0", "g1", ...)
-    std::string skeleton;             ///< skeleton id of its first clip
-    double frame_rate = 0.0;          ///< Hz
-    std::uint64_t bytes = 0;          ///< the packed bytes: everything the decoder needs
-    std::uint64_t stored_bytes = 0;   ///< storage of the group's datasets in the file
+    std::string name;                ///< link name under /packed ("g0", "g1", ...)
+    std::string skeleton;            ///< skeleton id of its first clip
+    double frame_rate = 0.0;         ///< Hz
+    std::uint64_t bytes = 0;         ///< the packed bytes: everything the decoder needs
+    std::uint64_t stored_bytes = 0;  ///< storage of the group's datasets in the file
     std::size_t frames = 0;
     double max_cm = 0.0, p99_cm = 0.0, rmse_cm = 0.0;
     std::vector<PackedClipRecord> clips;  ///< in packing order (the decoder's clip index)
@@ -89,8 +89,8 @@ struct PackedGroupRecord {
 
 /// The packed tier (/packed): every clip packed at the time with FK error <= max_error_cm.
 struct PackedTierRecord {
-    double max_error_cm = 0.0;        ///< E, the bound
-    std::uint64_t bytes = 0;          ///< sum of the groups' bytes
+    double max_error_cm = 0.0;  ///< E, the bound
+    std::uint64_t bytes = 0;    ///< sum of the groups' bytes
     std::size_t clips = 0;
     std::size_t frames = 0;
     double max_cm = 0.0, p99_cm = 0.0, rmse_cm = 0.0;  ///< over the whole collection

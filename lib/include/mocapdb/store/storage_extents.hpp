@@ -9,8 +9,8 @@
 namespace mocapdb {
 
 struct ByteExtent {
-    std::uint64_t offset = 0;  ///< from the start of the file
-    std::uint64_t size = 0;    ///< stored (filtered) bytes
+    std::uint64_t offset = 0;    ///< from the start of the file
+    std::uint64_t size = 0;      ///< stored (filtered) bytes
     std::filesystem::path file;  ///< the file holding them: the database file or one of its segments
 };
 

@@ -30,8 +30,8 @@ struct SynthesisOptions;
 
 /// The chosen variogram of a coefficient kernel, with the key of the inputs it was chosen for.
 struct KernelFit {
-    std::uint64_t key = 0;                ///< kernel_key of the inputs (0: none)
-    kriging::VariogramModel variogram;    ///< the model Kriging::build is given (valid, total sill > 0)
+    std::uint64_t key = 0;              ///< kernel_key of the inputs (0: none)
+    kriging::VariogramModel variogram;  ///< the model Kriging::build is given (valid, total sill > 0)
     /// LOO MSE per grid exponent: the smallest over the candidate shapes tried with that exponent
     /// (fit_coefficient_kernel); empty when p was given, and in a fit read from a database (not stored).
     Eigen::VectorXd exponent_loo_mse;
@@ -109,7 +109,8 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
 /// The status fit_coefficient_kernel would report for `variogram` on these inputs, recomputed from the
 /// bounds (largest lag, residual variance) without refitting: a stored kernel's assessed_status (fit_kernel),
 /// or at load for one stored without it. Cost: the trend residuals and the control-space distances.
-kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& sample_values,
+kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc,
+                                             const Eigen::Ref<const MatX>& sample_values,
                                              const kriging::VariogramModel& variogram, const SynthesisOptions& options);
 
 /// What `compress` stores: the fit MotionModel(model, aligned, set, ..., options) would make, with its

@@ -15,8 +15,7 @@
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
 
-namespace mocapdb {
-}
+namespace mocapdb {}
 
 namespace mocapdb::synthesis {
 

@@ -10,8 +10,7 @@
 
 #include "mocapdb/synthesis/synthesis_model.hpp"
 
-namespace mocapdb {
-}
+namespace mocapdb {}
 
 namespace mocapdb::synthesis {
 

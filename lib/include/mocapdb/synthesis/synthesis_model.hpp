@@ -106,15 +106,16 @@ struct SynthesisOptions {
 
 /// What was built (for reports and the CLI).
 struct SynthesisReport {
-    kriging::VariogramModel model;         ///< coefficient kernel's variogram
-    kriging::KrigingStatus status;         ///< its factorization
-    kriging::FitStatus fit_status = kriging::FitStatus::Ok;  ///< of the variogram fit (precomputed: KernelFit::assessed_status, else recomputed)
-    double loo_mean_z2 = 0.0;  ///< KernelFit::loo_mean_z2 (NaN when the kernel was precomputed)
-    Eigen::VectorXd exponent_loo_mse;      ///< LOO MSE per grid exponent (empty when p was given or the kernel precomputed)
-    double timing_exponent = 0.0;          ///< p of the timing kernel (Shared: the coefficient kernel's)
-    double precompute_seconds = 0.0;       ///< construction time of the two kriging kernels
-    bool kernel_precomputed = false;       ///< the coefficient kernel's variogram came from options.kernel_fit
-    bool system_precomputed = false;       ///< and its factorized system (KernelFit::system) too
+    kriging::VariogramModel model;  ///< coefficient kernel's variogram
+    kriging::KrigingStatus status;  ///< its factorization
+    kriging::FitStatus fit_status =
+        kriging::FitStatus::Ok;  ///< of the variogram fit (precomputed: KernelFit::assessed_status, else recomputed)
+    double loo_mean_z2 = 0.0;    ///< KernelFit::loo_mean_z2 (NaN when the kernel was precomputed)
+    Eigen::VectorXd exponent_loo_mse;  ///< LOO MSE per grid exponent (empty when p was given or the kernel precomputed)
+    double timing_exponent = 0.0;      ///< p of the timing kernel (Shared: the coefficient kernel's)
+    double precompute_seconds = 0.0;   ///< construction time of the two kriging kernels
+    bool kernel_precomputed = false;   ///< the coefficient kernel's variogram came from options.kernel_fit
+    bool system_precomputed = false;   ///< and its factorized system (KernelFit::system) too
 };
 
 /// The synthesized timing of one motion.
@@ -142,12 +143,12 @@ struct Workspace {
 
 /// Scratch memory of batched queries (allocation on size changes only, apart from the kriging batch).
 struct BatchWorkspace {
-    MatX c_normalized;   ///< Q by P
-    MatX weights;        ///< N by Q
-    MatX coefficients;   ///< S by Q
-    MatX frame_matrix;   ///< model-specific per-frame operator
-    MatX kriging;        ///< (N + K) by block: the kriging right-hand sides of a block of characters
-    MatX core_time;      ///< model-specific: the core contracted with the frame's time row
+    MatX c_normalized;  ///< Q by P
+    MatX weights;       ///< N by Q
+    MatX coefficients;  ///< S by Q
+    MatX frame_matrix;  ///< model-specific per-frame operator
+    MatX kriging;       ///< (N + K) by block: the kriging right-hand sides of a block of characters
+    MatX core_time;     ///< model-specific: the core contracted with the frame's time row
     Eigen::RowVectorXd u_time;
 };
 
@@ -162,8 +163,8 @@ public:
     virtual const char* kind() const = 0;
 
     Eigen::Index dofs() const { return dofs_; }
-    Eigen::Index frames() const { return frames_; }         ///< T, aligned frames
-    Eigen::Index samples() const { return coords_.rows(); }  ///< N
+    Eigen::Index frames() const { return frames_; }             ///< T, aligned frames
+    Eigen::Index samples() const { return coords_.rows(); }     ///< N
     Eigen::Index parameters() const { return coords_.cols(); }  ///< P
     const std::vector<std::string>& parameter_names() const { return names_; }
     const std::vector<std::string>& parameter_units() const { return units_; }

@@ -56,7 +56,7 @@ struct HosvdBases {
     /// the dense sample Gram, K <= min(N, L) from the projected path (the columns that can carry
     /// energy; sample_basis_columns() completes it to any rank). Columns by decreasing eigenvalue.
     std::array<MatX, 3> U;
-    ModeSpectra spectra;    ///< the matching eigenvalues (squared singular values), I_n values per mode
+    ModeSpectra spectra;  ///< the matching eigenvalues (squared singular values), I_n values per mode
     /// The projected path's by-product, else empty: the core at every column of the bases (D by T by
     /// K, hosvd_full_core's shape) from the eigendecomposition's factors instead of a pass over the
     /// data (#16: 7.8 s at 11 070 windows). Equal to hosvd_full_core up to rounding in the dof and

@@ -14,15 +14,15 @@ enum class RankCriterion { Explicit, TargetError, TargetCompression, Tolerance }
 struct RankSelection {
     Ranks ranks{0, 0, 0};
     RankCriterion criterion = RankCriterion::Explicit;
-    double target = 0.0;           ///< the requested error, ratio or tolerance (0 for Explicit)
-    double bound_relative = 0.0;   ///< HOSVD bound / ||A||_F at ranks
+    double target = 0.0;             ///< the requested error, ratio or tolerance (0 for Explicit)
+    double bound_relative = 0.0;     ///< HOSVD bound / ||A||_F at ranks
     double measured_relative = 0.0;  ///< ||A - A_hat||_F / ||A||_F of the HOSVD at ranks, by reconstruction
-    Eigen::Index parameters = 0;   ///< tucker_parameter_count
+    Eigen::Index parameters = 0;     ///< tucker_parameter_count
     double compression_ratio = 0.0;
     /// Target error: measured_relative <= target; target ratio: compression_ratio >= target;
     /// explicit, tolerance: true. False means no rank triple met the target (ranks are the closest).
     bool target_met = true;
-    TuckerModel model;             ///< the HOSVD at ranks
+    TuckerModel model;  ///< the HOSVD at ranks
 };
 
 /// Ranks with the fewest parameters whose HOSVD bound is <= target_relative * ||A||_F.

@@ -39,9 +39,9 @@ const char* to_string(TuckerStatus status);
 /// Eigenvalues of the three mode Gram matrices A_(n) A_(n)^T (= squared singular values of the
 /// unfoldings), each sorted in decreasing order and clamped at 0.
 struct ModeSpectra {
-    Dims3 dims{0, 0, 0};                 ///< (I0, I1, I2) of the tensor
-    std::array<VecX, 3> squared_sv;      ///< squared_sv[n]: I_n entries, decreasing, >= 0
-    double squared_norm = 0.0;           ///< ||A||_F^2 (= the trace of every Gram matrix)
+    Dims3 dims{0, 0, 0};             ///< (I0, I1, I2) of the tensor
+    std::array<VecX, 3> squared_sv;  ///< squared_sv[n]: I_n entries, decreasing, >= 0
+    double squared_norm = 0.0;       ///< ||A||_F^2 (= the trace of every Gram matrix)
 };
 
 /// sqrt( sum_n sum_{i >= ranks[n]} squared_sv[n](i) ): the HOSVD bound on ||A - A_hat||_F (absolute).
@@ -63,16 +63,16 @@ void check_tensor(const Tensor3& a, const char* where);
 
 /// A decomposed tensor. Plain data: build it with hosvd(), st_hosvd() or hooi().
 struct TuckerModel {
-    Tensor3 core;             ///< R1 by R2 by R3
-    std::array<MatX, 3> U;    ///< U[0]: D by R1 (dof), U[1]: T by R2 (time), U[2]: N by R3 (sample); orthonormal columns
-    Ranks ranks{0, 0, 0};     ///< (R1, R2, R3)
+    Tensor3 core;           ///< R1 by R2 by R3
+    std::array<MatX, 3> U;  ///< U[0]: D by R1 (dof), U[1]: T by R2 (time), U[2]: N by R3 (sample); orthonormal columns
+    Ranks ranks{0, 0, 0};   ///< (R1, R2, R3)
     TuckerMethod method = TuckerMethod::Hosvd;
-    int iterations = 0;       ///< HOOI sweeps performed (0 for HOSVD and ST-HOSVD)
+    int iterations = 0;  ///< HOOI sweeps performed (0 for HOSVD and ST-HOSVD)
     /// 1 - ||A - A_hat||_F / ||A||_F, from the orthogonality identity ||A - A_hat||^2 = ||A||^2 - ||G||^2
     /// (accurate to about 1e-8 relative error; relative_error() measures by reconstruction).
     double fit = 0.0;
     TuckerStatus status = TuckerStatus::Ok;
-    double data_norm = 0.0;   ///< ||A||_F of the decomposed tensor
+    double data_norm = 0.0;  ///< ||A||_F of the decomposed tensor
     /// Upper bound on ||A - A_hat||_F (absolute). HOSVD: the discarded-singular-value bound above;
     /// ST-HOSVD: sqrt of the energy discarded at each sequential step (equal to the error in exact
     /// arithmetic, and <= the HOSVD bound); HOOI: the bound of its HOSVD start (HOOI is never worse).
@@ -97,8 +97,8 @@ struct TuckerModel {
               const Eigen::Ref<const Eigen::RowVectorXd>& u_sample) const;
     /// The pose at a level of detail lod = (r1, r2, r3), 1 <= r_n <= ranks[n]: only the first r2
     /// entries of u_time (1 by R2) and the first r3 of u_sample (1 by R3) are used. Returns a D-vector.
-    VecX pose(const Eigen::Ref<const Eigen::RowVectorXd>& u_time,
-              const Eigen::Ref<const Eigen::RowVectorXd>& u_sample, const Ranks& lod) const;
+    VecX pose(const Eigen::Ref<const Eigen::RowVectorXd>& u_time, const Eigen::Ref<const Eigen::RowVectorXd>& u_sample,
+              const Ranks& lod) const;
 
     /// tucker_parameter_count(dims(), ranks) and tucker_compression_ratio(dims(), ranks).
     Eigen::Index parameter_count() const;
@@ -149,8 +149,7 @@ public:
     /// out_pose: D entries, overwritten. No heap allocation once ws has been sized.
     /// Throws InvalidArgument on short inputs or a wrong out_pose size.
     void evaluate(const Eigen::Ref<const Eigen::RowVectorXd>& u_time,
-                  const Eigen::Ref<const Eigen::RowVectorXd>& u_sample, Eigen::Ref<VecX> out_pose,
-                  Workspace& ws) const;
+                  const Eigen::Ref<const Eigen::RowVectorXd>& u_sample, Eigen::Ref<VecX> out_pose, Workspace& ws) const;
     /// Convenience: allocating form. Returns a D-vector.
     VecX evaluate(const Eigen::Ref<const Eigen::RowVectorXd>& u_time,
                   const Eigen::Ref<const Eigen::RowVectorXd>& u_sample) const;

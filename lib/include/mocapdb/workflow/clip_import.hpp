@@ -31,10 +31,10 @@ struct ImportMessage {
 
 struct ImportOutcome {
     ImportSummary summary;
-    bool existed = false;          ///< the database file existed before
-    std::size_t clips_in_db = 0;   ///< clips the database holds afterwards
-    std::uint64_t file_bytes = 0;  ///< its size afterwards
-    double seconds = 0.0;          ///< wall time of reading and storing
+    bool existed = false;                 ///< the database file existed before
+    std::size_t clips_in_db = 0;          ///< clips the database holds afterwards
+    std::uint64_t file_bytes = 0;         ///< its size afterwards
+    double seconds = 0.0;                 ///< wall time of reading and storing
     std::vector<ImportMessage> messages;  ///< warnings and errors, in file order
     std::vector<std::string> not_added;   ///< "FILE: why" for each file read but not stored (already stored)
 };

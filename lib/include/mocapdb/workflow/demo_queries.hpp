@@ -38,7 +38,7 @@ enum class DemoMeasure { None, Extractors, ReachTarget };
 struct DemoMeasurement {
     DemoMeasure kind = DemoMeasure::None;
     std::vector<ParameterExtractor> extractors;  ///< Extractors
-    std::string extractor_names;                  ///< the set's parameter source, or "extract:NAME,..."
+    std::string extractor_names;                 ///< the set's parameter source, or "extract:NAME,..."
 };
 
 /// How the demo measures a synthesized motion of `set`: the set's own extractors; else extractors

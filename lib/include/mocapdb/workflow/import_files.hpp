@@ -36,19 +36,19 @@ struct ImportedFile {
     std::filesystem::path file;
     AddClipResult result;
     std::size_t frames = 0;
-    double seconds = 0.0;        ///< duration of the clip
-    std::uint64_t bytes = 0;     ///< size of the source file
-    Warnings warnings;           ///< the reader's warnings
-    std::string error;           ///< with keep_going: why the file was not imported (empty: it was read)
+    double seconds = 0.0;     ///< duration of the clip
+    std::uint64_t bytes = 0;  ///< size of the source file
+    Warnings warnings;        ///< the reader's warnings
+    std::string error;        ///< with keep_going: why the file was not imported (empty: it was read)
 };
 
 struct ImportSummary {
-    std::size_t files = 0;    ///< files read
-    std::size_t added = 0;    ///< clips stored
-    std::size_t skipped = 0;  ///< duplicates (sha256 already stored)
-    std::size_t failed = 0;   ///< with keep_going: files that could not be read or parsed
-    std::size_t frames = 0;   ///< frames of the added clips
-    double seconds = 0.0;     ///< motion duration of the added clips
+    std::size_t files = 0;         ///< files read
+    std::size_t added = 0;         ///< clips stored
+    std::size_t skipped = 0;       ///< duplicates (sha256 already stored)
+    std::size_t failed = 0;        ///< with keep_going: files that could not be read or parsed
+    std::size_t frames = 0;        ///< frames of the added clips
+    double seconds = 0.0;          ///< motion duration of the added clips
     std::uint64_t bytes_read = 0;  ///< source bytes read (all files)
 };
 

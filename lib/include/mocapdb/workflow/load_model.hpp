@@ -17,11 +17,11 @@ namespace mocapdb::workflow {
 /// (Database::load_kernel_fit; used when its key matches, kernel_fit.hpp). InvalidArgument naming the
 /// command to run when the set is not aligned or has no model; StoreError for a malformed stored kernel.
 std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, const std::string& set,
-                                               const synthesis::SynthesisOptions& options = {});
+                                                          const synthesis::SynthesisOptions& options = {});
 
 /// The set's aligned form, parameters, skeleton and frame rate from the database, with
 /// compression::position_error_weights of the skeleton. InvalidArgument when the set is not aligned.
 std::unique_ptr<synthesis::NaiveMotionModel> load_naive_motion_model(const Database& db, const std::string& set,
-                                                          const synthesis::SynthesisOptions& options = {});
+                                                                     const synthesis::SynthesisOptions& options = {});
 
 }  // namespace mocapdb::workflow

@@ -37,7 +37,7 @@ struct PackDatabaseOptions {
     /// packs the whole collection in memory (measured as stored); only the E chosen is written.
     /// max_error_cm is then ignored.
     std::uint64_t max_bytes = 0;
-    int threads = 2;            ///< encoder threads (>= 1)
+    int threads = 2;  ///< encoder threads (>= 1)
     /// Replace an existing packed tier; without it a database that has one is refused (StoreError).
     bool replace = false;
     double wait_seconds = kWriterWaitSeconds;  ///< for another writing session on the file
@@ -71,17 +71,17 @@ struct PackDatabaseOutcome {
     /// and per group (each summing to its group's bytes).
     packing::ByteParts parts;
     std::vector<packing::ByteParts> group_parts;
-    std::uint64_t float32_bytes = 0;  ///< the clips' channels as float32
-    double motion_seconds = 0.0;      ///< duration of the clips
-    std::size_t dropped_lossless = 0; ///< clips whose lossless channels were removed (drop_lossless)
-    bool replaced = false;            ///< an earlier packed tier was replaced
+    std::uint64_t float32_bytes = 0;   ///< the clips' channels as float32
+    double motion_seconds = 0.0;       ///< duration of the clips
+    std::size_t dropped_lossless = 0;  ///< clips whose lossless channels were removed (drop_lossless)
+    bool replaced = false;             ///< an earlier packed tier was replaced
     double replaced_max_error_cm = 0.0;
-    std::uint64_t file_bytes = 0;     ///< the database file after the commit
-    double seconds = 0.0;             ///< wall time
+    std::uint64_t file_bytes = 0;  ///< the database file after the commit
+    double seconds = 0.0;          ///< wall time
 
-    double ratio_float32() const;                      ///< float32 bytes / tier bytes (0 without bytes)
+    double ratio_float32() const;                         ///< float32 bytes / tier bytes (0 without bytes)
     double group_ratio_float32(std::size_t group) const;  ///< the same per group
-    double bytes_per_second() const;                   ///< tier bytes per second of motion (0 without motion)
+    double bytes_per_second() const;                      ///< tier bytes per second of motion (0 without motion)
 };
 
 /// Packs every clip of the database at `db` and stores the result as its packed tier (committed).

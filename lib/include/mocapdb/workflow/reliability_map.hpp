@@ -22,10 +22,10 @@ struct SliceAxis {
 };
 
 struct ReliabilityMap {
-    MatX queries;  ///< gx.count · gy.count by P, x fastest
-    VecX rho;      ///< per query
-    MatX values;   ///< rho as gy.count rows by gx.count columns
-    double fraction_trusted = 0.0;  ///< share of cells with rho >= kTrustedReliability
+    MatX queries;                                         ///< gx.count · gy.count by P, x fastest
+    VecX rho;                                             ///< per query
+    MatX values;                                          ///< rho as gy.count rows by gx.count columns
+    double fraction_trusted = 0.0;                        ///< share of cells with rho >= kTrustedReliability
     double rho_min = 0.0, rho_mean = 0.0, rho_max = 0.0;  ///< over the cells
 };
 

@@ -13,6 +13,7 @@
 namespace mocapdb::workflow {
 
 /// `poses` is D by T by N like data.aligned.tensor; the clip is named `name`.
-Clip sample_at_own_timing(const AlignedSetData& data, const Tensor3& poses, Eigen::Index sample, const std::string& name);
+Clip sample_at_own_timing(const AlignedSetData& data, const Tensor3& poses, Eigen::Index sample,
+                          const std::string& name);
 
 }  // namespace mocapdb::workflow

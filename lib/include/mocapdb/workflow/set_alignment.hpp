@@ -21,11 +21,11 @@ namespace mocapdb::workflow {
 
 struct AlignRequest {
     std::string set;
-    Eigen::Index frames = 100;      ///< aligned frames T
-    std::string method = "dtw";     ///< AlignOptions::method: dtw | linear
-    std::string reference;          ///< sample label ("CLIP" or "CLIP:BEGIN-END"); empty = the library's default
-    ProgressCallback read_progress; ///< per sample read from the database (item: its clip); may be empty
-    ProgressCallback progress;      ///< the alignment's (AlignOptions::progress); may be empty
+    Eigen::Index frames = 100;       ///< aligned frames T
+    std::string method = "dtw";      ///< AlignOptions::method: dtw | linear
+    std::string reference;           ///< sample label ("CLIP" or "CLIP:BEGIN-END"); empty = the library's default
+    ProgressCallback read_progress;  ///< per sample read from the database (item: its clip); may be empty
+    ProgressCallback progress;       ///< the alignment's (AlignOptions::progress); may be empty
 };
 
 struct AlignOutcome {

@@ -29,9 +29,9 @@ struct CompressRequest {
     double rmse = -1.0;                  ///< RMSE target of the weighted, centred tensor; < 0 = none
     double ratio = 0.0;                  ///< compression ratio target of the Tucker parameters; 0 = none
     tensor::TuckerMethod method = tensor::TuckerMethod::Hosvd;
-    int max_iterations = 50;             ///< HOOI sweeps at most
-    ProgressCallback progress;           ///< the rank search's (max error and rmse targets); may be empty
-    ProgressCallback kernel_progress;    ///< the synthesis kernel's fit (SynthesisOptions::fit_progress); may be empty
+    int max_iterations = 50;           ///< HOOI sweeps at most
+    ProgressCallback progress;         ///< the rank search's (max error and rmse targets); may be empty
+    ProgressCallback kernel_progress;  ///< the synthesis kernel's fit (SynthesisOptions::fit_progress); may be empty
 };
 
 struct CompressOutcome {
@@ -50,13 +50,13 @@ struct CompressOutcome {
     double fit_s = 0.0;                  ///< decomposing at the chosen ranks with the requested method
     double store_s = 0.0;                ///< writing and committing model and kernel
     double total_s = 0.0;
-    double kernel_s = 0.0;               ///< fitting the synthesis kernel's variogram stored with the model
-    bool kernel_stored = false;          ///< false without parameters
-    std::size_t kernel_fit_samples = 0;  ///< samples its variogram was chosen on (KernelFit::fit_samples)
+    double kernel_s = 0.0;                 ///< fitting the synthesis kernel's variogram stored with the model
+    bool kernel_stored = false;            ///< false without parameters
+    std::size_t kernel_fit_samples = 0;    ///< samples its variogram was chosen on (KernelFit::fit_samples)
     std::string kernel_not_stored_reason;  ///< why not, when not ("" when stored)
-    std::string kernel_variogram;        ///< the stored kernel's variogram (empty when not stored)
-    std::string kernel_status = "ok";    ///< its fit status (kriging::to_string(FitStatus))
-    std::string kernel_warning;          ///< synthesis::fit_status_warning, "" when the fit is clean
+    std::string kernel_variogram;          ///< the stored kernel's variogram (empty when not stored)
+    std::string kernel_status = "ok";      ///< its fit status (kriging::to_string(FitStatus))
+    std::string kernel_warning;            ///< synthesis::fit_status_warning, "" when the fit is clean
 
     double ratio() const { return static_cast<double>(raw_bytes) / static_cast<double>(bytes); }
 };

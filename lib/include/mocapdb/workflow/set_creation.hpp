@@ -25,22 +25,22 @@ namespace mocapdb::workflow {
 
 struct SetRequest {
     std::string name;
-    std::vector<std::string> clips;          ///< clip ids or fnmatch patterns, in sample order
-    std::filesystem::path params_csv;        ///< parameters from a CSV (first column: sample labels) ...
-    std::vector<std::string> extract;        ///< ... or measured by these extractors (not both)
+    std::vector<std::string> clips;                        ///< clip ids or fnmatch patterns, in sample order
+    std::filesystem::path params_csv;                      ///< parameters from a CSV (first column: sample labels) ...
+    std::vector<std::string> extract;                      ///< ... or measured by these extractors (not both)
     std::vector<std::pair<std::string, double>> periodic;  ///< parameter name and period (bearing is by itself)
-    std::string segment = "auto";            ///< parse_segmentation's spec
-    std::vector<std::string> feet;           ///< left, right foot joints; empty: found by name
-    bool replace = false;                    ///< replace a set of the same name
-    ProgressCallback progress;               ///< per clip loaded and measured; may be empty
+    std::string segment = "auto";                          ///< parse_segmentation's spec
+    std::vector<std::string> feet;                         ///< left, right foot joints; empty: found by name
+    bool replace = false;                                  ///< replace a set of the same name
+    ProgressCallback progress;                             ///< per clip loaded and measured; may be empty
 };
 
 struct SetOutcome {
     MotionSet set;
-    std::size_t clips = 0;              ///< clips selected
-    std::vector<std::string> skipped;   ///< clips that gave no sample
+    std::size_t clips = 0;                                 ///< clips selected
+    std::vector<std::string> skipped;                      ///< clips that gave no sample
     Segmentation segmentation = Segmentation::WholeClips;  ///< what the samples are (auto resolved)
-    bool auto_segmentation = false;     ///< the request left the choice to the data
+    bool auto_segmentation = false;                        ///< the request left the choice to the data
 };
 
 /// Builds the set from the database's clips and stores it (committed).

@@ -28,8 +28,8 @@ struct ReductionOutcome {
     MotionSet set;                    ///< the set as stored
     std::vector<std::string> labels;  ///< per sample, "CLIP" or "CLIP:BEGIN-END"
     kriging::ReductionResult result;
-    std::string model_kind;           ///< the model whose kernel judged ("tucker", "naive")
-    kriging::VariogramModel kernel;   ///< that kernel's variogram
+    std::string model_kind;          ///< the model whose kernel judged ("tucker", "naive")
+    kriging::VariogramModel kernel;  ///< that kernel's variogram
 };
 
 ReductionOutcome reduce_set(const std::filesystem::path& db, const ReductionRequest& request);
@@ -40,6 +40,7 @@ MotionSet reduced_set(const MotionSet& set, const std::vector<Eigen::Index>& kep
 
 /// Stores reduced_set(outcome...) as `name`, aligned with the original's method and frames when the
 /// original is aligned (returns whether it was).
-bool store_reduced_set(const std::filesystem::path& db, const ReductionOutcome& outcome, const std::string& name, bool replace);
+bool store_reduced_set(const std::filesystem::path& db, const ReductionOutcome& outcome, const std::string& name,
+                       bool replace);
 
 }  // namespace mocapdb::workflow

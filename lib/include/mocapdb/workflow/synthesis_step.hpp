@@ -20,12 +20,12 @@ namespace mocapdb::workflow {
 std::vector<ParameterExtractor> source_extractors(const std::string& parameter_source);
 
 struct SynthOutcome {
-    VecX requested;             ///< c
-    Clip clip;                  ///< the synthesized motion on the set's skeleton
+    VecX requested;  ///< c
+    Clip clip;       ///< the synthesized motion on the set's skeleton
     synthesis::Timing timing;
-    double reliability = 0.0;   ///< rho at c (1 at the samples, towards 0 far from them)
-    VecX measured;              ///< by the set's extractors; empty when the set's parameters were not extracted
-    double seconds = 0.0;       ///< wall time of timing + motion + reliability
+    double reliability = 0.0;  ///< rho at c (1 at the samples, towards 0 far from them)
+    VecX measured;             ///< by the set's extractors; empty when the set's parameters were not extracted
+    double seconds = 0.0;      ///< wall time of timing + motion + reliability
 };
 
 /// `set` is the model's set (for its parameter source); level 0 = full ranks.

@@ -29,15 +29,15 @@ enum class WindowSource {
 };
 
 struct WindowSamplerOptions {
-    std::size_t length = 64;            ///< L, frames per window
-    std::size_t batch = 32;             ///< B, windows per batch
+    std::size_t length = 64;  ///< L, frames per window
+    std::size_t batch = 32;   ///< B, windows per batch
     std::uint64_t seed = 0;
-    std::vector<std::string> clips;     ///< clip ids or fnmatch patterns; empty: every clip
+    std::vector<std::string> clips;  ///< clip ids or fnmatch patterns; empty: every clip
     WindowValues values = WindowValues::PoseVectors;
     WindowSource source = WindowSource::Auto;
-    std::size_t cache_clips = 256;      ///< clips kept decoded (least recently used evicted; at least batch)
+    std::size_t cache_clips = 256;             ///< clips kept decoded (least recently used evicted; at least batch)
     WindowDType dtype = WindowDType::Float64;  ///< the decoded clips' element type
-    bool pad = false;                   ///< clips shorter than L give one window, padded with their last frame
+    bool pad = false;                          ///< clips shorter than L give one window, padded with their last frame
 };
 
 /// Where a drawn window comes from.

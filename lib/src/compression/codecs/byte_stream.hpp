@@ -93,7 +93,8 @@ public:
         pos_ = 4;
         const std::uint8_t v = u8("version");
         if (v != version)
-            fail_at(4, "format version " + std::to_string(v) + " not supported (expected " + std::to_string(version) + ")");
+            fail_at(
+                4, "format version " + std::to_string(v) + " not supported (expected " + std::to_string(version) + ")");
     }
     /// Reads the payload size and CRC-32 that end a header, checks that exactly that many bytes
     /// follow and that the CRC of the header (up to the CRC field) and the payload matches.

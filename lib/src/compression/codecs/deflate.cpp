@@ -76,7 +76,8 @@ Bytes inflate_bytes(const std::uint8_t* data, std::size_t size, std::size_t expe
              " bytes" + zmsg);
     }
     if (produced != expected_size)
-        fail("deflate data decodes to " + std::to_string(produced) + " bytes, expected " + std::to_string(expected_size));
+        fail("deflate data decodes to " + std::to_string(produced) + " bytes, expected " +
+             std::to_string(expected_size));
     if (unread != 0) fail(std::to_string(unread) + " unexpected bytes after the end of the deflate data");
     out.resize(expected_size);
     return out;
@@ -102,10 +103,8 @@ EncodedStream encode_float32_deflate(const Tensor3& a, const Float32DeflateOptio
         std::memcpy(&bits, &f, 4);
         for (std::size_t b = 0; b < 4; ++b) {
             const std::uint8_t byte = static_cast<std::uint8_t>(bits >> (8 * b));
-            if (options.shuffle)
-                image[b * n + i] = byte;
-            else
-                image[4 * i + b] = byte;
+            if (options.shuffle) image[b * n + i] = byte;
+            else image[4 * i + b] = byte;
         }
     }
     const Bytes payload = deflate_bytes(image, options.level);
@@ -130,7 +129,8 @@ Tensor3 decode_float32_deflate(const std::uint8_t* data, std::size_t size) {
     const std::uint64_t n = detail::checked_count(r, dims, 3, kMaxZlibInput / 4);
     const std::size_t payload = r.expect_payload();
     const Bytes image = inflate_bytes(r.here(), payload, static_cast<std::size_t>(4 * n), kSource);
-    Tensor3 out(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]), static_cast<Eigen::Index>(dims[2]));
+    Tensor3 out(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]),
+                static_cast<Eigen::Index>(dims[2]));
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t bits = 0;
         for (std::size_t b = 0; b < 4; ++b)

@@ -8,8 +8,7 @@
 
 namespace mocapdb::compression::codecs {
 
-SamplePca::SamplePca(const Tensor3& a)
-    : dofs_(a.dimension(0)), frames_(a.dimension(1)), samples_(a.dimension(2)) {
+SamplePca::SamplePca(const Tensor3& a) : dofs_(a.dimension(0)), frames_(a.dimension(1)), samples_(a.dimension(2)) {
     if (a.size() == 0) throw InvalidArgument("SamplePca: empty tensor");
     const Eigen::Index L = dofs_ * frames_, N = samples_;
     const Eigen::Map<const MatX> x(a.data(), L, N);  // column n = sample n flattened

@@ -36,7 +36,9 @@ void check_consistent(const QuantizedColumns& q, const char* where) {
     if (!ok) throw InvalidArgument(std::string(where) + ": inconsistent QuantizedColumns (bits, sizes)");
 }
 
-std::uint64_t packed_code_bytes(std::uint64_t count, int bits) { return (count * static_cast<std::uint64_t>(bits) + 7) / 8; }
+std::uint64_t packed_code_bytes(std::uint64_t count, int bits) {
+    return (count * static_cast<std::uint64_t>(bits) + 7) / 8;
+}
 std::uint64_t plane_code_bytes(std::uint64_t count, int bits) { return count * (bits <= 8 ? 1u : 2u); }
 
 /// Parameters then codes of one part, in the given layout, appended to out.
@@ -176,8 +178,9 @@ MatX dequantize(const QuantizedColumns& q) {
     MatX m(q.rows, q.cols);
     for (Eigen::Index c = 0; c < q.cols; ++c)
         for (Eigen::Index i = 0; i < q.rows; ++i)
-            m(i, c) = static_cast<double>(q.offset[c]) +
-                      static_cast<double>(q.codes[static_cast<std::size_t>(c * q.rows + i)]) * static_cast<double>(q.step[c]);
+            m(i, c) =
+                static_cast<double>(q.offset[c]) +
+                static_cast<double>(q.codes[static_cast<std::size_t>(c * q.rows + i)]) * static_cast<double>(q.step[c]);
     return m;
 }
 
@@ -208,7 +211,8 @@ QuantizedColumns decode_quantized(const std::uint8_t* data, std::size_t size) {
     if (dims[1] > kMaxElements) r.fail("dimensions too large");
     const std::size_t payload = r.expect_payload();
     const auto pk = static_cast<Packing>(packing);
-    const std::uint64_t part_size = 8 * dims[1] + (pk == Packing::BitPacked ? packed_code_bytes(n, bits) : plane_code_bytes(n, bits));
+    const std::uint64_t part_size =
+        8 * dims[1] + (pk == Packing::BitPacked ? packed_code_bytes(n, bits) : plane_code_bytes(n, bits));
     Bytes inflated;
     const std::uint8_t* part = r.here();
     if (pk == Packing::Deflated) {
@@ -216,10 +220,12 @@ QuantizedColumns decode_quantized(const std::uint8_t* data, std::size_t size) {
         part = inflated.data();
     } else if (part_size != payload) {
         r.fail("payload of " + std::to_string(payload) + " bytes, expected " + std::to_string(part_size) + " for " +
-               std::to_string(dims[0]) + " by " + std::to_string(dims[1]) + " codes of " + std::to_string(bits) + " bits");
+               std::to_string(dims[0]) + " by " + std::to_string(dims[1]) + " codes of " + std::to_string(bits) +
+               " bits");
     }
     detail::ByteReader pr(part, static_cast<std::size_t>(part_size), kMatrixSource);
-    QuantizedColumns q = read_part(pr, static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]), bits, pk);
+    QuantizedColumns q =
+        read_part(pr, static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]), bits, pk);
     pr.expect_end();
     return q;
 }
@@ -253,7 +259,8 @@ QuantizedTucker quantize_tucker(const tensor::TuckerModel& model, const Quantize
     m.core = Tensor3(r[0], r[1], r[2]);
     Eigen::Map<MatX>(m.core.data(), groups[0], groups[1]) = dequantize(parts[0]);
     for (int k = 0; k < 3; ++k) m.U[k] = dequantize(parts[k + 1]);
-    out.max_abs_error[0] = (Eigen::Map<const MatX>(m.core.data(), groups[0], groups[1]) - core_matrix).cwiseAbs().maxCoeff();
+    out.max_abs_error[0] =
+        (Eigen::Map<const MatX>(m.core.data(), groups[0], groups[1]) - core_matrix).cwiseAbs().maxCoeff();
     for (int k = 0; k < 3; ++k) out.max_abs_error[k + 1] = (m.U[k] - model.U[k]).cwiseAbs().maxCoeff();
     for (int k = 0; k < 4; ++k) out.error_bound[k] = parts[k].max_error_bound();
 
@@ -326,7 +333,8 @@ tensor::TuckerModel decode_quantized_tucker(const std::uint8_t* data, std::size_
     m.ranks = rk;
     m.method = static_cast<tensor::TuckerMethod>(method);
     m.core = Tensor3(rk[0], rk[1], rk[2]);
-    Eigen::Map<MatX>(m.core.data(), groups[0], groups[1]) = dequantize(read_part(br, groups[0], groups[1], core_bits, pk));
+    Eigen::Map<MatX>(m.core.data(), groups[0], groups[1]) =
+        dequantize(read_part(br, groups[0], groups[1], core_bits, pk));
     for (int k = 0; k < 3; ++k)
         m.U[k] = dequantize(read_part(br, static_cast<Eigen::Index>(dims[k]), rk[k], basis_bits, pk));
     br.expect_end();
@@ -337,7 +345,8 @@ tensor::TuckerModel decode_quantized_tucker(const Bytes& stream) {
     return decode_quantized_tucker(stream.data(), stream.size());
 }
 
-std::size_t packed_tucker_bytes(const tensor::Dims3& dims, const tensor::Ranks& ranks, const QuantizeTuckerOptions& options) {
+std::size_t packed_tucker_bytes(const tensor::Dims3& dims, const tensor::Ranks& ranks,
+                                const QuantizeTuckerOptions& options) {
     check_bits(options.core_bits, "packed_tucker_bytes (core_bits)");
     check_bits(options.basis_bits, "packed_tucker_bytes (basis_bits)");
     tensor::check_ranks(dims, ranks, "packed_tucker_bytes");

@@ -14,7 +14,7 @@ constexpr char kMagic[4] = {'M', 'C', 'R', 'L'};
 constexpr std::uint8_t kVersion = 1;
 constexpr const char* kSource = "residual stream";
 constexpr std::uint8_t kPerDof = 1, kAllZero = 2;
-constexpr double kMaxCode = 2147483648.0;  // 2^31
+constexpr double kMaxCode = 2147483648.0;                       // 2^31
 constexpr std::uint64_t kMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doubles
 
 double step_of(float eps) { return 2.0 * static_cast<double>(eps) * (1.0 - std::ldexp(1.0, -20)); }
@@ -37,7 +37,9 @@ std::uint64_t get_varint(detail::ByteReader& r, const char* what) {
     r.fail(std::string("varint too long in ") + what);
 }
 
-std::uint64_t zigzag(std::int64_t q) { return (static_cast<std::uint64_t>(q) << 1) ^ static_cast<std::uint64_t>(q >> 63); }
+std::uint64_t zigzag(std::int64_t q) {
+    return (static_cast<std::uint64_t>(q) << 1) ^ static_cast<std::uint64_t>(q >> 63);
+}
 std::int64_t unzigzag(std::uint64_t z) { return static_cast<std::int64_t>(z >> 1) ^ -static_cast<std::int64_t>(z & 1); }
 
 /// Storage index of the k-th code in the given order.
@@ -62,8 +64,8 @@ ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>&
     const Eigen::Index D = r.dimension(0), T = r.dimension(1), N = r.dimension(2);
     if (r.size() == 0) throw InvalidArgument("encode_residual: empty residual tensor");
     if (eps.size() != D && eps.size() != 1)
-        throw InvalidArgument("encode_residual: " + std::to_string(eps.size()) + " tolerances for " + std::to_string(D) +
-                              " dofs (give D or 1)");
+        throw InvalidArgument("encode_residual: " + std::to_string(eps.size()) + " tolerances for " +
+                              std::to_string(D) + " dofs (give D or 1)");
     if (options.deflate_level < -1 || options.deflate_level > 9)
         throw InvalidArgument("encode_residual: deflate level must be -1 or 0..9");
     if (options.order != ResidualOrder::DofMajor && options.order != ResidualOrder::Storage)
@@ -74,8 +76,8 @@ ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>&
         const double e = eps.size() == 1 ? eps[0] : eps[d];
         if (!std::isfinite(e) || e < static_cast<double>(std::numeric_limits<float>::min()) ||
             e > static_cast<double>(std::numeric_limits<float>::max()))
-            throw InvalidArgument("encode_residual: tolerance of dof " + std::to_string(d) + " is " + std::to_string(e) +
-                                  " (must be finite, in the normal float32 range, > 0)");
+            throw InvalidArgument("encode_residual: tolerance of dof " + std::to_string(d) + " is " +
+                                  std::to_string(e) + " (must be finite, in the normal float32 range, > 0)");
         float f = to_float32(e);
         if (static_cast<double>(f) > e) f = std::nextafter(f, 0.0f);
         stored[d] = f;
@@ -121,8 +123,7 @@ ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>&
     Bytes payload;
     if (out.nonzero != 0) {
         detail::ByteWriter w;
-        if (all_equal)
-            w.f32(stored[0]);
+        if (all_equal) w.f32(stored[0]);
         else
             for (float f : stored) w.f32(f);
         payload = std::move(w.buffer());
@@ -186,7 +187,8 @@ Tensor3 decode_residual(const std::uint8_t* data, std::size_t size) {
     }
     const std::uint64_t varint_size = get_varint(r, "code stream length");
     if (varint_size < count || varint_size > 10 * count)
-        r.fail("code stream length " + std::to_string(varint_size) + " cannot hold " + std::to_string(count) + " codes");
+        r.fail("code stream length " + std::to_string(varint_size) + " cannot hold " + std::to_string(count) +
+               " codes");
     const Bytes varints = inflate_bytes(r.here(), r.remaining(), static_cast<std::size_t>(varint_size), kSource);
     detail::ByteReader vr(varints.data(), varints.size(), kSource + std::string(" (codes)"));
     Tensor3 out(D, T, N);

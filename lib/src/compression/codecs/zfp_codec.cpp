@@ -81,13 +81,14 @@ EncodedStream zfp_encode(const Tensor3& a, const Eigen::Ref<const VecX>& eps) {
     check_tensor(a);
     const Eigen::Index D = a.dimension(0);
     if (eps.size() != D)
-        throw InvalidArgument("zfp_encode: " + std::to_string(eps.size()) + " tolerances for " + std::to_string(D) + " dofs");
+        throw InvalidArgument("zfp_encode: " + std::to_string(eps.size()) + " tolerances for " + std::to_string(D) +
+                              " dofs");
     std::vector<float> stored(static_cast<std::size_t>(D));
     detail::ByteWriter w;
     for (Eigen::Index d = 0; d < D; ++d) {
         if (!std::isfinite(eps[d]) || eps[d] < 1e-30 || eps[d] > 1e30)
-            throw InvalidArgument("zfp_encode: tolerance of dof " + std::to_string(d) + " is " + std::to_string(eps[d]) +
-                                  " (must be finite, in [1e-30, 1e30])");
+            throw InvalidArgument("zfp_encode: tolerance of dof " + std::to_string(d) + " is " +
+                                  std::to_string(eps[d]) + " (must be finite, in [1e-30, 1e30])");
         float f = to_float32(eps[d]);
         if (static_cast<double>(f) > eps[d]) f = std::nextafter(f, 0.0f);
         stored[d] = f;
@@ -155,10 +156,13 @@ Tensor3 zfp_decode(const std::uint8_t* data, std::size_t size) {
     zfp_stream_rewind(h.zfp);
     const std::size_t used = zfp_decompress(h.zfp, h.field);
     if (used == 0) r.fail("zfp_decompress failed");
-    if (used > r.remaining()) r.fail("truncated zfp payload: " + std::to_string(r.remaining()) + " bytes, decoding needed " + std::to_string(used));
+    if (used > r.remaining())
+        r.fail("truncated zfp payload: " + std::to_string(r.remaining()) + " bytes, decoding needed " +
+               std::to_string(used));
     for (Eigen::Index i = 0; i < out.size(); ++i) {
         if (!scale.empty()) out.data()[i] *= scale[static_cast<std::size_t>(i % D)];
-        if (!std::isfinite(out.data()[i])) r.fail("decoded value " + std::to_string(i) + " is not finite (corrupt zfp payload)");
+        if (!std::isfinite(out.data()[i]))
+            r.fail("decoded value " + std::to_string(i) + " is not finite (corrupt zfp payload)");
     }
     return out;
 }

@@ -13,7 +13,6 @@
 namespace mocapdb::store::h5 {
 namespace {
 
-
 herr_t collect_name(hid_t /*loc*/, const char* name, const H5A_info_t* /*info*/, void* data) {
     static_cast<std::vector<std::string>*>(data)->emplace_back(name);
     return 0;
@@ -75,10 +74,8 @@ herr_t read_one_or_throw(hid_t loc, const char* name, ReadAll* r) {
             values.reserve(buffer.size());
             for (char* c : buffer) values.emplace_back(c != nullptr ? c : "");
             if (!buffer.empty()) H5Dvlen_reclaim(mtype.get(), space.get(), H5P_DEFAULT, buffer.data());
-            if (info.shape.empty())
-                out.strings.emplace_back(name, values.front());
-            else
-                out.string_lists.emplace_back(name, std::move(values));
+            if (info.shape.empty()) out.strings.emplace_back(name, values.front());
+            else out.string_lists.emplace_back(name, std::move(values));
         }
     } else if (info.dtype == "int64" && info.shape.empty()) {
         std::int64_t v = 0;
@@ -129,29 +126,33 @@ std::string File::string_attribute(const Attributes& a, const std::string& name)
     if (const std::string* v = find_value(a.strings, name)) return *v;
     const AttributeInfo* info = a.find_info(name);
     if (info == nullptr) fail(name_, a.path, "missing attribute '" + name + "'");
-    fail(name_, a.path, "attribute '" + name + "': expected a scalar string, found " + info->dtype + " " + shape_text(info->shape));
+    fail(name_, a.path,
+         "attribute '" + name + "': expected a scalar string, found " + info->dtype + " " + shape_text(info->shape));
 }
 
 std::vector<std::string> File::strings_attribute(const Attributes& a, const std::string& name) const {
     if (const auto* v = find_value(a.string_lists, name)) return *v;
     const AttributeInfo* info = a.find_info(name);
     if (info == nullptr) fail(name_, a.path, "missing attribute '" + name + "'");
-    fail(name_, a.path, "attribute '" + name + "': expected a one-dimensional string array, found " + info->dtype + " " +
-                            shape_text(info->shape));
+    fail(name_, a.path,
+         "attribute '" + name + "': expected a one-dimensional string array, found " + info->dtype + " " +
+             shape_text(info->shape));
 }
 
 std::int64_t File::int_attribute(const Attributes& a, const std::string& name) const {
     if (const std::int64_t* v = find_value(a.ints, name)) return *v;
     const AttributeInfo* info = a.find_info(name);
     if (info == nullptr) fail(name_, a.path, "missing attribute '" + name + "'");
-    fail(name_, a.path, "attribute '" + name + "': expected a scalar int64, found " + info->dtype + " " + shape_text(info->shape));
+    fail(name_, a.path,
+         "attribute '" + name + "': expected a scalar int64, found " + info->dtype + " " + shape_text(info->shape));
 }
 
 double File::double_attribute(const Attributes& a, const std::string& name) const {
     if (const double* v = find_value(a.doubles, name)) return *v;
     const AttributeInfo* info = a.find_info(name);
     if (info == nullptr) fail(name_, a.path, "missing attribute '" + name + "'");
-    fail(name_, a.path, "attribute '" + name + "': expected a scalar float64, found " + info->dtype + " " + shape_text(info->shape));
+    fail(name_, a.path,
+         "attribute '" + name + "': expected a scalar float64, found " + info->dtype + " " + shape_text(info->shape));
 }
 
 std::vector<std::string> File::attribute_names(const std::string& path) const {
@@ -207,8 +208,8 @@ std::string File::read_string_attribute(const std::string& path, const std::stri
     Handle a(open_attribute(path, name), H5Aclose);
     const AttributeInfo info = info_of(a.get(), name_, path);
     if (info.dtype != "string" || !info.shape.empty())
-        fail(name_, path, "attribute '" + name + "': expected a scalar string, found " + info.dtype + " " +
-                              shape_text(info.shape));
+        fail(name_, path,
+             "attribute '" + name + "': expected a scalar string, found " + info.dtype + " " + shape_text(info.shape));
     Handle ftype(H5Aget_type(a.get()), H5Tclose);
     Handle mtype = vlen_string_type(H5Tget_cset(ftype.get()));
     char* value = nullptr;
@@ -223,8 +224,9 @@ std::vector<std::string> File::read_strings_attribute(const std::string& path, c
     Handle a(open_attribute(path, name), H5Aclose);
     const AttributeInfo info = info_of(a.get(), name_, path);
     if (info.dtype != "string" || info.shape.size() != 1)
-        fail(name_, path, "attribute '" + name + "': expected a one-dimensional string array, found " + info.dtype +
-                              " " + shape_text(info.shape));
+        fail(name_, path,
+             "attribute '" + name + "': expected a one-dimensional string array, found " + info.dtype + " " +
+                 shape_text(info.shape));
     Handle ftype(H5Aget_type(a.get()), H5Tclose);
     Handle mtype = vlen_string_type(H5Tget_cset(ftype.get()));
     std::vector<char*> buffer(static_cast<std::size_t>(info.shape[0]), nullptr);
@@ -242,8 +244,8 @@ std::int64_t File::read_int_attribute(const std::string& path, const std::string
     Handle a(open_attribute(path, name), H5Aclose);
     const AttributeInfo info = info_of(a.get(), name_, path);
     if (info.dtype != "int64" || !info.shape.empty())
-        fail(name_, path, "attribute '" + name + "': expected a scalar int64, found " + info.dtype + " " +
-                              shape_text(info.shape));
+        fail(name_, path,
+             "attribute '" + name + "': expected a scalar int64, found " + info.dtype + " " + shape_text(info.shape));
     std::int64_t v = 0;
     check(H5Aread(a.get(), H5T_NATIVE_INT64, &v), name_, path, ("cannot read attribute '" + name + "'").c_str());
     return v;
@@ -253,8 +255,8 @@ double File::read_double_attribute(const std::string& path, const std::string& n
     Handle a(open_attribute(path, name), H5Aclose);
     const AttributeInfo info = info_of(a.get(), name_, path);
     if (info.dtype != "float64" || !info.shape.empty())
-        fail(name_, path, "attribute '" + name + "': expected a scalar float64, found " + info.dtype + " " +
-                              shape_text(info.shape));
+        fail(name_, path,
+             "attribute '" + name + "': expected a scalar float64, found " + info.dtype + " " + shape_text(info.shape));
     double v = 0;
     check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v), name_, path, ("cannot read attribute '" + name + "'").c_str());
     return v;
@@ -266,8 +268,9 @@ std::vector<T> File::read_vector_attribute(const std::string& path, const std::s
     Handle a(open_attribute(path, name), H5Aclose);
     const AttributeInfo info = info_of(a.get(), name_, path);
     if (info.dtype != dtype || info.shape.size() != 1)
-        fail(name_, path, "attribute '" + name + "': expected a one-dimensional " + dtype + " array, found " + info.dtype +
-                              " " + shape_text(info.shape));
+        fail(name_, path,
+             "attribute '" + name + "': expected a one-dimensional " + dtype + " array, found " + info.dtype + " " +
+                 shape_text(info.shape));
     std::vector<T> v(static_cast<std::size_t>(info.shape[0]));
     if (!v.empty())
         check(H5Aread(a.get(), mem_type, v.data()), name_, path, ("cannot read attribute '" + name + "'").c_str());
@@ -295,8 +298,8 @@ void File::write_attribute(const std::string& path, const std::string& name, hid
         space = Handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
     }
     if (!space.valid()) fail_call(name_, path, "cannot create a dataspace");
-    Handle a(H5Acreate_by_name(id_, path.c_str(), name.c_str(), file_type, space.get(), H5P_DEFAULT,
-                               H5P_DEFAULT, H5P_DEFAULT),
+    Handle a(H5Acreate_by_name(id_, path.c_str(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                               H5P_DEFAULT),
              H5Aclose);
     if (!a.valid()) fail_call(name_, path, "cannot create attribute '" + name + "'");
     check(H5Awrite(a.get(), mem_type, data), name_, path, ("cannot write attribute '" + name + "'").c_str());

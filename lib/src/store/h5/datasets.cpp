@@ -99,11 +99,9 @@ void write_filtered_chunks(hid_t d, const std::vector<hsize_t>& extent, const st
     }
 }
 
-
 std::uint64_t element_count(const Shape& shape) {
     return std::accumulate(shape.begin(), shape.end(), std::uint64_t{1}, std::multiplies<>());
 }
-
 
 std::string filter_name(H5Z_filter_t id) {
     switch (id) {
@@ -122,7 +120,9 @@ std::string filter_name(H5Z_filter_t id) {
 File::Id File::open_dataset(const std::string& path) const {
     const ObjectType t = type_of(path);
     if (t != ObjectType::Dataset)
-        fail(name_, path, std::string("expected a dataset, found ") + (t == ObjectType::None ? "nothing" : "a group or other object"));
+        fail(name_, path,
+             std::string("expected a dataset, found ") +
+                 (t == ObjectType::None ? "nothing" : "a group or other object"));
     const hid_t id = H5Dopen2(id_, path.c_str(), dataset_access());
     if (id < 0) fail_call(name_, path, "cannot open the dataset");
     return id;
@@ -190,8 +190,7 @@ void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, c
             check(H5Pset_deflate(dcpl.get(), kDeflateLevel), name_, path, "cannot enable the deflate filter");
         check(H5Pset_fletcher32(dcpl.get()), name_, path, "cannot enable the fletcher32 filter");
     }
-    Handle d(H5Dcreate2(id_, path.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-             H5Dclose);
+    Handle d(H5Dcreate2(id_, path.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), H5Dclose);
     if (!d.valid()) fail_call(name_, path, "cannot create the dataset");
     const bool parallel = !shape.empty() && filters != Filters::ChecksumOnly && H5Tequal(file_type, mem_type) > 0 &&
                           count * element_size >= kParallelFilterBytes;
@@ -208,8 +207,8 @@ void File::write_raw(const std::string& path, hid_t file_type, hid_t mem_type, c
 }
 
 template <class T>
-void File::write_array(const std::string& path, const T* data, const Shape& shape,
-                       const std::vector<std::string>& dims, const std::string& units) {
+void File::write_array(const std::string& path, const T* data, const Shape& shape, const std::vector<std::string>& dims,
+                       const std::string& units) {
     write_raw(path, Traits<T>::file(), Traits<T>::memory(), shape, data,
               sizeof(T) > 1 ? Filters::ShuffleDeflate : Filters::Deflate, dims, units);
 }
@@ -230,7 +229,8 @@ void File::write_strings(const std::string& path, const std::vector<std::string>
         H5Tset_cset(t.get(), H5T_CSET_UTF8) < 0)
         fail_call(name_, path, "cannot make a string datatype");
     std::vector<char> buffer(values.size() * width, '\0');
-    for (std::size_t i = 0; i < values.size(); ++i) std::copy(values[i].begin(), values[i].end(), buffer.begin() + static_cast<std::ptrdiff_t>(i * width));
+    for (std::size_t i = 0; i < values.size(); ++i)
+        std::copy(values[i].begin(), values[i].end(), buffer.begin() + static_cast<std::ptrdiff_t>(i * width));
     write_raw(path, t.get(), t.get(), {values.size()}, buffer.data(), Filters::Deflate, {dim}, units);
 }
 
@@ -356,7 +356,8 @@ std::vector<ByteExtent> File::extents(const std::string& path) const {
         }
     } else if (layout == H5D_CONTIGUOUS) {
         const haddr_t addr = H5Dget_offset(d.get());
-        if (addr != HADDR_UNDEF) out.push_back({static_cast<std::uint64_t>(addr), H5Dget_storage_size(d.get()), holder});
+        if (addr != HADDR_UNDEF)
+            out.push_back({static_cast<std::uint64_t>(addr), H5Dget_storage_size(d.get()), holder});
     }
     return out;
 }

@@ -57,9 +57,9 @@ std::string take_error_stack() {
 void fail_call(const std::string& file, const std::string& path, const std::string& what) {
     const std::string stack = take_error_stack();
     if (mentions_checksum(stack))
-        throw ChecksumError(file, path,
-                            "checksum mismatch in dataset " + path + " (the stored bytes are corrupted; HDF5: " +
-                                stack + ")");
+        throw ChecksumError(
+            file, path,
+            "checksum mismatch in dataset " + path + " (the stored bytes are corrupted; HDF5: " + stack + ")");
     throw StoreError(file, path, stack.empty() ? what : what + " (HDF5: " + stack + ")");
 }
 

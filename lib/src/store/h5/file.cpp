@@ -197,8 +197,7 @@ void File::unlink(const std::string& path) {
 }
 
 std::vector<std::string> File::children(const std::string& group) const {
-    Handle g(check(H5Gopen2(id_, group.c_str(), group_access()), name_, group, "cannot open the group"),
-             H5Gclose);
+    Handle g(check(H5Gopen2(id_, group.c_str(), group_access()), name_, group, "cannot open the group"), H5Gclose);
     H5G_info_t info;
     check(H5Gget_info(g.get(), &info), name_, group, "cannot read the group's links");
     std::vector<std::string> names;
@@ -215,8 +214,8 @@ void File::copy_to(File& destination, const std::string& path) const {
     // Opened first, so that an object in a segment is reached read-only (link_access); H5Ocopy's own
     // lookup would open the segment with this file's intent.
     Handle obj(open_object(path), H5Oclose);
-    check(H5Ocopy(obj.get(), ".", destination.id_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT),
-          name_, path, ("cannot copy the object to " + destination.name_).c_str());
+    check(H5Ocopy(obj.get(), ".", destination.id_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT), name_, path,
+          ("cannot copy the object to " + destination.name_).c_str());
 }
 
 namespace {
@@ -256,7 +255,8 @@ void File::copy_to_except(File& destination, const std::string& path, const std:
     bool above_skipped = false;
     for (const std::string& s : skipped) {
         if (s == path) return;
-        if (s.size() > path.size() && s.compare(0, path.size(), path) == 0 && s[path.size()] == '/') above_skipped = true;
+        if (s.size() > path.size() && s.compare(0, path.size(), path) == 0 && s[path.size()] == '/')
+            above_skipped = true;
     }
     if (!above_skipped) {
         copy_to(destination, path);
@@ -309,7 +309,8 @@ std::filesystem::path File::file_holding(const std::string& path) const {
     const ssize_t n = H5Fget_name(obj.get(), nullptr, 0);
     if (n < 0) fail_call(name_, path, "cannot get the name of the file holding the object");
     std::string name(static_cast<std::size_t>(n) + 1, '\0');
-    check(H5Fget_name(obj.get(), name.data(), name.size()), name_, path, "cannot get the name of the file holding the object");
+    check(H5Fget_name(obj.get(), name.data(), name.size()), name_, path,
+          "cannot get the name of the file holding the object");
     name.resize(static_cast<std::size_t>(n));
     return name;
 }

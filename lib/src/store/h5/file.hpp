@@ -147,7 +147,8 @@ public:
     void write_int_attribute(const std::string& path, const std::string& name, std::int64_t value);
     void write_double_attribute(const std::string& path, const std::string& name, double value);
     void write_doubles_attribute(const std::string& path, const std::string& name, const std::vector<double>& values);
-    void write_ints_attribute(const std::string& path, const std::string& name, const std::vector<std::int64_t>& values);
+    void write_ints_attribute(const std::string& path, const std::string& name,
+                              const std::vector<std::int64_t>& values);
 
     // Datasets.
     DatasetInfo dataset_info(const std::string& path) const;

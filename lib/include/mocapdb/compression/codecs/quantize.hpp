@@ -15,12 +15,12 @@ namespace mocapdb::compression::codecs {
 
 /// A matrix quantized per column. Plain data; build it with quantize_columns().
 struct QuantizedColumns {
-    int bits = 0;                        ///< 1..16
+    int bits = 0;  ///< 1..16
     Eigen::Index rows = 0;
     Eigen::Index cols = 0;
-    std::vector<float> offset;           ///< cols entries
-    std::vector<float> step;             ///< cols entries, >= 0
-    std::vector<std::uint16_t> codes;    ///< rows * cols, column-major, each < 2^bits
+    std::vector<float> offset;         ///< cols entries
+    std::vector<float> step;           ///< cols entries, >= 0
+    std::vector<std::uint16_t> codes;  ///< rows * cols, column-major, each < 2^bits
 
     /// Upper bound on |x - x_hat| over column c: step/2, or 2^-24 |offset| for a constant column
     /// (step 0). 0 <= c < cols.

@@ -32,12 +32,12 @@ struct ResidualOptions {
 
 /// An encoded residual and what the decoder will reconstruct from it.
 struct ResidualEncoding {
-    EncodedStream stream;     ///< "residual stream", magic "MCRL"
-    Tensor3 decoded;          ///< R_hat, D by T by N (equal to decode_residual(stream))
-    VecX tolerance;           ///< the stored eps_d (float32 values, <= the requested ones), D entries
-    Eigen::Index nonzero = 0; ///< codes that are not 0
+    EncodedStream stream;      ///< "residual stream", magic "MCRL"
+    Tensor3 decoded;           ///< R_hat, D by T by N (equal to decode_residual(stream))
+    VecX tolerance;            ///< the stored eps_d (float32 values, <= the requested ones), D entries
+    Eigen::Index nonzero = 0;  ///< codes that are not 0
     std::int64_t max_abs_code = 0;
-    double max_abs_error = 0; ///< measured max |R - R_hat| (<= max tolerance)
+    double max_abs_error = 0;  ///< measured max |R - R_hat| (<= max tolerance)
 };
 
 /// Encodes r (D by T by N, non-empty, finite) with per-dof tolerances eps: D entries, or 1 entry
@@ -45,7 +45,8 @@ struct ResidualEncoding {
 /// tolerances as float32 (4 bytes, or 4 D when they differ), a varint with the length of the varint
 /// code stream, and that stream deflated; nothing when every code is 0.
 /// Throws InvalidArgument on bad shapes or values, or when some |R / (2 eps_d)| exceeds 2^31.
-ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>& eps, const ResidualOptions& options = {});
+ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>& eps,
+                                 const ResidualOptions& options = {});
 /// Same with one tolerance for every dof.
 ResidualEncoding encode_residual(const Tensor3& r, double eps, const ResidualOptions& options = {});
 
