@@ -42,6 +42,7 @@ TEST_CASE("RBF weights: partition of unity, exact interpolation, linear precisio
         const Eigen::MatrixXd w = r.weights_batch(queries);
         CHECK(w.allFinite());
         CHECK((w.colwise().sum().array() - 1.0).abs().maxCoeff() <= 1e-10);
+        CHECK((r.status().factorization == FactorizationStatus::Ok) == (r.status().ridge == 0.0));
         if (r.status().ridge == 0.0) {
             CHECK((r.weights_batch(pts) - Eigen::MatrixXd::Identity(30, 30)).cwiseAbs().maxCoeff() <= 1e-9);
         }
@@ -53,6 +54,16 @@ TEST_CASE("RBF weights: partition of unity, exact interpolation, linear precisio
         r.weights(queries.row(3).transpose(), wq, ws);
         CHECK((wq - w.col(3)).cwiseAbs().maxCoeff() <= 1e-15 / std::min(r.status().rcond, 1e-3));
     }
+}
+
+TEST_CASE("A near-singular radial matrix is ridged and says so in its status", "[kriging][rbf]") {
+    RbfOptions o;
+    o.function = RadialFunction::Gaussian;
+    o.width = 1e4;  // every radial value ~1: Phi is numerically of rank one
+    const RbfInterpolator r = RbfInterpolator::build(rbf_points(12, 2, 5), o);
+    CHECK(r.status().factorization != FactorizationStatus::Ok);
+    CHECK(r.status().ridge > 0.0);
+    CHECK(r.weights_batch(rbf_points(4, 2, 6)).allFinite());
 }
 
 TEST_CASE("Cubic B-spline radii follow the nearest-neighbour rule", "[kriging][rbf]") {

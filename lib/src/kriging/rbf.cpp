@@ -113,6 +113,7 @@ RbfInterpolator RbfInterpolator::build(const Eigen::Ref<const Eigen::MatrixXd>& 
             phi_inv_t = lu.inverse();
             rb.status_.rcond = rc;
             rb.status_.ridge = ridge;
+            rb.status_.factorization = ridge > 0.0 ? FactorizationStatus::Jittered : FactorizationStatus::Ok;
             break;
         }
         ridge = ridge == 0.0 ? 1e-12 * scale : ridge * 10.0;
@@ -125,6 +126,7 @@ RbfInterpolator RbfInterpolator::build(const Eigen::Ref<const Eigen::MatrixXd>& 
         phi_inv_t = lu.inverse();
         rb.status_.ridge = 1e-1 * scale;
         rb.status_.rcond = lu.rcond();
+        rb.status_.factorization = FactorizationStatus::Regularized;
     }
     const Eigen::MatrixXd& g = rb.basis_.sample_basis();  // [1, U]
     const Eigen::Index kk = g.cols();

@@ -31,6 +31,9 @@ struct RbfOptions {
 };
 
 struct RbfStatus {
+    /// Ok: Phi factorized as is; Jittered: a small ridge made it invertible; Regularized: the heavy
+    /// fallback ridge (10 % of Phi's largest entry) was needed, the interpolation is smoothed.
+    FactorizationStatus factorization = FactorizationStatus::Ok;
     double ridge = 0.0;  ///< added to the diagonal of Phi when it was singular (0 normally).
     double rcond = 0.0;  ///< reciprocal condition estimate of (the factorized) Phi.
     Eigen::Index unique_points = 0;
