@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "json_writer.hpp"
 #include "mocapdb/workflow/clip_import.hpp"
 #include "mocapdb/workflow/reliability_map.hpp"
 #include "mocapdb/workflow/set_alignment.hpp"
@@ -86,8 +85,6 @@ std::string rate_table_text(const std::string& set, const RateOutcome& r);
 std::string rate_csv(const RateOutcome& r);
 /// Ratio against max error, one series per method (rows meeting a lossy target).
 std::string rate_svg(const std::string& set, const RateOutcome& r);
-/// "rows": [...] with every figure of each row, as a member of the open JSON object.
-void write_rate_rows_json(JsonWriter& j, const RateOutcome& r);
 
 // ---- reliability map ----------------------------------------------------------------------------
 
