@@ -1,5 +1,6 @@
 #include "mocapdb_json/database_json.hpp"
 
+#include "json_fields.hpp"
 #include "mocapdb/dataset/dropout_repair.hpp"
 
 namespace mocapdb::json {
@@ -32,9 +33,7 @@ void write_database_info(JsonWriter& j, const std::string& file, const workflow:
         j.key("source_skeleton_file").value(c.source.skeleton_file);
         j.key("subject").value(c.source.subject);
         j.key("description").value(c.source.description);
-        j.key("labels").begin_array();
-        for (const std::string& l : c.source.labels) j.value(l);
-        j.end_array();
+        fields::strings(j, "labels", c.source.labels);
         j.key("stored_bytes").value(static_cast<std::size_t>(c.stored_bytes));
         j.key("tiers").begin_array();
         if (c.lossless) j.value("lossless");
@@ -68,28 +67,14 @@ void write_database_info(JsonWriter& j, const std::string& file, const workflow:
         j.begin_object();
         j.key("name").value(s.name);
         j.key("samples").value(s.samples);
-        j.key("parameters").begin_array();
-        for (const std::string& p : s.parameter_names) j.value(p);
-        j.end_array();
+        fields::strings(j, "parameters", s.parameter_names);
         j.key("parameter_source").value(s.parameter_source);
         j.key("aligned").value(s.aligned);
         j.key("tensor_dims").begin_array().value("sample").value("time").value("dof").end_array();
-        if (s.aligned) {
-            j.key("tensor_shape").begin_array();
-            for (std::size_t e : s.tensor_shape) j.value(e);
-            j.end_array();
-        } else {
-            j.key("tensor_shape").null();
-        }
+        fields::shape_or_null(j, "tensor_shape", s.aligned, s.tensor_shape);
         j.key("tensor_stored_bytes").value(static_cast<std::size_t>(s.tensor_stored_bytes));
         j.key("model").value(s.model);
-        if (s.model) {
-            j.key("model_ranks").begin_array();
-            for (std::size_t r : s.model_ranks) j.value(r);
-            j.end_array();
-        } else {
-            j.key("model_ranks").null();
-        }
+        fields::shape_or_null(j, "model_ranks", s.model, s.model_ranks);
         j.key("model_stored_bytes").value(static_cast<std::size_t>(s.model_stored_bytes));
         j.end_object();
     }
@@ -131,13 +116,7 @@ void write_set_list(JsonWriter& j, const std::vector<SetRecord>& sets) {
         j.key("parameters").begin_array();
         for (const auto& p : s.parameter_names) j.value(p);
         j.end_array().key("aligned").value(s.aligned).key("model").value(s.model);
-        if (s.model) {
-            j.key("model_ranks").begin_array();
-            for (std::size_t r : s.model_ranks) j.value(r);
-            j.end_array();
-        } else {
-            j.key("model_ranks").null();
-        }
+        fields::shape_or_null(j, "model_ranks", s.model, s.model_ranks);
         j.end_object();
     }
     j.end_array();
@@ -175,19 +154,8 @@ void write_set_show(JsonWriter& j, const MotionSet& set, const std::vector<std::
     }
     j.end_array();
     j.key("dropouts_checked").value(set.dropouts_checked);
-    j.key("repairs").begin_array();
-    for (const RepairedFrames& r : set.repairs)
-        j.begin_object()
-            .key("clip")
-            .value(r.clip)
-            .key("joint")
-            .value(r.joint)
-            .key("begin")
-            .value(r.begin)
-            .key("end")
-            .value(r.end)
-            .end_object();
-    j.end_array().end_object();
+    fields::repairs(j, set.repairs);
+    j.end_object();
 }
 
 }  // namespace mocapdb::json

@@ -26,23 +26,9 @@ void write_eval_results(JsonWriter& j, const eval::EvalResults& e) {
         j.key("name").value(s.spec.name);
         j.key("description").value(s.spec.description);
         j.key("skeleton").value(s.skeleton_source);
-        j.key("clips").begin_array();
-        for (const auto& c : s.clip_ids) j.value(c);
-        j.end_array();
+        fields::strings(j, "clips", s.clip_ids);
         j.key("samples").value(static_cast<long long>(s.size()));
-        j.key("repairs").begin_array();
-        for (const RepairedFrames& x : s.set.repairs)
-            j.begin_object()
-                .key("clip")
-                .value(x.clip)
-                .key("joint")
-                .value(x.joint)
-                .key("begin")
-                .value(x.begin)
-                .key("end")
-                .value(x.end)
-                .end_object();
-        j.end_array();
+        fields::repairs(j, s.set.repairs);
         j.key("frames").value(static_cast<long long>(s.aligned.frames()));
         j.key("dofs").value(static_cast<long long>(s.aligned.dofs()));
         j.key("build_seconds").value(r.build_seconds);

@@ -1,5 +1,7 @@
 #include "mocapdb_json/gp_json.hpp"
 
+#include "json_fields.hpp"
+
 namespace mocapdb::json {
 namespace {
 
@@ -36,9 +38,7 @@ void write_model(JsonWriter& w, const FitResult& f) {
 
 /// The data's members (of the open object).
 void write_data(JsonWriter& w, const MotionData& md) {
-    w.key("children").begin_array();
-    for (const auto& n : md.child_names) w.value(n);
-    w.end_array();
+    fields::strings(w, "children", md.child_names);
     if (!md.data.groups.empty()) {
         w.key("groups").begin_array();
         for (std::size_t g : md.data.groups) w.value(static_cast<long long>(g));
@@ -46,9 +46,7 @@ void write_data(JsonWriter& w, const MotionData& md) {
     }
     w.key("frames").value(static_cast<long long>(md.data.frames()));
     w.key("duration_s").value(md.data.times[md.data.times.size() - 1]);
-    w.key("dofs").begin_array();
-    for (const auto& n : md.dof_names) w.value(n);
-    w.end_array();
+    fields::strings(w, "dofs", md.dof_names);
 }
 
 void mean_and_std(JsonWriter& w, const char* key, const MeanStd& m) {
@@ -61,9 +59,7 @@ void write_runs(JsonWriter& w, const ModelRuns& m) {
     mean_and_std(w, "smse", m.smse);
     mean_and_std(w, "msll", m.msll);
     w.key("fit_seconds").value(m.fit_seconds);
-    w.key("fit_status").begin_array();
-    for (const auto& s : m.fit_status) w.value(s);
-    w.end_array();
+    fields::strings(w, "fit_status", m.fit_status);
     w.end_object();
 }
 
@@ -126,9 +122,7 @@ void write_gp_samples(JsonWriter& w, const std::string& model, const MotionData&
     w.begin_object();
     w.key("model").value(model);
     write_data(w, md);
-    w.key("files").begin_array();
-    for (const auto& p : files) w.value(p);
-    w.end_array();
+    fields::strings(w, "files", files);
     fit_object(w, "fit", f);
     w.end_object();
 }
@@ -182,9 +176,7 @@ void write_gp_replicates(JsonWriter& w, const GpReplicatesReport& r, const Motio
         const SynthesisResult& synth = *e.synthesis;
         w.key("synthesis").begin_object();
         w.key("samples").value(static_cast<long long>(r.samples));
-        w.key("real").begin_array();
-        for (const std::string& n : r.real) w.value(n);
-        w.end_array();
+        fields::strings(w, "real", r.real);
         w.key("mohgp");
         write_synthesis_scores(w, synth.mohgp);
         w.key("moa");
