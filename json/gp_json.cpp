@@ -63,6 +63,14 @@ void write_runs(JsonWriter& w, const ModelRuns& m) {
     w.end_object();
 }
 
+/// "mohgp" and "moa": the two models' runs.
+void write_both_models(JsonWriter& w, const ModelRuns& mohgp, const ModelRuns& moa) {
+    w.key("mohgp");
+    write_runs(w, mohgp);
+    w.key("moa");
+    write_runs(w, moa);
+}
+
 void write_synthesis_scores(JsonWriter& w, const SynthesisScores& s) {
     w.begin_array();
     for (std::size_t i = 0; i < s.mcc.size(); ++i) {
@@ -141,10 +149,7 @@ void write_gp_artificial(JsonWriter& w, const GpArtificialReport& a, const std::
         w.key("noise").value(r.config.noise);
         w.key("outputs").value(static_cast<long long>(r.config.outputs));
         w.key("children").value(static_cast<long long>(r.config.children));
-        w.key("mohgp");
-        write_runs(w, r.mohgp);
-        w.key("moa");
-        write_runs(w, r.moa);
+        write_both_models(w, r.mohgp, r.moa);
         w.end_object();
     }
     w.end_array();
@@ -165,10 +170,7 @@ void write_gp_replicates(JsonWriter& w, const GpReplicatesReport& r, const Motio
     for (const auto& row : interp.rows) {
         w.begin_object();
         w.key("observed").value(static_cast<long long>(row.observed));
-        w.key("mohgp");
-        write_runs(w, row.mohgp);
-        w.key("moa");
-        write_runs(w, row.moa);
+        write_both_models(w, row.mohgp, row.moa);
         w.end_object();
     }
     w.end_array();
