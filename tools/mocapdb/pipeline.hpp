@@ -1,7 +1,7 @@
 #pragma once
 // The CLI's side of the steps of the main job (the steps themselves are the library's workflow
 // module): each wrapper turns command-line shaped arguments into the library's request,
-// draws a progress bar, prints what the step reports (warnings), and describe_* / *_json / rate_*
+// draws a progress bar, prints what the step reports (warnings), and describe_* / rate_*
 // format the outcomes the single-step commands (import, set create, align, compress, report, synth,
 // reliability) and `mocapdb demo` print.
 #include <filesystem>
