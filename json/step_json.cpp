@@ -2,10 +2,14 @@
 
 #include <optional>
 
+#include "json_fields.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
 namespace mocapdb::json {
 namespace {
+
+using fields::optional_number;
+using fields::strings;
 
 const char* segmentation_name(Segmentation s) {
     switch (s) {
@@ -18,18 +22,6 @@ const char* segmentation_name(Segmentation s) {
     return "whole_clips";
 }
 
-void optional_number(JsonWriter& j, const char* key, const std::optional<double>& v) {
-    j.key(key);
-    if (v) j.value(*v);
-    else j.null();
-}
-
-void strings(JsonWriter& j, const char* key, const std::vector<std::string>& v) {
-    j.key(key).begin_array();
-    for (const std::string& s : v) j.value(s);
-    j.end_array();
-}
-
 void packed_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, double ratio_float32, std::size_t clips,
                     std::size_t frames, double max_cm, double p99_cm, double rmse_cm) {
     j.key("bytes").value(static_cast<std::size_t>(bytes));
@@ -40,25 +32,6 @@ void packed_figures(JsonWriter& j, std::uint64_t bytes, std::uint64_t float32, d
     j.key("max_cm").value(max_cm);
     j.key("p99_cm").value(p99_cm);
     j.key("rmse_cm").value(rmse_cm);
-}
-
-void report_figures(JsonWriter& j, const eval::PackedFigures& f) {
-    j.key("clips").value(f.clips);
-    j.key("frames").value(f.frames);
-    j.key("bytes").value(static_cast<std::size_t>(f.bytes));
-    j.key("float32_bytes").value(static_cast<std::size_t>(f.float32_bytes));
-    j.key("ratio_float32").value(f.ratio_float32());
-    j.key("motion_seconds").value(f.motion_seconds);
-    j.key("bytes_per_second").value(f.bytes_per_second());
-    j.key("bits_per_joint_frame").value(f.bits_per_joint_frame());
-    j.key("max_cm").value(f.max_cm);
-    j.key("p99_cm").value(f.p99_cm);
-    j.key("rmse_cm").value(f.rmse_cm);
-    j.key("encode_seconds").value(f.encode_seconds);
-    j.key("stream_mb_per_second").value(f.stream_mb_per_second());
-    j.key("raw_windows").value(f.raw_windows);
-    j.key("pack_attempts").value(f.attempts);
-    write_parts(j, f.parts);
 }
 
 }  // namespace
@@ -234,100 +207,10 @@ void write_pack(JsonWriter& j, const std::string& db, const workflow::PackDataba
     j.end_object();
 }
 
-void write_collection_report(JsonWriter& j, const std::string& db, const eval::CollectionReport& r,
-                             const eval::CollectionAcl& ref) {
+void write_dropped_lossless(JsonWriter& j, const std::string& db, std::size_t dropped) {
     j.begin_object();
     j.key("file").value(db);
-    j.key("clips").value(r.clips);
-    j.key("frames").value(r.frames);
-    j.key("groups").value(r.groups);
-    j.key("motion_seconds").value(r.motion_seconds);
-    j.key("float32_bytes").value(static_cast<std::size_t>(r.float32_bytes));
-    j.key("threads").value(r.threads);
-    j.key("random_poses").value(r.random_poses);
-    j.key("targets").begin_array();
-    for (std::size_t t = 0; t < r.targets.size(); ++t) {
-        const eval::TargetFigures& tf = r.targets[t];
-        j.begin_object();
-        j.key("max_error_cm").value(tf.max_error_cm);
-        report_figures(j, tf.total);
-        j.key("decode_pose_us").value(tf.pose_microseconds);
-        j.key("resident_bytes").value(static_cast<std::size_t>(tf.resident_bytes));
-        j.key("poses_timed").value(tf.poses_timed);
-        j.key("indexed_local_pose_us").value(tf.indexed_pose_microseconds);
-        j.key("index_bytes").value(static_cast<std::size_t>(tf.index_bytes));
-        j.key("acl");
-        if (ref.given && ref.unusable.empty()) {
-            const eval::AclComparison& c = ref.per_target[t];
-            j.begin_object();
-            optional_number(j, "bytes_at_max", c.bytes_at_max);
-            optional_number(j, "smaller_at_max", c.smaller_at_max);
-            optional_number(j, "bytes_at_rmse", c.bytes_at_rmse);
-            optional_number(j, "smaller_at_rmse", c.smaller_at_rmse);
-            j.key("max_lower_bound").value(c.max_lower_bound);
-            j.key("rmse_lower_bound").value(c.rmse_lower_bound);
-            j.end_object();
-        } else {
-            j.null();
-        }
-        j.key("group_figures").begin_array();
-        for (const eval::GroupFigures& g : tf.groups) {
-            j.begin_object();
-            j.key("skeleton").value(g.skeleton);
-            j.key("first_clip").value(g.first_clip);
-            j.key("frame_rate").value(g.frame_rate);
-            report_figures(j, g.figures);
-            j.end_object();
-        }
-        j.end_array();
-        j.end_object();
-    }
-    j.end_array();
-    const eval::LosslessFigures& l = r.lossless;
-    j.key("lossless").begin_object();
-    j.key("bytes").value(static_cast<std::size_t>(l.bytes));
-    j.key("channel_bytes").value(static_cast<std::size_t>(l.channel_bytes));
-    j.key("float32_bytes").value(static_cast<std::size_t>(l.float32_bytes));
-    j.key("ratio_float32").value(l.ratio_float32());
-    j.key("gzip9_available").value(l.gzip_available);
-    j.key("gzip9_bytes");
-    if (l.gzip_available) j.value(static_cast<std::size_t>(l.gzip_bytes));
-    else j.null();
-    j.key("gzip9_ratio_float32");
-    if (l.gzip_available) j.value(l.gzip_ratio_float32());
-    else j.null();
-    j.key("source_text_bytes");
-    if (l.gzip_available) j.value(static_cast<std::size_t>(l.source_text_bytes));
-    else j.null();
-    j.key("gzip9_unavailable_reason").value(l.gzip_reason);
-    j.key("sources_found").value(l.sources_found);
-    j.key("sources_missing").value(l.sources_missing);
-    j.key("sources_changed").value(l.sources_changed);
-    j.end_object();
-    j.key("reference");
-    if (!ref.given) {
-        j.null();
-    } else {
-        j.begin_object();
-        j.key("files").begin_array();
-        for (const auto& f : ref.table.files) j.value(f.string());
-        j.end_array();
-        j.key("comparable").value(ref.unusable.empty());
-        j.key("reason").value(ref.unusable);
-        strings(j, "clips_missing", ref.acl.missing);
-        j.key("settings").begin_array();
-        for (const eval::AclSetting& s : ref.acl.settings) {
-            j.begin_object();
-            j.key("precision_cm").value(s.precision_cm);
-            j.key("bytes").value(static_cast<std::size_t>(s.bytes));
-            j.key("max_cm").value(s.max_cm);
-            j.key("rmse_cm").value(s.rmse_cm);
-            j.key("clips").value(s.clips);
-            j.end_object();
-        }
-        j.end_array();
-        j.end_object();
-    }
+    j.key("dropped_lossless_clips").value(dropped);
     j.end_object();
 }
 

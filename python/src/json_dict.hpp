@@ -1,5 +1,5 @@
 #pragma once
-// A step's JSON document (mocapdb_json/step_json.hpp) as Python objects: objects become dicts (keys in
+// A step's JSON document (json/mocapdb_json/*_json.hpp) as Python objects: objects become dicts (keys in
 // document order), arrays lists, null None; so a workflow function returns the keys of `--json`.
 #include <pybind11/pybind11.h>
 

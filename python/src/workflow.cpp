@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "json_dict.hpp"
 #include "mocapdb/eval/collection_acl.hpp"
+#include "mocapdb_json/report_json.hpp"
 #include "mocapdb_json/step_json.hpp"
 #include "mocapdb/eval/collection_report.hpp"
 #include "mocapdb/workflow/pack_collection.hpp"

@@ -1,5 +1,5 @@
 """Every workflow step gives the same JSON keys from Python as from the CLI's --json: both come from
-one writer per step (json/mocapdb_json/step_json.hpp), so they cannot drift."""
+one writer per step (json/mocapdb_json/step_json.hpp, report_json.hpp), so they cannot drift."""
 import shutil
 
 import mocapdb

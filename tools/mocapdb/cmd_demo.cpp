@@ -12,7 +12,7 @@
 #include "clip_options.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
-#include "mocapdb_json/step_json.hpp"
+#include "mocapdb_json/demo_json.hpp"
 #include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
@@ -53,15 +53,6 @@ void progress(const std::string& line) {
     std::cerr << "demo: " << line << std::flush;
 }
 
-// One synthesis of the demo: where it was asked, what came back.
-struct DemoSynthesis {
-    std::string label;   // "between samples" / "outside the samples" / "requested"
-    bool inside = true;  // within the samples' bounding box
-    workflow::SynthOutcome outcome;
-    VecX measured;  // by the set's extractors, or the reach target measurement
-    fs::path file;
-};
-
 std::string values_text(const VecX& v, const std::vector<std::string>& units) {
     std::ostringstream s;
     s.setf(std::ios::fixed);
@@ -72,12 +63,6 @@ std::string values_text(const VecX& v, const std::vector<std::string>& units) {
         if (!u.empty()) s << " " << u;
     }
     return s.str();
-}
-
-void write_values(JsonWriter& j, const std::string& key, const VecX& v) {
-    j.key(key).begin_array();
-    for (Eigen::Index k = 0; k < v.size(); ++k) j.value(v(k));
-    j.end_array();
 }
 
 const char* kReadme =
@@ -99,52 +84,46 @@ const char* kReadme =
     "                     rate-distortion rows, each synthesis, the reliability map, timings.\n"
     "README.txt           this file.\n";
 
-void run_demo(const DemoArgs& a) {
-    const auto start = SteadyClock::now();
-    const fs::path out = a.out;
-    const fs::path db = out / "demo.h5";
-    const bool procedural = a.data.empty();
-    if (!procedural && a.motion != "reach")
-        throw InvalidArgument("--motion chooses the procedural set; it does not apply with --data");
-    if (procedural && (!a.clips.empty() || !a.extract.empty() || a.fps > 0.0))
-        throw InvalidArgument("--clips, --extract and --fps apply with --data only");
+/// Refuses an output folder holding a demo's outputs unless --force; creates it; removes stale syntheses.
+void prepare_output(const fs::path& out, bool force) {
     std::error_code ec;
     const auto refuse = [&](const std::string& name) {
         throw InvalidArgument(out.string() + " already holds the outputs of a demo (" + name +
                               "); pass --force to replace them, or choose another --out");
     };
     for (const char* name : {"demo.h5", "report.json", "samples"})
-        if (fs::exists(out / name, ec) && !a.force) refuse(name);
+        if (fs::exists(out / name, ec) && !force) refuse(name);
     fs::create_directories(out, ec);
     if (ec) throw IoError(out.string() + ": cannot create the output folder: " + ec.message());
     for (const auto& entry : fs::directory_iterator(out)) {  // stale syntheses of an earlier run
         const std::string name = entry.path().filename().string();
         if (name.rfind("synth_", 0) != 0 || entry.path().extension() != ".bvh") continue;
-        if (!a.force) refuse(name);
+        if (!force) refuse(name);
         fs::remove(entry.path());
     }
+}
 
-    // 1. The clips: generated (BVH + params.csv) or the given folder.
-    JsonWriter j;
-    j.begin_object();
-    j.key("mode").value(procedural ? "procedural-" + a.motion : std::string("data"));
-    j.key("out").value(out.string());
+/// What the import and the set are made from.
+struct DemoInputs {
     std::vector<fs::path> inputs;
     SetRequest set_request;
-    set_request.replace = true;
-    procedural::ReachGrid reach_grid;
-    std::string set_name;
-    double generate_s = 0.0;
+    procedural::ReachGrid reach_grid;  ///< of the procedural reaches
+};
+
+/// 1. The clips: generated (BVH + params.csv) or the given folder.
+DemoInputs choose_inputs(const DemoArgs& a, bool procedural, const fs::path& out, json::DemoReport& r) {
+    DemoInputs in;
+    in.set_request.replace = true;
     if (procedural) {
         const auto t = SteadyClock::now();
         procedural::ParametricSet generated;
         if (a.motion == "reach") {
-            set_name = "reaches";
-            procedural::apply_grid_specs(reach_grid, {"angle=-90:90:7", "height=70:150:3"});
+            r.set_name = "reaches";
+            procedural::apply_grid_specs(in.reach_grid, {"angle=-90:90:7", "height=70:150:3"});
             progress("generating reaches of the built-in humanoid (analytic IK; target angle x height)\n");
-            generated = procedural::generate_reach_set(reach_grid);
+            generated = procedural::generate_reach_set(in.reach_grid);
         } else {
-            set_name = "walks";
+            r.set_name = "walks";
             procedural::WalkGrid grid;
             grid.options.cycles = 2;
             procedural::apply_grid_specs(grid, {"speed=0.8:1.8:3", "turn=-90:90:5"});
@@ -152,45 +131,49 @@ void run_demo(const DemoArgs& a) {
             generated = procedural::generate_walk_set(grid);
         }
         const auto paths = procedural::write_parametric_set(out / "samples", generated, a.force);
-        generate_s = seconds_since(t);
-        inputs.push_back(out / "samples");
-        set_request.clips = {generated.kind + "_*"};
-        set_request.params_csv = paths.back();
+        r.generate_s = seconds_since(t);
+        in.inputs.push_back(out / "samples");
+        in.set_request.clips = {generated.kind + "_*"};
+        in.set_request.params_csv = paths.back();
         progress("wrote " + std::to_string(generated.clips.size()) + " BVH files and " + paths.back().string() + "\n");
     } else {
-        set_name = "motions";
-        inputs.push_back(a.data);
-        set_request.clips = a.clips.empty() ? std::vector<std::string>{"*"} : a.clips;
-        set_request.extract = a.extract.empty() ? std::vector<std::string>{"turn", "speed"} : a.extract;
+        r.set_name = "motions";
+        in.inputs.push_back(a.data);
+        in.set_request.clips = a.clips.empty() ? std::vector<std::string>{"*"} : a.clips;
+        in.set_request.extract = a.extract.empty() ? std::vector<std::string>{"turn", "speed"} : a.extract;
     }
-    set_request.name = set_name;
+    in.set_request.name = r.set_name;
+    return in;
+}
 
-    // 2. Import.
+/// 2. Import, 3. the set, 4. alignment, 5. compression.
+void build_model(const DemoArgs& a, const DemoInputs& in, json::DemoReport& r) {
+    const fs::path db = r.database;
     workflow::ImportOptions import_options;
     if (a.fps > 0.0) import_options.frame_rate = a.fps;
-    const ImportOutcome imported = import_clips(db, inputs, import_options, true, std::cerr);
-    progress(describe_import(db, imported));
-
-    // 3. The set, 4. alignment, 5. compression.
-    const SetOutcome built = create_set(db.string(), set_request);
-    progress(describe_set(built));
-    const MotionSet& set = built.set;
+    r.imported = import_clips(db, in.inputs, import_options, true, std::cerr);
+    progress(describe_import(db, r.imported));
+    r.set = create_set(r.database, in.set_request);
+    progress(describe_set(r.set));
+    const MotionSet& set = r.set.set;
     if (set.samples.size() < 3)
         throw InvalidArgument("the demo needs at least 3 samples, the set has " + std::to_string(set.samples.size()));
     AlignRequest align_request;
-    align_request.set = set_name;
+    align_request.set = r.set_name;
     align_request.frames = a.frames;
     progress("aligning (DTW) ...\n");
-    const AlignOutcome aligned = align_set(db.string(), align_request);
-    progress(describe_alignment(set_name, aligned));
+    r.aligned = align_set(r.database, align_request);
+    progress(describe_alignment(r.set_name, r.aligned));
     CompressRequest compress_request;
-    compress_request.set = set_name;
+    compress_request.set = r.set_name;
     compress_request.max_error_cm = a.max_error_cm;
     progress("compressing ...\n");
-    const CompressOutcome compressed = compress_set(db.string(), compress_request);
-    progress(describe_compression(set_name, compressed));
+    r.compressed = compress_set(r.database, compress_request);
+    progress(describe_compression(r.set_name, r.compressed));
+}
 
-    // 6. The rate-distortion table.
+/// 6. The rate-distortion table (printed, and rate_distortion.svg).
+void rate_distortion(const DemoArgs& a, const fs::path& out, json::DemoReport& r) {
     progress("rate-distortion table (Tucker, PCA, zfp, deflate) ...\n");
     const auto rd_start = SteadyClock::now();
     compression::RateOptions rate_options;
@@ -198,28 +181,29 @@ void run_demo(const DemoArgs& a) {
     targets.insert(a.max_error_cm);
     rate_options.hooi = !a.quick;
     rate_options.max_cm.assign(targets.rbegin(), targets.rend());
-    const workflow::AlignedSetData context = workflow::load_aligned_set(Database(db), set_name);
-    const RateOutcome rate = workflow::rate_report(context, rate_options);
-    const double rd_s = seconds_since(rd_start);
-    const std::string rd_svg = rate_svg(set_name, rate);
+    const workflow::AlignedSetData context = workflow::load_aligned_set(Database(r.database), r.set_name);
+    r.rate = workflow::rate_report(context, rate_options);
+    r.rate_s = seconds_since(rd_start);
+    const std::string rd_svg = rate_svg(r.set_name, r.rate);
     write_file_atomically(out / "rate_distortion.svg", [&](std::ostream& o) { o << rd_svg; });
     std::printf("== compression (model stored in %s: ranks %s, max joint error %.3f cm, ratio %.2f:1)\n",
-                db.string().c_str(), ranks_text(compressed.model.tucker.ranks).c_str(), compressed.stats.max_cm,
-                compressed.ratio());
-    std::fputs(rate_table_text(set_name, rate).c_str(), stdout);
+                r.database.c_str(), ranks_text(r.compressed.model.tucker.ranks).c_str(), r.compressed.stats.max_cm,
+                r.compressed.ratio());
+    std::fputs(rate_table_text(r.set_name, r.rate).c_str(), stdout);
+}
 
-    // 7. Synthesis at new parameters.
-    const auto model_start = SteadyClock::now();
-    const auto model = load_synthesis_model(Database(db), set_name, false, "");
-    const double model_s = seconds_since(model_start);
-    const MatX& samples = model->sample_parameters();
+/// 7. Synthesis at new parameters: between the samples (or --at) and outside them; synth_*.bvh.
+void synthesize_new(const DemoArgs& a, const DemoInputs& in, bool procedural, const fs::path& out,
+                    const synthesis::SynthesisModel& model, json::DemoReport& r) {
+    const MotionSet& set = r.set.set;
+    const MatX& samples = model.sample_parameters();
     const auto& names = set.parameter_names;
     const auto& units = set.parameter_units;
     std::vector<VecX> targets_in;
     if (!a.at.empty()) {
         for (const std::string& text : a.at) targets_in.push_back(parse_parameters(text, names, units, "--at"));
     } else if (procedural && a.motion == "reach") {
-        targets_in = workflow::reach_cell_centres(reach_grid);
+        targets_in = workflow::reach_cell_centres(in.reach_grid);
         if (a.quick) targets_in.resize(std::min<std::size_t>(targets_in.size(), 3));
     } else {
         targets_in = workflow::between_samples(samples, a.quick ? 3 : 5);
@@ -229,144 +213,111 @@ void run_demo(const DemoArgs& a) {
     if (a.at.empty()) {
         // Outside: from the samples' mean along one parameter axis, one sampled range of that parameter
         // beyond the samples; of the 2P such points, the one the model trusts least.
-        requests.push_back({workflow::least_trusted_outside(*model), "outside the samples"});
+        requests.push_back({workflow::least_trusted_outside(model), "outside the samples"});
     }
-    const workflow::DemoMeasurement measurement = workflow::choose_measurement(set, *model->skeleton());
-    std::string measured_what = "nothing (the set's parameters were neither extracted nor reach targets)";
+    const workflow::DemoMeasurement measurement = workflow::choose_measurement(set, *model.skeleton());
+    json::DemoSyntheses& syn = r.synthesis;
+    syn.model = model.kind();
+    syn.precompute_s = model.report().precompute_seconds;
+    syn.variogram = model.report().model;
+    syn.measured_with = "nothing (the set's parameters were neither extracted nor reach targets)";
     if (measurement.kind == workflow::DemoMeasure::Extractors)
-        measured_what = "the extractors (" + measurement.extractor_names + ") on the whole synthesized clip";
+        syn.measured_with = "the extractors (" + measurement.extractor_names + ") on the whole synthesized clip";
     else if (measurement.kind == workflow::DemoMeasure::ReachTarget)
-        measured_what =
+        syn.measured_with =
             "the right hand's end site at the hold (its slowest frame among those at least 80% of its "
             "largest distance from the start): bearing around the origin's vertical axis [deg], "
             "height [cm], horizontal distance [cm]";
 
-    std::printf("\n== synthesis at new parameters (%s model, ranks %s; %zu samples; parameters: %s)\n", model->kind(),
-                ranks_text(model->level_ranks(0)).c_str(), set.samples.size(),
+    std::printf("\n== synthesis at new parameters (%s model, ranks %s; %zu samples; parameters: %s)\n", model.kind(),
+                ranks_text(model.level_ranks(0)).c_str(), set.samples.size(),
                 describe_parameters(names, units).c_str());
-    const kriging::VariogramModel& vg = model->report().model;
+    const kriging::VariogramModel& vg = syn.variogram;
     std::printf(
         "   kriging: variogram p = %g, nugget %.4g, sill %.4g, range %.4g (normalized parameters: each axis "
         "to zero mean, unit deviation); rho = 1 - variance / (nugget + sill)\n",
         vg.paper_p(), vg.nugget, vg.sill, vg.range);
-    std::printf("   measured: %s\n", measured_what.c_str());
-    std::vector<DemoSynthesis> results;
+    std::printf("   measured: %s\n", syn.measured_with.c_str());
     for (std::size_t q = 0; q < requests.size(); ++q) {
-        DemoSynthesis s;
-        s.label = requests[q].second;
+        json::DemoSynthesis s;
+        s.where = requests[q].second;
         s.inside = workflow::inside_box(samples, requests[q].first);
-        s.outcome = workflow::synthesize(*model, set, requests[q].first);
+        s.outcome = workflow::synthesize(model, set, requests[q].first);
         s.measured = workflow::measure_synthesis(measurement, s.outcome.clip, names);
         char name[64];
         std::snprintf(name, sizeof name, "synth_%02zu%s.bvh", q + 1, s.inside ? "" : "_outside");
-        s.file = out / name;
-        write_bvh(s.file, s.outcome.clip);
-        std::printf("%-20s requested %s\n", (std::string(name)).c_str(),
-                    values_text(s.outcome.requested, units).c_str());
+        s.file = name;
+        write_bvh(out / s.file, s.outcome.clip);
+        std::printf("%-20s requested %s\n", name, values_text(s.outcome.requested, units).c_str());
         std::printf("%-20s measured  %s\n", "",
                     s.measured.size() == s.outcome.requested.size() ? values_text(s.measured, units).c_str() : "-");
         std::printf("%-20s rho %.4f, %zu frames (%.2f s), synthesized in %.4f s; %s%s\n", "", s.outcome.reliability,
-                    s.outcome.clip.frame_count(), s.outcome.clip.duration(), s.outcome.seconds, s.label.c_str(),
+                    s.outcome.clip.frame_count(), s.outcome.clip.duration(), s.outcome.seconds, s.where.c_str(),
                     workflow::is_low_reliability(s.outcome.reliability)
                         ? "\n                     warning: reliability below 0.5: far from the samples, extrapolated"
                         : "");
-        results.push_back(std::move(s));
+        syn.motions.push_back(std::move(s));
     }
+}
 
-    // 8. The reliability map over the first two parameters (padded beyond the samples).
-    bool have_map = false;
-    workflow::ReliabilityMap map;
-    HeatMapSpec map_spec;
-    if (model->parameters() >= 2) {
-        std::vector<VecX> points;  // the samples and every synthesized point, with a margin
-        for (const auto& r : requests) points.push_back(r.first);
-        const workflow::SliceAxis gx = workflow::padded_axis(samples, points, 0, 41);
-        const workflow::SliceAxis gy = workflow::padded_axis(samples, points, 1, 41);
-        const VecX base = workflow::samples_mean(*model);
-        map = workflow::reliability_map(*model, gx, gy, base);
-        map_spec = reliability_heat_map(*model, set_name, gx, gy, base, map);
-        const std::string svg = render_heat_map(map_spec);
-        write_file_atomically(out / "reliability.svg", [&](std::ostream& o) { o << svg; });
-        have_map = true;
-    }
+/// 8. The reliability map over the first two parameters (padded beyond the samples), reliability.svg.
+void map_reliability(const fs::path& out, const synthesis::SynthesisModel& model, json::DemoReport& r) {
+    if (model.parameters() < 2) return;
+    const MatX& samples = model.sample_parameters();
+    std::vector<VecX> points;  // the samples and every synthesized point, with a margin
+    for (const json::DemoSynthesis& s : r.synthesis.motions) points.push_back(s.outcome.requested);
+    const workflow::SliceAxis gx = workflow::padded_axis(samples, points, 0, 41);
+    const workflow::SliceAxis gy = workflow::padded_axis(samples, points, 1, 41);
+    const VecX base = workflow::samples_mean(model);
+    json::DemoMap m;
+    m.map = workflow::reliability_map(model, gx, gy, base);
+    const HeatMapSpec spec = reliability_heat_map(model, r.set_name, gx, gy, base, m.map);
+    const std::string svg = render_heat_map(spec);
+    write_file_atomically(out / "reliability.svg", [&](std::ostream& o) { o << svg; });
+    m.x = r.set.set.parameter_names[0];
+    m.y = r.set.set.parameter_names[1];
+    m.x_lo = spec.x_lo;
+    m.x_hi = spec.x_hi;
+    m.y_lo = spec.y_lo;
+    m.y_hi = spec.y_hi;
+    r.map = std::move(m);
+}
+
+void run_demo(const DemoArgs& a) {
+    const auto start = SteadyClock::now();
+    const fs::path out = a.out;
+    const bool procedural = a.data.empty();
+    if (!procedural && a.motion != "reach")
+        throw InvalidArgument("--motion chooses the procedural set; it does not apply with --data");
+    if (procedural && (!a.clips.empty() || !a.extract.empty() || a.fps > 0.0))
+        throw InvalidArgument("--clips, --extract and --fps apply with --data only");
+    prepare_output(out, a.force);
+
+    json::DemoReport r;
+    r.mode = procedural ? "procedural-" + a.motion : std::string("data");
+    r.out = out.string();
+    r.database = (out / "demo.h5").string();
+    const DemoInputs in = choose_inputs(a, procedural, out, r);
+    build_model(a, in, r);
+    rate_distortion(a, out, r);
+    const auto model_start = SteadyClock::now();
+    const auto model = load_synthesis_model(Database(r.database), r.set_name, false, "");
+    r.synthesis.load_s = seconds_since(model_start);
+    synthesize_new(a, in, procedural, out, *model, r);
+    map_reliability(out, *model, r);
 
     // 9. report.json and README.txt.
-    const double total_s = seconds_since(start);
-    j.key("database").value(db.string());
-    j.key("import").begin_object();
-    j.key("files").value(imported.summary.files).key("clips").value(imported.summary.added);
-    j.key("frames").value(imported.summary.frames).key("seconds_of_motion").value(imported.summary.seconds);
-    j.key("bytes_read").value(static_cast<long long>(imported.summary.bytes_read));
-    j.key("seconds").value(imported.seconds).end_object();
-    j.key("set").begin_object();
-    j.key("name").value(set_name).key("parameter_source").value(set.parameter_source);
-    j.key("samples").value(set.samples.size());
-    j.key("parameters").begin_array();
-    for (std::size_t p = 0; p < names.size(); ++p)
-        j.begin_object().key("name").value(names[p]).key("unit").value(units[p]).end_object();
-    j.end_array();
-    j.key("values").begin_array();
-    for (Eigen::Index n = 0; n < set.parameters.rows(); ++n) {
-        j.begin_array();
-        for (Eigen::Index k = 0; k < set.parameters.cols(); ++k) j.value(set.parameters(n, k));
-        j.end_array();
-    }
-    j.end_array().end_object();
-    j.key("align").begin_object();
-    j.key("method").value(aligned.aligned.method).key("frames").value(static_cast<long long>(aligned.aligned.frames()));
-    j.key("dofs").value(static_cast<long long>(aligned.aligned.dofs()));
-    j.key("reference").value(aligned.labels[aligned.aligned.reference]);
-    j.key("mean_distance_cm").value(aligned.distance).key("seconds").value(aligned.seconds).end_object();
-    j.key("compress");
-    json::write_compression(j, set_name, compressed);
-    j.key("rate_distortion").begin_object();
-    j.key("raw_bytes").value(static_cast<long long>(rate.report.raw_bytes));
-    j.key("side_bytes").value(static_cast<long long>(rate.report.side_bytes));
-    j.key("seconds_of_motion").value(rate.seconds);
-    write_rate_rows_json(j, rate);
-    j.key("seconds").value(rd_s).end_object();
-    j.key("synthesis").begin_object();
-    j.key("model").value(model->kind()).key("precompute_s").value(model->report().precompute_seconds);
-    j.key("load_s").value(model_s).key("measured_with").value(measured_what);
-    j.key("variogram").begin_object().key("p").value(vg.paper_p()).key("nugget").value(vg.nugget);
-    j.key("sill").value(vg.sill).key("range").value(vg.range).end_object();
-    j.key("motions").begin_array();
-    for (const DemoSynthesis& s : results) {
-        j.begin_object();
-        j.key("file").value(s.file.filename().string()).key("where").value(s.label).key("inside").value(s.inside);
-        write_values(j, "requested", s.outcome.requested);
-        if (s.measured.size() == s.outcome.requested.size()) write_values(j, "measured", s.measured);
-        j.key("reliability").value(s.outcome.reliability);
-        j.key("frames").value(s.outcome.clip.frame_count()).key("frame_rate").value(s.outcome.clip.frame_rate);
-        j.key("duration_s").value(s.outcome.clip.duration());
-        j.key("clamped_increments").value(static_cast<long long>(s.outcome.timing.clamped));
-        j.key("seconds").value(s.outcome.seconds);
-        j.end_object();
-    }
-    j.end_array().end_object();
-    if (have_map) {
-        j.key("reliability_map").begin_object();
-        j.key("file").value("reliability.svg");
-        j.key("x").value(names[0]).key("y").value(names[1]);
-        j.key("x_range").begin_array().value(map_spec.x_lo).value(map_spec.x_hi).end_array();
-        j.key("y_range").begin_array().value(map_spec.y_lo).value(map_spec.y_hi).end_array();
-        j.key("cells").value(static_cast<long long>(map.rho.size()));
-        j.key("min").value(map.rho_min).key("mean").value(map.rho_mean).key("max").value(map.rho_max);
-        j.key("fraction_ge_0_85").value(map.fraction_trusted).end_object();
-    }
-    j.key("timings_s").begin_object();
-    j.key("generate").value(generate_s).key("import").value(imported.seconds).key("align").value(aligned.seconds);
-    j.key("compress").value(compressed.total_s).key("rate_distortion").value(rd_s).key("model").value(model_s);
-    j.key("total").value(total_s).end_object();
-    j.end_object();
+    r.total_s = seconds_since(start);
+    JsonWriter j;
+    json::write_demo_report(j, r);
     const std::string report = j.str();
     write_file_atomically(out / "report.json", [&](std::ostream& o) { o << report; });
     write_file_atomically(out / "README.txt", [&](std::ostream& o) { o << kReadme; });
 
-    std::printf("\n== outputs in %s (%.1f s in all)\n", out.string().c_str(), total_s);
+    std::printf("\n== outputs in %s (%.1f s in all)\n", out.string().c_str(), r.total_s);
     std::printf("  demo.h5  report.json  README.txt  rate_distortion.svg%s  %zu synth_*.bvh%s\n",
-                have_map ? "  reliability.svg" : "", results.size(), procedural ? "  samples/" : "");
-    if (!have_map) std::printf("  (no reliability.svg: the set has a single parameter)\n");
+                r.map ? "  reliability.svg" : "", r.synthesis.motions.size(), procedural ? "  samples/" : "");
+    if (!r.map) std::printf("  (no reliability.svg: the set has a single parameter)\n");
 }
 
 }  // namespace

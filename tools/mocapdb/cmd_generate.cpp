@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/clip_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/procedural/parametric_set.hpp"
 
@@ -24,27 +25,7 @@ void report(const procedural::ParametricSet& set, const std::vector<std::filesys
             const GenerateArgs& a) {
     if (a.json) {
         JsonWriter j;
-        j.begin_object().key("kind").value(set.kind).key("folder").value(a.out);
-        j.key("params_csv").value(paths.back().string());
-        j.key("parameters").begin_array();
-        for (std::size_t p = 0; p < set.parameter_names.size(); ++p)
-            j.begin_object()
-                .key("name")
-                .value(set.parameter_names[p])
-                .key("unit")
-                .value(set.parameter_units[p])
-                .end_object();
-        j.end_array().key("clips").begin_array();
-        for (std::size_t i = 0; i < set.clips.size(); ++i) {
-            j.begin_object().key("name").value(set.clips[i].name).key("file").value(paths[i].string());
-            j.key("frames").value(static_cast<long long>(set.clips[i].frame_count()));
-            j.key("frame_rate").value(set.clips[i].frame_rate);
-            j.key("values").begin_array();
-            for (Eigen::Index p = 0; p < set.parameters.cols(); ++p)
-                j.value(set.parameters(static_cast<Eigen::Index>(i), p));
-            j.end_array().end_object();
-        }
-        j.end_array().end_object();
+        json::write_generated_set(j, a.out, set, paths);
         std::cout << j.str();
         return;
     }

@@ -10,6 +10,7 @@
 #include "clip_options.hpp"
 #include "commands.hpp"
 #include "gp_cli.hpp"
+#include "mocapdb_json/gp_json.hpp"
 #include "output_files.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/core/keep_freed_memory.hpp"
@@ -56,11 +57,7 @@ void run_fit(const GpArgs& a) {
     bar.clear();
     if (a.json) {
         JsonWriter w;
-        w.begin_object();
-        w.key("model").value(model_name(a));
-        write_data_json(w, md);
-        write_model(w, f);
-        w.end_object();
+        json::write_gp_fit(w, model_name(a), md, f);
         std::cout << w.str();
         return;
     }
@@ -83,36 +80,13 @@ void run_interpolate(const GpArgs& a) {
         interpolate_child(md.data, child, a.observed, model_spec(a, !a.mo_baseline), fit_options(a, &bar), a.seed);
     bar.clear();
     const FitResult& f = interpolation.fit;
-    const std::vector<bool>& mask = interpolation.observed;
     const InterpolationScores& s = interpolation.scores;
     const GaussianPrediction& p = interpolation.prediction;
     if (!a.out.empty())
         write_bvh(fs::path(a.out), reassemble_clip(md, p.mean, md.child_names[child] + "-interpolated"));
     if (a.json) {
         JsonWriter w;
-        w.begin_object();
-        w.key("model").value(model_name(a));
-        write_data_json(w, md);
-        w.key("child").value(md.child_names[child]);
-        w.key("observed_frames").begin_array();
-        for (std::size_t i = 0; i < mask.size(); ++i)
-            if (mask[i]) w.value(static_cast<long long>(i));
-        w.end_array();
-        w.key("mse").value(s.mse);
-        w.key("smse").value(s.smse);
-        w.key("msll").value(s.msll);
-        w.key("predicted_values").value(static_cast<long long>(s.points));
-        w.key("fit").begin_object();
-        write_model(w, f);
-        w.end_object();
-        w.key("mean").begin_array();  // normalized units, D rows of T values
-        for (Eigen::Index i = 0; i < p.mean.rows(); ++i) {
-            w.begin_array();
-            for (Eigen::Index t = 0; t < p.mean.cols(); ++t) w.value(p.mean(i, t));
-            w.end_array();
-        }
-        w.end_array();
-        w.end_object();
+        json::write_gp_interpolation(w, model_name(a), md, md.child_names[child], interpolation);
         std::cout << w.str();
         return;
     }
@@ -154,17 +128,10 @@ void run_sample(const GpArgs& a) {
         write_bvh(files[i], reassemble_clip(md, samples[i], files[i].stem().string()));
     write_bvh(files.back(), reassemble_clip(md, drawn.trend, "trend"));
     if (a.json) {
+        std::vector<std::string> names;
+        for (const auto& p : files) names.push_back(p.string());
         JsonWriter w;
-        w.begin_object();
-        w.key("model").value(model_name(a));
-        write_data_json(w, md);
-        w.key("files").begin_array();
-        for (const auto& p : files) w.value(p.string());
-        w.end_array();
-        w.key("fit").begin_object();
-        write_model(w, f);
-        w.end_object();
-        w.end_object();
+        json::write_gp_samples(w, model_name(a), md, names, f);
         std::cout << w.str();
         return;
     }

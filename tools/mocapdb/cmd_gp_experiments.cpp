@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "gp_cli.hpp"
+#include "mocapdb_json/gp_json.hpp"
 #include "output_files.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/gp/child_selection.hpp"
@@ -15,33 +16,10 @@ namespace {
 namespace fs = std::filesystem;
 using namespace mocapdb::gp;
 
-void json_runs(JsonWriter& w, const ModelRuns& m) {
-    w.begin_object();
-    w.key("mse").begin_object().key("mean").value(m.mse.mean).key("std").value(m.mse.std).end_object();
-    w.key("smse").begin_object().key("mean").value(m.smse.mean).key("std").value(m.smse.std).end_object();
-    w.key("msll").begin_object().key("mean").value(m.msll.mean).key("std").value(m.msll.std).end_object();
-    w.key("fit_seconds").value(m.fit_seconds);
-    w.key("fit_status").begin_array();
-    for (const auto& s : m.fit_status) w.value(s);
-    w.end_array();
-    w.end_object();
-}
-
 std::string pm(const MeanStd& m, int prec = 3) {
     char b[64];
     std::snprintf(b, sizeof b, "%.*f ± %.*f", prec, m.mean, prec, 2.0 * m.std);
     return b;
-}
-
-void json_synthesis(JsonWriter& w, const SynthesisScores& s) {
-    w.begin_array();
-    for (std::size_t i = 0; i < s.mcc.size(); ++i) {
-        w.begin_object();
-        w.key("mcc").begin_object().key("mean").value(s.mcc[i].mean).key("std").value(s.mcc[i].std).end_object();
-        w.key("mlc").begin_object().key("mean").value(s.mlc[i].mean).key("std").value(s.mlc[i].std).end_object();
-        w.end_object();
-    }
-    w.end_array();
 }
 
 }  // namespace
@@ -71,27 +49,7 @@ void run_experiment_artificial(const GpArgs& a) {
     bar.clear();
     if (a.json) {
         JsonWriter w;
-        w.begin_object();
-        w.key("experiment").value("artificial");
-        w.key("runs").value(static_cast<long long>(a.runs));
-        w.key("q").value(static_cast<long long>(a.q));
-        w.key("kernel").value(a.kernel);
-        w.key("tests").begin_array();
-        for (std::size_t i = 0; i < results.size(); ++i) {
-            const auto& r = results[i];
-            w.begin_object();
-            w.key("test").value(static_cast<long long>(which[i]));
-            w.key("noise").value(r.config.noise);
-            w.key("outputs").value(static_cast<long long>(r.config.outputs));
-            w.key("children").value(static_cast<long long>(r.config.children));
-            w.key("mohgp");
-            json_runs(w, r.mohgp);
-            w.key("moa");
-            json_runs(w, r.moa);
-            w.end_object();
-        }
-        w.end_array();
-        w.end_object();
+        json::write_gp_artificial(w, {a.runs, a.q, a.kernel, which}, results);
         std::cout << w.str();
         return;
     }
@@ -139,46 +97,10 @@ void run_experiment_replicates(const GpArgs& a) {
     const bool do_synthesis = experiment.synthesis.has_value();
     const SynthesisResult synth = do_synthesis ? *experiment.synthesis : SynthesisResult{};
     if (a.json) {
+        json::GpReplicatesReport report{a.layers, train_names[child], a.samples, {}};
+        for (std::size_t i = n_train; i < names.size(); ++i) report.real.push_back(names[i]);
         JsonWriter w;
-        w.begin_object();
-        w.key("experiment").value("replicates");
-        w.key("layers").value(static_cast<long long>(a.layers));
-        write_data_json(w, all);
-        w.key("test_child").value(train_names[child]);
-        w.key("mohgp_fit").begin_object();
-        write_model(w, interp.mohgp_fit);
-        w.end_object();
-        w.key("moa_fit").begin_object();
-        write_model(w, interp.moa_fit);
-        w.end_object();
-        w.key("interpolation").begin_array();
-        for (const auto& row : interp.rows) {
-            w.begin_object();
-            w.key("observed").value(static_cast<long long>(row.observed));
-            w.key("mohgp");
-            json_runs(w, row.mohgp);
-            w.key("moa");
-            json_runs(w, row.moa);
-            w.end_object();
-        }
-        w.end_array();
-        if (do_synthesis) {
-            w.key("synthesis").begin_object();
-            w.key("samples").value(static_cast<long long>(a.samples));
-            w.key("real").begin_array();
-            for (std::size_t i = n_train; i < names.size(); ++i) w.value(names[i]);
-            w.end_array();
-            w.key("mohgp");
-            json_synthesis(w, synth.mohgp);
-            w.key("moa");
-            json_synthesis(w, synth.moa);
-            w.key("control");
-            json_synthesis(w, synth.control);
-            w.key("mohgp_fit_seconds").value(synth.mohgp_fit.seconds);
-            w.key("moa_fit_seconds").value(synth.moa_fit.seconds);
-            w.end_object();
-        }
-        w.end_object();
+        json::write_gp_replicates(w, report, all, experiment);
         std::cout << w.str();
         return;
     }

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "db_info.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/clip_json.hpp"
 #include "mocapdb/motion/figure_height.hpp"
 #include "mocapdb/store/database.hpp"
 
@@ -20,39 +21,8 @@ struct InfoArgs {
 };
 
 void print_json(const std::string& file, const Clip& clip) {
-    const Skeleton& s = *clip.skeleton;
     JsonWriter j;
-    j.begin_object();
-    j.key("file").value(file);
-    j.key("frames").value(clip.frame_count());
-    j.key("frame_rate").value(clip.frame_rate);
-    j.key("duration").value(clip.duration());
-    j.key("channels").value(s.channel_count());
-    if (clip.frame_count() > 0) j.key("figure_height_cm").value(figure_height(s, clip.frame(0)));
-    else j.key("figure_height_cm").null();  // no frame to measure
-    j.key("root").value(s.joint(0).name);
-    j.key("motion_root").value(s.joint(s.motion_root()).name);
-    j.key("position_channels").value(to_string(s.position_channels()));
-    j.key("joints").begin_array();
-    for (const Joint& joint : s.joints()) {
-        j.begin_object();
-        j.key("name").value(joint.name);
-        if (joint.parent < 0) {
-            j.key("parent").null();
-        } else {
-            j.key("parent").value(s.joint(static_cast<std::size_t>(joint.parent)).name);
-        }
-        j.key("end_site").value(joint.end_site);
-        j.key("offset_cm").begin_array();
-        for (int a = 0; a < 3; ++a) j.value(joint.offset[a]);
-        j.end_array();
-        j.key("channels").begin_array();
-        for (ChannelType c : joint.channels) j.value(to_string(c));
-        j.end_array();
-        j.end_object();
-    }
-    j.end_array();
-    j.end_object();
+    json::write_clip_info(j, file, clip);
     std::cout << j.str();
 }
 

@@ -83,52 +83,7 @@ void setup_krige(CLI::App& app) {
 
         if (t.json) {
             JsonWriter j;
-            j.begin_object();
-            j.key("model");
-            write_model_json(j, vm);
-            if (fit_outcome) {
-                j.key("fit");
-                write_fit_json(j, *fit_outcome, t);
-            }
-            j.key("trend").value(t.trend);
-            j.key("trend_fit").value(t.trend_fit);
-            j.key("normalized").value(t.normalize);
-            j.key("status").begin_object();
-            j.key("factorization").value(kriging::to_string(st.factorization));
-            j.key("jitter").value(st.jitter);
-            j.key("rcond").value(st.rcond);
-            j.key("duplicates_merged").value(static_cast<long long>(st.duplicates_merged));
-            j.key("trend_rank_deficient").value(st.trend_rank_deficient);
-            j.end_object();
-            j.key("predictions").begin_array();
-            for (Eigen::Index q = 0; q < queries.rows(); ++q) {
-                j.begin_object();
-                j.key("row").value(static_cast<long long>(q + 1));
-                j.key("prediction").value(pred(q));
-                j.key("variance").value(b.variance(q));
-                j.key("paper_variance").value(b.paper_variance(q));
-                j.key("reliability").value(b.reliability(q));
-                j.end_object();
-            }
-            j.end_array();
-            if (loo) {
-                j.key("loo").begin_object();
-                j.key("mse").value(loo->mse);
-                j.key("rows").begin_array();
-                for (Eigen::Index i = 0; i < data.values.size(); ++i) {
-                    j.begin_object();
-                    j.key("row").value(static_cast<long long>(i + 1));
-                    j.key("observed").value(data.values(i));
-                    j.key("prediction").value(loo->prediction(i, 0));
-                    j.key("variance").value(loo->variance(i));
-                    j.key("residual").value(loo->residual(i, 0));
-                    j.key("zscore").value(loo->zscore(i, 0));
-                    j.end_object();
-                }
-                j.end_array();
-                j.end_object();
-            }
-            j.end_object();
+            json::write_table_kriging(j, table_settings(t), vm, fit_outcome, data, result);
             std::cout << j.str();
             return;
         }

@@ -63,10 +63,7 @@ void run_pack(const PackArgs& a) {
         const std::size_t dropped = workflow::drop_lossless_tier(a.db);
         if (a.json) {
             JsonWriter j;
-            j.begin_object();
-            j.key("file").value(a.db);
-            j.key("dropped_lossless_clips").value(dropped);
-            j.end_object();
+            json::write_dropped_lossless(j, a.db, dropped);
             std::fputs(j.str().c_str(), stdout);
         } else {
             std::printf(

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/synthesis_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
@@ -37,61 +38,33 @@ void run_query(const QueryArgs& a) {
     const std::vector<std::string> warnings = synthesis_warnings(*model, rho);
     for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
-    JsonWriter j;
-    j.begin_object();
-    j.key("set").value(a.set);
-    j.key("model").value(model->kind());
-    j.key("frame").value(a.frame);
-    j.key("reliability").value(rho);
-    j.key("warnings").begin_array();
-    for (const std::string& w : warnings) j.value(w);
-    j.end_array();
-    if (a.joints) {
-        const MatX p = compression::pose_joint_positions(sk, pose);
-        j.key("unit").value("cm");
-        j.key("joints").begin_array();
-        for (std::size_t k = 0; k < sk.size(); ++k) {
-            const auto r = static_cast<Eigen::Index>(3 * k);
-            j.begin_object();
-            j.key("name").value(sk.joint(k).name);
-            j.key("position").begin_array().value(p(r, 0)).value(p(r + 1, 0)).value(p(r + 2, 0)).end_array();
-            j.end_object();
-        }
-        j.end_array();
-    } else {
-        const FrameMatrix ch = from_pose_vectors(sk, pose, Canonicalization{});
-        j.key("unit").value("cm, rad");
-        j.key("channels").begin_array();
-        for (std::size_t k = 0; k < sk.size(); ++k) {
-            const Joint& joint = sk.joint(k);
-            for (std::size_t m = 0; m < joint.channels.size(); ++m) {
-                j.begin_object();
-                j.key("joint").value(joint.name);
-                j.key("channel").value(to_string(joint.channels[m]));
-                j.key("value").value(ch(0, static_cast<Eigen::Index>(sk.first_channel(k) + m)));
-                j.end_object();
-            }
-        }
-        j.end_array();
-    }
-    j.key("pose_vector").begin_array();
-    for (Eigen::Index k = 0; k < pose.size(); ++k) j.value(pose(k));
-    j.end_array();
-    j.end_object();
+    json::PoseQuery q;
+    q.set = a.set;
+    q.model = model->kind();
+    q.frame = a.frame;
+    q.reliability = rho;
+    q.warnings = warnings;
+    q.skeleton = model->skeleton();
+    q.pose = pose;
+    q.joints = a.joints;
+    if (a.joints) q.joint_positions = compression::pose_joint_positions(sk, pose);
+    else q.channels = from_pose_vectors(sk, pose, Canonicalization{});
     if (a.json) {
+        JsonWriter j;
+        json::write_pose_query(j, q);
         std::fputs(j.str().c_str(), stdout);
         return;
     }
     std::printf("pose of '%s' at frame %g (%s model), reliability %.3f:\n", a.set.c_str(), a.frame, model->kind(), rho);
     if (a.joints) {
-        const MatX p = compression::pose_joint_positions(sk, pose);
+        const MatX& p = q.joint_positions;
         for (std::size_t k = 0; k < sk.size(); ++k) {
             const auto r = static_cast<Eigen::Index>(3 * k);
             std::printf("  %-16s %10.3f %10.3f %10.3f cm\n", sk.joint(k).name.c_str(), p(r, 0), p(r + 1, 0),
                         p(r + 2, 0));
         }
     } else {
-        const FrameMatrix ch = from_pose_vectors(sk, pose, Canonicalization{});
+        const FrameMatrix& ch = q.channels;
         for (std::size_t k = 0; k < sk.size(); ++k) {
             const Joint& joint = sk.joint(k);
             if (joint.channels.empty()) continue;

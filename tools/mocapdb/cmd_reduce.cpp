@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/synthesis_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/set_reduction.hpp"
@@ -45,30 +46,10 @@ void run_reduce(const ReduceArgs& a) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (a.json) {
+        json::ReductionReport report{a.set, a.tau, std::nullopt, seconds};
+        if (a.apply) report.written_set = target;
         JsonWriter j;
-        j.begin_object();
-        j.key("set").value(a.set);
-        j.key("tau").value(a.tau);
-        j.key("samples").value(static_cast<long long>(set.samples.size()));
-        j.key("kept").value(static_cast<long long>(r.kept.size()));
-        j.key("stopped_on_threshold").value(r.stopped_on_threshold);
-        j.key("removed").begin_array();
-        for (std::size_t k = 0; k < r.removed.size(); ++k) {
-            j.begin_object();
-            j.key("sample").value(labels[static_cast<std::size_t>(r.removed[k])]);
-            j.key("reliability").value(r.removed_reliability[k]);
-            j.end_object();
-        }
-        j.end_array();
-        j.key("kept_samples").begin_array();
-        for (Eigen::Index k : r.kept) j.value(labels[static_cast<std::size_t>(k)]);
-        j.end_array();
-        j.key("max_reliability").begin_array();
-        for (double v : r.max_reliability) j.value(v);
-        j.end_array();
-        if (a.apply) j.key("written_set").value(target);
-        j.key("seconds").value(seconds);
-        j.end_object();
+        json::write_reduction(j, report, outcome);
         std::fputs(j.str().c_str(), stdout);
         return;
     }

@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "output_files.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/synthesis_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "mocapdb/workflow/reliability_map.hpp"
@@ -98,19 +99,10 @@ void run_reliability(const ReliabilityArgs& a) {
     const double trusted = m.fraction_trusted;
     if (a.json) {
         JsonWriter j;
-        j.begin_object();
-        j.key("set").value(a.set);
-        j.key("model").value(model->kind());
-        j.key("x").value(names[static_cast<std::size_t>(gx.axis)]);
-        j.key("y").value(names[static_cast<std::size_t>(gy.axis)]);
-        j.key("cells").value(static_cast<long long>(rho.size()));
-        j.key("min").value(m.rho_min);
-        j.key("max").value(m.rho_max);
-        j.key("mean").value(m.rho_mean);
-        j.key("fraction_ge_0_85").value(trusted);
-        j.key("svg").value(a.svg);
-        if (!a.csv.empty()) j.key("csv").value(a.csv);
-        j.end_object();
+        json::write_reliability_map(j,
+                                    {a.set, model->kind(), names[static_cast<std::size_t>(gx.axis)],
+                                     names[static_cast<std::size_t>(gy.axis)], a.svg, a.csv},
+                                    m);
         std::fputs(j.str().c_str(), stdout);
         return;
     }

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "output_files.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/report_json.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
@@ -54,17 +55,7 @@ void run_report(const ReportArgs& a) {
     }
     if (a.json) {
         JsonWriter j;
-        j.begin_object();
-        j.key("set").value(a.set);
-        j.key("dims").begin_array();
-        for (auto d : r.report.dims) j.value(static_cast<long long>(d));
-        j.end_array();
-        j.key("raw_bytes").value(static_cast<long long>(r.report.raw_bytes));
-        j.key("raw_clip_bytes").value(static_cast<long long>(r.clip_bytes));
-        j.key("side_bytes").value(static_cast<long long>(r.report.side_bytes));
-        j.key("seconds_of_motion").value(r.seconds);
-        write_rate_rows_json(j, r);
-        j.end_object();
+        json::write_rate_report(j, a.set, r);
         std::fputs(j.str().c_str(), stdout);
         return;
     }

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "option_lists.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/database_json.hpp"
 #include "mocapdb_json/step_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/dropout_repair.hpp"
@@ -44,49 +45,7 @@ void print_set(const Database& db, const std::string& name, bool json) {
     const auto aligned = db.load_aligned(name);
     if (json) {
         JsonWriter j;
-        j.begin_object();
-        j.key("name").value(set.name);
-        j.key("parameter_source").value(set.parameter_source);
-        j.key("parameters").begin_array();
-        for (std::size_t p = 0; p < set.parameter_names.size(); ++p) {
-            j.begin_object().key("name").value(set.parameter_names[p]).key("unit").value(set.parameter_units[p]);
-            if (set.parameter_periods.size() != 0)
-                j.key("period").value(set.parameter_periods(static_cast<Eigen::Index>(p)));
-            j.end_object();
-        }
-        j.end_array();
-        j.key("aligned").value(aligned.has_value());
-        if (aligned) {
-            j.key("method").value(aligned->method);
-            j.key("frames").value(static_cast<long long>(aligned->frames()));
-            j.key("dofs").value(static_cast<long long>(aligned->dofs()));
-            j.key("reference").value(aligned->reference);
-        }
-        j.key("samples").begin_array();
-        for (std::size_t i = 0; i < set.samples.size(); ++i) {
-            const SampleRef& s = set.samples[i];
-            j.begin_object().key("label").value(labels[i]).key("clip").value(s.clip);
-            j.key("begin").value(s.begin).key("end").value(s.end);
-            j.key("values").begin_array();
-            for (Eigen::Index p = 0; p < set.parameters.cols(); ++p)
-                j.value(set.parameters(static_cast<Eigen::Index>(i), p));
-            j.end_array().end_object();
-        }
-        j.end_array();
-        j.key("dropouts_checked").value(set.dropouts_checked);
-        j.key("repairs").begin_array();
-        for (const RepairedFrames& r : set.repairs)
-            j.begin_object()
-                .key("clip")
-                .value(r.clip)
-                .key("joint")
-                .value(r.joint)
-                .key("begin")
-                .value(r.begin)
-                .key("end")
-                .value(r.end)
-                .end_object();
-        j.end_array().end_object();
+        json::write_set_show(j, set, labels, aligned);
         std::cout << j.str();
         return;
     }
@@ -179,22 +138,7 @@ void setup_set(CLI::App& app) {
         const auto sets = db.sets();
         if (*list_json) {
             JsonWriter j;
-            j.begin_array();
-            for (const SetRecord& s : sets) {
-                j.begin_object().key("name").value(s.name).key("samples").value(s.samples);
-                j.key("parameters").begin_array();
-                for (const auto& p : s.parameter_names) j.value(p);
-                j.end_array().key("aligned").value(s.aligned).key("model").value(s.model);
-                if (s.model) {
-                    j.key("model_ranks").begin_array();
-                    for (std::size_t r : s.model_ranks) j.value(r);
-                    j.end_array();
-                } else {
-                    j.key("model_ranks").null();
-                }
-                j.end_object();
-            }
-            j.end_array();
+            json::write_set_list(j, sets);
             std::cout << j.str();
             return;
         }

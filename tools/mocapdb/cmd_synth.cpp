@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "output_files.hpp"
 #include "json_writer.hpp"
+#include "mocapdb_json/synthesis_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/workflow/synthesis_step.hpp"
@@ -48,37 +49,19 @@ void run_synth(const SynthArgs& a) {
     const std::vector<std::string> warnings = synthesis_warnings(*model, rho);
     for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     if (a.json) {
+        json::SynthReport r;
+        r.set = a.set;
+        r.model = model->kind();
+        r.ranks = ranks;
+        r.parameter_names = set.parameter_names;
+        r.parameter_units = set.parameter_units;
+        r.warnings = warnings;
+        r.load_s = load_s;
+        r.precompute_s = model->report().precompute_seconds;
+        r.kernel_stored = model->report().kernel_precomputed;
+        r.output = a.out;
         JsonWriter j;
-        j.begin_object();
-        j.key("set").value(a.set);
-        j.key("model").value(model->kind());
-        j.key("ranks").begin_array();
-        for (Eigen::Index r : ranks) j.value(static_cast<long long>(r));
-        j.end_array();
-        j.key("parameters").begin_array();
-        for (Eigen::Index k = 0; k < c.size(); ++k) {
-            j.begin_object();
-            j.key("name").value(set.parameter_names[static_cast<std::size_t>(k)]);
-            j.key("unit").value(set.parameter_units[static_cast<std::size_t>(k)]);
-            j.key("requested").value(c(k));
-            if (measured.size() == c.size()) j.key("measured").value(measured(k));
-            j.end_object();
-        }
-        j.end_array();
-        j.key("reliability").value(rho);
-        j.key("warnings").begin_array();
-        for (const std::string& w : warnings) j.value(w);
-        j.end_array();
-        j.key("frames").value(static_cast<long long>(clip.frame_count()));
-        j.key("frame_rate").value(clip.frame_rate);
-        j.key("duration_s").value(clip.duration());
-        j.key("clamped_increments").value(static_cast<long long>(timing.clamped));
-        j.key("load_s").value(load_s);
-        j.key("precompute_s").value(model->report().precompute_seconds);
-        j.key("kernel_stored").value(model->report().kernel_precomputed);
-        j.key("synth_s").value(synth_s);
-        j.key("output").value(a.out);
-        j.end_object();
+        json::write_synthesis(j, r, o);
         std::fputs(j.str().c_str(), stdout);
         return;
     }

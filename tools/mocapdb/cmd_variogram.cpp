@@ -42,30 +42,7 @@ void setup_variogram(CLI::App& app) {
         if (!args->fit.empty()) fit = run_fit(parse_fit(args->fit), ev, data, t);
         if (t.json) {
             JsonWriter j;
-            j.begin_object();
-            j.key("estimator").value(kriging::to_string(ev.estimator));
-            j.key("trend").value(t.trend);
-            j.key("normalized").value(t.normalize);
-            j.key("cutoff").value(ev.cutoff);
-            j.key("width").value(ev.width);
-            j.key("max_distance").value(ev.max_distance);
-            j.key("zero_distance_pairs").value(ev.zero_distance_pairs);
-            j.key("bins").begin_array();
-            for (int u = 0; u < ev.bins(); ++u) {
-                j.begin_object();
-                j.key("bin").value(u + 1);
-                j.key("np").value(ev.npairs[static_cast<std::size_t>(u)]);
-                j.key("dist").value(ev.dist(u));
-                j.key("center").value(ev.center(u));
-                j.key("gamma").value(ev.gamma(u));
-                j.end_object();
-            }
-            j.end_array();
-            if (fit) {
-                j.key("fit");
-                write_fit_json(j, *fit, t);
-            }
-            j.end_object();
+            json::write_table_variogram(j, table_settings(t), ev, fit);
             std::cout << j.str();
             return;
         }

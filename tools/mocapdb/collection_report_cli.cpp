@@ -9,7 +9,7 @@
 
 #include "byte_parts_output.hpp"
 #include "json_writer.hpp"
-#include "mocapdb_json/step_json.hpp"
+#include "mocapdb_json/report_json.hpp"
 #include "mocapdb/eval/collection_acl.hpp"
 #include "mocapdb/io/text_file.hpp"
 #include "mocapdb/eval/collection_report.hpp"

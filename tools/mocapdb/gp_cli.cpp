@@ -88,34 +88,6 @@ const char* model_label(const GpArgs& a) {
     return a.mo_baseline ? "MOA" : a.layers == 3 ? "MOHGP (3 layers)" : "MOHGP";
 }
 
-void write_model(JsonWriter& w, const FitResult& f) {
-    w.key("log_likelihood").value(f.log_likelihood);
-    w.key("status").value(to_string(f.status));
-    w.key("seconds").value(f.seconds);
-    w.key("evaluations").value(f.evaluations);
-    w.key("restarts").begin_array();
-    for (const auto& r : f.restarts) {
-        w.begin_object();
-        w.key("log_likelihood").value(r.log_likelihood);
-        w.key("status").value(to_string(r.status));
-        w.key("message").value(r.message);
-        w.key("iterations").value(r.iterations);
-        w.key("evaluations").value(r.evaluations);
-        w.key("seconds").value(r.seconds);
-        w.end_object();
-    }
-    w.end_array();
-    w.key("noise_variance").begin_array();
-    const VecX noise = f.model.noise_variance();
-    for (Eigen::Index i = 0; i < noise.size(); ++i) w.value(noise[i]);
-    w.end_array();
-    w.key("parameters").begin_object();
-    const auto names = f.model.parameter_names();
-    const VecX p = f.model.parameters();
-    for (std::size_t i = 0; i < names.size(); ++i) w.key(names[i]).value(p[static_cast<Eigen::Index>(i)]);
-    w.end_object();
-}
-
 void print_fit_summary(const char* label, const FitResult& f) {
     std::printf("%s: log likelihood %.4f, %s, %d evaluations, %.2f s\n", label, f.log_likelihood,
                 to_string(f.status).c_str(), f.evaluations, f.seconds);
@@ -131,22 +103,6 @@ void print_fit_summary(const char* label, const FitResult& f) {
     terms(f.model.hierarchical ? "child " : "MOA   ", summary.child);
     std::printf("  noise variance: mean %.3g (min %.3g, max %.3g)\n", summary.noise_mean, summary.noise_min,
                 summary.noise_max);
-}
-
-void write_data_json(JsonWriter& w, const MotionData& md) {
-    w.key("children").begin_array();
-    for (const auto& n : md.child_names) w.value(n);
-    w.end_array();
-    if (!md.data.groups.empty()) {
-        w.key("groups").begin_array();
-        for (std::size_t g : md.data.groups) w.value(static_cast<long long>(g));
-        w.end_array();
-    }
-    w.key("frames").value(static_cast<long long>(md.data.frames()));
-    w.key("duration_s").value(md.data.times[md.data.times.size() - 1]);
-    w.key("dofs").begin_array();
-    for (const auto& n : md.dof_names) w.value(n);
-    w.end_array();
 }
 
 void print_data_summary(const MotionData& md) {

@@ -61,9 +61,7 @@ std::size_t child_index(const std::vector<std::string>& names, const std::string
 /// in order of first appearance). Nothing for two layers or the MOA baseline.
 void assign_groups(const GpArgs& a, const std::vector<std::string>& names, gp::HgpData& data);
 const char* model_label(const GpArgs& a);
-void write_model(JsonWriter& w, const gp::FitResult& f);
 void print_fit_summary(const char* label, const gp::FitResult& f);
-void write_data_json(JsonWriter& w, const gp::MotionData& md);
 void print_data_summary(const gp::MotionData& md);
 
 void run_experiment_artificial(const GpArgs& a);

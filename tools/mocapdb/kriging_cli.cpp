@@ -134,38 +134,8 @@ VariogramModel parse_model(const std::string& spec, double nugget, double sill, 
     throw InvalidArgument("--model must be sph or stable:P, got '" + spec + "'");
 }
 
-void write_model_json(JsonWriter& j, const VariogramModel& m) {
-    j.begin_object();
-    j.key("model").value(to_string(m.family));
-    j.key("p").value(m.paper_p());
-    j.key("nugget").value(m.nugget);
-    j.key("sill").value(m.sill);
-    j.key("range").value(m.range);
-    j.end_object();
-}
-
-void write_fit_json(JsonWriter& j, const FitOutcome& f, const TableKrigingArgs& args) {
-    j.begin_object();
-    j.key("model").value(to_string(f.fit.model.family));
-    j.key("p").value(f.fit.model.paper_p());
-    j.key("nugget").value(f.fit.model.nugget);
-    j.key("sill").value(f.fit.model.sill);
-    j.key("range").value(f.fit.model.range);
-    j.key("weights").value(args.weights);
-    j.key("objective").value(f.fit.objective);
-    j.key("converged").value(f.fit.converged);
-    j.key("degenerate").value(f.fit.degenerate);
-    if (f.selection) {
-        j.key("selection").begin_array();
-        for (std::size_t k = 0; k < f.selection->grid.size(); ++k) {
-            j.begin_object();
-            j.key("p").value(f.selection->grid[k]);
-            j.key("loo_mse").value(f.selection->loo_mse(static_cast<Eigen::Index>(k)));
-            j.end_object();
-        }
-        j.end_array();
-    }
-    j.end_object();
+json::TableSettings table_settings(const TableKrigingArgs& args) {
+    return {args.trend, args.trend_fit, args.normalize, args.weights};
 }
 
 std::string describe_fit(const FitOutcome& f, const TableKrigingArgs& args) {

@@ -1,6 +1,6 @@
 #pragma once
 // Shared pieces of the `variogram` and `krige` commands: option parsing into the library's table
-// kriging (mocapdb/kriging/table_kriging.hpp), and the JSON / text rendering of a model and a fit.
+// kriging (mocapdb/kriging/table_kriging.hpp), and the text rendering of a fit (JSON: kriging_json.hpp).
 #include <optional>
 #include <string>
 
@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "json_writer.hpp"
+#include "mocapdb_json/kriging_json.hpp"
 #include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/table_kriging.hpp"
 #include "mocapdb/kriging/variogram.hpp"
@@ -56,8 +57,8 @@ FitOutcome run_fit(const FitRequest& request, const kriging::ExperimentalVariogr
 /// --model sph | stable:P plus --nugget/--sill/--range.
 kriging::VariogramModel parse_model(const std::string& spec, double nugget, double sill, double range);
 
-void write_model_json(JsonWriter& j, const kriging::VariogramModel& m);
-void write_fit_json(JsonWriter& j, const FitOutcome& f, const TableKrigingArgs& args);
+/// The options the --json documents echo.
+json::TableSettings table_settings(const TableKrigingArgs& args);
 std::string describe_fit(const FitOutcome& f, const TableKrigingArgs& args);
 
 }  // namespace mocapdb::cli

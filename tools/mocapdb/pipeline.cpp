@@ -9,7 +9,6 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/dropout_repair.hpp"
-#include "mocapdb_json/step_json.hpp"
 #include "option_lists.hpp"
 #include "progress_bar.hpp"
 #include "svg_plot.hpp"
@@ -306,34 +305,6 @@ std::string rate_svg(const std::string& set, const RateOutcome& o) {
                 std::to_string(r.dims[2]) +
                 " samples; every method charged the same side information; higher is better";
     return render_line_plot(spec);
-}
-
-void write_rate_rows_json(JsonWriter& j, const RateOutcome& o) {
-    const compression::RateReport& r = o.report;
-    j.key("rows").begin_array();
-    for (const compression::RateRow& row : r.rows) {
-        j.begin_object();
-        j.key("method").value(row.method);
-        j.key("target_cm").value(row.target_cm);
-        j.key("target_met").value(row.target_met);
-        j.key("ranks").begin_array();
-        for (long long k : row.ranks) j.value(k);
-        j.end_array();
-        j.key("setting").value(row.setting);
-        j.key("bytes").value(static_cast<long long>(row.bytes));
-        j.key("ratio").value(row.ratio);
-        j.key("ratio_clips").value(static_cast<double>(o.clip_bytes) / static_cast<double>(row.bytes));
-        j.key("bytes_per_second").value(static_cast<double>(row.bytes) / o.seconds);
-        j.key("bits_per_joint_frame")
-            .value(8.0 * static_cast<double>(row.bytes) /
-                   (static_cast<double>(o.joints) * static_cast<double>(r.dims[1] * r.dims[2])));
-        json::write_joint_error(j, row.stats);
-        j.key("precompute_s").value(row.precompute_s);
-        j.key("us_per_pose").value(row.us_per_pose);
-        j.key("access").value(row.access);
-        j.end_object();
-    }
-    j.end_array();
 }
 
 }  // namespace mocapdb::cli

@@ -1,7 +1,7 @@
 #pragma once
 // The CLI's side of the steps of the main job (the steps themselves are the library's workflow
 // module): each wrapper turns command-line shaped arguments into the library's request,
-// draws a progress bar, prints what the step reports (warnings), and describe_* / *_json / rate_*
+// draws a progress bar, prints what the step reports (warnings), and describe_* / rate_*
 // format the outcomes the single-step commands (import, set create, align, compress, report, synth,
 // reliability) and `mocapdb demo` print.
 #include <filesystem>
@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "json_writer.hpp"
 #include "mocapdb/workflow/clip_import.hpp"
 #include "mocapdb/workflow/reliability_map.hpp"
 #include "mocapdb/workflow/set_alignment.hpp"
@@ -86,8 +85,6 @@ std::string rate_table_text(const std::string& set, const RateOutcome& r);
 std::string rate_csv(const RateOutcome& r);
 /// Ratio against max error, one series per method (rows meeting a lossy target).
 std::string rate_svg(const std::string& set, const RateOutcome& r);
-/// "rows": [...] with every figure of each row, as a member of the open JSON object.
-void write_rate_rows_json(JsonWriter& j, const RateOutcome& r);
 
 // ---- reliability map ----------------------------------------------------------------------------
 

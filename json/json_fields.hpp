@@ -1,0 +1,59 @@
+#pragma once
+// Members the documents of json/ share (private to the target): a number or null, a list of strings,
+// a vector of numbers, a shape or null, a set's repaired dropouts. Each writes into the open JSON
+// object or array of `j`.
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb_json/json_writer.hpp"
+
+namespace mocapdb::json::fields {
+
+inline void optional_number(JsonWriter& j, const char* key, const std::optional<double>& v) {
+    j.key(key);
+    if (v) j.value(*v);
+    else j.null();
+}
+
+inline void strings(JsonWriter& j, const char* key, const std::vector<std::string>& v) {
+    j.key(key).begin_array();
+    for (const std::string& s : v) j.value(s);
+    j.end_array();
+}
+
+/// An array of the vector's values (no key: after key() or inside an array).
+inline void numbers(JsonWriter& j, const Eigen::VectorXd& v) {
+    j.begin_array();
+    for (Eigen::Index k = 0; k < v.size(); ++k) j.value(v(k));
+    j.end_array();
+}
+
+/// "key": [a, b, c] when `present`, else "key": null.
+inline void shape_or_null(JsonWriter& j, const char* key, bool present, const std::array<std::size_t, 3>& v) {
+    j.key(key);
+    if (!present) {
+        j.null();
+        return;
+    }
+    j.begin_array();
+    for (std::size_t e : v) j.value(e);
+    j.end_array();
+}
+
+/// "repairs": [{clip, joint, begin, end}] (frames [begin, end) of each repaired run).
+inline void repairs(JsonWriter& j, const std::vector<RepairedFrames>& runs) {
+    j.key("repairs").begin_array();
+    for (const RepairedFrames& r : runs) {
+        j.begin_object().key("clip").value(r.clip).key("joint").value(r.joint);
+        j.key("begin").value(r.begin).key("end").value(r.end).end_object();
+    }
+    j.end_array();
+}
+
+}  // namespace mocapdb::json::fields

@@ -1,0 +1,70 @@
+#pragma once
+// The documents of synthesis from a stored set: `mocapdb synth`, `query`, `reliability` and `reduce`
+// (--json). Each takes the library's outcome and a small struct of what the command adds (names,
+// files, timings). Formatting only; no I/O. Keys: docs/json.md.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/motion/skeleton.hpp"
+#include "mocapdb/tensor/unfold.hpp"
+#include "mocapdb/workflow/reliability_map.hpp"
+#include "mocapdb/workflow/set_reduction.hpp"
+#include "mocapdb/workflow/synthesis_step.hpp"
+#include "mocapdb_json/json_writer.hpp"
+
+namespace mocapdb::json {
+
+/// What `mocapdb synth` reports beside the outcome.
+struct SynthReport {
+    std::string set;
+    std::string model;      ///< the model's kind()
+    tensor::Ranks ranks{};  ///< at the level synthesized
+    std::vector<std::string> parameter_names;
+    std::vector<std::string> parameter_units;
+    std::vector<std::string> warnings;
+    double load_s = 0.0;  ///< loading the set and the model
+    double precompute_s = 0.0;
+    bool kernel_stored = false;
+    std::string output;  ///< the BVH file written
+};
+void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthOutcome& o);
+
+/// One pose of `mocapdb query`: as joint positions (3J by 1, cm) or as channels (1 by C).
+struct PoseQuery {
+    std::string set;
+    std::string model;  ///< the model's kind()
+    double frame = 0.0;
+    double reliability = 0.0;
+    std::vector<std::string> warnings;
+    std::shared_ptr<const Skeleton> skeleton;
+    VecX pose;             ///< the pose vector
+    bool joints = false;   ///< positions rather than channels
+    MatX joint_positions;  ///< with `joints`
+    FrameMatrix channels;  ///< without
+};
+void write_pose_query(JsonWriter& j, const PoseQuery& q);
+
+/// What `mocapdb reliability` reports beside the map.
+struct ReliabilityMapReport {
+    std::string set;
+    std::string model;  ///< the model's kind()
+    std::string x;      ///< the parameters of the axes
+    std::string y;
+    std::string svg;  ///< files written ("csv" only when not empty)
+    std::string csv;
+};
+void write_reliability_map(JsonWriter& j, const ReliabilityMapReport& r, const workflow::ReliabilityMap& m);
+
+/// What `mocapdb reduce` reports beside the outcome.
+struct ReductionReport {
+    std::string set;
+    double tau = 0.0;
+    std::optional<std::string> written_set;  ///< with --apply
+    double seconds = 0.0;
+};
+void write_reduction(JsonWriter& j, const ReductionReport& r, const workflow::ReductionOutcome& o);
+
+}  // namespace mocapdb::json
