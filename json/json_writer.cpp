@@ -72,10 +72,10 @@ JsonWriter& JsonWriter::value(std::string_view text) {
 JsonWriter& JsonWriter::value(double number) {
     if (!std::isfinite(number)) return null();
     // A whole number keeps the form it had before nlohmann ("120", not "120.0"); -0 stays a double.
-    if (number == std::floor(number) && std::abs(number) < 9007199254740992.0 && !(number == 0.0 && std::signbit(number)))
+    if (number == std::floor(number) && std::abs(number) < 9007199254740992.0 &&
+        !(number == 0.0 && std::signbit(number)))
         doc_->put(static_cast<long long>(number));
-    else
-        doc_->put(number);
+    else doc_->put(number);
     return *this;
 }
 

@@ -1,0 +1,25 @@
+#pragma once
+// A clip as glTF 2.0 (.gltf with the buffer embedded, or binary .glb), written with Debian's tinygltf:
+// one node per joint and end site (named as the skeleton names them, rest offsets as translations), one
+// animation with every rotating joint's rotation and every translating joint's translation at the clip's
+// frame times (linear), and bone shapes (an octahedron from each joint to each child, a mesh node under
+// the joint named "mocapdb_bone:CHILD") so that viewers show a figure. Metres, Y up (glTF's units: the
+// clip's cm / 100). Errors: IoError naming the file when it cannot be written (atomic: no partial file);
+// InvalidArgument for a clip without frames.
+#include <filesystem>
+#include <ostream>
+
+#include "mocapdb/motion/clip.hpp"
+
+namespace mocapdb {
+
+enum class GltfContainer { Gltf, Glb };
+
+void write_gltf(const std::filesystem::path& path, const Clip& clip, GltfContainer container);
+/// The same into a stream (IoError when the writer fails).
+void write_gltf(std::ostream& out, const Clip& clip, GltfContainer container);
+
+/// The prefix of the bone shapes' node names (what a reader skips to find the joints).
+inline constexpr const char* kGltfBonePrefix = "mocapdb_bone:";
+
+}  // namespace mocapdb
