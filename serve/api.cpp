@@ -230,10 +230,27 @@ Reply Api::State::clip(const Query& q) {
 Reply Api::State::packed(const Query& q) {
     const std::string& id = required(q, "id");
     const auto [begin, end] = range(q);
-    std::lock_guard<std::mutex> lock(db);
-    const Database d(options.database);
-    if (!d.packed()) throw BadRequest("the database has no packed tier (pack it to compare)");
-    const workflow::PackedComparison c = workflow::compare_with_packed(d, id, begin, end);
+    workflow::PackedComparison c;
+    if (q.count("e")) {  // the clip packed alone, in memory, at this E
+        const VecX e = number_list(q.at("e"), "e");
+        if (e.size() != 1 || !(e(0) >= 0.001 && e(0) <= 100.0))
+            throw BadRequest("query parameter 'e': one max error in cm from 0.001 to 100");
+        Clip source;
+        {
+            std::lock_guard<std::mutex> lock(db);
+            source = Database(options.database).load_clip(id);
+        }
+        if (source.frame_count() > 4 * options.max_frames)
+            throw BadRequest("clip '" + id + "' has " + std::to_string(source.frame_count()) +
+                             " frames: too long to pack on request (at most " + std::to_string(4 * options.max_frames) +
+                             "); pack the database to compare it");
+        c = workflow::compare_with_packed_at(source, e(0), begin, end);
+    } else {
+        std::lock_guard<std::mutex> lock(db);
+        const Database d(options.database);
+        if (!d.packed()) throw BadRequest("the database has no packed tier: pack it, or ask for a max error e");
+        c = workflow::compare_with_packed(d, id, begin, end);
+    }
     json::JsonWriter j;
     json::write_packed_comparison(j, id, c);
     return binary_reply(j, {&c.source.positions, &c.packed.positions, &c.errors});

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "mocapdb/io/gltf_writer.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 
 namespace mocapdb::test {
@@ -76,7 +77,7 @@ inline GltfDifference gltf_difference(const std::filesystem::path& path, const C
     for (std::size_t f = 0; f < clip.frame_count(); ++f) {
         forward_kinematics(sk, clip.frame(f), pose);
         for (std::size_t j = 0; j < sk.size(); ++j) {
-            const auto it = read.find(sk.joint(j).name);
+            const auto it = read.find(gltf_node_name(sk.joint(j).name));
             REQUIRE(it != read.end());
             const double d = (it->second[f] - pose.positions[j]).norm();
             if (d > out.max_cm) {

@@ -127,8 +127,19 @@ async function showClip(id) {
   setDownloads(`/api/clip.bvh?id=${encodeURIComponent(id)}`);
 }
 
+// The packed copy: the stored tier, or the clip packed alone in memory at a chosen E.
+function fillPackedChoices(storedE) {
+  const select = $('packed-e');
+  select.textContent = '';
+  if (storedE !== null) select.append(Object.assign(document.createElement('option'), { value: '', textContent: `the stored tier (${storedE} cm)` }));
+  for (const e of [1, 0.5, 0.1, 0.03])
+    select.append(Object.assign(document.createElement('option'), { value: String(e), textContent: `${e} cm, packed now` }));
+  select.onchange = () => { if (state.clip) chooseClip(state.clip); };
+}
+
 async function showPacked(id) {
-  const { header, floats } = await readMotion(`/api/packed?id=${encodeURIComponent(id)}`);
+  const e = $('packed-e').value;
+  const { header, floats } = await readMotion(`/api/packed?id=${encodeURIComponent(id)}` + (e ? `&e=${e}` : ''));
   const n = header.frames * header.joints.length;
   const source = floats.subarray(0, 3 * n), packed = floats.subarray(3 * n, 6 * n), errors = floats.subarray(6 * n, 7 * n);
   viewer.clear();
@@ -143,7 +154,7 @@ async function showPacked(id) {
   $('error-plot').hidden = false;
   setFrames(header.frames, header.frame_rate);
   $('info').innerHTML = '';
-  $('info').append(`${id} packed to ${header.tier_max_error_cm} cm (grey: source, blue: packed, joints coloured by error): max `,
+  $('info').append(`${id} packed to ${header.tier_max_error_cm} cm${e ? ' in memory' : ''} (grey: source, blue: packed, joints coloured by error): max `,
                    Object.assign(document.createElement('b'), { id: 'packed-max', textContent: header.max_cm.toFixed(4) }),
                    ` cm (${header.worst_joint}, frame ${header.worst_frame}), RMSE ${header.rmse_cm.toFixed(4)} cm`);
   setDownloads(`/api/clip.bvh?id=${encodeURIComponent(id)}`);
@@ -323,6 +334,7 @@ for (const b of document.querySelectorAll('nav button')) {
     clips = list.clips;
     $('database').textContent = `${list.database}: ${clips.length} clips` +
       (list.packed_max_error_cm === null ? ', no packed tier' : `, packed to ${list.packed_max_error_cm} cm`);
+    fillPackedChoices(list.packed_max_error_cm);
     renderClipList();
     if (clips.length) await chooseClip(clips[0].id);
   } catch (e) { showError(`cannot list the clips: ${e.message}`); }

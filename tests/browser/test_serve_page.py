@@ -94,6 +94,11 @@ return [drawn, hash];
 """
 
 
+def click_clip(driver, clip):
+    # In the page's own script: the list is rebuilt on every choice, so a located element may be stale.
+    driver.execute_script(f"document.querySelector(\"#clip-list li[data-id='{clip}']\").click()")
+
+
 def show_frame(driver, frame):
     driver.execute_script(f"mocapdbState.playing = false; const s = document.getElementById('scrub');"
                           f"s.value = {frame}; s.dispatchEvent(new Event('input'));")
@@ -104,7 +109,7 @@ def test_clip_list_and_playback(server, browser, request):
     browser.get(server)
     wait_for(browser, "return document.querySelectorAll('#clip-list li').length")
     assert [li.get_attribute("data-id") for li in browser.find_elements("css selector", "#clip-list li")] == WALKS
-    browser.find_element("css selector", "#clip-list li[data-id='16_13']").click()
+    click_clip(browser, "16_13")
     wait_for(browser, "return mocapdbState.clip === '16_13' && mocapdbState.frames > 60")
     show_frame(browser, 0)
     drawn0, hash0 = browser.execute_script(PIXELS)
@@ -122,7 +127,7 @@ def test_packed_view_shows_packs_max_error(server, database, browser, request):
     browser.find_element("css selector", "nav button[data-view='packed']").click()
     shown = []
     for clip in WALKS:
-        browser.find_element("css selector", f"#clip-list li[data-id='{clip}']").click()
+        click_clip(browser, clip)
         wait_for(browser, f"return mocapdbState.packed && mocapdbState.packed.clip === '{clip}'")
         shown.append(float(browser.find_element("id", "packed-max").text))
         assert browser.execute_script("return mocapdbState.packed.max_cm") <= 1.0 + 1e-4
@@ -148,6 +153,58 @@ def test_slider_changes_the_synthesis_with_querys_rho(server, database, browser,
     browser.save_screenshot(str(Path(request.config.getoption("--screenshots")) / "serve_sets.png"))
 
 
+GLTF_IN_THREE = """
+const done = arguments[arguments.length - 1];
+(async () => {
+  const buffer = await (await fetch('/api/clip.glb?id=16_12')).arrayBuffer();
+  const gltf = await new Promise((ok, fail) => new THREE.GLTFLoader().parse(buffer, '', ok, fail));
+  const motion = await (await fetch('/api/clip?id=16_12&end=100')).arrayBuffer();
+  const n = new DataView(motion).getUint32(0, true);
+  const header = JSON.parse(new TextDecoder().decode(new Uint8Array(motion, 4, n)));
+  const floats = new Float32Array(motion, 4 + n + ((4 - (n % 4)) % 4));
+  const mixer = new THREE.AnimationMixer(gltf.scene);
+  mixer.clipAction(gltf.animations[0]).play();
+  let worst = 0;
+  for (const frame of [0, 37, 99]) {
+    mixer.setTime(frame / header.frame_rate);
+    gltf.scene.updateMatrixWorld(true);
+    header.joints.forEach((j, k) => {
+      const node = gltf.scene.getObjectByName(j.name === 'root' ? 'root_joint' : j.name);  // gltf_node_name
+      const p = new THREE.Vector3().setFromMatrixPosition(node.matrixWorld).multiplyScalar(100);
+      const q = floats.subarray(3 * (frame * header.joints.length + k), 3 * (frame * header.joints.length + k) + 3);
+      worst = Math.max(worst, Math.hypot(p.x - q[0], p.y - q[1], p.z - q[2]));
+    });
+  }
+  return { animations: gltf.animations.length, tracks: gltf.animations[0].tracks.length, worst };
+})().then(done, (e) => done({ error: String(e) }));
+"""
+
+
+def test_gltf_download_plays_in_three_js(server, browser):
+    """The clip's glTF, as the page's download link gives it, loaded by three.js's own GLTFLoader (from
+    Debian's libjs-three) and played by its AnimationMixer: joints where our FK puts them."""
+    browser.get(server)
+    wait_for(browser, "return document.querySelectorAll('#clip-list li').length")
+    loader = Path("/usr/share/javascript/three/examples/js/loaders/GLTFLoader.js")
+    if not loader.exists():
+        pytest.skip(f"{loader} not found (Debian libjs-three)")
+    browser.execute_script(loader.read_text())
+    browser.set_script_timeout(60)
+    result = browser.execute_async_script(GLTF_IN_THREE)
+    assert "error" not in result, result
+    assert result["animations"] == 1 and result["tracks"] > 10
+    assert result["worst"] < 1e-2, result  # cm, float32 on the way (the assimp test checks 1e-3 cm)
+
+
+def test_packed_in_memory_at_a_chosen_error(server, browser):
+    browser.get(server)
+    wait_for(browser, "return document.querySelectorAll('#clip-list li').length")
+    browser.find_element("css selector", "nav button[data-view='packed']").click()
+    browser.execute_script("const s = document.getElementById('packed-e'); s.value = '0.1'; s.dispatchEvent(new Event('change'));")
+    wait_for(browser, "return mocapdbState.packed && mocapdbState.packed.bound === 0.1")
+    assert 0.0 < browser.execute_script("return mocapdbState.packed.max_cm") <= 0.1 + 1e-4
+
+
 def test_no_console_errors(server, browser):
     browser.get(server)
     wait_for(browser, "return document.querySelectorAll('#clip-list li').length")
@@ -155,3 +212,4 @@ def test_no_console_errors(server, browser):
     severe = [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
     assert not severe, severe
     assert browser.execute_script("return mocapdbState.errors") == []
+

@@ -100,13 +100,15 @@ tinygltf::Model gltf_model(const Clip& clip) {
     m.asset.generator = "mocapdb";
     BufferBuilder buffers(m);
     std::set<std::string> names;
-    for (const Joint& j : sk.joints()) names.insert(j.name);
+    for (const Joint& j : sk.joints())
+        if (!names.insert(gltf_node_name(j.name)).second)
+            throw InvalidArgument("glTF export: two joints would both be named '" + gltf_node_name(j.name) + "'");
 
     // Joints: nodes 0..J-1 in skeleton order (parents first), rest translation = offset.
     for (std::size_t k = 0; k < sk.size(); ++k) {
         const Joint& j = sk.joint(k);
         tinygltf::Node n;
-        n.name = j.name;
+        n.name = gltf_node_name(j.name);
         const Vec3 t = sk.local_translation(k, clip.frame(0)) * kMetresPerCm;
         n.translation = {t.x(), t.y(), t.z()};
         if (rotates(j)) {
@@ -197,6 +199,8 @@ tinygltf::Model gltf_model(const Clip& clip) {
 }
 
 }  // namespace
+
+std::string gltf_node_name(const std::string& joint) { return joint == "root" ? "root_joint" : joint; }
 
 void write_gltf(std::ostream& out, const Clip& clip, GltfContainer container) {
     const tinygltf::Model model = gltf_model(clip);

@@ -5,6 +5,8 @@
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
+#include "mocapdb/packing/group_decoder.hpp"
+#include "mocapdb/packing/measured_pack.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb::workflow {
@@ -42,18 +44,13 @@ ClipPositions clip_positions(const Clip& clip, std::size_t begin, std::size_t en
     return out;
 }
 
-PackedComparison compare_with_packed(const Database& db, const std::string& clip, std::size_t begin, std::size_t end) {
-    const Clip source = db.load_clip(clip);
-    if (begin >= source.frame_count())
-        throw InvalidArgument("clip '" + clip + "': first frame " + std::to_string(begin) + " is beyond its " +
-                              std::to_string(source.frame_count()) + " frames");
-    end = std::min(end, source.frame_count());
-    const Clip packed = db.load_clip_packed(clip, begin, end);
+namespace {
+
+PackedComparison compare(const Clip& source, const Clip& packed, std::size_t begin, std::size_t end) {
     PackedComparison out;
     out.source = clip_positions(source, begin, end);
     out.packed = clip_positions(packed, 0, packed.frame_count());
     out.packed.begin = begin;
-    out.tier_max_error_cm = db.packed()->max_error_cm;  // load_clip_packed threw if there is no tier
     // Distances in double from the FK poses, not from the float32 copies shown.
     const Skeleton& ss = *source.skeleton;
     const Skeleton& ps = *packed.skeleton;
@@ -76,6 +73,36 @@ PackedComparison compare_with_packed(const Database& db, const std::string& clip
         }
     }
     out.rmse_cm = std::sqrt(sum_sq / static_cast<double>(std::max<std::size_t>(out.errors.size(), 1)));
+    return out;
+}
+
+std::size_t checked_end(const Clip& source, const std::string& clip, std::size_t begin, std::size_t end) {
+    if (begin >= source.frame_count())
+        throw InvalidArgument("clip '" + clip + "': first frame " + std::to_string(begin) + " is beyond its " +
+                              std::to_string(source.frame_count()) + " frames");
+    return std::min(end, source.frame_count());
+}
+
+}  // namespace
+
+PackedComparison compare_with_packed(const Database& db, const std::string& clip, std::size_t begin, std::size_t end) {
+    const Clip source = db.load_clip(clip);
+    end = checked_end(source, clip, begin, end);
+    PackedComparison out = compare(source, db.load_clip_packed(clip, begin, end), begin, end);
+    out.tier_max_error_cm = db.packed()->max_error_cm;  // load_clip_packed threw if there is no tier
+    return out;
+}
+
+PackedComparison compare_with_packed_at(const Clip& source, double max_error_cm, std::size_t begin, std::size_t end) {
+    if (!(max_error_cm > 0.0) || !std::isfinite(max_error_cm))
+        throw InvalidArgument("max error " + std::to_string(max_error_cm) + " cm: expected a positive finite number");
+    end = checked_end(source, source.name, begin, end);
+    packing::PackOptions options;
+    options.max_error_cm = max_error_cm;
+    const packing::MeasuredGroup group = packing::pack_measured({&source}, options);
+    const Clip packed = slice(packing::GroupDecoder(group.packed.bytes).decode_clip(0), begin, end);
+    PackedComparison out = compare(source, packed, begin, end);
+    out.tier_max_error_cm = max_error_cm;
     return out;
 }
 

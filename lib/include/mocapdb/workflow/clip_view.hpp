@@ -1,8 +1,9 @@
 #pragma once
 // What a viewer draws of a stored clip: the rig (joint names, parents, end sites) and the world
 // positions of every joint and end site at each frame (FK, cm, float32), from the source channels or
-// from the packed tier, and the packed copy's error against the source at every joint and frame (the
-// metric of `pack` and `report`: FK distance over every joint and end site, at the source frames).
+// from the packed tier (or the clip packed in memory at a chosen E), and the packed copy's error against
+// the source at every joint and frame (the metric of `pack` and `report`: FK distance over every joint
+// and end site, at the source frames).
 // Errors: NotFoundError for an unknown clip, InvalidArgument for an empty or out-of-range frame range,
 // StoreError when the database has no packed tier or the clip is not in it. Threads: the Database must
 // not be used by another thread meanwhile (HDF5's serial build); the results are plain values.
@@ -50,5 +51,9 @@ struct PackedComparison {
 
 /// The clip's frames [begin, end) from its source channels and from the packed tier.
 PackedComparison compare_with_packed(const Database& db, const std::string& clip, std::size_t begin, std::size_t end);
+
+/// The same with the whole clip packed alone, in memory, at max_error_cm (> 0, finite; InvalidArgument
+/// otherwise), as `pack` packs a group (packing::pack_measured); nothing is written.
+PackedComparison compare_with_packed_at(const Clip& source, double max_error_cm, std::size_t begin, std::size_t end);
 
 }  // namespace mocapdb::workflow
