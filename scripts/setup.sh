@@ -22,6 +22,10 @@ packages=(
   python3-torch              # mocapdb.torch, its tests and examples/training_windows.py's model
   python3-setuptools python3-pip python3-venv  # pip install --no-build-isolation ./python (README)
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
+  libtinygltf-dev            # glTF export (mocapdb export/synth -o OUT.gltf|.glb)
+  libassimp-dev              # the glTF export's round-trip test reads it back with a second reader
+  libcpp-httplib-dev libjs-three  # mocapdb serve: its HTTP server and the page's 3D (three.js)
+  chromium chromium-driver python3-selenium  # the serve page's browser tests (CTest label browser)
   clang-format               # the style check of scripts/test.sh (.clang-format)
 )
 

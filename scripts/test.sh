@@ -14,7 +14,7 @@ jobs=$(nproc)
 fast=0
 [ "${1:-}" = "--fast" ] && fast=1
 
-echo "== style (clang-format --dry-run -Werror on lib/, tools/, python/)"
+echo "== style (clang-format --dry-run -Werror on the C++ of lib/, json/, serve/, tools/, python/)"
 scripts/check_format.sh
 
 echo "== release build (warnings are errors)"

@@ -1,4 +1,4 @@
-// mocapdb export DB.h5 --clip ID -o OUT.bvh|OUT.amc: write a stored clip back to a motion file.
+// mocapdb export DB.h5 --clip ID -o OUT.bvh|.amc|.gltf|.glb: write a stored clip back to a motion file.
 #include <iostream>
 
 #include "commands.hpp"
@@ -7,6 +7,7 @@
 #include "mocapdb/io/amc_writer.hpp"
 #include "mocapdb/io/bvh.hpp"
 #include "mocapdb/io/clip_file.hpp"
+#include "mocapdb/io/gltf_writer.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
 #include "mocapdb/workflow/sample_export.hpp"
@@ -25,6 +26,7 @@ struct ExportArgs {
     long long sample = -1;
     bool from_model = false;
     bool from_packed = false;
+    std::string format;  // "gltf" | "glb": glTF whatever the extension; empty: by the extension
 };
 
 // Sample I of a set, from its aligned tensor or its stored model, back at its own timing.
@@ -48,12 +50,33 @@ Clip sample_clip(const Database& db, const ExportArgs& args) {
     return workflow::sample_at_own_timing(c, poses, n, args.set + "_" + std::to_string(n));
 }
 
+// A clip or set sample as glTF (a node per joint, one animation, bone shapes).
+void export_gltf(const Database& db, const ExportArgs& args, GltfContainer container) {
+    const std::filesystem::path out = args.output;
+    if (args.set.empty() && args.clip.empty()) throw InvalidArgument("give --clip ID, or --set S --sample I");
+    if (args.set.empty() && !db.has_clip(args.clip))
+        throw InvalidArgument(args.file + ": no clip '" + args.clip + "' (see mocapdb info)");
+    const Clip clip = !args.set.empty()  ? sample_clip(db, args)
+                      : args.from_packed ? db.load_clip_packed(args.clip)
+                                         : db.load_clip(args.clip);
+    refuse_existing(out, args.force);
+    write_gltf(out, clip, container);
+    std::cout << "wrote " << out.string() << " (glTF 2.0" << (container == GltfContainer::Glb ? " binary" : "") << ", "
+              << clip.skeleton->size() << " joint nodes, " << clip.frame_count() << " frames at " << clip.frame_rate
+              << " Hz, metres)\n";
+}
+
 void run_export(const ExportArgs& args) {
     namespace fs = std::filesystem;
     const fs::path out = args.output;
-    const auto format = clip_format_of(out);
-    if (!format) throw InvalidArgument(out.string() + ": unsupported output type (expected .bvh or .amc)");
     const Database db(args.file);
+    const std::string ext = out.extension().string();
+    if (args.format == "gltf" || args.format == "glb" || ext == ".gltf" || ext == ".glb")
+        return export_gltf(
+            db, args,
+            args.format == "glb" || (args.format.empty() && ext == ".glb") ? GltfContainer::Glb : GltfContainer::Gltf);
+    const auto format = clip_format_of(out);
+    if (!format) throw InvalidArgument(out.string() + ": unsupported output type (expected .bvh, .amc, .gltf or .glb)");
     if (!args.set.empty()) {
         if (*format != ClipFormat::Bvh) throw InvalidArgument(out.string() + ": a set sample is exported as .bvh");
         const Clip clip = sample_clip(db, args);
@@ -122,6 +145,7 @@ void setup_export(CLI::App& app) {
         "  mocapdb export cmu.h5 --clip 02_01_60fps -o 02_01.bvh\n"
         "  mocapdb export cmu.h5 --set walks --sample 3 --from-model -o walk3.bvh\n"
         "  mocapdb export cmu.h5 --clip 16_15 --from-packed -o 16_15_packed.bvh\n"
+        "  mocapdb export cmu.h5 --clip 16_15 -o 16_15.glb     (glTF: Blender, three.js; metres, Y up)\n"
         "A set sample is written as BVH at its own timing (the alignment's warp undone) and in its own\n"
         "place in the world, from the aligned tensor or, with --from-model, from the stored Tucker model.");
     cmd->add_option("file", args->file, "database file")->required()->check(CLI::ExistingFile);
@@ -137,7 +161,9 @@ void setup_export(CLI::App& app) {
         cmd->add_flag("--from-packed", args->from_packed,
                       "decode the clip from the packed tier (mocapdb pack) instead of the lossless one");
     from_packed->needs(clip);
-    cmd->add_option("-o,--output", args->output, "output file: .bvh or .amc")->required();
+    cmd->add_option("-o,--output", args->output, "output file: .bvh, .amc, .gltf or .glb")->required();
+    cmd->add_option("--format", args->format, "gltf | glb: write glTF whatever the extension")
+        ->check(CLI::IsMember({"gltf", "glb"}));
     cmd->add_option("--asf-out", args->asf_output, "where to write the skeleton of an AMC export (default OUT.asf)");
     cmd->add_option("--precision", args->precision, "significant digits (default: BVH 9, AMC 10; 17 is lossless)")
         ->check(CLI::Range(1, 17));

@@ -8,6 +8,7 @@
 #include "mocapdb_json/synthesis_json.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/io/bvh.hpp"
+#include "mocapdb/io/gltf_writer.hpp"
 #include "mocapdb/workflow/synthesis_step.hpp"
 #include "pipeline.hpp"
 #include "synthesis_cli.hpp"
@@ -39,7 +40,10 @@ void run_synth(const SynthArgs& a) {
     const Eigen::Index level = a.lod.empty() ? 0 : 1;
 
     const workflow::SynthOutcome o = workflow::synthesize(*model, set, c, level);
-    write_bvh(a.out, o.clip);
+    const std::string ext = std::filesystem::path(a.out).extension().string();
+    if (ext == ".gltf" || ext == ".glb")
+        write_gltf(a.out, o.clip, ext == ".glb" ? GltfContainer::Glb : GltfContainer::Gltf);
+    else write_bvh(a.out, o.clip);
     const Clip& clip = o.clip;
     const synthesis::Timing& timing = o.timing;
     const VecX& measured = o.measured;
@@ -99,7 +103,7 @@ void setup_synth(CLI::App& app) {
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     cmd->add_option("--set", a->set, "motion set")->required();
     cmd->add_option("--param", a->param, "control parameters v1,v2,...")->required();
-    cmd->add_option("-o,--output", a->out, "BVH file to write")->required();
+    cmd->add_option("-o,--output", a->out, "file to write: .bvh, or glTF .gltf / .glb")->required();
     cmd->add_option("--lod", a->lod, "level of detail: ranks R1xR2xR3");
     cmd->add_option("--timing", a->timing, "timing kernel: shared | separate")
         ->check(CLI::IsMember({"shared", "separate"}));

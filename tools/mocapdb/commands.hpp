@@ -24,5 +24,6 @@ void setup_reliability(CLI::App& app);
 void setup_reduce(CLI::App& app);
 void setup_demo(CLI::App& app);
 void setup_eval(CLI::App& app);
+void setup_serve(CLI::App& app);
 
 }  // namespace mocapdb::cli

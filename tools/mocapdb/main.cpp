@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
     mocapdb::cli::setup_reduce(app);
     mocapdb::cli::setup_demo(app);
     mocapdb::cli::setup_eval(app);
+    mocapdb::cli::setup_serve(app);
 
     try {
         app.parse(argc, argv);
