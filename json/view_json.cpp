@@ -66,7 +66,7 @@ void write_packed_comparison(JsonWriter& j, const std::string& clip, const workf
     j.end_object();
 }
 
-void write_set_list(JsonWriter& j, const std::vector<SetView>& sets) {
+void write_set_views(JsonWriter& j, const std::vector<SetView>& sets) {
     j.begin_object().key("sets").begin_array();
     for (const SetView& v : sets) {
         const MotionSet& s = v.set;
@@ -93,7 +93,7 @@ void write_set_list(JsonWriter& j, const std::vector<SetView>& sets) {
     j.end_array().end_object();
 }
 
-void write_synthesis(JsonWriter& j, const SynthesisView& s, const workflow::ClipPositions& p) {
+void write_synthesis_view(JsonWriter& j, const SynthesisView& s, const workflow::ClipPositions& p) {
     j.begin_object().key("set").value(s.set).key("model").value(s.model);
     j.key("parameters").begin_array();
     for (std::size_t k = 0; k < s.names.size(); ++k) {

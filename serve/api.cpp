@@ -267,7 +267,7 @@ Reply Api::State::sets() {
         }
     }
     json::JsonWriter j;
-    json::write_set_list(j, views);
+    json::write_set_views(j, views);
     return json_reply(j);
 }
 
@@ -319,7 +319,7 @@ Reply Api::State::synth(const Query& q, Download as) {
     const std::size_t frames = v.outcome.clip.frame_count();
     const workflow::ClipPositions p = workflow::clip_positions(v.outcome.clip, 0, std::min(frames, options.max_frames));
     json::JsonWriter j;
-    json::write_synthesis(j, v, p);
+    json::write_synthesis_view(j, v, p);
     return binary_reply(j, {&p.positions});
 }
 

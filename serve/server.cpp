@@ -7,6 +7,7 @@
 #include <httplib.h>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb_json/view_json.hpp"
 
 namespace mocapdb::serve {
 
@@ -42,7 +43,9 @@ Server::Server(ServeOptions options, const std::string& host, int port)
     const auto refuse = [](const httplib::Request&, httplib::Response& res) {
         res.status = 405;
         res.set_header("Allow", "GET");
-        res.set_content("{\"error\":\"only GET requests are served (the server is read-only)\"}\n", "application/json");
+        json::JsonWriter j;
+        json::write_error(j, "only GET requests are served (the server is read-only)");
+        res.set_content(j.str(), "application/json");
     };
     s.http.Post(R"(/.*)", refuse);
     s.http.Put(R"(/.*)", refuse);

@@ -27,7 +27,7 @@ struct SetView {
     bool aligned = false;
     bool model = false;  ///< a compressed model is stored (else synthesis uses the naive model)
 };
-void write_set_list(JsonWriter& j, const std::vector<SetView>& sets);
+void write_set_views(JsonWriter& j, const std::vector<SetView>& sets);
 
 struct SynthesisView {
     std::string set;
@@ -38,7 +38,7 @@ struct SynthesisView {
     std::string model;  ///< the model's kind
 };
 /// With the positions of the synthesized clip (frames and rig), shown by the viewer.
-void write_synthesis(JsonWriter& j, const SynthesisView& s, const workflow::ClipPositions& p);
+void write_synthesis_view(JsonWriter& j, const SynthesisView& s, const workflow::ClipPositions& p);
 
 void write_reliability_slice(JsonWriter& j, const std::string& set, const std::vector<std::string>& names,
                              const workflow::SliceAxis& x, const workflow::SliceAxis& y,
