@@ -25,7 +25,7 @@ void write_variogram_fit(JsonWriter& j, const kriging::VariogramChoice& f, const
     j.key("weights").value(weights);
     j.key("objective").value(f.fit.objective);
     j.key("converged").value(f.fit.converged);
-    j.key("degenerate").value(f.fit.degenerate);
+    j.key("degenerate").value(f.fit.status == kriging::FitStatus::Degenerate);
     if (f.selection) {
         j.key("selection").begin_array();
         for (std::size_t k = 0; k < f.selection->grid.size(); ++k) {

@@ -145,7 +145,7 @@ void write_compression(JsonWriter& j, const std::string& set, const workflow::Co
     if (o.kernel_stored) j.value(o.kernel_variogram);
     else j.null();
     j.key("kernel_status");
-    if (o.kernel_stored) j.value(o.kernel_status);
+    if (o.kernel_stored) j.value(kriging::to_string(o.kernel_status));
     else j.null();
     j.key("kernel_fit_samples");
     if (o.kernel_stored) j.value(static_cast<long long>(o.kernel_fit_samples));

@@ -67,7 +67,7 @@ void setup_krige(CLI::App& app) {
             vm = parse_model(args->model, args->nugget, args->sill, args->range);
         } else {
             fit_outcome = run_fit(parse_fit(args->fit), table_variogram(t, data), data, t);
-            if (fit_outcome->fit.degenerate) {
+            if (fit_outcome->fit.status == kriging::FitStatus::Degenerate) {
                 throw InvalidArgument("krige: the values do not vary (no variogram to fit); give --model instead");
             }
             vm = fit_outcome->fit.model;

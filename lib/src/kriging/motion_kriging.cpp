@@ -232,7 +232,7 @@ MotionKriging MotionKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coor
         VariogramFit fit;
         if (!flat) fit = fit_variogram(variogram_of(s), family, p_fit, options.fit);
         VariogramModel model = fit.model;
-        if (flat || fit.degenerate || !(model.total_sill() > 0.0)) {
+        if (flat || fit.status == FitStatus::Degenerate || !(model.total_sill() > 0.0)) {
             // No variation: any valid kernel gives the same (trend-only) prediction.
             ++mk.report_.degenerate_kernels;
             model = VariogramModel::from_paper_p(p_kernel, 0.0, 1.0, h_half);

@@ -344,7 +344,6 @@ VariogramFit fit_variogram(const ExperimentalVariogram& ev, VariogramFamily fami
         return m;
     };
     if (!(ymax > 0.0) || !(href > 0.0)) {
-        out.degenerate = true;
         out.status = FitStatus::Degenerate;
         out.model = make_model(0.0, 0.0, href > 0.0 ? href : 1.0);
         out.converged = true;
@@ -449,7 +448,7 @@ ExponentSelection select_exponent(const ExperimentalVariogram& ev, const Eigen::
         const VariogramFamily fam = p == 0.0 ? VariogramFamily::Spherical : VariogramFamily::Stable;
         VariogramFit fit = fit_variogram(ev, fam, p == 0.0 ? 1.0 : p, fit_options);
         double mse = std::numeric_limits<double>::infinity();
-        if (!fit.degenerate && fit.model.total_sill() > 0.0) {
+        if (fit.status != FitStatus::Degenerate && fit.model.total_sill() > 0.0) {
             const Kriging kr = Kriging::build(coords, fit.model, kriging_options);
             mse = kr.leave_one_out(values).mse;
             if (!std::isfinite(mse)) mse = std::numeric_limits<double>::infinity();

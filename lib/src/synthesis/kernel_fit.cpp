@@ -273,7 +273,7 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
         // 1. The least-squares fit of every candidate exponent (the paper's choice of p by leave-one-out).
         for (std::size_t k = 0; k < exponents.size(); ++k) {
             const kriging::VariogramFit fit = fit_one(exponents[k]);
-            if (fit.degenerate || !(fit.model.total_sill() > 0.0)) continue;
+            if (fit.status == kriging::FitStatus::Degenerate || !(fit.model.total_sill() > 0.0)) continue;
             consider(fit.model, fit.status, k);
         }
         // 2. A fitted variogram can miss the shape that predicts best: with few, noisy bins the weighted fit

@@ -114,7 +114,7 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
     o.kernel_s = seconds_since(kernel_start);
     if (kernel) {
         o.kernel_variogram = kernel->variogram.to_string();
-        o.kernel_status = kriging::to_string(kernel->status);
+        o.kernel_status = kernel->status;
         o.kernel_warning = synthesis::fit_status_warning(*kernel);
     }
 

@@ -59,7 +59,6 @@ struct VariogramFit {
     int iterations = 0;       ///< LM iterations of the winning start.
     bool converged = false;   ///< LM stopped on its tolerance (not on the iteration limit).
     int bins_used = 0;        ///< non-empty bins.
-    bool degenerate = false;  ///< all gammabar are 0 (or no bins): the model is a zero-sill placeholder.
     FitStatus status = FitStatus::Ok;
 };
 

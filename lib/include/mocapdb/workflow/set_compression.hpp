@@ -17,6 +17,7 @@
 #include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/progress.hpp"
+#include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
 namespace mocapdb::workflow {
@@ -55,7 +56,7 @@ struct CompressOutcome {
     std::size_t kernel_fit_samples = 0;    ///< samples its variogram was chosen on (KernelFit::fit_samples)
     std::string kernel_not_stored_reason;  ///< why not, when not ("" when stored)
     std::string kernel_variogram;          ///< the stored kernel's variogram (empty when not stored)
-    std::string kernel_status = "ok";      ///< its fit status (kriging::to_string(FitStatus))
+    kriging::FitStatus kernel_status = kriging::FitStatus::Ok;  ///< its fit status
     std::string kernel_warning;            ///< synthesis::fit_status_warning, "" when the fit is clean
 
     double ratio() const { return static_cast<double>(raw_bytes) / static_cast<double>(bytes); }
