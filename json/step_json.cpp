@@ -122,6 +122,15 @@ void write_set(JsonWriter& j, const workflow::SetOutcome& o) {
     }
     j.end_array();
     j.key("repaired_runs").value(set.repairs.size());
+    j.key("twins").begin_array();  // groups of samples showing the same frames (dataset/sample_twins.hpp)
+    for (const auto& group : o.twins.groups) {
+        j.begin_object().key("samples").begin_array();
+        for (std::size_t i : group) j.value(i);
+        j.end_array().key("labels").begin_array();
+        for (std::size_t i : group) j.value(sample_label(set.samples[i], 0));
+        j.end_array().end_object();
+    }
+    j.end_array();
     j.end_object();
 }
 
