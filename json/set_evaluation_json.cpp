@@ -74,6 +74,7 @@ void write_set_evaluation(JsonWriter& j, const eval::SetEvaluation& e) {
     j.key("pose_mean_cm").value(c.pose_mean);
     j.key("pose_max_cm").value(c.pose_max);
     j.key("motion_mean_cm").value(c.motion_mean);
+    j.key("motion_max_cm").value(c.motion_max);
     j.key("hit_rate").value(c.hit_rate);
     j.key("picks").begin_object();
     for (std::size_t q = 0; q < e.methods.size(); ++q) j.key(e.methods[q].spec.name).value(c.counts[q]);

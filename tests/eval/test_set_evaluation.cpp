@@ -92,8 +92,15 @@ TEST_CASE("set evaluation: a clip imported twice is found and left out with its 
         CHECK(m.loo.measured.rows() == 5);
         CHECK(std::isfinite(m.loo.measured.sum()));
     }
-    // Kriging has a reliability; RBF and the trend do not.
-    CHECK(std::isfinite(e.methods[0].rho_pose_pearson));
+    // Kriging has a reliability (here 0 at every left-out walk of this small set: Pearson is then
+    // undefined, NaN); RBF and the trend have none.
+    const VecX& rho = e.methods[0].loo.reliability;
+    REQUIRE(rho.size() == 5);
+    CHECK(rho.minCoeff() >= 0.0);
+    CHECK(rho.maxCoeff() <= 1.0);
+    const double r = e.methods[0].rho_pose_pearson;
+    CHECK((std::isnan(r) ? rho.maxCoeff() == rho.minCoeff() : std::abs(r) <= 1.0));
+    CHECK(e.methods[1].loo.reliability.size() == 0);
     CHECK(std::isnan(e.methods[1].rho_pose_pearson));
     CHECK(std::isnan(e.methods[2].rho_pose_pearson));
     // The chosen column is, fold by fold, the picked method's own outer error.

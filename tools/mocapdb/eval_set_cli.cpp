@@ -50,8 +50,8 @@ void print_table(const eval::SetEvaluation& e) {
                     cell(m.rho_pose_pearson, "%+.2f").c_str(), e.chosen.counts[q]);
     }
     const eval::ChosenEvaluation& c = e.chosen;
-    std::printf("%-10s %10.3f %10.2f %10.3f %10s %8s %8s %7s\n", "chosen", c.pose_mean, c.pose_max, c.motion_mean, "",
-                hits(c.hit_rate, e.folds.size()).c_str(), "", "");
+    std::printf("%-10s %10.3f %10.2f %10.3f %10.2f %8s %8s %7s\n", "chosen", c.pose_mean, c.pose_max, c.motion_mean,
+                c.motion_max, hits(c.hit_rate, e.folds.size()).c_str(), "", "");
     std::printf("chosen - best single (%s): %+.3f cm, paired standard error %.3f cm over %zu folds\n",
                 e.methods[c.best].spec.name.c_str(), c.diff_mean_cm, c.diff_se_cm, e.folds.size());
     std::printf("pose: mean joint error (cm) with the root's floor position and heading removed; motion: with them\n");
@@ -65,8 +65,9 @@ void print_table(const eval::SetEvaluation& e) {
     } else {
         std::printf("hits: n/a (the set's parameters were not measured by extractors)\n");
     }
-    std::printf("chosen: per fold, the method of lowest pose error in an inner leave-one-out on that fold's training\n"
-                "samples (nested cross-validation); docs/evaluation.md\n");
+    std::printf(
+        "chosen: per fold, the method of lowest pose error in an inner leave-one-out on that fold's training\n"
+        "samples (nested cross-validation); docs/evaluation.md\n");
     for (const std::string& s : e.not_evaluated) std::printf("%s\n", s.c_str());
 }
 

@@ -79,7 +79,7 @@ void same_clip_pairs(const MotionSet& set, const TwinOptions& o, std::vector<Twi
 std::vector<Signature> signatures(const MotionSet& set, const SampleFrames& frames) {
     const std::size_t n = set.samples.size();
     std::map<std::size_t, std::string> first_clip;  // frame count -> a clip with a sample of that length
-    std::map<std::size_t, bool> shared;              // frame count -> samples of two clips have it
+    std::map<std::size_t, bool> shared;             // frame count -> samples of two clips have it
     for (const SampleRef& s : set.samples) {
         const auto [it, fresh] = first_clip.emplace(s.frame_count(), s.clip);
         if (!fresh && it->second != s.clip) shared[s.frame_count()] = true;

@@ -19,7 +19,8 @@ VecX hit_tolerances(const MatX& parameters, double share) {
     VecX out(parameters.cols());
     for (Eigen::Index p = 0; p < parameters.cols(); ++p) {
         const VecX c = parameters.col(p).array() - parameters.col(p).mean();
-        const double sd = parameters.rows() > 1 ? std::sqrt(c.squaredNorm() / static_cast<double>(parameters.rows() - 1)) : 0.0;
+        const double sd =
+            parameters.rows() > 1 ? std::sqrt(c.squaredNorm() / static_cast<double>(parameters.rows() - 1)) : 0.0;
         out(p) = sd > 0.0 ? share * sd : kNaN;
     }
     return out;
@@ -167,7 +168,8 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
 
     const auto m = static_cast<Eigen::Index>(out.folds.size());
     MatX requested(m, set.set.parameters.cols());
-    for (Eigen::Index k = 0; k < m; ++k) requested.row(k) = set.set.parameters.row(out.folds[static_cast<std::size_t>(k)]);
+    for (Eigen::Index k = 0; k < m; ++k)
+        requested.row(k) = set.set.parameters.row(out.folds[static_cast<std::size_t>(k)]);
     if (out.parameters_measured) out.hit_tolerance = hit_tolerances(set.set.parameters, options.hit_share);
     for (std::size_t q = 0; q < methods.size(); ++q) {
         MethodEvaluation e;
@@ -178,9 +180,8 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
             e.hits = fold_hits(e.loo.measured, requested, out.hit_tolerance, set.set.parameter_periods);
             e.hit_rate = e.hits.mean();
         }
-        e.rho_pose_pearson = e.loo.reliability.size() == m && m >= 2
-                                 ? gp::pearson(e.loo.reliability, e.loo.sample_pose_mean_cm)
-                                 : kNaN;
+        e.rho_pose_pearson =
+            e.loo.reliability.size() == m && m >= 2 ? gp::pearson(e.loo.reliability, e.loo.sample_pose_mean_cm) : kNaN;
         out.methods.push_back(std::move(e));
     }
 
@@ -195,10 +196,11 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
         ++c.counts[q];
         c.pose_mean_cm(k) = out.methods[q].loo.sample_pose_mean_cm(k);
         c.motion_mean_cm(k) = out.methods[q].loo.sample_mean_cm(k);
+        c.pose_max = std::max(c.pose_max, out.methods[q].loo.sample_pose_max_cm(k));
+        c.motion_max = std::max(c.motion_max, out.methods[q].loo.sample_max_cm(k));
         hits(k) = out.methods[q].hits.size() == m ? out.methods[q].hits(k) : kNaN;
     }
     c.pose_mean = c.pose_mean_cm.mean();
-    c.pose_max = c.pose_mean_cm.maxCoeff();
     c.motion_mean = c.motion_mean_cm.mean();
     c.hit_rate = out.parameters_measured ? hits.mean() : kNaN;
     for (std::size_t q = 1; q < out.methods.size(); ++q)

@@ -21,11 +21,11 @@ struct TwinOptions {
 };
 
 struct TwinPair {
-    std::size_t a = 0;                ///< sample index, a < b
+    std::size_t a = 0;  ///< sample index, a < b
     std::size_t b = 0;
-    bool same_clip = false;           ///< overlapping frame ranges of one clip
-    std::size_t shared_frames = 0;    ///< same_clip: frames in both ranges; else the frame count
-    double max_distance_cm = 0.0;     ///< different clips: the largest joint distance found
+    bool same_clip = false;         ///< overlapping frame ranges of one clip
+    std::size_t shared_frames = 0;  ///< same_clip: frames in both ranges; else the frame count
+    double max_distance_cm = 0.0;   ///< different clips: the largest joint distance found
 };
 
 struct SampleTwins {

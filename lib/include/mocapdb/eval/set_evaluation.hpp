@@ -29,10 +29,10 @@ struct SetEvaluationOptions {
 
 struct MethodEvaluation {
     MethodSpec spec;
-    LooMethodResult loo;             ///< per outer fold (measured, reliability filled)
-    VecX hits;                       ///< per fold 1 / 0 (empty without extractors)
-    double hit_rate = 0.0;           ///< NaN without extractors
-    double rho_pose_pearson = 0.0;   ///< Pearson(rho, pose error) over folds; NaN without rho or when constant
+    LooMethodResult loo;            ///< per outer fold (measured, reliability filled)
+    VecX hits;                      ///< per fold 1 / 0 (empty without extractors)
+    double hit_rate = 0.0;          ///< NaN without extractors
+    double rho_pose_pearson = 0.0;  ///< Pearson(rho, pose error) over folds; NaN without rho or when constant
 };
 
 struct ChosenEvaluation {
@@ -40,29 +40,30 @@ struct ChosenEvaluation {
     std::vector<std::size_t> counts;  ///< per method: folds that picked it
     VecX pose_mean_cm;                ///< per fold: outer pose error of the pick
     VecX motion_mean_cm;              ///< per fold: outer motion error of the pick
-    double pose_mean = 0.0, pose_max = 0.0, motion_mean = 0.0;
-    double hit_rate = 0.0;            ///< NaN without extractors
-    std::size_t best = 0;             ///< the best single method (lowest outer pose mean, in hindsight)
-    double diff_mean_cm = 0.0;        ///< mean over folds of (chosen - best) pose error
-    double diff_se_cm = 0.0;          ///< its paired standard error (SD / sqrt(folds))
+    double pose_mean = 0.0, motion_mean = 0.0;
+    double pose_max = 0.0, motion_max = 0.0;  ///< the largest joint error of the picks' folds (as LooMethodResult)
+    double hit_rate = 0.0;                    ///< NaN without extractors
+    std::size_t best = 0;                     ///< the best single method (lowest outer pose mean, in hindsight)
+    double diff_mean_cm = 0.0;                ///< mean over folds of (chosen - best) pose error
+    double diff_se_cm = 0.0;                  ///< its paired standard error (SD / sqrt(folds))
 };
 
 struct SetEvaluation {
     std::string set;
-    std::string file;                         ///< the database
-    std::vector<std::string> labels;          ///< every sample
-    std::vector<Eigen::Index> folds;          ///< left-out samples
-    std::size_t inner_folds = 0;              ///< inner folds per outer fold (at most)
-    Eigen::Index frames = 0;                  ///< aligned frames T
+    std::string file;                 ///< the database
+    std::vector<std::string> labels;  ///< every sample
+    std::vector<Eigen::Index> folds;  ///< left-out samples
+    std::size_t inner_folds = 0;      ///< inner folds per outer fold (at most)
+    Eigen::Index frames = 0;          ///< aligned frames T
     SampleTwins twins;
     std::vector<std::string> parameter_names;
     std::vector<std::string> parameter_units;
-    bool parameters_measured = false;         ///< extractor set: hits measured
-    double hit_share = 0.0;                   ///< SetEvaluationOptions::hit_share
-    VecX hit_tolerance;                       ///< per parameter (hit_share x SD, NaN: constant, not checked)
+    bool parameters_measured = false;  ///< extractor set: hits measured
+    double hit_share = 0.0;            ///< SetEvaluationOptions::hit_share
+    VecX hit_tolerance;                ///< per parameter (hit_share x SD, NaN: constant, not checked)
     std::vector<MethodEvaluation> methods;
     ChosenEvaluation chosen;
-    std::vector<std::string> not_evaluated;   ///< methods left out and why, one line each
+    std::vector<std::string> not_evaluated;  ///< methods left out and why, one line each
 };
 
 /// The methods evaluated on a set: naive kriging ("kriging"), "rbf", "trend" and, with ranks (all
