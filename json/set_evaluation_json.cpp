@@ -36,6 +36,18 @@ void write_method(JsonWriter& j, const eval::MethodEvaluation& m) {
 
 }  // namespace
 
+void write_twins(JsonWriter& j, const SampleTwins& twins, const std::vector<std::string>& labels) {
+    j.key("twins").begin_array();
+    for (const auto& group : twins.groups) {
+        j.begin_object().key("samples").begin_array();
+        for (std::size_t i : group) j.value(i);
+        j.end_array().key("labels").begin_array();
+        for (std::size_t i : group) j.value(labels.at(i));
+        j.end_array().end_object();
+    }
+    j.end_array();
+}
+
 void write_set_evaluation(JsonWriter& j, const eval::SetEvaluation& e) {
     j.begin_object();
     j.key("set").value(e.set);
@@ -57,15 +69,7 @@ void write_set_evaluation(JsonWriter& j, const eval::SetEvaluation& e) {
         j.end_object();
     }
     j.end_array();
-    j.key("twins").begin_array();
-    for (const auto& group : e.twins.groups) {
-        j.begin_object().key("samples").begin_array();
-        for (std::size_t i : group) j.value(i);
-        j.end_array().key("labels").begin_array();
-        for (std::size_t i : group) j.value(e.labels[i]);
-        j.end_array().end_object();
-    }
-    j.end_array();
+    write_twins(j, e.twins, e.labels);
     j.key("methods").begin_array();
     for (const eval::MethodEvaluation& m : e.methods) write_method(j, m);
     j.end_array();

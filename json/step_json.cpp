@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "mocapdb/tensor/tucker.hpp"
+#include "mocapdb_json/set_evaluation_json.hpp"
 
 namespace mocapdb::json {
 namespace {
@@ -122,15 +123,9 @@ void write_set(JsonWriter& j, const workflow::SetOutcome& o) {
     }
     j.end_array();
     j.key("repaired_runs").value(set.repairs.size());
-    j.key("twins").begin_array();  // groups of samples showing the same frames (dataset/sample_twins.hpp)
-    for (const auto& group : o.twins.groups) {
-        j.begin_object().key("samples").begin_array();
-        for (std::size_t i : group) j.value(i);
-        j.end_array().key("labels").begin_array();
-        for (std::size_t i : group) j.value(sample_label(set.samples[i], 0));
-        j.end_array().end_object();
-    }
-    j.end_array();
+    std::vector<std::string> labels;  // twins: groups of samples showing the same frames
+    for (const SampleRef& s : set.samples) labels.push_back(sample_label(s, 0));
+    write_twins(j, o.twins, labels);
     j.end_object();
 }
 
