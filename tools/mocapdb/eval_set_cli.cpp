@@ -38,8 +38,8 @@ void print_table(const eval::SetEvaluation& e) {
     } else {
         std::size_t members = 0;
         for (const auto& g : e.twins.groups) members += g.size();
-        std::printf("twins: %zu groups (%zu samples) showing the same frames, left out together\n",
-                    e.twins.groups.size(), members);
+        std::printf("twins: %zu group%s (%zu samples) showing the same frames, left out together\n",
+                    e.twins.groups.size(), e.twins.groups.size() == 1 ? "" : "s", members);
     }
     std::printf("%-10s %10s %10s %10s %10s %8s %8s %7s\n", "method", "pose cm", "pose max", "motion cm", "motion max",
                 "hits", "rho~err", "picked");
