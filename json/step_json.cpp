@@ -4,6 +4,7 @@
 
 #include "json_fields.hpp"
 #include "mocapdb/tensor/tucker.hpp"
+#include "mocapdb_json/set_evaluation_json.hpp"
 
 namespace mocapdb::json {
 namespace {
@@ -95,6 +96,9 @@ void write_set(JsonWriter& j, const workflow::SetOutcome& o) {
     }
     j.end_array();
     j.key("repaired_runs").value(set.repairs.size());
+    std::vector<std::string> labels;  // twins: groups of samples showing the same frames
+    for (const SampleRef& s : set.samples) labels.push_back(sample_label(s, 0));
+    write_twins(j, o.twins, labels);
     j.end_object();
 }
 

@@ -90,7 +90,9 @@ TEST_CASE("eval set of walks: subset, leave-one-out sanity and foot skating of t
     MethodSpec nn;
     nn.kind = MethodKind::NearestNeighbour;
     nn.name = "nn";
-    const LooResult loo = leave_one_out(set, {nn}, {true, {0, 3}});
+    LooOptions options;
+    options.samples = {0, 3};
+    const LooResult loo = leave_one_out(set, {nn}, options);
     REQUIRE(loo.methods.size() == 1);
     CHECK(loo.methods[0].sample_mean_cm.size() == 2);
     CHECK(loo.methods[0].mean_cm > 0.1);

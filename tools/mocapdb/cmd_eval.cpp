@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "eval_report.hpp"
+#include "eval_set_cli.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/eval/evaluation.hpp"
 #include "progress_bar.hpp"
@@ -110,12 +111,19 @@ void run_eval(const EvalArgs& a) {
 
 void setup_eval(CLI::App& app) {
     auto a = std::make_shared<EvalArgs>();
-    CLI::App* cmd =
-        app.add_subcommand("eval", "Evaluate the interpolators and compressors against the baselines (REPORT.md)");
+    auto s = std::make_shared<EvalSetArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "eval", "Evaluate the predictors on a stored set (DB --set), or the paper's report (--data --out: REPORT.md)");
     cmd->footer(
         "Examples:\n"
+        "  mocapdb eval db.h5 --set walks [--json] [--svg loo.svg] [--max-folds 40]\n"
         "  mocapdb eval --data ../shared/datasets --out eval/\n"
         "  mocapdb eval --data ../shared/datasets --out /tmp/eval --quick\n"
+        "DB --set NAME: leave-one-out on the stored aligned set (at most --max-folds samples, evenly spread; each\n"
+        "fold also leaves out the sample's twins, samples showing the same frames): pose and motion error, parameter\n"
+        "hit rate, Pearson(rho, error) for kriging, RBF, the trend alone and Tucker kriging (with a stored model),\n"
+        "and the predictor chosen by nested cross-validation (docs/evaluation.md).\n"
+        "--data --out:\n"
         "Builds the evaluation sets from DATA/cmu-asfamc in memory (subject 16 walks and runs, forward jumps\n"
         "of subjects 13/16/105, subject 105 jump turns and gait cycles), runs leave-one-out prediction (with the\n"
         "kernel headroom: the best of a grid of fixed kernels in the same folds),\n"
@@ -123,11 +131,31 @@ void setup_eval(CLI::App& app) {
         "runtime for per-pose / per-element / Tucker / naive kriging, RBF and a nearest-neighbour blend, and\n"
         "writes OUT/REPORT.md, OUT/results.json and CSV and SVG files (replacing those of a previous run).\n"
         "--quick: subject 16 walks only, fewer leave-one-out folds and grid points (every section present).");
-    cmd->add_option("--data", a->data, "the shared datasets folder (holding cmu-asfamc/)")->required();
-    cmd->add_option("--out", a->out, "output folder for REPORT.md, results.json, CSV and SVG")->required();
+    cmd->add_option("db", s->db, "database file (with --set: evaluate that set)");
+    cmd->add_option("--set", s->set, "with DB: the aligned set to evaluate");
+    cmd->add_flag("--json", s->json, "with DB: print one JSON object (keys: docs/evaluation.md)");
+    cmd->add_option("--svg", s->svg, "with DB: plot of the pose error per left-out sample and method");
+    cmd->add_option("--max-folds", s->max_folds, "with DB: at most this many left-out samples (default 40)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--inner-folds", s->inner_folds, "with DB: inner folds of the nested cross-validation (default 15)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("--force", s->force, "with DB: overwrite the --svg file");
+    cmd->add_option("--data", a->data, "the shared datasets folder (holding cmu-asfamc/)");
+    cmd->add_option("--out", a->out, "output folder for REPORT.md, results.json, CSV and SVG");
     cmd->add_flag("--quick", a->quick, "a reduced run (subject 16 walks only) for smoke tests");
     cmd->add_flag("--tiny", a->tiny, "")->group("");  // hidden: smallest run, for sanitizer builds
-    cmd->callback([a, cmd] {
+    cmd->callback([a, s, cmd] {
+        if (!s->db.empty() || !s->set.empty()) {
+            if (s->db.empty() || s->set.empty())
+                throw InvalidArgument("eval: give a database and --set NAME together (mocapdb eval DB.h5 --set NAME)");
+            if (!a->data.empty() || !a->out.empty())
+                throw InvalidArgument("eval: --data/--out write the paper's report; they do not go with DB --set");
+            run_set_eval(*s);
+            return;
+        }
+        if (a->data.empty() || a->out.empty())
+            throw InvalidArgument("eval: give DB.h5 --set NAME, or --data DIR --out DIR for the report");
+        if (s->json || !s->svg.empty()) throw InvalidArgument("eval: --json and --svg go with DB --set");
         EvalArgs args = *a;
         args.command = "mocapdb eval --data " + a->data + " --out " + a->out + (a->quick ? " --quick" : "") +
                        (a->tiny ? " --tiny" : "");

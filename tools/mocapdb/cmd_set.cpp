@@ -25,10 +25,36 @@ struct CreateArgs {
     bool json = false;
 };
 
+// One warning line per group of twins (samples showing the same frames), on stderr.
+void warn_twins(const SetOutcome& o) {
+    const std::size_t shown = 20;
+    const auto& groups = o.twins.groups;
+    for (std::size_t g = 0; g < groups.size() && g < shown; ++g) {
+        bool same_clip = true;
+        for (const TwinPair& p : o.twins.pairs)
+            if (!p.same_clip && std::find(groups[g].begin(), groups[g].end(), p.a) != groups[g].end())
+                same_clip = false;
+        std::string names;
+        for (std::size_t i : groups[g]) names += (names.empty() ? "" : ", ") + sample_label(o.set.samples[i], 0);
+        if (same_clip)
+            std::fprintf(stderr, "warning: set '%s': samples %s overlap (the same frames of one clip)",
+                         o.set.name.c_str(), names.c_str());
+        else
+            std::fprintf(stderr,
+                         "warning: set '%s': samples %s show the same frames (within %g cm: a clip imported twice?)",
+                         o.set.name.c_str(), names.c_str(), TwinOptions{}.tolerance_cm);
+        std::fprintf(stderr, "; leave-one-out (mocapdb eval) leaves them out together\n");
+    }
+    if (groups.size() > shown)
+        std::fprintf(stderr, "warning: set '%s': %zu more groups of twins (--json lists them all)\n",
+                     o.set.name.c_str(), groups.size() - shown);
+}
+
 void run_create(CreateArgs a) {
     a.request.periodic = periodic_parameters(a.periodic);
     if (!a.feet.empty()) a.request.feet = split_names(a.feet, "--feet");
     const SetOutcome o = create_set(a.db, a.request);
+    warn_twins(o);
     if (a.json) {
         JsonWriter j;
         json::write_set(j, o);

@@ -1,11 +1,33 @@
 #include "mocapdb/eval/loo_prediction.hpp"
 
 #include <chrono>
+#include <cmath>
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/compression/joint_error.hpp"
 
 namespace mocapdb::eval {
+namespace {
+
+// The extractors' values on the whole synthesized clip; NaN where a quantity is undefined (a jump
+// without a flight, a gait measure without a cycle): a miss, not an error.
+VecX measure_back(const Clip& clip, const std::vector<ParameterExtractor>& extractors) {
+    VecX out(0);
+    for (const ParameterExtractor& e : extractors) {
+        VecX v;
+        try {
+            v = extract_parameters(clip, 0, clip.frame_count(), {e});
+        } catch (const InvalidArgument&) {
+            v = VecX::Constant(static_cast<Eigen::Index>(e.names().size()), std::nan(""));
+        }
+        VecX joined(out.size() + v.size());
+        joined << out, v;
+        out = std::move(joined);
+    }
+    return out;
+}
+
+}  // namespace
 
 MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& reference,
                         const Eigen::Ref<const MatX>& approx, bool root_relative) {
@@ -40,6 +62,43 @@ MatX frame_joint_errors(const Skeleton& skeleton, const Eigen::Ref<const MatX>& 
     return out;
 }
 
+std::vector<Eigen::Index> loo_training(Eigen::Index n, Eigen::Index i,
+                                       const std::vector<std::vector<Eigen::Index>>& twins) {
+    if (i < 0 || i >= n) throw InvalidArgument("loo_training: sample index out of range");
+    std::vector<bool> out_of_fold(static_cast<std::size_t>(n), false);
+    out_of_fold[static_cast<std::size_t>(i)] = true;
+    if (!twins.empty()) {
+        if (static_cast<Eigen::Index>(twins.size()) != n)
+            throw InvalidArgument("loo_training: " + std::to_string(twins.size()) + " twin lists for " +
+                                  std::to_string(n) + " samples");
+        for (Eigen::Index t : twins[static_cast<std::size_t>(i)]) {
+            if (t < 0 || t >= n) throw InvalidArgument("loo_training: twin index out of range");
+            out_of_fold[static_cast<std::size_t>(t)] = true;
+        }
+    }
+    std::vector<Eigen::Index> keep;
+    for (Eigen::Index j = 0; j < n; ++j)
+        if (!out_of_fold[static_cast<std::size_t>(j)]) keep.push_back(j);
+    return keep;
+}
+
+std::vector<std::vector<Eigen::Index>> subset_twins(const std::vector<std::vector<Eigen::Index>>& twins,
+                                                    const std::vector<Eigen::Index>& keep) {
+    if (twins.empty()) return {};
+    std::vector<Eigen::Index> position(twins.size(), -1);
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+        if (keep[k] < 0 || keep[k] >= static_cast<Eigen::Index>(twins.size()))
+            throw InvalidArgument("subset_twins: index out of range");
+        position[static_cast<std::size_t>(keep[k])] = static_cast<Eigen::Index>(k);
+    }
+    std::vector<std::vector<Eigen::Index>> out(keep.size());
+    for (std::size_t k = 0; k < keep.size(); ++k)
+        for (Eigen::Index t : twins[static_cast<std::size_t>(keep[k])])
+            if (t >= 0 && t < static_cast<Eigen::Index>(twins.size()) && position[static_cast<std::size_t>(t)] >= 0)
+                out[k].push_back(position[static_cast<std::size_t>(t)]);
+    return out;
+}
+
 LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& methods, const LooOptions& options,
                         const ProgressCallback& progress) {
     const Eigen::Index n = set.size();
@@ -52,6 +111,7 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
         if (i < 0 || i >= n) throw InvalidArgument("leave_one_out: sample index out of range");
     const auto m = static_cast<Eigen::Index>(out.samples.size());
     const Eigen::Index frames = set.aligned.frames();
+    const bool measure = options.measure_parameters && !set.extractors.empty();
     for (const MethodSpec& spec : methods) {
         LooMethodResult r;
         r.method = spec.name;
@@ -64,15 +124,18 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
         r.frame_pose_mean_cm = VecX::Zero(frames);
         r.duration_error_s = VecX::Zero(m);
         if (options.foot_skating) r.skating_cm_per_s = VecX::Zero(m);
+        if (measure) r.measured = MatX::Constant(m, set.set.parameters.cols(), std::nan(""));
         out.methods.push_back(std::move(r));
     }
     if (options.foot_skating) out.original_skating_cm_per_s = VecX::Zero(m);
     SynthesizedMotion motion;
     for (Eigen::Index k = 0; k < m; ++k) {
         const Eigen::Index i = out.samples[static_cast<std::size_t>(k)];
-        std::vector<Eigen::Index> keep;
-        for (Eigen::Index j = 0; j < n; ++j)
-            if (j != i) keep.push_back(j);
+        const std::vector<Eigen::Index> keep = loo_training(n, i, options.twins);
+        if (keep.size() < 3)
+            throw InvalidArgument("leave_one_out: set '" + set.set.name + "': leaving out sample " +
+                                  set.labels[static_cast<std::size_t>(i)] + " with its twins leaves " +
+                                  std::to_string(keep.size()) + " training samples; at least 3 are needed");
         const EvalSet training = subset(set, keep);
         const MatX truth = aligned_sample(set.aligned, i);
         const VecX c = set.set.parameters.row(i).transpose();
@@ -104,8 +167,18 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
             r.frame_pose_mean_cm += ep.col(0) / static_cast<double>(m);
             const double synth_duration = motion.warp(motion.warp.size() - 1) / set.frame_rate;
             r.duration_error_s(k) = std::abs(synth_duration - original.duration());
-            if (options.foot_skating)
-                r.skating_cm_per_s(k) = foot_skating(motion_clip(motion, set.skeleton, set.frame_rate)).cm_per_s;
+            if (options.foot_skating || measure) {
+                const Clip clip = motion_clip(motion, set.skeleton, set.frame_rate);
+                if (options.foot_skating) r.skating_cm_per_s(k) = foot_skating(clip).cm_per_s;
+                if (measure) r.measured.row(k) = measure_back(clip, set.extractors).transpose();
+            }
+            if (options.reliability) {
+                const VecX rho = synth->reliability_batch(c.transpose());
+                if (rho.size() == 1) {
+                    if (r.reliability.size() == 0) r.reliability = VecX::Constant(m, std::nan(""));
+                    r.reliability(k) = rho(0);
+                }
+            }
         }
         if (progress)
             progress({static_cast<std::uint64_t>(k + 1), static_cast<std::uint64_t>(m),

@@ -108,6 +108,16 @@ SetOutcome create_set(const std::filesystem::path& db_file, const SetRequest& a)
     for (const auto& [name, period] : a.periodic) set_parameter_period(o.set, name, period);
     validate(o.set);
     check_distinguishable(o.set);
+    std::string cached_id;  // samples of one clip are consecutive: one clip loaded at a time
+    Clip cached;
+    o.twins = find_sample_twins(o.set, [&](std::size_t i) {
+        const SampleRef& s = o.set.samples[i];
+        if (cached_id != s.clip) {
+            cached = db.load_clip(s.clip);
+            cached_id = s.clip;
+        }
+        return sample_frames(o.set, i, cached);
+    });
     writer.put_set(o.set, a.replace);
     writer.commit();
     return o;

@@ -24,6 +24,11 @@ namespace mocapdb::eval {
 struct LooOptions {
     bool foot_skating = true;           ///< also measure foot skating of each synthesized clip (foot_skating.hpp)
     std::vector<Eigen::Index> samples;  ///< which samples to leave out (empty = all)
+    /// Per sample (N lists, or empty = none): the samples left out together with it, its twins
+    /// (dataset/sample_twins.hpp): fold i trains on loo_training(N, i, twins).
+    std::vector<std::vector<Eigen::Index>> twins;
+    bool measure_parameters = false;  ///< measure each synthesized clip with set.extractors (when it has any)
+    bool reliability = false;         ///< record each method's reliability rho at the left-out parameters
 };
 
 struct LooMethodResult {
@@ -37,6 +42,8 @@ struct LooMethodResult {
     VecX frame_pose_mean_cm;    ///< T: per aligned frame, mean over samples, root-relative pose
     VecX duration_error_s;      ///< per sample: |synthesized duration - sample duration| (s)
     VecX skating_cm_per_s;      ///< per sample: foot skating of the synthesized clip (empty without)
+    MatX measured;              ///< per sample by P: parameters measured back (NaN: undefined; empty without)
+    VecX reliability;           ///< per sample: the method's rho at c_i (empty without, or for no rho)
     double mean_cm = 0.0;       ///< mean of sample_mean_cm
     double max_cm = 0.0;        ///< max of sample_max_cm
     double pose_mean_cm = 0.0;  ///< mean of sample_pose_mean_cm
@@ -55,7 +62,17 @@ struct LooResult {
     VecX original_skating_cm_per_s;        ///< per left-out sample, the original's skating (empty without)
 };
 
-/// Throws InvalidArgument for fewer than 4 samples or an index out of range. `progress` counts folds.
+/// The training samples of the fold that leaves out sample i of n: every sample but i and twins[i]
+/// (twins empty or n lists). InvalidArgument for an index out of range.
+std::vector<Eigen::Index> loo_training(Eigen::Index n, Eigen::Index i,
+                                       const std::vector<std::vector<Eigen::Index>>& twins);
+
+/// Twin lists of the subset `keep` of a set (indices into the subset; twins outside it dropped).
+std::vector<std::vector<Eigen::Index>> subset_twins(const std::vector<std::vector<Eigen::Index>>& twins,
+                                                    const std::vector<Eigen::Index>& keep);
+
+/// Throws InvalidArgument for fewer than 4 samples, an index out of range, twin lists not one per sample,
+/// or a fold left with fewer than 3 training samples. `progress` counts folds.
 LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& methods, const LooOptions& options = {},
                         const ProgressCallback& progress = {});
 

@@ -2,7 +2,7 @@
 // `mocapdb set create` as a library step: select stored clips by id or pattern, build the
 // motion set (segmentation, parameters measured by extractors or read from a CSV, periodic parameters,
 // dropout repairs; dataset/set_builder.hpp) and store it, committed. Nothing is printed: the clips that
-// gave no sample are in the outcome.
+// gave no sample and the samples that are twins (overlapping or duplicated frames) are in the outcome.
 //
 // Errors: InvalidArgument (no clips stored, a pattern that matches nothing, the set exists and
 // replace is false, both a CSV and extractors, an unknown periodic parameter, a set that cannot tell
@@ -15,6 +15,7 @@
 
 #include "mocapdb/core/progress.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/dataset/sample_twins.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
 
 namespace mocapdb {
@@ -41,6 +42,7 @@ struct SetOutcome {
     std::vector<std::string> skipped;                      ///< clips that gave no sample
     Segmentation segmentation = Segmentation::WholeClips;  ///< what the samples are (auto resolved)
     bool auto_segmentation = false;                        ///< the request left the choice to the data
+    SampleTwins twins;  ///< samples showing the same frames (dataset/sample_twins.hpp), default options
 };
 
 /// Builds the set from the database's clips and stores it (committed).

@@ -1,0 +1,84 @@
+#pragma once
+// How accurate synthesis is on one set (`mocapdb eval DB --set NAME`): leave-one-out over at most
+// max_folds samples (evenly spread), each fold leaving out the sample with its twins
+// (dataset/sample_twins.hpp), for naive kriging, RBF, the linear trend alone and, when the set has a
+// stored model, Tucker kriging at its ranks; per method the pose / motion error, the parameter hit
+// rate (extractor sets) and Pearson(rho, pose error); and the `chosen` predictor of nested
+// cross-validation: in each outer fold an inner leave-one-out on that fold's training samples only
+// (at most inner_folds, evenly spread) picks the method of lowest inner pose error, and the chosen
+// column is the outer error of those picks. Details and definitions: docs/evaluation.md.
+// Errors: InvalidArgument naming the set when it has fewer than 5 samples or a fold too few training
+// samples; those of load_eval_set. Cost: folds x (1 + inner folds) builds of every method.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mocapdb/core/progress.hpp"
+#include "mocapdb/dataset/sample_twins.hpp"
+#include "mocapdb/eval/loo_prediction.hpp"
+
+namespace mocapdb::eval {
+
+struct SetEvaluationOptions {
+    std::size_t max_folds = 40;    ///< outer folds (left-out samples, evenly spread); >= 1
+    std::size_t inner_folds = 15;  ///< nested CV: inner folds per outer fold (evenly spread); >= 1
+    double hit_share = 0.25;       ///< hit: every |measured - requested| <= hit_share x that parameter's SD
+    TwinOptions twins;
+};
+
+struct MethodEvaluation {
+    MethodSpec spec;
+    LooMethodResult loo;            ///< per outer fold (measured, reliability filled)
+    VecX hits;                      ///< per fold 1 / 0 (empty without extractors)
+    double hit_rate = 0.0;          ///< NaN without extractors
+    double rho_pose_pearson = 0.0;  ///< Pearson(rho, pose error) over folds; NaN without rho or when constant
+};
+
+struct ChosenEvaluation {
+    std::vector<std::size_t> picks;   ///< per outer fold: index into methods
+    std::vector<std::size_t> counts;  ///< per method: folds that picked it
+    VecX pose_mean_cm;                ///< per fold: outer pose error of the pick
+    VecX motion_mean_cm;              ///< per fold: outer motion error of the pick
+    double pose_mean = 0.0, motion_mean = 0.0;
+    double pose_max = 0.0, motion_max = 0.0;  ///< the largest joint error of the picks' folds (as LooMethodResult)
+    double hit_rate = 0.0;                    ///< NaN without extractors
+    std::size_t best = 0;                     ///< the best single method (lowest outer pose mean, in hindsight)
+    double diff_mean_cm = 0.0;                ///< mean over folds of (chosen - best) pose error
+    double diff_se_cm = 0.0;                  ///< its paired standard error (SD / sqrt(folds))
+};
+
+struct SetEvaluation {
+    std::string set;
+    std::string file;                 ///< the database
+    std::vector<std::string> labels;  ///< every sample
+    std::vector<Eigen::Index> folds;  ///< left-out samples
+    std::size_t inner_folds = 0;      ///< inner folds per outer fold (at most)
+    Eigen::Index frames = 0;          ///< aligned frames T
+    SampleTwins twins;
+    std::vector<std::string> parameter_names;
+    std::vector<std::string> parameter_units;
+    bool parameters_measured = false;  ///< extractor set: hits measured
+    double hit_share = 0.0;            ///< SetEvaluationOptions::hit_share
+    VecX hit_tolerance;                ///< per parameter (hit_share x SD, NaN: constant, not checked)
+    std::vector<MethodEvaluation> methods;
+    ChosenEvaluation chosen;
+    std::vector<std::string> not_evaluated;  ///< methods left out and why, one line each
+};
+
+/// The methods evaluated on a set: naive kriging ("kriging"), "rbf", "trend" and, with ranks (all
+/// > 0), Tucker kriging ("tucker").
+std::vector<MethodSpec> set_methods(const std::array<std::size_t, 3>& model_ranks);
+
+/// At most `count` of 0 .. n-1, evenly spread (all when count >= n), ascending.
+std::vector<Eigen::Index> evenly_spread(Eigen::Index n, std::size_t count);
+
+/// The evaluation of `set` with `methods` (at least one); twins found on the set's samples.
+SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& methods,
+                           const SetEvaluationOptions& options = {}, const ProgressCallback& progress = {});
+
+/// The same for a set stored in the database file `db` (read only).
+SetEvaluation evaluate_stored_set(const std::filesystem::path& db, const std::string& set,
+                                  const SetEvaluationOptions& options = {}, const ProgressCallback& progress = {});
+
+}  // namespace mocapdb::eval

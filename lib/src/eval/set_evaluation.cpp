@@ -1,0 +1,228 @@
+#include "mocapdb/eval/set_evaluation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mocapdb/core/error.hpp"
+#include "mocapdb/eval/stored_eval_set.hpp"
+#include "mocapdb/gp/gp_metrics.hpp"
+#include "mocapdb/store/database.hpp"
+
+namespace mocapdb::eval {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Per parameter: hit_share x the samples' SD; NaN for a constant parameter (not checked).
+VecX hit_tolerances(const MatX& parameters, double share) {
+    VecX out(parameters.cols());
+    for (Eigen::Index p = 0; p < parameters.cols(); ++p) {
+        const VecX c = parameters.col(p).array() - parameters.col(p).mean();
+        const double sd =
+            parameters.rows() > 1 ? std::sqrt(c.squaredNorm() / static_cast<double>(parameters.rows() - 1)) : 0.0;
+        out(p) = sd > 0.0 ? share * sd : kNaN;
+    }
+    return out;
+}
+
+// |a - b|, around the circle for a periodic parameter (period > 0).
+double parameter_distance(double a, double b, double period) {
+    double d = std::abs(a - b);
+    if (period > 0.0) {
+        d = std::fmod(d, period);
+        d = std::min(d, period - d);
+    }
+    return d;
+}
+
+// 1 when every checked parameter measured back within its tolerance, else 0 (undefined = miss).
+VecX fold_hits(const MatX& measured, const MatX& requested, const VecX& tolerance, const VecX& periods) {
+    VecX hits(measured.rows());
+    for (Eigen::Index k = 0; k < measured.rows(); ++k) {
+        bool hit = true;
+        for (Eigen::Index p = 0; p < measured.cols(); ++p) {
+            if (std::isnan(tolerance(p))) continue;
+            const double period = periods.size() == measured.cols() ? periods(p) : 0.0;
+            const double d = parameter_distance(measured(k, p), requested(k, p), period);
+            if (!(d <= tolerance(p))) hit = false;  // NaN measured: a miss
+        }
+        hits(k) = hit ? 1.0 : 0.0;
+    }
+    return hits;
+}
+
+double standard_error(const VecX& d) {
+    if (d.size() < 2) return kNaN;
+    const VecX c = d.array() - d.mean();
+    return std::sqrt(c.squaredNorm() / static_cast<double>(d.size() - 1)) / std::sqrt(static_cast<double>(d.size()));
+}
+
+std::vector<std::vector<Eigen::Index>> twin_lists(const SampleTwins& twins, std::size_t n) {
+    std::vector<std::vector<Eigen::Index>> out(n);
+    const auto partners = twins.partners(n);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j : partners[i]) out[i].push_back(static_cast<Eigen::Index>(j));
+    return out;
+}
+
+// Nested CV: per outer fold, the method of lowest pose error in an inner leave-one-out on the fold's
+// training samples alone.
+std::vector<std::size_t> nested_picks(const EvalSet& set, const std::vector<MethodSpec>& methods,
+                                      const std::vector<Eigen::Index>& folds,
+                                      const std::vector<std::vector<Eigen::Index>>& twins, std::size_t inner_folds,
+                                      const ProgressCallback& progress, std::uint64_t done, std::uint64_t total) {
+    std::vector<std::size_t> picks;
+    for (Eigen::Index i : folds) {
+        const std::vector<Eigen::Index> keep = loo_training(set.size(), i, twins);
+        const EvalSet training = subset(set, keep);
+        LooOptions inner;
+        inner.foot_skating = false;
+        inner.twins = subset_twins(twins, keep);
+        inner.samples = evenly_spread(training.size(), inner_folds);
+        const LooResult r = leave_one_out(training, methods, inner);
+        std::size_t best = 0;
+        for (std::size_t q = 1; q < r.methods.size(); ++q)
+            if (r.methods[q].pose_mean_cm < r.methods[best].pose_mean_cm) best = q;
+        picks.push_back(best);
+        if (progress) progress({++done, total, "nested " + set.labels[static_cast<std::size_t>(i)]});
+    }
+    return picks;
+}
+
+}  // namespace
+
+std::vector<MethodSpec> set_methods(const std::array<std::size_t, 3>& ranks) {
+    std::vector<MethodSpec> out;
+    MethodSpec m;
+    m.kind = MethodKind::NaiveKriging;
+    m.name = "kriging";
+    out.push_back(m);
+    m.kind = MethodKind::Rbf;
+    m.name = "rbf";
+    out.push_back(m);
+    m.kind = MethodKind::TrendOnly;
+    m.name = "trend";
+    out.push_back(m);
+    if (ranks[0] > 0 && ranks[1] > 0 && ranks[2] > 0) {
+        m.kind = MethodKind::TuckerKriging;
+        m.name = "tucker";
+        m.ranks = {static_cast<Eigen::Index>(ranks[0]), static_cast<Eigen::Index>(ranks[1]),
+                   static_cast<Eigen::Index>(ranks[2])};
+        out.push_back(m);
+    }
+    return out;
+}
+
+std::vector<Eigen::Index> evenly_spread(Eigen::Index n, std::size_t count) {
+    std::vector<Eigen::Index> out;
+    if (n <= 0 || count == 0) return out;
+    const auto c = static_cast<Eigen::Index>(std::min<std::size_t>(count, static_cast<std::size_t>(n)));
+    for (Eigen::Index k = 0; k < c; ++k) out.push_back((2 * k + 1) * n / (2 * c));
+    return out;
+}
+
+SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& methods,
+                           const SetEvaluationOptions& options, const ProgressCallback& progress) {
+    const std::string name = "set '" + set.set.name + "'";
+    if (methods.empty()) throw InvalidArgument(name + ": no method to evaluate");
+    if (options.max_folds < 1 || options.inner_folds < 1)
+        throw InvalidArgument(name + ": the numbers of outer and inner folds must be at least 1");
+    if (!(options.hit_share > 0.0) || !std::isfinite(options.hit_share))
+        throw InvalidArgument(name + ": the hit tolerance share must be positive");
+    if (set.size() < 5)
+        throw InvalidArgument(name + " has " + std::to_string(set.size()) +
+                              " samples; nested cross-validation needs at least 5");
+    SetEvaluation out;
+    out.set = set.set.name;
+    out.labels = set.labels;
+    out.frames = set.aligned.frames();
+    out.parameter_names = set.set.parameter_names;
+    out.parameter_units = set.set.parameter_units;
+    out.inner_folds = options.inner_folds;
+    out.hit_share = options.hit_share;
+    out.twins = find_sample_twins(
+        set.set, [&](std::size_t i) { return set.samples[i]; }, options.twins);
+    const auto twins = twin_lists(out.twins, set.samples.size());
+    out.folds = evenly_spread(set.size(), options.max_folds);
+    for (Eigen::Index i : out.folds)
+        if (loo_training(set.size(), i, twins).size() < 4)
+            throw InvalidArgument(name + ": leaving out " + set.labels[static_cast<std::size_t>(i)] +
+                                  " with its twins leaves fewer than 4 samples for the inner cross-validation");
+    out.parameters_measured = !set.extractors.empty();
+    out.not_evaluated.push_back(
+        "MOHGP: not evaluated (it predicts a replicate motion from part of its own frames, not a motion from "
+        "control parameters; docs/gp.md)");
+
+    const std::uint64_t total = 2 * out.folds.size();
+    LooOptions outer;
+    outer.foot_skating = false;
+    outer.samples = out.folds;
+    outer.twins = twins;
+    outer.measure_parameters = true;
+    outer.reliability = true;
+    ProgressCallback outer_progress;
+    if (progress)
+        outer_progress = [&](const Progress& p) { progress({p.done, total, std::string("fold ").append(p.item)}); };
+    const LooResult loo = leave_one_out(set, methods, outer, outer_progress);
+
+    const auto m = static_cast<Eigen::Index>(out.folds.size());
+    MatX requested(m, set.set.parameters.cols());
+    for (Eigen::Index k = 0; k < m; ++k)
+        requested.row(k) = set.set.parameters.row(out.folds[static_cast<std::size_t>(k)]);
+    if (out.parameters_measured) out.hit_tolerance = hit_tolerances(set.set.parameters, options.hit_share);
+    for (std::size_t q = 0; q < methods.size(); ++q) {
+        MethodEvaluation e;
+        e.spec = methods[q];
+        e.loo = loo.methods[q];
+        e.hit_rate = kNaN;
+        if (out.parameters_measured && e.loo.measured.rows() == m) {
+            e.hits = fold_hits(e.loo.measured, requested, out.hit_tolerance, set.set.parameter_periods);
+            e.hit_rate = e.hits.mean();
+        }
+        e.rho_pose_pearson =
+            e.loo.reliability.size() == m && m >= 2 ? gp::pearson(e.loo.reliability, e.loo.sample_pose_mean_cm) : kNaN;
+        out.methods.push_back(std::move(e));
+    }
+
+    ChosenEvaluation& c = out.chosen;
+    c.picks = nested_picks(set, methods, out.folds, twins, options.inner_folds, progress, out.folds.size(), total);
+    c.counts.assign(methods.size(), 0);
+    c.pose_mean_cm.resize(m);
+    c.motion_mean_cm.resize(m);
+    VecX hits(m);
+    for (Eigen::Index k = 0; k < m; ++k) {
+        const std::size_t q = c.picks[static_cast<std::size_t>(k)];
+        ++c.counts[q];
+        c.pose_mean_cm(k) = out.methods[q].loo.sample_pose_mean_cm(k);
+        c.motion_mean_cm(k) = out.methods[q].loo.sample_mean_cm(k);
+        c.pose_max = std::max(c.pose_max, out.methods[q].loo.sample_pose_max_cm(k));
+        c.motion_max = std::max(c.motion_max, out.methods[q].loo.sample_max_cm(k));
+        hits(k) = out.methods[q].hits.size() == m ? out.methods[q].hits(k) : kNaN;
+    }
+    c.pose_mean = c.pose_mean_cm.mean();
+    c.motion_mean = c.motion_mean_cm.mean();
+    c.hit_rate = out.parameters_measured ? hits.mean() : kNaN;
+    for (std::size_t q = 1; q < out.methods.size(); ++q)
+        if (out.methods[q].loo.pose_mean_cm < out.methods[c.best].loo.pose_mean_cm) c.best = q;
+    const VecX diff = c.pose_mean_cm - out.methods[c.best].loo.sample_pose_mean_cm;
+    c.diff_mean_cm = diff.mean();
+    c.diff_se_cm = standard_error(diff);
+    return out;
+}
+
+SetEvaluation evaluate_stored_set(const std::filesystem::path& db_file, const std::string& set,
+                                  const SetEvaluationOptions& options, const ProgressCallback& progress) {
+    const Database db(db_file);
+    std::array<std::size_t, 3> ranks{};
+    for (const SetRecord& r : db.sets())
+        if (r.name == set && r.model) ranks = r.model_ranks;
+    const EvalSet eval_set = load_eval_set(db, set);
+    SetEvaluation out = evaluate_set(eval_set, set_methods(ranks), options, progress);
+    out.file = db_file.string();
+    if (ranks[0] == 0)
+        out.not_evaluated.push_back("tucker: not evaluated (the set has no stored model; mocapdb compress makes one)");
+    return out;
+}
+
+}  // namespace mocapdb::eval
