@@ -142,7 +142,8 @@ std::string describe_fit(const FitOutcome& f, const TableKrigingArgs& args) {
     std::ostringstream os;
     os.precision(10);
     os << "fit: " << f.fit.model.to_string() << "  (weights " << args.weights << ", objective " << f.fit.objective
-       << (f.fit.converged ? ", converged" : ", NOT converged") << (f.fit.status == kriging::FitStatus::Degenerate ? ", degenerate" : "") << ")\n";
+       << (f.fit.converged ? ", converged" : ", NOT converged")
+       << (f.fit.status == kriging::FitStatus::Degenerate ? ", degenerate" : "") << ")\n";
     if (f.selection) {
         os << "p chosen by leave-one-out:\n      p        loo_mse\n";
         for (std::size_t k = 0; k < f.selection->grid.size(); ++k) {

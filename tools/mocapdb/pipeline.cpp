@@ -231,7 +231,8 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
     std::string text = buffer;
     if (o.kernel_stored) {
         const auto n = static_cast<std::size_t>(o.dims[2]);
-        text += "  synthesis kernel: " + o.kernel_variogram + " (fit " + std::string(kriging::to_string(o.kernel_status)) +
+        text += "  synthesis kernel: " + o.kernel_variogram + " (fit " +
+                std::string(kriging::to_string(o.kernel_status)) +
                 (o.kernel_fit_samples < n ? "; variogram chosen on " + std::to_string(o.kernel_fit_samples) +
                                                 " of the " + std::to_string(n) + " samples"
                                           : std::string()) +

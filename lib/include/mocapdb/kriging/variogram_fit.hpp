@@ -55,10 +55,10 @@ const char* to_string(FitStatus status);
 
 struct VariogramFit {
     VariogramModel model;
-    double objective = 0.0;   ///< R(theta) at the solution (with the chosen weighting).
-    int iterations = 0;       ///< LM iterations of the winning start.
-    bool converged = false;   ///< LM stopped on its tolerance (not on the iteration limit).
-    int bins_used = 0;        ///< non-empty bins.
+    double objective = 0.0;  ///< R(theta) at the solution (with the chosen weighting).
+    int iterations = 0;      ///< LM iterations of the winning start.
+    bool converged = false;  ///< LM stopped on its tolerance (not on the iteration limit).
+    int bins_used = 0;       ///< non-empty bins.
     FitStatus status = FitStatus::Ok;
 };
 

@@ -57,7 +57,7 @@ struct CompressOutcome {
     std::string kernel_not_stored_reason;  ///< why not, when not ("" when stored)
     std::string kernel_variogram;          ///< the stored kernel's variogram (empty when not stored)
     kriging::FitStatus kernel_status = kriging::FitStatus::Ok;  ///< its fit status
-    std::string kernel_warning;            ///< synthesis::fit_status_warning, "" when the fit is clean
+    std::string kernel_warning;  ///< synthesis::fit_status_warning, "" when the fit is clean
 
     double ratio() const { return static_cast<double>(raw_bytes) / static_cast<double>(bytes); }
 };
