@@ -118,14 +118,14 @@ void write_eval_results(JsonWriter& j, const eval::EvalResults& e) {
             j.key("reliability");
             fields::numbers(j, c.reliability);
             j.key("rho_outside_3sd").value(c.rho_outside_3sd);
-            if (std::isfinite(c.loo_mean_z2)) j.key("loo_mean_z2").value(c.loo_mean_z2);
+            if (c.loo_mean_z2 && std::isfinite(*c.loo_mean_z2)) j.key("loo_mean_z2").value(*c.loo_mean_z2);
             j.key("methods").begin_array();
             for (const auto& m : c.methods) {
                 j.begin_object().key("method").value(m.method);
                 j.key("failures").value(static_cast<long long>(m.failures));
                 j.key("pearson_rho_error").value(m.pearson);
                 j.key("own_reliability").value(m.own_reliability);
-                if (m.own_reliability) j.key("rho_outside_3sd").value(m.rho_outside_3sd);
+                if (m.rho_outside_3sd) j.key("rho_outside_3sd").value(*m.rho_outside_3sd);
                 j.key("seconds").value(m.seconds);
                 j.key("regions").begin_array();
                 std::vector<eval::RegionStats> all = m.regions;

@@ -233,12 +233,13 @@ std::string report_md(const EvalResults& e) {
         for (const auto& n : own) ot.header.push_back(n);
         for (const SetResults& r : e.sets) {
             if (!r.has_constraint) continue;
-            std::vector<std::string> row{r.set->spec.name, fixed(r.constraint.loo_mean_z2, 2),
-                                         fixed(r.constraint.rho_outside_3sd, 3)};
+            std::vector<std::string> row{
+                r.set->spec.name, r.constraint.loo_mean_z2 ? fixed(*r.constraint.loo_mean_z2, 2) : std::string("n/a"),
+                fixed(r.constraint.rho_outside_3sd, 3)};
             for (const auto& n : own) {
                 std::string v = "-";
                 for (const auto& m : r.constraint.methods)
-                    if (m.method == n && m.own_reliability) v = fixed(m.rho_outside_3sd, 3);
+                    if (m.method == n && m.rho_outside_3sd) v = fixed(*m.rho_outside_3sd, 3);
                 row.push_back(v);
             }
             ot.rows.push_back(row);

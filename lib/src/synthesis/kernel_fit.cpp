@@ -312,16 +312,17 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
         status = kriging::FitStatus::Degenerate;
     } else {
         const kriging::LooResult loo = kriging::Kriging::build(xc, model, options.kriging).leave_one_out(sample_values);
-        out.loo_mean_z2 = loo.zscore.squaredNorm() / static_cast<double>(loo.zscore.rows());
+        double z2 = loo.zscore.squaredNorm() / static_cast<double>(loo.zscore.rows());
         // A grid shape's sill is only a placeholder (the weights and rho do not depend on its scale): scale
         // nugget and sill so that the prediction variance is calibrated (mean z^2 = 1), within the bound.
-        if (grid_chosen && std::isfinite(out.loo_mean_z2) && out.loo_mean_z2 > 0.0) {
-            const double factor = std::min(out.loo_mean_z2, fo.max_total_sill / model.total_sill());
+        if (grid_chosen && std::isfinite(z2) && z2 > 0.0) {
+            const double factor = std::min(z2, fo.max_total_sill / model.total_sill());
             model.nugget *= factor;
             model.sill *= factor;
-            out.loo_mean_z2 /= factor;
+            z2 /= factor;
             if (model.total_sill() >= fo.max_total_sill * (1.0 - 1e-6)) status = kriging::FitStatus::SillAtBound;
         }
+        out.loo_mean_z2 = z2;
     }
     out.variogram = model;
     out.status = status;

@@ -11,6 +11,7 @@
 // A grid point whose achieved parameter is undefined (e.g. a synthesized jump without a flight phase) is
 // a failure: counted per method, excluded from the statistics, never a NaN.
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,8 @@ struct ConstraintMethodResult {
     VecX reliability;
     bool own_reliability = false;  ///< reliability is the method's own
     /// The largest own rho at the 2P points 3 standard deviations outside the samples' box (from the box's
-    /// centre along each axis, both sides: must be <= 0.5); NaN without an own rho.
-    double rho_outside_3sd = std::numeric_limits<double>::quiet_NaN();
+    /// centre along each axis, both sides: must be <= 0.5); none without an own rho.
+    std::optional<double> rho_outside_3sd;
 };
 
 struct ConstraintResult {
@@ -59,7 +60,7 @@ struct ConstraintResult {
     VecX scale;                    ///< P: per-axis normalization (standard deviation of the samples)
     MatX outside_3sd;              ///< 2P by P: the points 3 standard deviations outside the box (see rho_outside_3sd)
     double rho_outside_3sd = 0.0;  ///< the reference kernel's largest rho there
-    double loo_mean_z2 = 0.0;      ///< the reference kernel's leave-one-out mean z^2 (synthesis::KernelFit)
+    std::optional<double> loo_mean_z2;  ///< the reference kernel's leave-one-out mean z^2 (synthesis::KernelFit)
     std::vector<ConstraintMethodResult> methods;
 };
 

@@ -46,10 +46,10 @@ struct KernelFit {
     /// Variance of the linear-trend residuals the variogram was fitted to (what assess_coefficient_kernel
     /// bounds the sill with); stored with assessed_status, 0 when read from a kernel stored without it.
     double residual_variance = 0.0;
-    /// Leave-one-out check of the prediction variance (not stored; NaN when read or degenerate): the mean
+    /// Leave-one-out check of the prediction variance (not stored; none when read or degenerate): the mean
     /// over samples of z_i^2 = |s_i - s_-i|^2 / V_i (the squared residual summed over the values, since the
     /// sill is the sum of their variances). Near 1 when the variance is calibrated.
-    double loo_mean_z2 = std::numeric_limits<double>::quiet_NaN();
+    std::optional<double> loo_mean_z2;
     /// Samples the variogram was chosen on (not stored; 0 when read): N, or max_fit_samples of them.
     std::size_t fit_samples = 0;
     /// The coefficient kernel's kriging system factorized (kriging::Kriging::covariance_inverse of the

@@ -110,7 +110,7 @@ struct SynthesisReport {
     kriging::KrigingStatus status;  ///< its factorization
     kriging::FitStatus fit_status =
         kriging::FitStatus::Ok;  ///< of the variogram fit (precomputed: KernelFit::assessed_status, else recomputed)
-    double loo_mean_z2 = 0.0;    ///< KernelFit::loo_mean_z2 (NaN when the kernel was precomputed)
+    std::optional<double> loo_mean_z2;  ///< KernelFit::loo_mean_z2 (none when the kernel was precomputed)
     Eigen::VectorXd exponent_loo_mse;  ///< LOO MSE per grid exponent (empty when p was given or the kernel precomputed)
     double timing_exponent = 0.0;      ///< p of the timing kernel (Shared: the coefficient kernel's)
     double precompute_seconds = 0.0;   ///< construction time of the two kriging kernels
