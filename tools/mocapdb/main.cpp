@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     // A command is one short process that allocates, frees and allocates again buffers of tens of MB
     // (loading a stored model: its 22 MB core at 645 samples, the core slices, the kriging matrices).
     // By default glibc hands such buffers back to the system (mmap, heap trimming) and every new one
-    // page-faults all its pages afresh: a third of `synth`'s load (benchmarks/RESULTS.md, #16). Keep
+    // page-faults all its pages afresh: a third of `synth`'s load (benchmarks/RESULTS.md). Keep
     // buffers up to 32 MB (glibc's largest mmap threshold) in the heap and do not trim it, so freed
     // memory is reused; the process ends soon anyway.
     mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);

@@ -31,7 +31,7 @@ void check_same_shape(const Tensor3& reference, const Tensor3& approx) {
 
 // Samples per task of the parallel measurements: enough samples that an approximation computed per
 // call amortizes its set-up (a product with a large matrix, which Eigen packs anew at every call: at
-// 64 samples the packing was a fifth of the product's time, #16), few enough that a failing check
+// 64 samples the packing was a fifth of the product's time), few enough that a failing check
 // stops soon (256 samples: about 0.1 s of joint positions).
 constexpr Eigen::Index kSamplesPerChunk = 256;
 
