@@ -4,10 +4,11 @@
 #include <chrono>
 #include <thread>
 
-#include <httplib.h>
-
 #include "mocapdb/core/error.hpp"
 #include "mocapdb_json/view_json.hpp"
+// After Eigen (through the JSON writers): <resolv.h>, which httplib includes, defines _res, a name
+// Eigen's kernels use.
+#include <httplib.h>
 
 namespace mocapdb::serve {
 
