@@ -83,12 +83,6 @@ std::string reduction_csv(const SetResults& r) {
     return o.str();
 }
 
-std::string ranks_text(const std::vector<long long>& r) {
-    std::string s;
-    for (std::size_t i = 0; i < r.size(); ++i) s += (i ? "x" : "") + std::to_string(r[i]);
-    return s.empty() ? "-" : s;
-}
-
 std::string compression_csv(const SetResults& r) {
     std::ostringstream o;
     o.precision(9);

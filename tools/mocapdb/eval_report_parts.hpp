@@ -9,6 +9,7 @@
 
 #include "mocapdb/eval/evaluation.hpp"
 #include "mocapdb/eval/verdicts.hpp"
+#include "ranks_text.hpp"
 
 namespace mocapdb::cli::eval_report {
 
@@ -47,7 +48,6 @@ std::string caption(const RunInfo& info, const eval::EvalSet& s, const std::stri
 std::string short_caption(const RunInfo& info, const std::string& data, const std::string& parameters);
 std::string svg_note(const RunInfo& info);
 std::string method_label(const eval::MethodSpec& m);
-std::string ranks_text(const std::vector<long long>& r);
 
 std::string loo_csv(const SetResults& r);
 std::string loo_frames_csv(const SetResults& r);

@@ -71,8 +71,7 @@ std::string svg_note(const RunInfo& info) { return info.date + "; " + info.machi
 
 std::string method_label(const eval::MethodSpec& m) {
     if (m.kind != eval::MethodKind::TuckerKriging) return m.name;
-    return m.name + " (" + std::to_string(m.ranks[0]) + "x" + std::to_string(m.ranks[1]) + "x" +
-           std::to_string(m.ranks[2]) + ")";
+    return m.name + " (" + ranks_text(m.ranks) + ")";
 }
 
 }  // namespace mocapdb::cli::eval_report

@@ -22,12 +22,6 @@ std::string megabytes(std::uint64_t bytes) {
     return buffer;
 }
 
-std::string row_ranks_text(const std::vector<long long>& r) {
-    std::string s;
-    for (std::size_t i = 0; i < r.size(); ++i) s += (i ? "x" : "") + std::to_string(r[i]);
-    return s.empty() ? "-" : s;
-}
-
 std::string target_text(double t) {
     if (t == 0.0) return "lossless";
     std::ostringstream s;
@@ -198,10 +192,6 @@ std::string describe_alignment(const std::string& set, const AlignOutcome& o) {
 
 // ---- compress -----------------------------------------------------------------------------------
 
-std::string ranks_text(const tensor::Ranks& r) {
-    return std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
-}
-
 CompressOutcome compress_set(const std::string& db, CompressRequest r) {
     ProgressBar bar("compress");
     r.progress = bar.callback();
@@ -261,7 +251,7 @@ std::string rate_table_text(const std::string& set, const RateOutcome& o) {
     text += line;
     for (const compression::RateRow& row : r.rows) {
         std::snprintf(line, sizeof line, "%-16s %-9s %-10s %10llu %8.2f %9.4f %9.4f %9.4f %11.4f %11.3f %s%s\n",
-                      row.method.c_str(), target_text(row.target_cm).c_str(), row_ranks_text(row.ranks).c_str(),
+                      row.method.c_str(), target_text(row.target_cm).c_str(), ranks_text(row.ranks).c_str(),
                       static_cast<unsigned long long>(row.bytes), row.ratio, row.stats.rmse_cm, row.stats.p99_cm,
                       row.stats.max_cm, row.precompute_s, row.us_per_pose, row.access.c_str(),
                       row.target_met ? "" : "  (target not met)");
@@ -277,7 +267,7 @@ std::string rate_csv(const RateOutcome& o) {
     s << "method,target_cm,target_met,ranks,setting,bytes,ratio,ratio_clips,rmse_cm,mean_cm,max_cm,p99_cm,"
          "precompute_s,us_per_pose,access\n";
     for (const compression::RateRow& row : o.report.rows)
-        s << row.method << ',' << row.target_cm << ',' << (row.target_met ? 1 : 0) << ',' << row_ranks_text(row.ranks)
+        s << row.method << ',' << row.target_cm << ',' << (row.target_met ? 1 : 0) << ',' << ranks_text(row.ranks)
           << ',' << row.setting << ',' << row.bytes << ',' << row.ratio << ','
           << static_cast<double>(o.clip_bytes) / static_cast<double>(row.bytes) << ',' << row.stats.rmse_cm << ','
           << row.stats.mean_cm << ',' << row.stats.max_cm << ',' << row.stats.p99_cm << ',' << row.precompute_s << ','

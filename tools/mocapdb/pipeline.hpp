@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "ranks_text.hpp"
 #include "mocapdb/workflow/clip_import.hpp"
 #include "mocapdb/workflow/reliability_map.hpp"
 #include "mocapdb/workflow/set_alignment.hpp"
@@ -72,7 +73,6 @@ CompressOutcome compress_set(const std::string& db, CompressRequest request);
 /// `--method` names of tensor::TuckerMethod (for CLI11's CheckedTransformer).
 const std::map<std::string, tensor::TuckerMethod>& tucker_methods();
 
-std::string ranks_text(const tensor::Ranks& r);
 std::string describe_compression(const std::string& set, const CompressOutcome& o);
 /// The outcome's fields as members of the open JSON object.
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "../core/byte_stream.hpp"
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb::packing::detail {
@@ -20,13 +21,7 @@ public:
     }
     void u8(std::uint8_t v) { out_.push_back(v); }
     void f32(double v) { raw(static_cast<float>(v)); }
-    void varint(std::uint64_t v) {
-        while (v >= 0x80) {
-            out_.push_back(static_cast<std::uint8_t>(v | 0x80));
-            v >>= 7;
-        }
-        out_.push_back(static_cast<std::uint8_t>(v));
-    }
+    void varint(std::uint64_t v) { byte_stream::put_varint(out_, v); }
     void text(const std::string& s) {
         varint(s.size());
         out_.insert(out_.end(), s.begin(), s.end());
@@ -51,12 +46,7 @@ public:
     std::uint8_t u8() { return raw<std::uint8_t>(); }
     double f32() { return static_cast<double>(raw<float>()); }
     std::uint64_t varint() {
-        std::uint64_t v = 0;
-        for (int shift = 0; shift < 64; shift += 7) {
-            const std::uint8_t b = u8();
-            v |= static_cast<std::uint64_t>(b & 0x7F) << shift;
-            if (!(b & 0x80)) return v;
-        }
+        if (const auto v = byte_stream::read_varint([this] { return u8(); })) return *v;
         throw Error("packed group: malformed varint at byte " + std::to_string(pos_));
     }
     std::string text() {

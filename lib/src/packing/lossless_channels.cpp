@@ -17,6 +17,7 @@
 #include <limits>
 #include <string>
 
+#include "../core/byte_stream.hpp"
 #include "mocapdb/core/error.hpp"
 
 namespace mocapdb::packing {
@@ -65,18 +66,9 @@ double decimal_value(std::int64_t n, int d, double scale) {
     return (static_cast<double>(n) / powers_of_ten()[static_cast<std::size_t>(d)]) * scale;
 }
 
-std::uint64_t zigzag(std::int64_t v) {
-    return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63);
-}
-std::int64_t unzigzag(std::uint64_t u) { return static_cast<std::int64_t>(u >> 1) ^ -static_cast<std::int64_t>(u & 1); }
-
-void put_varint(std::vector<std::uint8_t>& out, std::uint64_t u) {
-    while (u >= 0x80) {
-        out.push_back(static_cast<std::uint8_t>(u | 0x80));
-        u >>= 7;
-    }
-    out.push_back(static_cast<std::uint8_t>(u));
-}
+using byte_stream::put_varint;
+using byte_stream::unzigzag;
+using byte_stream::zigzag;
 
 // Order-p prediction of v[t] from earlier values (0 before the first frame).
 // Wrapping arithmetic: valid data stays far below 2^63, and corrupt data must not be undefined behaviour.
@@ -206,12 +198,7 @@ public:
     VarintReader(const std::uint8_t* data, std::size_t size, const char* section)
         : p_(data), end_(data + size), section_(section) {}
     std::uint64_t varint() {
-        std::uint64_t u = 0;
-        for (int shift = 0; shift < 64; shift += 7) {
-            const std::uint8_t b = byte();
-            u |= static_cast<std::uint64_t>(b & 0x7F) << shift;
-            if ((b & 0x80) == 0) return u;
-        }
+        if (const auto u = byte_stream::read_varint([this] { return byte(); })) return *u;
         throw Error(std::string("lossless channels: malformed varint in the ") + section_ + " section");
     }
     std::uint8_t byte() {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../../core/byte_stream.hpp"
 #include "mocapdb/compression/codecs/encoded_stream.hpp"
 #include "mocapdb/core/error.hpp"
 
@@ -36,9 +37,7 @@ public:
     Bytes& buffer() { return out_; }
 
 private:
-    void put(std::uint64_t v, int n) {
-        for (int i = 0; i < n; ++i) out_.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-    }
+    void put(std::uint64_t v, int n) { byte_stream::put_le(out_, v, n); }
     Bytes out_;
 };
 
@@ -116,8 +115,7 @@ public:
 private:
     std::uint64_t get(int n, const char* what) {
         need(static_cast<std::size_t>(n), what);
-        std::uint64_t v = 0;
-        for (int i = 0; i < n; ++i) v |= static_cast<std::uint64_t>(data_[pos_ + i]) << (8 * i);
+        const std::uint64_t v = byte_stream::get_le(data_ + pos_, n);
         pos_ += static_cast<std::size_t>(n);
         return v;
     }
@@ -136,6 +134,15 @@ inline std::uint64_t checked_count(const ByteReader& r, const std::uint64_t* dim
     }
     if (n > limit) r.fail("dimensions too large");
     return n;
+}
+
+/// Three u32 dimensions (each > 0) into dims; their product, failing with "too large" past limit.
+inline std::uint64_t read_dimensions(ByteReader& r, std::uint64_t (&dims)[3], std::uint64_t limit) {
+    for (auto& d : dims) {
+        d = r.u32("dimension");
+        if (d == 0) r.fail("a dimension is 0");
+    }
+    return checked_count(r, dims, 3, limit);
 }
 
 /// Ends a header: appends the payload size and the CRC-32 of (header so far, payload), then the

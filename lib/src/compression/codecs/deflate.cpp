@@ -122,11 +122,7 @@ Tensor3 decode_float32_deflate(const std::uint8_t* data, std::size_t size) {
     const std::uint8_t shuffle = r.u8("shuffle flag");
     if (shuffle > 1) r.fail("shuffle flag must be 0 or 1, found " + std::to_string(shuffle));
     std::uint64_t dims[3];
-    for (auto& d : dims) {
-        d = r.u32("dimension");
-        if (d == 0) r.fail("a dimension is 0");
-    }
-    const std::uint64_t n = detail::checked_count(r, dims, 3, kMaxZlibInput / 4);
+    const std::uint64_t n = detail::read_dimensions(r, dims, kMaxZlibInput / 4);
     const std::size_t payload = r.expect_payload();
     const Bytes image = inflate_bytes(r.here(), payload, static_cast<std::size_t>(4 * n), kSource);
     Tensor3 out(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]),

@@ -19,28 +19,14 @@ constexpr std::uint64_t kMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doub
 
 double step_of(float eps) { return 2.0 * static_cast<double>(eps) * (1.0 - std::ldexp(1.0, -20)); }
 
-void put_varint(Bytes& out, std::uint64_t v) {
-    while (v >= 0x80) {
-        out.push_back(static_cast<std::uint8_t>(v | 0x80));
-        v >>= 7;
-    }
-    out.push_back(static_cast<std::uint8_t>(v));
-}
+using byte_stream::put_varint;
+using byte_stream::unzigzag;
+using byte_stream::zigzag;
 
 std::uint64_t get_varint(detail::ByteReader& r, const char* what) {
-    std::uint64_t v = 0;
-    for (int shift = 0; shift < 64; shift += 7) {
-        const std::uint8_t b = r.u8(what);
-        v |= static_cast<std::uint64_t>(b & 0x7f) << shift;
-        if ((b & 0x80) == 0) return v;
-    }
+    if (const auto v = byte_stream::read_varint([&] { return r.u8(what); })) return *v;
     r.fail(std::string("varint too long in ") + what);
 }
-
-std::uint64_t zigzag(std::int64_t q) {
-    return (static_cast<std::uint64_t>(q) << 1) ^ static_cast<std::uint64_t>(q >> 63);
-}
-std::int64_t unzigzag(std::uint64_t z) { return static_cast<std::int64_t>(z >> 1) ^ -static_cast<std::int64_t>(z & 1); }
 
 /// Storage index of the k-th code in the given order.
 struct OrderMap {
@@ -159,11 +145,7 @@ Tensor3 decode_residual(const std::uint8_t* data, std::size_t size) {
     const std::uint8_t order = r.u8("order");
     if (order > 1) r.fail("order must be 0 or 1, found " + std::to_string(order));
     std::uint64_t dims[3];
-    for (auto& d : dims) {
-        d = r.u32("dimension");
-        if (d == 0) r.fail("a dimension is 0");
-    }
-    const std::uint64_t count = detail::checked_count(r, dims, 3, kMaxElements);
+    const std::uint64_t count = detail::read_dimensions(r, dims, kMaxElements);
     const std::size_t payload = r.expect_payload();
     const auto D = static_cast<Eigen::Index>(dims[0]), T = static_cast<Eigen::Index>(dims[1]),
                N = static_cast<Eigen::Index>(dims[2]);

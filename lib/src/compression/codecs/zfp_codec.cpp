@@ -107,11 +107,7 @@ Tensor3 zfp_decode(const std::uint8_t* data, std::size_t size) {
     const std::uint8_t flags = r.u8("flags");
     if (flags > 1) r.fail("unknown flags " + std::to_string(flags));
     std::uint64_t dims[3];
-    for (auto& d : dims) {
-        d = r.u32("dimension");
-        if (d == 0) r.fail("a dimension is 0");
-    }
-    detail::checked_count(r, dims, 3, kMaxElements);
+    detail::read_dimensions(r, dims, kMaxElements);
     const std::uint64_t blocks = ((dims[0] + 3) / 4) * ((dims[1] + 3) / 4) * ((dims[2] + 3) / 4);
     const std::size_t tol_at = r.position();
     const double tolerance = r.f64("tolerance");
