@@ -81,8 +81,8 @@ inline double max_relative_difference(const VecX& a, const VecX& b) {
 
 /// `actual` has the value and gradient of `oracle` to `tolerance` (relative).
 inline void check_same_likelihood(const LikelihoodValue& actual, const LikelihoodValue& oracle, double tolerance = 1e-8) {
-    REQUIRE(actual.ok);
-    REQUIRE(oracle.ok);
+    REQUIRE(actual.ok());
+    REQUIRE(oracle.ok());
     const double dv = relative_difference(actual.log_likelihood, oracle.log_likelihood);
     const double dg = max_relative_difference(actual.gradient, oracle.gradient);
     INFO("value rel diff " << dv << ", gradient max rel diff " << dg << " (log p = " << actual.log_likelihood << ")");

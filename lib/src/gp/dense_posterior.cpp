@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "mocapdb/core/error.hpp"
 #include "gp_internal.hpp"
 #include "hgp_posteriors.hpp"
 
@@ -124,10 +125,11 @@ LikelihoodValue dense_likelihood(const HgpModel& model, const HgpData& data, boo
     const double n = static_cast<double>(l.y.size());
     out.log_likelihood = -0.5 * l.y.dot(alpha) - 0.5 * log_det - 0.5 * n * kLog2Pi;
     if (!std::isfinite(out.log_likelihood)) {
+        out.status = LikelihoodStatus::NonFinite;
         out.message = "non-finite dense log likelihood";
         return out;
     }
-    out.ok = true;
+    out.status = LikelihoodStatus::Ok;
     if (!with_gradient) return out;
     // W = α αᵀ − Σ⁻¹; ∂ log p/∂θ = ½ tr(W ∂Σ/∂θ) = ½ Σ_ij W_ij ∂Σ_ij.
     MatX w = alpha * alpha.transpose() - llt.solve(MatX::Identity(sigma.rows(), sigma.cols()));
@@ -182,11 +184,8 @@ GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, c
     Eigen::LLT<MatX> llt(sigma);
     GaussianPrediction p;
     p.noise = model.noise_variance();
-    if (llt.info() != Eigen::Success) {
-        p.mean = MatX::Constant(d, ts, std::nan(""));
-        p.variance = p.mean;
-        return p;
-    }
+    if (llt.info() != Eigen::Success)
+        throw NumericalError("GP prediction: the dense joint covariance is not positive definite for these parameters");
     const VecX mean = cross * llt.solve(l.y);
     const MatX v = llt.matrixL().solve(cross.transpose());
     const VecX var = prior.diagonal() - v.colwise().squaredNorm().transpose();

@@ -5,6 +5,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "mocapdb/core/error.hpp"
 #include "gp_internal.hpp"
 #include "hgp_posteriors.hpp"
 
@@ -55,14 +56,6 @@ bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, co
         g.cov.diagonal() -= c.colwise().squaredNorm().transpose();
     }
     return g.mean.allFinite();
-}
-
-GaussianPrediction nan_prediction(Index d, Index ts, const VecX& noise) {
-    GaussianPrediction p;
-    p.mean = MatX::Constant(d, ts, std::nan(""));
-    p.variance = p.mean;
-    p.noise = noise;
-    return p;
 }
 
 }  // namespace
@@ -217,7 +210,8 @@ bool condition_on_own_frames(GridGaussian& g, const HgpModel& model, const HgpDa
 /// Mean and latent variance of a grid Gaussian at the grid's query times.
 GaussianPrediction grid_prediction(const GridGaussian& g, const Grid& grid, Index d, const VecX& noise) {
     const Index ts = static_cast<Index>(grid.query.size());
-    if (!g.ok) return nan_prediction(d, ts, noise);
+    if (!g.ok)
+        throw NumericalError("GP prediction: a posterior covariance is not positive definite for these parameters");
     GaussianPrediction p;
     p.mean.resize(d, ts);
     p.variance.resize(d, ts);

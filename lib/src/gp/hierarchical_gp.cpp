@@ -14,6 +14,15 @@
 
 namespace mocapdb::gp {
 
+const char* to_string(LikelihoodStatus status) {
+    switch (status) {
+        case LikelihoodStatus::Ok: return "ok";
+        case LikelihoodStatus::NotPositiveDefinite: return "not_positive_definite";
+        case LikelihoodStatus::NonFinite: return "non_finite";
+    }
+    return "unknown";
+}
+
 namespace {
 
 using Index = Eigen::Index;
@@ -94,7 +103,7 @@ LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool 
     // Auto, every child complete.
     if (detail::low_rank_is_cheaper(model, data, levels)) {
         LikelihoodValue v = detail::low_rank_likelihood(model, data, levels, with_gradient, threads);
-        if (v.ok) return v;
+        if (v.ok()) return v;
         // P (the κ and noise blocks) may be singular while the full covariance is not.
     }
     return detail::structured_likelihood(model, data, with_gradient, threads);
@@ -228,7 +237,9 @@ MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_s
         MatX s = lmc_covariance(model.child, data.times, data.times);
         s.diagonal() += flat_noise(model.noise_variance(), t) / rd;
         Eigen::LLT<MatX> llt(s);
-        if (llt.info() != Eigen::Success) return MatX::Constant(d, t_star.size(), std::nan(""));
+        if (llt.info() != Eigen::Success)
+            throw NumericalError(
+                "GP trend: the children's mean covariance is not positive definite for these parameters");
         return unvec_output_major(lmc_covariance(model.child, t_star, data.times) * llt.solve(mean), d, t_star.size());
     }
     const DenseLayout l = dense_layout(data);
@@ -242,7 +253,8 @@ MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_s
     MatX cross(d * t_star.size(), n);
     for (Index j = 0; j < n; ++j) cross.col(j) = ks.col(l.flat[j]);
     Eigen::LLT<MatX> llt(s);
-    if (llt.info() != Eigen::Success) return MatX::Constant(d, t_star.size(), std::nan(""));
+    if (llt.info() != Eigen::Success)
+        throw NumericalError("GP trend: the children's covariance is not positive definite for these parameters");
     return unvec_output_major(cross * llt.solve(l.y), d, t_star.size());
 }
 
@@ -277,8 +289,6 @@ std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, co
             mean = vec_output_major(synthesis_trend(model, data, t_star));
         }
     }
-    if (!mean.allFinite())
-        throw InvalidArgument("sample_children: the trend could not be computed (covariance not positive definite)");
     if (options.add_noise) cov.diagonal() += flat_noise(model.noise_variance(), ts);
     std::mt19937_64 rng(options.seed);
     std::vector<MatX> out;

@@ -43,7 +43,7 @@ public:
         }
         model_.set_parameters(x);
         const LikelihoodValue v = log_likelihood(model_, data_, true, options_.path, options_.threads);
-        if (!v.ok || !v.gradient.allFinite()) {
+        if (!v.ok() || !v.gradient.allFinite()) {
             last_message = v.message.empty() ? "non-finite gradient" : v.message;
             grad = VecX::Zero(x.size());
             return std::numeric_limits<double>::infinity();
@@ -220,7 +220,7 @@ HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
             for (auto& term : trial.parent.terms) term.log_lengthscale += std::log(fp);
             for (auto& term : trial.group.terms) term.log_lengthscale += std::log(fp);
             const LikelihoodValue v = log_likelihood(trial, data, false);
-            if (v.ok && v.log_likelihood > best) {
+            if (v.ok() && v.log_likelihood > best) {
                 best = v.log_likelihood;
                 m = trial;
             }

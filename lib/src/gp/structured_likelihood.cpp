@@ -53,7 +53,7 @@ void add_layer_gradients(const HgpModel& model, const MatX& w, const VecX& times
 
 /// One level's share of the likelihood and of the gradient.
 struct LevelResult {
-    bool ok = false;
+    LikelihoodStatus status = LikelihoodStatus::NotPositiveDefinite;  ///< until computed
     double value = 0.0;
     VecX gradient;
     std::string message;
@@ -126,8 +126,8 @@ LevelResult coupled_classes(const HgpModel& model, const HgpData& data, const st
     const VecX fb = f * b;
     quad -= b.dot(fb);
     res.value = -0.5 * (quad + sum_logdet + logdet_j);
-    res.ok = std::isfinite(res.value);
-    if (!res.ok) {
+    res.status = std::isfinite(res.value) ? LikelihoodStatus::Ok : LikelihoodStatus::NonFinite;
+    if (res.status != LikelihoodStatus::Ok) {
         res.message = "non-finite log likelihood of the coupled size classes";
         return res;
     }
@@ -158,7 +158,8 @@ LikelihoodValue combine(std::vector<LevelResult>& parts, LikelihoodPath path, do
     out.log_likelihood = constant;
     if (with_gradient) out.gradient = VecX::Zero(parameters);
     for (const auto& p : parts) {
-        if (!p.ok) {
+        if (p.status != LikelihoodStatus::Ok) {
+            out.status = p.status;
             out.message = p.message;
             out.gradient.resize(0);
             return out;
@@ -167,11 +168,12 @@ LikelihoodValue combine(std::vector<LevelResult>& parts, LikelihoodPath path, do
         if (with_gradient) out.gradient += p.gradient;
     }
     if (!std::isfinite(out.log_likelihood)) {
+        out.status = LikelihoodStatus::NonFinite;
         out.message = "non-finite log likelihood";
         out.gradient.resize(0);
         return out;
     }
-    out.ok = true;
+    out.status = LikelihoodStatus::Ok;
     return out;
 }
 
@@ -270,10 +272,10 @@ LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data
             const double quad = p.squaredNorm();
             x.triangularView<Eigen::Lower>().transpose().solveInPlace(p);
             res.value = -0.5 * (quad + lev.count * logdet);
-            res.ok = std::isfinite(res.value);
-            if (!res.ok)
+            res.status = std::isfinite(res.value) ? LikelihoodStatus::Ok : LikelihoodStatus::NonFinite;
+            if (res.status != LikelihoodStatus::Ok)
                 res.message = "non-finite log likelihood of " + level_name(lev.group_weight, lev.parent_weight);
-            if (!res.ok || !with_gradient) return;
+            if (res.status != LikelihoodStatus::Ok || !with_gradient) return;
             invert_from_factor_in_place(x);
             MatX& w = x;  // W = P Pᵀ − count·X⁻¹
             w *= -lev.count;
@@ -409,9 +411,9 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
             }
             const MatX p = fx.solve(lev.e);
             res.value = -0.5 * (lev.e.cwiseProduct(p).sum() + lev.count * fx.log_det);
-            res.ok = std::isfinite(res.value);
-            if (!res.ok) res.message = "non-finite log likelihood of " + lev.name;
-            if (!res.ok || !with_gradient) return;
+            res.status = std::isfinite(res.value) ? LikelihoodStatus::Ok : LikelihoodStatus::NonFinite;
+            if (res.status != LikelihoodStatus::Ok) res.message = "non-finite log likelihood of " + lev.name;
+            if (res.status != LikelihoodStatus::Ok || !with_gradient) return;
             // W = P Pᵀ − count·X⁻¹ = P Pᵀ − count·P_X⁻¹ + count·V K⁻¹ Vᵀ (block_low_rank.hpp).
             const Index cols = p.cols(), m = fx.v.cols(), rows = lev.e.rows();
             StructuredSymmetric g;

@@ -1,6 +1,6 @@
 #pragma once
-// Errors thrown at the library's I/O and argument boundaries. Numerical outcomes that are not bugs
-// (ill-conditioning, non-convergence) are reported as status values instead, never thrown.
+// Errors the library throws when it cannot produce a result (docs/status.md). Results that exist but are
+// not exactly what was asked (a jittered factorization, a fit stopped at its limit) carry a status instead.
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -35,6 +35,13 @@ private:
     std::size_t line_;
     std::size_t column_;
     std::string message_;
+};
+
+/// A computation the data or parameters make impossible: a covariance that is not positive definite
+/// where no regularization applies (the result does not exist; nothing was wrong with the call itself).
+class NumericalError : public Error {
+public:
+    using Error::Error;
 };
 
 /// A file could not be opened, read or written (the operating system's reason is in the message).

@@ -91,11 +91,19 @@ enum class LikelihoodPath {
                  ///< low rank (Woodbury); the same preconditions as Structured
 };
 
+enum class LikelihoodStatus {
+    Ok,
+    NotPositiveDefinite,  ///< a covariance could not be factorized (message: which)
+    NonFinite,            ///< the value came out infinite or NaN (message: of which part)
+};
+const char* to_string(LikelihoodStatus status);
+
 struct LikelihoodValue {
-    bool ok = false;  ///< false: a covariance was not positive definite (see message)
+    LikelihoodStatus status = LikelihoodStatus::NotPositiveDefinite;  ///< until computed
     double log_likelihood = 0.0;
-    VecX gradient;  ///< ∂ log p / ∂ parameters (HgpModel::parameters order); empty unless asked
-    std::string message;
+    VecX gradient;        ///< ∂ log p / ∂ parameters (HgpModel::parameters order); empty unless asked
+    std::string message;  ///< what failed, when status is not Ok
+    bool ok() const noexcept { return status == LikelihoodStatus::Ok; }
     LikelihoodPath path = LikelihoodPath::Auto;  ///< the path actually used
 };
 
@@ -104,9 +112,8 @@ struct LikelihoodValue {
 LikelihoodValue log_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient,
                                LikelihoodPath path = LikelihoodPath::Auto, int threads = 2);
 
-/// Gaussian marginals of a D-output prediction at T* times. When a covariance needed for the prediction
-/// is not positive definite (a numerical outcome, not an argument error) mean and variance are NaN:
-/// check mean.allFinite().
+/// Gaussian marginals of a D-output prediction at T* times. NumericalError when a covariance the
+/// prediction needs is not positive definite (no prediction exists for these parameters).
 struct GaussianPrediction {
     MatX mean;      ///< D by T*
     MatX variance;  ///< D by T*, of the latent function (without observation noise)
