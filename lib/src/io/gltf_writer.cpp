@@ -88,7 +88,7 @@ bool translates(const Joint& j) {
 bool rotates(const Joint& j) {
     for (ChannelType c : j.channels)
         if (is_rotation(c)) return true;
-    return j.axis.coeffs() != Quat::Identity().coeffs();
+    return false;  // no rotation channel: the local rotation is the identity (an ASF axis C · I · C⁻¹ too)
 }
 
 tinygltf::Model gltf_model(const Clip& clip) {
@@ -167,7 +167,7 @@ tinygltf::Model gltf_model(const Clip& clip) {
     for (std::size_t k = 0; k < sk.size(); ++k) {
         const Joint& j = sk.joint(k);
         if (j.end_site) continue;
-        if (!j.channels.empty() && rotates(j)) {
+        if (rotates(j)) {
             std::vector<float> q(frames * 4);
             Quat previous = Quat::Identity();
             for (std::size_t f = 0; f < frames; ++f) {

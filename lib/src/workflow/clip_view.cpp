@@ -21,25 +21,39 @@ RigView rig_view(const Skeleton& skeleton) {
     return rig;
 }
 
+namespace {
+
+/// Frames [begin, end) of the output, metadata and room for the positions (no FK yet).
+ClipPositions empty_positions(const Clip& clip, std::size_t begin, std::size_t end) {
+    ClipPositions out;
+    out.rig = rig_view(*clip.skeleton);
+    out.frame_rate = clip.frame_rate;
+    out.begin = begin;
+    out.frames = end - begin;
+    out.positions.resize(out.frames * clip.skeleton->size() * 3);
+    return out;
+}
+
+/// Frame `row` of `p` from an FK pose.
+void store_pose(ClipPositions& p, std::size_t row, const GlobalPose& pose) {
+    float* dst = p.positions.data() + row * pose.positions.size() * 3;
+    for (std::size_t j = 0; j < pose.positions.size(); ++j)
+        for (int k = 0; k < 3; ++k) dst[3 * j + static_cast<std::size_t>(k)] = static_cast<float>(pose.positions[j](k));
+}
+
+}  // namespace
+
 ClipPositions clip_positions(const Clip& clip, std::size_t begin, std::size_t end) {
     const std::size_t frames = clip.frame_count();
     if (begin >= frames)
         throw InvalidArgument("first frame " + std::to_string(begin) + " is beyond the clip's " +
                               std::to_string(frames) + " frames");
     end = std::min(end, frames);
-    ClipPositions out;
-    out.rig = rig_view(*clip.skeleton);
-    out.frame_rate = clip.frame_rate;
-    out.begin = begin;
-    out.frames = end - begin;
-    const std::size_t joints = clip.skeleton->size();
-    out.positions.resize(out.frames * joints * 3);
+    ClipPositions out = empty_positions(clip, begin, end);
     GlobalPose pose;
     for (std::size_t f = begin; f < end; ++f) {
         forward_kinematics(*clip.skeleton, clip.frame(f), pose);
-        float* dst = out.positions.data() + (f - begin) * joints * 3;
-        for (std::size_t j = 0; j < joints; ++j)
-            for (int k = 0; k < 3; ++k) dst[3 * j + k] = static_cast<float>(pose.positions[j](k));
+        store_pose(out, f - begin, pose);
     }
     return out;
 }
@@ -48,10 +62,10 @@ namespace {
 
 PackedComparison compare(const Clip& source, const Clip& packed, std::size_t begin, std::size_t end) {
     PackedComparison out;
-    out.source = clip_positions(source, begin, end);
-    out.packed = clip_positions(packed, 0, packed.frame_count());
-    out.packed.begin = begin;
-    // Distances in double from the FK poses, not from the float32 copies shown.
+    out.source = empty_positions(source, begin, end);
+    out.packed = empty_positions(packed, begin, end);
+    // One FK pass per clip gives the positions shown and the distances (in double, not from the
+    // float32 copies).
     const Skeleton& ss = *source.skeleton;
     const Skeleton& ps = *packed.skeleton;
     const std::size_t joints = ss.size();
@@ -61,6 +75,8 @@ PackedComparison compare(const Clip& source, const Clip& packed, std::size_t beg
     for (std::size_t f = begin; f < end; ++f) {
         forward_kinematics(ss, source.frame(f), a);
         forward_kinematics(ps, packed.frame(f - begin), b);
+        store_pose(out.source, f - begin, a);
+        store_pose(out.packed, f - begin, b);
         for (std::size_t j = 0; j < joints; ++j) {
             const double d = (a.positions[j] - b.positions[j]).norm();
             out.errors[(f - begin) * joints + j] = static_cast<float>(d);
