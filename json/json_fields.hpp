@@ -15,11 +15,7 @@
 
 namespace mocapdb::json::fields {
 
-inline void optional_number(JsonWriter& j, const char* key, const std::optional<double>& v) {
-    j.key(key);
-    if (v) j.value(*v);
-    else j.null();
-}
+inline void optional_number(JsonWriter& j, const char* key, const std::optional<double>& v) { j.key(key).value(v); }
 
 inline void strings(JsonWriter& j, const char* key, const std::vector<std::string>& v) {
     j.key(key).begin_array();

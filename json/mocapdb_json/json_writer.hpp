@@ -1,9 +1,11 @@
 #pragma once
 // A JSON document built in the order written (keys keep that order) and serialized by nlohmann::json
-// (Debian nlohmann-json3-dev); the CLI prints it, Python turns tree() into a dict. Numbers round-trip; a whole double below 2^53 is written
-// without a fraction ("120", as before); non-finite numbers are written as null (JSON has no NaN) so the
-// output always parses; strings that are not valid UTF-8 get U+FFFD for the bad bytes.
+// (Debian nlohmann-json3-dev); the CLI prints it, Python turns tree() into a dict. Numbers round-trip; a
+// whole double below 2^53 is written without a fraction ("120", as before); non-finite numbers and an
+// empty std::optional are written as null (JSON has no NaN) so the output always parses; strings that
+// are not valid UTF-8 get U+FFFD for the bad bytes.
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -30,6 +32,7 @@ public:
     JsonWriter& value(std::size_t number) { return value(static_cast<long long>(number)); }
     JsonWriter& value(int number) { return value(static_cast<long long>(number)); }
     JsonWriter& value(bool flag);
+    JsonWriter& value(const std::optional<double>& number) { return number ? value(*number) : null(); }
     JsonWriter& null();
 
     /// The document, compact, followed by a newline.
