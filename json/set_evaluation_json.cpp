@@ -1,6 +1,6 @@
 #include "mocapdb_json/set_evaluation_json.hpp"
 
-#include <cmath>
+#include <optional>
 
 namespace mocapdb::json {
 namespace {
@@ -64,8 +64,7 @@ void write_set_evaluation(JsonWriter& j, const eval::SetEvaluation& e) {
     j.key("parameters").begin_array();
     for (std::size_t p = 0; p < e.parameter_names.size(); ++p) {
         j.begin_object().key("name").value(e.parameter_names[p]).key("unit").value(e.parameter_units[p]);
-        const auto k = static_cast<Eigen::Index>(p);
-        j.key("hit_tolerance").value(k < e.hit_tolerance.size() ? e.hit_tolerance(k) : std::nan(""));
+        j.key("hit_tolerance").value(p < e.hit_tolerance.size() ? e.hit_tolerance[p] : std::nullopt);
         j.end_object();
     }
     j.end_array();

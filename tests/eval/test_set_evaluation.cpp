@@ -82,27 +82,33 @@ TEST_CASE("set evaluation: a clip imported twice is found and left out with its 
     REQUIRE(e.methods.size() == 3);
     CHECK(e.parameters_measured);
     REQUIRE(e.hit_tolerance.size() == 2);
+    for (const std::optional<double>& t : e.hit_tolerance) CHECK(t.value() > 0.0);  // both parameters vary
     for (const MethodEvaluation& m : e.methods) {
         INFO(m.spec.name);
         CHECK(m.loo.sample_pose_mean_cm.size() == 5);
         CHECK(m.loo.pose_mean_cm > 0.0);
         CHECK(m.loo.pose_mean_cm < 30.0);
-        CHECK(m.hit_rate >= 0.0);
-        CHECK(m.hit_rate <= 1.0);
-        CHECK(m.loo.measured.rows() == 5);
-        CHECK(std::isfinite(m.loo.measured.sum()));
+        REQUIRE(m.hit_rate);
+        CHECK(*m.hit_rate >= 0.0);
+        CHECK(*m.hit_rate <= 1.0);
+        CHECK(*m.hit_rate == Approx(m.hits.mean()));
+        REQUIRE(m.loo.measured.size() == 5);
+        for (const auto& fold : m.loo.measured) {
+            REQUIRE(fold.size() == 2);
+            for (const std::optional<double>& v : fold) CHECK((v && std::isfinite(*v)));  // walks: speed, turn
+        }
     }
     // Kriging has a reliability (here 0 at every left-out walk of this small set: Pearson is then
-    // undefined, NaN); RBF and the trend have none.
+    // undefined, empty); RBF and the trend have none.
     const VecX& rho = e.methods[0].loo.reliability;
     REQUIRE(rho.size() == 5);
     CHECK(rho.minCoeff() >= 0.0);
     CHECK(rho.maxCoeff() <= 1.0);
-    const double r = e.methods[0].rho_pose_pearson;
-    CHECK((std::isnan(r) ? rho.maxCoeff() == rho.minCoeff() : std::abs(r) <= 1.0));
+    const std::optional<double> r = e.methods[0].rho_pose_pearson;
+    CHECK((r ? std::abs(*r) <= 1.0 : rho.maxCoeff() == rho.minCoeff()));
     CHECK(e.methods[1].loo.reliability.size() == 0);
-    CHECK(std::isnan(e.methods[1].rho_pose_pearson));
-    CHECK(std::isnan(e.methods[2].rho_pose_pearson));
+    CHECK_FALSE(e.methods[1].rho_pose_pearson.has_value());
+    CHECK_FALSE(e.methods[2].rho_pose_pearson.has_value());
     // The chosen column is, fold by fold, the picked method's own outer error.
     const ChosenEvaluation& c = e.chosen;
     REQUIRE(c.picks.size() == 5);
@@ -112,8 +118,28 @@ TEST_CASE("set evaluation: a clip imported twice is found and left out with its 
     for (Eigen::Index k = 0; k < 5; ++k)
         CHECK(c.pose_mean_cm(k) == e.methods[c.picks[static_cast<std::size_t>(k)]].loo.sample_pose_mean_cm(k));
     for (const MethodEvaluation& m : e.methods) CHECK(m.loo.pose_mean_cm >= e.methods[c.best].loo.pose_mean_cm);
-    CHECK(std::isfinite(c.diff_se_cm));
+    REQUIRE(c.diff_se_cm);
+    CHECK(std::isfinite(*c.diff_se_cm));
+    REQUIRE(c.hit_rate);
+    CHECK(*c.hit_rate >= 0.0);
+    CHECK(*c.hit_rate <= 1.0);
     CHECK(e.not_evaluated.size() == 1);  // MOHGP (evaluate_set: no stored model to speak of)
+
+    // One fold: a correlation over folds and the paired standard error do not exist; hit rates do.
+    SetEvaluationOptions one;
+    one.max_folds = 1;
+    one.inner_folds = 3;
+    const SetEvaluation single = evaluate_set(set, set_methods({0, 0, 0}), one);
+    REQUIRE(single.folds.size() == 1);
+    CHECK(single.methods[0].loo.reliability.size() == 1);  // kriging still has its rho
+    for (const MethodEvaluation& m : single.methods) {
+        INFO(m.spec.name);
+        CHECK_FALSE(m.rho_pose_pearson.has_value());
+        REQUIRE(m.hit_rate);
+        CHECK((*m.hit_rate == 0.0 || *m.hit_rate == 1.0));
+    }
+    CHECK_FALSE(single.chosen.diff_se_cm.has_value());
+    CHECK(single.chosen.hit_rate.has_value());
 
     SetEvaluationOptions bad;
     bad.max_folds = 0;

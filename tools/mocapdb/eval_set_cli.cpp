@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <ostream>
 
 #include "json_writer.hpp"
@@ -15,17 +16,17 @@
 namespace mocapdb::cli {
 namespace {
 
-std::string cell(double v, const char* format) {
-    if (!std::isfinite(v)) return "n/a";
+std::string cell(const std::optional<double>& v, const char* format) {
+    if (!v) return "n/a";
     char s[32];
-    std::snprintf(s, sizeof s, format, v);
+    std::snprintf(s, sizeof s, format, *v);
     return s;
 }
 
 // "hit/folds", or n/a without measured parameters.
-std::string hits(double rate, std::size_t folds) {
-    if (!std::isfinite(rate)) return "n/a";
-    return std::to_string(std::lround(rate * static_cast<double>(folds))) + "/" + std::to_string(folds);
+std::string hits(const std::optional<double>& rate, std::size_t folds) {
+    if (!rate) return "n/a";
+    return std::to_string(std::lround(*rate * static_cast<double>(folds))) + "/" + std::to_string(folds);
 }
 
 void print_table(const eval::SetEvaluation& e) {
@@ -52,14 +53,15 @@ void print_table(const eval::SetEvaluation& e) {
     const eval::ChosenEvaluation& c = e.chosen;
     std::printf("%-10s %10.3f %10.2f %10.3f %10.2f %8s %8s %7s\n", "chosen", c.pose_mean, c.pose_max, c.motion_mean,
                 c.motion_max, hits(c.hit_rate, e.folds.size()).c_str(), "", "");
-    std::printf("chosen - best single (%s): %+.3f cm, paired standard error %.3f cm over %zu folds\n",
-                e.methods[c.best].spec.name.c_str(), c.diff_mean_cm, c.diff_se_cm, e.folds.size());
+    std::printf("chosen - best single (%s): %+.3f cm, paired standard error %s cm over %zu folds\n",
+                e.methods[c.best].spec.name.c_str(), c.diff_mean_cm, cell(c.diff_se_cm, "%.3f").c_str(),
+                e.folds.size());
     std::printf("pose: mean joint error (cm) with the root's floor position and heading removed; motion: with them\n");
     if (e.parameters_measured) {
         std::string tol;
         for (std::size_t p = 0; p < e.parameter_names.size(); ++p)
-            tol += (tol.empty() ? "" : ", ") + e.parameter_names[p] + " " +
-                   cell(e.hit_tolerance(static_cast<Eigen::Index>(p)), "%.3g") + " " + e.parameter_units[p];
+            tol += (tol.empty() ? "" : ", ") + e.parameter_names[p] + " " + cell(e.hit_tolerance[p], "%.3g") + " " +
+                   e.parameter_units[p];
         std::printf("hits: every parameter measured back on the synthesized clip within %.2f x its SD (%s)\n",
                     e.hit_share, tol.c_str());
     } else {

@@ -9,20 +9,17 @@
 namespace mocapdb::eval {
 namespace {
 
-// The extractors' values on the whole synthesized clip; NaN where a quantity is undefined (a jump
+// The extractors' values on the whole synthesized clip; empty where a quantity is undefined (a jump
 // without a flight, a gait measure without a cycle): a miss, not an error.
-VecX measure_back(const Clip& clip, const std::vector<ParameterExtractor>& extractors) {
-    VecX out(0);
+std::vector<std::optional<double>> measure_back(const Clip& clip, const std::vector<ParameterExtractor>& extractors) {
+    std::vector<std::optional<double>> out;
     for (const ParameterExtractor& e : extractors) {
-        VecX v;
         try {
-            v = extract_parameters(clip, 0, clip.frame_count(), {e});
+            const VecX v = extract_parameters(clip, 0, clip.frame_count(), {e});
+            out.insert(out.end(), v.data(), v.data() + v.size());
         } catch (const InvalidArgument&) {
-            v = VecX::Constant(static_cast<Eigen::Index>(e.names().size()), std::nan(""));
+            out.resize(out.size() + e.names().size());
         }
-        VecX joined(out.size() + v.size());
-        joined << out, v;
-        out = std::move(joined);
     }
     return out;
 }
@@ -124,11 +121,12 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
         r.frame_pose_mean_cm = VecX::Zero(frames);
         r.duration_error_s = VecX::Zero(m);
         if (options.foot_skating) r.skating_cm_per_s = VecX::Zero(m);
-        if (measure) r.measured = MatX::Constant(m, set.set.parameters.cols(), std::nan(""));
+        if (measure) r.measured.resize(static_cast<std::size_t>(m));
         out.methods.push_back(std::move(r));
     }
     if (options.foot_skating) out.original_skating_cm_per_s = VecX::Zero(m);
     SynthesizedMotion motion;
+    std::vector<Eigen::Index> rho_folds(methods.size(), 0);  // per method: folds that gave a rho
     for (Eigen::Index k = 0; k < m; ++k) {
         const Eigen::Index i = out.samples[static_cast<std::size_t>(k)];
         const std::vector<Eigen::Index> keep = loo_training(n, i, options.twins);
@@ -170,13 +168,14 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
             if (options.foot_skating || measure) {
                 const Clip clip = motion_clip(motion, set.skeleton, set.frame_rate);
                 if (options.foot_skating) r.skating_cm_per_s(k) = foot_skating(clip).cm_per_s;
-                if (measure) r.measured.row(k) = measure_back(clip, set.extractors).transpose();
+                if (measure) r.measured[static_cast<std::size_t>(k)] = measure_back(clip, set.extractors);
             }
             if (options.reliability) {
                 const VecX rho = synth->reliability_batch(c.transpose());
                 if (rho.size() == 1) {
-                    if (r.reliability.size() == 0) r.reliability = VecX::Constant(m, std::nan(""));
+                    if (r.reliability.size() == 0) r.reliability = VecX::Zero(m);
                     r.reliability(k) = rho(0);
+                    ++rho_folds[q];
                 }
             }
         }
@@ -184,7 +183,9 @@ LooResult leave_one_out(const EvalSet& set, const std::vector<MethodSpec>& metho
             progress({static_cast<std::uint64_t>(k + 1), static_cast<std::uint64_t>(m),
                       set.labels[static_cast<std::size_t>(i)]});
     }
-    for (LooMethodResult& r : out.methods) {
+    for (std::size_t q = 0; q < methods.size(); ++q) {
+        LooMethodResult& r = out.methods[q];
+        if (rho_folds[q] != m) r.reliability.resize(0);  // a rho for every fold or none
         r.mean_cm = r.sample_mean_cm.mean();
         r.max_cm = r.sample_max_cm.maxCoeff();
         r.pose_mean_cm = r.sample_pose_mean_cm.mean();

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/eval/stored_eval_set.hpp"
@@ -12,16 +11,14 @@
 namespace mocapdb::eval {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Per parameter: hit_share x the samples' SD; NaN for a constant parameter (not checked).
-VecX hit_tolerances(const MatX& parameters, double share) {
-    VecX out(parameters.cols());
+// Per parameter: hit_share x the samples' SD; empty for a constant parameter (not checked).
+std::vector<std::optional<double>> hit_tolerances(const MatX& parameters, double share) {
+    std::vector<std::optional<double>> out(static_cast<std::size_t>(parameters.cols()));
     for (Eigen::Index p = 0; p < parameters.cols(); ++p) {
         const VecX c = parameters.col(p).array() - parameters.col(p).mean();
         const double sd =
             parameters.rows() > 1 ? std::sqrt(c.squaredNorm() / static_cast<double>(parameters.rows() - 1)) : 0.0;
-        out(p) = sd > 0.0 ? share * sd : kNaN;
+        if (sd > 0.0) out[static_cast<std::size_t>(p)] = share * sd;
     }
     return out;
 }
@@ -37,23 +34,28 @@ double parameter_distance(double a, double b, double period) {
 }
 
 // 1 when every checked parameter measured back within its tolerance, else 0 (undefined = miss).
-VecX fold_hits(const MatX& measured, const MatX& requested, const VecX& tolerance, const VecX& periods) {
-    VecX hits(measured.rows());
-    for (Eigen::Index k = 0; k < measured.rows(); ++k) {
+VecX fold_hits(const std::vector<std::vector<std::optional<double>>>& measured, const MatX& requested,
+               const std::vector<std::optional<double>>& tolerance, const VecX& periods) {
+    const auto params = static_cast<Eigen::Index>(tolerance.size());
+    VecX hits(static_cast<Eigen::Index>(measured.size()));
+    for (Eigen::Index k = 0; k < hits.size(); ++k) {
+        const std::vector<std::optional<double>>& values = measured[static_cast<std::size_t>(k)];
         bool hit = true;
-        for (Eigen::Index p = 0; p < measured.cols(); ++p) {
-            if (std::isnan(tolerance(p))) continue;
-            const double period = periods.size() == measured.cols() ? periods(p) : 0.0;
-            const double d = parameter_distance(measured(k, p), requested(k, p), period);
-            if (!(d <= tolerance(p))) hit = false;  // NaN measured: a miss
+        for (Eigen::Index p = 0; p < params; ++p) {
+            const auto at = static_cast<std::size_t>(p);
+            const std::optional<double>& tol = tolerance[at];
+            if (!tol) continue;
+            const std::optional<double> v = at < values.size() ? values[at] : std::nullopt;
+            const double period = periods.size() == params ? periods(p) : 0.0;
+            if (!v || !(parameter_distance(*v, requested(k, p), period) <= *tol)) hit = false;
         }
         hits(k) = hit ? 1.0 : 0.0;
     }
     return hits;
 }
 
-double standard_error(const VecX& d) {
-    if (d.size() < 2) return kNaN;
+std::optional<double> standard_error(const VecX& d) {
+    if (d.size() < 2) return std::nullopt;
     const VecX c = d.array() - d.mean();
     return std::sqrt(c.squaredNorm() / static_cast<double>(d.size() - 1)) / std::sqrt(static_cast<double>(d.size()));
 }
@@ -175,13 +177,12 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
         MethodEvaluation e;
         e.spec = methods[q];
         e.loo = loo.methods[q];
-        e.hit_rate = kNaN;
-        if (out.parameters_measured && e.loo.measured.rows() == m) {
+        if (out.parameters_measured && static_cast<Eigen::Index>(e.loo.measured.size()) == m) {
             e.hits = fold_hits(e.loo.measured, requested, out.hit_tolerance, set.set.parameter_periods);
             e.hit_rate = e.hits.mean();
         }
-        e.rho_pose_pearson =
-            e.loo.reliability.size() == m && m >= 2 ? gp::pearson(e.loo.reliability, e.loo.sample_pose_mean_cm) : kNaN;
+        if (e.loo.reliability.size() == m && m >= 2)
+            e.rho_pose_pearson = gp::pearson(e.loo.reliability, e.loo.sample_pose_mean_cm);
         out.methods.push_back(std::move(e));
     }
 
@@ -191,6 +192,7 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
     c.pose_mean_cm.resize(m);
     c.motion_mean_cm.resize(m);
     VecX hits(m);
+    bool every_hit_measured = out.parameters_measured;
     for (Eigen::Index k = 0; k < m; ++k) {
         const std::size_t q = c.picks[static_cast<std::size_t>(k)];
         ++c.counts[q];
@@ -198,11 +200,12 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
         c.motion_mean_cm(k) = out.methods[q].loo.sample_mean_cm(k);
         c.pose_max = std::max(c.pose_max, out.methods[q].loo.sample_pose_max_cm(k));
         c.motion_max = std::max(c.motion_max, out.methods[q].loo.sample_max_cm(k));
-        hits(k) = out.methods[q].hits.size() == m ? out.methods[q].hits(k) : kNaN;
+        if (out.methods[q].hits.size() == m) hits(k) = out.methods[q].hits(k);
+        else every_hit_measured = false;
     }
     c.pose_mean = c.pose_mean_cm.mean();
     c.motion_mean = c.motion_mean_cm.mean();
-    c.hit_rate = out.parameters_measured ? hits.mean() : kNaN;
+    if (every_hit_measured) c.hit_rate = hits.mean();
     for (std::size_t q = 1; q < out.methods.size(); ++q)
         if (out.methods[q].loo.pose_mean_cm < out.methods[c.best].loo.pose_mean_cm) c.best = q;
     const VecX diff = c.pose_mean_cm - out.methods[c.best].loo.sample_pose_mean_cm;

@@ -11,6 +11,7 @@
 // frame, as the pose distance of align/pose_distance.hpp does), which isolates the body's posture from
 // how far and where the root travelled. What is NOT redone per fold: the DTW alignment itself (reference sample, warps) was
 // computed once with all samples.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,17 +34,20 @@ struct LooOptions {
 
 struct LooMethodResult {
     std::string method;
-    VecX sample_mean_cm;        ///< per left-out sample: mean joint error over joints and frames (motion)
-    VecX sample_max_cm;         ///< per left-out sample: max joint error (motion)
-    VecX frame_mean_cm;         ///< T: per aligned frame, mean over samples of the mean joint error (motion)
-    VecX frame_max_cm;          ///< T: per aligned frame, max over samples and joints (motion)
-    VecX sample_pose_mean_cm;   ///< per left-out sample: mean joint error, root-relative pose
-    VecX sample_pose_max_cm;    ///< per left-out sample: max joint error, root-relative pose
-    VecX frame_pose_mean_cm;    ///< T: per aligned frame, mean over samples, root-relative pose
-    VecX duration_error_s;      ///< per sample: |synthesized duration - sample duration| (s)
-    VecX skating_cm_per_s;      ///< per sample: foot skating of the synthesized clip (empty without)
-    MatX measured;              ///< per sample by P: parameters measured back (NaN: undefined; empty without)
-    VecX reliability;           ///< per sample: the method's rho at c_i (empty without, or for no rho)
+    VecX sample_mean_cm;       ///< per left-out sample: mean joint error over joints and frames (motion)
+    VecX sample_max_cm;        ///< per left-out sample: max joint error (motion)
+    VecX frame_mean_cm;        ///< T: per aligned frame, mean over samples of the mean joint error (motion)
+    VecX frame_max_cm;         ///< T: per aligned frame, max over samples and joints (motion)
+    VecX sample_pose_mean_cm;  ///< per left-out sample: mean joint error, root-relative pose
+    VecX sample_pose_max_cm;   ///< per left-out sample: max joint error, root-relative pose
+    VecX frame_pose_mean_cm;   ///< T: per aligned frame, mean over samples, root-relative pose
+    VecX duration_error_s;     ///< per sample: |synthesized duration - sample duration| (s)
+    VecX skating_cm_per_s;     ///< per sample: foot skating of the synthesized clip (empty without)
+    VecX reliability;          ///< per sample: the method's rho at c_i (empty without, or a fold had none)
+    /// Per left-out sample, its P parameters measured back on the synthesized clip (empty without
+    /// measure_parameters or extractors); a parameter the clip does not define (a jump without a flight,
+    /// a gait measure without a cycle) is an empty optional.
+    std::vector<std::vector<std::optional<double>>> measured;
     double mean_cm = 0.0;       ///< mean of sample_mean_cm
     double max_cm = 0.0;        ///< max of sample_max_cm
     double pose_mean_cm = 0.0;  ///< mean of sample_pose_mean_cm

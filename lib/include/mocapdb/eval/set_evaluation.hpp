@@ -11,6 +11,7 @@
 // samples; those of load_eval_set. Cost: folds x (1 + inner folds) builds of every method.
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,10 +30,12 @@ struct SetEvaluationOptions {
 
 struct MethodEvaluation {
     MethodSpec spec;
-    LooMethodResult loo;            ///< per outer fold (measured, reliability filled)
-    VecX hits;                      ///< per fold 1 / 0 (empty without extractors)
-    double hit_rate = 0.0;          ///< NaN without extractors
-    double rho_pose_pearson = 0.0;  ///< Pearson(rho, pose error) over folds; NaN without rho or when constant
+    LooMethodResult loo;             ///< per outer fold (measured, reliability filled)
+    VecX hits;                       ///< per fold 1 / 0 (empty without extractors)
+    std::optional<double> hit_rate;  ///< empty without extractors
+    /// Pearson(rho, pose error) over the folds; empty without rho, with fewer than 2 folds or when either
+    /// is constant.
+    std::optional<double> rho_pose_pearson;
 };
 
 struct ChosenEvaluation {
@@ -42,10 +45,10 @@ struct ChosenEvaluation {
     VecX motion_mean_cm;              ///< per fold: outer motion error of the pick
     double pose_mean = 0.0, motion_mean = 0.0;
     double pose_max = 0.0, motion_max = 0.0;  ///< the largest joint error of the picks' folds (as LooMethodResult)
-    double hit_rate = 0.0;                    ///< NaN without extractors
+    std::optional<double> hit_rate;           ///< empty without extractors
     std::size_t best = 0;                     ///< the best single method (lowest outer pose mean, in hindsight)
     double diff_mean_cm = 0.0;                ///< mean over folds of (chosen - best) pose error
-    double diff_se_cm = 0.0;                  ///< its paired standard error (SD / sqrt(folds))
+    std::optional<double> diff_se_cm;         ///< its paired standard error (SD / sqrt(folds)); empty for 1 fold
 };
 
 struct SetEvaluation {
@@ -60,7 +63,8 @@ struct SetEvaluation {
     std::vector<std::string> parameter_units;
     bool parameters_measured = false;  ///< extractor set: hits measured
     double hit_share = 0.0;            ///< SetEvaluationOptions::hit_share
-    VecX hit_tolerance;                ///< per parameter (hit_share x SD, NaN: constant, not checked)
+    /// Per parameter (empty without extractors): hit_share x SD; empty for a constant one (not checked).
+    std::vector<std::optional<double>> hit_tolerance;
     std::vector<MethodEvaluation> methods;
     ChosenEvaluation chosen;
     std::vector<std::string> not_evaluated;  ///< methods left out and why, one line each
