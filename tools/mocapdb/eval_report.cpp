@@ -98,19 +98,19 @@ void loo_section(std::ostream& o, const EvalResults& e) {
         const auto durations = eval::duration_range(s);
         o << "### " << s.spec.name << "\n\n";
         // Gain over the linear trend alone: 1 - pose mean / trend-only pose mean.
-        const std::vector<double> gains = eval::gain_over_trend(r);
+        const std::vector<std::optional<double>> gains = eval::gain_over_trend(r);
         Table lt{{"method", "pose mean cm", "gain over trend-only", "pose max cm", "worst (sample, frame, joint)",
                   "motion mean cm", "motion max cm", "duration err s", "build s/fold", "synth ms"},
                  {}};
         for (std::size_t k = 0; k < r.loo.methods.size(); ++k) {
             const auto& m = r.loo.methods[k];
-            const std::string gain = std::isfinite(gains[k]) ? fixed(100.0 * gains[k], 1) + " %" : std::string("-");
+            const std::string gain = gains[k] ? fixed(100.0 * *gains[k], 1) + " %" : std::string("-");
             lt.rows.push_back({method_label(r.methods[k]), fixed(m.pose_mean_cm, 2), gain, fixed(m.pose_max_cm, 1),
                                m.pose_worst_sample >= 0
                                    ? s.labels[static_cast<std::size_t>(m.pose_worst_sample)] + ", " +
                                          std::to_string(m.pose_worst_frame) + ", " + m.pose_worst_joint
                                    : "-",
-                               fixed(m.mean_cm, 2), fixed(m.max_cm, 1), fixed(eval::mean_or_nan(m.duration_error_s), 3),
+                               fixed(m.mean_cm, 2), fixed(m.max_cm, 1), fixed(eval::mean_if_any(m.duration_error_s), 3),
                                fmt(m.build_seconds), fmt(1e3 * m.synth_seconds)});
         }
         o << lt.str() << "\n";
@@ -327,11 +327,11 @@ void skating_section(std::ostream& o, const EvalResults& e) {
         for (const SetResults& r : e.sets) {
             if (!r.has_loo || r.loo.original_skating_cm_per_s.size() == 0) continue;
             std::vector<std::string> row{r.set->spec.name,
-                                         fixed(eval::mean_or_nan(r.loo.original_skating_cm_per_s), 2)};
+                                         fixed(eval::mean_if_any(r.loo.original_skating_cm_per_s), 2)};
             for (const auto& n : names) {
                 std::string v = "-";
                 for (const auto& m : r.loo.methods)
-                    if (m.method == n && m.skating_cm_per_s.size()) v = fixed(eval::mean_or_nan(m.skating_cm_per_s), 2);
+                    if (m.method == n && m.skating_cm_per_s.size()) v = fixed(eval::mean_if_any(m.skating_cm_per_s), 2);
                 row.push_back(v);
             }
             ft.rows.push_back(row);

@@ -3,6 +3,7 @@
 // (eval_report_text.cpp), CSV and SVG (eval_report_figures.cpp), results.json (eval_report_json.cpp),
 // verdict texts (eval_report_verdicts.cpp) and REPORT.md (eval_report.cpp). Formatting only.
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,7 +21,11 @@ using eval::SetResults;
 std::string cycles_note(const eval::EvalSetSpec& spec);
 std::string fmt(double v, int digits = 3);
 std::string fixed(double v, int decimals = 2);
-std::string percent(double value);
+/// "n/a" for a value that does not exist.
+std::string fmt(const std::optional<double>& v, int digits = 3);
+std::string fixed(const std::optional<double>& v, int decimals = 2);
+/// "12 %", or "" for a value that does not exist.
+std::string percent(const std::optional<double>& value);
 void put(const std::filesystem::path& path, const std::string& text);
 
 struct Table {

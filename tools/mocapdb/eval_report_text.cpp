@@ -37,9 +37,13 @@ std::string fixed(double v, int decimals) {
     return buf;
 }
 
-std::string percent(double value) {
-    if (std::isnan(value)) return "";
-    return fixed(value, 0) + " %";
+std::string fmt(const std::optional<double>& v, int digits) { return v ? fmt(*v, digits) : "n/a"; }
+
+std::string fixed(const std::optional<double>& v, int decimals) { return v ? fixed(*v, decimals) : "n/a"; }
+
+std::string percent(const std::optional<double>& value) {
+    if (!value) return "";
+    return fixed(*value, 0) + " %";
 }
 
 void put(const std::filesystem::path& path, const std::string& text) {

@@ -99,7 +99,7 @@ std::string why_text(const SetResults& r, const eval::MetricVerdict& v) {
                    "their coefficient kernel, per-pose / per-element kriging and RBF with a per-set kernel of their own, the "
                    "blend with its weights; lib/include/mocapdb/eval/synthesis_method.hpp).";
         case eval::Metric::FootSkating:
-            return "The original samples skate " + fmt(eval::mean_or_nan(r.loo.original_skating_cm_per_s)) +
+            return "The original samples skate " + fmt(eval::mean_if_any(r.loo.original_skating_cm_per_s)) +
                    " cm/s by the same measure (the nearest-neighbour blend mixes at most 3 samples, kriging all of them).";
         case eval::Metric::ConstraintReliableRmse: {
             const auto* base = constraint_method(r, v.best.method);

@@ -1,7 +1,6 @@
 #include "mocapdb/eval/verdicts.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace mocapdb::eval {
 namespace {
@@ -24,17 +23,17 @@ const ConstraintMethodResult* constraint_method(const ConstraintResult& c, const
     return nullptr;
 }
 
-// The lowest value over all methods and over the kriging methods only (the first of equals); a
-// non-finite value means the method has none. Empty when either has no value.
+// The lowest value over all methods and over the kriging methods only (the first of equals); `value`
+// gives a method's value, empty when it has none. Empty when either has no value.
 template <typename F>
 std::optional<std::pair<MethodValue, MethodValue>> best_of(const SetResults& r, F value) {
     std::optional<MethodValue> all, kr;
     for (const MethodSpec& spec : r.methods) {
-        const double v = value(spec.name);
-        if (!std::isfinite(v)) continue;
+        const std::optional<double> v = value(spec.name);
+        if (!v) continue;
         const bool k = spec.is_kriging();
-        if (!all || v < all->value) all = MethodValue{spec.name, v, k};
-        if (k && (!kr || v < kr->value)) kr = MethodValue{spec.name, v, true};
+        if (!all || *v < all->value) all = MethodValue{spec.name, *v, k};
+        if (k && (!kr || *v < kr->value)) kr = MethodValue{spec.name, *v, true};
     }
     if (!all || !kr) return std::nullopt;
     return std::make_pair(*all, *kr);
@@ -80,8 +79,7 @@ SetVerdicts judge_set(const SetResults& r, Verdicts& totals) {
         v.best = b->first;
         v.best_kriging = b->second;
         v.outcome = outcome_of(metric, v.best, v.best_kriging);
-        v.kriging_worse_percent =
-            v.best.value > 0.0 ? 100.0 * (v.best_kriging.value - v.best.value) / v.best.value : NAN;
+        if (v.best.value > 0.0) v.kriging_worse_percent = 100.0 * (v.best_kriging.value - v.best.value) / v.best.value;
         ++totals.comparisons;
         if (v.outcome == Outcome::Tie) ++totals.ties;
         if (v.outcome == Outcome::Loses) ++totals.losses;
@@ -91,9 +89,10 @@ SetVerdicts judge_set(const SetResults& r, Verdicts& totals) {
     if (r.has_loo) {
         const LooResult& loo = r.loo;
         auto loo_value = [&](auto field) {
-            return [&loo, field](const std::string& n) {
+            return [&loo, field](const std::string& n) -> std::optional<double> {
                 const LooMethodResult* m = loo_method(loo, n);
-                return m ? field(*m) : NAN;
+                if (!m) return std::nullopt;
+                return field(*m);
             };
         };
         if (MetricVerdict* v = add(Metric::LooPoseMean,
@@ -105,24 +104,25 @@ SetVerdicts judge_set(const SetResults& r, Verdicts& totals) {
             if (!v->best.kriging) v->split = split_of(r, v->best, v->best_kriging, false);
         add(Metric::LooMotionMax, best_of(r, loo_value([](const LooMethodResult& m) { return m.max_cm; })));
         add(Metric::LooDuration,
-            best_of(r, loo_value([](const LooMethodResult& m) { return m.duration_error_s.mean(); })));
+            best_of(r, loo_value([](const LooMethodResult& m) { return mean_if_any(m.duration_error_s); })));
         if (loo.original_skating_cm_per_s.size())
-            add(Metric::FootSkating, best_of(r, loo_value([](const LooMethodResult& m) {
-                                                 return m.skating_cm_per_s.size() ? m.skating_cm_per_s.mean() : NAN;
-                                             })));
+            add(Metric::FootSkating,
+                best_of(r, loo_value([](const LooMethodResult& m) { return mean_if_any(m.skating_cm_per_s); })));
     }
     if (r.has_constraint && !r.constraint_options.thresholds.empty()) {
         const ConstraintResult& c = r.constraint;
         const double lowest = r.constraint_options.thresholds.back();
         if (MetricVerdict* v =
-                add(Metric::ConstraintReliableRmse, best_of(r, [&](const std::string& n) {
+                add(Metric::ConstraintReliableRmse, best_of(r, [&](const std::string& n) -> std::optional<double> {
                         const ConstraintMethodResult* m = constraint_method(c, n);
-                        return m && !m->regions.empty() && m->regions.back().points > 0 ? m->regions.back().rmse : NAN;
+                        if (!m || m->regions.empty() || m->regions.back().points == 0) return std::nullopt;
+                        return m->regions.back().rmse;
                     })))
             v->threshold = lowest;
-        add(Metric::ConstraintRmse, best_of(r, [&](const std::string& n) {
+        add(Metric::ConstraintRmse, best_of(r, [&](const std::string& n) -> std::optional<double> {
                 const ConstraintMethodResult* m = constraint_method(c, n);
-                return m ? m->all.rmse : NAN;
+                if (!m) return std::nullopt;
+                return m->all.rmse;
             }));
     }
     if (r.has_compression) {
@@ -225,12 +225,13 @@ double split_mean(const LooResult& loo, const VecX& v, const std::vector<bool>& 
     return count ? sum / count : 0.0;
 }
 
-std::vector<double> gain_over_trend(const SetResults& r) {
+std::vector<std::optional<double>> gain_over_trend(const SetResults& r) {
     double trend_pose = 0.0;
     for (std::size_t k = 0; k < r.loo.methods.size() && k < r.methods.size(); ++k)
         if (r.methods[k].kind == MethodKind::TrendOnly) trend_pose = r.loo.methods[k].pose_mean_cm;
-    std::vector<double> out;
-    for (const auto& m : r.loo.methods) out.push_back(trend_pose > 0.0 ? 1.0 - m.pose_mean_cm / trend_pose : NAN);
+    std::vector<std::optional<double>> out(r.loo.methods.size());
+    if (trend_pose > 0.0)
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] = 1.0 - r.loo.methods[k].pose_mean_cm / trend_pose;
     return out;
 }
 
@@ -275,6 +276,9 @@ ReductionAtTau reduction_at_tau(const SetResults& r) {
                                                                          : ReductionAtTau::SomeRemoved;
 }
 
-double mean_or_nan(const VecX& values) { return values.size() ? values.mean() : NAN; }
+std::optional<double> mean_if_any(const VecX& values) {
+    if (values.size() == 0) return std::nullopt;
+    return values.mean();
+}
 
 }  // namespace mocapdb::eval

@@ -65,9 +65,9 @@ struct MetricVerdict {
     /// LooPoseMean / LooMotionMean when a baseline is best: the split by sample position.
     std::optional<EdgeSplit> split;
     double threshold = 0.0;  ///< ConstraintReliableRmse: the rho threshold
-    /// How much worse the best kriging method is than the best method, in % of the best (NaN when the
+    /// How much worse the best kriging method is than the best method, in % of the best (empty when the
     /// best value is not positive).
-    double kriging_worse_percent = 0.0;
+    std::optional<double> kriging_worse_percent;
 };
 
 struct CompressionVerdict {
@@ -108,9 +108,9 @@ std::vector<bool> edge_samples(const EvalSet& set);
 /// interior samples; `count` is set to how many; 0 without any.
 double split_mean(const LooResult& loo, const VecX& values, const std::vector<bool>& edge, bool on_edge, int& count);
 
-/// Per method of `results.loo`, 1 - its pose mean / the trend-only method's pose mean; NaN without a
+/// Per method of `results.loo`, 1 - its pose mean / the trend-only method's pose mean; empty without a
 /// trend-only method with a positive pose mean.
-std::vector<double> gain_over_trend(const SetResults& results);
+std::vector<std::optional<double>> gain_over_trend(const SetResults& results);
 
 /// The mean error of the valid grid points per reliability bin [b/bins, (b+1)/bins) (rho = 1 in the
 /// last): (bin centre, mean error) for the bins holding points.
@@ -130,7 +130,7 @@ bool keeps_full_sample_rank(const MethodSpec& method, const EvalSet& set);
 enum class ReductionAtTau { NoCurve, NothingRemoved, SomeRemoved };
 ReductionAtTau reduction_at_tau(const SetResults& results);
 
-/// Mean of a per-sample vector (NaN when empty), for the duration and skating columns.
-double mean_or_nan(const VecX& values);
+/// Mean of a per-sample vector, empty when it has no values (for the duration and skating columns).
+std::optional<double> mean_if_any(const VecX& values);
 
 }  // namespace mocapdb::eval
