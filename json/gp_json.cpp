@@ -53,6 +53,12 @@ void mean_and_std(JsonWriter& w, const char* key, const MeanStd& m) {
     w.key(key).begin_object().key("mean").value(m.mean).key("std").value(m.std).end_object();
 }
 
+/// An undefined summary keeps both keys, null.
+void mean_and_std(JsonWriter& w, const char* key, const std::optional<MeanStd>& m) {
+    if (m) return mean_and_std(w, key, *m);
+    w.key(key).begin_object().key("mean").null().key("std").null().end_object();
+}
+
 void write_runs(JsonWriter& w, const ModelRuns& m) {
     w.begin_object();
     mean_and_std(w, "mse", m.mse);

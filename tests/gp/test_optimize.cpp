@@ -85,11 +85,13 @@ TEST_CASE("artificial experiment: MOHGP interpolates a sparsely observed child b
     o.fit.max_iterations = 100;
     const ArtificialResult r = run_artificial(config, o);
     REQUIRE(r.mohgp.runs.size() == 2);
-    INFO("SMSE MOHGP " << r.mohgp.smse.mean << " MOA " << r.moa.smse.mean << "; MSLL MOHGP " << r.mohgp.msll.mean
+    REQUIRE(r.mohgp.smse);  // the held-out outputs vary: SMSE is defined
+    REQUIRE(r.moa.smse);
+    INFO("SMSE MOHGP " << r.mohgp.smse->mean << " MOA " << r.moa.smse->mean << "; MSLL MOHGP " << r.mohgp.msll.mean
                        << " MOA " << r.moa.msll.mean);
-    CHECK(r.mohgp.smse.mean < r.moa.smse.mean);
+    CHECK(r.mohgp.smse->mean < r.moa.smse->mean);
     CHECK(r.mohgp.msll.mean < r.moa.msll.mean);
-    CHECK(r.mohgp.smse.mean < 0.5);
+    CHECK(r.mohgp.smse->mean < 0.5);
     CHECK(thesis_artificial_configs().size() == 9);
 }
 
@@ -105,9 +107,12 @@ TEST_CASE("artificial synthesis: samples resemble held-out children more than th
     REQUIRE(r.control.mlc.size() == 5);
     double mohgp = 0.0, moa = 0.0, control = 0.0;
     for (std::size_t i = 0; i < 5; ++i) {
-        mohgp += r.mohgp.mlc[i].mean / 5.0;
-        moa += r.moa.mlc[i].mean / 5.0;
-        control += r.control.mlc[i].mean / 5.0;
+        REQUIRE(r.mohgp.mlc[i]);
+        REQUIRE(r.moa.mlc[i]);
+        REQUIRE(r.control.mlc[i]);
+        mohgp += r.mohgp.mlc[i]->mean / 5.0;
+        moa += r.moa.mlc[i]->mean / 5.0;
+        control += r.control.mlc[i]->mean / 5.0;
     }
     INFO("MLC MOHGP " << mohgp << " MOA " << moa << " control " << control);
     CHECK(mohgp > control + 0.2);

@@ -92,8 +92,10 @@ void run_interpolate(const GpArgs& a) {
     }
     print_data_summary(md);
     print_fit_summary(model_label(a), f);
-    std::printf("child %s, %zu of %zu frames observed: MSE %.5f  SMSE %.4f  MSLL %.4f (%zu values predicted)\n",
-                md.child_names[child].c_str(), a.observed, md.data.frames(), s.mse, s.smse, s.msll, s.points);
+    char smse[32] = "n/a";
+    if (s.smse) std::snprintf(smse, sizeof smse, "%.4f", *s.smse);
+    std::printf("child %s, %zu of %zu frames observed: MSE %.5f  SMSE %s  MSLL %.4f (%zu values predicted)\n",
+                md.child_names[child].c_str(), a.observed, md.data.frames(), s.mse, smse, s.msll, s.points);
     if (!a.out.empty()) std::printf("wrote %s\n", a.out.c_str());
 }
 

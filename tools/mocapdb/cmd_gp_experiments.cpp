@@ -22,6 +22,8 @@ std::string pm(const MeanStd& m, int prec = 3) {
     return b;
 }
 
+std::string pm(const std::optional<MeanStd>& m) { return m ? pm(*m) : "n/a"; }
+
 }  // namespace
 
 void run_experiment_artificial(const GpArgs& a) {

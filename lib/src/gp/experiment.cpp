@@ -115,14 +115,15 @@ std::vector<MatX> sample_hierarchy(const HgpModel& truth, const VecX& times, std
 }
 
 void ModelRuns::summarize() {
-    std::vector<double> a, b, c;
+    std::vector<double> a, c;
+    std::vector<std::optional<double>> b;
     for (const auto& s : runs) {
         a.push_back(s.mse);
         b.push_back(s.smse);
         c.push_back(s.msll);
     }
     mse = mean_std(a);
-    smse = mean_std(b);
+    smse = mean_std_of_all(b);
     msll = mean_std(c);
 }
 

@@ -45,7 +45,7 @@ InterpolationScores interpolation_scores(const MatX& truth, const MatX& mean, co
             sll += model - trivial;
         }
     }
-    s.smse = smse_outputs > 0 ? smse / static_cast<double>(smse_outputs) : std::numeric_limits<double>::quiet_NaN();
+    if (smse_outputs > 0) s.smse = smse / static_cast<double>(smse_outputs);
     s.msll = sll / static_cast<double>(d * t);
     return s;
 }
@@ -73,12 +73,12 @@ double max_cross_correlation(const VecX& a, const VecX& b) {
     return best;
 }
 
-double pearson(const VecX& a, const VecX& b) {
+std::optional<double> pearson(const VecX& a, const VecX& b) {
     if (a.size() != b.size() || a.size() < 2)
         throw InvalidArgument("pearson: need two sequences of the same length ≥ 2");
     const VecX ca = a.array() - a.mean(), cb = b.array() - b.mean();
     const double na = ca.norm(), nb = cb.norm();
-    if (!(na > 0.0) || !(nb > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    if (!(na > 0.0) || !(nb > 0.0)) return std::nullopt;
     return ca.dot(cb) / (na * nb);
 }
 
@@ -91,20 +91,20 @@ double mean_cross_correlation(const MatX& generated, const MatX& real) {
     return s / static_cast<double>(g.rows());
 }
 
-double mean_linear_correlation(const MatX& generated, const MatX& real) {
+std::optional<double> mean_linear_correlation(const MatX& generated, const MatX& real) {
     if (generated.rows() != real.rows() || generated.cols() != real.cols() || generated.rows() == 0)
         throw InvalidArgument("mean_linear_correlation: generated and real must have the same shape");
     const MatX g = minmax_rows(generated), r = minmax_rows(real);
     double s = 0.0;
     int n = 0;
     for (Index i = 0; i < g.rows(); ++i) {
-        const double p = pearson(r.row(i).transpose(), g.row(i).transpose());
-        if (std::isfinite(p)) {
-            s += p;
+        if (const std::optional<double> p = pearson(r.row(i).transpose(), g.row(i).transpose())) {
+            s += *p;
             ++n;
         }
     }
-    return n > 0 ? s / n : std::numeric_limits<double>::quiet_NaN();
+    if (n == 0) return std::nullopt;
+    return s / n;
 }
 
 MeanStd mean_std(const std::vector<double>& values) {
@@ -117,17 +117,27 @@ MeanStd mean_std(const std::vector<double>& values) {
     return m;
 }
 
+std::optional<MeanStd> mean_std_of_all(const std::vector<std::optional<double>>& values) {
+    std::vector<double> defined;
+    for (const std::optional<double>& v : values) {
+        if (!v) return std::nullopt;
+        defined.push_back(*v);
+    }
+    return mean_std(defined);
+}
+
 SynthesisScores synthesis_scores(const std::vector<MatX>& generated, const std::vector<MatX>& real) {
     if (generated.empty() || real.empty()) throw InvalidArgument("synthesis_scores: need generated and real motions");
     SynthesisScores s;
     for (const MatX& r : real) {
-        std::vector<double> mcc, mlc;
+        std::vector<double> mcc;
+        std::vector<std::optional<double>> mlc;
         for (const MatX& g : generated) {
             mcc.push_back(mean_cross_correlation(g, r));
             if (g.cols() == r.cols()) mlc.push_back(mean_linear_correlation(g, r));
         }
         s.mcc.push_back(mean_std(mcc));
-        s.mlc.push_back(mean_std(mlc));
+        s.mlc.push_back(mean_std_of_all(mlc));
     }
     return s;
 }

@@ -31,8 +31,8 @@ struct Target {
     std::size_t index = 0;
 };
 
-/// The posterior of `target` at t_star given every observed value (NaN where the covariance is not
-/// positive definite).
+/// The posterior of `target` at t_star given every observed value (NumericalError when the covariance
+/// is not positive definite).
 GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, const VecX& t_star, Target target);
 
 // ---- Structured: Gaussians over a time grid ------------------------------------------------------

@@ -11,6 +11,7 @@
 // Training always uses the complete children only (structured likelihood); the test child's observed
 // frames enter its posterior, not the fit. Every random choice is seeded: results are reproducible.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,8 +53,9 @@ std::vector<MatX> sample_hierarchy(const HgpModel& truth, const VecX& times, std
 
 struct ModelRuns {
     std::vector<InterpolationScores> runs;
-    MeanStd mse, smse, msll;   ///< over the runs
-    double fit_seconds = 0.0;  ///< total
+    MeanStd mse, msll;            ///< over the runs
+    std::optional<MeanStd> smse;  ///< over the runs; empty when some run's SMSE is undefined
+    double fit_seconds = 0.0;     ///< total
     std::vector<std::string> fit_status;
     void summarize();
 };

@@ -1,7 +1,9 @@
 #pragma once
 // Accuracy of interpolation (MSE, SMSE, MSLL) and similarity of synthesized motions (MCC, MLC).
 //
-// Details: docs/headers/gp.md (mocapdb/gp/gp_metrics.hpp).
+// A score undefined for its input (a correlation of a constant sequence, an SMSE without test
+// variance) is an empty std::optional, never NaN. Details: docs/headers/gp.md (mocapdb/gp/gp_metrics.hpp).
+#include <optional>
 #include <vector>
 
 #include "mocapdb/core/types.hpp"
@@ -10,7 +12,7 @@ namespace mocapdb::gp {
 
 struct InterpolationScores {
     double mse = 0.0;
-    double smse = 0.0;
+    std::optional<double> smse;  ///< empty when every output's test values are constant (no variance)
     double msll = 0.0;
     std::size_t points = 0;  ///< test values (outputs × test frames)
 };
@@ -26,24 +28,27 @@ MatX minmax_rows(const MatX& signals);
 
 /// Max over lags of the full cross-correlation Σ_m a[m]·b[m + lag] of two sequences (any lengths).
 double max_cross_correlation(const VecX& a, const VecX& b);
-/// Pearson correlation; NaN when either sequence is constant. Same length required.
-double pearson(const VecX& a, const VecX& b);
+/// Pearson correlation; empty when either sequence is constant. Same length (>= 2) required.
+std::optional<double> pearson(const VecX& a, const VecX& b);
 
 /// MCC(generated, real): both D by T (T may differ), normalized with minmax_rows first.
 double mean_cross_correlation(const MatX& generated, const MatX& real);
 /// MLC(generated, real): both D by T (same T), normalized first; outputs where either is constant are
-/// skipped (NaN when all are).
-double mean_linear_correlation(const MatX& generated, const MatX& real);
+/// skipped (empty when all are).
+std::optional<double> mean_linear_correlation(const MatX& generated, const MatX& real);
 
 struct MeanStd {
     double mean = 0.0;
     double std = 0.0;  ///< population standard deviation
 };
 MeanStd mean_std(const std::vector<double>& values);
+/// mean_std of the values when every one exists; empty when any is missing (one undefined score leaves
+/// the summary undefined).
+std::optional<MeanStd> mean_std_of_all(const std::vector<std::optional<double>>& values);
 
 struct SynthesisScores {
-    std::vector<MeanStd> mcc;  ///< per real motion: over the generated ones
-    std::vector<MeanStd> mlc;
+    std::vector<MeanStd> mcc;                 ///< per real motion: over the generated ones
+    std::vector<std::optional<MeanStd>> mlc;  ///< empty where some generated motion's MLC is undefined
 };
 /// MCC and MLC of every generated motion against every real one, summarized per real motion.
 SynthesisScores synthesis_scores(const std::vector<MatX>& generated, const std::vector<MatX>& real);
