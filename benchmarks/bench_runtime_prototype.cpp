@@ -1076,6 +1076,476 @@ void runtime_frame2(const RuntimeGroup2& g2, std::size_t clip, std::size_t frame
     }
 }
 
+
+// ---- Variant 3: three independent chains and two symbols per lookup. Each entry's key is written at
+// the END of its entry, its bytes in reverse order (read backwards from the next entry's offset), so
+// that a frame's two keys and its window's columns start at known places and decode as three
+// interleaved chains; the columns keep variant 1's directory and order. The decode tables give up to
+// two (run, size) symbols per lookup when both codes fit in the lookahead and the second symbol has
+// the first one's context (same row bucket). The same codes as variant 1: every frame's y is checked
+// equal to variant 1's, bit for bit. ----
+
+/// Table entry: bits 0-3 len1 (0: no code), 4-8 cat1, 9-13 adv1 (run + 1; 16: sixteen zeros),
+/// 14-17 len2 (0: no second symbol), 18-22 cat2, 23-27 adv2, 28 first is end, 29 second is end.
+constexpr std::uint32_t kEnd1 = 1u << 28, kEnd2 = 1u << 29;
+
+struct Nonzero {
+    std::uint16_t row;
+    std::int16_t pad;
+    std::int32_t value;
+};
+
+struct RuntimeGroup3 {
+    const RuntimeGroup* base = nullptr;
+    std::vector<std::uint32_t> offsets;  // per entry, then one past the last (byte offsets into data)
+    std::vector<std::uint8_t> bytes;     // 8 bytes of slack before and after the entries
+    std::vector<std::uint32_t> table;    // per context 2^lookup entries
+    int lookup = 11;                     // bits a lookup reads (<= kFastBits); longer codes: variant 1's table
+    bool pairs = true;
+    const std::uint8_t* data() const { return bytes.data() + 8; }
+};
+
+/// Symbol fields of a decoded code: (len, cat, adv, end) of symbol s.
+inline void symbol_fields(int s, int& cat, int& adv, int& end) {
+    end = s == kEnd;
+    if (end) { cat = 0; adv = 0; return; }
+    if (s == kZeroRun) { cat = 0; adv = 16; return; }
+    cat = s & 31;
+    adv = (s >> 5) + 1;
+}
+
+void build_table3(RuntimeGroup3& g3, bool pairs, int lookup) {
+    const RuntimeGroup& g = *g3.base;
+    const int B = lookup, shift = kFastBits - lookup;
+    const std::size_t n = std::size_t{1} << B;
+    g3.pairs = pairs;
+    g3.lookup = lookup;
+    g3.table.assign(g.codes.size() * n, 0);
+    for (std::size_t c = 0; c < g.codes.size(); ++c) {
+        const auto& fast = g.codes[c].fast;
+        if (fast.empty()) continue;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto f = fast[i << shift];
+            if (!f.length || f.length > B) continue;  // 0: a longer code (variant 1's table)
+            int cat1, adv1, end1;
+            symbol_fields(f.symbol, cat1, adv1, end1);
+            std::uint32_t e = static_cast<std::uint32_t>(f.length) | static_cast<std::uint32_t>(cat1) << 4 |
+                              static_cast<std::uint32_t>(adv1) << 9 | (end1 ? kEnd1 : 0u);
+            const int used = f.length + cat1;
+            if (pairs && !end1 && cat1 > 0 && used < B) {
+                // The second code from the bits left in the lookahead (zero-padded: only if it is whole).
+                const std::size_t rest = (i << used) & (n - 1);
+                const auto f2 = fast[rest << shift];
+                if (f2.length && used + f2.length <= B) {
+                    int cat2, adv2, end2;
+                    symbol_fields(f2.symbol, cat2, adv2, end2);
+                    if (used + f2.length + cat2 <= 56)
+                        e |= static_cast<std::uint32_t>(f2.length) << 14 | static_cast<std::uint32_t>(cat2) << 18 |
+                             static_cast<std::uint32_t>(adv2) << 23 | (end2 ? kEnd2 : 0u);
+                }
+            }
+            g3.table[c * n + i] = e;
+        }
+    }
+}
+
+RuntimeGroup3 build_runtime3(const RuntimeGroup& g, const HierResult& r, bool pairs, int lookup) {
+    RuntimeGroup3 g3;
+    g3.base = &g;
+    build_table3(g3, pairs, lookup);
+    std::vector<int> tl, tf;
+    tree_order(g.W, tl, tf);
+    BitWriter out;
+    for (int k = 0; k < 8; ++k) out.put(0, 8);  // slack before the first entry (backward reads)
+    for (const auto& e : r.entries) {
+        out.align();
+        g3.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size() - 8));
+        out.put(static_cast<std::uint32_t>(e.key_step), 8);
+        if (e.step >= 0) {
+            out.put(static_cast<std::uint32_t>(e.step), 8);
+            std::vector<std::size_t> size;
+            for (std::size_t i = 0; i < e.columns.size(); ++i) {
+                BitWriter scratch;
+                g.write_column(scratch, tl[i], e.columns[i]);
+                size.push_back(scratch.bits());
+            }
+            std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
+            for (std::size_t i = 0; i < e.columns.size(); ++i) {
+                const int l = tl[i];
+                if (l >= g.levels) continue;
+                const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
+                std::size_t s = 0;
+                for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
+                left[static_cast<std::size_t>(l)].push_back(s);
+            }
+            std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
+            for (int l = 1; l < g.levels; ++l) {
+                for (std::size_t s : left[static_cast<std::size_t>(l)])
+                    width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
+                out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
+            }
+            for (int l = 1; l < g.levels; ++l)
+                for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
+            for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+        }
+        out.align();
+        // The key, its bytes reversed: read backwards from the end of the entry.
+        BitWriter key;
+        g.write_column(key, 0, e.key);
+        key.align();
+        for (auto it = key.bytes.rbegin(); it != key.bytes.rend(); ++it) out.put(*it, 8);
+    }
+    out.align();
+    g3.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size() - 8));
+    g3.bytes = std::move(out.bytes);
+    g3.bytes.resize(g3.bytes.size() + 8, 0);
+    return g3;
+}
+
+/// One chain of variant 3: a column's symbols from a bit position, forward (Rev false: MSB-first from
+/// `base`) or backward (Rev true: bytes read downwards from `base`), nonzeros appended to `out`.
+struct Chain3 {
+    const std::uint8_t* base = nullptr;
+    std::size_t pos = 0;
+    const std::uint32_t* table = nullptr;
+    const std::uint16_t* slow = nullptr;  // variant 1's table of the same contexts (codes longer than lookup)
+    Nonzero* out = nullptr;
+    int n = 0;  // nonzeros written
+    int d = 0;
+    bool live = false;
+};
+
+template <bool Rev>
+inline std::uint64_t peek3(const std::uint8_t* base, std::size_t pos) {
+    std::uint64_t v;
+    if (Rev) {
+        std::memcpy(&v, base - 8 - (pos >> 3), 8);
+    } else {
+        std::memcpy(&v, base + (pos >> 3), 8);
+        v = __builtin_bswap64(v);
+    }
+    return v << (pos & 7);
+}
+
+inline std::int32_t value_at(std::uint64_t w, int at, int cat) {
+    const std::uint64_t top = w << at;
+    const auto s = static_cast<std::int32_t>(top >> 63);
+    const auto mag = static_cast<std::int32_t>(((top | (std::uint64_t{1} << 63)) >> (63 - cat)) >> 1);
+    return (mag ^ -s) + s;
+}
+
+/// A code longer than the lookup: one symbol by variant 1's table.
+template <bool Rev>
+__attribute__((noinline)) bool chain3_slow(Chain3& c, int Da, std::uint64_t w) {
+    const int B = kFastBits;
+    const std::uint16_t e = c.slow[(static_cast<std::size_t>(c.d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    const int len = e & 15;
+    if (e & (1u << 14)) {
+        c.pos += static_cast<std::size_t>(len);
+        return false;
+    }
+    const int cat = (e >> 9) & 31;
+    c.d += (e >> 4) & 31;
+    c.pos += static_cast<std::size_t>(len + cat);
+    if (cat) {
+        c.out[c.n++] = Nonzero{static_cast<std::uint16_t>(c.d), 0, value_at(w, len, cat)};
+        ++c.d;
+    }
+    return c.d < Da;
+}
+
+/// One lookup of a chain: one or two symbols. Returns false when the column has ended.
+template <bool Rev>
+__attribute__((always_inline)) inline bool chain3_step(Chain3& c, int Da, int B) {
+    const std::uint64_t w = peek3<Rev>(c.base, c.pos);
+    const std::uint32_t e = c.table[(static_cast<std::size_t>(c.d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    if (__builtin_expect(e == 0, 0)) {
+        // Through a copy: the chain itself never escapes, so that it stays in registers.
+        Chain3 copy = c;
+        const bool live = chain3_slow<Rev>(copy, Da, w);
+        c = copy;
+        return live;
+    }
+    const int len1 = static_cast<int>(e & 15), cat1 = static_cast<int>((e >> 4) & 31), adv1 = static_cast<int>((e >> 9) & 31);
+    if (e & kEnd1) {
+        c.pos += static_cast<std::size_t>(len1);
+        return false;
+    }
+    const int n1 = len1 + cat1;
+    // Symbol 1 (a sixteen-zero run writes a zero that is not counted).
+    c.out[c.n] = Nonzero{static_cast<std::uint16_t>(c.d + adv1 - 1), 0, value_at(w, len1, cat1)};
+    c.n += cat1 != 0;
+    const int d1 = c.d + adv1;
+    // Symbol 2 when the table has one, it shares symbol 1's context and the column goes on.
+    const int len2 = static_cast<int>((e >> 14) & 15), cat2 = static_cast<int>((e >> 18) & 31), adv2 = static_cast<int>((e >> 23) & 31);
+    const bool take = (len2 != 0) & (((c.d & 7) + adv1) < 8) & (d1 < Da);
+    c.out[c.n] = Nonzero{static_cast<std::uint16_t>(d1 + adv2 - 1), 0, value_at(w, n1 + len2, cat2)};
+    c.n += take & (cat2 != 0);
+    c.d = d1 + (take ? adv2 : 0);
+    c.pos += static_cast<std::size_t>(n1 + (take ? len2 + cat2 : 0));
+    return !((take & ((e & kEnd2) != 0)) | (c.d >= Da));
+}
+
+template <bool Rev>
+inline void chain3_run(Chain3& c, int Da, int B) {
+    while (c.live) c.live = chain3_step<Rev>(c, Da, B);
+}
+
+/// Variant 3's frame into y; a, b, c: Da values of scratch each; nz: (2 + levels) * (Da + 1) nonzeros.
+void runtime_frame3(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b,
+                    double* c, Nonzero* nz) {
+    const RuntimeGroup& g = *g3.base;
+    const int Da = g.Da, B = g3.lookup, W = g.W;
+    const std::size_t w = frame / static_cast<std::size_t>(W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
+    const std::size_t entry = g.clip_first[clip] + w;
+    const std::uint8_t* data = g3.data();
+    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1];
+    {
+        const std::size_t end = t == 0 ? o1 + 8 : std::size_t{g3.offsets[entry + 2]} + 8;
+        for (std::size_t at = o0 & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
+    }
+    const std::uint32_t* keys = g3.table.data();
+    const double key_step = detail::step_of(data[o0]);
+    Chain3 ka{data + o1, 0, keys, g.flat.data(), nz, 0, 0, true};
+    if (t == 0) {
+        chain3_run<true>(ka, Da, B);
+        std::fill(y, y + Da, 0.0);
+        for (int k = 0; k < ka.n; ++k) y[nz[k].row] = nz[k].value * key_step;
+        return;
+    }
+    const std::size_t o2 = g3.offsets[entry + 2];
+    const double next_step = detail::step_of(data[o1]);
+    Chain3 kb{data + o2, 0, keys, g.flat.data(), nz + (Da + 1), 0, 0, true};
+    const double step = detail::step_of(data[o0 + 1]);
+    BitReader in{data, (o0 + 2) * 8};
+    int width[8] = {0};
+    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
+    std::size_t sizes_at = in.pos;
+    std::size_t skip[8] = {0};
+    for (int l = 1; l < g.levels; ++l) {
+        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
+        BitReader s{data, sizes_at + node * static_cast<std::size_t>(width[l])};
+        skip[l] = s.get(width[l]);
+        sizes_at += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
+    }
+    // The path: column k (level k + 1) of frame t, and whether the path goes right after it.
+    int path_levels = 0, mids[8];
+    {
+        int lo = 0, hi = W;
+        for (;;) {
+            const int mid = (lo + hi) / 2;
+            mids[path_levels++] = mid;
+            if (mid == t) break;
+            if (t < mid) hi = mid;
+            else lo = mid;
+        }
+    }
+    Nonzero* col_nz[8];
+    int col_n[8];
+    Chain3 cc{data, sizes_at, g3.table.data() + (static_cast<std::size_t>(g.buckets) << B),
+              g.flat.data() + (static_cast<std::size_t>(g.buckets) << kFastBits), nz + 2 * (Da + 1), 0, 0, true};
+    int k = 0;  // the column cc decodes
+    col_nz[0] = cc.out;
+    // Three chains interleaved, a lookup each in turn; while both keys last, no test of their state
+    // but the loop's.
+    while (ka.live & kb.live & cc.live) {
+        ka.live = chain3_step<true>(ka, Da, B);
+        kb.live = chain3_step<true>(kb, Da, B);
+        cc.live = chain3_step<false>(cc, Da, B);
+        if (!cc.live) {
+            col_n[k] = cc.n;
+            if (++k < path_levels) {
+                if (t > mids[k - 1]) cc.pos += skip[k];
+                cc.out = nz + (2 + k) * (Da + 1);
+                col_nz[k] = cc.out;
+                cc.n = 0;
+                cc.d = 0;
+                cc.table = g3.table.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << B);
+                cc.slow = g.flat.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << kFastBits);
+                cc.live = true;
+            }
+        }
+    }
+    for (;;) {
+        const bool any = ka.live | kb.live;
+        if (ka.live) ka.live = chain3_step<true>(ka, Da, B);
+        if (kb.live) kb.live = chain3_step<true>(kb, Da, B);
+        if (cc.live) {
+            cc.live = chain3_step<false>(cc, Da, B);
+            if (!cc.live) {
+                col_n[k] = cc.n;
+                if (++k < path_levels) {
+                    if (t > mids[k - 1]) cc.pos += skip[k];
+                    cc.out = nz + (2 + k) * (Da + 1);
+                    col_nz[k] = cc.out;
+                    cc.n = 0;
+                    cc.d = 0;
+                    cc.table = g3.table.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << B);
+                    cc.slow = g.flat.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << kFastBits);
+                    cc.live = true;
+                }
+            }
+        } else if (!any) {
+            break;
+        }
+    }
+    // Keys, then the path's predictions, as the encoder formed them.
+    std::fill(a, a + Da, 0.0);
+    std::fill(b, b + Da, 0.0);
+    for (int i = 0; i < ka.n; ++i) a[ka.out[i].row] = ka.out[i].value * key_step;
+    for (int i = 0; i < kb.n; ++i) b[kb.out[i].row] = kb.out[i].value * next_step;
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 0; l < path_levels; ++l) {
+        const bool last = l + 1 == path_levels;
+        double* out = last ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
+        for (int i = 0; i < col_n[l]; ++i) {
+            const Nonzero& z = col_nz[l][i];
+            out[z.row] = out[z.row] + z.value * step;
+        }
+        if (last) return;
+        if (t < mids[l]) hi_y = out;
+        else lo_y = out;
+    }
+}
+
+
+// ---- Variant 4: variant 3's bytes and tables, lean decode. The two keys (both at entry ends) as two
+// chains interleaved, then the path's columns one after the other as variant 1 decodes them (each
+// into its prediction), up to two symbols per lookup; chain state in locals (registers). ----
+
+/// A code longer than the lookup, by variant 1's table: one symbol.
+struct SlowSymbol {
+    int bits, adv, end;
+    std::int32_t value;  // 0: no value (sixteen zeros)
+};
+template <bool Rev>
+__attribute__((noinline)) SlowSymbol slow_symbol(const std::uint16_t* slow, int d, std::uint64_t w) {
+    const int B = kFastBits;
+    const std::uint16_t e = slow[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    const int len = e & 15;
+    if (e & (1u << 14)) return {len, 0, 1, 0};
+    const int cat = (e >> 9) & 31, run = (e >> 4) & 31;
+    if (!cat) return {len, run, 0, 0};
+    return {len + cat, run + 1, 0, value_at(w, len, cat)};
+}
+
+/// One lookup of a column (one or two symbols) at bit pos with row d; out[row] = out[row] + v * step
+/// for each value (keys: out zero, so v * step). Returns false when the column has ended.
+template <bool Rev>
+__attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint32_t* table,
+                                                     const std::uint16_t* slow, int Da, int B, double* out, double step) {
+    const std::uint64_t w = peek3<Rev>(base, pos);
+    const std::uint32_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    if (__builtin_expect(e == 0, 0)) {
+        const SlowSymbol s = slow_symbol<Rev>(slow, d, w);
+        pos += static_cast<std::size_t>(s.bits);
+        if (s.end) return false;
+        d += s.adv;
+        if (s.value) out[d - 1] = out[d - 1] + s.value * step;
+        return d < Da;
+    }
+    const int len1 = static_cast<int>(e & 15), cat1 = static_cast<int>((e >> 4) & 31), adv1 = static_cast<int>((e >> 9) & 31);
+    if (e & kEnd1) {
+        pos += static_cast<std::size_t>(len1);
+        return false;
+    }
+    const int n1 = len1 + cat1;
+    const int d1 = d + adv1;
+    if (__builtin_expect(cat1 != 0, 1)) out[d1 - 1] = out[d1 - 1] + value_at(w, len1, cat1) * step;
+    const int len2 = static_cast<int>((e >> 14) & 15);
+    if (len2 != 0 && ((d & 7) + adv1) < 8 && d1 < Da) {
+        const int cat2 = static_cast<int>((e >> 18) & 31), adv2 = static_cast<int>((e >> 23) & 31);
+        pos += static_cast<std::size_t>(n1 + len2 + cat2);
+        if (e & kEnd2) return false;
+        d = d1 + adv2;
+        if (cat2) out[d - 1] = out[d - 1] + value_at(w, n1 + len2, cat2) * step;
+        return d < Da;
+    }
+    pos += static_cast<std::size_t>(n1);
+    d = d1;
+    return d < Da;
+}
+
+/// Variant 4's frame into y (the same bits as variant 1); a, b, c: Da values of scratch each.
+void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
+    const RuntimeGroup& g = *g3.base;
+    const int Da = g.Da, B = g3.lookup, W = g.W;
+    const std::size_t w = frame / static_cast<std::size_t>(W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
+    const std::size_t entry = g.clip_first[clip] + w;
+    const std::uint8_t* data = g3.data();
+    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1];
+    {
+        const std::size_t end = t == 0 ? o1 + 8 : std::size_t{g3.offsets[entry + 2]} + 8;
+        for (std::size_t at = o0 & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
+    }
+    const std::uint32_t* keys = g3.table.data();
+    const std::uint16_t* slow_keys = g.flat.data();
+    const double key_step = detail::step_of(data[o0]);
+    if (t == 0) {
+        std::fill(y, y + Da, 0.0);
+        std::size_t pos = 0;
+        int d = 0;
+        while (lean_step<true>(data + o1, pos, d, keys, slow_keys, Da, B, y, key_step)) {
+        }
+        return;
+    }
+    const std::size_t o2 = g3.offsets[entry + 2];
+    const double next_step = detail::step_of(data[o1]);
+    std::fill(a, a + Da, 0.0);
+    std::fill(b, b + Da, 0.0);
+    {
+        // The two keys, interleaved.
+        std::size_t pa = 0, pb = 0;
+        int da = 0, db = 0;
+        bool la = true, lb = true;
+        while (la & lb) {
+            la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+            lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+        }
+        while (la) la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+        while (lb) lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+    }
+    const double step = detail::step_of(data[o0 + 1]);
+    BitReader in{data, (o0 + 2) * 8};
+    int width[8] = {0};
+    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
+    std::size_t pos = in.pos;
+    std::size_t skip[8] = {0};
+    for (int l = 1; l < g.levels; ++l) {
+        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
+        BitReader s{data, pos + node * static_cast<std::size_t>(width[l])};
+        skip[l] = s.get(width[l]);
+        pos += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
+    }
+    int lo = 0, hi = W;
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 1;; ++l) {
+        const int mid = (lo + hi) / 2;
+        double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
+        const std::size_t ctx = static_cast<std::size_t>(l * g.buckets);
+        const std::uint32_t* table = g3.table.data() + (ctx << B);
+        const std::uint16_t* slow = g.flat.data() + (ctx << kFastBits);
+        int d = 0;
+        while (lean_step<false>(data, pos, d, table, slow, Da, B, out, step)) {
+        }
+        if (mid == t) return;
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            pos += skip[l];
+            lo = mid;
+            lo_y = out;
+        }
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1085,6 +1555,8 @@ int main(int argc, char** argv) {
     std::vector<int> key_offsets{0, 12};
     double rounding = 0.4;
     std::size_t limit = 0;
+    std::vector<int> lookups{11, 9, 8};
+    int reps = 3;  // repeats of the variant 3 timings (best of)  // variant 3's lookup widths (the first also without pairs)
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
@@ -1096,6 +1568,8 @@ int main(int argc, char** argv) {
         else if (k == "--limit") limit = std::stoul(v);
         else if (k == "--poses") poses = std::stoul(v);
         else if (k == "--code-bits") kMaxCode = std::stoi(v);
+        else if (k == "--reps") reps = std::stoi(v);
+        else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
     }
     std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
                 "windows,keys,nonzero,seconds\n");
@@ -1346,6 +1820,97 @@ int main(int argc, char** argv) {
                                     "cold local pose %.3f us\n",
                                     bits2 / 8 + 3.0 * static_cast<double>(entries2) + tables / 8 + static_cast<double>(f2_header), bits2 / 8,
                                     directory2 / 8, worst2 > 0 ? "MISMATCH with variant 1" : "every frame equal to variant 1", decode2, cold2);
+                        // Variant 3 (lookup widths, with and without two symbols per lookup), A/B against variant 1
+                        // in the same reps.
+                        {
+                            struct Config {
+                                int lookup;
+                                bool pairs;
+                            };
+                            std::vector<Config> configs;
+                            for (int b : lookups) configs.push_back({b, true});
+                            configs.push_back({lookups.front(), false});
+                            std::vector<std::vector<RuntimeGroup3>> r3(configs.size());
+                            double bytes3 = 0.0;
+                            bool equal = true;
+                            for (std::size_t v = 0; v < configs.size(); ++v)
+                                for (std::size_t g = 0; g < groups.size(); ++g)
+                                    r3[v].push_back(build_runtime3(runtime[g], hier_results[g], configs[v].pairs, configs[v].lookup));
+                            for (const auto& rg : r3[0])
+                                bytes3 += static_cast<double>(rg.bytes.size() - 16) + 3.0 * static_cast<double>(rg.offsets.size());
+                            bytes3 += tables / 8 + static_cast<double>(f2_header);
+                            std::vector<std::vector<Nonzero>> nzs(groups.size());
+                            for (std::size_t g = 0; g < groups.size(); ++g) {
+                                const std::size_t Da = models[g].active.size();
+                                nzs[g].resize(static_cast<std::size_t>(2 + runtime[g].levels) * (Da + 1));
+                                std::vector<double> y1(Da), y3(Da), sa(Da), sb(Da), sc(Da);
+                                for (std::size_t i = 0; i < members[g].size(); ++i)
+                                    for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
+                                        runtime_frame(runtime[g], i, f, y1.data(), sa.data(), sb.data(), sc.data());
+                                        for (const auto& rv : r3) {
+                                            runtime_frame3(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data(), nzs[g].data());
+                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
+                                            runtime_frame4(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data());
+                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
+                                        }
+                                    }
+                            }
+                            auto cold = [&](auto&& frame_fn, bool with_pose) {
+                                const double c0 = bench::thread_cpu_seconds();
+                                for (const auto& [g, i, f] : seq) {
+                                    const auto& m = models[g];
+                                    const std::size_t Da = m.active.size();
+                                    double* base = scratch[g].data();
+                                    frame_fn(g, i, f, base, Da);
+                                    if (with_pose) {
+                                        m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                        m.local_of(m.clips[i], base + 4 * Da, out);
+                                    }
+                                }
+                                return (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6;
+                            };
+                            auto hot_of = [&](auto&& frame_fn) {  // 32 poses over and over: bytes, tables and branches learnt
+                                const double c0 = bench::thread_cpu_seconds();
+                                for (int again = 0; again < 200; ++again)
+                                    for (std::size_t n = 0; n < 32; ++n) {
+                                        const auto& [g, i, f] = seq[n];
+                                        frame_fn(g, i, f, scratch[g].data(), models[g].active.size());
+                                    }
+                                return (bench::thread_cpu_seconds() - c0) / 6400.0 * 1e6;
+                            };
+                            auto f1 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                            };
+                            double c1 = 1e300, y1t = 1e300, h1 = 1e300;
+                            std::vector<double> h3(configs.size(), 1e300), c4(configs.size(), 1e300), y4t(configs.size(), 1e300),
+                                h4(configs.size(), 1e300);
+                            std::vector<double> c3(configs.size(), 1e300), y3t(configs.size(), 1e300);
+                            for (int rep = 0; rep < reps; ++rep) {
+                                c1 = std::min(c1, cold(f1, true));
+                                y1t = std::min(y1t, cold(f1, false));
+                                h1 = std::min(h1, hot_of(f1));
+                                for (std::size_t v = 0; v < configs.size(); ++v) {
+                                    auto f3 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame3(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, nzs[g].data());
+                                    };
+                                    c3[v] = std::min(c3[v], cold(f3, true));
+                                    y3t[v] = std::min(y3t[v], cold(f3, false));
+                                    h3[v] = std::min(h3[v], hot_of(f3));
+                                    auto f4 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame4(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    };
+                                    c4[v] = std::min(c4[v], cold(f4, true));
+                                    y4t[v] = std::min(y4t[v], cold(f4, false));
+                                    h4[v] = std::min(h4[v], hot_of(f4));
+                                }
+                            }
+                            std::printf("#  VARIANT 3 (keys at entry ends, 3 chains): bytes %.0f; %s; v1: cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                        bytes3, equal ? "every frame equal to variant 1" : "MISMATCH with variant 1", c1, y1t, h1);
+                            for (std::size_t v = 0; v < configs.size(); ++v)
+                                std::printf("#    v3 lookup %d bits%s: table %zu kB, cold local pose %.3f us, y %.3f us (hot %.3f); v4: cold local pose %.3f us, y %.3f us (hot %.3f)\n", configs[v].lookup,
+                                            configs[v].pairs ? ", pairs" : ", no pairs", r3[v][0].table.size() * 4 / 1024, c3[v], y3t[v], h3[v],
+                                            c4[v], y4t[v], h4[v]);
+                        }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
                                     no_prefetch, pose_only);
                         std::printf("#  RUNTIME bytes %.0f (entries %.0f, directory %.0f, offsets %zu, tables %.0f, header %zu); "
