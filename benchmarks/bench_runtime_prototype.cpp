@@ -153,6 +153,24 @@ std::int32_t quantize(double v, double inv_step, double rounding) {
     return v < 0 ? -m : m;
 }
 
+/// y -> the frame's dofs: pose_of, or with an identity dof basis (--dof identity) the copy of y
+/// instead of the product (x = y: the same values, up to the sign of a zero).
+void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s, double* p) {
+    static thread_local const detail::GroupModel* known = nullptr;
+    static thread_local bool identity = false;
+    if (known != &m) {
+        known = &m;
+        identity = m.dof_basis.isIdentity(0.0);
+    }
+    if (!identity) {
+        m.pose_of(e, y, static_cast<int>(m.active.size()), s, p);
+        return;
+    }
+    std::copy(y, y + m.active.size(), s.x.data());
+    std::copy(m.constant.begin(), m.constant.end(), p);
+    m.unweight(s.x.data(), m.skeletons[e.skeleton], p);
+}
+
 /// The hierarchical candidate on one group (clips in group order, m parsed from format 2's bytes).
 HierResult run_hier(const detail::GroupModel& m, const std::vector<const Clip*>& clips, double E, int W, int key_offset,
                     StaticCost& cost, StaticCost& widths, double rounding) {
@@ -183,7 +201,7 @@ HierResult run_hier(const detail::GroupModel& m, const std::vector<const Clip*>&
         // Distance check of reconstructed frame t (a real frame).
         double worst = 0.0;
         auto frame_ok = [&](Eigen::Index t, const double* yt) {
-            m.pose_of(e, yt, static_cast<int>(Da), s, p.data());
+            dofs_of_y(m, e, yt, s, p.data());
             m.row_of(e, p.data(), row.data());
             forward_kinematics(sk, row.data(), pose);
             for (Eigen::Index j = 0; j < J; ++j) {
@@ -1102,8 +1120,20 @@ struct RuntimeGroup3 {
     std::vector<std::uint32_t> table;    // per context 2^lookup entries
     int lookup = 11;                     // bits a lookup reads (<= kFastBits); longer codes: variant 1's table
     bool pairs = true;
+    /// Variant 6's table (per context 2^lookup entries): the symbols' values decoded in the entry.
+    /// Bits 0-5 the first symbol's bits (code, sign, magnitude; its code alone when unresolved), 6-11 both
+    /// symbols' bits, 12-16 adv1, 17-21 adv2, 22 end1, 23 end2, 24 pair, 25 unresolved (magnitude
+    /// past the lookup: decoded from the bits), 26-30 cat1 (unresolved), 32-47 value 1, 48-63 value 2.
+    std::vector<std::uint64_t> wide;
     const std::uint8_t* data() const { return bytes.data() + 8; }
 };
+
+inline std::int32_t value_at(std::uint64_t w, int at, int cat) {
+    const std::uint64_t top = w << at;
+    const auto s = static_cast<std::int32_t>(top >> 63);
+    const auto mag = static_cast<std::int32_t>(((top | (std::uint64_t{1} << 63)) >> (63 - cat)) >> 1);
+    return (mag ^ -s) + s;
+}
 
 /// Symbol fields of a decoded code: (len, cat, adv, end) of symbol s.
 inline void symbol_fields(int s, int& cat, int& adv, int& end) {
@@ -1145,6 +1175,43 @@ void build_table3(RuntimeGroup3& g3, bool pairs, int lookup) {
                 }
             }
             g3.table[c * n + i] = e;
+        }
+    }
+    // The wide table: values resolved in the entry where the lookup holds their bits.
+    g3.wide.assign(g.codes.size() * n, 0);
+    for (std::size_t c = 0; c < g.codes.size(); ++c) {
+        const auto& fast = g.codes[c].fast;
+        if (fast.empty()) continue;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto f = fast[i << shift];
+            if (!f.length || f.length > B) continue;
+            int cat1, adv1, end1;
+            symbol_fields(f.symbol, cat1, adv1, end1);
+            // The lookup's bits, left-aligned in 64 (zeros after them).
+            const std::uint64_t bits = static_cast<std::uint64_t>(i) << (64 - B);
+            std::uint64_t e = static_cast<std::uint64_t>(adv1) << 12 | (end1 ? std::uint64_t{1} << 22 : 0);
+            const int used = f.length + cat1;
+            if (end1) {
+                e |= static_cast<std::uint64_t>(f.length);
+            } else if (used > B) {
+                e |= static_cast<std::uint64_t>(f.length) | std::uint64_t{1} << 25 | static_cast<std::uint64_t>(cat1) << 26;
+            } else {
+                const std::int32_t v1 = value_at(bits, f.length, cat1);
+                e |= static_cast<std::uint64_t>(used) | static_cast<std::uint64_t>(static_cast<std::uint16_t>(v1)) << 32;
+                if (pairs && cat1 > 0 && used < B) {
+                    const std::size_t rest = (i << used) & (n - 1);
+                    const auto f2 = fast[rest << shift];
+                    int cat2, adv2, end2;
+                    if (f2.length) symbol_fields(f2.symbol, cat2, adv2, end2);
+                    if (f2.length && used + f2.length + cat2 <= B) {
+                        const std::int32_t v2 = value_at(bits, used + f2.length, cat2);
+                        e |= static_cast<std::uint64_t>(used + f2.length + cat2) << 6 | static_cast<std::uint64_t>(adv2) << 17 |
+                             (end2 ? std::uint64_t{1} << 23 : 0) | std::uint64_t{1} << 24 |
+                             static_cast<std::uint64_t>(static_cast<std::uint16_t>(v2)) << 48;
+                    }
+                }
+            }
+            g3.wide[c * n + i] = e;
         }
     }
 }
@@ -1227,12 +1294,6 @@ inline std::uint64_t peek3(const std::uint8_t* base, std::size_t pos) {
     return v << (pos & 7);
 }
 
-inline std::int32_t value_at(std::uint64_t w, int at, int cat) {
-    const std::uint64_t top = w << at;
-    const auto s = static_cast<std::int32_t>(top >> 63);
-    const auto mag = static_cast<std::int32_t>(((top | (std::uint64_t{1} << 63)) >> (63 - cat)) >> 1);
-    return (mag ^ -s) + s;
-}
 
 /// A code longer than the lookup: one symbol by variant 1's table.
 template <bool Rev>
@@ -1434,9 +1495,85 @@ __attribute__((noinline)) SlowSymbol slow_symbol(const std::uint16_t* slow, int 
 
 /// One lookup of a column (one or two symbols) at bit pos with row d; out[row] = out[row] + v * step
 /// for each value (keys: out zero, so v * step). Returns false when the column has ended.
+/// Set by --branch-free 1: lean_step adds both symbols' values without branches (a value that is
+/// not there adds +0.0 to the first symbol's row, which never changes a bit: no row holds -0.0).
+bool g_branch_free = false;
+
+template <bool Rev>
+__attribute__((always_inline)) inline bool lean_step_free(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint32_t* table,
+                                                          const std::uint16_t* slow, int Da, int B, double* out, double step) {
+    const std::uint64_t w = peek3<Rev>(base, pos);
+    const std::uint32_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    if (__builtin_expect(e == 0, 0)) {
+        const SlowSymbol s = slow_symbol<Rev>(slow, d, w);
+        pos += static_cast<std::size_t>(s.bits);
+        if (s.end) return false;
+        d += s.adv;
+        if (s.value) out[d - 1] = out[d - 1] + s.value * step;
+        return d < Da;
+    }
+    const int len1 = static_cast<int>(e & 15), cat1 = static_cast<int>((e >> 4) & 31), adv1 = static_cast<int>((e >> 9) & 31);
+    if (e & kEnd1) {
+        pos += static_cast<std::size_t>(len1);
+        return false;
+    }
+    const int n1 = len1 + cat1;
+    const int d1 = d + adv1;
+    out[d1 - 1] = out[d1 - 1] + value_at(w, len1, cat1) * step;  // sixteen zeros: +0.0 to a row before a value
+    const int len2 = static_cast<int>((e >> 14) & 15), cat2 = static_cast<int>((e >> 18) & 31), adv2 = static_cast<int>((e >> 23) & 31);
+    const bool take = (len2 != 0) & (((d & 7) + adv1) < 8) & (d1 < Da);
+    const int row2 = take ? d1 + adv2 - 1 : d1 - 1;
+    const std::int32_t v2 = take ? value_at(w, n1 + len2, cat2) : 0;
+    out[row2] = out[row2] + v2 * step;
+    pos += static_cast<std::size_t>(n1 + (take ? len2 + cat2 : 0));
+    d = take ? d1 + adv2 : d1;
+    return !(take & ((e & kEnd2) != 0)) & (d < Da);
+}
+
+/// lean_step by the wide table: the values from the entry.
+template <bool Rev>
+__attribute__((always_inline)) inline bool wide_step(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint64_t* table,
+                                                     const std::uint16_t* slow, int Da, int B, double* out, double step) {
+    const std::uint64_t w = peek3<Rev>(base, pos);
+    const std::uint64_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    if (__builtin_expect(e == 0, 0)) {
+        const SlowSymbol s = slow_symbol<Rev>(slow, d, w);
+        pos += static_cast<std::size_t>(s.bits);
+        if (s.end) return false;
+        d += s.adv;
+        if (s.value) out[d - 1] = out[d - 1] + s.value * step;
+        return d < Da;
+    }
+    const int n1 = static_cast<int>(e & 63), adv1 = static_cast<int>((e >> 12) & 31);
+    if (e & (std::uint64_t{1} << 22)) {
+        pos += static_cast<std::size_t>(n1);
+        return false;
+    }
+    if (__builtin_expect((e & (std::uint64_t{1} << 25)) != 0, 0)) {
+        const int cat1 = static_cast<int>((e >> 26) & 31);
+        pos += static_cast<std::size_t>(n1 + cat1);
+        d += adv1;
+        out[d - 1] = out[d - 1] + value_at(w, n1, cat1) * step;
+        return d < Da;
+    }
+    const int d1 = d + adv1;
+    out[d1 - 1] = out[d1 - 1] + static_cast<std::int16_t>(e >> 32) * step;  // sixteen zeros: +0.0, no change
+    if ((e & (std::uint64_t{1} << 24)) && ((d & 7) + adv1) < 8 && d1 < Da) {
+        pos += static_cast<std::size_t>((e >> 6) & 63);
+        if (e & (std::uint64_t{1} << 23)) return false;
+        d = d1 + static_cast<int>((e >> 17) & 31);
+        out[d - 1] = out[d - 1] + static_cast<std::int16_t>(e >> 48) * step;
+        return d < Da;
+    }
+    pos += static_cast<std::size_t>(n1);
+    d = d1;
+    return d < Da;
+}
+
 template <bool Rev>
 __attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint32_t* table,
                                                      const std::uint16_t* slow, int Da, int B, double* out, double step) {
+    if (g_branch_free) return lean_step_free<Rev>(base, pos, d, table, slow, Da, B, out, step);
     const std::uint64_t w = peek3<Rev>(base, pos);
     const std::uint32_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
     if (__builtin_expect(e == 0, 0)) {
@@ -1469,7 +1606,21 @@ __attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, s
     return d < Da;
 }
 
-/// Variant 4's frame into y (the same bits as variant 1); a, b, c: Da values of scratch each.
+template <bool Wide>
+const auto* table_of(const RuntimeGroup3& g3) {
+    if constexpr (Wide) return g3.wide.data();
+    else return g3.table.data();
+}
+template <bool Wide, bool Rev, class T>
+__attribute__((always_inline)) inline bool step_of(const std::uint8_t* base, std::size_t& pos, int& d, const T* table,
+                                                   const std::uint16_t* slow, int Da, int B, double* out, double step) {
+    if constexpr (Wide) return wide_step<Rev>(base, pos, d, table, slow, Da, B, out, step);
+    else return lean_step<Rev>(base, pos, d, table, slow, Da, B, out, step);
+}
+
+/// Variant 4's frame into y (the same bits as variant 1); a, b, c: Da values of scratch each. Wide:
+/// variant 6 (the wide table).
+template <bool Wide = false>
 void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
     const RuntimeGroup& g = *g3.base;
     const int Da = g.Da, B = g3.lookup, W = g.W;
@@ -1482,14 +1633,14 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
         const std::size_t end = t == 0 ? o1 + 8 : std::size_t{g3.offsets[entry + 2]} + 8;
         for (std::size_t at = o0 & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
     }
-    const std::uint32_t* keys = g3.table.data();
+    const auto* keys = table_of<Wide>(g3);
     const std::uint16_t* slow_keys = g.flat.data();
     const double key_step = detail::step_of(data[o0]);
     if (t == 0) {
         std::fill(y, y + Da, 0.0);
         std::size_t pos = 0;
         int d = 0;
-        while (lean_step<true>(data + o1, pos, d, keys, slow_keys, Da, B, y, key_step)) {
+        while (step_of<Wide, true>(data + o1, pos, d, keys, slow_keys, Da, B, y, key_step)) {
         }
         return;
     }
@@ -1503,11 +1654,11 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
         int da = 0, db = 0;
         bool la = true, lb = true;
         while (la & lb) {
-            la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
-            lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+            la = step_of<Wide, true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+            lb = step_of<Wide, true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
         }
-        while (la) la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
-        while (lb) lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+        while (la) la = step_of<Wide, true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+        while (lb) lb = step_of<Wide, true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
     }
     const double step = detail::step_of(data[o0 + 1]);
     BitReader in{data, (o0 + 2) * 8};
@@ -1520,6 +1671,250 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
         BitReader s{data, pos + node * static_cast<std::size_t>(width[l])};
         skip[l] = s.get(width[l]);
         pos += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
+    }
+    int lo = 0, hi = W;
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 1;; ++l) {
+        const int mid = (lo + hi) / 2;
+        double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
+        const std::size_t ctx = static_cast<std::size_t>(l * g.buckets);
+        const auto* table = table_of<Wide>(g3) + (ctx << B);
+        const std::uint16_t* slow = g.flat.data() + (ctx << kFastBits);
+        int d = 0;
+        while (step_of<Wide, false>(data, pos, d, table, slow, Da, B, out, step)) {
+        }
+        if (mid == t) return;
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            pos += skip[l];
+            lo = mid;
+            lo_y = out;
+        }
+    }
+}
+
+
+/// Variant 5: variant 4 with the path's columns as a third chain beside the two keys (each column's
+/// values into its own zeroed array, added to its prediction afterwards: the same bits).
+/// delta: levels * Da doubles of scratch.
+void runtime_frame5(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c,
+                    double* delta) {
+    const RuntimeGroup& g = *g3.base;
+    const int Da = g.Da, B = g3.lookup, W = g.W;
+    const std::size_t w = frame / static_cast<std::size_t>(W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
+    if (t == 0) {
+        runtime_frame4(g3, clip, frame, y, a, b, c);
+        return;
+    }
+    const std::size_t entry = g.clip_first[clip] + w;
+    const std::uint8_t* data = g3.data();
+    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1], o2 = g3.offsets[entry + 2];
+    for (std::size_t at = o0 & ~std::size_t{63}; at < o2 + 8; at += 64) __builtin_prefetch(data + at);
+    const std::uint32_t* keys = g3.table.data();
+    const std::uint16_t* slow_keys = g.flat.data();
+    const double key_step = detail::step_of(data[o0]), next_step = detail::step_of(data[o1]), step = detail::step_of(data[o0 + 1]);
+    BitReader in{data, (o0 + 2) * 8};
+    int width[8] = {0};
+    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
+    std::size_t pos = in.pos;
+    std::size_t skip[8] = {0};
+    for (int l = 1; l < g.levels; ++l) {
+        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
+        BitReader s{data, pos + node * static_cast<std::size_t>(width[l])};
+        skip[l] = s.get(width[l]);
+        pos += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
+    }
+    int path = 0, mids[8];
+    {
+        int lo = 0, hi = W;
+        for (;;) {
+            const int mid = (lo + hi) / 2;
+            mids[path++] = mid;
+            if (mid == t) break;
+            if (t < mid) hi = mid;
+            else lo = mid;
+        }
+    }
+    std::fill(a, a + Da, 0.0);
+    std::fill(b, b + Da, 0.0);
+    std::fill(delta, delta + path * Da, 0.0);
+    std::size_t pa = 0, pb = 0;
+    int da = 0, db = 0, dc = 0, k = 0;
+    bool la = true, lb = true, lc = true;
+    const std::uint32_t* table = g3.table.data() + (static_cast<std::size_t>(g.buckets) << B);
+    const std::uint16_t* slow = g.flat.data() + (static_cast<std::size_t>(g.buckets) << kFastBits);
+    double* out = delta;
+    auto next_column = [&] {
+        if (++k >= path) return false;
+        if (t > mids[k - 1]) pos += skip[k];
+        const std::size_t ctx = static_cast<std::size_t>((k + 1) * g.buckets);
+        table = g3.table.data() + (ctx << B);
+        slow = g.flat.data() + (ctx << kFastBits);
+        out = delta + k * Da;
+        dc = 0;
+        return true;
+    };
+    while (la & lb) {
+        la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+        lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+        if (!lean_step<false>(data, pos, dc, table, slow, Da, B, out, step) && !next_column()) {
+            lc = false;
+            break;
+        }
+    }
+    while (la) la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+    while (lb) lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+    while (lc)
+        if (!lean_step<false>(data, pos, dc, table, slow, Da, B, out, step)) lc = next_column();
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 0; l < path; ++l) {
+        const bool last = l + 1 == path;
+        double* o = last ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        const double* dl = delta + l * Da;
+        for (int d = 0; d < Da; ++d) o[d] = 0.5 * (lo_y[d] + hi_y[d]) + dl[d];
+        if (last) return;
+        if (t < mids[l]) hi_y = o;
+        else lo_y = o;
+    }
+}
+
+
+// ---- Variant 7: variant 4 with keys at fixed widths: per clip and row one width (5 bits each, in the
+// clip's header), each key row its two's complement value at that width; a key decodes with no
+// symbol chain (every row's place is known). Columns as variant 4 (pairs, same codes). ----
+
+struct RuntimeGroup7 {
+    const RuntimeGroup3* v3 = nullptr;  // tables
+    std::vector<std::uint32_t> offsets;  // per entry, then one past the last
+    std::vector<std::uint8_t> bytes;     // 8 bytes of slack after
+    std::vector<std::uint8_t> width;     // per clip, Da widths
+    std::vector<std::uint16_t> at;       // per clip, Da + 1 bit offsets within a key (prefix sums)
+    std::size_t width_bits = 0;          // the widths as stored (5 bits each)
+};
+
+RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r) {
+    const RuntimeGroup& g = *g3.base;
+    RuntimeGroup7 g7;
+    g7.v3 = &g3;
+    const auto Da = static_cast<std::size_t>(g.Da);
+    std::vector<int> tl, tf;
+    tree_order(g.W, tl, tf);
+    g7.width.assign(r.clip_first.size() * Da, 0);
+    g7.at.assign(r.clip_first.size() * (Da + 1), 0);
+    std::vector<std::size_t> clip_of(r.entries.size());
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
+        const std::size_t last = i + 1 < r.clip_first.size() ? r.clip_first[i + 1] : r.entries.size();
+        std::uint8_t* w = g7.width.data() + i * Da;
+        for (std::size_t e = r.clip_first[i]; e < last; ++e) {
+            clip_of[e] = i;
+            for (std::size_t d = 0; d < Da; ++d) {
+                const std::int32_t q = r.entries[e].key[d];
+                // Two's complement: the fewest bits that hold q.
+                int b = 0;
+                while (b < 31 && !(q >= -(std::int64_t{1} << b) && q < (std::int64_t{1} << b))) ++b;
+                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], q ? b + 1 : 0));
+            }
+        }
+        std::uint16_t* at = g7.at.data() + i * (Da + 1);
+        for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
+        g7.width_bits += 5 * Da;
+    }
+    BitWriter out;
+    for (std::size_t k = 0; k < r.entries.size(); ++k) {
+        const auto& e = r.entries[k];
+        out.align();
+        g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+        out.put(static_cast<std::uint32_t>(e.key_step), 8);
+        const std::uint8_t* w = g7.width.data() + clip_of[k] * Da;
+        for (std::size_t d = 0; d < Da; ++d) out.put(static_cast<std::uint32_t>(e.key[d]), w[d]);
+        if (e.step < 0) continue;
+        out.put(static_cast<std::uint32_t>(e.step), 8);
+        std::vector<std::size_t> size;
+        for (std::size_t i = 0; i < e.columns.size(); ++i) {
+            BitWriter scratch;
+            g.write_column(scratch, tl[i], e.columns[i]);
+            size.push_back(scratch.bits());
+        }
+        std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
+        for (std::size_t i = 0; i < e.columns.size(); ++i) {
+            const int l = tl[i];
+            if (l >= g.levels) continue;
+            const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
+            std::size_t s = 0;
+            for (std::size_t j = i + 1; j <= i + span; ++j) s += size[j];
+            left[static_cast<std::size_t>(l)].push_back(s);
+        }
+        std::vector<int> lw(static_cast<std::size_t>(g.levels), 0);
+        for (int l = 1; l < g.levels; ++l) {
+            for (std::size_t s : left[static_cast<std::size_t>(l)])
+                lw[static_cast<std::size_t>(l)] = std::max(lw[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
+            out.put(static_cast<std::uint32_t>(lw[static_cast<std::size_t>(l)]), 5);
+        }
+        for (int l = 1; l < g.levels; ++l)
+            for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), lw[static_cast<std::size_t>(l)]);
+        for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+    }
+    out.align();
+    g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+    g7.bytes = std::move(out.bytes);
+    g7.bytes.resize(g7.bytes.size() + 8, 0);
+    return g7;
+}
+
+/// A fixed-width key at bit `bit`: out[d] = q * step (+0.0 where q is 0, as the encoder formed it).
+inline void fixed_key(const std::uint8_t* data, std::size_t bit, const std::uint8_t* width, const std::uint16_t* at, int Da,
+                      double step, double* out) {
+    for (int d = 0; d < Da; ++d) {
+        const std::size_t p = bit + at[d];
+        std::uint64_t v;
+        std::memcpy(&v, data + (p >> 3), 8);
+        v = __builtin_bswap64(v) << (p & 7);
+        // Arithmetic shift of the top width bits (width 0: 0; the shift by 63 then 1 avoids a shift by 64).
+        const int w = width[d];
+        const auto q = static_cast<std::int64_t>(v) >> (63 - (w ? w - 1 : 63)) >> (w ? 0 : 1);
+        out[d] = static_cast<double>(w ? q : 0) * step;
+    }
+}
+
+void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
+    const RuntimeGroup3& g3 = *g7.v3;
+    const RuntimeGroup& g = *g3.base;
+    const int Da = g.Da, B = g3.lookup, W = g.W;
+    const std::size_t w = frame / static_cast<std::size_t>(W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
+    const std::size_t entry = g.clip_first[clip] + w;
+    const std::uint8_t* data = g7.bytes.data();
+    const std::size_t o0 = g7.offsets[entry], o1 = g7.offsets[entry + 1];
+    const std::uint8_t* width = g7.width.data() + clip * static_cast<std::size_t>(Da);
+    const std::uint16_t* at = g7.at.data() + clip * static_cast<std::size_t>(Da + 1);
+    {
+        const std::size_t end = t == 0 ? o0 + at[Da] / 8 + 9 : o1 + at[Da] / 8 + 9;
+        for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
+    }
+    const double key_step = detail::step_of(data[o0]);
+    if (t == 0) {
+        fixed_key(data, o0 * 8 + 8, width, at, Da, key_step, y);
+        return;
+    }
+    fixed_key(data, o0 * 8 + 8, width, at, Da, key_step, a);
+    fixed_key(data, o1 * 8 + 8, width, at, Da, detail::step_of(data[o1]), b);
+    BitReader in{data, o0 * 8 + 8 + at[Da]};
+    const double step = detail::step_of(static_cast<int>(in.get(8)));
+    int lw[8] = {0};
+    for (int l = 1; l < g.levels; ++l) lw[l] = static_cast<int>(in.get(5));
+    std::size_t pos = in.pos;
+    std::size_t skip[8] = {0};
+    for (int l = 1; l < g.levels; ++l) {
+        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
+        BitReader s{data, pos + node * static_cast<std::size_t>(lw[l])};
+        skip[l] = s.get(lw[l]);
+        pos += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(lw[l]);
     }
     int lo = 0, hi = W;
     double* lo_y = a;
@@ -1546,6 +1941,23 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
     }
 }
 
+/// x = U y in float32 (the dof basis rounded to float), then the dofs as pose_of forms them.
+struct FloatModel {
+    Eigen::MatrixXf U;
+    mutable Eigen::VectorXf y, x;
+    mutable std::vector<double> xd;
+    explicit FloatModel(const detail::GroupModel& m)
+        : U(m.dof_basis.cast<float>()), y(m.dof_basis.rows()), x(m.dof_basis.rows()), xd(static_cast<std::size_t>(m.dof_basis.rows())) {}
+};
+void float_pose_of(const FloatModel& f, const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, double* p) {
+    const auto n = f.U.rows();
+    for (Eigen::Index i = 0; i < n; ++i) f.y[i] = static_cast<float>(y[i]);
+    f.x.noalias() = f.U * f.y;
+    for (Eigen::Index i = 0; i < n; ++i) f.xd[static_cast<std::size_t>(i)] = f.x[i];
+    std::copy(m.constant.begin(), m.constant.end(), p);
+    m.unweight(f.xd.data(), m.skeletons[e.skeleton], p);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1556,7 +1968,8 @@ int main(int argc, char** argv) {
     double rounding = 0.4;
     std::size_t limit = 0;
     std::vector<int> lookups{11, 9, 8};
-    int reps = 3;  // repeats of the variant 3 timings (best of)  // variant 3's lookup widths (the first also without pairs)
+    int reps = 3;
+    bool identity_dofs = false;  // --dof identity: no dof basis (y = x, no product at decode)  // repeats of the variant 3 timings (best of)  // variant 3's lookup widths (the first also without pairs)
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
@@ -1569,6 +1982,8 @@ int main(int argc, char** argv) {
         else if (k == "--poses") poses = std::stoul(v);
         else if (k == "--code-bits") kMaxCode = std::stoi(v);
         else if (k == "--reps") reps = std::stoi(v);
+        else if (k == "--dof") identity_dofs = v == "identity";
+        else if (k == "--branch-free") g_branch_free = v == "1";
         else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
     }
     std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
@@ -1582,7 +1997,7 @@ int main(int argc, char** argv) {
             PackOptions o;
             o.max_error_cm = E;
             o.time_basis = TimeBasis::Learned;
-            o.dof_basis = DofBasis::Learned;
+            o.dof_basis = identity_dofs ? DofBasis::Identity : DofBasis::Learned;
             std::vector<detail::GroupModel> models(groups.size());
             std::vector<std::vector<const Clip*>> members(groups.size());
             std::size_t f2_bytes = 0, f2_payload = 0, f2_header = 0;
@@ -1667,7 +2082,7 @@ int main(int argc, char** argv) {
                                 const MatX source = joint_positions(clip);
                                 for (std::size_t f = 0; f < clip.frame_count(); ++f) {
                                     runtime_frame(runtime[g], i, f, y.data(), a.data(), b.data(), c.data());
-                                    m.pose_of(e, y.data(), static_cast<int>(Da), s, p.data());
+                                    dofs_of_y(m, e, y.data(), s, p.data());
                                     m.row_of(e, p.data(), row.data());
                                     forward_kinematics(sk, row.data(), pose);
                                     for (std::size_t j = 0; j < sk.size(); ++j)
@@ -1713,7 +2128,7 @@ int main(int argc, char** argv) {
                                 const std::size_t Da = m.active.size();
                                 double* base = scratch[g].data();
                                 runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
-                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
                                 m.local_of(m.clips[i], base + 4 * Da, out);
                             }
                             ours = std::min(ours, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
@@ -1722,7 +2137,9 @@ int main(int argc, char** argv) {
                             theirs = std::min(theirs, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                         }
                         // Stages: the frame's y from the bytes alone, and y -> local pose alone (on stored y).
-                        double decode_only = 1e300, pose_only = 1e300;
+                        double decode_only = 1e300, pose_only = 1e300, dofs_only = 1e300, float_dofs = 1e300;
+                        std::vector<FloatModel> fm;
+                        for (const auto& m : models) fm.emplace_back(m);
                         for (int rep = 0; rep < 3; ++rep) {
                             double c0 = bench::thread_cpu_seconds();
                             for (const auto& [g, i, f] : seq) {
@@ -1736,11 +2153,28 @@ int main(int argc, char** argv) {
                                 const auto& m = models[g];
                                 const std::size_t Da = m.active.size();
                                 double* base = scratch[g].data();
-                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
                                 m.local_of(m.clips[i], base + 4 * Da, out);
                             }
                             pose_only = std::min(pose_only, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                            c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const auto& m = models[g];
+                                const std::size_t Da = m.active.size();
+                                double* base = scratch[g].data();
+                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
+                            }
+                            dofs_only = std::min(dofs_only, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                            c0 = bench::thread_cpu_seconds();
+                            for (const auto& [g, i, f] : seq) {
+                                const auto& m = models[g];
+                                const std::size_t Da = m.active.size();
+                                double* base = scratch[g].data();
+                                float_pose_of(fm[g], m, m.clips[i], base, base + 4 * Da);
+                            }
+                            float_dofs = std::min(float_dofs, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                         }
+                        std::printf("#  y -> dofs alone: %.3f us (float32 product: %.3f us)\n", dofs_only, float_dofs);
                         double no_prefetch = 1e300;
                         for (auto& rg : runtime) rg.prefetch = false;
                         for (int rep = 0; rep < 3; ++rep) {
@@ -1809,7 +2243,7 @@ int main(int argc, char** argv) {
                                 const std::size_t Da = m.active.size();
                                 double* base = scratch[g].data();
                                 runtime_frame2(runtime2[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, qscratch[g].data());
-                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
                                 m.local_of(m.clips[i], base + 4 * Da, out);
                             }
                             cold2 = std::min(cold2, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
@@ -1820,6 +2254,40 @@ int main(int argc, char** argv) {
                                     "cold local pose %.3f us\n",
                                     bits2 / 8 + 3.0 * static_cast<double>(entries2) + tables / 8 + static_cast<double>(f2_header), bits2 / 8,
                                     directory2 / 8, worst2 > 0 ? "MISMATCH with variant 1" : "every frame equal to variant 1", decode2, cold2);
+                        // Keys: Huffman bits against fixed widths per clip and row (5 bits a width per clip
+                        // and row), and against fixed widths per clip and row of the key minus the previous key.
+                        {
+                            double huff_bits = 0.0, width_bits = 0.0, delta_bits = 0.0;
+                            for (std::size_t g = 0; g < groups.size(); ++g) {
+                                const HierResult& hr = hier_results[g];
+                                const std::size_t Da = models[g].active.size();
+                                for (std::size_t i = 0; i < hr.clip_first.size(); ++i) {
+                                    const std::size_t first = hr.clip_first[i];
+                                    const std::size_t last = i + 1 < hr.clip_first.size() ? hr.clip_first[i + 1] : hr.entries.size();
+                                    std::vector<int> width(Da, 0), dwidth(Da, 0);
+                                    for (std::size_t e = first; e < last; ++e) {
+                                        BitWriter bw;
+                                        runtime[g].write_column(bw, 0, hr.entries[e].key);
+                                        huff_bits += static_cast<double>(bw.bits());
+                                        for (std::size_t d = 0; d < Da; ++d) {
+                                            const std::int32_t q = hr.entries[e].key[d];
+                                            width[d] = std::max(width[d], q ? bit_length(static_cast<std::uint32_t>(std::abs(q))) + 1 : 0);
+                                            if (e > first) {
+                                                const std::int32_t dq = q - hr.entries[e - 1].key[d] * (1 << 0);
+                                                dwidth[d] = std::max(dwidth[d], dq ? bit_length(static_cast<std::uint32_t>(std::abs(dq))) + 1 : 0);
+                                            }
+                                        }
+                                    }
+                                    for (std::size_t d = 0; d < Da; ++d) {
+                                        width_bits += 5.0 + static_cast<double>(width[d]) * static_cast<double>(last - first);
+                                        delta_bits += 5.0 + static_cast<double>(dwidth[d]) * static_cast<double>(last - first);
+                                    }
+                                }
+                            }
+                            std::printf("#  keys: huffman %.0f bytes, fixed width per clip and row %.0f, previous-key delta at fixed widths %.0f "
+                                        "(steps differ between keys: indicative only)\n",
+                                        huff_bits / 8, width_bits / 8, delta_bits / 8);
+                        }
                         // Variant 3 (lookup widths, with and without two symbols per lookup), A/B against variant 1
                         // in the same reps.
                         {
@@ -1840,6 +2308,9 @@ int main(int argc, char** argv) {
                                 bytes3 += static_cast<double>(rg.bytes.size() - 16) + 3.0 * static_cast<double>(rg.offsets.size());
                             bytes3 += tables / 8 + static_cast<double>(f2_header);
                             std::vector<std::vector<Nonzero>> nzs(groups.size());
+                            std::vector<std::vector<double>> deltas(groups.size());
+                            for (std::size_t g = 0; g < groups.size(); ++g)
+                                deltas[g].resize(static_cast<std::size_t>(runtime[g].levels) * models[g].active.size());
                             for (std::size_t g = 0; g < groups.size(); ++g) {
                                 const std::size_t Da = models[g].active.size();
                                 nzs[g].resize(static_cast<std::size_t>(2 + runtime[g].levels) * (Da + 1));
@@ -1852,9 +2323,34 @@ int main(int argc, char** argv) {
                                             if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
                                             runtime_frame4(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data());
                                             if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
+                                            runtime_frame4<true>(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data());
+                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
+                                            runtime_frame5(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data(), deltas[g].data());
+                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
                                         }
                                     }
                             }
+                            std::vector<RuntimeGroup7> r7;
+                            double bytes7 = 0.0;
+                            bool equal7 = true;
+                            for (std::size_t g = 0; g < groups.size(); ++g) {
+                                r7.push_back(build_runtime7(r3[0][g], hier_results[g]));
+                                bytes7 += static_cast<double>(r7.back().bytes.size() - 8) + 3.0 * static_cast<double>(r7.back().offsets.size()) +
+                                          static_cast<double>(r7.back().width_bits) / 8;
+                                // Code tables without the keys' (level 0) contexts.
+                                for (int c = 0; c < runtime[g].buckets; ++c)
+                                    if (!runtime[g].codes[static_cast<std::size_t>(c)].length.empty())
+                                        bytes7 -= (8.0 + 5.0 * static_cast<double>(runtime[g].codes[static_cast<std::size_t>(c)].length.size())) / 8;
+                                const std::size_t Da = models[g].active.size();
+                                std::vector<double> y1(Da), y7(Da), sa(Da), sb(Da), sc(Da);
+                                for (std::size_t i = 0; i < members[g].size(); ++i)
+                                    for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
+                                        runtime_frame(runtime[g], i, f, y1.data(), sa.data(), sb.data(), sc.data());
+                                        runtime_frame7(r7[g], i, f, y7.data(), sa.data(), sb.data(), sc.data());
+                                        if (std::memcmp(y1.data(), y7.data(), Da * sizeof(double)) != 0) equal7 = false;
+                                    }
+                            }
+                            bytes7 += tables / 8 + static_cast<double>(f2_header);
                             auto cold = [&](auto&& frame_fn, bool with_pose) {
                                 const double c0 = bench::thread_cpu_seconds();
                                 for (const auto& [g, i, f] : seq) {
@@ -1863,7 +2359,7 @@ int main(int argc, char** argv) {
                                     double* base = scratch[g].data();
                                     frame_fn(g, i, f, base, Da);
                                     if (with_pose) {
-                                        m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                        dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
                                         m.local_of(m.clips[i], base + 4 * Da, out);
                                     }
                                 }
@@ -1882,13 +2378,20 @@ int main(int argc, char** argv) {
                                 runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                             };
                             double c1 = 1e300, y1t = 1e300, h1 = 1e300;
+                            double c7 = 1e300, y7t = 1e300, h7 = 1e300;
                             std::vector<double> h3(configs.size(), 1e300), c4(configs.size(), 1e300), y4t(configs.size(), 1e300),
-                                h4(configs.size(), 1e300);
+                                h4(configs.size(), 1e300), c5(configs.size(), 1e300), y5t(configs.size(), 1e300), h5(configs.size(), 1e300), c6(configs.size(), 1e300), y6t(configs.size(), 1e300), h6(configs.size(), 1e300);
                             std::vector<double> c3(configs.size(), 1e300), y3t(configs.size(), 1e300);
                             for (int rep = 0; rep < reps; ++rep) {
                                 c1 = std::min(c1, cold(f1, true));
                                 y1t = std::min(y1t, cold(f1, false));
                                 h1 = std::min(h1, hot_of(f1));
+                                auto f7 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                    runtime_frame7(r7[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                };
+                                c7 = std::min(c7, cold(f7, true));
+                                y7t = std::min(y7t, cold(f7, false));
+                                h7 = std::min(h7, hot_of(f7));
                                 for (std::size_t v = 0; v < configs.size(); ++v) {
                                     auto f3 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame3(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, nzs[g].data());
@@ -1902,14 +2405,28 @@ int main(int argc, char** argv) {
                                     c4[v] = std::min(c4[v], cold(f4, true));
                                     y4t[v] = std::min(y4t[v], cold(f4, false));
                                     h4[v] = std::min(h4[v], hot_of(f4));
+                                    auto f5 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame5(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, deltas[g].data());
+                                    };
+                                    c5[v] = std::min(c5[v], cold(f5, true));
+                                    y5t[v] = std::min(y5t[v], cold(f5, false));
+                                    h5[v] = std::min(h5[v], hot_of(f5));
+                                    auto f6 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame4<true>(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    };
+                                    c6[v] = std::min(c6[v], cold(f6, true));
+                                    y6t[v] = std::min(y6t[v], cold(f6, false));
+                                    h6[v] = std::min(h6[v], hot_of(f6));
                                 }
                             }
                             std::printf("#  VARIANT 3 (keys at entry ends, 3 chains): bytes %.0f; %s; v1: cold local pose %.3f us, y %.3f us (hot %.3f)\n",
                                         bytes3, equal ? "every frame equal to variant 1" : "MISMATCH with variant 1", c1, y1t, h1);
+                            std::printf("#  VARIANT 7 (fixed-width keys, lookup %d): bytes %.0f; %s; cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                        configs[0].lookup, bytes7, equal7 ? "every frame equal to variant 1" : "MISMATCH with variant 1", c7, y7t, h7);
                             for (std::size_t v = 0; v < configs.size(); ++v)
-                                std::printf("#    v3 lookup %d bits%s: table %zu kB, cold local pose %.3f us, y %.3f us (hot %.3f); v4: cold local pose %.3f us, y %.3f us (hot %.3f)\n", configs[v].lookup,
+                                std::printf("#    v3 lookup %d bits%s: table %zu kB, cold local pose %.3f us, y %.3f us (hot %.3f); v4: cold local pose %.3f us, y %.3f us (hot %.3f); v5: cold local pose %.3f us, y %.3f us (hot %.3f); v6: cold local pose %.3f us, y %.3f us (hot %.3f)\n", configs[v].lookup,
                                             configs[v].pairs ? ", pairs" : ", no pairs", r3[v][0].table.size() * 4 / 1024, c3[v], y3t[v], h3[v],
-                                            c4[v], y4t[v], h4[v]);
+                                            c4[v], y4t[v], h4[v], c5[v], y5t[v], h5[v], c6[v], y6t[v], h6[v]);
                         }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
                                     no_prefetch, pose_only);
