@@ -39,6 +39,7 @@
 #include <cstring>
 #include <random>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -153,6 +154,27 @@ std::int32_t quantize(double v, double inv_step, double rounding) {
     return v < 0 ? -m : m;
 }
 
+/// x = U y in float32 (the dof basis rounded to float), then the dofs as pose_of forms them.
+struct FloatModel {
+    Eigen::MatrixXf U;
+    mutable Eigen::VectorXf y, x;
+    mutable std::vector<double> xd;
+    explicit FloatModel(const detail::GroupModel& m)
+        : U(m.dof_basis.cast<float>()), y(m.dof_basis.rows()), x(m.dof_basis.rows()), xd(static_cast<std::size_t>(m.dof_basis.rows())) {}
+};
+void float_pose_of(const FloatModel& f, const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, double* p) {
+    const auto n = f.U.rows();
+    for (Eigen::Index i = 0; i < n; ++i) f.y[i] = static_cast<float>(y[i]);
+    f.x.noalias() = f.U * f.y;
+    for (Eigen::Index i = 0; i < n; ++i) f.xd[static_cast<std::size_t>(i)] = f.x[i];
+    std::copy(m.constant.begin(), m.constant.end(), p);
+    m.unweight(f.xd.data(), m.skeletons[e.skeleton], p);
+}
+
+/// --float-dofs 1: x = U y in float32 (float_pose_of) everywhere: in the encoder's bound check, the
+/// check of every frame and the timings (closed loop: the bound holds for what is decoded).
+bool g_float_dofs = false;
+
 /// y -> the frame's dofs: pose_of, or with an identity dof basis (--dof identity) the copy of y
 /// instead of the product (x = y: the same values, up to the sign of a zero).
 void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s, double* p) {
@@ -161,6 +183,19 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
     if (known != &m) {
         known = &m;
         identity = m.dof_basis.isIdentity(0.0);
+    }
+    if (g_float_dofs) {
+        static thread_local std::map<const detail::GroupModel*, std::unique_ptr<FloatModel>> floats;
+        static thread_local const detail::GroupModel* last = nullptr;
+        static thread_local FloatModel* last_float = nullptr;
+        if (last != &m) {
+            auto& f = floats[&m];
+            if (!f) f = std::make_unique<FloatModel>(m);
+            last = &m;
+            last_float = f.get();
+        }
+        float_pose_of(*last_float, m, e, y, p);
+        return;
     }
     if (!identity) {
         m.pose_of(e, y, static_cast<int>(m.active.size()), s, p);
@@ -1795,10 +1830,33 @@ struct RuntimeGroup7 {
     std::vector<std::uint8_t> bytes;     // 8 bytes of slack after
     std::vector<std::uint8_t> width;     // per clip, Da widths
     std::vector<std::uint16_t> at;       // per clip, Da + 1 bit offsets within a key (prefix sums)
+    std::vector<std::int32_t> center;    // per clip, Da values every key row is stored relative to (--key-centers)
+    std::vector<std::uint8_t> full;      // per clip, Da widths of an escaped value (> width: the row has escapes)
+    std::vector<std::uint8_t> rows;      // per clip, Da: its rows that have escapes (the first `escapable`)
+    std::vector<int> escapable;          // per clip
     std::size_t width_bits = 0;          // the widths as stored (5 bits each)
 };
 
-RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r) {
+/// Two's complement bits that hold q (0 for 0).
+int twos_bits(std::int64_t q) {
+    if (!q) return 0;
+    int b = 0;
+    while (b < 40 && !(q >= -(std::int64_t{1} << b) && q < (std::int64_t{1} << b))) ++b;
+    return b + 1;
+}
+
+/// Bits of a static Huffman code of `values` (table: 5 bits per symbol and 8).
+std::size_t coded_bits(const std::vector<int>& values) {
+    std::map<int, std::size_t> hist;
+    for (int v : values) ++hist[v];
+    if (hist.empty()) return 0;
+    const std::map<int, int> lengths = huffman_lengths(hist);
+    std::size_t bits = 8 + 5 * hist.size();
+    for (const auto& [v, n] : hist) bits += n * static_cast<std::size_t>(lengths.at(v));
+    return bits;
+}
+
+RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool centers, bool escapes) {
     const RuntimeGroup& g = *g3.base;
     RuntimeGroup7 g7;
     g7.v3 = &g3;
@@ -1806,24 +1864,75 @@ RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r) {
     std::vector<int> tl, tf;
     tree_order(g.W, tl, tf);
     g7.width.assign(r.clip_first.size() * Da, 0);
+    g7.center.assign(r.clip_first.size() * Da, 0);
+    g7.full.assign(r.clip_first.size() * Da, 0);
     g7.at.assign(r.clip_first.size() * (Da + 1), 0);
     std::vector<std::size_t> clip_of(r.entries.size());
     for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
         const std::size_t last = i + 1 < r.clip_first.size() ? r.clip_first[i + 1] : r.entries.size();
         std::uint8_t* w = g7.width.data() + i * Da;
+        std::int32_t* center = g7.center.data() + i * Da;
+        if (centers)
+            for (std::size_t d = 0; d < Da; ++d) {
+                std::int32_t lo = r.entries[r.clip_first[i]].key[d], hi = lo;
+                for (std::size_t e = r.clip_first[i]; e < last; ++e) {
+                    lo = std::min(lo, r.entries[e].key[d]);
+                    hi = std::max(hi, r.entries[e].key[d]);
+                }
+                center[d] = static_cast<std::int32_t>((static_cast<std::int64_t>(lo) + hi) >> 1);
+            }
         for (std::size_t e = r.clip_first[i]; e < last; ++e) {
             clip_of[e] = i;
-            for (std::size_t d = 0; d < Da; ++d) {
-                const std::int32_t q = r.entries[e].key[d];
-                // Two's complement: the fewest bits that hold q.
-                int b = 0;
-                while (b < 31 && !(q >= -(std::int64_t{1} << b) && q < (std::int64_t{1} << b))) ++b;
-                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], q ? b + 1 : 0));
-            }
+            for (std::size_t d = 0; d < Da; ++d)
+                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], twos_bits(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d])));
         }
+        // Escapes: the width that codes the row smallest when a value outside (-2^(w-1), 2^(w-1)) is
+        // stored as -2^(w-1) and then in full width after the key's slots.
+        std::uint8_t* full = g7.full.data() + i * Da;
+        for (std::size_t d = 0; d < Da; ++d) {
+            full[d] = w[d];
+            if (!escapes) continue;
+            const double n = static_cast<double>(last - r.clip_first[i]);
+            double best = static_cast<double>(w[d]) * n;
+            int best_w = w[d];
+            for (int x = 1; x < w[d]; ++x) {
+                double cost = static_cast<double>(x) * n;
+                for (std::size_t e = r.clip_first[i]; e < last; ++e) {
+                    const std::int64_t v = static_cast<std::int64_t>(r.entries[e].key[d]) - center[d];
+                    if (!(v > -(std::int64_t{1} << (x - 1)) && v < (std::int64_t{1} << (x - 1)))) cost += full[d];
+                }
+                if (cost < best) {
+                    best = cost;
+                    best_w = x;
+                }
+            }
+            w[d] = static_cast<std::uint8_t>(best_w);
+        }
+        g7.rows.resize(g7.full.size());
+        g7.escapable.push_back(0);
+        for (std::size_t d = 0; d < Da; ++d)
+            if (full[d] > w[d]) g7.rows[i * Da + static_cast<std::size_t>(g7.escapable.back()++)] = static_cast<std::uint8_t>(d);
         std::uint16_t* at = g7.at.data() + i * (Da + 1);
         for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
-        g7.width_bits += 5 * Da;
+    }
+    // The widths as stored: per row the group's largest (5 bits), then each clip's as its difference
+    // from it by a static Huffman code of the group (table: 5 bits per symbol and 8).
+    // With centers: each center at its own width (a Huffman-coded width, then its bits).
+    {
+        std::vector<int> largest(Da, 0);
+        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
+            for (std::size_t d = 0; d < Da; ++d) largest[d] = std::max<int>(largest[d], g7.width[i * Da + d]);
+        std::vector<int> deltas, center_widths, extra;
+        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
+            for (std::size_t d = 0; d < Da; ++d) {
+                deltas.push_back(largest[d] - g7.width[i * Da + d]);
+                if (escapes) extra.push_back(g7.full[i * Da + d] - g7.width[i * Da + d]);
+                if (centers) {
+                    center_widths.push_back(twos_bits(g7.center[i * Da + d]));
+                    g7.width_bits += static_cast<std::size_t>(center_widths.back());
+                }
+            }
+        g7.width_bits += 5 * Da + coded_bits(deltas) + coded_bits(center_widths) + coded_bits(extra);
     }
     BitWriter out;
     for (std::size_t k = 0; k < r.entries.size(); ++k) {
@@ -1832,7 +1941,19 @@ RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r) {
         g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
         out.put(static_cast<std::uint32_t>(e.key_step), 8);
         const std::uint8_t* w = g7.width.data() + clip_of[k] * Da;
-        for (std::size_t d = 0; d < Da; ++d) out.put(static_cast<std::uint32_t>(e.key[d]), w[d]);
+        const std::int32_t* center = g7.center.data() + clip_of[k] * Da;
+        const std::uint8_t* full = g7.full.data() + clip_of[k] * Da;
+        std::vector<std::pair<std::int64_t, int>> escaped;
+        for (std::size_t d = 0; d < Da; ++d) {
+            const std::int64_t v = static_cast<std::int64_t>(e.key[d]) - center[d];
+            if (full[d] > w[d] && !(v > -(std::int64_t{1} << (w[d] - 1)) && v < (std::int64_t{1} << (w[d] - 1)))) {
+                out.put(static_cast<std::uint32_t>(-(std::int64_t{1} << (w[d] - 1))), w[d]);
+                escaped.push_back({v, full[d]});
+            } else {
+                out.put(static_cast<std::uint32_t>(v), w[d]);
+            }
+        }
+        for (const auto& [v, f] : escaped) out.put(static_cast<std::uint32_t>(v), f);
         if (e.step < 0) continue;
         out.put(static_cast<std::uint32_t>(e.step), 8);
         std::vector<std::size_t> size;
@@ -1867,19 +1988,35 @@ RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r) {
     return g7;
 }
 
+/// w bits at bit p as a two's complement value (0 when w is 0).
+inline std::int64_t signed_bits(const std::uint8_t* data, std::size_t p, int w) {
+    std::uint64_t v;
+    std::memcpy(&v, data + (p >> 3), 8);
+    v = __builtin_bswap64(v) << (p & 7);
+    // Arithmetic shift of the top w bits (w 0: a shift by 63 and then by 1, never by 64).
+    const auto q = static_cast<std::int64_t>(v) >> (63 - (w ? w - 1 : 63)) >> (w ? 0 : 1);
+    return w ? q : 0;
+}
+
 /// A fixed-width key at bit `bit`: out[d] = q * step (+0.0 where q is 0, as the encoder formed it).
-inline void fixed_key(const std::uint8_t* data, std::size_t bit, const std::uint8_t* width, const std::uint16_t* at, int Da,
-                      double step, double* out) {
-    for (int d = 0; d < Da; ++d) {
-        const std::size_t p = bit + at[d];
-        std::uint64_t v;
-        std::memcpy(&v, data + (p >> 3), 8);
-        v = __builtin_bswap64(v) << (p & 7);
-        // Arithmetic shift of the top width bits (width 0: 0; the shift by 63 then 1 avoids a shift by 64).
-        const int w = width[d];
-        const auto q = static_cast<std::int64_t>(v) >> (63 - (w ? w - 1 : 63)) >> (w ? 0 : 1);
-        out[d] = static_cast<double>(w ? q : 0) * step;
+/// Returns the bit after the key (its slots, then its escaped values).
+inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const std::uint8_t* width, const std::uint16_t* at,
+                             const std::int32_t* center, const std::uint8_t* full, const std::uint8_t* rows, int escapable, int Da,
+                             double step, double* out) {
+    for (int d = 0; d < Da; ++d) out[d] = static_cast<double>(signed_bits(data, bit + at[d], width[d]) + center[d]) * step;
+    // The clip's rows that may escape, without branches (escapes are frequent enough to be
+    // mispredicted): the escaped value is read at the escape position and kept where the slot says so.
+    std::size_t escape = bit + at[Da];
+    for (int k = 0; k < escapable; ++k) {
+        const int d = rows[k], w = width[d], f = full[d];
+        const std::int64_t slot = signed_bits(data, bit + at[d], w);
+        const bool escaped = slot == -(std::int64_t{1} << (w - 1));
+        const std::int64_t wide = signed_bits(data, escape, f);
+        escape += escaped ? static_cast<std::size_t>(f) : 0;
+        const double value = static_cast<double>(wide + center[d]) * step;
+        out[d] = escaped ? value : out[d];
     }
+    return escape;
 }
 
 void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
@@ -1893,18 +2030,22 @@ void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame
     const std::size_t o0 = g7.offsets[entry], o1 = g7.offsets[entry + 1];
     const std::uint8_t* width = g7.width.data() + clip * static_cast<std::size_t>(Da);
     const std::uint16_t* at = g7.at.data() + clip * static_cast<std::size_t>(Da + 1);
+    const std::int32_t* center = g7.center.data() + clip * static_cast<std::size_t>(Da);
+    const std::uint8_t* full = g7.full.data() + clip * static_cast<std::size_t>(Da);
+    const std::uint8_t* rows = g7.rows.data() + clip * static_cast<std::size_t>(Da);
+    const int escapable = g7.escapable[clip];
     {
         const std::size_t end = t == 0 ? o0 + at[Da] / 8 + 9 : o1 + at[Da] / 8 + 9;
         for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
     }
     const double key_step = detail::step_of(data[o0]);
     if (t == 0) {
-        fixed_key(data, o0 * 8 + 8, width, at, Da, key_step, y);
+        fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, y);
         return;
     }
-    fixed_key(data, o0 * 8 + 8, width, at, Da, key_step, a);
-    fixed_key(data, o1 * 8 + 8, width, at, Da, detail::step_of(data[o1]), b);
-    BitReader in{data, o0 * 8 + 8 + at[Da]};
+    const std::size_t key_end = fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, a);
+    fixed_key(data, o1 * 8 + 8, width, at, center, full, rows, escapable, Da, detail::step_of(data[o1]), b);
+    BitReader in{data, key_end};
     const double step = detail::step_of(static_cast<int>(in.get(8)));
     int lw[8] = {0};
     for (int l = 1; l < g.levels; ++l) lw[l] = static_cast<int>(in.get(5));
@@ -1941,23 +2082,6 @@ void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame
     }
 }
 
-/// x = U y in float32 (the dof basis rounded to float), then the dofs as pose_of forms them.
-struct FloatModel {
-    Eigen::MatrixXf U;
-    mutable Eigen::VectorXf y, x;
-    mutable std::vector<double> xd;
-    explicit FloatModel(const detail::GroupModel& m)
-        : U(m.dof_basis.cast<float>()), y(m.dof_basis.rows()), x(m.dof_basis.rows()), xd(static_cast<std::size_t>(m.dof_basis.rows())) {}
-};
-void float_pose_of(const FloatModel& f, const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, double* p) {
-    const auto n = f.U.rows();
-    for (Eigen::Index i = 0; i < n; ++i) f.y[i] = static_cast<float>(y[i]);
-    f.x.noalias() = f.U * f.y;
-    for (Eigen::Index i = 0; i < n; ++i) f.xd[static_cast<std::size_t>(i)] = f.x[i];
-    std::copy(m.constant.begin(), m.constant.end(), p);
-    m.unweight(f.xd.data(), m.skeletons[e.skeleton], p);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1969,7 +2093,9 @@ int main(int argc, char** argv) {
     std::size_t limit = 0;
     std::vector<int> lookups{11, 9, 8};
     int reps = 3;
-    bool identity_dofs = false;  // --dof identity: no dof basis (y = x, no product at decode)  // repeats of the variant 3 timings (best of)  // variant 3's lookup widths (the first also without pairs)
+    bool identity_dofs = false;
+    bool key_centers = true;
+    bool key_escapes = true;  // --key-escapes 0: variant 7's keys without escapes  // --key-centers 0: variant 7's keys without per-clip centers  // --dof identity: no dof basis (y = x, no product at decode)  // repeats of the variant 3 timings (best of)  // variant 3's lookup widths (the first also without pairs)
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
@@ -1983,6 +2109,9 @@ int main(int argc, char** argv) {
         else if (k == "--code-bits") kMaxCode = std::stoi(v);
         else if (k == "--reps") reps = std::stoi(v);
         else if (k == "--dof") identity_dofs = v == "identity";
+        else if (k == "--key-centers") key_centers = v == "1";
+        else if (k == "--key-escapes") key_escapes = v == "1";
+        else if (k == "--float-dofs") g_float_dofs = v == "1";
         else if (k == "--branch-free") g_branch_free = v == "1";
         else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
     }
@@ -2257,7 +2386,7 @@ int main(int argc, char** argv) {
                         // Keys: Huffman bits against fixed widths per clip and row (5 bits a width per clip
                         // and row), and against fixed widths per clip and row of the key minus the previous key.
                         {
-                            double huff_bits = 0.0, width_bits = 0.0, delta_bits = 0.0;
+                            double huff_bits = 0.0, width_bits = 0.0, delta_bits = 0.0, escape_bits = 0.0;
                             for (std::size_t g = 0; g < groups.size(); ++g) {
                                 const HierResult& hr = hier_results[g];
                                 const std::size_t Da = models[g].active.size();
@@ -2278,6 +2407,28 @@ int main(int argc, char** argv) {
                                             }
                                         }
                                     }
+                                    // Escapes: per clip and row the width w minimizing n w + (values outside w's range,
+                                    // one code of which is the escape) times the full width (relative to the center).
+                                    for (std::size_t d = 0; d < Da; ++d) {
+                                        std::int32_t lo = hr.entries[first].key[d], hi = lo;
+                                        for (std::size_t e = first; e < last; ++e) {
+                                            lo = std::min(lo, hr.entries[e].key[d]);
+                                            hi = std::max(hi, hr.entries[e].key[d]);
+                                        }
+                                        const std::int64_t c = (static_cast<std::int64_t>(lo) + hi) >> 1;
+                                        int full = 0;
+                                        for (std::size_t e = first; e < last; ++e) full = std::max(full, twos_bits(hr.entries[e].key[d] - c));
+                                        double best = static_cast<double>(full) * static_cast<double>(last - first);
+                                        for (int w = 1; w < full; ++w) {
+                                            double cost = static_cast<double>(w) * static_cast<double>(last - first);
+                                            for (std::size_t e = first; e < last; ++e) {
+                                                const std::int64_t r = hr.entries[e].key[d] - c;
+                                                if (!(r > -(std::int64_t{1} << (w - 1)) && r < (std::int64_t{1} << (w - 1)))) cost += full;
+                                            }
+                                            best = std::min(best, cost);
+                                        }
+                                        escape_bits += 5.0 + 5.0 + static_cast<double>(twos_bits(c)) + best;
+                                    }
                                     for (std::size_t d = 0; d < Da; ++d) {
                                         width_bits += 5.0 + static_cast<double>(width[d]) * static_cast<double>(last - first);
                                         delta_bits += 5.0 + static_cast<double>(dwidth[d]) * static_cast<double>(last - first);
@@ -2285,8 +2436,8 @@ int main(int argc, char** argv) {
                                 }
                             }
                             std::printf("#  keys: huffman %.0f bytes, fixed width per clip and row %.0f, previous-key delta at fixed widths %.0f "
-                                        "(steps differ between keys: indicative only)\n",
-                                        huff_bits / 8, width_bits / 8, delta_bits / 8);
+                                        "(steps differ between keys: indicative only), centered with escapes %.0f\n",
+                                        huff_bits / 8, width_bits / 8, delta_bits / 8, escape_bits / 8);
                         }
                         // Variant 3 (lookup widths, with and without two symbols per lookup), A/B against variant 1
                         // in the same reps.
@@ -2330,17 +2481,21 @@ int main(int argc, char** argv) {
                                         }
                                     }
                             }
-                            std::vector<RuntimeGroup7> r7;
-                            double bytes7 = 0.0;
+                            std::vector<RuntimeGroup7> r7, r7n;
+                            double bytes7 = 0.0, bytes7n = 0.0;
                             bool equal7 = true;
                             for (std::size_t g = 0; g < groups.size(); ++g) {
-                                r7.push_back(build_runtime7(r3[0][g], hier_results[g]));
+                                r7.push_back(build_runtime7(r3[0][g], hier_results[g], key_centers, key_escapes));
+                                r7n.push_back(build_runtime7(r3[0][g], hier_results[g], key_centers, false));
                                 bytes7 += static_cast<double>(r7.back().bytes.size() - 8) + 3.0 * static_cast<double>(r7.back().offsets.size()) +
                                           static_cast<double>(r7.back().width_bits) / 8;
+                                bytes7n += static_cast<double>(r7n.back().bytes.size() - 8) + 3.0 * static_cast<double>(r7n.back().offsets.size()) +
+                                           static_cast<double>(r7n.back().width_bits) / 8;
                                 // Code tables without the keys' (level 0) contexts.
                                 for (int c = 0; c < runtime[g].buckets; ++c)
                                     if (!runtime[g].codes[static_cast<std::size_t>(c)].length.empty())
-                                        bytes7 -= (8.0 + 5.0 * static_cast<double>(runtime[g].codes[static_cast<std::size_t>(c)].length.size())) / 8;
+                                        for (double* b7 : {&bytes7, &bytes7n})
+                                            *b7 -= (8.0 + 5.0 * static_cast<double>(runtime[g].codes[static_cast<std::size_t>(c)].length.size())) / 8;
                                 const std::size_t Da = models[g].active.size();
                                 std::vector<double> y1(Da), y7(Da), sa(Da), sb(Da), sc(Da);
                                 for (std::size_t i = 0; i < members[g].size(); ++i)
@@ -2348,9 +2503,12 @@ int main(int argc, char** argv) {
                                         runtime_frame(runtime[g], i, f, y1.data(), sa.data(), sb.data(), sc.data());
                                         runtime_frame7(r7[g], i, f, y7.data(), sa.data(), sb.data(), sc.data());
                                         if (std::memcmp(y1.data(), y7.data(), Da * sizeof(double)) != 0) equal7 = false;
+                                        runtime_frame7(r7n[g], i, f, y7.data(), sa.data(), sb.data(), sc.data());
+                                        if (std::memcmp(y1.data(), y7.data(), Da * sizeof(double)) != 0) equal7 = false;
                                     }
                             }
                             bytes7 += tables / 8 + static_cast<double>(f2_header);
+                            bytes7n += tables / 8 + static_cast<double>(f2_header);
                             auto cold = [&](auto&& frame_fn, bool with_pose) {
                                 const double c0 = bench::thread_cpu_seconds();
                                 for (const auto& [g, i, f] : seq) {
@@ -2378,7 +2536,7 @@ int main(int argc, char** argv) {
                                 runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                             };
                             double c1 = 1e300, y1t = 1e300, h1 = 1e300;
-                            double c7 = 1e300, y7t = 1e300, h7 = 1e300;
+                            double c7 = 1e300, y7t = 1e300, h7 = 1e300, c7n = 1e300, y7nt = 1e300, h7n = 1e300;
                             std::vector<double> h3(configs.size(), 1e300), c4(configs.size(), 1e300), y4t(configs.size(), 1e300),
                                 h4(configs.size(), 1e300), c5(configs.size(), 1e300), y5t(configs.size(), 1e300), h5(configs.size(), 1e300), c6(configs.size(), 1e300), y6t(configs.size(), 1e300), h6(configs.size(), 1e300);
                             std::vector<double> c3(configs.size(), 1e300), y3t(configs.size(), 1e300);
@@ -2392,6 +2550,12 @@ int main(int argc, char** argv) {
                                 c7 = std::min(c7, cold(f7, true));
                                 y7t = std::min(y7t, cold(f7, false));
                                 h7 = std::min(h7, hot_of(f7));
+                                auto f7n = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                    runtime_frame7(r7n[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                };
+                                c7n = std::min(c7n, cold(f7n, true));
+                                y7nt = std::min(y7nt, cold(f7n, false));
+                                h7n = std::min(h7n, hot_of(f7n));
                                 for (std::size_t v = 0; v < configs.size(); ++v) {
                                     auto f3 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame3(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, nzs[g].data());
@@ -2421,8 +2585,10 @@ int main(int argc, char** argv) {
                             }
                             std::printf("#  VARIANT 3 (keys at entry ends, 3 chains): bytes %.0f; %s; v1: cold local pose %.3f us, y %.3f us (hot %.3f)\n",
                                         bytes3, equal ? "every frame equal to variant 1" : "MISMATCH with variant 1", c1, y1t, h1);
-                            std::printf("#  VARIANT 7 (fixed-width keys, lookup %d): bytes %.0f; %s; cold local pose %.3f us, y %.3f us (hot %.3f)\n",
-                                        configs[0].lookup, bytes7, equal7 ? "every frame equal to variant 1" : "MISMATCH with variant 1", c7, y7t, h7);
+                            std::printf("#  VARIANT 7 (fixed-width keys%s, lookup %d): bytes %.0f; %s; cold local pose %.3f us, y %.3f us (hot %.3f); "
+                                        "without escapes: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                        key_escapes ? " with escapes" : "", configs[0].lookup, bytes7,
+                                        equal7 ? "every frame equal to variant 1" : "MISMATCH with variant 1", c7, y7t, h7, bytes7n, c7n, y7nt, h7n);
                             for (std::size_t v = 0; v < configs.size(); ++v)
                                 std::printf("#    v3 lookup %d bits%s: table %zu kB, cold local pose %.3f us, y %.3f us (hot %.3f); v4: cold local pose %.3f us, y %.3f us (hot %.3f); v5: cold local pose %.3f us, y %.3f us (hot %.3f); v6: cold local pose %.3f us, y %.3f us (hot %.3f)\n", configs[v].lookup,
                                             configs[v].pairs ? ", pairs" : ", no pairs", r3[v][0].table.size() * 4 / 1024, c3[v], y3t[v], h3[v],
