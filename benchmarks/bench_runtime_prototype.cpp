@@ -21,6 +21,16 @@
 //              a frame decodes its columns one after the other
 //   variant 2  directory = the key's and every column's size; the frame's columns decode as
 //              independent chains, interleaved symbol by symbol (checked equal to variant 1)
+//   variant 4  keys at the END of their entries, bytes reversed (read backwards from the next entry's
+//              offset), so that a frame's two keys start at known places and decode interleaved; the
+//              path's columns as variant 1; decode tables of --lookups bits giving up to two (run, size)
+//              symbols per lookup (same codes and bits as variant 1)
+//   variant 7  variant 4 with keys at fixed widths: per clip and row a width (coded against the group's
+//              largest), a center and, with --key-escapes, escapes (a value outside the width's range
+//              written after the key's slots): no symbol chain for keys
+// Variants 4 and 7 are checked equal to variant 1 on every frame (so within E) and timed against it in
+// the same repeats. --float-dofs 1: x = U y in float32 in the encoder's bound check, the check of every
+// frame and the timings (closed loop). --dof identity: no dof basis.
 // With --poses N: both bitstreams are built, every frame of every clip is decoded from the bytes and
 // compared with its source (FK, cm), and N cold random local poses (random clip and frame, nothing
 // kept) are timed (thread CPU, best of 3) beside format 2's GroupDecoder::decode_local_pose on the
@@ -31,6 +41,8 @@
 //
 //   bench_runtime_prototype [--folders cmu-walkrun-pfnn,cmu-asfamc] [--errors 1,0.1] [--windows 16,32]
 //                           [--key-offsets 0,12] [--rounding 0.4] [--code-bits 11] [--poses N] [--limit N]
+//                           [--lookups 11,9,8] [--reps 3] [--float-dofs 0|1] [--key-centers 0|1] [--key-escapes 0|1]
+//                           [--dof learned|identity]
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -821,6 +833,40 @@ void tree_order(int W, std::vector<int>& level, std::vector<int>& frame) {
     tree(tree, 0, W, 1);
 }
 
+/// From the window's step byte on: the step, the directory (per level a 5-bit width, then each
+/// internal node's left-subtree size in bits at that width) and the columns in tree order (levels tl).
+/// Returns the directory's bits.
+std::size_t write_window(const RuntimeGroup& g, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl) {
+    out.put(static_cast<std::uint32_t>(e.step), 8);
+    std::vector<std::size_t> size;
+    for (std::size_t i = 0; i < e.columns.size(); ++i) {
+        BitWriter scratch;
+        g.write_column(scratch, tl[i], e.columns[i]);
+        size.push_back(scratch.bits());
+    }
+    std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
+    for (std::size_t i = 0; i < e.columns.size(); ++i) {
+        const int l = tl[i];
+        if (l >= g.levels) continue;
+        const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
+        std::size_t s = 0;
+        for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
+        left[static_cast<std::size_t>(l)].push_back(s);
+    }
+    const std::size_t before = out.bits();
+    std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
+    for (int l = 1; l < g.levels; ++l) {
+        for (std::size_t s : left[static_cast<std::size_t>(l)])
+            width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
+        out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
+    }
+    for (int l = 1; l < g.levels; ++l)
+        for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
+    const std::size_t directory = out.bits() - before;
+    for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+    return directory;
+}
+
 RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
     RuntimeGroup g;
     g.W = W;
@@ -854,40 +900,30 @@ RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
         out.put(static_cast<std::uint32_t>(e.key_step), 8);
         g.write_column(out, 0, e.key);
         if (e.step < 0) continue;
-        out.put(static_cast<std::uint32_t>(e.step), 8);
-        // Column sizes, then each internal node's left subtree size (per level at one width).
-        std::vector<std::size_t> size;
-        for (std::size_t i = 0; i < e.columns.size(); ++i) {
-            BitWriter scratch;
-            g.write_column(scratch, tl[i], e.columns[i]);
-            size.push_back(scratch.bits());
-        }
-        std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
-        for (std::size_t i = 0; i < e.columns.size(); ++i) {
-            const int l = tl[i];
-            if (l >= g.levels) continue;
-            const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
-            std::size_t s = 0;
-            for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
-            left[static_cast<std::size_t>(l)].push_back(s);
-        }
-        const std::size_t before = out.bits();
-        std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
-        for (int l = 1; l < g.levels; ++l) {
-            for (std::size_t s : left[static_cast<std::size_t>(l)])
-                width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
-            out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
-        }
-        for (int l = 1; l < g.levels; ++l)
-            for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
-        g.directory_bits += out.bits() - before;
-        for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+        g.directory_bits += write_window(g, out, e, tl);
     }
     out.align();
     g.build_flat();
     g.bytes = std::move(out.bytes);
     g.bytes.resize(g.bytes.size() + 8, 0);
     return g;
+}
+
+/// A window's directory at bit pos (per level a width, then the left-subtree sizes): into skip[l] the
+/// size of the left subtree frame t's path skips at level l; returns the bit after the directory.
+std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip) {
+    BitReader in{data, pos};
+    int width[8] = {0};
+    for (int l = 1; l < levels; ++l) width[l] = static_cast<int>(in.get(5));
+    // Level l's sizes start after the earlier levels' (2^(l-1) each).
+    std::size_t at = in.pos;
+    for (int l = 1; l < levels; ++l) {
+        const std::size_t node = static_cast<std::size_t>(t) >> (levels - l + 1);
+        BitReader s{data, at + node * static_cast<std::size_t>(width[l])};
+        skip[l] = s.get(width[l]);
+        at += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
+    }
+    return at;
 }
 
 /// A frame of a clip into y (Da values), from the bytes alone; a, b, c: Da values of scratch each.
@@ -915,18 +951,8 @@ void runtime_frame(const RuntimeGroup& g, std::size_t clip, std::size_t frame, d
         g.read_column(next, 0, nullptr, nullptr, next_step, b);
     }
     const double step = detail::step_of(static_cast<int>(in.get(8)));
-    int width[8] = {0};
-    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
-    // Left subtree sizes on t's path: level l's sizes start after the earlier levels' (2^(l-1) each).
-    std::size_t sizes_at = in.pos;
     std::size_t skip[8] = {0};
-    for (int l = 1; l < g.levels; ++l) {
-        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
-        BitReader s{g.bytes.data(), sizes_at + node * static_cast<std::size_t>(width[l])};
-        skip[l] = s.get(width[l]);
-        sizes_at += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
-    }
-    in.pos = sizes_at;
+    in.pos = read_directory(g.bytes.data(), in.pos, g.levels, t, skip);
     int lo = 0, hi = g.W;
     double* lo_y = a;
     double* hi_y = b;
@@ -1142,12 +1168,6 @@ void runtime_frame2(const RuntimeGroup2& g2, std::size_t clip, std::size_t frame
 /// 14-17 len2 (0: no second symbol), 18-22 cat2, 23-27 adv2, 28 first is end, 29 second is end.
 constexpr std::uint32_t kEnd1 = 1u << 28, kEnd2 = 1u << 29;
 
-struct Nonzero {
-    std::uint16_t row;
-    std::int16_t pad;
-    std::int32_t value;
-};
-
 struct RuntimeGroup3 {
     const RuntimeGroup* base = nullptr;
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last (byte offsets into data)
@@ -1155,11 +1175,6 @@ struct RuntimeGroup3 {
     std::vector<std::uint32_t> table;    // per context 2^lookup entries
     int lookup = 11;                     // bits a lookup reads (<= kFastBits); longer codes: variant 1's table
     bool pairs = true;
-    /// Variant 6's table (per context 2^lookup entries): the symbols' values decoded in the entry.
-    /// Bits 0-5 the first symbol's bits (code, sign, magnitude; its code alone when unresolved), 6-11 both
-    /// symbols' bits, 12-16 adv1, 17-21 adv2, 22 end1, 23 end2, 24 pair, 25 unresolved (magnitude
-    /// past the lookup: decoded from the bits), 26-30 cat1 (unresolved), 32-47 value 1, 48-63 value 2.
-    std::vector<std::uint64_t> wide;
     const std::uint8_t* data() const { return bytes.data() + 8; }
 };
 
@@ -1212,43 +1227,6 @@ void build_table3(RuntimeGroup3& g3, bool pairs, int lookup) {
             g3.table[c * n + i] = e;
         }
     }
-    // The wide table: values resolved in the entry where the lookup holds their bits.
-    g3.wide.assign(g.codes.size() * n, 0);
-    for (std::size_t c = 0; c < g.codes.size(); ++c) {
-        const auto& fast = g.codes[c].fast;
-        if (fast.empty()) continue;
-        for (std::size_t i = 0; i < n; ++i) {
-            const auto f = fast[i << shift];
-            if (!f.length || f.length > B) continue;
-            int cat1, adv1, end1;
-            symbol_fields(f.symbol, cat1, adv1, end1);
-            // The lookup's bits, left-aligned in 64 (zeros after them).
-            const std::uint64_t bits = static_cast<std::uint64_t>(i) << (64 - B);
-            std::uint64_t e = static_cast<std::uint64_t>(adv1) << 12 | (end1 ? std::uint64_t{1} << 22 : 0);
-            const int used = f.length + cat1;
-            if (end1) {
-                e |= static_cast<std::uint64_t>(f.length);
-            } else if (used > B) {
-                e |= static_cast<std::uint64_t>(f.length) | std::uint64_t{1} << 25 | static_cast<std::uint64_t>(cat1) << 26;
-            } else {
-                const std::int32_t v1 = value_at(bits, f.length, cat1);
-                e |= static_cast<std::uint64_t>(used) | static_cast<std::uint64_t>(static_cast<std::uint16_t>(v1)) << 32;
-                if (pairs && cat1 > 0 && used < B) {
-                    const std::size_t rest = (i << used) & (n - 1);
-                    const auto f2 = fast[rest << shift];
-                    int cat2, adv2, end2;
-                    if (f2.length) symbol_fields(f2.symbol, cat2, adv2, end2);
-                    if (f2.length && used + f2.length + cat2 <= B) {
-                        const std::int32_t v2 = value_at(bits, used + f2.length, cat2);
-                        e |= static_cast<std::uint64_t>(used + f2.length + cat2) << 6 | static_cast<std::uint64_t>(adv2) << 17 |
-                             (end2 ? std::uint64_t{1} << 23 : 0) | std::uint64_t{1} << 24 |
-                             static_cast<std::uint64_t>(static_cast<std::uint16_t>(v2)) << 48;
-                    }
-                }
-            }
-            g3.wide[c * n + i] = e;
-        }
-    }
 }
 
 RuntimeGroup3 build_runtime3(const RuntimeGroup& g, const HierResult& r, bool pairs, int lookup) {
@@ -1263,33 +1241,7 @@ RuntimeGroup3 build_runtime3(const RuntimeGroup& g, const HierResult& r, bool pa
         out.align();
         g3.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size() - 8));
         out.put(static_cast<std::uint32_t>(e.key_step), 8);
-        if (e.step >= 0) {
-            out.put(static_cast<std::uint32_t>(e.step), 8);
-            std::vector<std::size_t> size;
-            for (std::size_t i = 0; i < e.columns.size(); ++i) {
-                BitWriter scratch;
-                g.write_column(scratch, tl[i], e.columns[i]);
-                size.push_back(scratch.bits());
-            }
-            std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
-            for (std::size_t i = 0; i < e.columns.size(); ++i) {
-                const int l = tl[i];
-                if (l >= g.levels) continue;
-                const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
-                std::size_t s = 0;
-                for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
-                left[static_cast<std::size_t>(l)].push_back(s);
-            }
-            std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
-            for (int l = 1; l < g.levels; ++l) {
-                for (std::size_t s : left[static_cast<std::size_t>(l)])
-                    width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
-                out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
-            }
-            for (int l = 1; l < g.levels; ++l)
-                for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
-            for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
-        }
+        if (e.step >= 0) write_window(g, out, e, tl);
         out.align();
         // The key, its bytes reversed: read backwards from the end of the entry.
         BitWriter key;
@@ -1304,19 +1256,6 @@ RuntimeGroup3 build_runtime3(const RuntimeGroup& g, const HierResult& r, bool pa
     return g3;
 }
 
-/// One chain of variant 3: a column's symbols from a bit position, forward (Rev false: MSB-first from
-/// `base`) or backward (Rev true: bytes read downwards from `base`), nonzeros appended to `out`.
-struct Chain3 {
-    const std::uint8_t* base = nullptr;
-    std::size_t pos = 0;
-    const std::uint32_t* table = nullptr;
-    const std::uint16_t* slow = nullptr;  // variant 1's table of the same contexts (codes longer than lookup)
-    Nonzero* out = nullptr;
-    int n = 0;  // nonzeros written
-    int d = 0;
-    bool live = false;
-};
-
 template <bool Rev>
 inline std::uint64_t peek3(const std::uint8_t* base, std::size_t pos) {
     std::uint64_t v;
@@ -1327,184 +1266,6 @@ inline std::uint64_t peek3(const std::uint8_t* base, std::size_t pos) {
         v = __builtin_bswap64(v);
     }
     return v << (pos & 7);
-}
-
-
-/// A code longer than the lookup: one symbol by variant 1's table.
-template <bool Rev>
-__attribute__((noinline)) bool chain3_slow(Chain3& c, int Da, std::uint64_t w) {
-    const int B = kFastBits;
-    const std::uint16_t e = c.slow[(static_cast<std::size_t>(c.d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
-    const int len = e & 15;
-    if (e & (1u << 14)) {
-        c.pos += static_cast<std::size_t>(len);
-        return false;
-    }
-    const int cat = (e >> 9) & 31;
-    c.d += (e >> 4) & 31;
-    c.pos += static_cast<std::size_t>(len + cat);
-    if (cat) {
-        c.out[c.n++] = Nonzero{static_cast<std::uint16_t>(c.d), 0, value_at(w, len, cat)};
-        ++c.d;
-    }
-    return c.d < Da;
-}
-
-/// One lookup of a chain: one or two symbols. Returns false when the column has ended.
-template <bool Rev>
-__attribute__((always_inline)) inline bool chain3_step(Chain3& c, int Da, int B) {
-    const std::uint64_t w = peek3<Rev>(c.base, c.pos);
-    const std::uint32_t e = c.table[(static_cast<std::size_t>(c.d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
-    if (__builtin_expect(e == 0, 0)) {
-        // Through a copy: the chain itself never escapes, so that it stays in registers.
-        Chain3 copy = c;
-        const bool live = chain3_slow<Rev>(copy, Da, w);
-        c = copy;
-        return live;
-    }
-    const int len1 = static_cast<int>(e & 15), cat1 = static_cast<int>((e >> 4) & 31), adv1 = static_cast<int>((e >> 9) & 31);
-    if (e & kEnd1) {
-        c.pos += static_cast<std::size_t>(len1);
-        return false;
-    }
-    const int n1 = len1 + cat1;
-    // Symbol 1 (a sixteen-zero run writes a zero that is not counted).
-    c.out[c.n] = Nonzero{static_cast<std::uint16_t>(c.d + adv1 - 1), 0, value_at(w, len1, cat1)};
-    c.n += cat1 != 0;
-    const int d1 = c.d + adv1;
-    // Symbol 2 when the table has one, it shares symbol 1's context and the column goes on.
-    const int len2 = static_cast<int>((e >> 14) & 15), cat2 = static_cast<int>((e >> 18) & 31), adv2 = static_cast<int>((e >> 23) & 31);
-    const bool take = (len2 != 0) & (((c.d & 7) + adv1) < 8) & (d1 < Da);
-    c.out[c.n] = Nonzero{static_cast<std::uint16_t>(d1 + adv2 - 1), 0, value_at(w, n1 + len2, cat2)};
-    c.n += take & (cat2 != 0);
-    c.d = d1 + (take ? adv2 : 0);
-    c.pos += static_cast<std::size_t>(n1 + (take ? len2 + cat2 : 0));
-    return !((take & ((e & kEnd2) != 0)) | (c.d >= Da));
-}
-
-template <bool Rev>
-inline void chain3_run(Chain3& c, int Da, int B) {
-    while (c.live) c.live = chain3_step<Rev>(c, Da, B);
-}
-
-/// Variant 3's frame into y; a, b, c: Da values of scratch each; nz: (2 + levels) * (Da + 1) nonzeros.
-void runtime_frame3(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b,
-                    double* c, Nonzero* nz) {
-    const RuntimeGroup& g = *g3.base;
-    const int Da = g.Da, B = g3.lookup, W = g.W;
-    const std::size_t w = frame / static_cast<std::size_t>(W);
-    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
-    const std::size_t entry = g.clip_first[clip] + w;
-    const std::uint8_t* data = g3.data();
-    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1];
-    {
-        const std::size_t end = t == 0 ? o1 + 8 : std::size_t{g3.offsets[entry + 2]} + 8;
-        for (std::size_t at = o0 & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
-    }
-    const std::uint32_t* keys = g3.table.data();
-    const double key_step = detail::step_of(data[o0]);
-    Chain3 ka{data + o1, 0, keys, g.flat.data(), nz, 0, 0, true};
-    if (t == 0) {
-        chain3_run<true>(ka, Da, B);
-        std::fill(y, y + Da, 0.0);
-        for (int k = 0; k < ka.n; ++k) y[nz[k].row] = nz[k].value * key_step;
-        return;
-    }
-    const std::size_t o2 = g3.offsets[entry + 2];
-    const double next_step = detail::step_of(data[o1]);
-    Chain3 kb{data + o2, 0, keys, g.flat.data(), nz + (Da + 1), 0, 0, true};
-    const double step = detail::step_of(data[o0 + 1]);
-    BitReader in{data, (o0 + 2) * 8};
-    int width[8] = {0};
-    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
-    std::size_t sizes_at = in.pos;
-    std::size_t skip[8] = {0};
-    for (int l = 1; l < g.levels; ++l) {
-        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
-        BitReader s{data, sizes_at + node * static_cast<std::size_t>(width[l])};
-        skip[l] = s.get(width[l]);
-        sizes_at += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
-    }
-    // The path: column k (level k + 1) of frame t, and whether the path goes right after it.
-    int path_levels = 0, mids[8];
-    {
-        int lo = 0, hi = W;
-        for (;;) {
-            const int mid = (lo + hi) / 2;
-            mids[path_levels++] = mid;
-            if (mid == t) break;
-            if (t < mid) hi = mid;
-            else lo = mid;
-        }
-    }
-    Nonzero* col_nz[8];
-    int col_n[8];
-    Chain3 cc{data, sizes_at, g3.table.data() + (static_cast<std::size_t>(g.buckets) << B),
-              g.flat.data() + (static_cast<std::size_t>(g.buckets) << kFastBits), nz + 2 * (Da + 1), 0, 0, true};
-    int k = 0;  // the column cc decodes
-    col_nz[0] = cc.out;
-    // Three chains interleaved, a lookup each in turn; while both keys last, no test of their state
-    // but the loop's.
-    while (ka.live & kb.live & cc.live) {
-        ka.live = chain3_step<true>(ka, Da, B);
-        kb.live = chain3_step<true>(kb, Da, B);
-        cc.live = chain3_step<false>(cc, Da, B);
-        if (!cc.live) {
-            col_n[k] = cc.n;
-            if (++k < path_levels) {
-                if (t > mids[k - 1]) cc.pos += skip[k];
-                cc.out = nz + (2 + k) * (Da + 1);
-                col_nz[k] = cc.out;
-                cc.n = 0;
-                cc.d = 0;
-                cc.table = g3.table.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << B);
-                cc.slow = g.flat.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << kFastBits);
-                cc.live = true;
-            }
-        }
-    }
-    for (;;) {
-        const bool any = ka.live | kb.live;
-        if (ka.live) ka.live = chain3_step<true>(ka, Da, B);
-        if (kb.live) kb.live = chain3_step<true>(kb, Da, B);
-        if (cc.live) {
-            cc.live = chain3_step<false>(cc, Da, B);
-            if (!cc.live) {
-                col_n[k] = cc.n;
-                if (++k < path_levels) {
-                    if (t > mids[k - 1]) cc.pos += skip[k];
-                    cc.out = nz + (2 + k) * (Da + 1);
-                    col_nz[k] = cc.out;
-                    cc.n = 0;
-                    cc.d = 0;
-                    cc.table = g3.table.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << B);
-                    cc.slow = g.flat.data() + (static_cast<std::size_t>((k + 1) * g.buckets) << kFastBits);
-                    cc.live = true;
-                }
-            }
-        } else if (!any) {
-            break;
-        }
-    }
-    // Keys, then the path's predictions, as the encoder formed them.
-    std::fill(a, a + Da, 0.0);
-    std::fill(b, b + Da, 0.0);
-    for (int i = 0; i < ka.n; ++i) a[ka.out[i].row] = ka.out[i].value * key_step;
-    for (int i = 0; i < kb.n; ++i) b[kb.out[i].row] = kb.out[i].value * next_step;
-    double* lo_y = a;
-    double* hi_y = b;
-    for (int l = 0; l < path_levels; ++l) {
-        const bool last = l + 1 == path_levels;
-        double* out = last ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
-        for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
-        for (int i = 0; i < col_n[l]; ++i) {
-            const Nonzero& z = col_nz[l][i];
-            out[z.row] = out[z.row] + z.value * step;
-        }
-        if (last) return;
-        if (t < mids[l]) hi_y = out;
-        else lo_y = out;
-    }
 }
 
 
@@ -1530,85 +1291,9 @@ __attribute__((noinline)) SlowSymbol slow_symbol(const std::uint16_t* slow, int 
 
 /// One lookup of a column (one or two symbols) at bit pos with row d; out[row] = out[row] + v * step
 /// for each value (keys: out zero, so v * step). Returns false when the column has ended.
-/// Set by --branch-free 1: lean_step adds both symbols' values without branches (a value that is
-/// not there adds +0.0 to the first symbol's row, which never changes a bit: no row holds -0.0).
-bool g_branch_free = false;
-
-template <bool Rev>
-__attribute__((always_inline)) inline bool lean_step_free(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint32_t* table,
-                                                          const std::uint16_t* slow, int Da, int B, double* out, double step) {
-    const std::uint64_t w = peek3<Rev>(base, pos);
-    const std::uint32_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
-    if (__builtin_expect(e == 0, 0)) {
-        const SlowSymbol s = slow_symbol<Rev>(slow, d, w);
-        pos += static_cast<std::size_t>(s.bits);
-        if (s.end) return false;
-        d += s.adv;
-        if (s.value) out[d - 1] = out[d - 1] + s.value * step;
-        return d < Da;
-    }
-    const int len1 = static_cast<int>(e & 15), cat1 = static_cast<int>((e >> 4) & 31), adv1 = static_cast<int>((e >> 9) & 31);
-    if (e & kEnd1) {
-        pos += static_cast<std::size_t>(len1);
-        return false;
-    }
-    const int n1 = len1 + cat1;
-    const int d1 = d + adv1;
-    out[d1 - 1] = out[d1 - 1] + value_at(w, len1, cat1) * step;  // sixteen zeros: +0.0 to a row before a value
-    const int len2 = static_cast<int>((e >> 14) & 15), cat2 = static_cast<int>((e >> 18) & 31), adv2 = static_cast<int>((e >> 23) & 31);
-    const bool take = (len2 != 0) & (((d & 7) + adv1) < 8) & (d1 < Da);
-    const int row2 = take ? d1 + adv2 - 1 : d1 - 1;
-    const std::int32_t v2 = take ? value_at(w, n1 + len2, cat2) : 0;
-    out[row2] = out[row2] + v2 * step;
-    pos += static_cast<std::size_t>(n1 + (take ? len2 + cat2 : 0));
-    d = take ? d1 + adv2 : d1;
-    return !(take & ((e & kEnd2) != 0)) & (d < Da);
-}
-
-/// lean_step by the wide table: the values from the entry.
-template <bool Rev>
-__attribute__((always_inline)) inline bool wide_step(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint64_t* table,
-                                                     const std::uint16_t* slow, int Da, int B, double* out, double step) {
-    const std::uint64_t w = peek3<Rev>(base, pos);
-    const std::uint64_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
-    if (__builtin_expect(e == 0, 0)) {
-        const SlowSymbol s = slow_symbol<Rev>(slow, d, w);
-        pos += static_cast<std::size_t>(s.bits);
-        if (s.end) return false;
-        d += s.adv;
-        if (s.value) out[d - 1] = out[d - 1] + s.value * step;
-        return d < Da;
-    }
-    const int n1 = static_cast<int>(e & 63), adv1 = static_cast<int>((e >> 12) & 31);
-    if (e & (std::uint64_t{1} << 22)) {
-        pos += static_cast<std::size_t>(n1);
-        return false;
-    }
-    if (__builtin_expect((e & (std::uint64_t{1} << 25)) != 0, 0)) {
-        const int cat1 = static_cast<int>((e >> 26) & 31);
-        pos += static_cast<std::size_t>(n1 + cat1);
-        d += adv1;
-        out[d - 1] = out[d - 1] + value_at(w, n1, cat1) * step;
-        return d < Da;
-    }
-    const int d1 = d + adv1;
-    out[d1 - 1] = out[d1 - 1] + static_cast<std::int16_t>(e >> 32) * step;  // sixteen zeros: +0.0, no change
-    if ((e & (std::uint64_t{1} << 24)) && ((d & 7) + adv1) < 8 && d1 < Da) {
-        pos += static_cast<std::size_t>((e >> 6) & 63);
-        if (e & (std::uint64_t{1} << 23)) return false;
-        d = d1 + static_cast<int>((e >> 17) & 31);
-        out[d - 1] = out[d - 1] + static_cast<std::int16_t>(e >> 48) * step;
-        return d < Da;
-    }
-    pos += static_cast<std::size_t>(n1);
-    d = d1;
-    return d < Da;
-}
-
 template <bool Rev>
 __attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint32_t* table,
                                                      const std::uint16_t* slow, int Da, int B, double* out, double step) {
-    if (g_branch_free) return lean_step_free<Rev>(base, pos, d, table, slow, Da, B, out, step);
     const std::uint64_t w = peek3<Rev>(base, pos);
     const std::uint32_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
     if (__builtin_expect(e == 0, 0)) {
@@ -1641,72 +1326,16 @@ __attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, s
     return d < Da;
 }
 
-template <bool Wide>
-const auto* table_of(const RuntimeGroup3& g3) {
-    if constexpr (Wide) return g3.wide.data();
-    else return g3.table.data();
-}
-template <bool Wide, bool Rev, class T>
-__attribute__((always_inline)) inline bool step_of(const std::uint8_t* base, std::size_t& pos, int& d, const T* table,
-                                                   const std::uint16_t* slow, int Da, int B, double* out, double step) {
-    if constexpr (Wide) return wide_step<Rev>(base, pos, d, table, slow, Da, B, out, step);
-    else return lean_step<Rev>(base, pos, d, table, slow, Da, B, out, step);
-}
-
-/// Variant 4's frame into y (the same bits as variant 1); a, b, c: Da values of scratch each. Wide:
-/// variant 6 (the wide table).
-template <bool Wide = false>
-void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
+/// From a window's step byte at `bit` (variant 1's directory and columns): frame t's path of columns,
+/// each into its prediction from the keys in a and b (variant 4's decode; the same bits as variant 1).
+void decode_path(const RuntimeGroup3& g3, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b,
+                 double* c) {
     const RuntimeGroup& g = *g3.base;
     const int Da = g.Da, B = g3.lookup, W = g.W;
-    const std::size_t w = frame / static_cast<std::size_t>(W);
-    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
-    const std::size_t entry = g.clip_first[clip] + w;
-    const std::uint8_t* data = g3.data();
-    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1];
-    {
-        const std::size_t end = t == 0 ? o1 + 8 : std::size_t{g3.offsets[entry + 2]} + 8;
-        for (std::size_t at = o0 & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
-    }
-    const auto* keys = table_of<Wide>(g3);
-    const std::uint16_t* slow_keys = g.flat.data();
-    const double key_step = detail::step_of(data[o0]);
-    if (t == 0) {
-        std::fill(y, y + Da, 0.0);
-        std::size_t pos = 0;
-        int d = 0;
-        while (step_of<Wide, true>(data + o1, pos, d, keys, slow_keys, Da, B, y, key_step)) {
-        }
-        return;
-    }
-    const std::size_t o2 = g3.offsets[entry + 2];
-    const double next_step = detail::step_of(data[o1]);
-    std::fill(a, a + Da, 0.0);
-    std::fill(b, b + Da, 0.0);
-    {
-        // The two keys, interleaved.
-        std::size_t pa = 0, pb = 0;
-        int da = 0, db = 0;
-        bool la = true, lb = true;
-        while (la & lb) {
-            la = step_of<Wide, true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
-            lb = step_of<Wide, true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
-        }
-        while (la) la = step_of<Wide, true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
-        while (lb) lb = step_of<Wide, true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
-    }
-    const double step = detail::step_of(data[o0 + 1]);
-    BitReader in{data, (o0 + 2) * 8};
-    int width[8] = {0};
-    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
-    std::size_t pos = in.pos;
+    BitReader in{data, bit};
+    const double step = detail::step_of(static_cast<int>(in.get(8)));
     std::size_t skip[8] = {0};
-    for (int l = 1; l < g.levels; ++l) {
-        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
-        BitReader s{data, pos + node * static_cast<std::size_t>(width[l])};
-        skip[l] = s.get(width[l]);
-        pos += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
-    }
+    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip);
     int lo = 0, hi = W;
     double* lo_y = a;
     double* hi_y = b;
@@ -1715,10 +1344,10 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
         double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
         for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
         const std::size_t ctx = static_cast<std::size_t>(l * g.buckets);
-        const auto* table = table_of<Wide>(g3) + (ctx << B);
+        const std::uint32_t* table = g3.table.data() + (ctx << B);
         const std::uint16_t* slow = g.flat.data() + (ctx << kFastBits);
         int d = 0;
-        while (step_of<Wide, false>(data, pos, d, table, slow, Da, B, out, step)) {
+        while (lean_step<false>(data, pos, d, table, slow, Da, B, out, step)) {
         }
         if (mid == t) return;
         if (t < mid) {
@@ -1732,91 +1361,47 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
     }
 }
 
-
-/// Variant 5: variant 4 with the path's columns as a third chain beside the two keys (each column's
-/// values into its own zeroed array, added to its prediction afterwards: the same bits).
-/// delta: levels * Da doubles of scratch.
-void runtime_frame5(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c,
-                    double* delta) {
+/// Variant 4's frame into y (the same bits as variant 1); a, b, c: Da values of scratch each.
+void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
     const RuntimeGroup& g = *g3.base;
     const int Da = g.Da, B = g3.lookup, W = g.W;
     const std::size_t w = frame / static_cast<std::size_t>(W);
     const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
-    if (t == 0) {
-        runtime_frame4(g3, clip, frame, y, a, b, c);
-        return;
-    }
     const std::size_t entry = g.clip_first[clip] + w;
     const std::uint8_t* data = g3.data();
-    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1], o2 = g3.offsets[entry + 2];
-    for (std::size_t at = o0 & ~std::size_t{63}; at < o2 + 8; at += 64) __builtin_prefetch(data + at);
+    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1];
+    {
+        const std::size_t end = t == 0 ? o1 + 8 : std::size_t{g3.offsets[entry + 2]} + 8;
+        for (std::size_t at = o0 & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
+    }
     const std::uint32_t* keys = g3.table.data();
     const std::uint16_t* slow_keys = g.flat.data();
-    const double key_step = detail::step_of(data[o0]), next_step = detail::step_of(data[o1]), step = detail::step_of(data[o0 + 1]);
-    BitReader in{data, (o0 + 2) * 8};
-    int width[8] = {0};
-    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
-    std::size_t pos = in.pos;
-    std::size_t skip[8] = {0};
-    for (int l = 1; l < g.levels; ++l) {
-        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
-        BitReader s{data, pos + node * static_cast<std::size_t>(width[l])};
-        skip[l] = s.get(width[l]);
-        pos += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
-    }
-    int path = 0, mids[8];
-    {
-        int lo = 0, hi = W;
-        for (;;) {
-            const int mid = (lo + hi) / 2;
-            mids[path++] = mid;
-            if (mid == t) break;
-            if (t < mid) hi = mid;
-            else lo = mid;
+    const double key_step = detail::step_of(data[o0]);
+    if (t == 0) {
+        std::fill(y, y + Da, 0.0);
+        std::size_t pos = 0;
+        int d = 0;
+        while (lean_step<true>(data + o1, pos, d, keys, slow_keys, Da, B, y, key_step)) {
         }
+        return;
     }
+    const std::size_t o2 = g3.offsets[entry + 2];
+    const double next_step = detail::step_of(data[o1]);
     std::fill(a, a + Da, 0.0);
     std::fill(b, b + Da, 0.0);
-    std::fill(delta, delta + path * Da, 0.0);
-    std::size_t pa = 0, pb = 0;
-    int da = 0, db = 0, dc = 0, k = 0;
-    bool la = true, lb = true, lc = true;
-    const std::uint32_t* table = g3.table.data() + (static_cast<std::size_t>(g.buckets) << B);
-    const std::uint16_t* slow = g.flat.data() + (static_cast<std::size_t>(g.buckets) << kFastBits);
-    double* out = delta;
-    auto next_column = [&] {
-        if (++k >= path) return false;
-        if (t > mids[k - 1]) pos += skip[k];
-        const std::size_t ctx = static_cast<std::size_t>((k + 1) * g.buckets);
-        table = g3.table.data() + (ctx << B);
-        slow = g.flat.data() + (ctx << kFastBits);
-        out = delta + k * Da;
-        dc = 0;
-        return true;
-    };
-    while (la & lb) {
-        la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
-        lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
-        if (!lean_step<false>(data, pos, dc, table, slow, Da, B, out, step) && !next_column()) {
-            lc = false;
-            break;
+    {
+        // The two keys, interleaved.
+        std::size_t pa = 0, pb = 0;
+        int da = 0, db = 0;
+        bool la = true, lb = true;
+        while (la & lb) {
+            la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+            lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
         }
+        while (la) la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+        while (lb) lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
     }
-    while (la) la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
-    while (lb) lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
-    while (lc)
-        if (!lean_step<false>(data, pos, dc, table, slow, Da, B, out, step)) lc = next_column();
-    double* lo_y = a;
-    double* hi_y = b;
-    for (int l = 0; l < path; ++l) {
-        const bool last = l + 1 == path;
-        double* o = last ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
-        const double* dl = delta + l * Da;
-        for (int d = 0; d < Da; ++d) o[d] = 0.5 * (lo_y[d] + hi_y[d]) + dl[d];
-        if (last) return;
-        if (t < mids[l]) hi_y = o;
-        else lo_y = o;
-    }
+    decode_path(g3, data, (o0 + 1) * 8, t, y, a, b, c);
 }
 
 
@@ -1954,32 +1539,7 @@ RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool 
             }
         }
         for (const auto& [v, f] : escaped) out.put(static_cast<std::uint32_t>(v), f);
-        if (e.step < 0) continue;
-        out.put(static_cast<std::uint32_t>(e.step), 8);
-        std::vector<std::size_t> size;
-        for (std::size_t i = 0; i < e.columns.size(); ++i) {
-            BitWriter scratch;
-            g.write_column(scratch, tl[i], e.columns[i]);
-            size.push_back(scratch.bits());
-        }
-        std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
-        for (std::size_t i = 0; i < e.columns.size(); ++i) {
-            const int l = tl[i];
-            if (l >= g.levels) continue;
-            const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
-            std::size_t s = 0;
-            for (std::size_t j = i + 1; j <= i + span; ++j) s += size[j];
-            left[static_cast<std::size_t>(l)].push_back(s);
-        }
-        std::vector<int> lw(static_cast<std::size_t>(g.levels), 0);
-        for (int l = 1; l < g.levels; ++l) {
-            for (std::size_t s : left[static_cast<std::size_t>(l)])
-                lw[static_cast<std::size_t>(l)] = std::max(lw[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
-            out.put(static_cast<std::uint32_t>(lw[static_cast<std::size_t>(l)]), 5);
-        }
-        for (int l = 1; l < g.levels; ++l)
-            for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), lw[static_cast<std::size_t>(l)]);
-        for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+        if (e.step >= 0) write_window(g, out, e, tl);
     }
     out.align();
     g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
@@ -2022,7 +1582,7 @@ inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const st
 void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
     const RuntimeGroup3& g3 = *g7.v3;
     const RuntimeGroup& g = *g3.base;
-    const int Da = g.Da, B = g3.lookup, W = g.W;
+    const int Da = g.Da, W = g.W;
     const std::size_t w = frame / static_cast<std::size_t>(W);
     const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
     const std::size_t entry = g.clip_first[clip] + w;
@@ -2045,41 +1605,7 @@ void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame
     }
     const std::size_t key_end = fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, a);
     fixed_key(data, o1 * 8 + 8, width, at, center, full, rows, escapable, Da, detail::step_of(data[o1]), b);
-    BitReader in{data, key_end};
-    const double step = detail::step_of(static_cast<int>(in.get(8)));
-    int lw[8] = {0};
-    for (int l = 1; l < g.levels; ++l) lw[l] = static_cast<int>(in.get(5));
-    std::size_t pos = in.pos;
-    std::size_t skip[8] = {0};
-    for (int l = 1; l < g.levels; ++l) {
-        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
-        BitReader s{data, pos + node * static_cast<std::size_t>(lw[l])};
-        skip[l] = s.get(lw[l]);
-        pos += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(lw[l]);
-    }
-    int lo = 0, hi = W;
-    double* lo_y = a;
-    double* hi_y = b;
-    for (int l = 1;; ++l) {
-        const int mid = (lo + hi) / 2;
-        double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
-        for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
-        const std::size_t ctx = static_cast<std::size_t>(l * g.buckets);
-        const std::uint32_t* table = g3.table.data() + (ctx << B);
-        const std::uint16_t* slow = g.flat.data() + (ctx << kFastBits);
-        int d = 0;
-        while (lean_step<false>(data, pos, d, table, slow, Da, B, out, step)) {
-        }
-        if (mid == t) return;
-        if (t < mid) {
-            hi = mid;
-            hi_y = out;
-        } else {
-            pos += skip[l];
-            lo = mid;
-            lo_y = out;
-        }
-    }
+    decode_path(g3, data, key_end, t, y, a, b, c);
 }
 
 }  // namespace
@@ -2091,11 +1617,11 @@ int main(int argc, char** argv) {
     std::vector<int> key_offsets{0, 12};
     double rounding = 0.4;
     std::size_t limit = 0;
-    std::vector<int> lookups{11, 9, 8};
-    int reps = 3;
-    bool identity_dofs = false;
-    bool key_centers = true;
-    bool key_escapes = true;  // --key-escapes 0: variant 7's keys without escapes  // --key-centers 0: variant 7's keys without per-clip centers  // --dof identity: no dof basis (y = x, no product at decode)  // repeats of the variant 3 timings (best of)  // variant 3's lookup widths (the first also without pairs)
+    std::vector<int> lookups{11, 9, 8};  // variant 4's lookup widths (the first also without pairs)
+    int reps = 3;                        // repeats of the variant 4 and 7 timings (best of)
+    bool identity_dofs = false;          // --dof identity: no dof basis (y = x, no product at decode)
+    bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
+    bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
@@ -2112,7 +1638,6 @@ int main(int argc, char** argv) {
         else if (k == "--key-centers") key_centers = v == "1";
         else if (k == "--key-escapes") key_escapes = v == "1";
         else if (k == "--float-dofs") g_float_dofs = v == "1";
-        else if (k == "--branch-free") g_branch_free = v == "1";
         else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
     }
     std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
@@ -2266,9 +1791,7 @@ int main(int argc, char** argv) {
                             theirs = std::min(theirs, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                         }
                         // Stages: the frame's y from the bytes alone, and y -> local pose alone (on stored y).
-                        double decode_only = 1e300, pose_only = 1e300, dofs_only = 1e300, float_dofs = 1e300;
-                        std::vector<FloatModel> fm;
-                        for (const auto& m : models) fm.emplace_back(m);
+                        double decode_only = 1e300, pose_only = 1e300;
                         for (int rep = 0; rep < 3; ++rep) {
                             double c0 = bench::thread_cpu_seconds();
                             for (const auto& [g, i, f] : seq) {
@@ -2286,24 +1809,8 @@ int main(int argc, char** argv) {
                                 m.local_of(m.clips[i], base + 4 * Da, out);
                             }
                             pose_only = std::min(pose_only, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
-                            c0 = bench::thread_cpu_seconds();
-                            for (const auto& [g, i, f] : seq) {
-                                const auto& m = models[g];
-                                const std::size_t Da = m.active.size();
-                                double* base = scratch[g].data();
-                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
-                            }
-                            dofs_only = std::min(dofs_only, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
-                            c0 = bench::thread_cpu_seconds();
-                            for (const auto& [g, i, f] : seq) {
-                                const auto& m = models[g];
-                                const std::size_t Da = m.active.size();
-                                double* base = scratch[g].data();
-                                float_pose_of(fm[g], m, m.clips[i], base, base + 4 * Da);
-                            }
-                            float_dofs = std::min(float_dofs, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                         }
-                        std::printf("#  y -> dofs alone: %.3f us (float32 product: %.3f us)\n", dofs_only, float_dofs);
+
                         double no_prefetch = 1e300;
                         for (auto& rg : runtime) rg.prefetch = false;
                         for (int rep = 0; rep < 3; ++rep) {
@@ -2439,8 +1946,8 @@ int main(int argc, char** argv) {
                                         "(steps differ between keys: indicative only), centered with escapes %.0f\n",
                                         huff_bits / 8, width_bits / 8, delta_bits / 8, escape_bits / 8);
                         }
-                        // Variant 3 (lookup widths, with and without two symbols per lookup), A/B against variant 1
-                        // in the same reps.
+                        // Variants 4 (per lookup width, with and without two symbols per lookup) and 7 (keys at
+                        // fixed widths, with and without escapes), timed A/B against variant 1 in the same reps.
                         {
                             struct Config {
                                 int lookup;
@@ -2449,150 +1956,105 @@ int main(int argc, char** argv) {
                             std::vector<Config> configs;
                             for (int b : lookups) configs.push_back({b, true});
                             configs.push_back({lookups.front(), false});
-                            std::vector<std::vector<RuntimeGroup3>> r3(configs.size());
-                            double bytes3 = 0.0;
-                            bool equal = true;
+                            std::vector<std::vector<RuntimeGroup3>> r4(configs.size());
                             for (std::size_t v = 0; v < configs.size(); ++v)
                                 for (std::size_t g = 0; g < groups.size(); ++g)
-                                    r3[v].push_back(build_runtime3(runtime[g], hier_results[g], configs[v].pairs, configs[v].lookup));
-                            for (const auto& rg : r3[0])
-                                bytes3 += static_cast<double>(rg.bytes.size() - 16) + 3.0 * static_cast<double>(rg.offsets.size());
-                            bytes3 += tables / 8 + static_cast<double>(f2_header);
-                            std::vector<std::vector<Nonzero>> nzs(groups.size());
-                            std::vector<std::vector<double>> deltas(groups.size());
+                                    r4[v].push_back(build_runtime3(runtime[g], hier_results[g], configs[v].pairs, configs[v].lookup));
+                            double bytes4 = tables / 8 + static_cast<double>(f2_header);
+                            for (const auto& rg : r4[0])
+                                bytes4 += static_cast<double>(rg.bytes.size() - 16) + 3.0 * static_cast<double>(rg.offsets.size());
+                            // Variant 7: bytes without the keys' (level 0) code tables, with the clips' key widths.
+                            std::vector<RuntimeGroup7> r7[2];  // [0] with escapes (--key-escapes), [1] without
+                            double bytes7[2] = {tables / 8 + static_cast<double>(f2_header), tables / 8 + static_cast<double>(f2_header)};
                             for (std::size_t g = 0; g < groups.size(); ++g)
-                                deltas[g].resize(static_cast<std::size_t>(runtime[g].levels) * models[g].active.size());
+                                for (int k = 0; k < 2; ++k) {
+                                    r7[k].push_back(build_runtime7(r4[0][g], hier_results[g], key_centers, k == 0 && key_escapes));
+                                    const RuntimeGroup7& b7 = r7[k].back();
+                                    bytes7[k] += static_cast<double>(b7.bytes.size() - 8) + 3.0 * static_cast<double>(b7.offsets.size()) +
+                                                 static_cast<double>(b7.width_bits) / 8;
+                                    for (int c = 0; c < runtime[g].buckets; ++c) {
+                                        const auto& code = runtime[g].codes[static_cast<std::size_t>(c)];
+                                        if (!code.length.empty()) bytes7[k] -= (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
+                                    }
+                                }
+                            // Every frame of every variant equal to variant 1's, bit for bit (so within E: the max above).
+                            bool equal = true;
                             for (std::size_t g = 0; g < groups.size(); ++g) {
                                 const std::size_t Da = models[g].active.size();
-                                nzs[g].resize(static_cast<std::size_t>(2 + runtime[g].levels) * (Da + 1));
-                                std::vector<double> y1(Da), y3(Da), sa(Da), sb(Da), sc(Da);
+                                std::vector<double> y1(Da), yv(Da), sa(Da), sb(Da), sc(Da);
+                                auto same = [&] { equal = equal && std::memcmp(y1.data(), yv.data(), Da * sizeof(double)) == 0; };
                                 for (std::size_t i = 0; i < members[g].size(); ++i)
                                     for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
                                         runtime_frame(runtime[g], i, f, y1.data(), sa.data(), sb.data(), sc.data());
-                                        for (const auto& rv : r3) {
-                                            runtime_frame3(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data(), nzs[g].data());
-                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
-                                            runtime_frame4(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data());
-                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
-                                            runtime_frame4<true>(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data());
-                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
-                                            runtime_frame5(rv[g], i, f, y3.data(), sa.data(), sb.data(), sc.data(), deltas[g].data());
-                                            if (std::memcmp(y1.data(), y3.data(), Da * sizeof(double)) != 0) equal = false;
+                                        for (const auto& rv : r4) {
+                                            runtime_frame4(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            same();
+                                        }
+                                        for (const auto& rv : r7) {
+                                            runtime_frame7(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            same();
                                         }
                                     }
                             }
-                            std::vector<RuntimeGroup7> r7, r7n;
-                            double bytes7 = 0.0, bytes7n = 0.0;
-                            bool equal7 = true;
-                            for (std::size_t g = 0; g < groups.size(); ++g) {
-                                r7.push_back(build_runtime7(r3[0][g], hier_results[g], key_centers, key_escapes));
-                                r7n.push_back(build_runtime7(r3[0][g], hier_results[g], key_centers, false));
-                                bytes7 += static_cast<double>(r7.back().bytes.size() - 8) + 3.0 * static_cast<double>(r7.back().offsets.size()) +
-                                          static_cast<double>(r7.back().width_bits) / 8;
-                                bytes7n += static_cast<double>(r7n.back().bytes.size() - 8) + 3.0 * static_cast<double>(r7n.back().offsets.size()) +
-                                           static_cast<double>(r7n.back().width_bits) / 8;
-                                // Code tables without the keys' (level 0) contexts.
-                                for (int c = 0; c < runtime[g].buckets; ++c)
-                                    if (!runtime[g].codes[static_cast<std::size_t>(c)].length.empty())
-                                        for (double* b7 : {&bytes7, &bytes7n})
-                                            *b7 -= (8.0 + 5.0 * static_cast<double>(runtime[g].codes[static_cast<std::size_t>(c)].length.size())) / 8;
-                                const std::size_t Da = models[g].active.size();
-                                std::vector<double> y1(Da), y7(Da), sa(Da), sb(Da), sc(Da);
-                                for (std::size_t i = 0; i < members[g].size(); ++i)
-                                    for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
-                                        runtime_frame(runtime[g], i, f, y1.data(), sa.data(), sb.data(), sc.data());
-                                        runtime_frame7(r7[g], i, f, y7.data(), sa.data(), sb.data(), sc.data());
-                                        if (std::memcmp(y1.data(), y7.data(), Da * sizeof(double)) != 0) equal7 = false;
-                                        runtime_frame7(r7n[g], i, f, y7.data(), sa.data(), sb.data(), sc.data());
-                                        if (std::memcmp(y1.data(), y7.data(), Da * sizeof(double)) != 0) equal7 = false;
-                                    }
-                            }
-                            bytes7 += tables / 8 + static_cast<double>(f2_header);
-                            bytes7n += tables / 8 + static_cast<double>(f2_header);
-                            auto cold = [&](auto&& frame_fn, bool with_pose) {
-                                const double c0 = bench::thread_cpu_seconds();
-                                for (const auto& [g, i, f] : seq) {
-                                    const auto& m = models[g];
-                                    const std::size_t Da = m.active.size();
-                                    double* base = scratch[g].data();
-                                    frame_fn(g, i, f, base, Da);
-                                    if (with_pose) {
-                                        dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
-                                        m.local_of(m.clips[i], base + 4 * Da, out);
-                                    }
-                                }
-                                return (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6;
+                            // Cold local pose, y alone, and hot y (32 poses over and over: bytes, tables and branches learnt).
+                            struct Times {
+                                double cold = 1e300, y = 1e300, hot = 1e300;
                             };
-                            auto hot_of = [&](auto&& frame_fn) {  // 32 poses over and over: bytes, tables and branches learnt
+                            auto time = [&](auto&& frame_fn, Times& t, bool float64_product = false) {
+                                for (int with_pose = 1; with_pose >= 0; --with_pose) {
+                                    const double c0 = bench::thread_cpu_seconds();
+                                    for (const auto& [g, i, f] : seq) {
+                                        const auto& m = models[g];
+                                        const std::size_t Da = m.active.size();
+                                        double* base = scratch[g].data();
+                                        frame_fn(g, i, f, base, Da);
+                                        if (with_pose) {
+                                            if (float64_product) m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                            else dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
+                                            m.local_of(m.clips[i], base + 4 * Da, out);
+                                        }
+                                    }
+                                    double& slot = with_pose ? t.cold : t.y;
+                                    slot = std::min(slot, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                }
                                 const double c0 = bench::thread_cpu_seconds();
                                 for (int again = 0; again < 200; ++again)
                                     for (std::size_t n = 0; n < 32; ++n) {
                                         const auto& [g, i, f] = seq[n];
                                         frame_fn(g, i, f, scratch[g].data(), models[g].active.size());
                                     }
-                                return (bench::thread_cpu_seconds() - c0) / 6400.0 * 1e6;
+                                t.hot = std::min(t.hot, (bench::thread_cpu_seconds() - c0) / 6400.0 * 1e6);
                             };
-                            auto f1 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
-                            };
-                            double c1 = 1e300, y1t = 1e300, h1 = 1e300;
-                            double c7 = 1e300, y7t = 1e300, h7 = 1e300, c7n = 1e300, y7nt = 1e300, h7n = 1e300;
-                            std::vector<double> h3(configs.size(), 1e300), c4(configs.size(), 1e300), y4t(configs.size(), 1e300),
-                                h4(configs.size(), 1e300), c5(configs.size(), 1e300), y5t(configs.size(), 1e300), h5(configs.size(), 1e300), c6(configs.size(), 1e300), y6t(configs.size(), 1e300), h6(configs.size(), 1e300);
-                            std::vector<double> c3(configs.size(), 1e300), y3t(configs.size(), 1e300);
+                            Times t1, t1d, t7[2];
+                            std::vector<Times> t4(configs.size());
                             for (int rep = 0; rep < reps; ++rep) {
-                                c1 = std::min(c1, cold(f1, true));
-                                y1t = std::min(y1t, cold(f1, false));
-                                h1 = std::min(h1, hot_of(f1));
-                                auto f7 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                    runtime_frame7(r7[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
-                                };
-                                c7 = std::min(c7, cold(f7, true));
-                                y7t = std::min(y7t, cold(f7, false));
-                                h7 = std::min(h7, hot_of(f7));
-                                auto f7n = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                    runtime_frame7(r7n[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
-                                };
-                                c7n = std::min(c7n, cold(f7n, true));
-                                y7nt = std::min(y7nt, cold(f7n, false));
-                                h7n = std::min(h7n, hot_of(f7n));
-                                for (std::size_t v = 0; v < configs.size(); ++v) {
-                                    auto f3 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                        runtime_frame3(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, nzs[g].data());
-                                    };
-                                    c3[v] = std::min(c3[v], cold(f3, true));
-                                    y3t[v] = std::min(y3t[v], cold(f3, false));
-                                    h3[v] = std::min(h3[v], hot_of(f3));
-                                    auto f4 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                        runtime_frame4(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
-                                    };
-                                    c4[v] = std::min(c4[v], cold(f4, true));
-                                    y4t[v] = std::min(y4t[v], cold(f4, false));
-                                    h4[v] = std::min(h4[v], hot_of(f4));
-                                    auto f5 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                        runtime_frame5(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, deltas[g].data());
-                                    };
-                                    c5[v] = std::min(c5[v], cold(f5, true));
-                                    y5t[v] = std::min(y5t[v], cold(f5, false));
-                                    h5[v] = std::min(h5[v], hot_of(f5));
-                                    auto f6 = [&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                        runtime_frame4<true>(r3[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
-                                    };
-                                    c6[v] = std::min(c6[v], cold(f6, true));
-                                    y6t[v] = std::min(y6t[v], cold(f6, false));
-                                    h6[v] = std::min(h6[v], hot_of(f6));
-                                }
+                                time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                    runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                }, t1);
+                                time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                    runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                }, t1d, true);
+                                for (int k = 0; k < 2; ++k)
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame7(r7[k][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    }, t7[k]);
+                                for (std::size_t v = 0; v < configs.size(); ++v)
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame4(r4[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    }, t4[v]);
                             }
-                            std::printf("#  VARIANT 3 (keys at entry ends, 3 chains): bytes %.0f; %s; v1: cold local pose %.3f us, y %.3f us (hot %.3f)\n",
-                                        bytes3, equal ? "every frame equal to variant 1" : "MISMATCH with variant 1", c1, y1t, h1);
-                            std::printf("#  VARIANT 7 (fixed-width keys%s, lookup %d): bytes %.0f; %s; cold local pose %.3f us, y %.3f us (hot %.3f); "
-                                        "without escapes: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
-                                        key_escapes ? " with escapes" : "", configs[0].lookup, bytes7,
-                                        equal7 ? "every frame equal to variant 1" : "MISMATCH with variant 1", c7, y7t, h7, bytes7n, c7n, y7nt, h7n);
+                            std::printf("#  A/B (%s): v1 cold local pose %.3f us, y %.3f us (hot %.3f); v1 with the float64 product "
+                                        "(pose_of, as before): cold local pose %.3f us\n",
+                                        equal ? "every frame of every variant equal to variant 1" : "MISMATCH with variant 1", t1.cold, t1.y, t1.hot,
+                                        t1d.cold);
                             for (std::size_t v = 0; v < configs.size(); ++v)
-                                std::printf("#    v3 lookup %d bits%s: table %zu kB, cold local pose %.3f us, y %.3f us (hot %.3f); v4: cold local pose %.3f us, y %.3f us (hot %.3f); v5: cold local pose %.3f us, y %.3f us (hot %.3f); v6: cold local pose %.3f us, y %.3f us (hot %.3f)\n", configs[v].lookup,
-                                            configs[v].pairs ? ", pairs" : ", no pairs", r3[v][0].table.size() * 4 / 1024, c3[v], y3t[v], h3[v],
-                                            c4[v], y4t[v], h4[v], c5[v], y5t[v], h5[v], c6[v], y6t[v], h6[v]);
+                                std::printf("#    v4 lookup %d bits%s (table %zu kB): bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                            configs[v].lookup, configs[v].pairs ? ", pairs" : ", no pairs", r4[v][0].table.size() * 4 / 1024, bytes4,
+                                            t4[v].cold, t4[v].y, t4[v].hot);
+                            for (int k = 0; k < 2; ++k)
+                                std::printf("#    v7 keys at fixed widths%s%s, lookup %d: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                            key_centers ? ", centered" : "", k == 0 && key_escapes ? ", escapes" : "", configs[0].lookup, bytes7[k],
+                                            t7[k].cold, t7[k].y, t7[k].hot);
                         }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
                                     no_prefetch, pose_only);
