@@ -1890,6 +1890,49 @@ int main(int argc, char** argv) {
                                     "cold local pose %.3f us\n",
                                     bits2 / 8 + 3.0 * static_cast<double>(entries2) + tables / 8 + static_cast<double>(f2_header), bits2 / 8,
                                     directory2 / 8, worst2 > 0 ? "MISMATCH with variant 1" : "every frame equal to variant 1", decode2, cold2);
+                        // Detail levels 1-2 coded like variant 7's keys (estimate): per clip and row of a level's
+                        // columns the width (with escapes, center 0) that codes smallest, a 5-bit width and a 5-bit
+                        // escape width per clip and row, against the columns' Huffman bits.
+                        {
+                            std::vector<int> tl, tf;
+                            tree_order(W, tl, tf);
+                            for (int level = 1; level <= 2; ++level) {
+                                double column_bits = 0.0, fixed = 0.0;
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    const HierResult& hr = hier_results[g];
+                                    const std::size_t Da = models[g].active.size();
+                                    for (std::size_t i = 0; i < hr.clip_first.size(); ++i) {
+                                        const std::size_t first = hr.clip_first[i];
+                                        const std::size_t last = i + 1 < hr.clip_first.size() ? hr.clip_first[i + 1] : hr.entries.size();
+                                        std::vector<const std::vector<std::int32_t>*> cols;
+                                        for (std::size_t e = first; e < last; ++e)
+                                            for (std::size_t k = 0; k < hr.entries[e].columns.size(); ++k)
+                                                if (tl[k] == level) {
+                                                    cols.push_back(&hr.entries[e].columns[k]);
+                                                    BitWriter bw;
+                                                    runtime[g].write_column(bw, level, hr.entries[e].columns[k]);
+                                                    column_bits += static_cast<double>(bw.bits());
+                                                }
+                                        for (std::size_t d = 0; d < Da; ++d) {
+                                            int full = 0;
+                                            for (const auto* c : cols) full = std::max(full, twos_bits((*c)[d]));
+                                            double best = static_cast<double>(full) * static_cast<double>(cols.size());
+                                            for (int x = 1; x < full; ++x) {
+                                                double cost = static_cast<double>(x) * static_cast<double>(cols.size());
+                                                for (const auto* c : cols) {
+                                                    const std::int64_t v = (*c)[d];
+                                                    if (!(v > -(std::int64_t{1} << (x - 1)) && v < (std::int64_t{1} << (x - 1)))) cost += full;
+                                                }
+                                                best = std::min(best, cost);
+                                            }
+                                            fixed += 10.0 + best;
+                                        }
+                                    }
+                                }
+                                std::printf("#  level %d columns: huffman %.0f bytes, fixed widths per clip and row with escapes %.0f\n", level,
+                                            column_bits / 8, fixed / 8);
+                            }
+                        }
                         // Keys: Huffman bits against fixed widths per clip and row (5 bits a width per clip
                         // and row), and against fixed widths per clip and row of the key minus the previous key.
                         {
