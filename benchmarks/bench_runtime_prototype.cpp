@@ -1441,6 +1441,30 @@ std::size_t coded_bits(const std::vector<int>& values) {
     return bits;
 }
 
+/// The width that codes `values` smallest when a value outside (-2^(w-1), 2^(w-1)) is stored as
+/// -2^(w-1) and then at `full` bits (full: the width that holds them all); its bits into *bits.
+int escape_width(const std::vector<std::int64_t>& values, int full, double* bits) {
+    const auto n = static_cast<double>(values.size());
+    double best = static_cast<double>(full) * n;
+    int best_w = full;
+    for (int x = 1; x < full; ++x) {
+        double cost = static_cast<double>(x) * n;
+        for (std::int64_t v : values)
+            if (!(v > -(std::int64_t{1} << (x - 1)) && v < (std::int64_t{1} << (x - 1)))) cost += full;
+        if (cost < best) {
+            best = cost;
+            best_w = x;
+        }
+    }
+    if (bits) *bits = best;
+    return best_w;
+}
+
+/// One past clip i's last entry.
+std::size_t entries_end(const HierResult& r, std::size_t i) {
+    return i + 1 < r.clip_first.size() ? r.clip_first[i + 1] : r.entries.size();
+}
+
 RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool centers, bool escapes) {
     const RuntimeGroup& g = *g3.base;
     RuntimeGroup7 g7;
@@ -1454,7 +1478,7 @@ RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool 
     g7.at.assign(r.clip_first.size() * (Da + 1), 0);
     std::vector<std::size_t> clip_of(r.entries.size());
     for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
-        const std::size_t last = i + 1 < r.clip_first.size() ? r.clip_first[i + 1] : r.entries.size();
+        const std::size_t last = entries_end(r, i);
         std::uint8_t* w = g7.width.data() + i * Da;
         std::int32_t* center = g7.center.data() + i * Da;
         if (centers)
@@ -1477,21 +1501,9 @@ RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool 
         for (std::size_t d = 0; d < Da; ++d) {
             full[d] = w[d];
             if (!escapes) continue;
-            const double n = static_cast<double>(last - r.clip_first[i]);
-            double best = static_cast<double>(w[d]) * n;
-            int best_w = w[d];
-            for (int x = 1; x < w[d]; ++x) {
-                double cost = static_cast<double>(x) * n;
-                for (std::size_t e = r.clip_first[i]; e < last; ++e) {
-                    const std::int64_t v = static_cast<std::int64_t>(r.entries[e].key[d]) - center[d];
-                    if (!(v > -(std::int64_t{1} << (x - 1)) && v < (std::int64_t{1} << (x - 1)))) cost += full[d];
-                }
-                if (cost < best) {
-                    best = cost;
-                    best_w = x;
-                }
-            }
-            w[d] = static_cast<std::uint8_t>(best_w);
+            std::vector<std::int64_t> values;
+            for (std::size_t e = r.clip_first[i]; e < last; ++e) values.push_back(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d]);
+            w[d] = static_cast<std::uint8_t>(escape_width(values, full[d], nullptr));
         }
         g7.rows.resize(g7.full.size());
         g7.escapable.push_back(0);
@@ -1890,6 +1902,12 @@ int main(int argc, char** argv) {
                                     "cold local pose %.3f us\n",
                                     bits2 / 8 + 3.0 * static_cast<double>(entries2) + tables / 8 + static_cast<double>(f2_header), bits2 / 8,
                                     directory2 / 8, worst2 > 0 ? "MISMATCH with variant 1" : "every frame equal to variant 1", decode2, cold2);
+                        // Per clip of every group: fn(group, its entries, Da, the clip's first entry, one past its last).
+                        auto each_clip = [&](auto&& fn) {
+                            for (std::size_t g = 0; g < groups.size(); ++g)
+                                for (std::size_t i = 0; i < hier_results[g].clip_first.size(); ++i)
+                                    fn(g, hier_results[g], models[g].active.size(), hier_results[g].clip_first[i], entries_end(hier_results[g], i));
+                        };
                         // Detail levels 1-2 coded like variant 7's keys (estimate): per clip and row of a level's
                         // columns the width (with escapes, center 0) that codes smallest, a 5-bit width and a 5-bit
                         // escape width per clip and row, against the columns' Huffman bits.
@@ -1898,12 +1916,7 @@ int main(int argc, char** argv) {
                             tree_order(W, tl, tf);
                             for (int level = 1; level <= 2; ++level) {
                                 double column_bits = 0.0, fixed = 0.0;
-                                for (std::size_t g = 0; g < groups.size(); ++g) {
-                                    const HierResult& hr = hier_results[g];
-                                    const std::size_t Da = models[g].active.size();
-                                    for (std::size_t i = 0; i < hr.clip_first.size(); ++i) {
-                                        const std::size_t first = hr.clip_first[i];
-                                        const std::size_t last = i + 1 < hr.clip_first.size() ? hr.clip_first[i + 1] : hr.entries.size();
+                                each_clip([&](std::size_t g, const HierResult& hr, std::size_t Da, std::size_t first, std::size_t last) {
                                         std::vector<const std::vector<std::int32_t>*> cols;
                                         for (std::size_t e = first; e < last; ++e)
                                             for (std::size_t k = 0; k < hr.entries[e].columns.size(); ++k)
@@ -1915,20 +1928,16 @@ int main(int argc, char** argv) {
                                                 }
                                         for (std::size_t d = 0; d < Da; ++d) {
                                             int full = 0;
-                                            for (const auto* c : cols) full = std::max(full, twos_bits((*c)[d]));
-                                            double best = static_cast<double>(full) * static_cast<double>(cols.size());
-                                            for (int x = 1; x < full; ++x) {
-                                                double cost = static_cast<double>(x) * static_cast<double>(cols.size());
-                                                for (const auto* c : cols) {
-                                                    const std::int64_t v = (*c)[d];
-                                                    if (!(v > -(std::int64_t{1} << (x - 1)) && v < (std::int64_t{1} << (x - 1)))) cost += full;
-                                                }
-                                                best = std::min(best, cost);
+                                            std::vector<std::int64_t> values;
+                                            for (const auto* c : cols) {
+                                                full = std::max(full, twos_bits((*c)[d]));
+                                                values.push_back((*c)[d]);
                                             }
+                                            double best = 0.0;
+                                            escape_width(values, full, &best);
                                             fixed += 10.0 + best;
                                         }
-                                    }
-                                }
+                                });
                                 std::printf("#  level %d columns: huffman %.0f bytes, fixed widths per clip and row with escapes %.0f\n", level,
                                             column_bits / 8, fixed / 8);
                             }
@@ -1936,13 +1945,8 @@ int main(int argc, char** argv) {
                         // Keys: Huffman bits against fixed widths per clip and row (5 bits a width per clip
                         // and row), and against fixed widths per clip and row of the key minus the previous key.
                         {
-                            double huff_bits = 0.0, width_bits = 0.0, delta_bits = 0.0, escape_bits = 0.0;
-                            for (std::size_t g = 0; g < groups.size(); ++g) {
-                                const HierResult& hr = hier_results[g];
-                                const std::size_t Da = models[g].active.size();
-                                for (std::size_t i = 0; i < hr.clip_first.size(); ++i) {
-                                    const std::size_t first = hr.clip_first[i];
-                                    const std::size_t last = i + 1 < hr.clip_first.size() ? hr.clip_first[i + 1] : hr.entries.size();
+                            double huff_bits = 0.0, width_bits = 0.0, delta_bits = 0.0;
+                            each_clip([&](std::size_t g, const HierResult& hr, std::size_t Da, std::size_t first, std::size_t last) {
                                     std::vector<int> width(Da, 0), dwidth(Da, 0);
                                     for (std::size_t e = first; e < last; ++e) {
                                         BitWriter bw;
@@ -1957,37 +1961,14 @@ int main(int argc, char** argv) {
                                             }
                                         }
                                     }
-                                    // Escapes: per clip and row the width w minimizing n w + (values outside w's range,
-                                    // one code of which is the escape) times the full width (relative to the center).
-                                    for (std::size_t d = 0; d < Da; ++d) {
-                                        std::int32_t lo = hr.entries[first].key[d], hi = lo;
-                                        for (std::size_t e = first; e < last; ++e) {
-                                            lo = std::min(lo, hr.entries[e].key[d]);
-                                            hi = std::max(hi, hr.entries[e].key[d]);
-                                        }
-                                        const std::int64_t c = (static_cast<std::int64_t>(lo) + hi) >> 1;
-                                        int full = 0;
-                                        for (std::size_t e = first; e < last; ++e) full = std::max(full, twos_bits(hr.entries[e].key[d] - c));
-                                        double best = static_cast<double>(full) * static_cast<double>(last - first);
-                                        for (int w = 1; w < full; ++w) {
-                                            double cost = static_cast<double>(w) * static_cast<double>(last - first);
-                                            for (std::size_t e = first; e < last; ++e) {
-                                                const std::int64_t r = hr.entries[e].key[d] - c;
-                                                if (!(r > -(std::int64_t{1} << (w - 1)) && r < (std::int64_t{1} << (w - 1)))) cost += full;
-                                            }
-                                            best = std::min(best, cost);
-                                        }
-                                        escape_bits += 5.0 + 5.0 + static_cast<double>(twos_bits(c)) + best;
-                                    }
                                     for (std::size_t d = 0; d < Da; ++d) {
                                         width_bits += 5.0 + static_cast<double>(width[d]) * static_cast<double>(last - first);
                                         delta_bits += 5.0 + static_cast<double>(dwidth[d]) * static_cast<double>(last - first);
                                     }
-                                }
-                            }
+                            });
                             std::printf("#  keys: huffman %.0f bytes, fixed width per clip and row %.0f, previous-key delta at fixed widths %.0f "
-                                        "(steps differ between keys: indicative only), centered with escapes %.0f\n",
-                                        huff_bits / 8, width_bits / 8, delta_bits / 8, escape_bits / 8);
+                                        "(steps differ between keys: indicative only)\n",
+                                        huff_bits / 8, width_bits / 8, delta_bits / 8);
                         }
                         // Variants 4 (per lookup width, with and without two symbols per lookup) and 7 (keys at
                         // fixed widths, with and without escapes), timed A/B against variant 1 in the same reps.
