@@ -21,6 +21,16 @@
 //              a frame decodes its columns one after the other
 //   variant 2  directory = the key's and every column's size; the frame's columns decode as
 //              independent chains, interleaved symbol by symbol (checked equal to variant 1)
+//   variant 4  keys at the END of their entries, bytes reversed (read backwards from the next entry's
+//              offset), so that a frame's two keys start at known places and decode interleaved; the
+//              path's columns as variant 1; decode tables of --lookups bits giving up to two (run, size)
+//              symbols per lookup (same codes and bits as variant 1)
+//   variant 7  variant 4 with keys at fixed widths: per clip and row a width (coded against the group's
+//              largest), a center and, with --key-escapes, escapes (a value outside the width's range
+//              written after the key's slots): no symbol chain for keys
+// Variants 4 and 7 are checked equal to variant 1 on every frame (so within E) and timed against it in
+// the same repeats. --float-dofs 1: x = U y in float32 in the encoder's bound check, the check of every
+// frame and the timings (closed loop). --dof identity: no dof basis.
 // With --poses N: both bitstreams are built, every frame of every clip is decoded from the bytes and
 // compared with its source (FK, cm), and N cold random local poses (random clip and frame, nothing
 // kept) are timed (thread CPU, best of 3) beside format 2's GroupDecoder::decode_local_pose on the
@@ -31,6 +41,8 @@
 //
 //   bench_runtime_prototype [--folders cmu-walkrun-pfnn,cmu-asfamc] [--errors 1,0.1] [--windows 16,32]
 //                           [--key-offsets 0,12] [--rounding 0.4] [--code-bits 11] [--poses N] [--limit N]
+//                           [--lookups 11,9,8] [--reps 3] [--float-dofs 0|1] [--key-centers 0|1] [--key-escapes 0|1]
+//                           [--dof learned|identity]
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -39,6 +51,7 @@
 #include <cstring>
 #include <random>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -153,6 +166,58 @@ std::int32_t quantize(double v, double inv_step, double rounding) {
     return v < 0 ? -m : m;
 }
 
+/// x = U y in float32 (the dof basis rounded to float), then the dofs as pose_of forms them.
+struct FloatModel {
+    Eigen::MatrixXf U;
+    mutable Eigen::VectorXf y, x;
+    mutable std::vector<double> xd;
+    explicit FloatModel(const detail::GroupModel& m)
+        : U(m.dof_basis.cast<float>()), y(m.dof_basis.rows()), x(m.dof_basis.rows()), xd(static_cast<std::size_t>(m.dof_basis.rows())) {}
+};
+void float_pose_of(const FloatModel& f, const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, double* p) {
+    const auto n = f.U.rows();
+    for (Eigen::Index i = 0; i < n; ++i) f.y[i] = static_cast<float>(y[i]);
+    f.x.noalias() = f.U * f.y;
+    for (Eigen::Index i = 0; i < n; ++i) f.xd[static_cast<std::size_t>(i)] = f.x[i];
+    std::copy(m.constant.begin(), m.constant.end(), p);
+    m.unweight(f.xd.data(), m.skeletons[e.skeleton], p);
+}
+
+/// --float-dofs 1: x = U y in float32 (float_pose_of) everywhere: in the encoder's bound check, the
+/// check of every frame and the timings (closed loop: the bound holds for what is decoded).
+bool g_float_dofs = false;
+
+/// y -> the frame's dofs: pose_of, or with an identity dof basis (--dof identity) the copy of y
+/// instead of the product (x = y: the same values, up to the sign of a zero).
+void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s, double* p) {
+    static thread_local const detail::GroupModel* known = nullptr;
+    static thread_local bool identity = false;
+    if (known != &m) {
+        known = &m;
+        identity = m.dof_basis.isIdentity(0.0);
+    }
+    if (g_float_dofs) {
+        static thread_local std::map<const detail::GroupModel*, std::unique_ptr<FloatModel>> floats;
+        static thread_local const detail::GroupModel* last = nullptr;
+        static thread_local FloatModel* last_float = nullptr;
+        if (last != &m) {
+            auto& f = floats[&m];
+            if (!f) f = std::make_unique<FloatModel>(m);
+            last = &m;
+            last_float = f.get();
+        }
+        float_pose_of(*last_float, m, e, y, p);
+        return;
+    }
+    if (!identity) {
+        m.pose_of(e, y, static_cast<int>(m.active.size()), s, p);
+        return;
+    }
+    std::copy(y, y + m.active.size(), s.x.data());
+    std::copy(m.constant.begin(), m.constant.end(), p);
+    m.unweight(s.x.data(), m.skeletons[e.skeleton], p);
+}
+
 /// The hierarchical candidate on one group (clips in group order, m parsed from format 2's bytes).
 HierResult run_hier(const detail::GroupModel& m, const std::vector<const Clip*>& clips, double E, int W, int key_offset,
                     StaticCost& cost, StaticCost& widths, double rounding) {
@@ -183,7 +248,7 @@ HierResult run_hier(const detail::GroupModel& m, const std::vector<const Clip*>&
         // Distance check of reconstructed frame t (a real frame).
         double worst = 0.0;
         auto frame_ok = [&](Eigen::Index t, const double* yt) {
-            m.pose_of(e, yt, static_cast<int>(Da), s, p.data());
+            dofs_of_y(m, e, yt, s, p.data());
             m.row_of(e, p.data(), row.data());
             forward_kinematics(sk, row.data(), pose);
             for (Eigen::Index j = 0; j < J; ++j) {
@@ -768,6 +833,40 @@ void tree_order(int W, std::vector<int>& level, std::vector<int>& frame) {
     tree(tree, 0, W, 1);
 }
 
+/// From the window's step byte on: the step, the directory (per level a 5-bit width, then each
+/// internal node's left-subtree size in bits at that width) and the columns in tree order (levels tl).
+/// Returns the directory's bits.
+std::size_t write_window(const RuntimeGroup& g, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl) {
+    out.put(static_cast<std::uint32_t>(e.step), 8);
+    std::vector<std::size_t> size;
+    for (std::size_t i = 0; i < e.columns.size(); ++i) {
+        BitWriter scratch;
+        g.write_column(scratch, tl[i], e.columns[i]);
+        size.push_back(scratch.bits());
+    }
+    std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
+    for (std::size_t i = 0; i < e.columns.size(); ++i) {
+        const int l = tl[i];
+        if (l >= g.levels) continue;
+        const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
+        std::size_t s = 0;
+        for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
+        left[static_cast<std::size_t>(l)].push_back(s);
+    }
+    const std::size_t before = out.bits();
+    std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
+    for (int l = 1; l < g.levels; ++l) {
+        for (std::size_t s : left[static_cast<std::size_t>(l)])
+            width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
+        out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
+    }
+    for (int l = 1; l < g.levels; ++l)
+        for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
+    const std::size_t directory = out.bits() - before;
+    for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+    return directory;
+}
+
 RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
     RuntimeGroup g;
     g.W = W;
@@ -801,40 +900,30 @@ RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
         out.put(static_cast<std::uint32_t>(e.key_step), 8);
         g.write_column(out, 0, e.key);
         if (e.step < 0) continue;
-        out.put(static_cast<std::uint32_t>(e.step), 8);
-        // Column sizes, then each internal node's left subtree size (per level at one width).
-        std::vector<std::size_t> size;
-        for (std::size_t i = 0; i < e.columns.size(); ++i) {
-            BitWriter scratch;
-            g.write_column(scratch, tl[i], e.columns[i]);
-            size.push_back(scratch.bits());
-        }
-        std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
-        for (std::size_t i = 0; i < e.columns.size(); ++i) {
-            const int l = tl[i];
-            if (l >= g.levels) continue;
-            const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
-            std::size_t s = 0;
-            for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
-            left[static_cast<std::size_t>(l)].push_back(s);
-        }
-        const std::size_t before = out.bits();
-        std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
-        for (int l = 1; l < g.levels; ++l) {
-            for (std::size_t s : left[static_cast<std::size_t>(l)])
-                width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
-            out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
-        }
-        for (int l = 1; l < g.levels; ++l)
-            for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
-        g.directory_bits += out.bits() - before;
-        for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+        g.directory_bits += write_window(g, out, e, tl);
     }
     out.align();
     g.build_flat();
     g.bytes = std::move(out.bytes);
     g.bytes.resize(g.bytes.size() + 8, 0);
     return g;
+}
+
+/// A window's directory at bit pos (per level a width, then the left-subtree sizes): into skip[l] the
+/// size of the left subtree frame t's path skips at level l; returns the bit after the directory.
+std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip) {
+    BitReader in{data, pos};
+    int width[8] = {0};
+    for (int l = 1; l < levels; ++l) width[l] = static_cast<int>(in.get(5));
+    // Level l's sizes start after the earlier levels' (2^(l-1) each).
+    std::size_t at = in.pos;
+    for (int l = 1; l < levels; ++l) {
+        const std::size_t node = static_cast<std::size_t>(t) >> (levels - l + 1);
+        BitReader s{data, at + node * static_cast<std::size_t>(width[l])};
+        skip[l] = s.get(width[l]);
+        at += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
+    }
+    return at;
 }
 
 /// A frame of a clip into y (Da values), from the bytes alone; a, b, c: Da values of scratch each.
@@ -862,18 +951,8 @@ void runtime_frame(const RuntimeGroup& g, std::size_t clip, std::size_t frame, d
         g.read_column(next, 0, nullptr, nullptr, next_step, b);
     }
     const double step = detail::step_of(static_cast<int>(in.get(8)));
-    int width[8] = {0};
-    for (int l = 1; l < g.levels; ++l) width[l] = static_cast<int>(in.get(5));
-    // Left subtree sizes on t's path: level l's sizes start after the earlier levels' (2^(l-1) each).
-    std::size_t sizes_at = in.pos;
     std::size_t skip[8] = {0};
-    for (int l = 1; l < g.levels; ++l) {
-        const std::size_t node = static_cast<std::size_t>(t) >> (g.levels - l + 1);
-        BitReader s{g.bytes.data(), sizes_at + node * static_cast<std::size_t>(width[l])};
-        skip[l] = s.get(width[l]);
-        sizes_at += (std::size_t{1} << (l - 1)) * static_cast<std::size_t>(width[l]);
-    }
-    in.pos = sizes_at;
+    in.pos = read_directory(g.bytes.data(), in.pos, g.levels, t, skip);
     int lo = 0, hi = g.W;
     double* lo_y = a;
     double* hi_y = b;
@@ -1076,6 +1155,471 @@ void runtime_frame2(const RuntimeGroup2& g2, std::size_t clip, std::size_t frame
     }
 }
 
+
+// ---- Variant 3: three independent chains and two symbols per lookup. Each entry's key is written at
+// the END of its entry, its bytes in reverse order (read backwards from the next entry's offset), so
+// that a frame's two keys and its window's columns start at known places and decode as three
+// interleaved chains; the columns keep variant 1's directory and order. The decode tables give up to
+// two (run, size) symbols per lookup when both codes fit in the lookahead and the second symbol has
+// the first one's context (same row bucket). The same codes as variant 1: every frame's y is checked
+// equal to variant 1's, bit for bit. ----
+
+/// Table entry: bits 0-3 len1 (0: no code), 4-8 cat1, 9-13 adv1 (run + 1; 16: sixteen zeros),
+/// 14-17 len2 (0: no second symbol), 18-22 cat2, 23-27 adv2, 28 first is end, 29 second is end.
+constexpr std::uint32_t kEnd1 = 1u << 28, kEnd2 = 1u << 29;
+
+struct RuntimeGroup3 {
+    const RuntimeGroup* base = nullptr;
+    std::vector<std::uint32_t> offsets;  // per entry, then one past the last (byte offsets into data)
+    std::vector<std::uint8_t> bytes;     // 8 bytes of slack before and after the entries
+    std::vector<std::uint32_t> table;    // per context 2^lookup entries
+    int lookup = 11;                     // bits a lookup reads (<= kFastBits); longer codes: variant 1's table
+    bool pairs = true;
+    const std::uint8_t* data() const { return bytes.data() + 8; }
+};
+
+inline std::int32_t value_at(std::uint64_t w, int at, int cat) {
+    const std::uint64_t top = w << at;
+    const auto s = static_cast<std::int32_t>(top >> 63);
+    const auto mag = static_cast<std::int32_t>(((top | (std::uint64_t{1} << 63)) >> (63 - cat)) >> 1);
+    return (mag ^ -s) + s;
+}
+
+/// Symbol fields of a decoded code: (len, cat, adv, end) of symbol s.
+inline void symbol_fields(int s, int& cat, int& adv, int& end) {
+    end = s == kEnd;
+    if (end) { cat = 0; adv = 0; return; }
+    if (s == kZeroRun) { cat = 0; adv = 16; return; }
+    cat = s & 31;
+    adv = (s >> 5) + 1;
+}
+
+void build_table3(RuntimeGroup3& g3, bool pairs, int lookup) {
+    const RuntimeGroup& g = *g3.base;
+    const int B = lookup, shift = kFastBits - lookup;
+    const std::size_t n = std::size_t{1} << B;
+    g3.pairs = pairs;
+    g3.lookup = lookup;
+    g3.table.assign(g.codes.size() * n, 0);
+    for (std::size_t c = 0; c < g.codes.size(); ++c) {
+        const auto& fast = g.codes[c].fast;
+        if (fast.empty()) continue;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto f = fast[i << shift];
+            if (!f.length || f.length > B) continue;  // 0: a longer code (variant 1's table)
+            int cat1, adv1, end1;
+            symbol_fields(f.symbol, cat1, adv1, end1);
+            std::uint32_t e = static_cast<std::uint32_t>(f.length) | static_cast<std::uint32_t>(cat1) << 4 |
+                              static_cast<std::uint32_t>(adv1) << 9 | (end1 ? kEnd1 : 0u);
+            const int used = f.length + cat1;
+            if (pairs && !end1 && cat1 > 0 && used < B) {
+                // The second code from the bits left in the lookahead (zero-padded: only if it is whole).
+                const std::size_t rest = (i << used) & (n - 1);
+                const auto f2 = fast[rest << shift];
+                if (f2.length && used + f2.length <= B) {
+                    int cat2, adv2, end2;
+                    symbol_fields(f2.symbol, cat2, adv2, end2);
+                    if (used + f2.length + cat2 <= 56)
+                        e |= static_cast<std::uint32_t>(f2.length) << 14 | static_cast<std::uint32_t>(cat2) << 18 |
+                             static_cast<std::uint32_t>(adv2) << 23 | (end2 ? kEnd2 : 0u);
+                }
+            }
+            g3.table[c * n + i] = e;
+        }
+    }
+}
+
+RuntimeGroup3 build_runtime3(const RuntimeGroup& g, const HierResult& r, bool pairs, int lookup) {
+    RuntimeGroup3 g3;
+    g3.base = &g;
+    build_table3(g3, pairs, lookup);
+    std::vector<int> tl, tf;
+    tree_order(g.W, tl, tf);
+    BitWriter out;
+    for (int k = 0; k < 8; ++k) out.put(0, 8);  // slack before the first entry (backward reads)
+    for (const auto& e : r.entries) {
+        out.align();
+        g3.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size() - 8));
+        out.put(static_cast<std::uint32_t>(e.key_step), 8);
+        if (e.step >= 0) write_window(g, out, e, tl);
+        out.align();
+        // The key, its bytes reversed: read backwards from the end of the entry.
+        BitWriter key;
+        g.write_column(key, 0, e.key);
+        key.align();
+        for (auto it = key.bytes.rbegin(); it != key.bytes.rend(); ++it) out.put(*it, 8);
+    }
+    out.align();
+    g3.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size() - 8));
+    g3.bytes = std::move(out.bytes);
+    g3.bytes.resize(g3.bytes.size() + 8, 0);
+    return g3;
+}
+
+template <bool Rev>
+inline std::uint64_t peek3(const std::uint8_t* base, std::size_t pos) {
+    std::uint64_t v;
+    if (Rev) {
+        std::memcpy(&v, base - 8 - (pos >> 3), 8);
+    } else {
+        std::memcpy(&v, base + (pos >> 3), 8);
+        v = __builtin_bswap64(v);
+    }
+    return v << (pos & 7);
+}
+
+
+// ---- Variant 4: variant 3's bytes and tables, lean decode. The two keys (both at entry ends) as two
+// chains interleaved, then the path's columns one after the other as variant 1 decodes them (each
+// into its prediction), up to two symbols per lookup; chain state in locals (registers). ----
+
+/// A code longer than the lookup, by variant 1's table: one symbol.
+struct SlowSymbol {
+    int bits, adv, end;
+    std::int32_t value;  // 0: no value (sixteen zeros)
+};
+template <bool Rev>
+__attribute__((noinline)) SlowSymbol slow_symbol(const std::uint16_t* slow, int d, std::uint64_t w) {
+    const int B = kFastBits;
+    const std::uint16_t e = slow[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    const int len = e & 15;
+    if (e & (1u << 14)) return {len, 0, 1, 0};
+    const int cat = (e >> 9) & 31, run = (e >> 4) & 31;
+    if (!cat) return {len, run, 0, 0};
+    return {len + cat, run + 1, 0, value_at(w, len, cat)};
+}
+
+/// One lookup of a column (one or two symbols) at bit pos with row d; out[row] = out[row] + v * step
+/// for each value (keys: out zero, so v * step). Returns false when the column has ended.
+template <bool Rev>
+__attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, std::size_t& pos, int& d, const std::uint32_t* table,
+                                                     const std::uint16_t* slow, int Da, int B, double* out, double step) {
+    const std::uint64_t w = peek3<Rev>(base, pos);
+    const std::uint32_t e = table[(static_cast<std::size_t>(d >> 3) << B) | static_cast<std::size_t>(w >> (64 - B))];
+    if (__builtin_expect(e == 0, 0)) {
+        const SlowSymbol s = slow_symbol<Rev>(slow, d, w);
+        pos += static_cast<std::size_t>(s.bits);
+        if (s.end) return false;
+        d += s.adv;
+        if (s.value) out[d - 1] = out[d - 1] + s.value * step;
+        return d < Da;
+    }
+    const int len1 = static_cast<int>(e & 15), cat1 = static_cast<int>((e >> 4) & 31), adv1 = static_cast<int>((e >> 9) & 31);
+    if (e & kEnd1) {
+        pos += static_cast<std::size_t>(len1);
+        return false;
+    }
+    const int n1 = len1 + cat1;
+    const int d1 = d + adv1;
+    if (__builtin_expect(cat1 != 0, 1)) out[d1 - 1] = out[d1 - 1] + value_at(w, len1, cat1) * step;
+    const int len2 = static_cast<int>((e >> 14) & 15);
+    if (len2 != 0 && ((d & 7) + adv1) < 8 && d1 < Da) {
+        const int cat2 = static_cast<int>((e >> 18) & 31), adv2 = static_cast<int>((e >> 23) & 31);
+        pos += static_cast<std::size_t>(n1 + len2 + cat2);
+        if (e & kEnd2) return false;
+        d = d1 + adv2;
+        if (cat2) out[d - 1] = out[d - 1] + value_at(w, n1 + len2, cat2) * step;
+        return d < Da;
+    }
+    pos += static_cast<std::size_t>(n1);
+    d = d1;
+    return d < Da;
+}
+
+/// From a window's step byte at `bit` (variant 1's directory and columns): frame t's path of columns,
+/// each into its prediction from the keys in a and b (variant 4's decode; the same bits as variant 1).
+void decode_path(const RuntimeGroup3& g3, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b,
+                 double* c) {
+    const RuntimeGroup& g = *g3.base;
+    const int Da = g.Da, B = g3.lookup, W = g.W;
+    BitReader in{data, bit};
+    const double step = detail::step_of(static_cast<int>(in.get(8)));
+    std::size_t skip[8] = {0};
+    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip);
+    int lo = 0, hi = W;
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 1;; ++l) {
+        const int mid = (lo + hi) / 2;
+        double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
+        const std::size_t ctx = static_cast<std::size_t>(l * g.buckets);
+        const std::uint32_t* table = g3.table.data() + (ctx << B);
+        const std::uint16_t* slow = g.flat.data() + (ctx << kFastBits);
+        int d = 0;
+        while (lean_step<false>(data, pos, d, table, slow, Da, B, out, step)) {
+        }
+        if (mid == t) return;
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            pos += skip[l];
+            lo = mid;
+            lo_y = out;
+        }
+    }
+}
+
+/// Variant 4's frame into y (the same bits as variant 1); a, b, c: Da values of scratch each.
+void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
+    const RuntimeGroup& g = *g3.base;
+    const int Da = g.Da, B = g3.lookup, W = g.W;
+    const std::size_t w = frame / static_cast<std::size_t>(W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
+    const std::size_t entry = g.clip_first[clip] + w;
+    const std::uint8_t* data = g3.data();
+    const std::size_t o0 = g3.offsets[entry], o1 = g3.offsets[entry + 1];
+    {
+        const std::size_t end = t == 0 ? o1 + 8 : std::size_t{g3.offsets[entry + 2]} + 8;
+        for (std::size_t at = o0 & ~std::size_t{63}; at < end; at += 64) __builtin_prefetch(data + at);
+    }
+    const std::uint32_t* keys = g3.table.data();
+    const std::uint16_t* slow_keys = g.flat.data();
+    const double key_step = detail::step_of(data[o0]);
+    if (t == 0) {
+        std::fill(y, y + Da, 0.0);
+        std::size_t pos = 0;
+        int d = 0;
+        while (lean_step<true>(data + o1, pos, d, keys, slow_keys, Da, B, y, key_step)) {
+        }
+        return;
+    }
+    const std::size_t o2 = g3.offsets[entry + 2];
+    const double next_step = detail::step_of(data[o1]);
+    std::fill(a, a + Da, 0.0);
+    std::fill(b, b + Da, 0.0);
+    {
+        // The two keys, interleaved.
+        std::size_t pa = 0, pb = 0;
+        int da = 0, db = 0;
+        bool la = true, lb = true;
+        while (la & lb) {
+            la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+            lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+        }
+        while (la) la = lean_step<true>(data + o1, pa, da, keys, slow_keys, Da, B, a, key_step);
+        while (lb) lb = lean_step<true>(data + o2, pb, db, keys, slow_keys, Da, B, b, next_step);
+    }
+    decode_path(g3, data, (o0 + 1) * 8, t, y, a, b, c);
+}
+
+
+// ---- Variant 7: variant 4 with keys at fixed widths: per clip and row one width (5 bits each, in the
+// clip's header), each key row its two's complement value at that width; a key decodes with no
+// symbol chain (every row's place is known). Columns as variant 4 (pairs, same codes). ----
+
+struct RuntimeGroup7 {
+    const RuntimeGroup3* v3 = nullptr;  // tables
+    std::vector<std::uint32_t> offsets;  // per entry, then one past the last
+    std::vector<std::uint8_t> bytes;     // 8 bytes of slack after
+    std::vector<std::uint8_t> width;     // per clip, Da widths
+    std::vector<std::uint16_t> at;       // per clip, Da + 1 bit offsets within a key (prefix sums)
+    std::vector<std::int32_t> center;    // per clip, Da values every key row is stored relative to (--key-centers)
+    std::vector<std::uint8_t> full;      // per clip, Da widths of an escaped value (> width: the row has escapes)
+    std::vector<std::uint8_t> rows;      // per clip, Da: its rows that have escapes (the first `escapable`)
+    std::vector<int> escapable;          // per clip
+    std::size_t width_bits = 0;          // the widths as stored (5 bits each)
+};
+
+/// Two's complement bits that hold q (0 for 0).
+int twos_bits(std::int64_t q) {
+    if (!q) return 0;
+    int b = 0;
+    while (b < 40 && !(q >= -(std::int64_t{1} << b) && q < (std::int64_t{1} << b))) ++b;
+    return b + 1;
+}
+
+/// Bits of a static Huffman code of `values` (table: 5 bits per symbol and 8).
+std::size_t coded_bits(const std::vector<int>& values) {
+    std::map<int, std::size_t> hist;
+    for (int v : values) ++hist[v];
+    if (hist.empty()) return 0;
+    const std::map<int, int> lengths = huffman_lengths(hist);
+    std::size_t bits = 8 + 5 * hist.size();
+    for (const auto& [v, n] : hist) bits += n * static_cast<std::size_t>(lengths.at(v));
+    return bits;
+}
+
+/// The width that codes `values` smallest when a value outside (-2^(w-1), 2^(w-1)) is stored as
+/// -2^(w-1) and then at `full` bits (full: the width that holds them all); its bits into *bits.
+int escape_width(const std::vector<std::int64_t>& values, int full, double* bits) {
+    const auto n = static_cast<double>(values.size());
+    double best = static_cast<double>(full) * n;
+    int best_w = full;
+    for (int x = 1; x < full; ++x) {
+        double cost = static_cast<double>(x) * n;
+        for (std::int64_t v : values)
+            if (!(v > -(std::int64_t{1} << (x - 1)) && v < (std::int64_t{1} << (x - 1)))) cost += full;
+        if (cost < best) {
+            best = cost;
+            best_w = x;
+        }
+    }
+    if (bits) *bits = best;
+    return best_w;
+}
+
+/// One past clip i's last entry.
+std::size_t entries_end(const HierResult& r, std::size_t i) {
+    return i + 1 < r.clip_first.size() ? r.clip_first[i + 1] : r.entries.size();
+}
+
+RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool centers, bool escapes) {
+    const RuntimeGroup& g = *g3.base;
+    RuntimeGroup7 g7;
+    g7.v3 = &g3;
+    const auto Da = static_cast<std::size_t>(g.Da);
+    std::vector<int> tl, tf;
+    tree_order(g.W, tl, tf);
+    g7.width.assign(r.clip_first.size() * Da, 0);
+    g7.center.assign(r.clip_first.size() * Da, 0);
+    g7.full.assign(r.clip_first.size() * Da, 0);
+    g7.at.assign(r.clip_first.size() * (Da + 1), 0);
+    std::vector<std::size_t> clip_of(r.entries.size());
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
+        const std::size_t last = entries_end(r, i);
+        std::uint8_t* w = g7.width.data() + i * Da;
+        std::int32_t* center = g7.center.data() + i * Da;
+        if (centers)
+            for (std::size_t d = 0; d < Da; ++d) {
+                std::int32_t lo = r.entries[r.clip_first[i]].key[d], hi = lo;
+                for (std::size_t e = r.clip_first[i]; e < last; ++e) {
+                    lo = std::min(lo, r.entries[e].key[d]);
+                    hi = std::max(hi, r.entries[e].key[d]);
+                }
+                center[d] = static_cast<std::int32_t>((static_cast<std::int64_t>(lo) + hi) >> 1);
+            }
+        for (std::size_t e = r.clip_first[i]; e < last; ++e) {
+            clip_of[e] = i;
+            for (std::size_t d = 0; d < Da; ++d)
+                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], twos_bits(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d])));
+        }
+        // Escapes: the width that codes the row smallest when a value outside (-2^(w-1), 2^(w-1)) is
+        // stored as -2^(w-1) and then in full width after the key's slots.
+        std::uint8_t* full = g7.full.data() + i * Da;
+        for (std::size_t d = 0; d < Da; ++d) {
+            full[d] = w[d];
+            if (!escapes) continue;
+            std::vector<std::int64_t> values;
+            for (std::size_t e = r.clip_first[i]; e < last; ++e) values.push_back(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d]);
+            w[d] = static_cast<std::uint8_t>(escape_width(values, full[d], nullptr));
+        }
+        g7.rows.resize(g7.full.size());
+        g7.escapable.push_back(0);
+        for (std::size_t d = 0; d < Da; ++d)
+            if (full[d] > w[d]) g7.rows[i * Da + static_cast<std::size_t>(g7.escapable.back()++)] = static_cast<std::uint8_t>(d);
+        std::uint16_t* at = g7.at.data() + i * (Da + 1);
+        for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
+    }
+    // The widths as stored: per row the group's largest (5 bits), then each clip's as its difference
+    // from it by a static Huffman code of the group (table: 5 bits per symbol and 8).
+    // With centers: each center at its own width (a Huffman-coded width, then its bits).
+    {
+        std::vector<int> largest(Da, 0);
+        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
+            for (std::size_t d = 0; d < Da; ++d) largest[d] = std::max<int>(largest[d], g7.width[i * Da + d]);
+        std::vector<int> deltas, center_widths, extra;
+        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
+            for (std::size_t d = 0; d < Da; ++d) {
+                deltas.push_back(largest[d] - g7.width[i * Da + d]);
+                if (escapes) extra.push_back(g7.full[i * Da + d] - g7.width[i * Da + d]);
+                if (centers) {
+                    center_widths.push_back(twos_bits(g7.center[i * Da + d]));
+                    g7.width_bits += static_cast<std::size_t>(center_widths.back());
+                }
+            }
+        g7.width_bits += 5 * Da + coded_bits(deltas) + coded_bits(center_widths) + coded_bits(extra);
+    }
+    BitWriter out;
+    for (std::size_t k = 0; k < r.entries.size(); ++k) {
+        const auto& e = r.entries[k];
+        out.align();
+        g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+        out.put(static_cast<std::uint32_t>(e.key_step), 8);
+        const std::uint8_t* w = g7.width.data() + clip_of[k] * Da;
+        const std::int32_t* center = g7.center.data() + clip_of[k] * Da;
+        const std::uint8_t* full = g7.full.data() + clip_of[k] * Da;
+        std::vector<std::pair<std::int64_t, int>> escaped;
+        for (std::size_t d = 0; d < Da; ++d) {
+            const std::int64_t v = static_cast<std::int64_t>(e.key[d]) - center[d];
+            if (full[d] > w[d] && !(v > -(std::int64_t{1} << (w[d] - 1)) && v < (std::int64_t{1} << (w[d] - 1)))) {
+                out.put(static_cast<std::uint32_t>(-(std::int64_t{1} << (w[d] - 1))), w[d]);
+                escaped.push_back({v, full[d]});
+            } else {
+                out.put(static_cast<std::uint32_t>(v), w[d]);
+            }
+        }
+        for (const auto& [v, f] : escaped) out.put(static_cast<std::uint32_t>(v), f);
+        if (e.step >= 0) write_window(g, out, e, tl);
+    }
+    out.align();
+    g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+    g7.bytes = std::move(out.bytes);
+    g7.bytes.resize(g7.bytes.size() + 8, 0);
+    return g7;
+}
+
+/// w bits at bit p as a two's complement value (0 when w is 0).
+inline std::int64_t signed_bits(const std::uint8_t* data, std::size_t p, int w) {
+    std::uint64_t v;
+    std::memcpy(&v, data + (p >> 3), 8);
+    v = __builtin_bswap64(v) << (p & 7);
+    // Arithmetic shift of the top w bits (w 0: a shift by 63 and then by 1, never by 64).
+    const auto q = static_cast<std::int64_t>(v) >> (63 - (w ? w - 1 : 63)) >> (w ? 0 : 1);
+    return w ? q : 0;
+}
+
+/// A fixed-width key at bit `bit`: out[d] = q * step (+0.0 where q is 0, as the encoder formed it).
+/// Returns the bit after the key (its slots, then its escaped values).
+inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const std::uint8_t* width, const std::uint16_t* at,
+                             const std::int32_t* center, const std::uint8_t* full, const std::uint8_t* rows, int escapable, int Da,
+                             double step, double* out) {
+    for (int d = 0; d < Da; ++d) out[d] = static_cast<double>(signed_bits(data, bit + at[d], width[d]) + center[d]) * step;
+    // The clip's rows that may escape, without branches (escapes are frequent enough to be
+    // mispredicted): the escaped value is read at the escape position and kept where the slot says so.
+    std::size_t escape = bit + at[Da];
+    for (int k = 0; k < escapable; ++k) {
+        const int d = rows[k], w = width[d], f = full[d];
+        const std::int64_t slot = signed_bits(data, bit + at[d], w);
+        const bool escaped = slot == -(std::int64_t{1} << (w - 1));
+        const std::int64_t wide = signed_bits(data, escape, f);
+        escape += escaped ? static_cast<std::size_t>(f) : 0;
+        const double value = static_cast<double>(wide + center[d]) * step;
+        out[d] = escaped ? value : out[d];
+    }
+    return escape;
+}
+
+void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
+    const RuntimeGroup3& g3 = *g7.v3;
+    const RuntimeGroup& g = *g3.base;
+    const int Da = g.Da, W = g.W;
+    const std::size_t w = frame / static_cast<std::size_t>(W);
+    const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
+    const std::size_t entry = g.clip_first[clip] + w;
+    const std::uint8_t* data = g7.bytes.data();
+    const std::size_t o0 = g7.offsets[entry], o1 = g7.offsets[entry + 1];
+    const std::uint8_t* width = g7.width.data() + clip * static_cast<std::size_t>(Da);
+    const std::uint16_t* at = g7.at.data() + clip * static_cast<std::size_t>(Da + 1);
+    const std::int32_t* center = g7.center.data() + clip * static_cast<std::size_t>(Da);
+    const std::uint8_t* full = g7.full.data() + clip * static_cast<std::size_t>(Da);
+    const std::uint8_t* rows = g7.rows.data() + clip * static_cast<std::size_t>(Da);
+    const int escapable = g7.escapable[clip];
+    {
+        const std::size_t end = t == 0 ? o0 + at[Da] / 8 + 9 : o1 + at[Da] / 8 + 9;
+        for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
+    }
+    const double key_step = detail::step_of(data[o0]);
+    if (t == 0) {
+        fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, y);
+        return;
+    }
+    const std::size_t key_end = fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, a);
+    fixed_key(data, o1 * 8 + 8, width, at, center, full, rows, escapable, Da, detail::step_of(data[o1]), b);
+    decode_path(g3, data, key_end, t, y, a, b, c);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1085,6 +1629,11 @@ int main(int argc, char** argv) {
     std::vector<int> key_offsets{0, 12};
     double rounding = 0.4;
     std::size_t limit = 0;
+    std::vector<int> lookups{11, 9, 8};  // variant 4's lookup widths (the first also without pairs)
+    int reps = 3;                        // repeats of the variant 4 and 7 timings (best of)
+    bool identity_dofs = false;          // --dof identity: no dof basis (y = x, no product at decode)
+    bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
+    bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
@@ -1096,6 +1645,12 @@ int main(int argc, char** argv) {
         else if (k == "--limit") limit = std::stoul(v);
         else if (k == "--poses") poses = std::stoul(v);
         else if (k == "--code-bits") kMaxCode = std::stoi(v);
+        else if (k == "--reps") reps = std::stoi(v);
+        else if (k == "--dof") identity_dofs = v == "identity";
+        else if (k == "--key-centers") key_centers = v == "1";
+        else if (k == "--key-escapes") key_escapes = v == "1";
+        else if (k == "--float-dofs") g_float_dofs = v == "1";
+        else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
     }
     std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
                 "windows,keys,nonzero,seconds\n");
@@ -1108,7 +1663,7 @@ int main(int argc, char** argv) {
             PackOptions o;
             o.max_error_cm = E;
             o.time_basis = TimeBasis::Learned;
-            o.dof_basis = DofBasis::Learned;
+            o.dof_basis = identity_dofs ? DofBasis::Identity : DofBasis::Learned;
             std::vector<detail::GroupModel> models(groups.size());
             std::vector<std::vector<const Clip*>> members(groups.size());
             std::size_t f2_bytes = 0, f2_payload = 0, f2_header = 0;
@@ -1193,7 +1748,7 @@ int main(int argc, char** argv) {
                                 const MatX source = joint_positions(clip);
                                 for (std::size_t f = 0; f < clip.frame_count(); ++f) {
                                     runtime_frame(runtime[g], i, f, y.data(), a.data(), b.data(), c.data());
-                                    m.pose_of(e, y.data(), static_cast<int>(Da), s, p.data());
+                                    dofs_of_y(m, e, y.data(), s, p.data());
                                     m.row_of(e, p.data(), row.data());
                                     forward_kinematics(sk, row.data(), pose);
                                     for (std::size_t j = 0; j < sk.size(); ++j)
@@ -1239,7 +1794,7 @@ int main(int argc, char** argv) {
                                 const std::size_t Da = m.active.size();
                                 double* base = scratch[g].data();
                                 runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
-                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
                                 m.local_of(m.clips[i], base + 4 * Da, out);
                             }
                             ours = std::min(ours, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
@@ -1262,11 +1817,12 @@ int main(int argc, char** argv) {
                                 const auto& m = models[g];
                                 const std::size_t Da = m.active.size();
                                 double* base = scratch[g].data();
-                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
                                 m.local_of(m.clips[i], base + 4 * Da, out);
                             }
                             pose_only = std::min(pose_only, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                         }
+
                         double no_prefetch = 1e300;
                         for (auto& rg : runtime) rg.prefetch = false;
                         for (int rep = 0; rep < 3; ++rep) {
@@ -1335,7 +1891,7 @@ int main(int argc, char** argv) {
                                 const std::size_t Da = m.active.size();
                                 double* base = scratch[g].data();
                                 runtime_frame2(runtime2[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, qscratch[g].data());
-                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
                                 m.local_of(m.clips[i], base + 4 * Da, out);
                             }
                             cold2 = std::min(cold2, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
@@ -1346,6 +1902,184 @@ int main(int argc, char** argv) {
                                     "cold local pose %.3f us\n",
                                     bits2 / 8 + 3.0 * static_cast<double>(entries2) + tables / 8 + static_cast<double>(f2_header), bits2 / 8,
                                     directory2 / 8, worst2 > 0 ? "MISMATCH with variant 1" : "every frame equal to variant 1", decode2, cold2);
+                        // Per clip of every group: fn(group, its entries, Da, the clip's first entry, one past its last).
+                        auto each_clip = [&](auto&& fn) {
+                            for (std::size_t g = 0; g < groups.size(); ++g)
+                                for (std::size_t i = 0; i < hier_results[g].clip_first.size(); ++i)
+                                    fn(g, hier_results[g], models[g].active.size(), hier_results[g].clip_first[i], entries_end(hier_results[g], i));
+                        };
+                        // Detail levels 1-2 coded like variant 7's keys (estimate): per clip and row of a level's
+                        // columns the width (with escapes, center 0) that codes smallest, a 5-bit width and a 5-bit
+                        // escape width per clip and row, against the columns' Huffman bits.
+                        {
+                            std::vector<int> tl, tf;
+                            tree_order(W, tl, tf);
+                            for (int level = 1; level <= 2; ++level) {
+                                double column_bits = 0.0, fixed = 0.0;
+                                each_clip([&](std::size_t g, const HierResult& hr, std::size_t Da, std::size_t first, std::size_t last) {
+                                        std::vector<const std::vector<std::int32_t>*> cols;
+                                        for (std::size_t e = first; e < last; ++e)
+                                            for (std::size_t k = 0; k < hr.entries[e].columns.size(); ++k)
+                                                if (tl[k] == level) {
+                                                    cols.push_back(&hr.entries[e].columns[k]);
+                                                    BitWriter bw;
+                                                    runtime[g].write_column(bw, level, hr.entries[e].columns[k]);
+                                                    column_bits += static_cast<double>(bw.bits());
+                                                }
+                                        for (std::size_t d = 0; d < Da; ++d) {
+                                            int full = 0;
+                                            std::vector<std::int64_t> values;
+                                            for (const auto* c : cols) {
+                                                full = std::max(full, twos_bits((*c)[d]));
+                                                values.push_back((*c)[d]);
+                                            }
+                                            double best = 0.0;
+                                            escape_width(values, full, &best);
+                                            fixed += 10.0 + best;
+                                        }
+                                });
+                                std::printf("#  level %d columns: huffman %.0f bytes, fixed widths per clip and row with escapes %.0f\n", level,
+                                            column_bits / 8, fixed / 8);
+                            }
+                        }
+                        // Keys: Huffman bits against fixed widths per clip and row (5 bits a width per clip
+                        // and row), and against fixed widths per clip and row of the key minus the previous key.
+                        {
+                            double huff_bits = 0.0, width_bits = 0.0, delta_bits = 0.0;
+                            each_clip([&](std::size_t g, const HierResult& hr, std::size_t Da, std::size_t first, std::size_t last) {
+                                    std::vector<int> width(Da, 0), dwidth(Da, 0);
+                                    for (std::size_t e = first; e < last; ++e) {
+                                        BitWriter bw;
+                                        runtime[g].write_column(bw, 0, hr.entries[e].key);
+                                        huff_bits += static_cast<double>(bw.bits());
+                                        for (std::size_t d = 0; d < Da; ++d) {
+                                            const std::int32_t q = hr.entries[e].key[d];
+                                            width[d] = std::max(width[d], q ? bit_length(static_cast<std::uint32_t>(std::abs(q))) + 1 : 0);
+                                            if (e > first) {
+                                                const std::int32_t dq = q - hr.entries[e - 1].key[d] * (1 << 0);
+                                                dwidth[d] = std::max(dwidth[d], dq ? bit_length(static_cast<std::uint32_t>(std::abs(dq))) + 1 : 0);
+                                            }
+                                        }
+                                    }
+                                    for (std::size_t d = 0; d < Da; ++d) {
+                                        width_bits += 5.0 + static_cast<double>(width[d]) * static_cast<double>(last - first);
+                                        delta_bits += 5.0 + static_cast<double>(dwidth[d]) * static_cast<double>(last - first);
+                                    }
+                            });
+                            std::printf("#  keys: huffman %.0f bytes, fixed width per clip and row %.0f, previous-key delta at fixed widths %.0f "
+                                        "(steps differ between keys: indicative only)\n",
+                                        huff_bits / 8, width_bits / 8, delta_bits / 8);
+                        }
+                        // Variants 4 (per lookup width, with and without two symbols per lookup) and 7 (keys at
+                        // fixed widths, with and without escapes), timed A/B against variant 1 in the same reps.
+                        {
+                            struct Config {
+                                int lookup;
+                                bool pairs;
+                            };
+                            std::vector<Config> configs;
+                            for (int b : lookups) configs.push_back({b, true});
+                            configs.push_back({lookups.front(), false});
+                            std::vector<std::vector<RuntimeGroup3>> r4(configs.size());
+                            for (std::size_t v = 0; v < configs.size(); ++v)
+                                for (std::size_t g = 0; g < groups.size(); ++g)
+                                    r4[v].push_back(build_runtime3(runtime[g], hier_results[g], configs[v].pairs, configs[v].lookup));
+                            double bytes4 = tables / 8 + static_cast<double>(f2_header);
+                            for (const auto& rg : r4[0])
+                                bytes4 += static_cast<double>(rg.bytes.size() - 16) + 3.0 * static_cast<double>(rg.offsets.size());
+                            // Variant 7: bytes without the keys' (level 0) code tables, with the clips' key widths.
+                            std::vector<RuntimeGroup7> r7[2];  // [0] with escapes (--key-escapes), [1] without
+                            double bytes7[2] = {tables / 8 + static_cast<double>(f2_header), tables / 8 + static_cast<double>(f2_header)};
+                            for (std::size_t g = 0; g < groups.size(); ++g)
+                                for (int k = 0; k < 2; ++k) {
+                                    r7[k].push_back(build_runtime7(r4[0][g], hier_results[g], key_centers, k == 0 && key_escapes));
+                                    const RuntimeGroup7& b7 = r7[k].back();
+                                    bytes7[k] += static_cast<double>(b7.bytes.size() - 8) + 3.0 * static_cast<double>(b7.offsets.size()) +
+                                                 static_cast<double>(b7.width_bits) / 8;
+                                    for (int c = 0; c < runtime[g].buckets; ++c) {
+                                        const auto& code = runtime[g].codes[static_cast<std::size_t>(c)];
+                                        if (!code.length.empty()) bytes7[k] -= (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
+                                    }
+                                }
+                            // Every frame of every variant equal to variant 1's, bit for bit (so within E: the max above).
+                            bool equal = true;
+                            for (std::size_t g = 0; g < groups.size(); ++g) {
+                                const std::size_t Da = models[g].active.size();
+                                std::vector<double> y1(Da), yv(Da), sa(Da), sb(Da), sc(Da);
+                                auto same = [&] { equal = equal && std::memcmp(y1.data(), yv.data(), Da * sizeof(double)) == 0; };
+                                for (std::size_t i = 0; i < members[g].size(); ++i)
+                                    for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
+                                        runtime_frame(runtime[g], i, f, y1.data(), sa.data(), sb.data(), sc.data());
+                                        for (const auto& rv : r4) {
+                                            runtime_frame4(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            same();
+                                        }
+                                        for (const auto& rv : r7) {
+                                            runtime_frame7(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            same();
+                                        }
+                                    }
+                            }
+                            // Cold local pose, y alone, and hot y (32 poses over and over: bytes, tables and branches learnt).
+                            struct Times {
+                                double cold = 1e300, y = 1e300, hot = 1e300;
+                            };
+                            auto time = [&](auto&& frame_fn, Times& t, bool float64_product = false) {
+                                for (int with_pose = 1; with_pose >= 0; --with_pose) {
+                                    const double c0 = bench::thread_cpu_seconds();
+                                    for (const auto& [g, i, f] : seq) {
+                                        const auto& m = models[g];
+                                        const std::size_t Da = m.active.size();
+                                        double* base = scratch[g].data();
+                                        frame_fn(g, i, f, base, Da);
+                                        if (with_pose) {
+                                            if (float64_product) m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                            else dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
+                                            m.local_of(m.clips[i], base + 4 * Da, out);
+                                        }
+                                    }
+                                    double& slot = with_pose ? t.cold : t.y;
+                                    slot = std::min(slot, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                }
+                                const double c0 = bench::thread_cpu_seconds();
+                                for (int again = 0; again < 200; ++again)
+                                    for (std::size_t n = 0; n < 32; ++n) {
+                                        const auto& [g, i, f] = seq[n];
+                                        frame_fn(g, i, f, scratch[g].data(), models[g].active.size());
+                                    }
+                                t.hot = std::min(t.hot, (bench::thread_cpu_seconds() - c0) / 6400.0 * 1e6);
+                            };
+                            Times t1, t1d, t7[2];
+                            std::vector<Times> t4(configs.size());
+                            for (int rep = 0; rep < reps; ++rep) {
+                                time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                    runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                }, t1);
+                                time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                    runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                }, t1d, true);
+                                for (int k = 0; k < 2; ++k)
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame7(r7[k][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    }, t7[k]);
+                                for (std::size_t v = 0; v < configs.size(); ++v)
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame4(r4[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    }, t4[v]);
+                            }
+                            std::printf("#  A/B (%s): v1 cold local pose %.3f us, y %.3f us (hot %.3f); v1 with the float64 product "
+                                        "(pose_of, as before): cold local pose %.3f us\n",
+                                        equal ? "every frame of every variant equal to variant 1" : "MISMATCH with variant 1", t1.cold, t1.y, t1.hot,
+                                        t1d.cold);
+                            for (std::size_t v = 0; v < configs.size(); ++v)
+                                std::printf("#    v4 lookup %d bits%s (table %zu kB): bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                            configs[v].lookup, configs[v].pairs ? ", pairs" : ", no pairs", r4[v][0].table.size() * 4 / 1024, bytes4,
+                                            t4[v].cold, t4[v].y, t4[v].hot);
+                            for (int k = 0; k < 2; ++k)
+                                std::printf("#    v7 keys at fixed widths%s%s, lookup %d: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                            key_centers ? ", centered" : "", k == 0 && key_escapes ? ", escapes" : "", configs[0].lookup, bytes7[k],
+                                            t7[k].cold, t7[k].y, t7[k].hot);
+                        }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
                                     no_prefetch, pose_only);
                         std::printf("#  RUNTIME bytes %.0f (entries %.0f, directory %.0f, offsets %zu, tables %.0f, header %zu); "
