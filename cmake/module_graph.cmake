@@ -1,4 +1,4 @@
-# The library's module graph, checked on every build (issue #17): a module (a folder of
+# The library's module graph, checked on every build: a module (a folder of
 # lib/include/mocapdb and lib/src) may include only the modules listed before it below, so the
 # dependencies form no cycle. An upward include fails the build, naming the file and the rule.
 #

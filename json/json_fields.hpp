@@ -30,6 +30,9 @@ inline void numbers(JsonWriter& j, const Eigen::VectorXd& v) {
     j.end_array();
 }
 
+/// "key": [the vector's values].
+inline void numbers(JsonWriter& j, const char* key, const Eigen::VectorXd& v) { numbers(j.key(key), v); }
+
 /// "key": [a, b, c] when `present`, else "key": null.
 inline void shape_or_null(JsonWriter& j, const char* key, bool present, const std::array<std::size_t, 3>& v) {
     j.key(key);

@@ -2,14 +2,12 @@
 
 #include <optional>
 
+#include "json_fields.hpp"
+
 namespace mocapdb::json {
 namespace {
 
-void numbers(JsonWriter& j, const char* key, const VecX& v) {
-    j.key(key).begin_array();
-    for (Eigen::Index k = 0; k < v.size(); ++k) j.value(v(k));
-    j.end_array();
-}
+using fields::numbers;
 
 void write_method(JsonWriter& j, const eval::MethodEvaluation& m) {
     const eval::LooMethodResult& r = m.loo;

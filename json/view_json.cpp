@@ -2,8 +2,12 @@
 
 #include <algorithm>
 
+#include "json_fields.hpp"
+
 namespace mocapdb::json {
 namespace {
+
+using fields::numbers;
 
 void rig(JsonWriter& j, const workflow::RigView& r) {
     j.key("joints").begin_array();
@@ -24,12 +28,6 @@ void frames(JsonWriter& j, const workflow::ClipPositions& p) {
     j.key("begin").value(p.begin);
     j.key("frames").value(p.frames);
     rig(j, p.rig);
-}
-
-void numbers(JsonWriter& j, const char* key, const VecX& v) {
-    j.key(key).begin_array();
-    for (Eigen::Index k = 0; k < v.size(); ++k) j.value(v(k));
-    j.end_array();
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job, end to end (issue #6): install what is missing, build the command-line tool (Release),
+# The main job, end to end: install what is missing, build the command-line tool (Release),
 # and run `mocapdb demo`: a procedural parametric motion set of the built-in humanoid (or, with
 # --data DIR, the clips of a folder) imported into OUT/demo.h5, made a motion set, time-aligned,
 # compressed, reported (rate-distortion table), and synthesized at new parameters; BVH files, SVG

@@ -21,7 +21,8 @@
 #include "mocapdb_json/view_json.hpp"
 
 namespace mocapdb::serve {
-namespace {
+// Named, not anonymous: Api::State (external linkage) holds these types.
+namespace api_parts {
 
 /// A request the client can fix (400).
 struct BadRequest : std::runtime_error {
@@ -126,7 +127,8 @@ struct LoadedModel {
     std::shared_ptr<const synthesis::SynthesisModel> model;
 };
 
-}  // namespace
+}  // namespace api_parts
+using namespace api_parts;
 
 struct Api::State {
     ServeOptions options;

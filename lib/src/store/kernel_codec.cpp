@@ -23,9 +23,9 @@ double* parameter(kriging::VariogramModel& m, int k) {
     }
 }
 
-const kriging::FitStatus kStatuses[] = {kriging::FitStatus::Ok, kriging::FitStatus::RangeAtBound,
-                                        kriging::FitStatus::SillAtBound, kriging::FitStatus::PureNugget,
-                                        kriging::FitStatus::Degenerate};
+const kriging::FitStatus kFitStatuses[] = {kriging::FitStatus::Ok, kriging::FitStatus::RangeAtBound,
+                                           kriging::FitStatus::SillAtBound, kriging::FitStatus::PureNugget,
+                                           kriging::FitStatus::Degenerate};
 
 std::string number_text(double v) {
     char buf[40];
@@ -154,11 +154,11 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
                              "': missing (fit_status and residual_variance go together)");
     if (has_status) {
         const std::string status = file.read_string_attribute(g, "fit_status");
-        for (const kriging::FitStatus s : kStatuses)
+        for (const kriging::FitStatus s : kFitStatuses)
             if (status == kriging::to_string(s)) fit.assessed_status = s;
         if (!fit.assessed_status) {
             std::string allowed;
-            for (const kriging::FitStatus s : kStatuses)
+            for (const kriging::FitStatus s : kFitStatuses)
                 allowed += (allowed.empty() ? "\"" : ", \"") + std::string(kriging::to_string(s)) + "\"";
             throw StoreError(file.name(), g,
                              "attribute 'fit_status': expected one of " + allowed + ", found \"" + status + "\"");

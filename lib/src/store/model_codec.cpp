@@ -25,8 +25,8 @@ const FigureField kFigureFields[] = {{"dof_rmse", &ModelFigures::dof_rmse},
 
 const tensor::TuckerMethod kMethods[] = {tensor::TuckerMethod::Hosvd, tensor::TuckerMethod::StHosvd,
                                          tensor::TuckerMethod::Hooi};
-const tensor::TuckerStatus kStatuses[] = {tensor::TuckerStatus::Ok, tensor::TuckerStatus::Converged,
-                                          tensor::TuckerStatus::MaxIterations, tensor::TuckerStatus::Stalled};
+const tensor::TuckerStatus kTuckerStatuses[] = {tensor::TuckerStatus::Ok, tensor::TuckerStatus::Converged,
+                                                tensor::TuckerStatus::MaxIterations, tensor::TuckerStatus::Stalled};
 
 // The enum value whose to_string is `text`; StoreError naming the attribute otherwise.
 template <class Enum, std::size_t K>
@@ -114,7 +114,7 @@ StoredModel read_model(const h5::File& file, const std::string& set) {
     StoredModel out;
     tensor::TuckerModel& tm = out.model.tucker;
     tm.method = parse_enum(file, g, "method", file.read_string_attribute(g, "method"), kMethods);
-    tm.status = parse_enum(file, g, "status", file.read_string_attribute(g, "status"), kStatuses);
+    tm.status = parse_enum(file, g, "status", file.read_string_attribute(g, "status"), kTuckerStatuses);
     const std::int64_t iterations = file.read_int_attribute(g, "iterations");
     if (iterations < 0 || iterations > 1000000000)
         throw StoreError(

@@ -22,8 +22,6 @@
 namespace mocapdb::synthesis {
 namespace {
 
-std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
-
 // The digest of kernel_key (header comment): a bijection of h for every word x, so two inputs that
 // differ in one word always give different digests.
 struct Digest {
@@ -359,15 +357,18 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     compression::check(model, where);
     const tensor::Dims3 dims = model.tucker.dims();
     if (dims[0] != aligned.dofs() || dims[1] != aligned.frames() || dims[2] != aligned.samples())
-        throw InvalidArgument(std::string(where) + ": the model is " + idx(dims[0]) + "x" + idx(dims[1]) + "x" +
-                              idx(dims[2]) + " but the aligned tensor " + idx(aligned.dofs()) + "x" +
-                              idx(aligned.frames()) + "x" + idx(aligned.samples()));
+        throw InvalidArgument(std::string(where) + ": the model is " + std::to_string(dims[0]) + "x" +
+                              std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " but the aligned tensor " +
+                              std::to_string(aligned.dofs()) + "x" + std::to_string(aligned.frames()) + "x" +
+                              std::to_string(aligned.samples()));
     const Eigen::Index n = aligned.samples();
     if (set.parameters.rows() != n)
-        throw InvalidArgument(std::string(where) + ": the set '" + set.name + "' has " + idx(set.parameters.rows()) +
-                              " samples but the aligned tensor " + idx(n));
+        throw InvalidArgument(std::string(where) + ": the set '" + set.name + "' has " +
+                              std::to_string(set.parameters.rows()) + " samples but the aligned tensor " +
+                              std::to_string(n));
     if (n < 2)
-        throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " + idx(n));
+        throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " +
+                              std::to_string(n));
     kriging::ControlScaling scaling;
     if (options.scaling) {
         options.scaling->validate(set.parameters.cols());

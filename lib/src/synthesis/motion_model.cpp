@@ -8,18 +8,16 @@
 namespace mocapdb::synthesis {
 namespace {
 
-std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
-
 /// Checks the model against the aligned tensor; returns the key of its kernel inputs (kernel_fit.hpp).
 std::uint64_t checked_key(const compression::SetModel& model, const AlignedTiming& aligned, const MotionSet& set,
                           const SynthesisOptions& options) {
     compression::check(model, "synthesis model");
     const tensor::Dims3 dims = model.tucker.dims();
     if (dims[0] != aligned.dofs() || dims[1] != aligned.frames() || dims[2] != aligned.samples()) {
-        throw InvalidArgument("synthesis model: the model is " + idx(dims[0]) + "x" + idx(dims[1]) + "x" +
-                              idx(dims[2]) + " but the aligned tensor " + idx(aligned.dofs()) + "x" +
-                              idx(aligned.frames()) + "x" + idx(aligned.samples()) +
-                              " (dofs x frames x samples): recompress the set");
+        throw InvalidArgument("synthesis model: the model is " + std::to_string(dims[0]) + "x" +
+                              std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " but the aligned tensor " +
+                              std::to_string(aligned.dofs()) + "x" + std::to_string(aligned.frames()) + "x" +
+                              std::to_string(aligned.samples()) + " (dofs x frames x samples): recompress the set");
     }
     return kernel_key(model, set, options);
 }
@@ -44,9 +42,10 @@ MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& align
         for (int m = 0; m < 3; ++m) {
             if (lod[static_cast<std::size_t>(m)] < 1 ||
                 lod[static_cast<std::size_t>(m)] > full[static_cast<std::size_t>(m)]) {
-                throw InvalidArgument("synthesis model: level-of-detail ranks " + idx(lod[0]) + "x" + idx(lod[1]) +
-                                      "x" + idx(lod[2]) + " must lie within 1 and the model's ranks " + idx(full[0]) +
-                                      "x" + idx(full[1]) + "x" + idx(full[2]));
+                throw InvalidArgument("synthesis model: level-of-detail ranks " + std::to_string(lod[0]) + "x" +
+                                      std::to_string(lod[1]) + "x" + std::to_string(lod[2]) +
+                                      " must lie within 1 and the model's ranks " + std::to_string(full[0]) + "x" +
+                                      std::to_string(full[1]) + "x" + std::to_string(full[2]));
             }
         }
         level_ranks_.push_back(lod);
@@ -58,8 +57,8 @@ MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& align
 
 tensor::Ranks MotionModel::level_ranks(Eigen::Index level) const {
     if (level < 0 || level >= levels())
-        throw InvalidArgument("MotionModel::level_ranks: level " + idx(level) + " outside [0, " + idx(levels() - 1) +
-                              "]");
+        throw InvalidArgument("MotionModel::level_ranks: level " + std::to_string(level) + " outside [0, " +
+                              std::to_string(levels() - 1) + "]");
     return level_ranks_[static_cast<std::size_t>(level)];
 }
 
@@ -95,9 +94,9 @@ void MotionModel::pose_from_coefficients(const Eigen::Ref<const VecX>& coefficie
     double a = 0.0;
     frame_pair(t, level, t0, t1, a, "MotionModel::pose");
     if (coefficients.size() != u_sample_.cols() || out.size() != dofs()) {
-        throw InvalidArgument("MotionModel::pose: coefficients must have R3 = " + idx(u_sample_.cols()) +
-                              " entries and out D = " + idx(dofs()) + ", got " + idx(coefficients.size()) + " and " +
-                              idx(out.size()));
+        throw InvalidArgument("MotionModel::pose: coefficients must have R3 = " + std::to_string(u_sample_.cols()) +
+                              " entries and out D = " + std::to_string(dofs()) + ", got " +
+                              std::to_string(coefficients.size()) + " and " + std::to_string(out.size()));
     }
     const MatX& ut = model_.tucker.U[1];
     if (ws.u_time.size() != ut.cols()) ws.u_time.resize(ut.cols());
@@ -117,8 +116,8 @@ void MotionModel::poses_from_coefficients(const Eigen::Ref<const MatX>& coeffici
     double a = 0.0;
     frame_pair(t, level, t0, t1, a, "MotionModel::poses");
     if (coefficients.rows() != u_sample_.cols() || out.rows() != dofs() || out.cols() != coefficients.cols()) {
-        throw InvalidArgument("MotionModel::poses: coefficients must be R3 = " + idx(u_sample_.cols()) +
-                              " by Q and out D = " + idx(dofs()) + " by Q");
+        throw InvalidArgument("MotionModel::poses: coefficients must be R3 = " + std::to_string(u_sample_.cols()) +
+                              " by Q and out D = " + std::to_string(dofs()) + " by Q");
     }
     const tensor::Ranks& r = level_ranks_[static_cast<std::size_t>(level)];
     const tensor::Ranks& full = model_.tucker.ranks;

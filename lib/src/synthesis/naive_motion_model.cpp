@@ -9,13 +9,11 @@
 namespace mocapdb::synthesis {
 namespace {
 
-std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
-
 /// Rows vec(X_i), X = (A - mean) w (N by D T).
 MatX weighted_sample_rows(const AlignedSet& aligned, const VecX& weight) {
     if (weight.size() != aligned.dofs())
-        throw InvalidArgument("naive synthesis model: weight must have D = " + idx(aligned.dofs()) + " entries, got " +
-                              idx(weight.size()));
+        throw InvalidArgument("naive synthesis model: weight must have D = " + std::to_string(aligned.dofs()) +
+                              " entries, got " + std::to_string(weight.size()));
     const Tensor3 x = compression::weighted_centred(aligned.tensor, compression::dof_means(aligned.tensor), weight);
     const Eigen::Map<const MatX> cols(x.data(), aligned.dofs() * aligned.frames(), aligned.samples());
     return cols.transpose();
@@ -61,8 +59,9 @@ void NaiveMotionModel::pose_from_coefficients(const Eigen::Ref<const VecX>& coef
     frame_pair(t, level, t0, t1, a, "NaiveMotionModel::pose");
     const Eigen::Index n = samples();
     if (coefficients.size() != n || out.size() != dofs()) {
-        throw InvalidArgument("NaiveMotionModel::pose: coefficients must have N = " + idx(n) + " entries and out D = " +
-                              idx(dofs()) + ", got " + idx(coefficients.size()) + " and " + idx(out.size()));
+        throw InvalidArgument("NaiveMotionModel::pose: coefficients must have N = " + std::to_string(n) +
+                              " entries and out D = " + std::to_string(dofs()) + ", got " +
+                              std::to_string(coefficients.size()) + " and " + std::to_string(out.size()));
     }
     out.noalias() = frames_by_sample_.middleCols(t0 * n, n) * coefficients;
     if (a != 0.0) {
@@ -78,8 +77,8 @@ void NaiveMotionModel::poses_from_coefficients(const Eigen::Ref<const MatX>& coe
     frame_pair(t, level, t0, t1, a, "NaiveMotionModel::poses");
     const Eigen::Index n = samples();
     if (coefficients.rows() != n || out.rows() != dofs() || out.cols() != coefficients.cols()) {
-        throw InvalidArgument("NaiveMotionModel::poses: coefficients must be N = " + idx(n) +
-                              " by Q and out D = " + idx(dofs()) + " by Q");
+        throw InvalidArgument("NaiveMotionModel::poses: coefficients must be N = " + std::to_string(n) +
+                              " by Q and out D = " + std::to_string(dofs()) + " by Q");
     }
     out.noalias() = frames_by_sample_.middleCols(t0 * n, n) * coefficients;
     if (a != 0.0) {

@@ -9,11 +9,7 @@
 #include "mocapdb/motion/pose_vector.hpp"
 
 namespace mocapdb::synthesis {
-namespace {
-
-std::string idx(Eigen::Index i) { return std::to_string(static_cast<long long>(i)); }
-
-}  // namespace
+namespace {}  // namespace
 
 Eigen::Index Timing::frame_count() const {
     if (warp.size() == 0) return 0;
@@ -46,16 +42,18 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     validate(set);
     const Eigen::Index n = aligned.samples();
     if (static_cast<Eigen::Index>(set.samples.size()) != n || set.parameters.rows() != n) {
-        throw InvalidArgument(std::string(where) + ": the set '" + set.name + "' has " + idx(set.parameters.rows()) +
-                              " samples but the aligned tensor " + idx(n));
+        throw InvalidArgument(std::string(where) + ": the set '" + set.name + "' has " +
+                              std::to_string(set.parameters.rows()) + " samples but the aligned tensor " +
+                              std::to_string(n));
     }
     if (n < 2)
-        throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " + idx(n));
+        throw InvalidArgument(std::string(where) + ": synthesis needs at least 2 samples, the set has " +
+                              std::to_string(n));
     if (!skeleton) throw InvalidArgument(std::string(where) + ": no skeleton");
     if (static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count()) != aligned.dofs()) {
         throw InvalidArgument(std::string(where) + ": the skeleton's pose vector has " +
-                              idx(static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count())) +
-                              " dofs, the aligned tensor " + idx(aligned.dofs()));
+                              std::to_string(static_cast<Eigen::Index>(PoseLayout(*skeleton).dof_count())) +
+                              " dofs, the aligned tensor " + std::to_string(aligned.dofs()));
     }
     if (!(frame_rate > 0.0) || !std::isfinite(frame_rate))
         throw InvalidArgument(std::string(where) + ": frame rate must be positive and finite");
@@ -156,8 +154,8 @@ std::size_t SynthesisModel::memory_bytes() const {
 
 void SynthesisModel::normalize(const Eigen::Ref<const VecX>& c, VecX& out, const char* where) const {
     if (c.size() != parameters()) {
-        throw InvalidArgument(std::string(where) + ": c must have P = " + idx(parameters()) + " entries, got " +
-                              idx(c.size()));
+        throw InvalidArgument(std::string(where) + ": c must have P = " + std::to_string(parameters()) +
+                              " entries, got " + std::to_string(c.size()));
     }
     if (!c.allFinite()) throw InvalidArgument(std::string(where) + ": c must be finite");
     scaling_.apply_point(c, out);
@@ -166,15 +164,15 @@ void SynthesisModel::normalize(const Eigen::Ref<const VecX>& c, VecX& out, const
 void SynthesisModel::weights(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, Workspace& ws) const {
     normalize(c, ws.c_normalized, "SynthesisModel::weights");
     if (out.size() != samples()) {
-        throw InvalidArgument("SynthesisModel::weights: out must have N = " + idx(samples()) + " entries");
+        throw InvalidArgument("SynthesisModel::weights: out must have N = " + std::to_string(samples()) + " entries");
     }
     kriging_.weights(ws.c_normalized, out, ws.kriging);
 }
 
 void SynthesisModel::coefficients(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, Workspace& ws) const {
     if (out.size() != coefficient_size()) {
-        throw InvalidArgument("SynthesisModel::coefficients: out must have S = " + idx(coefficient_size()) +
-                              " entries, got " + idx(out.size()));
+        throw InvalidArgument("SynthesisModel::coefficients: out must have S = " + std::to_string(coefficient_size()) +
+                              " entries, got " + std::to_string(out.size()));
     }
     if (!folded_.empty()) {
         normalize(c, ws.c_normalized, "SynthesisModel::coefficients");
@@ -203,8 +201,8 @@ VecX SynthesisModel::pose(const Eigen::Ref<const VecX>& c, double t, Eigen::Inde
 void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref<MatX> out, BatchWorkspace& ws,
                            Eigen::Index level) const {
     if (C.cols() != parameters() || !C.allFinite()) {
-        throw InvalidArgument("SynthesisModel::poses: C must be Q by P = " + idx(parameters()) + " and finite, got " +
-                              idx(C.rows()) + "x" + idx(C.cols()));
+        throw InvalidArgument("SynthesisModel::poses: C must be Q by P = " + std::to_string(parameters()) +
+                              " and finite, got " + std::to_string(C.rows()) + "x" + std::to_string(C.cols()));
     }
     const Eigen::Index q = C.rows();
     if (scaling_.has_periodic_axis()) {
@@ -232,10 +230,11 @@ void SynthesisModel::frame_pair(double t, Eigen::Index level, Eigen::Index& t0, 
                                 const char* where) const {
     if (!(t >= 0.0 && t <= static_cast<double>(frames_ - 1))) {
         throw InvalidArgument(std::string(where) + ": aligned frame t = " + std::to_string(t) + " outside [0, " +
-                              idx(frames_ - 1) + "]");
+                              std::to_string(frames_ - 1) + "]");
     }
     if (level < 0 || level >= levels()) {
-        throw InvalidArgument(std::string(where) + ": level " + idx(level) + " outside [0, " + idx(levels() - 1) + "]");
+        throw InvalidArgument(std::string(where) + ": level " + std::to_string(level) + " outside [0, " +
+                              std::to_string(levels() - 1) + "]");
     }
     t0 = std::min(static_cast<Eigen::Index>(std::floor(t)), frames_ - 1);
     a = t - static_cast<double>(t0);
@@ -302,7 +301,7 @@ double SynthesisModel::reliability(const Eigen::Ref<const VecX>& c) const {
 
 VecX SynthesisModel::reliability_batch(const Eigen::Ref<const MatX>& C) const {
     if (C.cols() != parameters() || !C.allFinite()) {
-        throw InvalidArgument("SynthesisModel::reliability_batch: C must be Q by P = " + idx(parameters()) +
+        throw InvalidArgument("SynthesisModel::reliability_batch: C must be Q by P = " + std::to_string(parameters()) +
                               " and finite");
     }
     return kriging_.reliability(scaling_.apply(C));

@@ -4,19 +4,16 @@
 #include <cmath>
 #include <string>
 
+#include "hosvd_internal.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
 
 namespace mocapdb::tensor {
 
+using detail::fit_from;
+using detail::idx;
+
 namespace {
-
-std::string idx(Eigen::Index v) { return std::to_string(v); }
-
-double fit_from(double squared_norm_a, double squared_norm_core) {
-    if (squared_norm_a <= 0.0) return 1.0;
-    return 1.0 - std::sqrt(std::max(0.0, 1.0 - squared_norm_core / squared_norm_a));
-}
 
 // Leading r left singular vectors of y_(mode), from its Gram matrix.
 MatX leading_basis(const Tensor3& y, int mode, Eigen::Index r) {

@@ -10,21 +10,13 @@
 
 namespace mocapdb::tensor {
 
+using detail::fit_from;
 using detail::for_each_block;
 using detail::idx;
 using detail::kept_for_budget;
 using detail::projected_core;
 using detail::projected_dof_time;
 using detail::right_basis_from_row_gram;
-
-namespace {
-
-double fit_from(double squared_norm_a, double squared_norm_core) {
-    if (squared_norm_a <= 0.0) return 1.0;
-    return 1.0 - std::sqrt(std::max(0.0, 1.0 - squared_norm_core / squared_norm_a));
-}
-
-}  // namespace
 
 HosvdBases hosvd_bases_from_grams(const Eigen::Ref<const MatX>& dof_gram, const Eigen::Ref<const MatX>& time_gram,
                                   const Eigen::Ref<const MatX>& sample_gram, double squared_norm) {

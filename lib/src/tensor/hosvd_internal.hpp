@@ -5,6 +5,7 @@
 // eigenbasis in a Gram's own storage (gram_eigenbasis.cpp) and the chunked projections on the dof and
 // time bases (hosvd_projection.cpp). Every result is independent of the number of threads.
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -15,6 +16,12 @@
 namespace mocapdb::tensor::detail {
 
 inline std::string idx(Eigen::Index v) { return std::to_string(v); }
+
+// A Tucker model's fit, 1 - ||A - A_hat|| / ||A||, from ||A||^2 and its core's ||G||^2 (orthonormal bases).
+inline double fit_from(double squared_norm_a, double squared_norm_core) {
+    if (squared_norm_a <= 0.0) return 1.0;
+    return 1.0 - std::sqrt(std::max(0.0, 1.0 - squared_norm_core / squared_norm_a));
+}
 
 /// The full symmetric matrix of a lower triangle.
 MatX symmetrized(const MatX& lower);

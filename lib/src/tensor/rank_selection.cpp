@@ -6,10 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "hosvd_internal.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
 
 namespace mocapdb::tensor {
+
+using detail::fit_from;
 
 namespace {
 
@@ -42,11 +45,6 @@ bool consistent(const Ranks& r) { return r[0] <= r[1] * r[2] && r[1] <= r[0] * r
 // Largest useful rank of each mode: min(I_n, I_p I_q).
 Ranks caps(const Dims3& d) {
     return {std::min(d[0], d[1] * d[2]), std::min(d[1], d[0] * d[2]), std::min(d[2], d[0] * d[1])};
-}
-
-double fit_from(double squared_norm_a, double squared_norm_core) {
-    if (squared_norm_a <= 0.0) return 1.0;
-    return 1.0 - std::sqrt(std::max(0.0, 1.0 - squared_norm_core / squared_norm_a));
 }
 
 RankSelection finish(const Tensor3& a, const HosvdBases& bases, TuckerModel model, RankCriterion criterion,

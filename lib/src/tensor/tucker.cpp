@@ -4,15 +4,16 @@
 #include <limits>
 #include <string>
 
+#include "hosvd_internal.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/tensor/mode_product.hpp"
 #include "mocapdb/tensor/sample_decoder.hpp"
 
 namespace mocapdb::tensor {
 
-namespace {
+using detail::idx;
 
-std::string idx(Eigen::Index v) { return std::to_string(v); }
+namespace {
 
 void check_lod(const Ranks& ranks, const Ranks& lod, const char* where) {
     for (int n = 0; n < 3; ++n) {

@@ -23,7 +23,8 @@
 #include "mocapdb/workflow/set_creation.hpp"
 
 namespace mocapdb::workflow {
-namespace {
+// Named, not anonymous: WindowSampler::Impl (external linkage) holds these types.
+namespace window_sampler_parts {
 
 constexpr double kTwoPi = 2.0 * kPi;
 
@@ -78,7 +79,8 @@ std::vector<double>& DecodedClip::values<double>() {
     return f64;
 }
 
-}  // namespace
+}  // namespace window_sampler_parts
+using namespace window_sampler_parts;
 
 struct WindowSampler::Impl {
     const Database* db = nullptr;

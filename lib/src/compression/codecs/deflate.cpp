@@ -24,9 +24,9 @@ std::uint32_t crc32_of(const std::uint8_t* data, std::size_t size, std::uint32_t
 }  // namespace detail
 
 namespace {
-constexpr char kMagic[4] = {'M', 'C', 'D', 'F'};
-constexpr std::uint8_t kVersion = 1;
-constexpr const char* kSource = "float32-deflate stream";
+constexpr char kDeflateMagic[4] = {'M', 'C', 'D', 'F'};
+constexpr std::uint8_t kDeflateVersion = 1;
+constexpr const char* kDeflateSource = "float32-deflate stream";
 constexpr std::size_t kMaxZlibInput = std::numeric_limits<uInt>::max();
 }  // namespace
 
@@ -109,22 +109,22 @@ EncodedStream encode_float32_deflate(const Tensor3& a, const Float32DeflateOptio
     }
     const Bytes payload = deflate_bytes(image, options.level);
     detail::ByteWriter h;
-    h.bytes(reinterpret_cast<const std::uint8_t*>(kMagic), 4);
-    h.u8(kVersion);
+    h.bytes(reinterpret_cast<const std::uint8_t*>(kDeflateMagic), 4);
+    h.u8(kDeflateVersion);
     h.u8(options.shuffle ? 1 : 0);
     for (int k = 0; k < 3; ++k) h.u32(static_cast<std::uint32_t>(a.dimension(k)));
     return detail::finish_stream(h, payload);
 }
 
 Tensor3 decode_float32_deflate(const std::uint8_t* data, std::size_t size) {
-    detail::ByteReader r(data, size, kSource);
-    r.expect_magic(kMagic, kVersion);
+    detail::ByteReader r(data, size, kDeflateSource);
+    r.expect_magic(kDeflateMagic, kDeflateVersion);
     const std::uint8_t shuffle = r.u8("shuffle flag");
     if (shuffle > 1) r.fail("shuffle flag must be 0 or 1, found " + std::to_string(shuffle));
     std::uint64_t dims[3];
     const std::uint64_t n = detail::read_dimensions(r, dims, kMaxZlibInput / 4);
     const std::size_t payload = r.expect_payload();
-    const Bytes image = inflate_bytes(r.here(), payload, static_cast<std::size_t>(4 * n), kSource);
+    const Bytes image = inflate_bytes(r.here(), payload, static_cast<std::size_t>(4 * n), kDeflateSource);
     Tensor3 out(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]),
                 static_cast<Eigen::Index>(dims[2]));
     for (std::size_t i = 0; i < n; ++i) {

@@ -13,10 +13,10 @@ namespace {
 
 constexpr char kMatrixMagic[4] = {'M', 'C', 'Q', 'M'};
 constexpr char kTuckerMagic[4] = {'M', 'C', 'Q', 'T'};
-constexpr std::uint8_t kVersion = 1;
+constexpr std::uint8_t kQuantizedVersion = 1;
 constexpr const char* kMatrixSource = "quantized-matrix stream";
 constexpr const char* kTuckerSource = "quantized-Tucker stream";
-constexpr std::uint64_t kMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doubles
+constexpr std::uint64_t kQuantizedMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doubles
 
 void check_bits(int bits, const char* where) {
     if (bits < 1 || bits > 16)
@@ -191,7 +191,7 @@ EncodedStream encode_quantized(const QuantizedColumns& q, Packing packing, int d
     write_part(q, packing, part);
     detail::ByteWriter h;
     h.bytes(reinterpret_cast<const std::uint8_t*>(kMatrixMagic), 4);
-    h.u8(kVersion);
+    h.u8(kQuantizedVersion);
     h.u8(static_cast<std::uint8_t>(packing));
     h.u8(static_cast<std::uint8_t>(q.bits));
     h.u32(static_cast<std::uint32_t>(q.rows));
@@ -201,14 +201,14 @@ EncodedStream encode_quantized(const QuantizedColumns& q, Packing packing, int d
 
 QuantizedColumns decode_quantized(const std::uint8_t* data, std::size_t size) {
     detail::ByteReader r(data, size, kMatrixSource);
-    r.expect_magic(kMatrixMagic, kVersion);
+    r.expect_magic(kMatrixMagic, kQuantizedVersion);
     const std::uint8_t packing = r.u8("packing");
     if (packing > 1) r.fail("packing must be 0 (bit-packed) or 1 (deflated), found " + std::to_string(packing));
     const int bits = r.u8("bits");
     if (bits < 1 || bits > 16) r.fail("bits must be in 1..16, found " + std::to_string(bits));
     std::uint64_t dims[2] = {r.u32("rows"), r.u32("cols")};
-    const std::uint64_t n = detail::checked_count(r, dims, 2, kMaxElements);
-    if (dims[1] > kMaxElements) r.fail("dimensions too large");
+    const std::uint64_t n = detail::checked_count(r, dims, 2, kQuantizedMaxElements);
+    if (dims[1] > kQuantizedMaxElements) r.fail("dimensions too large");
     const std::size_t payload = r.expect_payload();
     const auto pk = static_cast<Packing>(packing);
     const std::uint64_t part_size =
@@ -269,7 +269,7 @@ QuantizedTucker quantize_tucker(const tensor::TuckerModel& model, const Quantize
         for (const auto& p : parts) write_part(p, packing, body);
         detail::ByteWriter h;
         h.bytes(reinterpret_cast<const std::uint8_t*>(kTuckerMagic), 4);
-        h.u8(kVersion);
+        h.u8(kQuantizedVersion);
         h.u8(static_cast<std::uint8_t>(packing));
         h.u8(static_cast<std::uint8_t>(options.core_bits));
         h.u8(static_cast<std::uint8_t>(options.basis_bits));
@@ -285,7 +285,7 @@ QuantizedTucker quantize_tucker(const tensor::TuckerModel& model, const Quantize
 
 tensor::TuckerModel decode_quantized_tucker(const std::uint8_t* data, std::size_t size) {
     detail::ByteReader r(data, size, kTuckerSource);
-    r.expect_magic(kTuckerMagic, kVersion);
+    r.expect_magic(kTuckerMagic, kQuantizedVersion);
     const std::uint8_t packing = r.u8("packing");
     if (packing > 1) r.fail("packing must be 0 (bit-packed) or 1 (deflated), found " + std::to_string(packing));
     const int core_bits = r.u8("core bits");
@@ -305,11 +305,11 @@ tensor::TuckerModel decode_quantized_tucker(const std::uint8_t* data, std::size_
     }
     const tensor::Ranks rk{static_cast<Eigen::Index>(ranks[0]), static_cast<Eigen::Index>(ranks[1]),
                            static_cast<Eigen::Index>(ranks[2])};
-    const std::uint64_t core_count = detail::checked_count(r, ranks, 3, kMaxElements);
+    const std::uint64_t core_count = detail::checked_count(r, ranks, 3, kQuantizedMaxElements);
     std::uint64_t basis_count[3];
     for (int k = 0; k < 3; ++k) {
         const std::uint64_t two[2] = {dims[k], ranks[k]};
-        basis_count[k] = detail::checked_count(r, two, 2, kMaxElements);
+        basis_count[k] = detail::checked_count(r, two, 2, kQuantizedMaxElements);
     }
     const auto pk = static_cast<Packing>(packing);
     const auto groups = core_groups(rk, static_cast<CoreGrouping>(grouping));

@@ -10,12 +10,12 @@
 namespace mocapdb::compression::codecs {
 namespace {
 
-constexpr char kMagic[4] = {'M', 'C', 'R', 'L'};
-constexpr std::uint8_t kVersion = 1;
-constexpr const char* kSource = "residual stream";
-constexpr std::uint8_t kPerDof = 1, kAllZero = 2;
-constexpr double kMaxCode = 2147483648.0;                       // 2^31
-constexpr std::uint64_t kMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doubles
+constexpr char kResidualMagic[4] = {'M', 'C', 'R', 'L'};
+constexpr std::uint8_t kResidualVersion = 1;
+constexpr const char* kResidualSource = "residual stream";
+constexpr std::uint8_t kResidualPerDof = 1, kResidualAllZero = 2;
+constexpr double kResidualMaxCode = 2147483648.0;                       // 2^31
+constexpr std::uint64_t kResidualMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doubles
 
 double step_of(float eps) { return 2.0 * static_cast<double>(eps) * (1.0 - std::ldexp(1.0, -20)); }
 
@@ -84,7 +84,7 @@ ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>&
         const double step = step_of(stored[d]);
         const double x = r.data()[i];
         const double qd = std::round(x / step);
-        if (std::abs(qd) > kMaxCode)
+        if (std::abs(qd) > kResidualMaxCode)
             throw InvalidArgument("encode_residual: residual " + std::to_string(x) + " at dof " + std::to_string(d) +
                                   " is more than 2^31 tolerances (" + std::to_string(stored[d]) + ")");
         auto q = static_cast<std::int64_t>(qd);
@@ -105,7 +105,8 @@ ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>&
         out.max_abs_code = std::max<std::int64_t>(out.max_abs_code, q < 0 ? -q : q);
     }
 
-    const std::uint8_t flags = static_cast<std::uint8_t>((all_equal ? 0 : kPerDof) | (out.nonzero == 0 ? kAllZero : 0));
+    const std::uint8_t flags =
+        static_cast<std::uint8_t>((all_equal ? 0 : kResidualPerDof) | (out.nonzero == 0 ? kResidualAllZero : 0));
     Bytes payload;
     if (out.nonzero != 0) {
         detail::ByteWriter w;
@@ -122,8 +123,8 @@ ResidualEncoding encode_residual(const Tensor3& r, const Eigen::Ref<const VecX>&
         payload.insert(payload.end(), z.begin(), z.end());
     }
     detail::ByteWriter h;
-    h.bytes(reinterpret_cast<const std::uint8_t*>(kMagic), 4);
-    h.u8(kVersion);
+    h.bytes(reinterpret_cast<const std::uint8_t*>(kResidualMagic), 4);
+    h.u8(kResidualVersion);
     h.u8(flags);
     h.u8(static_cast<std::uint8_t>(options.order));
     for (Eigen::Index k : {D, T, N}) h.u32(static_cast<std::uint32_t>(k));
@@ -138,18 +139,18 @@ ResidualEncoding encode_residual(const Tensor3& r, double eps, const ResidualOpt
 }
 
 Tensor3 decode_residual(const std::uint8_t* data, std::size_t size) {
-    detail::ByteReader r(data, size, kSource);
-    r.expect_magic(kMagic, kVersion);
+    detail::ByteReader r(data, size, kResidualSource);
+    r.expect_magic(kResidualMagic, kResidualVersion);
     const std::uint8_t flags = r.u8("flags");
     if (flags > 3) r.fail("unknown flags " + std::to_string(flags));
     const std::uint8_t order = r.u8("order");
     if (order > 1) r.fail("order must be 0 or 1, found " + std::to_string(order));
     std::uint64_t dims[3];
-    const std::uint64_t count = detail::read_dimensions(r, dims, kMaxElements);
+    const std::uint64_t count = detail::read_dimensions(r, dims, kResidualMaxElements);
     const std::size_t payload = r.expect_payload();
     const auto D = static_cast<Eigen::Index>(dims[0]), T = static_cast<Eigen::Index>(dims[1]),
                N = static_cast<Eigen::Index>(dims[2]);
-    if (flags & kAllZero) {
+    if (flags & kResidualAllZero) {
         if (payload != 0) r.fail("an all-zero residual has no payload, found " + std::to_string(payload) + " bytes");
         Tensor3 zero(D, T, N);
         zero.setZero();
@@ -157,7 +158,7 @@ Tensor3 decode_residual(const std::uint8_t* data, std::size_t size) {
     }
     std::vector<double> steps(static_cast<std::size_t>(D));
     for (Eigen::Index d = 0; d < D; ++d) {
-        if (d > 0 && !(flags & kPerDof)) {
+        if (d > 0 && !(flags & kResidualPerDof)) {
             steps[d] = steps[0];
             continue;
         }
@@ -171,12 +172,13 @@ Tensor3 decode_residual(const std::uint8_t* data, std::size_t size) {
     if (varint_size < count || varint_size > 10 * count)
         r.fail("code stream length " + std::to_string(varint_size) + " cannot hold " + std::to_string(count) +
                " codes");
-    const Bytes varints = inflate_bytes(r.here(), r.remaining(), static_cast<std::size_t>(varint_size), kSource);
-    detail::ByteReader vr(varints.data(), varints.size(), kSource + std::string(" (codes)"));
+    const Bytes varints =
+        inflate_bytes(r.here(), r.remaining(), static_cast<std::size_t>(varint_size), kResidualSource);
+    detail::ByteReader vr(varints.data(), varints.size(), kResidualSource + std::string(" (codes)"));
     Tensor3 out(D, T, N);
     OrderMap{D, T, N, static_cast<ResidualOrder>(order)}.for_each([&](Eigen::Index i, Eigen::Index d) {
         const std::int64_t q = unzigzag(get_varint(vr, "code"));
-        if (std::abs(static_cast<double>(q)) > kMaxCode) vr.fail("code " + std::to_string(q) + " exceeds 2^31");
+        if (std::abs(static_cast<double>(q)) > kResidualMaxCode) vr.fail("code " + std::to_string(q) + " exceeds 2^31");
         out.data()[i] = static_cast<double>(q) * steps[d];
     });
     vr.expect_end();

@@ -12,11 +12,11 @@
 namespace mocapdb::compression::codecs {
 namespace {
 
-constexpr char kMagic[4] = {'M', 'C', 'Z', 'F'};
-constexpr std::uint8_t kVersion = 1;
-constexpr const char* kSource = "zfp stream";
-constexpr std::uint8_t kPerDof = 1;
-constexpr std::uint64_t kMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doubles
+constexpr char kZfpMagic[4] = {'M', 'C', 'Z', 'F'};
+constexpr std::uint8_t kZfpVersion = 1;
+constexpr const char* kZfpSource = "zfp stream";
+constexpr std::uint8_t kZfpPerDof = 1;
+constexpr std::uint64_t kZfpMaxElements = std::uint64_t{1} << 28;  // 2 GiB of doubles
 
 struct ZfpHandles {
     zfp_field* field = nullptr;
@@ -58,8 +58,8 @@ void check_tensor(const Tensor3& a) {
 
 EncodedStream finish(const Tensor3& a, std::uint8_t flags, double tolerance, const Bytes& payload) {
     detail::ByteWriter h;
-    h.bytes(reinterpret_cast<const std::uint8_t*>(kMagic), 4);
-    h.u8(kVersion);
+    h.bytes(reinterpret_cast<const std::uint8_t*>(kZfpMagic), 4);
+    h.u8(kZfpVersion);
     h.u8(flags);
     for (int k = 0; k < 3; ++k) h.u32(static_cast<std::uint32_t>(a.dimension(k)));
     h.f64(tolerance);
@@ -98,16 +98,16 @@ EncodedStream zfp_encode(const Tensor3& a, const Eigen::Ref<const VecX>& eps) {
     for (Eigen::Index i = 0; i < scaled.size(); ++i) scaled.data()[i] /= static_cast<double>(stored[i % D]);
     const Bytes z = compress(scaled.data(), D, a.dimension(1), a.dimension(2), 1.0);
     w.bytes(z);
-    return finish(a, kPerDof, 1.0, w.buffer());
+    return finish(a, kZfpPerDof, 1.0, w.buffer());
 }
 
 Tensor3 zfp_decode(const std::uint8_t* data, std::size_t size) {
-    detail::ByteReader r(data, size, kSource);
-    r.expect_magic(kMagic, kVersion);
+    detail::ByteReader r(data, size, kZfpSource);
+    r.expect_magic(kZfpMagic, kZfpVersion);
     const std::uint8_t flags = r.u8("flags");
     if (flags > 1) r.fail("unknown flags " + std::to_string(flags));
     std::uint64_t dims[3];
-    detail::read_dimensions(r, dims, kMaxElements);
+    detail::read_dimensions(r, dims, kZfpMaxElements);
     const std::uint64_t blocks = ((dims[0] + 3) / 4) * ((dims[1] + 3) / 4) * ((dims[2] + 3) / 4);
     const std::size_t tol_at = r.position();
     const double tolerance = r.f64("tolerance");
@@ -122,7 +122,7 @@ Tensor3 zfp_decode(const std::uint8_t* data, std::size_t size) {
     const auto D = static_cast<Eigen::Index>(dims[0]), T = static_cast<Eigen::Index>(dims[1]),
                N = static_cast<Eigen::Index>(dims[2]);
     std::vector<double> scale;
-    if (flags & kPerDof) {
+    if (flags & kZfpPerDof) {
         scale.resize(static_cast<std::size_t>(D));
         for (auto& s : scale) {
             const std::size_t at = r.position();
