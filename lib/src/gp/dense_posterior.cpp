@@ -11,21 +11,20 @@
 namespace mocapdb::gp::detail {
 namespace {
 
-using Index = Eigen::Index;
-
 MatX kron(const MatX& a, const MatX& b) {
     MatX k(a.rows() * b.rows(), a.cols() * b.cols());
-    for (Index j = 0; j < a.cols(); ++j)
-        for (Index i = 0; i < a.rows(); ++i) k.block(i * b.rows(), j * b.cols(), b.rows(), b.cols()) = a(i, j) * b;
+    for (Eigen::Index j = 0; j < a.cols(); ++j)
+        for (Eigen::Index i = 0; i < a.rows(); ++i)
+            k.block(i * b.rows(), j * b.cols(), b.rows(), b.cols()) = a(i, j) * b;
     return k;
 }
 
 /// Flat indices (output-major over the shared times) of one child's observed values.
-std::vector<Index> observed_indices(const HgpData& data, std::size_t child) {
-    const Index t = static_cast<Index>(data.frames());
-    std::vector<Index> idx;
-    for (Index d = 0; d < static_cast<Index>(data.outputs()); ++d)
-        for (Index f = 0; f < t; ++f)
+std::vector<Eigen::Index> observed_indices(const HgpData& data, std::size_t child) {
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
+    std::vector<Eigen::Index> idx;
+    for (Eigen::Index d = 0; d < static_cast<Eigen::Index>(data.outputs()); ++d)
+        for (Eigen::Index f = 0; f < t; ++f)
             if (data.is_observed(child, static_cast<std::size_t>(f))) idx.push_back(d * t + f);
     return idx;
 }
@@ -42,14 +41,14 @@ DenseLayout dense_layout(const HgpData& data) {
     std::vector<double> y;
     for (std::size_t r = 0; r < data.child_count(); ++r) {
         const VecX v = vec_output_major(data.children[r]);
-        for (Index i : observed_indices(data, r)) {
+        for (Eigen::Index i : observed_indices(data, r)) {
             l.child.push_back(r);
             l.group.push_back(group_of(data, r));
             l.flat.push_back(i);
             y.push_back(v[i]);
         }
     }
-    l.y = Eigen::Map<const VecX>(y.data(), static_cast<Index>(y.size()));
+    l.y = Eigen::Map<const VecX>(y.data(), static_cast<Eigen::Index>(y.size()));
     return l;
 }
 
@@ -58,10 +57,10 @@ namespace {
 /// Σ over the observed values from per-child blocks: kg for every pair, kh within a group, kf (+ noise
 /// diag) within a child.
 MatX assemble_dense(const DenseLayout& l, const MatX* kg, const MatX* kh, const MatX* kf, const VecX* noise_flat) {
-    const Index n = static_cast<Index>(l.flat.size());
+    const Eigen::Index n = static_cast<Eigen::Index>(l.flat.size());
     MatX s = MatX::Zero(n, n);
-    for (Index j = 0; j < n; ++j)
-        for (Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index i = 0; i < n; ++i) {
             double v = 0.0;
             if (kg) v += (*kg)(l.flat[i], l.flat[j]);
             if (kh && l.group[i] == l.group[j]) v += (*kh)(l.flat[i], l.flat[j]);
@@ -80,7 +79,7 @@ MatX dense_covariance(const HgpModel& model, const HgpData& data, const DenseLay
     MatX kg, kh;
     if (model.hierarchical) kg = lmc_covariance(model.parent, data.times, data.times);
     if (model.grouped) kh = lmc_covariance(model.group, data.times, data.times);
-    const VecX noise = flat_noise(model.noise_variance(), static_cast<Index>(data.frames()));
+    const VecX noise = flat_noise(model.noise_variance(), static_cast<Eigen::Index>(data.frames()));
     return assemble_dense(l, model.hierarchical ? &kg : nullptr, model.grouped ? &kh : nullptr, &kf, &noise);
 }
 
@@ -88,18 +87,18 @@ MatX dense_covariance(const HgpModel& model, const HgpData& data, const DenseLay
 /// in append_parameters order.
 std::vector<MatX> term_derivatives(const LmcTerm& term, const VecX& times) {
     std::vector<MatX> out;
-    const Index d = static_cast<Index>(term.outputs());
+    const Eigen::Index d = static_cast<Eigen::Index>(term.outputs());
     const MatX b = term.coregionalization();
     const MatX k = kernel_matrix(term.kernel, term.log_lengthscale, times, times);
     out.push_back(kron(b, kernel_matrix_dlog_lengthscale(term.kernel, term.log_lengthscale, times, times)));
-    for (Index j = 0; j < term.W.cols(); ++j)
-        for (Index i = 0; i < d; ++i) {
+    for (Eigen::Index j = 0; j < term.W.cols(); ++j)
+        for (Eigen::Index i = 0; i < d; ++i) {
             MatX db = MatX::Zero(d, d);
             db.row(i) += term.W.col(j).transpose();
             db.col(i) += term.W.col(j);
             out.push_back(kron(db, k));
         }
-    for (Index i = 0; i < d; ++i) {
+    for (Eigen::Index i = 0; i < d; ++i) {
         MatX db = MatX::Zero(d, d);
         db(i, i) = std::exp(term.log_kappa[i]);
         out.push_back(kron(db, k));
@@ -112,7 +111,7 @@ std::vector<MatX> term_derivatives(const LmcTerm& term, const VecX& times) {
 LikelihoodValue dense_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient) {
     LikelihoodValue out;
     out.path = LikelihoodPath::Dense;
-    const Index t = static_cast<Index>(data.frames());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
     const DenseLayout l = dense_layout(data);
     const MatX sigma = dense_covariance(model, data, l);
     Eigen::LLT<MatX> llt(sigma);
@@ -133,8 +132,8 @@ LikelihoodValue dense_likelihood(const HgpModel& model, const HgpData& data, boo
     if (!with_gradient) return out;
     // W = α αᵀ − Σ⁻¹; ∂ log p/∂θ = ½ tr(W ∂Σ/∂θ) = ½ Σ_ij W_ij ∂Σ_ij.
     MatX w = alpha * alpha.transpose() - llt.solve(MatX::Identity(sigma.rows(), sigma.cols()));
-    out.gradient = VecX::Zero(static_cast<Index>(model.parameter_count()));
-    Index o = 0;
+    out.gradient = VecX::Zero(static_cast<Eigen::Index>(model.parameter_count()));
+    Eigen::Index o = 0;
     for (const auto& term : model.child.terms)
         for (const MatX& dk : term_derivatives(term, data.times))
             out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, nullptr, nullptr, &dk, nullptr)).sum();
@@ -146,9 +145,9 @@ LikelihoodValue dense_likelihood(const HgpModel& model, const HgpData& data, boo
         for (const auto& term : model.parent.terms)
             for (const MatX& dk : term_derivatives(term, data.times))
                 out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, &dk, nullptr, nullptr, nullptr)).sum();
-    const Index nt = static_cast<Index>(data.outputs()) * t;
+    const Eigen::Index nt = static_cast<Eigen::Index>(data.outputs()) * t;
     const MatX zero = MatX::Zero(nt, nt);
-    for (Index d = 0; d < static_cast<Index>(model.outputs()); ++d) {
+    for (Eigen::Index d = 0; d < static_cast<Eigen::Index>(model.outputs()); ++d) {
         VecX dn = VecX::Zero(nt);
         dn.segment(d * t, t).setConstant(std::exp(model.log_noise[d]));
         out.gradient[o++] = 0.5 * w.cwiseProduct(assemble_dense(l, nullptr, nullptr, &zero, &dn)).sum();
@@ -157,8 +156,8 @@ LikelihoodValue dense_likelihood(const HgpModel& model, const HgpData& data, boo
 }
 
 GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, const VecX& t_star, Target target) {
-    const Index d = static_cast<Index>(data.outputs());
-    const Index ts = t_star.size();
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const Eigen::Index ts = t_star.size();
     const DenseLayout l = dense_layout(data);
     const MatX sigma = dense_covariance(model, data, l);
     // The target's group (h_s enters the covariance with the values of that group's children).
@@ -170,9 +169,9 @@ GaussianPrediction condition_dense(const HgpModel& model, const HgpData& data, c
     if (model.hierarchical) kgs = lmc_covariance(model.parent, t_star, data.times);
     if (with_group) khs = lmc_covariance(model.group, t_star, data.times);
     if (target.kind == Target::Child) kfs = lmc_covariance(model.child, t_star, data.times);
-    const Index n = static_cast<Index>(l.flat.size());
+    const Eigen::Index n = static_cast<Eigen::Index>(l.flat.size());
     MatX cross = MatX::Zero(d * ts, n);
-    for (Index j = 0; j < n; ++j) {
+    for (Eigen::Index j = 0; j < n; ++j) {
         if (model.hierarchical) cross.col(j) += kgs.col(l.flat[j]);
         if (with_group && l.group[j] == group) cross.col(j) += khs.col(l.flat[j]);
         if (target.kind == Target::Child && l.child[j] == target.index) cross.col(j) += kfs.col(l.flat[j]);

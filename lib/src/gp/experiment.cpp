@@ -11,11 +11,9 @@
 
 namespace mocapdb::gp {
 
-using Index = Eigen::Index;
-
 namespace {
 
-MatX draw(const MatX& cov, std::mt19937_64& rng, Index d, Index t) {
+MatX draw(const MatX& cov, std::mt19937_64& rng, Eigen::Index d, Eigen::Index t) {
     MatX c = cov;
     const double scale = std::max(cov.diagonal().maxCoeff(), 1e-300);
     Eigen::LLT<MatX> llt;
@@ -27,10 +25,10 @@ MatX draw(const MatX& cov, std::mt19937_64& rng, Index d, Index t) {
     }
     std::normal_distribution<double> normal(0.0, 1.0);
     VecX xi(cov.rows());
-    for (Index i = 0; i < xi.size(); ++i) xi[i] = normal(rng);
+    for (Eigen::Index i = 0; i < xi.size(); ++i) xi[i] = normal(rng);
     const VecX v = llt.matrixL() * xi;
     MatX y(d, t);
-    for (Index i = 0; i < d; ++i) y.row(i) = v.segment(i * t, t).transpose();
+    for (Eigen::Index i = 0; i < d; ++i) y.row(i) = v.segment(i * t, t).transpose();
     return y;
 }
 
@@ -73,7 +71,7 @@ HgpModel artificial_generator(const ArtificialConfig& config, std::uint64_t seed
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> normal(0.0, 1.0);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    const Index d = static_cast<Index>(config.outputs);
+    const Eigen::Index d = static_cast<Eigen::Index>(config.outputs);
     HgpModel m;
     m.hierarchical = true;
     m.noise_floor = 0.0;
@@ -82,9 +80,9 @@ HgpModel artificial_generator(const ArtificialConfig& config, std::uint64_t seed
         t.kernel = KernelType::Rbf;
         t.log_lengthscale = std::log(ell_lo + (ell_hi - ell_lo) * uniform(rng));
         t.W.resize(d, 1);
-        for (Index i = 0; i < d; ++i) t.W(i, 0) = w_scale * normal(rng);
+        for (Eigen::Index i = 0; i < d; ++i) t.W(i, 0) = w_scale * normal(rng);
         t.log_kappa.resize(d);
-        for (Index i = 0; i < d; ++i) t.log_kappa[i] = std::log(kappa_lo + (kappa_hi - kappa_lo) * uniform(rng));
+        for (Eigen::Index i = 0; i < d; ++i) t.log_kappa[i] = std::log(kappa_lo + (kappa_hi - kappa_lo) * uniform(rng));
         return t;
     };
     for (std::size_t q = 0; q < config.generator_terms; ++q) m.parent.terms.push_back(term(0.5, 2.0, 1.0, 0.05, 0.2));
@@ -97,7 +95,7 @@ std::vector<MatX> sample_hierarchy(const HgpModel& truth, const VecX& times, std
                                    MatX* out_parent) {
     validate(truth);
     if (!truth.hierarchical) throw InvalidArgument("sample_hierarchy: the model must be hierarchical");
-    const Index d = static_cast<Index>(truth.outputs()), t = times.size();
+    const Eigen::Index d = static_cast<Eigen::Index>(truth.outputs()), t = times.size();
     std::mt19937_64 rng(seed);
     const MatX g = draw(lmc_covariance(truth.parent, times, times), rng, d, t);
     const MatX kf = lmc_covariance(truth.child, times, times);
@@ -106,8 +104,8 @@ std::vector<MatX> sample_hierarchy(const HgpModel& truth, const VecX& times, std
     std::vector<MatX> out;
     for (std::size_t r = 0; r < children; ++r) {
         MatX y = g + draw(kf, rng, d, t);
-        for (Index i = 0; i < d; ++i)
-            for (Index f = 0; f < t; ++f) y(i, f) += std::sqrt(noise[i]) * normal(rng);
+        for (Eigen::Index i = 0; i < d; ++i)
+            for (Eigen::Index f = 0; f < t; ++f) y(i, f) += std::sqrt(noise[i]) * normal(rng);
         out.push_back(y);
     }
     if (out_parent) *out_parent = g;
@@ -134,14 +132,14 @@ namespace {
 /// (siblings and the test child's observed frames).
 InterpolationScores score_prediction(const GaussianPrediction& p, const HgpData& data, std::size_t test_child,
                                      const std::vector<bool>& observed) {
-    const Index dd = static_cast<Index>(data.outputs());
-    std::vector<Index> missing;
+    const Eigen::Index dd = static_cast<Eigen::Index>(data.outputs());
+    std::vector<Eigen::Index> missing;
     for (std::size_t f = 0; f < observed.size(); ++f)
-        if (!observed[f]) missing.push_back(static_cast<Index>(f));
-    const Index nm = static_cast<Index>(missing.size());
+        if (!observed[f]) missing.push_back(static_cast<Eigen::Index>(f));
+    const Eigen::Index nm = static_cast<Eigen::Index>(missing.size());
     MatX truth(dd, nm), mean_pred(dd, nm), variance(dd, nm);
-    for (Index i = 0; i < nm; ++i) {
-        const Index f = missing[static_cast<std::size_t>(i)];
+    for (Eigen::Index i = 0; i < nm; ++i) {
+        const Eigen::Index f = missing[static_cast<std::size_t>(i)];
         truth.col(i) = data.children[test_child].col(f);
         mean_pred.col(i) = p.mean.col(f);
         variance.col(i) = p.variance.col(f) + p.noise;
@@ -152,8 +150,8 @@ InterpolationScores score_prediction(const GaussianPrediction& p, const HgpData&
     for (std::size_t r = 0; r < data.child_count(); ++r)
         for (std::size_t f = 0; f < data.frames(); ++f)
             if (r == test_child ? static_cast<bool>(observed[f]) : data.is_observed(r, f)) {
-                sum += data.children[r].col(static_cast<Index>(f));
-                sq += data.children[r].col(static_cast<Index>(f)).cwiseAbs2();
+                sum += data.children[r].col(static_cast<Eigen::Index>(f));
+                sq += data.children[r].col(static_cast<Eigen::Index>(f)).cwiseAbs2();
                 n += 1.0;
             }
     const VecX mean = sum / n;
@@ -200,7 +198,7 @@ ArtificialResult run_artificial(const ArtificialConfig& config, const Experiment
         throw InvalidArgument("run_artificial: need ≥ 2 children and fewer observed inputs than inputs");
     ArtificialResult result;
     result.config = config;
-    const VecX times = VecX::LinSpaced(static_cast<Index>(config.inputs), 0.0, 2.0 * kPi);
+    const VecX times = VecX::LinSpaced(static_cast<Eigen::Index>(config.inputs), 0.0, 2.0 * kPi);
     std::uint64_t done = 0;
     for (std::size_t run = 0; run < options.runs; ++run) {
         const std::uint64_t seed = options.seed * 1000003ULL + run * 7919ULL;
@@ -303,7 +301,7 @@ SynthesisResult run_synthesis(const HgpData& training, const std::vector<MatX>& 
 
 SynthesisResult run_artificial_synthesis(const ArtificialConfig& config, std::size_t samples,
                                          const ExperimentOptions& options) {
-    const VecX times = VecX::LinSpaced(static_cast<Index>(config.inputs), 0.0, 2.0 * kPi);
+    const VecX times = VecX::LinSpaced(static_cast<Eigen::Index>(config.inputs), 0.0, 2.0 * kPi);
     const std::uint64_t seed = options.seed * 1000003ULL + 17;
     const HgpModel truth = artificial_generator(config, seed);
     HgpData training;

@@ -8,24 +8,22 @@
 
 namespace mocapdb::gp::detail {
 
-using Index = Eigen::Index;
-
 VecX vec_output_major(const MatX& y) {
     VecX v(y.size());
-    const Index t = y.cols();
-    for (Index d = 0; d < y.rows(); ++d) v.segment(d * t, t) = y.row(d).transpose();
+    const Eigen::Index t = y.cols();
+    for (Eigen::Index d = 0; d < y.rows(); ++d) v.segment(d * t, t) = y.row(d).transpose();
     return v;
 }
 
-MatX unvec_output_major(const VecX& v, Index d, Index t) {
+MatX unvec_output_major(const VecX& v, Eigen::Index d, Eigen::Index t) {
     MatX y(d, t);
-    for (Index i = 0; i < d; ++i) y.row(i) = v.segment(i * t, t).transpose();
+    for (Eigen::Index i = 0; i < d; ++i) y.row(i) = v.segment(i * t, t).transpose();
     return y;
 }
 
-VecX flat_noise(const VecX& noise, Index t) {
+VecX flat_noise(const VecX& noise, Eigen::Index t) {
     VecX v(noise.size() * t);
-    for (Index d = 0; d < noise.size(); ++d) v.segment(d * t, t).setConstant(noise[d]);
+    for (Eigen::Index d = 0; d < noise.size(); ++d) v.segment(d * t, t).setConstant(noise[d]);
     return v;
 }
 
@@ -33,7 +31,7 @@ bool factor_in_place(MatX& m, double& out_log_det) {
     Eigen::LLT<Eigen::Ref<MatX>> llt(m);
     if (llt.info() != Eigen::Success) return false;
     const auto diag = m.diagonal();
-    for (Index i = 0; i < diag.size(); ++i)
+    for (Eigen::Index i = 0; i < diag.size(); ++i)
         if (!(diag[i] > 0.0) || !std::isfinite(diag[i])) return false;
     out_log_det = 2.0 * diag.array().log().sum();
     return std::isfinite(out_log_det);
@@ -43,12 +41,12 @@ bool factor_in_place(MatX& m, double& out_log_det) {
 // below the block, ≈ n³/3 flops), written over L; then (L Lᵀ)⁻¹ = Xᵀ X one column block of its upper
 // triangle at a time (≈ n³/3 flops), also in place; finally the lower triangle is mirrored.
 void invert_from_factor_in_place(MatX& m) {
-    const Index n = m.rows();
-    const Index bs = 96;
+    const Eigen::Index n = m.rows();
+    const Eigen::Index bs = 96;
     MatX rhs;
-    for (Index j0 = 0; j0 < n; j0 += bs) {
-        const Index bb = std::min(bs, n - j0);
-        const Index rows = n - j0;
+    for (Eigen::Index j0 = 0; j0 < n; j0 += bs) {
+        const Eigen::Index bb = std::min(bs, n - j0);
+        const Eigen::Index rows = n - j0;
         rhs.setZero(rows, bb);
         rhs.topRows(bb).setIdentity();
         m.block(j0, j0, rows, rows).triangularView<Eigen::Lower>().solveInPlace(rhs);
@@ -60,15 +58,15 @@ void invert_from_factor_in_place(MatX& m) {
     // Block J only reads rows ≥ j0 and writes rows < j1 of column block J; later blocks read rows ≥ j1
     // only, so the update is safe in place in increasing J.
     MatX tmp;
-    for (Index j0 = 0; j0 < n; j0 += bs) {
-        const Index bb = std::min(bs, n - j0);
-        const Index j1 = j0 + bb;
-        const Index rows = n - j0;
+    for (Eigen::Index j0 = 0; j0 < n; j0 += bs) {
+        const Eigen::Index bb = std::min(bs, n - j0);
+        const Eigen::Index j1 = j0 + bb;
+        const Eigen::Index rows = n - j0;
         tmp.noalias() = m.block(j0, 0, rows, j1).transpose() * m.block(j0, j0, rows, bb).triangularView<Eigen::Lower>();
         m.block(0, j0, j1, bb) = tmp;
     }
-    for (Index j = 0; j < n; ++j)
-        for (Index i = j + 1; i < n; ++i) m(i, j) = m(j, i);
+    for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index i = j + 1; i < n; ++i) m(i, j) = m(j, i);
 }
 
 void run_tasks(const std::vector<std::function<void()>>& tasks, int threads) {

@@ -8,11 +8,9 @@
 
 namespace mocapdb::gp {
 
-using Index = Eigen::Index;
-
 InterpolationScores interpolation_scores(const MatX& truth, const MatX& mean, const MatX& variance,
                                          const VecX& train_mean, const VecX& train_variance) {
-    const Index d = truth.rows(), t = truth.cols();
+    const Eigen::Index d = truth.rows(), t = truth.cols();
     if (mean.rows() != d || mean.cols() != t || variance.rows() != d || variance.cols() != t ||
         train_mean.size() != d || train_variance.size() != d)
         throw InvalidArgument(
@@ -27,16 +25,16 @@ InterpolationScores interpolation_scores(const MatX& truth, const MatX& mean, co
     const MatX err2 = (truth - mean).cwiseAbs2();
     s.mse = err2.mean();
     double smse = 0.0;
-    Index smse_outputs = 0;
+    Eigen::Index smse_outputs = 0;
     double sll = 0.0;
-    for (Index i = 0; i < d; ++i) {
+    for (Eigen::Index i = 0; i < d; ++i) {
         const double mu = truth.row(i).mean();
         const double v = (truth.row(i).array() - mu).square().mean();
         if (v > 0.0) {
             smse += err2.row(i).mean() / v;
             ++smse_outputs;
         }
-        for (Index f = 0; f < t; ++f) {
+        for (Eigen::Index f = 0; f < t; ++f) {
             const double s2 = variance(i, f);
             const double model = 0.5 * std::log(2.0 * kPi * s2) + err2(i, f) / (2.0 * s2);
             const double dev = truth(i, f) - train_mean[i];
@@ -52,7 +50,7 @@ InterpolationScores interpolation_scores(const MatX& truth, const MatX& mean, co
 
 MatX minmax_rows(const MatX& signals) {
     MatX out(signals.rows(), signals.cols());
-    for (Index i = 0; i < signals.rows(); ++i) {
+    for (Eigen::Index i = 0; i < signals.rows(); ++i) {
         const double lo = signals.row(i).minCoeff(), hi = signals.row(i).maxCoeff();
         if (hi > lo) out.row(i) = (signals.row(i).array() - lo) / (hi - lo);
         else out.row(i).setZero();
@@ -64,10 +62,10 @@ double max_cross_correlation(const VecX& a, const VecX& b) {
     if (a.size() == 0 || b.size() == 0) throw InvalidArgument("max_cross_correlation: empty sequence");
     double best = -std::numeric_limits<double>::infinity();
     // lag from −(|a| − 1) to |b| − 1: Σ_m a[m] b[m + lag] over the overlap.
-    for (Index lag = -(a.size() - 1); lag <= b.size() - 1; ++lag) {
-        const Index m0 = std::max<Index>(0, -lag), m1 = std::min<Index>(a.size(), b.size() - lag);
+    for (Eigen::Index lag = -(a.size() - 1); lag <= b.size() - 1; ++lag) {
+        const Eigen::Index m0 = std::max<Eigen::Index>(0, -lag), m1 = std::min<Eigen::Index>(a.size(), b.size() - lag);
         double s = 0.0;
-        for (Index m = m0; m < m1; ++m) s += a[m] * b[m + lag];
+        for (Eigen::Index m = m0; m < m1; ++m) s += a[m] * b[m + lag];
         best = std::max(best, s);
     }
     return best;
@@ -87,7 +85,7 @@ double mean_cross_correlation(const MatX& generated, const MatX& real) {
         throw InvalidArgument("mean_cross_correlation: generated and real must have the same outputs");
     const MatX g = minmax_rows(generated), r = minmax_rows(real);
     double s = 0.0;
-    for (Index i = 0; i < g.rows(); ++i) s += max_cross_correlation(r.row(i).transpose(), g.row(i).transpose());
+    for (Eigen::Index i = 0; i < g.rows(); ++i) s += max_cross_correlation(r.row(i).transpose(), g.row(i).transpose());
     return s / static_cast<double>(g.rows());
 }
 
@@ -97,7 +95,7 @@ std::optional<double> mean_linear_correlation(const MatX& generated, const MatX&
     const MatX g = minmax_rows(generated), r = minmax_rows(real);
     double s = 0.0;
     int n = 0;
-    for (Index i = 0; i < g.rows(); ++i) {
+    for (Eigen::Index i = 0; i < g.rows(); ++i) {
         if (const std::optional<double> p = pearson(r.row(i).transpose(), g.row(i).transpose())) {
             s += *p;
             ++n;

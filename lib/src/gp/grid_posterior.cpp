@@ -12,35 +12,34 @@
 namespace mocapdb::gp::detail {
 namespace {
 
-using Index = Eigen::Index;
-
 /// Indices of the grid entries at `frames` of the data times (which are the grid's first T), every output.
-std::vector<Index> grid_indices(Index d, Index grid_size, const std::vector<Index>& frames) {
-    std::vector<Index> idx;
-    for (Index k = 0; k < d; ++k)
-        for (Index f : frames) idx.push_back(k * grid_size + f);
+std::vector<Eigen::Index> grid_indices(Eigen::Index d, Eigen::Index grid_size,
+                                       const std::vector<Eigen::Index>& frames) {
+    std::vector<Eigen::Index> idx;
+    for (Eigen::Index k = 0; k < d; ++k)
+        for (Eigen::Index f : frames) idx.push_back(k * grid_size + f);
     return idx;
 }
 
-std::vector<Index> all_frames(Index t) {
-    std::vector<Index> f(static_cast<std::size_t>(t));
-    for (Index i = 0; i < t; ++i) f[static_cast<std::size_t>(i)] = i;
+std::vector<Eigen::Index> all_frames(Eigen::Index t) {
+    std::vector<Eigen::Index> f(static_cast<std::size_t>(t));
+    for (Eigen::Index i = 0; i < t; ++i) f[static_cast<std::size_t>(i)] = i;
     return f;
 }
 
 /// Conditions g on y = g[sel] + ε, ε ~ N(0, noise_cov). With !full_cov only the diagonal of the
 /// covariance is updated (the last step of a prediction). False when the innovation covariance is not
 /// positive definite.
-bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, const MatX& noise_cov,
+bool condition(GridGaussian& g, const std::vector<Eigen::Index>& sel, const VecX& y, const MatX& noise_cov,
                bool full_cov = true) {
-    const Index m = static_cast<Index>(sel.size()), n = g.mean.size();
+    const Eigen::Index m = static_cast<Eigen::Index>(sel.size()), n = g.mean.size();
     MatX s = noise_cov;
     MatX c(m, n);
     VecX r(m);
-    for (Index i = 0; i < m; ++i) {
+    for (Eigen::Index i = 0; i < m; ++i) {
         c.row(i) = g.cov.row(sel[static_cast<std::size_t>(i)]);
         r[i] = y[i] - g.mean[sel[static_cast<std::size_t>(i)]];
-        for (Index j = 0; j < m; ++j)
+        for (Eigen::Index j = 0; j < m; ++j)
             s(i, j) += g.cov(sel[static_cast<std::size_t>(i)], sel[static_cast<std::size_t>(j)]);
     }
     Eigen::LLT<MatX> llt(s);
@@ -63,20 +62,20 @@ bool condition(GridGaussian& g, const std::vector<Index>& sel, const VecX& y, co
 Grid make_grid(const VecX& times, const VecX& tq) {
     Grid g;
     std::vector<double> z(times.data(), times.data() + times.size());
-    for (Index i = 0; i < tq.size(); ++i) {
-        Index at = -1;
-        for (Index j = 0; j < static_cast<Index>(z.size()); ++j)
+    for (Eigen::Index i = 0; i < tq.size(); ++i) {
+        Eigen::Index at = -1;
+        for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(z.size()); ++j)
             if (z[static_cast<std::size_t>(j)] == tq[i]) {
                 at = j;
                 break;
             }
         if (at < 0) {
-            at = static_cast<Index>(z.size());
+            at = static_cast<Eigen::Index>(z.size());
             z.push_back(tq[i]);
         }
         g.query.push_back(at);
     }
-    g.z = Eigen::Map<const VecX>(z.data(), static_cast<Index>(z.size()));
+    g.z = Eigen::Map<const VecX>(z.data(), static_cast<Eigen::Index>(z.size()));
     return g;
 }
 
@@ -85,8 +84,8 @@ Grid make_grid(const VecX& times, const VecX& tq) {
 /// size n_c averaged: ȳ_c = g + N(0, (A + n_c K_h) / (n_c S_c)), conditioned class by class.
 GridGaussian trend_on_grid(const HgpModel& model, const HgpData& data, const std::vector<std::size_t>& members,
                            const Grid& grid) {
-    const Index d = static_cast<Index>(data.outputs());
-    const Index t = static_cast<Index>(data.frames());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
     GridGaussian g;
     g.cov = lmc_covariance(model.parent, grid.z, grid.z);
     g.mean = VecX::Zero(g.cov.rows());
@@ -136,8 +135,8 @@ GridGaussian group_on_grid(const HgpModel& model, const HgpData& data, std::size
     if (!g.ok) return g;
     g.cov += lmc_covariance(model.group, grid.z, grid.z);
     if (own.empty()) return g;
-    const Index d = static_cast<Index>(data.outputs());
-    const Index t = static_cast<Index>(data.frames());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
     VecX mean = VecX::Zero(d * t);
     for (std::size_t m : own) mean += vec_output_major(data.children[m]);
     const double rc = static_cast<double>(own.size());
@@ -148,15 +147,15 @@ GridGaussian group_on_grid(const HgpModel& model, const HgpData& data, std::size
 }
 
 /// The grid Gaussian at the query times: mean and full covariance (output-major over the queries).
-GridGaussian at_queries(const GridGaussian& g, const Grid& grid, Index d) {
+GridGaussian at_queries(const GridGaussian& g, const Grid& grid, Eigen::Index d) {
     const auto idx = grid_indices(d, grid.z.size(), grid.query);
     GridGaussian out;
-    const Index m = static_cast<Index>(idx.size());
+    const Eigen::Index m = static_cast<Eigen::Index>(idx.size());
     out.mean.resize(m);
     out.cov.resize(m, m);
-    for (Index i = 0; i < m; ++i) {
+    for (Eigen::Index i = 0; i < m; ++i) {
         out.mean[i] = g.mean[idx[static_cast<std::size_t>(i)]];
-        for (Index j = 0; j < m; ++j)
+        for (Eigen::Index j = 0; j < m; ++j)
             out.cov(i, j) = g.cov(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]);
     }
     out.ok = g.ok;
@@ -166,7 +165,7 @@ GridGaussian at_queries(const GridGaussian& g, const Grid& grid, Index d) {
 /// The prior of child `child`'s latent f on the grid given its (complete) siblings: its parent function
 /// (g, or h_s with three layers) given them, plus K_f.
 GridGaussian child_prior_on_grid(const HgpModel& model, const HgpData& data, std::size_t child, const Grid& grid) {
-    const Index d = static_cast<Index>(data.outputs());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
     GridGaussian g;
     if (!model.hierarchical) {
         g.mean = VecX::Zero(d * grid.z.size());
@@ -186,21 +185,21 @@ GridGaussian child_prior_on_grid(const HgpModel& model, const HgpData& data, std
 /// Conditions a child's prior on its own observed frames (`mask`, or its HgpData mask when empty).
 bool condition_on_own_frames(GridGaussian& g, const HgpModel& model, const HgpData& data, std::size_t child,
                              const std::vector<bool>* mask, const Grid& grid, bool full_cov) {
-    const Index d = static_cast<Index>(data.outputs());
-    const Index t = static_cast<Index>(data.frames());
-    std::vector<Index> frames;
-    for (Index f = 0; f < t; ++f)
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
+    std::vector<Eigen::Index> frames;
+    for (Eigen::Index f = 0; f < t; ++f)
         if (mask ? (*mask)[static_cast<std::size_t>(f)] : data.is_observed(child, static_cast<std::size_t>(f)))
             frames.push_back(f);
     if (frames.empty()) return true;
     const auto sel = grid_indices(d, grid.z.size(), frames);
     const VecX y = vec_output_major(data.children[child]);
     const VecX noise = model.noise_variance();
-    VecX yo(static_cast<Index>(sel.size()));
+    VecX yo(static_cast<Eigen::Index>(sel.size()));
     VecX no(yo.size());
-    const Index nf = static_cast<Index>(frames.size());
-    for (Index k = 0; k < d; ++k)
-        for (Index i = 0; i < nf; ++i) {
+    const Eigen::Index nf = static_cast<Eigen::Index>(frames.size());
+    for (Eigen::Index k = 0; k < d; ++k)
+        for (Eigen::Index i = 0; i < nf; ++i) {
             yo[k * nf + i] = y[k * t + frames[static_cast<std::size_t>(i)]];
             no[k * nf + i] = noise[k];
         }
@@ -208,17 +207,17 @@ bool condition_on_own_frames(GridGaussian& g, const HgpModel& model, const HgpDa
 }
 
 /// Mean and latent variance of a grid Gaussian at the grid's query times.
-GaussianPrediction grid_prediction(const GridGaussian& g, const Grid& grid, Index d, const VecX& noise) {
-    const Index ts = static_cast<Index>(grid.query.size());
+GaussianPrediction grid_prediction(const GridGaussian& g, const Grid& grid, Eigen::Index d, const VecX& noise) {
+    const Eigen::Index ts = static_cast<Eigen::Index>(grid.query.size());
     if (!g.ok)
         throw NumericalError("GP prediction: a posterior covariance is not positive definite for these parameters");
     GaussianPrediction p;
     p.mean.resize(d, ts);
     p.variance.resize(d, ts);
-    const Index nz = grid.z.size();
-    for (Index k = 0; k < d; ++k)
-        for (Index i = 0; i < ts; ++i) {
-            const Index at = k * nz + grid.query[static_cast<std::size_t>(i)];
+    const Eigen::Index nz = grid.z.size();
+    for (Eigen::Index k = 0; k < d; ++k)
+        for (Eigen::Index i = 0; i < ts; ++i) {
+            const Eigen::Index at = k * nz + grid.query[static_cast<std::size_t>(i)];
             p.mean(k, i) = g.mean[at];
             p.variance(k, i) = g.cov(at, at);
         }

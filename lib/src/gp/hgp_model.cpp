@@ -10,8 +10,6 @@
 
 namespace mocapdb::gp {
 
-using Index = Eigen::Index;
-
 VecX HgpModel::noise_variance() const { return (log_noise.array().exp() + noise_floor).matrix(); }
 
 std::size_t HgpModel::parameter_count() const {
@@ -26,8 +24,8 @@ VecX HgpModel::parameters() const {
         for (const auto& t : group.terms) append_parameters(t, p);
     if (hierarchical)
         for (const auto& t : parent.terms) append_parameters(t, p);
-    for (Index i = 0; i < log_noise.size(); ++i) p.push_back(log_noise[i]);
-    return Eigen::Map<const VecX>(p.data(), static_cast<Index>(p.size()));
+    for (Eigen::Index i = 0; i < log_noise.size(); ++i) p.push_back(log_noise[i]);
+    return Eigen::Map<const VecX>(p.data(), static_cast<Eigen::Index>(p.size()));
 }
 
 void HgpModel::set_parameters(const VecX& p) {
@@ -40,7 +38,7 @@ void HgpModel::set_parameters(const VecX& p) {
         for (auto& t : group.terms) o = read_parameters(t, p, o);
     if (hierarchical)
         for (auto& t : parent.terms) o = read_parameters(t, p, o);
-    for (Index i = 0; i < log_noise.size(); ++i) log_noise[i] = p[static_cast<Index>(o) + i];
+    for (Eigen::Index i = 0; i < log_noise.size(); ++i) log_noise[i] = p[static_cast<Eigen::Index>(o) + i];
 }
 
 std::vector<std::string> HgpModel::parameter_names() const {
@@ -50,17 +48,17 @@ std::vector<std::string> HgpModel::parameter_names() const {
             const auto& t = lmc.terms[q];
             const std::string pre = layer + ".q" + std::to_string(q) + ".";
             names.push_back(pre + "log_lengthscale");
-            for (Index j = 0; j < t.W.cols(); ++j)
-                for (Index i = 0; i < t.W.rows(); ++i)
+            for (Eigen::Index j = 0; j < t.W.cols(); ++j)
+                for (Eigen::Index i = 0; i < t.W.rows(); ++i)
                     names.push_back(pre + "W[" + std::to_string(i) + "," + std::to_string(j) + "]");
-            for (Index i = 0; i < t.log_kappa.size(); ++i)
+            for (Eigen::Index i = 0; i < t.log_kappa.size(); ++i)
                 names.push_back(pre + "log_kappa[" + std::to_string(i) + "]");
         }
     };
     add(child, "child");
     if (grouped) add(group, "group");
     if (hierarchical) add(parent, "parent");
-    for (Index i = 0; i < log_noise.size(); ++i) names.push_back("log_noise[" + std::to_string(i) + "]");
+    for (Eigen::Index i = 0; i < log_noise.size(); ++i) names.push_back("log_noise[" + std::to_string(i) + "]");
     return names;
 }
 
@@ -152,7 +150,7 @@ void validate(const HgpData& data) {
     if (data.times.size() == 0 || !data.times.allFinite())
         throw InvalidArgument("HgpData: expected ≥ 1 finite sample time");
     if (data.children.empty()) throw InvalidArgument("HgpData: no children");
-    const Index d = data.children.front().rows();
+    const Eigen::Index d = data.children.front().rows();
     if (d == 0) throw InvalidArgument("HgpData: children have no outputs");
     if (data.observed.size() > data.children.size())
         throw InvalidArgument("HgpData: more observation masks than children");
@@ -167,7 +165,7 @@ void validate(const HgpData& data) {
             throw InvalidArgument("HgpData: child " + std::to_string(r) + "'s mask has " +
                                   std::to_string(data.observed[r].size()) + " flags, expected " +
                                   std::to_string(data.times.size()));
-        for (Index f = 0; f < y.cols(); ++f)
+        for (Eigen::Index f = 0; f < y.cols(); ++f)
             if (data.is_observed(r, static_cast<std::size_t>(f)) && !y.col(f).allFinite())
                 throw InvalidArgument("HgpData: child " + std::to_string(r) +
                                       " has a non-finite observed value at frame " + std::to_string(f));

@@ -25,7 +25,6 @@ const char* to_string(LikelihoodStatus status) {
 
 namespace {
 
-using Index = Eigen::Index;
 using detail::at_queries;
 using detail::child_prior_on_grid;
 using detail::condition_dense;
@@ -48,8 +47,8 @@ void check_times(const VecX& t_star) {
     if (t_star.size() == 0 || !t_star.allFinite()) throw InvalidArgument("prediction times: expected ≥ 1 finite time");
 }
 
-void draw_gaussian(const VecX& mean, const MatX& cov, std::size_t count, std::mt19937_64& rng, Index d, Index ts,
-                   std::vector<MatX>& out) {
+void draw_gaussian(const VecX& mean, const MatX& cov, std::size_t count, std::mt19937_64& rng, Eigen::Index d,
+                   Eigen::Index ts, std::vector<MatX>& out) {
     // Cholesky with a small relative jitter (sampling only; the covariance may be numerically singular).
     const double scale = std::max(cov.diagonal().cwiseAbs().maxCoeff(), 1e-300);
     MatX jittered = cov;
@@ -65,7 +64,7 @@ void draw_gaussian(const VecX& mean, const MatX& cov, std::size_t count, std::mt
     std::normal_distribution<double> normal(0.0, 1.0);
     for (std::size_t s = 0; s < count; ++s) {
         VecX xi(mean.size());
-        for (Index i = 0; i < xi.size(); ++i) xi[i] = normal(rng);
+        for (Eigen::Index i = 0; i < xi.size(); ++i) xi[i] = normal(rng);
         out.push_back(unvec_output_major(mean + l * xi, d, ts));
     }
 }
@@ -147,7 +146,7 @@ GaussianPrediction predict_group(const HgpModel& model, const HgpData& data, std
     check_group(model, data, group);
     if (!data.all_complete()) return condition_dense(model, data, t_star, Target{Target::Group, group});
     const Grid grid = make_grid(data.times, t_star);
-    const Index d = static_cast<Index>(data.outputs());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
     return grid_prediction(group_on_grid(model, data, group, -1, grid), grid, d, model.noise_variance());
 }
 
@@ -165,9 +164,9 @@ GaussianPrediction predict_child_dense(const HgpModel& model, const HgpData& dat
         for (std::size_t f = 0; f < own.frames(); ++f) any = any || own.is_observed(0, f);
         if (!any) {
             GaussianPrediction p;
-            p.mean = MatX::Zero(static_cast<Index>(data.outputs()), t_star.size());
+            p.mean = MatX::Zero(static_cast<Eigen::Index>(data.outputs()), t_star.size());
             p.variance = unvec_output_major(lmc_covariance(model.child, t_star, t_star).diagonal(),
-                                            static_cast<Index>(data.outputs()), t_star.size());
+                                            static_cast<Eigen::Index>(data.outputs()), t_star.size());
             p.noise = model.noise_variance();
             return p;
         }
@@ -181,7 +180,7 @@ GaussianPrediction predict_parent(const HgpModel& model, const HgpData& data, co
     if (!model.hierarchical) throw InvalidArgument("predict_parent: the MOA baseline has no parent");
     if (!data.all_complete()) return condition_dense(model, data, t_star, Target{Target::Parent, 0});
     const Grid grid = make_grid(data.times, t_star);
-    const Index d = static_cast<Index>(data.outputs());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
     return grid_prediction(trend_on_grid(model, data, all_children(data), grid), grid, d, model.noise_variance());
 }
 
@@ -196,7 +195,7 @@ GaussianPrediction predict_child(const HgpModel& model, const HgpData& data, std
     const Grid grid = make_grid(data.times, t_star);
     GridGaussian g = child_prior_on_grid(model, data, child, grid);
     if (g.ok) g.ok = condition_on_own_frames(g, model, data, child, nullptr, grid, false);
-    return grid_prediction(g, grid, static_cast<Index>(data.outputs()), model.noise_variance());
+    return grid_prediction(g, grid, static_cast<Eigen::Index>(data.outputs()), model.noise_variance());
 }
 
 std::vector<GaussianPrediction> predict_child_masks(const HgpModel& model, const HgpData& data, std::size_t child,
@@ -216,7 +215,7 @@ std::vector<GaussianPrediction> predict_child_masks(const HgpModel& model, const
     for (const auto& m : masks) {
         GridGaussian g = prior;
         if (g.ok) g.ok = condition_on_own_frames(g, model, data, child, &m, grid, false);
-        out.push_back(grid_prediction(g, grid, static_cast<Index>(data.outputs()), model.noise_variance()));
+        out.push_back(grid_prediction(g, grid, static_cast<Eigen::Index>(data.outputs()), model.noise_variance()));
     }
     return out;
 }
@@ -225,8 +224,8 @@ MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_s
     check_prediction_args(model, data, t_star);
     if (model.hierarchical) return predict_parent(model, data, t_star).mean;
     // MOA: every observed value of every child is a noisy observation of one function f ~ GP(0, K_f).
-    const Index t = static_cast<Index>(data.frames());
-    const Index d = static_cast<Index>(data.outputs());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
     if (data.all_complete()) {
         // R complete replicates at the same times: their mean ȳ is sufficient, with noise N/R
         // (one (D·T)² factorization instead of (R·D·T)²).
@@ -245,13 +244,13 @@ MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_s
     const DenseLayout l = dense_layout(data);
     const MatX kf = lmc_covariance(model.child, data.times, data.times);
     const VecX noise = flat_noise(model.noise_variance(), t);
-    const Index n = static_cast<Index>(l.flat.size());
+    const Eigen::Index n = static_cast<Eigen::Index>(l.flat.size());
     MatX s(n, n);
-    for (Index j = 0; j < n; ++j)
-        for (Index i = 0; i < n; ++i) s(i, j) = kf(l.flat[i], l.flat[j]) + (i == j ? noise[l.flat[i]] : 0.0);
+    for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index i = 0; i < n; ++i) s(i, j) = kf(l.flat[i], l.flat[j]) + (i == j ? noise[l.flat[i]] : 0.0);
     const MatX ks = lmc_covariance(model.child, t_star, data.times);
     MatX cross(d * t_star.size(), n);
-    for (Index j = 0; j < n; ++j) cross.col(j) = ks.col(l.flat[j]);
+    for (Eigen::Index j = 0; j < n; ++j) cross.col(j) = ks.col(l.flat[j]);
     Eigen::LLT<MatX> llt(s);
     if (llt.info() != Eigen::Success)
         throw NumericalError("GP trend: the children's covariance is not positive definite for these parameters");
@@ -261,8 +260,8 @@ MatX synthesis_trend(const HgpModel& model, const HgpData& data, const VecX& t_s
 std::vector<MatX> sample_children(const HgpModel& model, const HgpData& data, const VecX& t_star, std::size_t count,
                                   const SampleOptions& options) {
     check_prediction_args(model, data, t_star);
-    const Index d = static_cast<Index>(data.outputs());
-    const Index ts = t_star.size();
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const Eigen::Index ts = t_star.size();
     VecX mean;
     MatX cov = lmc_covariance(model.child, t_star, t_star);
     const bool posterior_needed = options.group.has_value() || (model.hierarchical && options.parent_uncertainty);

@@ -8,8 +8,6 @@
 
 namespace mocapdb::gp {
 
-using Index = Eigen::Index;
-
 std::vector<std::string> thesis_excluded_joints() {
     return {"lclavicle", "rclavicle", "lwrist", "rwrist", "lhand", "rhand",
             "lfingers",  "rfingers",  "lthumb", "rthumb", "ltoes", "rtoes"};
@@ -43,11 +41,11 @@ std::string joint_of_row(const std::vector<std::string>& joint_names, std::size_
 /// Pose vectors resampled at `times` (seconds from the clip start) by linear interpolation.
 MatX resample(const MatX& poses, double rate, const VecX& times) {
     MatX out(poses.rows(), times.size());
-    const Index last = poses.cols() - 1;
-    for (Index i = 0; i < times.size(); ++i) {
+    const Eigen::Index last = poses.cols() - 1;
+    for (Eigen::Index i = 0; i < times.size(); ++i) {
         const double x = std::clamp(times[i] * rate, 0.0, static_cast<double>(last));
-        const Index f0 = std::min<Index>(static_cast<Index>(std::floor(x)), last);
-        const Index f1 = std::min<Index>(f0 + 1, last);
+        const Eigen::Index f0 = std::min<Eigen::Index>(static_cast<Eigen::Index>(std::floor(x)), last);
+        const Eigen::Index f1 = std::min<Eigen::Index>(f0 + 1, last);
         const double w = x - static_cast<double>(f0);
         out.col(i) = (1.0 - w) * poses.col(f0) + w * poses.col(f1);
     }
@@ -80,7 +78,7 @@ MotionData prepare_motion_data(const std::vector<Clip>& children, const std::vec
     MotionData out;
     out.skeleton = children.front().skeleton;
     out.child_names = names;
-    const Index n = static_cast<Index>(options.frames);
+    const Eigen::Index n = static_cast<Eigen::Index>(options.frames);
     out.data.times = VecX::LinSpaced(n, 0.0, duration);
     out.frame_rate = static_cast<double>(n - 1) / duration;
 
@@ -92,14 +90,14 @@ MotionData prepare_motion_data(const std::vector<Clip>& children, const std::vec
         if (reference.size() == 0) reference = p.col(0);
         full.push_back(resample(p, c.frame_rate, out.data.times));
     }
-    const Index rows = full.front().rows();
+    const Eigen::Index rows = full.front().rows();
     out.template_pose = MatX::Zero(rows, n);
     for (const MatX& p : full) out.template_pose += p;
     out.template_pose /= static_cast<double>(full.size());
 
     const std::vector<std::string> dof_names = pose_dof_names(*out.skeleton);
     out.log_snr.assign(static_cast<std::size_t>(rows), 0.0);
-    for (Index row = 0; row < rows; ++row) {
+    for (Eigen::Index row = 0; row < rows; ++row) {
         const std::string joint = joint_of_row(joints, static_cast<std::size_t>(row));
         const std::string& dn = dof_names[static_cast<std::size_t>(row)];
         double lo = 1e300, hi = -1e300, signal = 0.0, noise = 0.0;
@@ -134,23 +132,24 @@ MotionData prepare_motion_data(const std::vector<Clip>& children, const std::vec
         out.dof_names.push_back(dn);
     }
     if (out.dofs.empty()) throw InvalidArgument("prepare_motion_data: no dof left after the selection");
-    const Index d = static_cast<Index>(out.dofs.size());
+    const Eigen::Index d = static_cast<Eigen::Index>(out.dofs.size());
     out.minimum.resize(d);
     out.range.resize(d);
-    for (Index i = 0; i < d; ++i) {
+    for (Eigen::Index i = 0; i < d; ++i) {
         double lo = 1e300, hi = -1e300;
         for (const MatX& p : full) {
-            lo = std::min(lo, p.row(static_cast<Index>(out.dofs[static_cast<std::size_t>(i)])).minCoeff());
-            hi = std::max(hi, p.row(static_cast<Index>(out.dofs[static_cast<std::size_t>(i)])).maxCoeff());
+            lo = std::min(lo, p.row(static_cast<Eigen::Index>(out.dofs[static_cast<std::size_t>(i)])).minCoeff());
+            hi = std::max(hi, p.row(static_cast<Eigen::Index>(out.dofs[static_cast<std::size_t>(i)])).maxCoeff());
         }
         out.minimum[i] = lo;
         out.range[i] = hi > lo ? hi - lo : 1.0;
     }
     for (const MatX& p : full) {
         MatX y(d, n);
-        for (Index i = 0; i < d; ++i)
-            y.row(i) = (p.row(static_cast<Index>(out.dofs[static_cast<std::size_t>(i)])).array() - out.minimum[i]) /
-                       out.range[i];
+        for (Eigen::Index i = 0; i < d; ++i)
+            y.row(i) =
+                (p.row(static_cast<Eigen::Index>(out.dofs[static_cast<std::size_t>(i)])).array() - out.minimum[i]) /
+                out.range[i];
         out.data.children.push_back(y);
     }
     return out;
@@ -161,7 +160,7 @@ MatX denormalize(const MotionData& data, const MatX& normalized) {
         throw InvalidArgument("denormalize: expected " + std::to_string(data.minimum.size()) + " rows, found " +
                               std::to_string(normalized.rows()));
     MatX out(normalized.rows(), normalized.cols());
-    for (Index i = 0; i < normalized.rows(); ++i)
+    for (Eigen::Index i = 0; i < normalized.rows(); ++i)
         out.row(i) = normalized.row(i).array() * data.range[i] + data.minimum[i];
     return out;
 }
@@ -172,8 +171,8 @@ Clip reassemble_clip(const MotionData& data, const MatX& normalized, const std::
                               " frames, found " + std::to_string(normalized.cols()));
     MatX full = data.template_pose;
     const MatX values = denormalize(data, normalized);
-    for (Index i = 0; i < values.rows(); ++i)
-        full.row(static_cast<Index>(data.dofs[static_cast<std::size_t>(i)])) = values.row(i);
+    for (Eigen::Index i = 0; i < values.rows(); ++i)
+        full.row(static_cast<Eigen::Index>(data.dofs[static_cast<std::size_t>(i)])) = values.row(i);
     Clip clip;
     clip.skeleton = data.skeleton;
     clip.frame_rate = data.frame_rate;

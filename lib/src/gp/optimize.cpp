@@ -18,8 +18,6 @@ namespace mocapdb::gp {
 
 namespace {
 
-using Index = Eigen::Index;
-
 constexpr int kLbfgsMemory = 20;
 
 /// −log p / n and its gradient; remembers the best finite point it was asked about.
@@ -78,14 +76,14 @@ VecX perturbed(const HgpModel& start, double spread, std::uint64_t seed) {
     auto shake = [&](Lmc& lmc) {
         for (auto& t : lmc.terms) {
             t.log_lengthscale += spread * normal(rng);
-            for (Index i = 0; i < t.W.size(); ++i) t.W.data()[i] *= std::exp(spread * normal(rng));
-            for (Index i = 0; i < t.log_kappa.size(); ++i) t.log_kappa[i] += spread * normal(rng);
+            for (Eigen::Index i = 0; i < t.W.size(); ++i) t.W.data()[i] *= std::exp(spread * normal(rng));
+            for (Eigen::Index i = 0; i < t.log_kappa.size(); ++i) t.log_kappa[i] += spread * normal(rng);
         }
     };
     shake(m.child);
     if (m.grouped) shake(m.group);
     if (m.hierarchical) shake(m.parent);
-    for (Index i = 0; i < m.log_noise.size(); ++i) m.log_noise[i] += spread * normal(rng);
+    for (Eigen::Index i = 0; i < m.log_noise.size(); ++i) m.log_noise[i] += spread * normal(rng);
     return m.parameters();
 }
 
@@ -109,15 +107,15 @@ HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
     if (spec.grouped && (!spec.hierarchical || data.groups.empty()))
         throw InvalidArgument(
             "initial_model: three layers need a hierarchical model and each child's group (HgpData::groups)");
-    const Index d = static_cast<Index>(data.outputs());
-    const Index t = static_cast<Index>(data.frames());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
     // Second-moment matrices (D×D) over the observed frames: of the children's mean per frame (the
     // parent's share) and of the deviations from it (the child's); MOA: of the values themselves.
     MatX mean_m2 = MatX::Zero(d, d), dev_m2 = MatX::Zero(d, d), total_m2 = MatX::Zero(d, d);
     MatX group_m2 = MatX::Zero(d, d), within_m2 = MatX::Zero(d, d);
     double count_m = 0.0, count_dev = 0.0, count_group = 0.0;
     const std::size_t groups = spec.grouped ? data.group_count() : 0;
-    for (Index f = 0; f < t; ++f) {
+    for (Eigen::Index f = 0; f < t; ++f) {
         VecX sum = VecX::Zero(d);
         double n = 0.0;
         for (std::size_t r = 0; r < data.child_count(); ++r)
@@ -179,14 +177,14 @@ HgpModel initial_model(const HgpData& data, const ModelSpec& spec) {
                 terms == 1 ? 0.2 : 0.05 * std::pow(10.0, static_cast<double>(q) / static_cast<double>(terms - 1));
             term.log_lengthscale = std::log(frac * span);
             const double share = 1.0 / static_cast<double>(terms);
-            term.W.resize(d, static_cast<Index>(spec.rank));
-            for (Index j = 0; j < term.W.cols(); ++j) {
-                const Index which = static_cast<Index>(q * spec.rank) + j;
-                const Index col = d - 1 - (which % d);  // eigenvalues ascending
+            term.W.resize(d, static_cast<Eigen::Index>(spec.rank));
+            for (Eigen::Index j = 0; j < term.W.cols(); ++j) {
+                const Eigen::Index which = static_cast<Eigen::Index>(q * spec.rank) + j;
+                const Eigen::Index col = d - 1 - (which % d);  // eigenvalues ascending
                 const double lambda = std::max(es.eigenvalues()[col], 0.0);
                 term.W.col(j) = std::sqrt(0.8 * share * lambda) * es.eigenvectors().col(col);
                 // A zero column would be a stationary point of the likelihood: keep it small but non-zero.
-                for (Index i = 0; i < d; ++i) {
+                for (Eigen::Index i = 0; i < d; ++i) {
                     const double s = std::sin(1.0 + 1.7 * static_cast<double>(i) + 2.3 * static_cast<double>(j) +
                                               0.9 * static_cast<double>(q) + 0.5 * static_cast<double>(layer));
                     term.W(i, j) += 0.05 * std::sqrt(share * diag[i]) * s;

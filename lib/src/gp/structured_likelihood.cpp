@@ -13,8 +13,6 @@ namespace mocapdb::gp::detail {
 
 namespace {
 
-using Index = Eigen::Index;
-
 /// X = K_f + noise + a·K_h + b·K_g at the shared times.
 MatX level_covariance(const HgpModel& model, const VecX& times, const VecX& noise_flat, double a, double b) {
     MatX x = lmc_covariance(model.child, times, times);
@@ -36,18 +34,18 @@ void add_layer_gradients(const HgpModel& model, const MatX& w, const VecX& times
                          const ParameterOffsets& off, VecX& grad) {
     auto layer = [&](const Lmc& lmc, double weight, std::size_t offset) {
         if (weight == 0.0) return;
-        VecX tmp(static_cast<Index>(lmc.parameter_count()));
+        VecX tmp(static_cast<Eigen::Index>(lmc.parameter_count()));
         std::size_t o = 0;
         for (const auto& term : lmc.terms) o = lmc_term_gradient(term, w, times, o, tmp);
-        grad.segment(static_cast<Index>(offset), tmp.size()) += weight * tmp;
+        grad.segment(static_cast<Eigen::Index>(offset), tmp.size()) += weight * tmp;
     };
     layer(model.child, cf, off.child);
     if (model.grouped) layer(model.group, ch, off.group);
     if (model.hierarchical) layer(model.parent, cg, off.parent);
     if (cf == 0.0) return;
-    const Index t = times.size();
-    for (Index i = 0; i < model.log_noise.size(); ++i)
-        grad[static_cast<Index>(off.noise) + i] +=
+    const Eigen::Index t = times.size();
+    for (Eigen::Index i = 0; i < model.log_noise.size(); ++i)
+        grad[static_cast<Eigen::Index>(off.noise) + i] +=
             cf * 0.5 * w.diagonal().segment(i * t, t).sum() * std::exp(model.log_noise[i]);
 }
 
@@ -69,7 +67,7 @@ struct LevelResult {
 ///   Σ_cc' √(R_c R_c') W_cc' = β βᵀ − M + M F M                through B (K_g).
 LevelResult coupled_classes(const HgpModel& model, const HgpData& data, const std::vector<CoupledClass>& classes,
                             const VecX& noise_flat, bool with_gradient, int threads, const ParameterOffsets& off,
-                            Index parameters) {
+                            Eigen::Index parameters) {
     LevelResult res;
     const std::size_t k = classes.size();
     std::vector<MatX> cinv(k);
@@ -94,7 +92,7 @@ LevelResult coupled_classes(const HgpModel& model, const HgpData& data, const st
             res.message = level_name(classes[c].group_size, 0.0) + " is not positive definite";
             return res;
         }
-    const Index n = classes.front().mean.size();
+    const Eigen::Index n = classes.front().mean.size();
     MatX m = MatX::Zero(n, n);
     VecX b = VecX::Zero(n);
     double quad = 0.0, sum_logdet = 0.0;
@@ -152,7 +150,7 @@ LevelResult coupled_classes(const HgpModel& model, const HgpData& data, const st
 }
 
 LikelihoodValue combine(std::vector<LevelResult>& parts, LikelihoodPath path, double constant, bool with_gradient,
-                        Index parameters) {
+                        Eigen::Index parameters) {
     LikelihoodValue out;
     out.path = path;
     out.log_likelihood = constant;
@@ -181,12 +179,12 @@ LikelihoodValue combine(std::vector<LevelResult>& parts, LikelihoodPath path, do
 
 Levels make_levels(const HgpModel& model, const HgpData& data) {
     if (!data.all_complete()) throw InvalidArgument("structured likelihood: every child must be complete");
-    const Index t = static_cast<Index>(data.frames());
-    const Index n = static_cast<Index>(data.outputs()) * t;
-    const Index r = static_cast<Index>(data.child_count());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
+    const Eigen::Index n = static_cast<Eigen::Index>(data.outputs()) * t;
+    const Eigen::Index r = static_cast<Eigen::Index>(data.child_count());
     const double rd = static_cast<double>(r);
     MatX ys(n, r);
-    for (Index c = 0; c < r; ++c) ys.col(c) = vec_output_major(data.children[static_cast<std::size_t>(c)]);
+    for (Eigen::Index c = 0; c < r; ++c) ys.col(c) = vec_output_major(data.children[static_cast<std::size_t>(c)]);
     Levels lv;
     if (!model.hierarchical) {
         lv.independent.push_back({ys, rd, 0.0, 0.0});
@@ -201,19 +199,19 @@ Levels make_levels(const HgpModel& model, const HgpData& data) {
     if (data.groups.size() != data.child_count())
         throw InvalidArgument("a three-layer model needs each child's group (HgpData::groups)");
     const std::size_t s = data.group_count();
-    MatX group_mean = MatX::Zero(n, static_cast<Index>(s));
+    MatX group_mean = MatX::Zero(n, static_cast<Eigen::Index>(s));
     std::vector<std::size_t> size(s, 0);
     for (std::size_t c = 0; c < data.child_count(); ++c) {
-        group_mean.col(static_cast<Index>(data.groups[c])) += ys.col(static_cast<Index>(c));
+        group_mean.col(static_cast<Eigen::Index>(data.groups[c])) += ys.col(static_cast<Eigen::Index>(c));
         ++size[data.groups[c]];
     }
-    for (std::size_t g = 0; g < s; ++g) group_mean.col(static_cast<Index>(g)) /= static_cast<double>(size[g]);
+    for (std::size_t g = 0; g < s; ++g) group_mean.col(static_cast<Eigen::Index>(g)) /= static_cast<double>(size[g]);
     // Deviations from the group means: R − S independent directions.
     if (data.child_count() > s) {
         MatX e(n, r);
         for (std::size_t c = 0; c < data.child_count(); ++c)
-            e.col(static_cast<Index>(c)) =
-                ys.col(static_cast<Index>(c)) - group_mean.col(static_cast<Index>(data.groups[c]));
+            e.col(static_cast<Eigen::Index>(c)) =
+                ys.col(static_cast<Eigen::Index>(c)) - group_mean.col(static_cast<Eigen::Index>(data.groups[c]));
         lv.independent.push_back({std::move(e), rd - static_cast<double>(s), 0.0, 0.0});
     }
     // Groups of one size n_c: √n_c·ȳ_s ~ N(√n_c·g, C_c), deviations from their class mean: S_c − 1 directions.
@@ -223,12 +221,13 @@ Levels make_levels(const HgpModel& model, const HgpData& data) {
     for (const auto& [nc, members] : classes) {
         const double ncd = static_cast<double>(nc), sc = static_cast<double>(members.size());
         VecX mean = VecX::Zero(n);
-        for (std::size_t g : members) mean += group_mean.col(static_cast<Index>(g));
+        for (std::size_t g : members) mean += group_mean.col(static_cast<Eigen::Index>(g));
         mean /= sc;
         if (members.size() > 1) {
-            MatX e(n, static_cast<Index>(members.size()));
+            MatX e(n, static_cast<Eigen::Index>(members.size()));
             for (std::size_t i = 0; i < members.size(); ++i)
-                e.col(static_cast<Index>(i)) = std::sqrt(ncd) * (group_mean.col(static_cast<Index>(members[i])) - mean);
+                e.col(static_cast<Eigen::Index>(i)) =
+                    std::sqrt(ncd) * (group_mean.col(static_cast<Eigen::Index>(members[i])) - mean);
             lv.independent.push_back({std::move(e), sc - 1.0, ncd, 0.0});
         }
         coupled.push_back({std::move(mean), ncd, ncd * sc});
@@ -250,11 +249,11 @@ ParameterOffsets parameter_offsets(const HgpModel& model) {
 
 LikelihoodValue structured_likelihood(const HgpModel& model, const HgpData& data, bool with_gradient, int threads) {
     const Levels lv = make_levels(model, data);
-    const Index t = static_cast<Index>(data.frames());
-    const Index n = static_cast<Index>(data.outputs()) * t;
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
+    const Eigen::Index n = static_cast<Eigen::Index>(data.outputs()) * t;
     const VecX noise_flat = flat_noise(model.noise_variance(), t);
     const ParameterOffsets off = parameter_offsets(model);
-    const Index parameters = static_cast<Index>(model.parameter_count());
+    const Eigen::Index parameters = static_cast<Eigen::Index>(model.parameter_count());
     std::vector<LevelResult> parts(lv.independent.size());
     std::vector<std::function<void()>> tasks;
     for (std::size_t k = 0; k < lv.independent.size(); ++k)
@@ -313,7 +312,7 @@ LayerFactors layer_factors(const HgpModel& model, const VecX& times) {
 struct LowRankLevel {
     MatX e;
     double count = 1.0;
-    Index frames = 0;
+    Eigen::Index frames = 0;
     std::vector<WeightedTerm> terms;
     std::vector<std::size_t> offsets;
     std::string name;
@@ -337,7 +336,7 @@ void add_terms(const Lmc& lmc, const std::vector<KernelFactor>& factors, double 
 std::vector<LowRankLevel> low_rank_levels(const HgpModel& model, const HgpData& data, const Levels& levels,
                                           const LayerFactors& f, std::vector<KernelFactor>& extended) {
     const ParameterOffsets off = parameter_offsets(model);
-    const Index t = static_cast<Index>(data.frames());
+    const Eigen::Index t = static_cast<Eigen::Index>(data.frames());
     std::vector<LowRankLevel> out;
     for (const Level& lev : levels.independent) {
         LowRankLevel l;
@@ -351,10 +350,10 @@ std::vector<LowRankLevel> low_rank_levels(const HgpModel& model, const HgpData& 
         out.push_back(std::move(l));
     }
     if (levels.coupled.empty()) return out;
-    const Index k = static_cast<Index>(levels.coupled.size());
-    const Index d = static_cast<Index>(data.outputs());
+    const Eigen::Index k = static_cast<Eigen::Index>(levels.coupled.size());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
     VecX ones = VecX::Ones(k), sizes(k), v(k);
-    for (Index c = 0; c < k; ++c) {
+    for (Eigen::Index c = 0; c < k; ++c) {
         sizes[c] = levels.coupled[static_cast<std::size_t>(c)].group_size;
         v[c] = std::sqrt(levels.coupled[static_cast<std::size_t>(c)].children);
     }
@@ -362,9 +361,9 @@ std::vector<LowRankLevel> low_rank_levels(const HgpModel& model, const HgpData& 
     l.frames = k * t;
     l.name = "the coupled size classes";
     l.e.resize(d * k * t, 1);
-    for (Index c = 0; c < k; ++c) {
+    for (Eigen::Index c = 0; c < k; ++c) {
         const VecX& mean = levels.coupled[static_cast<std::size_t>(c)].mean;
-        for (Index i = 0; i < d; ++i) l.e.block(i * k * t + c * t, 0, t, 1) = v[c] * mean.segment(i * t, t);
+        for (Eigen::Index i = 0; i < d; ++i) l.e.block(i * k * t + c * t, 0, t, 1) = v[c] * mean.segment(i * t, t);
     }
     // Reserved: the levels point into `extended`.
     extended.clear();
@@ -389,11 +388,11 @@ std::vector<LowRankLevel> low_rank_levels(const HgpModel& model, const HgpData& 
 
 LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, const Levels& levels,
                                     bool with_gradient, int threads) {
-    const Index d = static_cast<Index>(data.outputs());
-    const Index n = d * static_cast<Index>(data.frames());
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const Eigen::Index n = d * static_cast<Eigen::Index>(data.frames());
     const VecX noise = model.noise_variance();
     const ParameterOffsets off = parameter_offsets(model);
-    const Index parameters = static_cast<Index>(model.parameter_count());
+    const Eigen::Index parameters = static_cast<Eigen::Index>(model.parameter_count());
     const LayerFactors f = layer_factors(model, data.times);
     std::vector<KernelFactor> extended;
     const std::vector<LowRankLevel> lr = low_rank_levels(model, data, levels, f, extended);
@@ -415,10 +414,10 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
             if (res.status != LikelihoodStatus::Ok) res.message = "non-finite log likelihood of " + lev.name;
             if (res.status != LikelihoodStatus::Ok || !with_gradient) return;
             // W = P Pᵀ − count·X⁻¹ = P Pᵀ − count·P_X⁻¹ + count·V K⁻¹ Vᵀ (block_low_rank.hpp).
-            const Index cols = p.cols(), m = fx.v.cols(), rows = lev.e.rows();
+            const Eigen::Index cols = p.cols(), m = fx.v.cols(), rows = lev.e.rows();
             StructuredSymmetric g;
             g.blocks.resize(static_cast<std::size_t>(d));
-            for (Index i = 0; i < d; ++i)
+            for (Eigen::Index i = 0; i < d; ++i)
                 g.blocks[static_cast<std::size_t>(i)] = -lev.count * fx.p_inverse[static_cast<std::size_t>(i)];
             g.u.resize(rows, cols + m);
             g.x.resize(rows, cols + m);
@@ -433,8 +432,8 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
                 structured_term_gradient(*lev.terms[j].term, *lev.terms[j].factor, g, lev.terms[j].weight, data.times,
                                          lev.offsets[j], res.gradient);
             const VecX tr = structured_block_traces(g, d, lev.frames);
-            for (Index i = 0; i < d; ++i)
-                res.gradient[static_cast<Index>(off.noise) + i] = 0.5 * tr[i] * std::exp(model.log_noise[i]);
+            for (Eigen::Index i = 0; i < d; ++i)
+                res.gradient[static_cast<Eigen::Index>(off.noise) + i] = 0.5 * tr[i] * std::exp(model.log_noise[i]);
         });
     run_tasks(tasks, threads);
     const double constant = -0.5 * static_cast<double>(data.child_count()) * static_cast<double>(n) * kLog2Pi;
@@ -442,15 +441,15 @@ LikelihoodValue low_rank_likelihood(const HgpModel& model, const HgpData& data, 
 }
 
 bool low_rank_is_cheaper(const HgpModel& model, const HgpData& data, const Levels& levels) {
-    const Index d = static_cast<Index>(data.outputs());
-    const double n = static_cast<double>(d * static_cast<Index>(data.frames())), dd = static_cast<double>(d);
+    const Eigen::Index d = static_cast<Eigen::Index>(data.outputs());
+    const double n = static_cast<double>(d * static_cast<Eigen::Index>(data.frames())), dd = static_cast<double>(d);
     const LayerFactors f = layer_factors(model, data.times);
     std::vector<KernelFactor> extended;
     double structured = 0.0, low_rank = 0.0;
     for (const LowRankLevel& lev : low_rank_levels(model, data, levels, f, extended)) {
         const double td = static_cast<double>(lev.frames), rows = dd * td;
         // Structured: a factorization and an inverse per level; the coupled classes about 12 n³.
-        structured += lev.frames == static_cast<Index>(data.frames()) ? n * n * n : 12.0 * n * n * n;
+        structured += lev.frames == static_cast<Eigen::Index>(data.frames()) ? n * n * n : 12.0 * n * n * n;
         const double m = static_cast<double>(BlockLowRank::rank_of(lev.terms));
         const double width = static_cast<double>(lev.e.cols()) + m;
         low_rank += 3.0 * dd * td * td * td + 2.0 * rows * td * m + 4.0 * rows * m * m + 2.0 * m * m * m +

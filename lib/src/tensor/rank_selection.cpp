@@ -16,12 +16,10 @@ using detail::fit_from;
 
 namespace {
 
-using Index = Eigen::Index;
-
 // tail[r] = sum_{i >= r} s(i), r = 0..size.
 std::vector<double> tail_sums(const VecX& s) {
     std::vector<double> t(static_cast<std::size_t>(s.size()) + 1, 0.0);
-    for (Index i = s.size() - 1; i >= 0; --i)
+    for (Eigen::Index i = s.size() - 1; i >= 0; --i)
         t[static_cast<std::size_t>(i)] = t[static_cast<std::size_t>(i) + 1] + s(i);
     return t;
 }
@@ -37,7 +35,7 @@ void check_spectra(const ModeSpectra& sp, const char* where) {
     }
 }
 
-Index ceil_div(Index a, Index b) { return (a + b - 1) / b; }
+Eigen::Index ceil_div(Eigen::Index a, Eigen::Index b) { return (a + b - 1) / b; }
 
 // Every rank <= the product of the other two.
 bool consistent(const Ranks& r) { return r[0] <= r[1] * r[2] && r[1] <= r[0] * r[2] && r[2] <= r[0] * r[1]; }
@@ -77,23 +75,23 @@ Ranks ranks_for_error_bound(const ModeSpectra& spectra, double target_relative) 
     const auto t2 = tail_sums(spectra.squared_sv[2]);
     const Ranks cap = caps(d);
     Ranks best = cap;
-    Index best_params = std::numeric_limits<Index>::max();
+    Eigen::Index best_params = std::numeric_limits<Eigen::Index>::max();
     double best_bound = std::numeric_limits<double>::infinity();
-    for (Index r1 = 1; r1 <= cap[0]; ++r1) {
-        for (Index r2 = 1; r2 <= cap[1]; ++r2) {
+    for (Eigen::Index r1 = 1; r1 <= cap[0]; ++r1) {
+        for (Eigen::Index r2 = 1; r2 <= cap[1]; ++r2) {
             const double rem = budget - t0[static_cast<std::size_t>(r1)] - t1[static_cast<std::size_t>(r2)];
             if (rem < 0.0) continue;
             // Smallest r3 with t2[r3] <= rem (t2 is non-increasing).
-            Index lo = 1, hi = d[2] + 1;
+            Eigen::Index lo = 1, hi = d[2] + 1;
             while (lo < hi) {
-                const Index mid = (lo + hi) / 2;
+                const Eigen::Index mid = (lo + hi) / 2;
                 if (t2[static_cast<std::size_t>(mid)] <= rem) hi = mid;
                 else lo = mid + 1;
             }
-            Index r3 = std::max({lo, ceil_div(r1, r2), ceil_div(r2, r1)});
+            Eigen::Index r3 = std::max({lo, ceil_div(r1, r2), ceil_div(r2, r1)});
             if (r3 > cap[2] || r3 > r1 * r2) continue;
             const Ranks r{r1, r2, r3};
-            const Index p = tucker_parameter_count(d, r);
+            const Eigen::Index p = tucker_parameter_count(d, r);
             const double b =
                 t0[static_cast<std::size_t>(r1)] + t1[static_cast<std::size_t>(r2)] + t2[static_cast<std::size_t>(r3)];
             if (p < best_params || (p == best_params && b < best_bound)) {
@@ -120,16 +118,17 @@ Ranks ranks_for_compression(const ModeSpectra& spectra, double target_ratio) {
     const Ranks cap = caps(d);
     Ranks best{1, 1, 1};
     double best_bound = std::numeric_limits<double>::infinity();
-    Index best_params = std::numeric_limits<Index>::max();
-    for (Index r1 = 1; r1 <= cap[0]; ++r1) {
-        for (Index r2 = 1; r2 <= cap[1]; ++r2) {
+    Eigen::Index best_params = std::numeric_limits<Eigen::Index>::max();
+    for (Eigen::Index r1 = 1; r1 <= cap[0]; ++r1) {
+        for (Eigen::Index r2 = 1; r2 <= cap[1]; ++r2) {
             const double room = max_params - static_cast<double>(d[0] * r1 + d[1] * r2);
             if (room <= 0.0) continue;
             const double r3_max_real = std::floor(room / static_cast<double>(r1 * r2 + d[2]));
-            Index r3 = static_cast<Index>(std::min(r3_max_real, static_cast<double>(std::min(cap[2], r1 * r2))));
+            Eigen::Index r3 =
+                static_cast<Eigen::Index>(std::min(r3_max_real, static_cast<double>(std::min(cap[2], r1 * r2))));
             if (r3 < 1 || r3 < ceil_div(r1, r2) || r3 < ceil_div(r2, r1)) continue;
             const Ranks r{r1, r2, r3};
-            const Index p = tucker_parameter_count(d, r);
+            const Eigen::Index p = tucker_parameter_count(d, r);
             if (static_cast<double>(p) > max_params) continue;
             const double b =
                 t0[static_cast<std::size_t>(r1)] + t1[static_cast<std::size_t>(r2)] + t2[static_cast<std::size_t>(r3)];
@@ -152,11 +151,11 @@ Ranks ranks_for_tolerance(const ModeSpectra& spectra, double tolerance) {
     for (std::size_t n = 0; n < 3; ++n) {
         const VecX& s = spectra.squared_sv[n];
         const double threshold = tolerance * tolerance * s(0);
-        Index count = 0;
-        for (Index i = 0; i < s.size(); ++i) {
+        Eigen::Index count = 0;
+        for (Eigen::Index i = 0; i < s.size(); ++i) {
             if (s(i) > threshold) ++count;
         }
-        r[n] = std::max<Index>(1, count);
+        r[n] = std::max<Eigen::Index>(1, count);
     }
     return r;
 }
@@ -178,14 +177,14 @@ RankSelection select_ranks_for_error(const Tensor3& a, double target_relative, b
     if (refine_by_measurement) {
         // P(i, j, k): energy of the core block [0, i) x [0, j) x [0, k); the HOSVD at a prefix (i, j, k)
         // has squared error norm2 - P(i, j, k).
-        const Index n0 = rb[0] + 1, n1 = rb[1] + 1, n2 = rb[2] + 1;
+        const Eigen::Index n0 = rb[0] + 1, n1 = rb[1] + 1, n2 = rb[2] + 1;
         std::vector<double> p(static_cast<std::size_t>(n0 * n1 * n2), 0.0);
-        auto at = [&](Index i, Index j, Index k) -> double& {
+        auto at = [&](Eigen::Index i, Eigen::Index j, Eigen::Index k) -> double& {
             return p[static_cast<std::size_t>(i + n0 * (j + n1 * k))];
         };
-        for (Index k = 1; k < n2; ++k) {
-            for (Index j = 1; j < n1; ++j) {
-                for (Index i = 1; i < n0; ++i) {
+        for (Eigen::Index k = 1; k < n2; ++k) {
+            for (Eigen::Index j = 1; j < n1; ++j) {
+                for (Eigen::Index i = 1; i < n0; ++i) {
                     const double g = model.core(i - 1, j - 1, k - 1);
                     at(i, j, k) = g * g + at(i - 1, j, k) + at(i, j - 1, k) + at(i, j, k - 1) - at(i - 1, j - 1, k) -
                                   at(i - 1, j, k - 1) - at(i, j - 1, k - 1) + at(i - 1, j - 1, k - 1);
@@ -193,13 +192,13 @@ RankSelection select_ranks_for_error(const Tensor3& a, double target_relative, b
             }
         }
         Ranks best = rb;
-        Index best_params = tucker_parameter_count(b.spectra.dims, rb);
-        for (Index k = 1; k < n2; ++k) {
-            for (Index j = 1; j < n1; ++j) {
-                for (Index i = 1; i < n0; ++i) {
+        Eigen::Index best_params = tucker_parameter_count(b.spectra.dims, rb);
+        for (Eigen::Index k = 1; k < n2; ++k) {
+            for (Eigen::Index j = 1; j < n1; ++j) {
+                for (Eigen::Index i = 1; i < n0; ++i) {
                     const Ranks r{i, j, k};
                     if (!consistent(r) || norm2 - at(i, j, k) > budget) continue;
-                    const Index pc = tucker_parameter_count(b.spectra.dims, r);
+                    const Eigen::Index pc = tucker_parameter_count(b.spectra.dims, r);
                     if (pc < best_params) {
                         best = r;
                         best_params = pc;
