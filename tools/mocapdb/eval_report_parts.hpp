@@ -1,7 +1,8 @@
 #pragma once
 // The pieces of `mocapdb eval`'s writers (eval_report.hpp), one file per output kind: text helpers
 // (eval_report_text.cpp), CSV and SVG (eval_report_figures.cpp), results.json (eval_report_json.cpp),
-// verdict texts (eval_report_verdicts.cpp) and REPORT.md (eval_report.cpp). Formatting only.
+// verdict texts (eval_report_verdicts.cpp) and REPORT.md (eval_report.cpp, eval_report_later_sections.cpp).
+// Formatting only.
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -27,6 +28,13 @@ std::string fixed(const std::optional<double>& v, int decimals = 2);
 /// "12 %", or "" for a value that does not exist.
 std::string percent(const std::optional<double>& value);
 void put(const std::filesystem::path& path, const std::string& text);
+
+// REPORT.md's sections 4-8 (eval_report_later_sections.cpp).
+void reduction_section(std::ostream& o, const EvalResults& e);
+void skating_section(std::ostream& o, const EvalResults& e);
+void compression_section(std::ostream& o, const EvalResults& e);
+void runtime_section(std::ostream& o, const EvalResults& e);
+void caveats_section(std::ostream& o, const EvalResults& e);
 
 struct Table {
     std::vector<std::string> header;

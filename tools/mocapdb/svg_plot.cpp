@@ -10,7 +10,7 @@
 namespace mocapdb::cli {
 namespace {
 
-constexpr double kWidth = 760, kHeight = 520, kLeft = 90, kRight = 190, kTop = 50, kBottom = 80;
+constexpr double kPlotWidth = 760, kPlotHeight = 520, kPlotLeft = 90, kPlotRight = 190, kPlotTop = 50, kPlotBottom = 80;
 const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
 
 using svg::escape;
@@ -74,12 +74,12 @@ Axis fit_axis(const std::vector<PlotSeries>& series, bool x, bool log) {
 
 std::string render_line_plot(const PlotSpec& spec) {
     const Axis ax = fit_axis(spec.series, true, spec.log_x), ay = fit_axis(spec.series, false, spec.log_y);
-    const double x0 = kLeft, x1 = kWidth - kRight, y0 = kHeight - kBottom, y1 = kTop;
-    std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(kWidth) + "\" height=\"" +
-                      num(kHeight) + "\" viewBox=\"0 0 " + num(kWidth) + " " + num(kHeight) +
+    const double x0 = kPlotLeft, x1 = kPlotWidth - kPlotRight, y0 = kPlotHeight - kPlotBottom, y1 = kPlotTop;
+    std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(kPlotWidth) + "\" height=\"" +
+                      num(kPlotHeight) + "\" viewBox=\"0 0 " + num(kPlotWidth) + " " + num(kPlotHeight) +
                       "\" font-family=\"sans-serif\" font-size=\"12\">\n";
     svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    svg += "<text x=\"" + num(kWidth / 2) + "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">" +
+    svg += "<text x=\"" + num(kPlotWidth / 2) + "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">" +
            escape(spec.title) + "</text>\n";
     for (double t : ax.ticks()) {
         const double x = ax.map(t, x0, x1);
@@ -121,7 +121,7 @@ std::string render_line_plot(const PlotSpec& spec) {
                num(ly + 4) + "\">" + escape(s.name) + "</text>\n";
     }
     if (!spec.note.empty())
-        svg += "<text x=\"" + num(x0) + "\" y=\"" + num(kHeight - 12) + "\" font-size=\"10\" fill=\"#555\">" +
+        svg += "<text x=\"" + num(x0) + "\" y=\"" + num(kPlotHeight - 12) + "\" font-size=\"10\" fill=\"#555\">" +
                escape(spec.note) + "</text>\n";
     svg += "</svg>\n";
     return svg;
