@@ -123,7 +123,8 @@ void write_set_list(JsonWriter& j, const std::vector<SetRecord>& sets) {
 }
 
 void write_set_show(JsonWriter& j, const MotionSet& set, const std::vector<std::string>& labels,
-                    const std::optional<AlignedSet>& aligned) {
+                    const std::optional<AlignedSet>& aligned,
+                    const std::optional<synthesis::PredictorChoice>& predictor) {
     j.begin_object();
     j.key("name").value(set.name);
     j.key("parameter_source").value(set.parameter_source);
@@ -142,6 +143,9 @@ void write_set_show(JsonWriter& j, const MotionSet& set, const std::vector<std::
         j.key("dofs").value(static_cast<long long>(aligned->dofs()));
         j.key("reference").value(aligned->reference);
     }
+    j.key("predictor");
+    if (predictor) fields::predictor_choice(j, *predictor);
+    else j.null();
     j.key("samples").begin_array();
     for (std::size_t i = 0; i < set.samples.size(); ++i) {
         const SampleRef& s = set.samples[i];

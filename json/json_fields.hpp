@@ -1,6 +1,6 @@
 #pragma once
 // Members the documents of json/ share (private to the target): a number or null, a list of strings,
-// a vector of numbers, a shape or null, a set's repaired dropouts. Each writes into the open JSON
+// a vector of numbers, a shape or null, a set's repaired dropouts, a chosen predictor. Each writes into the open JSON
 // object or array of `j`.
 #include <array>
 #include <cstddef>
@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/synthesis/predictor_choice.hpp"
 #include "mocapdb_json/json_writer.hpp"
 
 namespace mocapdb::json::fields {
@@ -53,6 +54,15 @@ inline void repairs(JsonWriter& j, const std::vector<RepairedFrames>& runs) {
         j.key("begin").value(r.begin).key("end").value(r.end).end_object();
     }
     j.end_array();
+}
+
+/// {chosen, folds, samples, cv_rms: {name: value}} of a cross-validated predictor (no key: after key()).
+inline void predictor_choice(JsonWriter& j, const synthesis::PredictorChoice& c) {
+    j.begin_object().key("chosen").value(synthesis::to_string(c.chosen));
+    j.key("folds").value(c.folds).key("samples").value(c.samples);
+    j.key("cv_rms").begin_object();
+    for (const synthesis::PredictorScore& s : c.scores) j.key(synthesis::to_string(s.predictor)).value(s.cv_rms);
+    j.end_object().end_object();
 }
 
 }  // namespace mocapdb::json::fields

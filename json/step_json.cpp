@@ -154,6 +154,9 @@ void write_compression(JsonWriter& j, const std::string& set, const workflow::Co
     j.key("kernel_fit_samples");
     if (o.kernel_stored) j.value(static_cast<long long>(o.kernel_fit_samples));
     else j.null();
+    j.key("predictor");
+    if (o.kernel_predictor) fields::predictor_choice(j, *o.kernel_predictor);
+    else j.null();
     j.key("us_per_pose").value(o.us_per_pose);
     j.key("store_s").value(o.store_s);
     j.key("total_s").value(o.total_s);

@@ -31,6 +31,10 @@ void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthO
     j.key("load_s").value(r.load_s);
     j.key("precompute_s").value(r.precompute_s);
     j.key("kernel_stored").value(r.kernel_stored);
+    j.key("predictor").value(r.predictor);
+    j.key("predictor_choice");
+    if (r.predictor_choice) fields::predictor_choice(j, *r.predictor_choice);
+    else j.null();
     j.key("synth_s").value(o.seconds);
     j.key("output").value(r.output);
     j.end_object();
@@ -41,6 +45,7 @@ void write_pose_query(JsonWriter& j, const PoseQuery& q) {
     j.begin_object();
     j.key("set").value(q.set);
     j.key("model").value(q.model);
+    j.key("predictor").value(q.predictor);
     j.key("frame").value(q.frame);
     j.key("reliability").value(q.reliability);
     fields::strings(j, "warnings", q.warnings);

@@ -9,6 +9,7 @@
 
 #include "mocapdb/core/types.hpp"
 #include "mocapdb/motion/skeleton.hpp"
+#include "mocapdb/synthesis/predictor_choice.hpp"
 #include "mocapdb/tensor/unfold.hpp"
 #include "mocapdb/workflow/reliability_map.hpp"
 #include "mocapdb/workflow/set_reduction.hpp"
@@ -28,14 +29,17 @@ struct SynthReport {
     double load_s = 0.0;  ///< loading the set and the model
     double precompute_s = 0.0;
     bool kernel_stored = false;
-    std::string output;  ///< the BVH file written
+    std::string predictor;  ///< what blended the samples (synthesis::to_string(Predictor))
+    std::optional<synthesis::PredictorChoice> predictor_choice;  ///< the stored cross-validated choice
+    std::string output;                                          ///< the BVH file written
 };
 void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthOutcome& o);
 
 /// One pose of `mocapdb query`: as joint positions (3J by 1, cm) or as channels (1 by C).
 struct PoseQuery {
     std::string set;
-    std::string model;  ///< the model's kind()
+    std::string model;      ///< the model's kind()
+    std::string predictor;  ///< what blended the samples (synthesis::to_string(Predictor))
     double frame = 0.0;
     double reliability = 0.0;
     std::vector<std::string> warnings;

@@ -53,6 +53,10 @@ void bind_synthesis(py::module_& m) {
             "kind", [](const ModelHandle& h) { return std::string(h.model->kind()); },
             "'tucker' (the compressed model) or 'naive' (the uncompressed aligned tensor).")
         .def_property_readonly(
+            "predictor",
+            [](const ModelHandle& h) { return std::string(synthesis::to_string(h.model->report().predictor)); },
+            "What blends the samples: 'kriging', 'rbf' or 'trend' (the one compress chose by cross-validation).")
+        .def_property_readonly(
             "dofs", [](const ModelHandle& h) { return h.model->dofs(); }, "D, values per pose vector.")
         .def_property_readonly(
             "frames", [](const ModelHandle& h) { return h.model->frames(); },

@@ -5,7 +5,8 @@
 #   damage_dataset.py FILE nanclip CLIP replaces /clips/CLIP/channels_packed by float64 channels
 #                                       (format-v3 'channels') holding a NaN
 #   damage_dataset.py FILE attrs PATH NAME:T=VALUE ...
-#                                       sets attributes of object PATH: T is s (string) or f (float64)
+#                                       sets attributes of object PATH: T is s (string), f (float64)
+#                                       or i (int64)
 import sys
 
 import h5py
@@ -34,6 +35,9 @@ with h5py.File(file, "r+") as f:
         for a in assignments:
             name, value = a.split("=", 1)
             name, kind = name.split(":")
-            f[path].attrs[name] = float(value) if kind == "f" else value
+            if kind == "i":
+                f[path].attrs[name] = np.int64(value)
+            else:
+                f[path].attrs[name] = float(value) if kind == "f" else value
     else:
         sys.exit("unknown mode " + mode)

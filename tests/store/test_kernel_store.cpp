@@ -127,6 +127,10 @@ TEST_CASE("kernel: put_kernel_fit round-trips the variogram bit for bit; it goes
     CHECK(fit.residual_variance > 0.0);
     CHECK(back->assessed_status == fit.assessed_status);
     CHECK(back->residual_variance == fit.residual_variance);
+    // Every sample overlaps its neighbours (windows of one clip): no fold can leave one out with its twins,
+    // so no predictor was chosen and the model uses kriging.
+    CHECK_FALSE(fit.predictor.has_value());
+    CHECK_FALSE(back->predictor.has_value());
     const ValidationReport report = validate_database(path);
     INFO(all_violations(report));
     CHECK(report.ok());
@@ -148,6 +152,65 @@ TEST_CASE("kernel: put_kernel_fit round-trips the variogram bit for bit; it goes
         CHECK_THROWS_WITH(w.put_kernel_fit("walks", fit), Contains("the set has no stored model"));
         CHECK_THROWS_AS(w.view().load_kernel_fit("nope"), StoreError);
     }
+}
+
+TEST_CASE("kernel: the cross-validated predictor round-trips, is used by the loaded model and is checked when read",
+          "[store][kernel]") {
+    TempDir dir("kernel-predictor");
+    const auto path = dir / "db.h5";
+    const KernelFixture fx;
+    fx.write(path, false);
+    synthesis::KernelFit fit = synthesis::fit_kernel(fx.model, fx.aligned, fx.set, {});
+    synthesis::PredictorChoice choice;
+    choice.chosen = synthesis::Predictor::Trend;
+    choice.scores = {{synthesis::Predictor::Kriging, 2.5}, {synthesis::Predictor::Rbf, 3.25}, {synthesis::Predictor::Trend, 2.0}};
+    choice.folds = 4;
+    choice.samples = 6;
+    fit.predictor = choice;
+    {
+        DatabaseWriter w(path);
+        w.put_kernel_fit("walks", fit);
+        w.commit();
+    }
+    const auto back = Database(path).load_kernel_fit("walks");
+    REQUIRE(back->predictor.has_value());
+    CHECK(back->predictor->chosen == synthesis::Predictor::Trend);
+    REQUIRE(back->predictor->scores.size() == 3);
+    for (std::size_t k = 0; k < 3; ++k) {
+        CHECK(back->predictor->scores[k].predictor == choice.scores[k].predictor);
+        CHECK(back->predictor->scores[k].cv_rms == choice.scores[k].cv_rms);
+    }
+    CHECK(back->predictor->folds == 4);
+    CHECK(back->predictor->samples == 6);
+    const ValidationReport report = validate_database(path);
+    INFO(all_violations(report));
+    CHECK(report.ok());
+
+    // The loaded model blends with the stored choice unless told otherwise; rho stays the kriging kernel's.
+    const auto loaded = workflow::load_motion_model(Database(path), "walks");
+    CHECK(loaded->report().predictor == synthesis::Predictor::Trend);
+    REQUIRE(loaded->report().predictor_choice.has_value());
+    synthesis::SynthesisOptions kriging_options;
+    kriging_options.predictor = synthesis::Predictor::Kriging;
+    const auto kriged = workflow::load_motion_model(Database(path), "walks", kriging_options);
+    CHECK(kriged->report().predictor == synthesis::Predictor::Kriging);
+    const VecX c = fx.set.parameters.row(2).transpose();
+    CHECK(loaded->reliability(c) == kriged->reliability(c));
+    synthesis::Workspace ws;
+    VecX w_trend(6), w_kriging(6);
+    loaded->weights(c, w_trend, ws);
+    kriged->weights(c, w_kriging, ws);
+    CHECK(w_trend.sum() == Approx(1.0));
+    CHECK((w_trend - w_kriging).norm() > 1e-3);  // the trend does not interpolate: not kriging's e_2
+
+    set_kernel_attributes(path, {"predictor:s=spline"});
+    auto e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("'predictor'") && Contains("spline"));
+    set_kernel_attributes(path, {"predictor:s=rbf", "predictor_folds:i=9"});
+    e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("predictor_folds"));
 }
 
 TEST_CASE("kernel: put_kernel_fit refuses a fit without a key or with an invalid variogram", "[store][kernel]") {

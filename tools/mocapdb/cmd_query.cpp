@@ -18,6 +18,7 @@ struct QueryArgs {
     std::string param;
     double frame = 0.0;
     std::string lod;
+    std::string predictor = "auto";
     bool naive = false;
     bool joints = false;
     bool json = false;
@@ -27,7 +28,7 @@ void run_query(const QueryArgs& a) {
     const Database db(a.db);
     const MotionSet set = db.load_set(a.set);
     const VecX c = parse_parameters(a.param, set.parameter_names, set.parameter_units, "--param");
-    const auto model = load_synthesis_model(db, a.set, a.naive, a.lod);
+    const auto model = load_synthesis_model(db, a.set, a.naive, a.lod, "shared", a.predictor);
     if (!(a.frame >= 0.0 && a.frame <= static_cast<double>(model->frames() - 1)))
         throw InvalidArgument("--frame: the aligned frame must lie in [0, " + std::to_string(model->frames() - 1) +
                               "], got " + std::to_string(a.frame));
@@ -41,6 +42,7 @@ void run_query(const QueryArgs& a) {
     json::PoseQuery q;
     q.set = a.set;
     q.model = model->kind();
+    q.predictor = synthesis::to_string(model->report().predictor);
     q.frame = a.frame;
     q.reliability = rho;
     q.warnings = warnings;
@@ -55,7 +57,8 @@ void run_query(const QueryArgs& a) {
         std::fputs(j.str().c_str(), stdout);
         return;
     }
-    std::printf("pose of '%s' at frame %g (%s model), reliability %.3f:\n", a.set.c_str(), a.frame, model->kind(), rho);
+    std::printf("pose of '%s' at frame %g (%s model, %s), reliability %.3f:\n", a.set.c_str(), a.frame, model->kind(),
+                q.predictor.c_str(), rho);
     if (a.joints) {
         const MatX& p = q.joint_positions;
         for (std::size_t k = 0; k < sk.size(); ++k) {
@@ -92,6 +95,7 @@ void setup_query(CLI::App& app) {
     cmd->add_option("--param", a->param, "control parameters v1,v2,...")->required();
     cmd->add_option("--frame", a->frame, "aligned frame t")->required();
     cmd->add_option("--lod", a->lod, "level of detail: ranks R1xR2xR3");
+    add_predictor_option(cmd, a->predictor);
     cmd->add_flag("--naive", a->naive, "kriging on the uncompressed aligned tensor");
     cmd->add_flag("--joints", a->joints, "joint positions (cm) instead of channels");
     cmd->add_flag("--json", a->json, "machine-readable output");

@@ -69,9 +69,11 @@ void print_set(const Database& db, const std::string& name, bool json) {
     std::vector<std::string> labels;
     for (const SampleRef& s : set.samples) labels.push_back(sample_label(s, db.find_clip(s.clip)->frames));
     const auto aligned = db.load_aligned(name);
+    const auto kernel = db.load_kernel_fit(name);
+    const std::optional<synthesis::PredictorChoice> predictor = kernel ? kernel->predictor : std::nullopt;
     if (json) {
         JsonWriter j;
-        json::write_set_show(j, set, labels, aligned);
+        json::write_set_show(j, set, labels, aligned, predictor);
         std::cout << j.str();
         return;
     }
@@ -81,6 +83,7 @@ void print_set(const Database& db, const std::string& name, bool json) {
         std::printf("aligned: %s, %lld frames, %lld dofs, reference sample %zu\n", aligned->method.c_str(),
                     static_cast<long long>(aligned->frames()), static_cast<long long>(aligned->dofs()),
                     aligned->reference);
+    if (predictor) std::printf("synthesis predictor: %s\n", synthesis::describe(*predictor).c_str());
     std::printf("%-22s", "sample");
     for (std::size_t p = 0; p < set.parameter_names.size(); ++p) {
         const std::string h =

@@ -23,6 +23,7 @@ struct SynthArgs {
     std::string out;
     std::string lod;
     std::string timing = "shared";
+    std::string predictor = "auto";
     bool naive = false;
     bool json = false;
     bool force = false;
@@ -35,7 +36,7 @@ void run_synth(const SynthArgs& a) {
     const Database db(a.db);
     const MotionSet set = db.load_set(a.set);
     const VecX c = parse_parameters(a.param, set.parameter_names, set.parameter_units, "--param");
-    const auto model = load_synthesis_model(db, a.set, a.naive, a.lod, a.timing);
+    const auto model = load_synthesis_model(db, a.set, a.naive, a.lod, a.timing, a.predictor);
     const double load_s = std::chrono::duration<double>(Clock::now() - t0).count();
     const Eigen::Index level = a.lod.empty() ? 0 : 1;
 
@@ -63,6 +64,8 @@ void run_synth(const SynthArgs& a) {
         r.load_s = load_s;
         r.precompute_s = model->report().precompute_seconds;
         r.kernel_stored = model->report().kernel_precomputed;
+        r.predictor = synthesis::to_string(model->report().predictor);
+        r.predictor_choice = model->report().predictor_choice;
         r.output = a.out;
         JsonWriter j;
         json::write_synthesis(j, r, o);
@@ -73,8 +76,9 @@ void run_synth(const SynthArgs& a) {
     for (Eigen::Index k = 0; k < c.size(); ++k)
         std::printf("%s %s = %g %s", k ? "," : "", set.parameter_names[static_cast<std::size_t>(k)].c_str(), c(k),
                     set.parameter_units[static_cast<std::size_t>(k)].c_str());
-    std::printf(" (%s model, ranks %lldx%lldx%lld) -> %s\n", model->kind(), static_cast<long long>(ranks[0]),
-                static_cast<long long>(ranks[1]), static_cast<long long>(ranks[2]), a.out.c_str());
+    std::printf(" (%s model, ranks %lldx%lldx%lld, %s) -> %s\n", model->kind(), static_cast<long long>(ranks[0]),
+                static_cast<long long>(ranks[1]), static_cast<long long>(ranks[2]),
+                synthesis::to_string(model->report().predictor), a.out.c_str());
     std::printf("  reliability %.3f; %zu frames at %g Hz (%.2f s)%s\n", rho, clip.frame_count(), clip.frame_rate,
                 clip.duration(),
                 timing.clamped ? (", " + std::to_string(timing.clamped) + " timing increments clamped").c_str() : "");
@@ -99,7 +103,8 @@ void setup_synth(CLI::App& app) {
         "--param gives one value per parameter of the set, in the set's order and units (mocapdb set show).\n"
         "The compressed model needs `mocapdb compress` first; --naive krigs the uncompressed aligned tensor.\n"
         "--lod R1xR2xR3 synthesizes with the leading ranks only (level of detail). --timing separate krigs\n"
-        "the timing with its own kernel (the paper); shared (default) blends it with the poses' weights.");
+        "the timing with its own kernel (the paper); shared (default) blends it with the poses' weights.\n"
+        "--predictor: `compress` chooses kriging, RBF or the trend by cross-validation (mocapdb set show).");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     cmd->add_option("--set", a->set, "motion set")->required();
     cmd->add_option("--param", a->param, "control parameters v1,v2,...")->required();
@@ -107,6 +112,7 @@ void setup_synth(CLI::App& app) {
     cmd->add_option("--lod", a->lod, "level of detail: ranks R1xR2xR3");
     cmd->add_option("--timing", a->timing, "timing kernel: shared | separate")
         ->check(CLI::IsMember({"shared", "separate"}));
+    add_predictor_option(cmd, a->predictor);
     cmd->add_flag("--naive", a->naive, "kriging on the uncompressed aligned tensor");
     cmd->add_flag("--json", a->json, "machine-readable output");
     cmd->add_flag("--force", a->force, "overwrite an existing output file");

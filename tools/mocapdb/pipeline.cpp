@@ -228,6 +228,7 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                                           : std::string()) +
                 ")\n";
     }
+    if (o.kernel_predictor) text += "  synthesis predictor: " + synthesis::describe(*o.kernel_predictor) + "\n";
     if (!o.kernel_warning.empty()) text += "  warning: " + o.kernel_warning + "\n";
     return text;
 }

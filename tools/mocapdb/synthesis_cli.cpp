@@ -62,19 +62,32 @@ tensor::Ranks parse_ranks(const std::string& text, const std::string& option) {
 }
 
 std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& db, const std::string& set, bool naive,
-                                                                const std::string& lod, const std::string& timing) {
+                                                                const std::string& lod, const std::string& timing,
+                                                                const std::string& predictor) {
     synthesis::SynthesisOptions options;
     // A model whose stored kernel does not match (or that has none) fits it at load: show its progress.
     ProgressBar bar("synth: kernel fit");
     options.fit_progress = bar.callback();
     if (timing == "separate") options.timing_kernel = synthesis::SynthesisOptions::TimingKernel::Separate;
     else if (timing != "shared") throw InvalidArgument("--timing: expected shared or separate, got '" + timing + "'");
+    if (predictor != "auto") {
+        options.predictor = synthesis::parse_predictor(predictor);
+        if (!options.predictor)
+            throw InvalidArgument("--predictor: expected auto, kriging, rbf or trend, got '" + predictor + "'");
+    }
     if (naive) {
         if (!lod.empty()) throw InvalidArgument("--lod applies to the compressed model only (not with --naive)");
         return workflow::load_naive_motion_model(db, set, options);
     }
     if (!lod.empty()) options.levels.push_back(parse_ranks(lod, "--lod"));
     return workflow::load_motion_model(db, set, options);
+}
+
+void add_predictor_option(CLI::App* cmd, std::string& predictor) {
+    cmd->add_option("--predictor", predictor,
+                    "what blends the samples: auto (the one compress chose by cross-validation) | kriging | rbf | "
+                    "trend")
+        ->check(CLI::IsMember({"auto", "kriging", "rbf", "trend"}));
 }
 
 Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name,

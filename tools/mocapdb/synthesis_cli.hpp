@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
 
@@ -23,10 +25,15 @@ tensor::Ranks parse_ranks(const std::string& text, const std::string& option);
 
 /// The naive model (naive = true) or the stored compressed model, with an optional extra level of
 /// detail (lod = "R1xR2xR3", compressed only; it becomes level 1). timing: "shared" (default) or
-/// "separate" (synthesis_model.hpp).
+/// "separate" (synthesis_model.hpp). predictor: "auto" (the one `compress` chose and stored; kriging
+/// without a stored choice), "kriging", "rbf" or "trend" (synthesis/predictor_choice.hpp).
 std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& db, const std::string& set, bool naive,
                                                                 const std::string& lod,
-                                                                const std::string& timing = "shared");
+                                                                const std::string& timing = "shared",
+                                                                const std::string& predictor = "auto");
+
+/// Adds --predictor (auto | kriging | rbf | trend) to a synthesis command.
+void add_predictor_option(CLI::App* cmd, std::string& predictor);
 
 /// The warnings a synthesis at reliability rho deserves (workflow/synthesis_warnings.hpp), one line each.
 std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& model, double rho);

@@ -160,7 +160,7 @@ SampleTwins find_sample_twins(const MotionSet& set, const SampleFrames& frames, 
         throw InvalidArgument("twin detection: the tolerance must be > 0 cm and the shared share in (0, 1]");
     SampleTwins t;
     same_clip_pairs(set, options, t.pairs);
-    other_clip_pairs(set, frames, options, t.pairs);
+    if (frames) other_clip_pairs(set, frames, options, t.pairs);
     std::sort(t.pairs.begin(), t.pairs.end(),
               [](const TwinPair& x, const TwinPair& y) { return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b); });
     UnionFind uf(set.samples.size());

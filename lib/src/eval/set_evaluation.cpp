@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mocapdb/compression/dof_weights.hpp"
+#include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/eval/stored_eval_set.hpp"
 #include "mocapdb/gp/gp_metrics.hpp"
 #include "mocapdb/store/database.hpp"
+#include "mocapdb/synthesis/kernel_fit.hpp"
+#include "mocapdb/synthesis/predictor_choice.hpp"
+#include "mocapdb/synthesis/synthesis_model.hpp"
 
 namespace mocapdb::eval {
 namespace {
@@ -68,8 +73,43 @@ std::vector<std::vector<Eigen::Index>> twin_lists(const SampleTwins& twins, std:
     return out;
 }
 
-// Nested CV: per outer fold, the method of lowest pose error in an inner leave-one-out on the fold's
-// training samples alone.
+// What synthesis would choose on `training` alone (synthesis/predictor_choice.hpp), as `compress` does on
+// a whole set: the values are the samples' position-weighted, centred aligned poses (the naive model's,
+// whose distances the Tucker core slices keep), the kriging candidate has the variogram fitted to them.
+synthesis::Predictor synthesis_choice(const EvalSet& training, const std::vector<std::vector<Eigen::Index>>& twins,
+                                      std::size_t folds) {
+    const AlignedSet& a = training.aligned;
+    const VecX weight = compression::position_error_weights(*training.skeleton);
+    const Tensor3 x = compression::weighted_centred(a.tensor, compression::dof_means(a.tensor), weight);
+    const MatX values = Eigen::Map<const MatX>(x.data(), a.dofs() * a.frames(), a.samples()).transpose();
+    const kriging::ControlScaling scaling =
+        kriging::ControlScaling::from_data(training.set.parameters, training.set.parameter_periods);
+    const MatX xc = scaling.apply(training.set.parameters);
+    const synthesis::SynthesisOptions options;
+    const synthesis::KernelFit kernel =
+        synthesis::fit_coefficient_kernel(xc, values, options, "nested cross-validation");
+    std::vector<std::vector<std::size_t>> partners(twins.size());
+    for (std::size_t i = 0; i < twins.size(); ++i)
+        for (const Eigen::Index j : twins[i]) partners[i].push_back(static_cast<std::size_t>(j));
+    synthesis::PredictorChoiceOptions choice;
+    choice.folds = folds;
+    choice.elements_per_sample = static_cast<double>(a.dofs() * a.frames());
+    return synthesis::choose_predictor(xc, values, kernel.variogram, options.kriging, partners, choice).chosen;
+}
+
+// The method that evaluates `predictor` (the naive model's kriging, RBF or the trend).
+std::size_t method_of(const std::vector<MethodSpec>& methods, synthesis::Predictor predictor) {
+    const MethodKind kind = predictor == synthesis::Predictor::Kriging ? MethodKind::NaiveKriging
+                            : predictor == synthesis::Predictor::Rbf   ? MethodKind::Rbf
+                                                                       : MethodKind::TrendOnly;
+    for (std::size_t q = 0; q < methods.size(); ++q)
+        if (methods[q].kind == kind) return q;
+    throw InvalidArgument(std::string("nested cross-validation: no method evaluates the predictor '") +
+                          synthesis::to_string(predictor) + "' (set_methods gives one for each)");
+}
+
+// Nested CV: per outer fold, the predictor synthesis chooses on the fold's training samples alone (its
+// inner cross-validation never sees the held-out sample or its twins).
 std::vector<std::size_t> nested_picks(const EvalSet& set, const std::vector<MethodSpec>& methods,
                                       const std::vector<Eigen::Index>& folds,
                                       const std::vector<std::vector<Eigen::Index>>& twins, std::size_t inner_folds,
@@ -78,15 +118,7 @@ std::vector<std::size_t> nested_picks(const EvalSet& set, const std::vector<Meth
     for (Eigen::Index i : folds) {
         const std::vector<Eigen::Index> keep = loo_training(set.size(), i, twins);
         const EvalSet training = subset(set, keep);
-        LooOptions inner;
-        inner.foot_skating = false;
-        inner.twins = subset_twins(twins, keep);
-        inner.samples = evenly_spread(training.size(), inner_folds);
-        const LooResult r = leave_one_out(training, methods, inner);
-        std::size_t best = 0;
-        for (std::size_t q = 1; q < r.methods.size(); ++q)
-            if (r.methods[q].pose_mean_cm < r.methods[best].pose_mean_cm) best = q;
-        picks.push_back(best);
+        picks.push_back(method_of(methods, synthesis_choice(training, subset_twins(twins, keep), inner_folds)));
         if (progress) progress({++done, total, "nested " + set.labels[static_cast<std::size_t>(i)]});
     }
     return picks;
@@ -206,8 +238,12 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
     c.pose_mean = c.pose_mean_cm.mean();
     c.motion_mean = c.motion_mean_cm.mean();
     if (every_hit_measured) c.hit_rate = hits.mean();
-    for (std::size_t q = 1; q < out.methods.size(); ++q)
+    // The best of the predictors the choice is made among (kriging, RBF, trend), in hindsight.
+    c.best = method_of(methods, synthesis::Predictor::Kriging);
+    for (const synthesis::Predictor p : synthesis::all_predictors()) {
+        const std::size_t q = method_of(methods, p);
         if (out.methods[q].loo.pose_mean_cm < out.methods[c.best].loo.pose_mean_cm) c.best = q;
+    }
     const VecX diff = c.pose_mean_cm - out.methods[c.best].loo.sample_pose_mean_cm;
     c.diff_mean_cm = diff.mean();
     c.diff_se_cm = standard_error(diff);

@@ -51,6 +51,65 @@ std::string violation(const synthesis::KernelFit& fit) {
     return "";
 }
 
+// The cross-validated predictor (predictor_choice.hpp) as attributes of the kernel group.
+void write_predictor_choice(h5::File& file, const std::string& g, const synthesis::PredictorChoice& c) {
+    std::vector<std::string> names;
+    std::vector<double> cv;
+    for (const synthesis::PredictorScore& s : c.scores) {
+        names.emplace_back(synthesis::to_string(s.predictor));
+        cv.push_back(s.cv_rms);
+    }
+    file.write_string_attribute(g, "predictor", synthesis::to_string(c.chosen));
+    file.write_strings_attribute(g, "predictor_candidates", names);
+    file.write_doubles_attribute(g, "predictor_cv_rms", cv);
+    file.write_int_attribute(g, "predictor_folds", static_cast<std::int64_t>(c.folds));
+    file.write_int_attribute(g, "predictor_samples", static_cast<std::int64_t>(c.samples));
+}
+
+synthesis::Predictor predictor_named(const h5::File& file, const std::string& g, const std::string& attribute,
+                                     const std::string& name) {
+    if (const auto p = synthesis::parse_predictor(name)) return *p;
+    throw StoreError(
+        file.name(), g,
+        "attribute '" + attribute + "': expected \"kriging\", \"rbf\" or \"trend\", found \"" + name + "\"");
+}
+
+// The stored choice, checked: a known chosen predictor among the candidates, one finite cv >= 0 each.
+synthesis::PredictorChoice read_predictor_choice(const h5::File& file, const std::string& g) {
+    synthesis::PredictorChoice c;
+    c.chosen = predictor_named(file, g, "predictor", file.read_string_attribute(g, "predictor"));
+    const std::vector<std::string> names = file.read_strings_attribute(g, "predictor_candidates");
+    const std::vector<double> cv = file.read_doubles_attribute(g, "predictor_cv_rms");
+    if (names.size() != cv.size() || names.empty())
+        throw StoreError(file.name(), g,
+                         "attributes 'predictor_candidates' and 'predictor_cv_rms': expected the same non-zero "
+                         "length, found " +
+                             std::to_string(names.size()) + " and " + std::to_string(cv.size()));
+    bool chosen_listed = false;
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        const synthesis::Predictor p = predictor_named(file, g, "predictor_candidates", names[k]);
+        if (!(cv[k] >= 0.0) || !std::isfinite(cv[k]))
+            throw StoreError(file.name(), g,
+                             "attribute 'predictor_cv_rms': expected finite values >= 0, found " + number_text(cv[k]));
+        chosen_listed = chosen_listed || p == c.chosen;
+        c.scores.push_back({p, cv[k]});
+    }
+    if (!chosen_listed)
+        throw StoreError(file.name(), g,
+                         "attribute 'predictor': \"" + std::string(synthesis::to_string(c.chosen)) +
+                             "\" is not among 'predictor_candidates'");
+    const std::int64_t folds = file.read_int_attribute(g, "predictor_folds");
+    const std::int64_t samples = file.read_int_attribute(g, "predictor_samples");
+    if (folds < 1 || samples < folds)
+        throw StoreError(
+            file.name(), g,
+            "attributes 'predictor_folds' and 'predictor_samples': expected 1 <= folds <= samples, found " +
+                std::to_string(folds) + " and " + std::to_string(samples));
+    c.folds = static_cast<std::size_t>(folds);
+    c.samples = static_cast<std::size_t>(samples);
+    return c;
+}
+
 }  // namespace
 
 void check_kernel_fit(const synthesis::KernelFit& fit, const std::string& who) {
@@ -75,6 +134,7 @@ void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::K
         file.write_string_attribute(g, "fit_status", kriging::to_string(*fit.assessed_status));
         file.write_double_attribute(g, "residual_variance", fit.residual_variance);
     }
+    if (fit.predictor) write_predictor_choice(file, g, *fit.predictor);
     if (fit.system) {
         // The factorized system (C order; the library's column-major matrix transposed on the way).
         const kriging::CovarianceInverse& c = *fit.system;
@@ -169,6 +229,7 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
                              "attribute 'residual_variance': expected a finite number >= 0, found " +
                                  number_text(fit.residual_variance));
     }
+    if (file.has_attribute(g, "predictor")) fit.predictor = read_predictor_choice(file, g);
     if (file.exists(g + "/covariance_inverse")) fit.system = read_system(file, g);
     return fit;
 }

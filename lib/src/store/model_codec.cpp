@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "layout.hpp"
+#include "read_checks.hpp"
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/store/store_error.hpp"
 
@@ -49,25 +50,6 @@ double finite_attribute(const h5::File& file, const std::string& g, const char* 
                          std::string("attribute '") + name + "': expected a finite number" +
                              (non_negative ? " >= 0" : "") + ", found " + std::to_string(v));
     return v;
-}
-
-void expect_shape(const h5::File& file, const std::string& path, const h5::Shape& expected, const std::string& why,
-                  const h5::Shape& found) {
-    if (found != expected)
-        throw StoreError(file.name(), path,
-                         "expected shape " + h5::shape_text(expected) + " " + why + ", found " + h5::shape_text(found));
-}
-
-void expect_finite(const h5::File& file, const std::string& path, const double* begin, const double* end) {
-    const double* it = std::find_if(begin, end, [](double x) { return !std::isfinite(x); });
-    if (it != end)
-        throw StoreError(file.name(), path,
-                         "expected finite values, found " + std::to_string(*it) + " at element " +
-                             std::to_string(it - begin) + " (C order)");
-}
-
-void expect_finite(const h5::File& file, const std::string& path, const std::vector<double>& data) {
-    expect_finite(file, path, data.data(), data.data() + data.size());
 }
 
 }  // namespace

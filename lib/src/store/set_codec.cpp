@@ -4,33 +4,10 @@
 #include <cmath>
 
 #include "layout.hpp"
+#include "read_checks.hpp"
 #include "mocapdb/store/store_error.hpp"
 
 namespace mocapdb::store {
-namespace {
-
-[[noreturn]] void shape_error(const h5::File& file, const std::string& path, const h5::Shape& expected,
-                              const std::string& why, const h5::Shape& found) {
-    throw StoreError(file.name(), path,
-                     "expected shape " + h5::shape_text(expected) + " " + why + ", found " + h5::shape_text(found));
-}
-
-void expect_shape(const h5::File& file, const std::string& path, const h5::Shape& expected, const std::string& why,
-                  const h5::Shape& found) {
-    if (found != expected) shape_error(file, path, expected, why, found);
-}
-
-// Every value finite: a NaN or infinity read from the file is damage, refused where it is read (so a
-// writing session that reads it publishes nothing).
-void expect_finite(const h5::File& file, const std::string& path, const std::vector<double>& values) {
-    const auto bad = std::find_if(values.begin(), values.end(), [](double x) { return !std::isfinite(x); });
-    if (bad != values.end())
-        throw StoreError(file.name(), path,
-                         "expected finite values, found " + std::to_string(*bad) + " at element " +
-                             std::to_string(bad - values.begin()));
-}
-
-}  // namespace
 
 void write_set(h5::File& file, const MotionSet& set) {
     const std::string g = set_path(set.name);

@@ -13,6 +13,7 @@
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/dataset/aligned_set.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/dataset/sample_twins.hpp"
 #include "mocapdb/kriging/variogram.hpp"
 #include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/trend.hpp"
@@ -384,6 +385,16 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     // What the model built from this fit reports (SynthesisModel's precomputed path, on the same inputs
     // and hence the same key), so that loading a stored fit need not recompute it.
     if (values.allFinite()) fit.assessed_status = assess_coefficient_kernel(xc, values, fit.variogram, options);
+    // The predictor cross-validation picks (predictor_choice.hpp), leaving out the overlapping windows
+    // of a held-out sample's clip with it (twins of different clips need the frames: not here).
+    PredictorChoiceOptions choice;
+    choice.max_samples = std::max<std::size_t>(options.max_fit_samples, 5);
+    choice.elements_per_sample = static_cast<double>(aligned.dofs() * aligned.frames());
+    if (n >= 5 && values.allFinite()) {
+        const auto twins = find_sample_twins(set, SampleFrames{}).partners(static_cast<std::size_t>(n));
+        PredictorChoice c = choose_predictor(xc, values, fit.variogram, options.kriging, twins, choice);
+        if (c.folds > 0) fit.predictor = std::move(c);
+    }
     if (static_cast<std::size_t>(n) <= options.max_stored_system_samples)
         fit.system = std::make_shared<const kriging::CovarianceInverse>(
             kriging::Kriging::covariance_inverse(xc, fit.variogram, options.kriging));

@@ -51,8 +51,8 @@ MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& align
         level_ranks_.push_back(lod);
     }
     for (const tensor::Ranks& lod : level_ranks_) evaluators_.emplace_back(model_.tucker, lod);
-    // coefficients(c) = U_sample^T w(c) as one R3 by (N + K) product (kriging_predictor.hpp).
-    folded_ = kriging::KrigingPredictor::build(kriging_, u_sample_);
+    // Kriging: coefficients(c) = U_sample^T w(c) as one R3 by (N + K) product (kriging_predictor.hpp).
+    if (report_.predictor == Predictor::Kriging) folded_ = kriging::KrigingPredictor::build(kriging_, u_sample_);
 }
 
 tensor::Ranks MotionModel::level_ranks(Eigen::Index level) const {

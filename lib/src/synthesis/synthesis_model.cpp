@@ -6,6 +6,8 @@
 #include <string>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/kriging/rbf.hpp"
+#include "mocapdb/kriging/trend_interpolator.hpp"
 #include "mocapdb/motion/pose_vector.hpp"
 
 namespace mocapdb::synthesis {
@@ -116,6 +118,17 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     report_.status = kriging_.status();
     report_.fit_status = kernel_fit_.status;
     report_.loo_mean_z2 = kernel_fit_.loo_mean_z2;
+    // The weights' interpolator: the one asked for, else the stored choice of these inputs, else kriging.
+    if (report_.kernel_precomputed) report_.predictor_choice = kernel_fit_.predictor;
+    report_.predictor = options.predictor       ? *options.predictor
+                        : kernel_fit_.predictor ? kernel_fit_.predictor->chosen
+                                                : Predictor::Kriging;
+    if (report_.predictor == Predictor::Rbf) {
+        predictor_ = std::make_unique<kriging::RbfInterpolator>(kriging::RbfInterpolator::build(xc));
+    } else if (report_.predictor == Predictor::Trend) {
+        predictor_ = std::make_unique<kriging::TrendInterpolator>(
+            kriging::TrendInterpolator::build(xc, options.kriging.trend, options.kriging.trend_rank_tolerance));
+    }
 
     // Timing kernel on the inverse-warp increments.
     const MatX inc = aligned.inverse_warp_increments();  // T - 1 by N
@@ -166,7 +179,8 @@ void SynthesisModel::weights(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> o
     if (out.size() != samples()) {
         throw InvalidArgument("SynthesisModel::weights: out must have N = " + std::to_string(samples()) + " entries");
     }
-    kriging_.weights(ws.c_normalized, out, ws.kriging);
+    if (predictor_) predictor_->weights(ws.c_normalized, out, ws.kriging);
+    else kriging_.weights(ws.c_normalized, out, ws.kriging);
 }
 
 void SynthesisModel::coefficients(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, Workspace& ws) const {
@@ -220,7 +234,8 @@ void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref
         folded_.predict_batch(ws.c_normalized, ws.coefficients, ws.kriging);
     } else {
         if (ws.weights.rows() != samples() || ws.weights.cols() != q) ws.weights.resize(samples(), q);
-        kriging_.weights_batch(ws.c_normalized, ws.weights);
+        if (predictor_) predictor_->weights_batch(ws.c_normalized, ws.weights);
+        else kriging_.weights_batch(ws.c_normalized, ws.weights);
         coefficients_from_weights_batch(ws.weights, ws.coefficients);
     }
     poses_from_coefficients(ws.coefficients, t, out, ws, level);
@@ -251,7 +266,8 @@ Timing SynthesisModel::timing(const Eigen::Ref<const VecX>& c) const {
     } else {
         kriging::QueryWorkspace kws;
         VecX w(samples());
-        kriging_.weights(cn, w, kws);
+        if (predictor_) predictor_->weights(cn, w, kws);
+        else kriging_.weights(cn, w, kws);
         tm.increments.noalias() = increments_.transpose() * w;
     }
     tm.warp.resize(frames_);

@@ -116,6 +116,7 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
         o.kernel_variogram = kernel->variogram.to_string();
         o.kernel_status = kernel->status;
         o.kernel_warning = synthesis::fit_status_warning(*kernel);
+        o.kernel_predictor = kernel->predictor;
     }
 
     const auto store_start = Clock::now();

@@ -40,7 +40,8 @@ struct SampleTwins {
 /// caller that loads clips lazily should keep the last clip loaded.
 using SampleFrames = std::function<Clip(std::size_t index)>;
 
-/// The twins of `set`'s samples. InvalidArgument when the options are not finite and positive
+/// The twins of `set`'s samples; with an empty `frames`, only those of one clip (no frame is read).
+/// InvalidArgument when the options are not finite and positive
 /// (min_shared in (0, 1]).
 SampleTwins find_sample_twins(const MotionSet& set, const SampleFrames& frames, const TwinOptions& options = {});
 

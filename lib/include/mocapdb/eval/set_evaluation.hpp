@@ -4,11 +4,11 @@
 // (dataset/sample_twins.hpp), for naive kriging, RBF, the linear trend alone and, when the set has a
 // stored model, Tucker kriging at its ranks; per method the pose / motion error, the parameter hit
 // rate (extractor sets) and Pearson(rho, pose error); and the `chosen` predictor of nested
-// cross-validation: in each outer fold an inner leave-one-out on that fold's training samples only
-// (at most inner_folds, evenly spread) picks the method of lowest inner pose error, and the chosen
-// column is the outer error of those picks. Details and definitions: docs/evaluation.md.
+// cross-validation: in each outer fold the choice synthesis makes (synthesis/predictor_choice.hpp, with
+// at most inner_folds folds) on that fold's training samples only picks kriging, RBF or the trend, and the
+// chosen column is the outer error of those picks. Details and definitions: docs/evaluation.md.
 // Errors: InvalidArgument naming the set when it has fewer than 5 samples or a fold too few training
-// samples; those of load_eval_set. Cost: folds x (1 + inner folds) builds of every method.
+// samples; those of load_eval_set. Cost: folds builds of every method, and per fold a kernel fit and inner folds x 3 interpolators.
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -39,16 +39,16 @@ struct MethodEvaluation {
 };
 
 struct ChosenEvaluation {
-    std::vector<std::size_t> picks;   ///< per outer fold: index into methods
+    std::vector<std::size_t> picks;   ///< per outer fold: index into methods (kriging, rbf or trend)
     std::vector<std::size_t> counts;  ///< per method: folds that picked it
     VecX pose_mean_cm;                ///< per fold: outer pose error of the pick
     VecX motion_mean_cm;              ///< per fold: outer motion error of the pick
     double pose_mean = 0.0, motion_mean = 0.0;
     double pose_max = 0.0, motion_max = 0.0;  ///< the largest joint error of the picks' folds (as LooMethodResult)
     std::optional<double> hit_rate;           ///< empty without extractors
-    std::size_t best = 0;                     ///< the best single method (lowest outer pose mean, in hindsight)
-    double diff_mean_cm = 0.0;                ///< mean over folds of (chosen - best) pose error
-    std::optional<double> diff_se_cm;         ///< its paired standard error (SD / sqrt(folds)); empty for 1 fold
+    std::size_t best = 0;              ///< the best of kriging, RBF and trend (lowest outer pose mean, in hindsight)
+    double diff_mean_cm = 0.0;         ///< mean over folds of (chosen - best) pose error
+    std::optional<double> diff_se_cm;  ///< its paired standard error (SD / sqrt(folds)); empty for 1 fold
 };
 
 struct SetEvaluation {

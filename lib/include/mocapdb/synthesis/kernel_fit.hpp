@@ -15,6 +15,7 @@
 #include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/kriging/variogram_model.hpp"
+#include "mocapdb/synthesis/predictor_choice.hpp"
 
 namespace mocapdb {
 struct AlignedSet;
@@ -58,6 +59,9 @@ struct KernelFit {
     /// same key builds its kriging in O(N^2) instead of O(N^3) (3 000 samples load in
     /// seconds). Null otherwise, and when read from a kernel stored without it.
     std::shared_ptr<const kriging::CovarianceInverse> system;
+    /// The predictor cross-validation chose for these inputs (predictor_choice.hpp): set by fit_kernel,
+    /// stored with the kernel; empty when read from a kernel stored without it (kriging is then used).
+    std::optional<PredictorChoice> predictor;
 };
 
 /// Message for a fit status that is not Ok (what the CLI prints as a warning), "" for Ok.

@@ -25,6 +25,7 @@
 #include "mocapdb/motion/clip.hpp"
 #include "mocapdb/motion/skeleton.hpp"
 #include "mocapdb/synthesis/kernel_fit.hpp"
+#include "mocapdb/synthesis/predictor_choice.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
 namespace mocapdb::synthesis {
@@ -102,6 +103,9 @@ struct SynthesisOptions {
     /// the stored one). Used when its key equals kernel_key of the model's inputs and these options,
     /// ignored otherwise (the kernel is then fitted as without it). The naive model ignores it.
     std::optional<KernelFit> kernel_fit;
+    /// The interpolator of the sample weights (predictor_choice.hpp); empty = the choice stored with the
+    /// precomputed kernel_fit when it is used, kriging otherwise. rho always comes from the kriging kernel.
+    std::optional<Predictor> predictor;
 };
 
 /// What was built (for reports and the CLI).
@@ -116,6 +120,9 @@ struct SynthesisReport {
     double precompute_seconds = 0.0;   ///< construction time of the two kriging kernels
     bool kernel_precomputed = false;   ///< the coefficient kernel's variogram came from options.kernel_fit
     bool system_precomputed = false;   ///< and its factorized system (KernelFit::system) too
+    Predictor predictor = Predictor::Kriging;  ///< what blends the samples (SynthesisOptions::predictor)
+    /// The cross-validated choice stored with the kernel (empty for a kernel fitted here or stored without it).
+    std::optional<PredictorChoice> predictor_choice;
 };
 
 /// The synthesized timing of one motion.
@@ -251,9 +258,11 @@ protected:
     MatX coords_;
     kriging::ControlScaling scaling_;
     kriging::Kriging kriging_;
+    /// The weights' interpolator when report_.predictor is not kriging (null for kriging).
+    std::unique_ptr<kriging::Interpolator> predictor_;
     KernelFit kernel_fit_;
-    /// When not empty (set by the derived model): the coefficient vectors folded into the kriging
-    /// operator, used by coefficients() and poses() instead of weights + coefficients_from_weights.
+    /// When not empty (set by the derived model, for the kriging predictor only): the coefficient vectors
+    /// folded into the kriging operator, used by coefficients() and poses() instead of weights + coefficients_from_weights.
     kriging::KrigingPredictor folded_;
     kriging::MotionKriging timing_;
     SynthesisOptions::TimingKernel timing_kernel_ = SynthesisOptions::TimingKernel::Shared;

@@ -18,6 +18,7 @@
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/progress.hpp"
 #include "mocapdb/kriging/variogram_fit.hpp"
+#include "mocapdb/synthesis/predictor_choice.hpp"
 #include "mocapdb/tensor/tucker.hpp"
 
 namespace mocapdb::workflow {
@@ -58,6 +59,9 @@ struct CompressOutcome {
     std::string kernel_variogram;          ///< the stored kernel's variogram (empty when not stored)
     kriging::FitStatus kernel_status = kriging::FitStatus::Ok;  ///< its fit status
     std::string kernel_warning;  ///< synthesis::fit_status_warning, "" when the fit is clean
+    /// The predictor cross-validation chose, stored with the kernel (synthesis/predictor_choice.hpp);
+    /// empty without a kernel or when no sample could be left out.
+    std::optional<synthesis::PredictorChoice> kernel_predictor;
 
     double ratio() const { return static_cast<double>(raw_bytes) / static_cast<double>(bytes); }
 };

@@ -1,0 +1,65 @@
+#pragma once
+// Which interpolator blends a set's samples at synthesis time: universal kriging (the papers), RBF (Rose
+// et al.) or the linear trend alone, chosen by cross-validation on the set itself. The same procedure is
+// run by `compress` on the whole set (its choice is stored with the kernel and used by synth and query)
+// and by the evaluation inside every outer fold of its nested cross-validation, so that the error the
+// evaluation reports for the choice is the error of what synthesis does. Details: docs/synthesis.md.
+// Errors: InvalidArgument for bad shapes or options. Thread safety: pure functions.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
+#include "mocapdb/kriging/kriging.hpp"
+#include "mocapdb/kriging/rbf.hpp"
+#include "mocapdb/kriging/variogram_model.hpp"
+
+namespace mocapdb::synthesis {
+
+enum class Predictor { Kriging, Rbf, Trend };
+
+/// "kriging", "rbf", "trend".
+const char* to_string(Predictor predictor);
+/// The predictor of that name; empty for anything else.
+std::optional<Predictor> parse_predictor(const std::string& name);
+/// Every predictor, in the order of PredictorChoice::scores.
+const std::vector<Predictor>& all_predictors();
+
+struct PredictorScore {
+    Predictor predictor = Predictor::Kriging;
+    /// Mean over the folds of the held-out sample's root-mean-square value error (the values' units: for
+    /// synthesis models the position-weighted pose values of compression/dof_weights.hpp).
+    double cv_rms = 0.0;
+};
+
+struct PredictorChoice {
+    Predictor chosen = Predictor::Kriging;  ///< the lowest cv_rms (ties: the earlier in all_predictors())
+    std::vector<PredictorScore> scores;     ///< one per predictor, in all_predictors() order
+    std::size_t folds = 0;                  ///< held-out samples (each with its twins)
+    std::size_t samples = 0;                ///< samples the choice saw (N, or max_samples of them)
+};
+
+struct PredictorChoiceOptions {
+    std::size_t folds = 15;           ///< held-out samples, evenly spread in sample order; >= 1
+    std::size_t max_samples = 1000;   ///< larger sets choose on this many, evenly spread (O(n^3) per fold); >= 5
+    double elements_per_sample = 1.0; ///< cv_rms divides a fold's squared error by this (e.g. D x T)
+    kriging::RbfOptions rbf;
+};
+
+/// The cross-validated choice for samples at normalized control points xc (N by P) with values (N by S,
+/// finite): fold k leaves out sample i_k and its twins (twins: empty or N lists, sample i's twins, the
+/// samples that show some of its frames: dataset/sample_twins.hpp SampleTwins::partners), builds every
+/// predictor on the remaining samples (kriging with `variogram` and `kriging`, RBF with options.rbf, the
+/// trend of kriging.trend) and scores the held-out values. Folds with fewer than 3 training rows are
+/// skipped; when none remains, folds = 0 and the choice stays kriging. InvalidArgument when shapes
+/// disagree, values are not finite or options are out of range.
+PredictorChoice choose_predictor(const Eigen::Ref<const MatX>& xc, const Eigen::Ref<const MatX>& values,
+                                 const kriging::VariogramModel& variogram, const kriging::KrigingOptions& kriging,
+                                 const std::vector<std::vector<std::size_t>>& twins,
+                                 const PredictorChoiceOptions& options = {});
+
+/// "rbf (cv 2.02, kriging 2.1, trend 2.71; 15 folds of 45 samples)": the choice in one line.
+std::string describe(const PredictorChoice& choice);
+
+}  // namespace mocapdb::synthesis
