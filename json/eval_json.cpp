@@ -64,6 +64,28 @@ void write_eval_results(JsonWriter& j, const eval::EvalResults& e) {
             j.key("best_nugget_share").value(h.best.nugget).key("best_anisotropy").value(h.best_anisotropy);
             j.end_object();
         }
+        if (r.has_nested) {
+            // The predictor synthesis chooses, by nested cross-validation (the whole document: mocapdb eval --set).
+            const eval::SetEvaluation& n = r.nested;
+            const eval::ChosenEvaluation& c = n.chosen;
+            j.key("nested_choice").begin_object();
+            j.key("folds").value(n.folds.size()).key("inner_folds").value(n.inner_folds);
+            j.key("methods").begin_array();
+            for (std::size_t q = 0; q < n.methods.size(); ++q)
+                j.begin_object()
+                    .key("name")
+                    .value(n.methods[q].spec.name)
+                    .key("pose_mean_cm")
+                    .value(n.methods[q].loo.pose_mean_cm)
+                    .key("picked")
+                    .value(c.counts[q])
+                    .end_object();
+            j.end_array();
+            j.key("chosen_pose_mean_cm").value(c.pose_mean).key("best").value(n.methods[c.best].spec.name);
+            j.key("chosen_minus_best_cm").value(c.diff_mean_cm);
+            if (c.diff_se_cm) j.key("paired_se_cm").value(*c.diff_se_cm);
+            j.end_object();
+        }
         if (r.has_loo) {
             j.key("loo").begin_object();
             j.key("seconds").value(r.loo_seconds);

@@ -61,7 +61,7 @@ void check_evaluation(const Json& e, const std::string& set, const std::vector<s
 
 }  // namespace
 
-TEST_CASE("set create reports twins; eval --set on subject 16's gait cycles", "[cli][eval][twins][shared]") {
+TEST_CASE("set create reports twins, eval --set on subject 16's gait cycles", "[cli][eval][twins][shared]") {
     const auto cmu = datasets_dir() / "cmu-asfamc";
     MOCAPDB_REQUIRE_SHARED(cmu);
     TempDir dir("eval-set-cli");

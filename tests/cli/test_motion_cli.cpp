@@ -33,7 +33,7 @@ TEST_CASE("info --json reports 16_15: 471 frames at 120 Hz", "[cli][shared]") {
     CHECK(j["joints"][0]["parent"].kind == Json::Null);
 }
 
-TEST_CASE("info on a PFNN BVH warns about the short file; --strict refuses it", "[cli][shared]") {
+TEST_CASE("info on a PFNN BVH warns about the short file, --strict refuses it", "[cli][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
     const std::string file = quoted((datasets_dir() / "cmu-walkrun-pfnn" / "16_13_60fps.bvh").string());
     CommandResult r = run_cli("info " + file + " --fps 60");
@@ -45,7 +45,7 @@ TEST_CASE("info on a PFNN BVH warns about the short file; --strict refuses it", 
     CHECK_THAT(r.output, Contains("16_13_60fps.bvh") && Contains("declares 223 frames"));
 }
 
-TEST_CASE("a --fps the BVH's Frame Time contradicts warns with both; <= 0, absurd or NaN is a one-line error",
+TEST_CASE("a --fps the BVH's Frame Time contradicts warns with both, <= 0, absurd or NaN is a one-line error",
           "[cli][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
     const std::string file = quoted((datasets_dir() / "cmu-walkrun-pfnn" / "16_13_60fps.bvh").string());

@@ -162,7 +162,7 @@ TEST_CASE("synth between the samples: the BVH's measured turn and speed match th
     CHECK_THAT(r.err, Contains("expected 2 values") && Contains("turn [rad]") && Contains("speed [cm/s]"));
 }
 
-TEST_CASE("query prints a synthesized pose; at a sample it is the sample's pose", "[cli][synthesis][shared]") {
+TEST_CASE("query prints a synthesized pose, at a sample it is the sample's pose", "[cli][synthesis][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
     const WalkDb& w = walk_db();
     const Database db(w.path);
@@ -291,8 +291,9 @@ TEST_CASE("synth with the kernel compress stored writes the same BVH as fitting 
     const std::string c = csv_of(0.5 * (p.row(0) + p.row(1)).transpose());
     REQUIRE(Database(path).load_kernel_fit("walks").has_value());  // compress stored it
 
+    // (Kriging, as a model fitted at load uses: the stored choice of predictor goes with the stored kernel.)
     CommandResult r = run_cli("synth " + db + " --set walks --param " + c + " -o " + quoted((dir / "a.bvh").string()) +
-                              " --json");
+                              " --json --predictor kriging");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     CHECK(parse_json(r.out)["kernel_stored"].boolean);
@@ -310,4 +311,49 @@ TEST_CASE("synth with the kernel compress stored writes the same BVH as fitting 
     REQUIRE(r.exit_code == 0);
     CHECK_FALSE(parse_json(r.out)["kernel_stored"].boolean);
     CHECK(file_text(dir / "a.bvh") == file_text(dir / "b.bvh"));
+}
+
+TEST_CASE("compress chooses the predictor by cross-validation, set show shows it, synth and query use it",
+          "[cli][synthesis][shared]") {
+    MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
+    const WalkDb& w = walk_db();
+    TempDir dir("synth-predictor");
+    const MatX p = Database(w.path).load_set("walks").parameters;
+    const std::string c = csv_of(0.5 * (p.row(2) + p.row(3)).transpose());
+
+    CommandResult r = run_cli("set show " + w.db + " walks --json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    const Json shown = parse_json(r.out)["predictor"];
+    const std::string chosen = shown["chosen"].text;
+    CHECK(shown["folds"].number == 15);  // 25 whole clips: no twins, 15 evenly spread folds
+    CHECK(shown["samples"].number == 25);
+    for (const char* name : {"kriging", "rbf", "trend"}) CHECK(shown["cv_rms"][name].number >= shown["cv_rms"][chosen].number);
+    r = run_cli("set show " + w.db + " walks");
+    CHECK_THAT(r.out, Contains("synthesis predictor: " + chosen + " (cv "));
+
+    r = run_cli("synth " + w.db + " --set walks --param " + c + " -o " + quoted((dir / "default.bvh").string()) + " --json");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    Json j = parse_json(r.out);
+    CHECK(j["predictor"].text == chosen);
+    CHECK(j["predictor_choice"]["chosen"].text == chosen);
+    const double rho = j["reliability"].number;
+    const std::string other = chosen == "trend" ? "rbf" : "trend";
+    r = run_cli("synth " + w.db + " --set walks --param " + c + " -o " + quoted((dir / "other.bvh").string()) +
+                " --json --predictor " + other);
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    j = parse_json(r.out);
+    CHECK(j["predictor"].text == other);
+    CHECK(j["reliability"].number == rho);  // rho is the kriging kernel's whichever blends
+    CHECK(file_text(dir / "default.bvh") != file_text(dir / "other.bvh"));
+
+    r = run_cli("query " + w.db + " --set walks --param " + c + " --frame 3 --json");
+    REQUIRE(r.exit_code == 0);
+    CHECK(parse_json(r.out)["predictor"].text == chosen);
+    r = run_cli("synth " + w.db + " --set walks --param " + c + " -o " + quoted((dir / "x.bvh").string()) +
+                " --predictor spline");
+    CHECK(r.exit_code != 0);
+    CHECK_THAT(r.err, Contains("--predictor"));
 }

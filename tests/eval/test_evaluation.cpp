@@ -70,9 +70,10 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
     };
     const EvalResults e = run_evaluation(plan, test::datasets_dir() / "cmu-asfamc", describe_run("test", EvalMode::Tiny), observer);
     CHECK(done == std::vector<EvalStage>{EvalStage::BuildSet, EvalStage::LeaveOneOut, EvalStage::KernelHeadroom,
-                                         EvalStage::Constraint, EvalStage::Compression, EvalStage::Runtime});
-    CHECK(started == std::vector<EvalStage>{EvalStage::LeaveOneOut, EvalStage::KernelHeadroom, EvalStage::Constraint,
-                                            EvalStage::Compression, EvalStage::Runtime});
+                                         EvalStage::NestedChoice, EvalStage::Constraint, EvalStage::Compression,
+                                         EvalStage::Runtime});
+    CHECK(started == std::vector<EvalStage>{EvalStage::LeaveOneOut, EvalStage::KernelHeadroom, EvalStage::NestedChoice,
+                                            EvalStage::Constraint, EvalStage::Compression, EvalStage::Runtime});
     CHECK(e.info.command == "test");
     CHECK(e.info.mode == "tiny");
     CHECK(e.info.wall_seconds > 0.0);
@@ -92,6 +93,12 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
     CHECK(r.has_headroom);
     CHECK(r.headroom.kernels == 8);  // the tiny grid: 2 exponents x 2 ranges x 2 nugget shares
     CHECK(r.headroom.best_pose_mean_cm <= r.headroom.median_pose_mean_cm);
+    // The predictor synthesis chooses, by nested cross-validation over the leave-one-out's folds.
+    REQUIRE(r.has_nested);
+    CHECK(r.nested.folds.size() == r.loo.samples.size());
+    REQUIRE(r.nested.methods.size() == 3);
+    CHECK(r.nested.chosen.picks.size() == 3);
+    CHECK(r.nested.chosen.counts[0] + r.nested.chosen.counts[1] + r.nested.chosen.counts[2] == 3);
     CHECK(r.has_constraint);
     CHECK(r.constraint.grid.rows() == 9);
     CHECK_FALSE(r.has_reduction);

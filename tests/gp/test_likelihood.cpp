@@ -250,7 +250,7 @@ TEST_CASE("low-rank likelihood and gradient equal the dense and structured oracl
     }
 }
 
-TEST_CASE("Auto picks the low-rank path when it is cheaper; singular blocks are a status",
+TEST_CASE("Auto picks the low-rank path when it is cheaper, singular blocks are a status",
           "[gp][likelihood][lowrank]") {
     // Many outputs, rank 1: M = Q·T columns against n = D·T.
     HgpModel model = make_model(12, true, 1, 1);

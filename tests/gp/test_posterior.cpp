@@ -39,7 +39,7 @@ TEST_CASE("parent and child posteriors: structured equals dense", "[gp][posterio
     CHECK((pp.mean - predict_parent_dense(model, data, ts).mean).cwiseAbs().maxCoeff() < 1e-12);
 }
 
-TEST_CASE("observed frames of a child are reproduced; unobserved ones lean on the siblings", "[gp][posterior]") {
+TEST_CASE("observed frames of a child are reproduced, unobserved ones lean on the siblings", "[gp][posterior]") {
     const Eigen::Index d = 2, t = 15;
     HgpModel model = make_model(d, true, 1, 1);
     model.log_noise.setConstant(std::log(1e-6));

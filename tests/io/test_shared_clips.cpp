@@ -118,7 +118,7 @@ void check_pose_round_trips(const std::vector<LoadedClip>& clips) {
 
 }  // namespace
 
-TEST_CASE("every shared BVH clip loads; the 8 short files warn, and so does the 60 Hz override of every file",
+TEST_CASE("every shared BVH clip loads, the 8 short files warn, and so does the 60 Hz override of every file",
           "[shared][bvh]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-walkrun-pfnn");
     const auto& clips = test::shared_bvh_clips();

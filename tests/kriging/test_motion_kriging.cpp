@@ -137,7 +137,7 @@ TEST_CASE("Normalized control parameters make predictions independent of units",
     CHECK((c.scaling().scale.array() == 1.0).all());
 }
 
-TEST_CASE("Per-set kernel accepts a given dissimilarity; bad shapes throw", "[kriging][motion][errors]") {
+TEST_CASE("Per-set kernel accepts a given dissimilarity, bad shapes throw", "[kriging][motion][errors]") {
     const MotionSet m = make_motions(10, 2, 3, 45);
     Eigen::MatrixXd dis(10, 10);
     for (Eigen::Index i = 0; i < 10; ++i) {

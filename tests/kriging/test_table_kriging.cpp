@@ -74,7 +74,7 @@ TEST_CASE("table kriging on Meuse: residual variogram, fits and universal krigin
     CHECK(uk.status.duplicates_merged == 0);
 }
 
-TEST_CASE("table kriging: normalized coordinates scale the queries alike; too few rows refused", "[kriging][shared]") {
+TEST_CASE("table kriging: normalized coordinates scale the queries alike, too few rows refused", "[kriging][shared]") {
     MOCAPDB_REQUIRE_SHARED(gstat_dir() / "meuse_logzinc.csv");
     const ScalarTable t = read_scalar_table(gstat_dir() / "meuse_logzinc.csv", {"x", "y"}, "logzinc", true);
     REQUIRE(t.scaling.has_value());

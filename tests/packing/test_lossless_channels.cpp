@@ -103,7 +103,7 @@ TEST_CASE("channel packing: computed values, -0, NaN and infinities are kept exa
     CHECK(std::isnan(back(10, 2)));
 }
 
-TEST_CASE("channel packing: every predictor and level is exact; one frame works", "[store][packing]") {
+TEST_CASE("channel packing: every predictor and level is exact, one frame works", "[store][packing]") {
     std::vector<double> scales;
     const FrameMatrix m = amc_like(97, 5, scales);
     for (const int predictor : {0, 1, 2})

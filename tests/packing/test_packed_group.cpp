@@ -103,7 +103,7 @@ TEST_CASE("packing meets the bound on ASF/AMC clips", "[packing][shared]") {
     check_bound(test::read_shared_clips("cmu-asfamc", {"02_01", "05_02", "02_03"}), 400);
 }
 
-TEST_CASE("a decoded window equals the same frames of a full decode; poses by random access", "[packing]") {
+TEST_CASE("a decoded window equals the same frames of a full decode, poses by random access", "[packing]") {
     const std::vector<Clip> clips = procedural_walks();
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
@@ -132,7 +132,7 @@ TEST_CASE("a decoded window equals the same frames of a full decode; poses by ra
     }
 }
 
-TEST_CASE("packing refuses a bad bound; an empty group and one short clip work", "[packing]") {
+TEST_CASE("packing refuses a bad bound, an empty group and one short clip work", "[packing]") {
     const std::vector<Clip> clips = procedural_walks();
     const std::vector<const Clip*> one{&clips[0]};
     for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
@@ -165,7 +165,7 @@ TEST_CASE("packing refuses a bad bound; an empty group and one short clip work",
     CHECK(max_position_error(short_clip, decoder.decode_clip(0)) <= 0.1);
 }
 
-TEST_CASE("moving non-root position channels are coded too; a one-frame clip works", "[packing]") {
+TEST_CASE("moving non-root position channels are coded too, a one-frame clip works", "[packing]") {
     const Clip walk = procedural_walks()[2];
     const Skeleton& s = *walk.skeleton;
     const std::size_t forearm = *s.find("LeftForeArm");
@@ -225,7 +225,7 @@ TEST_CASE("a truncated or foreign packed group is refused with an error", "[pack
     CHECK_THROWS_WITH(GroupDecoder(older), Catch::Contains("version 1, this build reads 2 to 3"));
 }
 
-TEST_CASE("packing works at 24 Hz and 120 Hz; frame rates form separate groups", "[packing]") {
+TEST_CASE("packing works at 24 Hz and 120 Hz, frame rates form separate groups", "[packing]") {
     std::vector<Clip> clips;
     for (double rate : {24.0, 120.0}) {
         procedural::WalkOptions o;

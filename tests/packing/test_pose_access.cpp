@@ -258,7 +258,7 @@ TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are re
     CHECK(same_bits(row.data(), expected.data(), row.size()));
 }
 
-TEST_CASE("PoseIndex: bad indices are refused; threads sharing one index decode the decoder's bits", "[packing]") {
+TEST_CASE("PoseIndex: bad indices are refused, threads sharing one index decode the decoder's bits", "[packing]") {
     std::vector<Clip> clips;
     for (double turn : {0.0, 90.0, -45.0}) {
         procedural::WalkOptions o;

@@ -89,7 +89,7 @@ TEST_CASE("walk: gait cycles are found and last one generated period", "[procedu
     CHECK(m.cycle_s == Approx(1.32 / 1.3).margin(0.01));
 }
 
-TEST_CASE("walk: continuous, above the floor, deterministic; bad parameters refused", "[procedural]") {
+TEST_CASE("walk: continuous, above the floor, deterministic, bad parameters refused", "[procedural]") {
     for (const WalkParams& p : sample_walks()) {
         const WalkMotion m = generate_walk(p);
         const Continuity c = continuity(m.clip);

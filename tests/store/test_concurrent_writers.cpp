@@ -50,7 +50,7 @@ TEST_CASE("two concurrent imports of disjoint folders store every clip", "[store
         CHECK(e.path().filename().string().find(".tmp-mocapdb-") == std::string::npos);
 }
 
-TEST_CASE("a second writer gives up after its wait with a clear message; readers go on", "[store]") {
+TEST_CASE("a second writer gives up after its wait with a clear message, readers go on", "[store]") {
     TempDir dir("writers2");
     const auto db = dir / "db.h5";
     {

@@ -233,7 +233,7 @@ TEST_CASE("store: motion sets and aligned sets round-trip and the tensor is stor
     CHECK(validate_database(db_path).ok());
 }
 
-TEST_CASE("store: periodic parameters round-trip; sets without them store no parameter_period", "[store]") {
+TEST_CASE("store: periodic parameters round-trip, sets without them store no parameter_period", "[store]") {
     TempDir dir("periodic");
     const auto db_path = dir / "db.h5";
     const Clip clip = synthetic_clip(40, 3, 7);

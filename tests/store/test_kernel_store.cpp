@@ -96,7 +96,7 @@ std::pair<std::string, std::string> kernel_error(const std::filesystem::path& pa
 
 }  // namespace
 
-TEST_CASE("kernel: put_kernel_fit round-trips the variogram bit for bit; it goes with the model", "[store][kernel]") {
+TEST_CASE("kernel: put_kernel_fit round-trips the variogram bit for bit, it goes with the model", "[store][kernel]") {
     TempDir dir("kernel-roundtrip");
     const auto path = dir / "db.h5";
     const KernelFixture fx;

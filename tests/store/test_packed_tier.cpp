@@ -175,7 +175,7 @@ TEST_CASE("packed tier: a corrupted packed dataset gives a checksum error naming
     }
 }
 
-TEST_CASE("packed tier: E <= 0 or NaN refused; empty and one-clip databases pack", "[store][packed]") {
+TEST_CASE("packed tier: E <= 0 or NaN refused, empty and one-clip databases pack", "[store][packed]") {
     TempDir dir("packed-edges");
     const auto empty = dir / "empty.h5";
     {

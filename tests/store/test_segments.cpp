@@ -79,7 +79,7 @@ TEST_CASE("segments: an append writes one new segment and leaves the published o
     CHECK(validate_database(db).ok());
 }
 
-TEST_CASE("segments: a reader open across a commit keeps reading; dead segments go once it closes", "[store][shared][segments]") {
+TEST_CASE("segments: a reader open across a commit keeps reading, dead segments go once it closes", "[store][shared][segments]") {
     MOCAPDB_REQUIRE_SHARED(cmu());
     MOCAPDB_REQUIRE_CLI();
     TempDir dir("segments-reader");

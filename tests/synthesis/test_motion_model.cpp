@@ -284,7 +284,7 @@ TEST_CASE("synthesized motion exports to BVH and reloads", "[synthesis][shared]"
     CHECK(p_back(1) == Approx(p_clip(1)).epsilon(1e-5));
 }
 
-TEST_CASE("batched poses equal single poses; concurrent queries are bit-identical", "[synthesis][shared]") {
+TEST_CASE("batched poses equal single poses, concurrent queries are bit-identical", "[synthesis][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const Walks& w = walks();
     const Eigen::Index n = w.aligned.samples();
@@ -361,7 +361,7 @@ TEST_CASE("synthesis models reject bad queries and inputs", "[synthesis][shared]
     CHECK_THROWS_AS(NaiveMotionModel(w.aligned, w.set, w.skeleton, 0.0, w.weight), InvalidArgument);
 }
 
-TEST_CASE("timing kernels: the separate kernel interpolates too; the shared one keeps the speed", "[synthesis][shared]") {
+TEST_CASE("timing kernels: the separate kernel interpolates too, the shared one keeps the speed", "[synthesis][shared]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const Walks& w = walks();
     SynthesisOptions separate = exact_options();
@@ -446,7 +446,7 @@ TEST_CASE("folded coefficients equal the blend of the kriging weights", "[synthe
     }
 }
 
-TEST_CASE("a precomputed kernel gives exactly the synthesis of fitting it; other inputs' kernels are ignored",
+TEST_CASE("a precomputed kernel gives exactly the synthesis of fitting it, other inputs' kernels are ignored",
           "[synthesis][shared][kernel]") {
     MOCAPDB_REQUIRE_SHARED(test::datasets_dir() / "cmu-asfamc");
     const Walks& w = walks();

@@ -60,7 +60,7 @@ double cv_of(const PredictorChoice& c, Predictor p) {
 
 }  // namespace
 
-TEST_CASE("predictor choice: every candidate scored, the lowest chosen; a curve is not left to the trend",
+TEST_CASE("predictor choice: every candidate scored, the lowest chosen, a curve is not left to the trend",
           "[synthesis][predictor]") {
     const CurveData d = curve(25, 0.0, 1);
     const PredictorChoice c = choose(d);
@@ -88,7 +88,7 @@ TEST_CASE("predictor choice: pure noise about a constant favours the trend over 
     CHECK(c.chosen != Predictor::Rbf);
 }
 
-TEST_CASE("predictor choice: a sample's twins leave with it; a big set chooses on a bounded subset",
+TEST_CASE("predictor choice: a sample's twins leave with it, a big set chooses on a bounded subset",
           "[synthesis][predictor]") {
     // Every sample twice (the same values at the same point, e.g. a clip imported twice).
     const CurveData base = curve(12, 0.5, 3);
@@ -121,7 +121,7 @@ TEST_CASE("predictor choice: a sample's twins leave with it; a big set chooses o
     CHECK_THROWS_AS(choose(base, {}, bad), InvalidArgument);
 }
 
-TEST_CASE("a model built with a predictor blends with its weights, poses and timing; rho stays kriging's",
+TEST_CASE("a model built with a predictor blends with its weights, poses and timing, rho stays kriging's",
           "[synthesis][predictor][shared]") {
     const test::Subject16Set w = test::subject16_set({11, 12, 13, 14, 15, 16, 17, 18}, 16);
     const auto skeleton = w.clips.front().skeleton;

@@ -101,7 +101,7 @@ TEST_CASE("pack --max-bytes: the smallest E whose bytes fit, within the budget, 
     CHECK(run_cli("pack " + quoted(db.string()) + " --max-bytes 0 --force").exit_code != 0);
 }
 
-TEST_CASE("pack: parts sum to the bytes in total and per group; no group of one clip", "[store][packed]") {
+TEST_CASE("pack: parts sum to the bytes in total and per group, no group of one clip", "[store][packed]") {
     TempDir dir("pack-parts");
     const auto db = small_database(dir);
     workflow::PackDatabaseOptions o;

@@ -108,7 +108,7 @@ TEST_CASE("workflow: compress_set with explicit ranks and HOOI, and its errors",
     CHECK_FALSE(Database(w.path).load_model("few").has_value());
 }
 
-TEST_CASE("workflow: a set without control parameters compresses; synthesis says why it cannot", "[workflow][shared]") {
+TEST_CASE("workflow: a set without control parameters compresses, synthesis says why it cannot", "[workflow][shared]") {
     // Found while measuring #16: compress stopped after its rank search with an internal class's
     // message, because the synthesis kernel needs parameters. Real clips: subject 16's walks.
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");

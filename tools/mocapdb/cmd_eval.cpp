@@ -43,6 +43,7 @@ std::string bar_label(eval::EvalStage stage, const std::string& set) {
     switch (stage) {
         case eval::EvalStage::LeaveOneOut: return "eval " + set + ": leave-one-out";
         case eval::EvalStage::KernelHeadroom: return "eval " + set + ": kernel headroom";
+        case eval::EvalStage::NestedChoice: return "eval " + set + ": nested cross-validation";
         case eval::EvalStage::Constraint: return "eval " + set + ": constraints";
         case eval::EvalStage::Reduction: return "eval " + set + ": reduction";
         case eval::EvalStage::Compression: return "eval " + set + ": compression";
@@ -68,6 +69,10 @@ void print_stage(const eval::EvalStageDone& d) {
         case eval::EvalStage::KernelHeadroom:
             say("[eval] %s: kernel headroom over %lld kernels (%.1f s)\n", name,
                 static_cast<long long>(d.results->headroom.kernels), d.seconds);
+            break;
+        case eval::EvalStage::NestedChoice:
+            say("[eval] %s: nested cross-validation of the predictor choice over %zu folds (%.1f s)\n", name,
+                d.results->nested.folds.size(), d.seconds);
             break;
         case eval::EvalStage::Constraint:
             say("[eval] %s: constraint accuracy on %lld grid points (%.1f s)\n", name,

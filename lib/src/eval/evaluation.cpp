@@ -138,6 +138,13 @@ EvalResults run_evaluation(const EvalPlan& plan, const std::filesystem::path& cm
                 r.headroom = kernel_headroom(set, ho, progress);
                 r.has_headroom = true;
             });
+            SetEvaluationOptions no;
+            no.max_folds = lo.samples.size();
+            if (set.size() >= 5)  // nested cross-validation needs 5 (smoke-test sets may have fewer)
+                stage(observer, EvalStage::NestedChoice, set, &r, [&](const ProgressCallback& progress) {
+                    r.nested = evaluate_set(set, set_methods({0, 0, 0}), no, progress);
+                    r.has_nested = true;
+                });
         }
         if (sp.constraint) {
             r.constraint_options = plan.constraint;

@@ -16,7 +16,8 @@ std::vector<Eigen::Index> spread_rows(Eigen::Index n, std::size_t count) {
     const auto m = std::min<Eigen::Index>(n, static_cast<Eigen::Index>(count));
     if (m == 1) return {0};
     const double step = static_cast<double>(n - 1) / static_cast<double>(m - 1);
-    for (Eigen::Index i = 0; i < m; ++i) out.push_back(static_cast<Eigen::Index>(std::lround(step * static_cast<double>(i))));
+    for (Eigen::Index i = 0; i < m; ++i)
+        out.push_back(static_cast<Eigen::Index>(std::lround(step * static_cast<double>(i))));
     return out;
 }
 
@@ -25,7 +26,8 @@ std::unique_ptr<kriging::Interpolator> build_predictor(Predictor p, const MatX& 
                                                        const kriging::KrigingOptions& kriging,
                                                        const kriging::RbfOptions& rbf) {
     switch (p) {
-        case Predictor::Kriging: return std::make_unique<kriging::Kriging>(kriging::Kriging::build(x, variogram, kriging));
+        case Predictor::Kriging:
+            return std::make_unique<kriging::Kriging>(kriging::Kriging::build(x, variogram, kriging));
         case Predictor::Rbf: return std::make_unique<kriging::RbfInterpolator>(kriging::RbfInterpolator::build(x, rbf));
         case Predictor::Trend:
             return std::make_unique<kriging::TrendInterpolator>(
@@ -97,7 +99,8 @@ PredictorChoice choose_predictor(const Eigen::Ref<const MatX>& xc, const Eigen::
     for (const Eigen::Index i : spread_rows(n, options.folds)) {
         std::vector<bool> out_of_training(static_cast<std::size_t>(n), false);
         out_of_training[static_cast<std::size_t>(i)] = true;
-        for (const Eigen::Index t : twins_of[static_cast<std::size_t>(i)]) out_of_training[static_cast<std::size_t>(t)] = true;
+        for (const Eigen::Index t : twins_of[static_cast<std::size_t>(i)])
+            out_of_training[static_cast<std::size_t>(t)] = true;
         std::vector<Eigen::Index> train;
         for (Eigen::Index k = 0; k < n; ++k)
             if (!out_of_training[static_cast<std::size_t>(k)]) train.push_back(k);
@@ -134,10 +137,8 @@ std::string describe(const PredictorChoice& choice) {
     std::string chosen, others;
     for (const PredictorScore& score : choice.scores) {
         std::snprintf(buf, sizeof buf, "%.3g", score.cv_rms);
-        if (score.predictor == choice.chosen)
-            chosen = buf;
-        else
-            others += std::string(", ") + to_string(score.predictor) + " " + buf;
+        if (score.predictor == choice.chosen) chosen = buf;
+        else others += std::string(", ") + to_string(score.predictor) + " " + buf;
     }
     return std::string(to_string(choice.chosen)) + " (cv " + chosen + others + "; " + std::to_string(choice.folds) +
            " folds of " + std::to_string(choice.samples) + " samples)";

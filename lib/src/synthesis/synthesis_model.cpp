@@ -118,11 +118,10 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     report_.status = kriging_.status();
     report_.fit_status = kernel_fit_.status;
     report_.loo_mean_z2 = kernel_fit_.loo_mean_z2;
-    // The weights' interpolator: the one asked for, else the stored choice of these inputs, else kriging.
+    // The weights' interpolator: the one asked for, kriging by default (workflow::load_motion_model asks
+    // for the stored choice).
     if (report_.kernel_precomputed) report_.predictor_choice = kernel_fit_.predictor;
-    report_.predictor = options.predictor       ? *options.predictor
-                        : kernel_fit_.predictor ? kernel_fit_.predictor->chosen
-                                                : Predictor::Kriging;
+    report_.predictor = options.predictor.value_or(Predictor::Kriging);
     if (report_.predictor == Predictor::Rbf) {
         predictor_ = std::make_unique<kriging::RbfInterpolator>(kriging::RbfInterpolator::build(xc));
     } else if (report_.predictor == Predictor::Trend) {

@@ -33,6 +33,10 @@ std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, co
                                        "set '" + name + "' in " + db.path().string() + " has no compressed model");
     synthesis::SynthesisOptions with_fit = options;
     if (!with_fit.kernel_fit) with_fit.kernel_fit = db.load_kernel_fit(name);  // nullopt for models stored without one
+    // The predictor compress chose for these inputs, unless another is asked for.
+    if (!with_fit.predictor && with_fit.kernel_fit && with_fit.kernel_fit->predictor &&
+        with_fit.kernel_fit->key == synthesis::kernel_key(stored->model, d.set, with_fit))
+        with_fit.predictor = with_fit.kernel_fit->predictor->chosen;
     return std::make_unique<synthesis::MotionModel>(std::move(stored->model), d.timing, d.set, std::move(d.skeleton),
                                                     d.frame_rate, with_fit);
 }

@@ -1,7 +1,8 @@
 #pragma once
 // The evaluation as a library step (`mocapdb eval`): builds the sets of a plan
 // (evaluation_plan.hpp) from the CMU clips and runs every experiment on them (leave-one-out prediction,
-// constraint accuracy, sample reduction, compression, runtime), returning every number; the verdicts
+// the predictor synthesis chooses by nested cross-validation, constraint accuracy, sample reduction,
+// compression, runtime), returning every number; the verdicts
 // drawn from them are verdicts.hpp, the renderings (REPORT.md, CSV, JSON, SVG) are the caller's.
 // Nothing is printed: the observer hears when a stage starts (and gets a progress callback from it)
 // and when it is done.
@@ -23,6 +24,7 @@
 #include "mocapdb/eval/loo_prediction.hpp"
 #include "mocapdb/eval/reduction_curve.hpp"
 #include "mocapdb/eval/runtime_scaling.hpp"
+#include "mocapdb/eval/set_evaluation.hpp"
 #include "mocapdb/eval/synthesis_method.hpp"
 
 namespace mocapdb::eval {
@@ -55,6 +57,10 @@ struct SetResults {
     double loo_seconds = 0.0;
     bool has_headroom = false;  ///< run with the leave-one-out, over its left-out samples
     KernelHeadroom headroom;
+    /// Run with the leave-one-out, over its left-out samples: kriging, RBF, trend and the predictor
+    /// synthesis would choose, by nested cross-validation (set_evaluation.hpp).
+    bool has_nested = false;
+    SetEvaluation nested;
     bool has_constraint = false;
     ConstraintResult constraint;
     ConstraintOptions constraint_options;
@@ -73,7 +79,16 @@ struct EvalResults {
     std::vector<RuntimeRow> runtime;
 };
 
-enum class EvalStage { BuildSet, LeaveOneOut, KernelHeadroom, Constraint, Reduction, Compression, Runtime };
+enum class EvalStage {
+    BuildSet,
+    LeaveOneOut,
+    KernelHeadroom,
+    NestedChoice,
+    Constraint,
+    Reduction,
+    Compression,
+    Runtime
+};
 
 /// A finished stage: the set it worked on, that set's results so far (null for BuildSet and Runtime)
 /// and its wall-clock seconds.

@@ -41,9 +41,9 @@ struct PredictorChoice {
 };
 
 struct PredictorChoiceOptions {
-    std::size_t folds = 15;           ///< held-out samples, evenly spread in sample order; >= 1
-    std::size_t max_samples = 1000;   ///< larger sets choose on this many, evenly spread (O(n^3) per fold); >= 5
-    double elements_per_sample = 1.0; ///< cv_rms divides a fold's squared error by this (e.g. D x T)
+    std::size_t folds = 15;            ///< held-out samples, evenly spread in sample order; >= 1
+    std::size_t max_samples = 1000;    ///< larger sets choose on this many, evenly spread (O(n^3) per fold); >= 5
+    double elements_per_sample = 1.0;  ///< cv_rms divides a fold's squared error by this (e.g. D x T)
     kriging::RbfOptions rbf;
 };
 

@@ -103,8 +103,9 @@ struct SynthesisOptions {
     /// the stored one). Used when its key equals kernel_key of the model's inputs and these options,
     /// ignored otherwise (the kernel is then fitted as without it). The naive model ignores it.
     std::optional<KernelFit> kernel_fit;
-    /// The interpolator of the sample weights (predictor_choice.hpp); empty = the choice stored with the
-    /// precomputed kernel_fit when it is used, kriging otherwise. rho always comes from the kriging kernel.
+    /// The interpolator of the sample weights (predictor_choice.hpp); empty = kriging (a stored model's
+    /// default is the choice stored with its kernel: workflow::load_motion_model). rho always comes from
+    /// the kriging kernel.
     std::optional<Predictor> predictor;
 };
 

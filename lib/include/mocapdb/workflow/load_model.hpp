@@ -14,7 +14,8 @@ namespace mocapdb::workflow {
 /// The set's stored model (`mocapdb compress`), aligned timing and shape (load_aligned_timing: the
 /// aligned tensor's values are not read, the model does not use them), parameters, skeleton and frame
 /// rate from the database, and (unless options.kernel_fit is set) the model's stored kernel fit
-/// (Database::load_kernel_fit; used when its key matches, kernel_fit.hpp). InvalidArgument naming the
+/// (Database::load_kernel_fit; used when its key matches, kernel_fit.hpp) with, unless options.predictor
+/// is set, the predictor stored with it (predictor_choice.hpp). InvalidArgument naming the
 /// command to run when the set is not aligned or has no model; StoreError for a malformed stored kernel.
 std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, const std::string& set,
                                                           const synthesis::SynthesisOptions& options = {});
