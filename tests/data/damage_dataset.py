@@ -6,6 +6,10 @@
 #                                       (format-v3 'channels') holding a NaN
 #   damage_dataset.py FILE attrs PATH NAME:T=VALUE ...
 #                                       sets attributes of object PATH: T is s (string) or f (float64)
+#   damage_dataset.py FILE deflate PATH rewrites dataset PATH (values and attributes kept) with shuffle +
+#                                       deflate + fletcher32, as files written before 2026-12-06 hold
+#                                       the synthesis kernel's covariance_inverse
+#   damage_dataset.py FILE filters PATH prints the filters of dataset PATH, comma-separated
 import sys
 
 import h5py
@@ -35,5 +39,18 @@ with h5py.File(file, "r+") as f:
             name, value = a.split("=", 1)
             name, kind = name.split(":")
             f[path].attrs[name] = float(value) if kind == "f" else value
+    elif mode == "deflate":
+        d = f[path]
+        values, attrs = d[...], dict(d.attrs)
+        parent, name = d.parent, path.rsplit("/", 1)[1]
+        del parent[name]
+        d = parent.create_dataset(name, data=values, chunks=True, shuffle=True, compression="gzip",
+                                  fletcher32=True)
+        for key, value in attrs.items():
+            d.attrs[key] = value
+    elif mode == "filters":
+        d = f[path]
+        names = (["shuffle"] if d.shuffle else []) + (["deflate"] if d.compression == "gzip" else [])
+        print(",".join(names + (["fletcher32"] if d.fletcher32 else [])))
     else:
         sys.exit("unknown mode " + mode)
