@@ -230,7 +230,8 @@ void bind_database(py::module_& m) {
              "The set's SynthesisModel: the stored Tucker model (mocapdb compress) with its stored kernel, or with "
              "naive=True kriging of the uncompressed aligned tensor (needs only mocapdb align). progress: None or "
              "a callable progress(done, total, item), called while a kernel that is not stored (naive=True, or a "
-             "model compressed before kernels were) is fitted (item 'kernel')."
+             "model compressed before kernels were) is fitted (item 'kernel') and while a kriging system that is "
+             "not stored is factorized (item 'kernel system')."
              "\n\nExample:\n    >>> model = db.synthesis_model('walks')")
         .def(
             "close", [](DatabaseHandle& h) { h.db.reset(); },

@@ -115,7 +115,9 @@ def test_a_progress_callable_that_raises(db_copy):
     with mocapdb.open(db_copy) as db:
         calls = []
         db.synthesis_model("walks", naive=True, progress=lambda done, total, item: calls.append((item, done, total)))
-        assert calls and calls[-1][0] == "kernel" and calls[-1][1] == calls[-1][2]
+        # A model fitted at load: its candidate variograms, then its system factorized (no stored one).
+        assert [item for item, _, _ in calls][-1] == "kernel system" and calls[-1][1] == calls[-1][2]
+        assert ("kernel", 1, calls[0][2]) == calls[0]
 
 
 def test_workflow_errors(shared, tmp_path):
