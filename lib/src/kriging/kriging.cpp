@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/huge_pages.hpp"
 #include "gamma_vector.hpp"
 #include "query_kernels.hpp"
 #include "prepared_points.hpp"
@@ -60,6 +61,7 @@ Eigen::MatrixXd inverse_of_factor(const Eigen::LLT<Eigen::MatrixXd>& llt, const 
     const Eigen::MatrixXd& l = llt.matrixLLT();
     const Eigen::Index m = l.rows();
     Eigen::MatrixXd inv(m, m);
+    advise_huge_pages(inv);
     Eigen::MatrixXd x;
     for (Eigen::Index j0 = 0; j0 < m; j0 += kInverseBlock) {
         const Eigen::Index nb = std::min(kInverseBlock, m - j0);
@@ -130,6 +132,7 @@ Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const
 void fill_gamma(const Eigen::MatrixXd& points, const VariogramModel& model, Eigen::MatrixXd& gamma) {
     const Eigen::Index m = points.rows();
     gamma.resize(m, m);
+    advise_huge_pages(gamma);
     for (Eigen::Index j = 0; j < m; ++j)
         detail::gamma_vector(points.bottomRows(m - j), model, points.row(j).transpose(), gamma.col(j).tail(m - j));
     each_lower_pair(m, [&gamma](Eigen::Index i, Eigen::Index j) { gamma(j, i) = gamma(i, j); });
@@ -137,7 +140,9 @@ void fill_gamma(const Eigen::MatrixXd& points, const VariogramModel& model, Eige
 
 // The covariance matrix nugget + sill - gamma off the diagonal, nugget + sill on it.
 Eigen::MatrixXd covariance_of(const Eigen::MatrixXd& gamma, double total_sill) {
-    Eigen::MatrixXd cov = (total_sill - gamma.array()).matrix();
+    Eigen::MatrixXd cov(gamma.rows(), gamma.cols());
+    advise_huge_pages(cov);
+    cov = (total_sill - gamma.array()).matrix();
     cov.diagonal().setConstant(total_sill);
     return cov;
 }
@@ -240,6 +245,8 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     v.noalias() = cinv_f * k.s_inverse_;
     // Wc = C^-1 - V (C^-1 F)^T, exactly symmetric; built in place (a computed inverse is moved in).
     if (reuse) {
+        k.kernel_inverse_.resize(m, m);
+        advise_huge_pages(k.kernel_inverse_);
         k.kernel_inverse_ = cinv;
     } else {
         k.kernel_inverse_ = std::move(computed);
@@ -251,6 +258,7 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     // weight_operator_ below, and solve_block reads Wc and V.
     if (!ols) {
         k.operator_.resize(m, m + kk);
+        advise_huge_pages(k.operator_);
         k.operator_.leftCols(m) = -k.kernel_inverse_;
         k.operator_.rightCols(kk) = v;
     }
@@ -265,6 +273,7 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
         // g(c) = [1, g_u(c)] the trend basis at c (as for GLS).
         const Eigen::Index r = k.ols_u_.cols();
         k.weight_operator_.resize(m, m + 1 + r);
+        advise_huge_pages(k.weight_operator_);
         k.weight_operator_.leftCols(m) = -k.kernel_inverse_;
         k.weight_operator_.col(m) = v;
         if (r > 0) {

@@ -6,12 +6,15 @@
 
 #include <algorithm>
 
+#include "mocapdb/core/huge_pages.hpp"
+
 namespace mocapdb::kriging::detail {
 
 Eigen::VectorXd pack_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& a, double sign) {
     const Eigen::Index m = a.rows();
     const Eigen::Index nb = padded_size(m) / 4;
     Eigen::VectorXd packed(nb * (nb + 1) / 2 * 16);
+    advise_huge_pages(packed);
     Eigen::Index o = 0;
     for (Eigen::Index bi = 0; bi < nb; ++bi) {
         for (Eigen::Index bj = 0; bj <= bi; ++bj) {

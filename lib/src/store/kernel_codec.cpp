@@ -9,6 +9,7 @@
 
 #include "layout.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/huge_pages.hpp"
 #include "mocapdb/store/store_error.hpp"
 
 namespace mocapdb::store {
@@ -111,6 +112,7 @@ std::shared_ptr<const kriging::CovarianceInverse> read_system(const h5::File& fi
                              "expected a square, non-empty (point, point) matrix, found " + std::to_string(shape[0]) +
                                  "x" + std::to_string(shape[1]));
         a.resize(static_cast<Eigen::Index>(shape[0]), static_cast<Eigen::Index>(shape[1]));
+        advise_huge_pages(a);  // before HDF5 writes it: 2 MB pages instead of 18 000 faults at M = 3 043
         return a.data();
     });
     if (!a.allFinite()) throw StoreError(file.name(), path, "expected finite values, found a NaN or infinity");
