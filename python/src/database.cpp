@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "database_handle.hpp"
 #include "model_handle.hpp"
+#include "progress.hpp"
 #include "mocapdb/workflow/load_model.hpp"
 
 namespace mocapdb::python {
@@ -146,8 +147,12 @@ std::shared_ptr<Clip> load_clip(const DatabaseHandle& h, const std::string& name
     return std::make_shared<Clip>(std::move(clip));
 }
 
-std::shared_ptr<ModelHandle> synthesis_model(const DatabaseHandle& h, const std::string& set, bool naive) {
-    return load_model_handle(h.get(), set, naive);
+std::shared_ptr<ModelHandle> synthesis_model(const DatabaseHandle& h, const std::string& set, bool naive,
+                                             const py::object& progress) {
+    PythonProgress report(progress);
+    std::shared_ptr<ModelHandle> model = load_model_handle(h.get(), set, naive, report.callback());
+    report.rethrow();
+    return model;
 }
 
 }  // namespace
@@ -221,8 +226,12 @@ void bind_database(py::module_& m) {
             "The PackedTier's records, or None when the file has none (mocapdb pack)."
             "\n\nExample:\n    >>> tier = db.packed()")
         .def("synthesis_model", &synthesis_model, py::arg("set"), py::arg("naive") = false,
+             py::arg("progress") = py::none(),
              "The set's SynthesisModel: the stored Tucker model (mocapdb compress) with its stored kernel, or with "
-             "naive=True kriging of the uncompressed aligned tensor (needs only mocapdb align)."
+             "naive=True kriging of the uncompressed aligned tensor (needs only mocapdb align). progress: None or "
+             "a callable progress(done, total, item), called while a kernel that is not stored (naive=True, or a "
+             "model compressed before kernels were) is fitted (item 'kernel') and while a kriging system that is "
+             "not stored is factorized (item 'kernel system')."
              "\n\nExample:\n    >>> model = db.synthesis_model('walks')")
         .def(
             "close", [](DatabaseHandle& h) { h.db.reset(); },

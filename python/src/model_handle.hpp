@@ -22,6 +22,7 @@ struct ModelHandle {
 };
 
 /// The set's model from the database at `path` (naive: kriging of the aligned tensor).
-std::shared_ptr<ModelHandle> load_model_handle(const Database& db, const std::string& set, bool naive);
+std::shared_ptr<ModelHandle> load_model_handle(const Database& db, const std::string& set, bool naive,
+                                               const ProgressCallback& fit_progress = {});
 
 }  // namespace mocapdb::python

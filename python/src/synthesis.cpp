@@ -27,10 +27,13 @@ MatX characters_of(const ModelHandle& h, const Array& c) {
 
 }  // namespace
 
-std::shared_ptr<ModelHandle> load_model_handle(const Database& db, const std::string& set, bool naive) {
+std::shared_ptr<ModelHandle> load_model_handle(const Database& db, const std::string& set, bool naive,
+                                               const ProgressCallback& fit_progress) {
     auto handle = std::make_shared<ModelHandle>();
-    if (naive) handle->model = workflow::load_naive_motion_model(db, set);
-    else handle->model = workflow::load_motion_model(db, set);
+    synthesis::SynthesisOptions options;
+    options.fit_progress = fit_progress;
+    if (naive) handle->model = workflow::load_naive_motion_model(db, set, options);
+    else handle->model = workflow::load_motion_model(db, set, options);
     handle->path = db.path();
     handle->set = set;
     handle->naive = naive;

@@ -92,6 +92,34 @@ def test_import_align_compress_equal_the_cli(cli, shared, tmp_path):
         assert np.array_equal(a.synthesis_model("walks").pose(c, 3.5), b.synthesis_model("walks").pose(c, 3.5))
 
 
+def test_compress_reports_progress(db_copy):
+    """compress calls progress(done, total, item) for the rank search, the kernel's candidate variograms and
+    its factorized system: per item, done never decreases and reaches total."""
+    calls = []
+    mocapdb.compress(db_copy, "walks", max_error_cm=1.0,
+                     progress=lambda done, total, item: calls.append((item, done, total)))
+    items = {item for item, _, _ in calls}
+    assert {"rank search", "kernel", "kernel system"} <= items
+    for item in items:
+        steps = [(done, total) for i, done, total in calls if i == item]
+        assert all(a[0] <= b[0] and a[1] == b[1] for a, b in zip(steps, steps[1:])), item
+        assert steps[-1][0] == steps[-1][1] > 0, item
+
+
+def test_a_progress_callable_that_raises(db_copy):
+    """The callable's exception is raised when the call returns (the library's callbacks cannot throw)."""
+    with pytest.raises(ZeroDivisionError):
+        mocapdb.compress(db_copy, "walks", progress=lambda done, total, item: 1 / 0)
+    with pytest.raises(TypeError, match="progress: expected None or a callable"):
+        mocapdb.compress(db_copy, "walks", progress=3)
+    with mocapdb.open(db_copy) as db:
+        calls = []
+        db.synthesis_model("walks", naive=True, progress=lambda done, total, item: calls.append((item, done, total)))
+        # A model fitted at load: its candidate variograms, then its system factorized (no stored one).
+        assert [item for item, _, _ in calls][-1] == "kernel system" and calls[-1][1] == calls[-1][2]
+        assert ("kernel", 1, calls[0][2]) == calls[0]
+
+
 def test_workflow_errors(shared, tmp_path):
     with pytest.raises(mocapdb.InvalidArgument, match="no .bvh or .amc files found"):
         mocapdb.import_files(tmp_path / "x.h5", [tmp_path])

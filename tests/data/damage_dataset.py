@@ -7,6 +7,10 @@
 #   damage_dataset.py FILE attrs PATH NAME:T=VALUE ...
 #                                       sets attributes of object PATH: T is s (string), f (float64)
 #                                       or i (int64)
+#   damage_dataset.py FILE deflate PATH rewrites dataset PATH (values and attributes kept) with shuffle +
+#                                       deflate + fletcher32, as files written before 2026-12-06 hold
+#                                       the synthesis kernel's covariance_inverse
+#   damage_dataset.py FILE filters PATH prints the filters of dataset PATH, comma-separated
 import sys
 
 import h5py
@@ -39,5 +43,18 @@ with h5py.File(file, "r+") as f:
                 f[path].attrs[name] = np.int64(value)
             else:
                 f[path].attrs[name] = float(value) if kind == "f" else value
+    elif mode == "deflate":
+        d = f[path]
+        values, attrs = d[...], dict(d.attrs)
+        parent, name = d.parent, path.rsplit("/", 1)[1]
+        del parent[name]
+        d = parent.create_dataset(name, data=values, chunks=True, shuffle=True, compression="gzip",
+                                  fletcher32=True)
+        for key, value in attrs.items():
+            d.attrs[key] = value
+    elif mode == "filters":
+        d = f[path]
+        names = (["shuffle"] if d.shuffle else []) + (["deflate"] if d.compression == "gzip" else [])
+        print(",".join(names + (["fletcher32"] if d.fletcher32 else [])))
     else:
         sys.exit("unknown mode " + mode)

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -413,6 +415,34 @@ TEST_CASE("Vectorized gamma of squared distances equals the scalar model", "[kri
     CHECK(VariogramModel::spherical(0.1, 1.0, 2.0)(2.0) == Approx(1.1));
     CHECK(VariogramModel::from_paper_p(0.0, 0, 1, 1).family == VariogramFamily::Spherical);
     CHECK(VariogramModel::from_paper_p(0.4, 0, 1, 1).exponent == 0.4);
+}
+
+TEST_CASE("covariance_inverse is exactly symmetric, inverts the covariance matrix and reports its progress",
+          "[kriging][properties]") {
+    // More points than one block of the inverse's columns (256), so that several blocks and their mirrors
+    // are checked; a nugget keeps the system well conditioned (no jitter: the inverse of C itself).
+    const Eigen::MatrixXd pts = random_points(600, 2, 9);
+    const VariogramModel model = VariogramModel::stable(1.5, 0.2, 1.0, 3.0);
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> reports;
+    const CovarianceInverse inverse =
+        Kriging::covariance_inverse(pts, model, {}, [&reports](const mocapdb::Progress& p) {
+            CHECK(p.item == "kernel system");
+            reports.emplace_back(p.done, p.total);
+        });
+    REQUIRE(inverse.factorization == FactorizationStatus::Ok);
+    const Eigen::MatrixXd& a = inverse.inverse;
+    CHECK(a == a.transpose());
+    Eigen::MatrixXd cov = (model.total_sill() - Kriging::build(pts, model).gamma_matrix().array()).matrix();
+    cov.diagonal().setConstant(model.total_sill());
+    const double error = (cov * a - Eigen::MatrixXd::Identity(600, 600)).cwiseAbs().maxCoeff();
+    CHECK(error < 1e-9);
+    REQUIRE(reports.size() >= 4);  // the start, then each block of columns
+    CHECK(reports.front().first == 0);
+    for (std::size_t k = 1; k < reports.size(); ++k) {
+        CHECK(reports[k].first > reports[k - 1].first);
+        CHECK(reports[k].second == 600);
+    }
+    CHECK(reports.back().first == 600);
 }
 
 TEST_CASE("build from a precomputed covariance inverse gives the very same kriging", "[kriging][properties]") {

@@ -6,13 +6,14 @@
 
 namespace mocapdb::kriging::detail {
 
-void gamma_vector(const Eigen::MatrixXd& points, const VariogramModel& model,
+void gamma_vector(const Eigen::Ref<const Eigen::MatrixXd>& points, const VariogramModel& model,
                   const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) {
     const Eigen::Index p = points.cols();
 #if defined(__AVX2__)
     // One pass over the points (all P coordinates of 4 points at a time) instead of one per coordinate;
     // the same operations in the same order, so the same values.
     const Eigen::Index m = points.rows();
+    const Eigen::Index stride = points.outerStride();  // between coordinates (columns)
     const double* pts = points.data();
     double* o = out.data();
     Eigen::Index i = 0;
@@ -20,7 +21,7 @@ void gamma_vector(const Eigen::MatrixXd& points, const VariogramModel& model,
         __m256d d = _mm256_sub_pd(_mm256_loadu_pd(pts + i), _mm256_set1_pd(c(0)));
         __m256d sum = _mm256_mul_pd(d, d);
         for (Eigen::Index k = 1; k < p; ++k) {
-            d = _mm256_sub_pd(_mm256_loadu_pd(pts + k * m + i), _mm256_set1_pd(c(k)));
+            d = _mm256_sub_pd(_mm256_loadu_pd(pts + k * stride + i), _mm256_set1_pd(c(k)));
             sum = _mm256_add_pd(sum, _mm256_mul_pd(d, d));
         }
         _mm256_storeu_pd(o + i, sum);
@@ -29,7 +30,7 @@ void gamma_vector(const Eigen::MatrixXd& points, const VariogramModel& model,
         double d = pts[i] - c(0);
         double sum = d * d;
         for (Eigen::Index k = 1; k < p; ++k) {
-            d = pts[k * m + i] - c(k);
+            d = pts[k * stride + i] - c(k);
             sum += d * d;
         }
         o[i] = sum;

@@ -8,8 +8,8 @@
 
 namespace mocapdb::kriging::detail {
 
-/// out(i) = gamma(|points.row(i) - c|). points: M by P; c: P; out: M.
-void gamma_vector(const Eigen::MatrixXd& points, const VariogramModel& model,
+/// out(i) = gamma(|points.row(i) - c|). points: M by P (a block of rows of a matrix too); c: P; out: M.
+void gamma_vector(const Eigen::Ref<const Eigen::MatrixXd>& points, const VariogramModel& model,
                   const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out);
 
 /// out(i, q) = gamma(|points.row(i) - queries.row(q)|). points: M by P; queries: Q by P; out: M by Q.

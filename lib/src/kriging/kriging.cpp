@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/core/huge_pages.hpp"
 #include "gamma_vector.hpp"
 #include "query_kernels.hpp"
 #include "prepared_points.hpp"
@@ -29,12 +30,63 @@ const char* to_string(FactorizationStatus status) {
 
 namespace {
 
+// Columns of the inverse computed per progress report.
+constexpr Eigen::Index kInverseBlock = 256;
+
+// f(i, j) for every i > j of an M by M matrix, square tile after square tile (a transposed pass over a
+// whole matrix misses the cache at every element).
+template <class F>
+void each_lower_pair(Eigen::Index m, F f) {
+    constexpr Eigen::Index tile = 64;
+    for (Eigen::Index j0 = 0; j0 < m; j0 += tile)
+        for (Eigen::Index i0 = j0; i0 < m; i0 += tile)
+            for (Eigen::Index j = j0; j < std::min(j0 + tile, m); ++j)
+                for (Eigen::Index i = std::max(i0, j + 1); i < std::min(i0 + tile, m); ++i) f(i, j);
+}
+
+// a = (a + a^T) / 2 in place.
+void symmetrize(Eigen::MatrixXd& a) {
+    each_lower_pair(a.rows(), [&a](Eigen::Index i, Eigen::Index j) {
+        const double v = 0.5 * (a(i, j) + a(j, i));
+        a(i, j) = v;
+        a(j, i) = v;
+    });
+}
+
+// The inverse of L L^T from its Cholesky factor, exactly symmetric. Column block B = [j0, j0 + nb):
+// its rows >= j0 are (L_jj L_jj^T)^-1 E with L_jj the trailing factor from j0 (L is lower triangular, so
+// neither solve reaches rows < j0) and E the identity's columns B from row j0; the rows above are the
+// mirror of earlier blocks. M^3 / 3 multiply-adds against M^3 for solving with the whole identity.
+Eigen::MatrixXd inverse_of_factor(const Eigen::LLT<Eigen::MatrixXd>& llt, const ProgressCallback& progress) {
+    const Eigen::MatrixXd& l = llt.matrixLLT();
+    const Eigen::Index m = l.rows();
+    Eigen::MatrixXd inv(m, m);
+    advise_huge_pages(inv);
+    Eigen::MatrixXd x;
+    for (Eigen::Index j0 = 0; j0 < m; j0 += kInverseBlock) {
+        const Eigen::Index nb = std::min(kInverseBlock, m - j0);
+        const Eigen::Index rows = m - j0;
+        x = Eigen::MatrixXd::Identity(rows, nb);
+        const auto trailing = l.bottomRightCorner(rows, rows).triangularView<Eigen::Lower>();
+        trailing.solveInPlace(x);
+        trailing.adjoint().solveInPlace(x);
+        inv.block(j0, j0, rows, nb) = x;
+        if (progress)
+            progress({static_cast<std::uint64_t>(j0 + nb), static_cast<std::uint64_t>(m), "kernel system"});
+    }
+    // The upper triangle: the mirror of the lower one, except in the diagonal blocks (computed whole): their mean.
+    each_lower_pair(m, [&inv](Eigen::Index i, Eigen::Index j) {
+        const double a = i / kInverseBlock == j / kInverseBlock ? 0.5 * (inv(i, j) + inv(j, i)) : inv(i, j);
+        inv(i, j) = a;
+        inv(j, i) = a;
+    });
+    return inv;
+}
+
 // Inverse of a symmetric matrix expected to be positive definite, with jitter escalation and, as a last
 // resort, eigenvalue clamping. Fills status fields.
 Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const KrigingOptions& options,
-                                   KrigingStatus& status) {
-    const Eigen::Index m = c.rows();
-    const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
+                                   KrigingStatus& status, const ProgressCallback& progress) {
     {
         Eigen::LLT<Eigen::MatrixXd> llt(c);
         if (llt.info() == Eigen::Success) {
@@ -43,7 +95,7 @@ Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const
                 status.factorization = FactorizationStatus::Ok;
                 status.jitter = 0.0;
                 status.rcond = rc;
-                return llt.solve(identity);
+                return inverse_of_factor(llt, progress);
             }
         }
     }
@@ -58,7 +110,7 @@ Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const
             status.factorization = FactorizationStatus::Jittered;
             status.jitter = delta;
             status.rcond = rc;
-            return llt.solve(identity);
+            return inverse_of_factor(llt, progress);
         }
     }
     // Nearest positive definite matrix: clamp the spectrum from below.
@@ -71,7 +123,28 @@ Eigen::MatrixXd robust_spd_inverse(const Eigen::MatrixXd& c, double scale, const
     status.jitter = floor_value;
     status.rcond = lambda.minCoeff() / lambda.maxCoeff();
     Eigen::MatrixXd inv = eig.eigenvectors() * lambda.cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+    symmetrize(inv);
     return inv;
+}
+
+// gamma: the variogram matrix of the points (M by M, diagonal 0): its lower triangle one vectorized
+// column at a time, then mirrored (exactly symmetric).
+void fill_gamma(const Eigen::MatrixXd& points, const VariogramModel& model, Eigen::MatrixXd& gamma) {
+    const Eigen::Index m = points.rows();
+    gamma.resize(m, m);
+    advise_huge_pages(gamma);
+    for (Eigen::Index j = 0; j < m; ++j)
+        detail::gamma_vector(points.bottomRows(m - j), model, points.row(j).transpose(), gamma.col(j).tail(m - j));
+    each_lower_pair(m, [&gamma](Eigen::Index i, Eigen::Index j) { gamma(j, i) = gamma(i, j); });
+}
+
+// The covariance matrix nugget + sill - gamma off the diagonal, nugget + sill on it.
+Eigen::MatrixXd covariance_of(const Eigen::MatrixXd& gamma, double total_sill) {
+    Eigen::MatrixXd cov(gamma.rows(), gamma.cols());
+    advise_huge_pages(cov);
+    cov = (total_sill - gamma.array()).matrix();
+    cov.diagonal().setConstant(total_sill);
+    return cov;
 }
 
 }  // namespace
@@ -82,11 +155,15 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
 }
 
 CovarianceInverse Kriging::covariance_inverse(const Eigen::Ref<const Eigen::MatrixXd>& coords,
-                                              const VariogramModel& model, const KrigingOptions& options) {
-    Eigen::MatrixXd cov;
-    Kriging k = prepare(coords, model, options, cov);
+                                              const VariogramModel& model, const KrigingOptions& options,
+                                              const ProgressCallback& progress) {
+    Kriging k = prepare(coords, model, options);
+    fill_gamma(k.points_, model, k.gamma_);
+    // Reported before the factorization (a sixth of the work, not divisible into steps), then per block.
+    if (progress) progress({0, static_cast<std::uint64_t>(k.points_.rows()), "kernel system"});
     CovarianceInverse out;
-    out.inverse = robust_spd_inverse(cov, model.total_sill(), options, k.status_);
+    out.inverse = robust_spd_inverse(covariance_of(k.gamma_, model.total_sill()), model.total_sill(), options,
+                                     k.status_, progress);
     out.factorization = k.status_.factorization;
     out.jitter = k.status_.jitter;
     out.rcond = k.status_.rcond;
@@ -94,7 +171,7 @@ CovarianceInverse Kriging::covariance_inverse(const Eigen::Ref<const Eigen::Matr
 }
 
 Kriging Kriging::prepare(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
-                         const KrigingOptions& options, Eigen::MatrixXd& cov) {
+                         const KrigingOptions& options) {
     detail::validate_coords("Kriging::build", coords);
     model.validate();
     if (!(model.total_sill() > 0.0)) {
@@ -131,29 +208,14 @@ Kriging Kriging::prepare(const Eigen::Ref<const Eigen::MatrixXd>& coords, const 
     k.status_.duplicates_merged = coords.rows() - m;
     k.status_.trend_rank = k.basis_.rank();
     k.status_.trend_rank_deficient = k.basis_.rank_deficient();
-
-    // Variogram and covariance matrices of the unique points.
-    const double s = model.total_sill();
-    k.gamma_.resize(m, m);
-    cov.resize(m, m);
-    for (Eigen::Index j = 0; j < m; ++j) {
-        k.gamma_(j, j) = 0.0;
-        cov(j, j) = s;
-        for (Eigen::Index i = j + 1; i < m; ++i) {
-            const double g = model((k.points_.row(i) - k.points_.row(j)).norm());
-            k.gamma_(i, j) = g;
-            k.gamma_(j, i) = g;
-            cov(i, j) = s - g;
-            cov(j, i) = s - g;
-        }
-    }
     return k;
 }
 
 Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
-                       const KrigingOptions& options, const CovarianceInverse* precomputed) {
-    Eigen::MatrixXd cov;
-    Kriging k = prepare(coords, model, options, cov);
+                       const KrigingOptions& options, const CovarianceInverse* precomputed,
+                       const ProgressCallback& progress) {
+    Kriging k = prepare(coords, model, options);
+    fill_gamma(k.points_, model, k.gamma_);
     const Eigen::Index m = k.points_.rows();
     Eigen::MatrixXd computed;
     const bool reuse = precomputed && precomputed->inverse.rows() == m && precomputed->inverse.cols() == m;
@@ -162,9 +224,10 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
         k.status_.jitter = precomputed->jitter;
         k.status_.rcond = precomputed->rcond;
     } else {
-        computed = robust_spd_inverse(cov, model.total_sill(), options, k.status_);
+        if (progress) progress({0, static_cast<std::uint64_t>(m), "kernel system"});
+        computed = robust_spd_inverse(covariance_of(k.gamma_, model.total_sill()), model.total_sill(), options,
+                                      k.status_, progress);
     }
-    cov.resize(0, 0);
     const Eigen::MatrixXd& cinv = reuse ? precomputed->inverse : computed;
 
     // Kernel system: F is the trend basis (OK / GLS) or the constant only (OLS kernel, paper Eq. 3).
@@ -180,17 +243,28 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
     k.s_inverse_ = schur.ldlt().solve(Eigen::MatrixXd::Identity(kk, kk));
     Eigen::MatrixXd v(m, kk);
     v.noalias() = cinv_f * k.s_inverse_;
-    Eigen::MatrixXd wc = cinv;
-    wc.noalias() -= v * cinv_f.transpose();
-    k.kernel_inverse_ = 0.5 * (wc + wc.transpose());
-    k.operator_.resize(m, m + kk);
-    k.operator_.leftCols(m) = -k.kernel_inverse_;
-    k.operator_.rightCols(kk) = v;
+    // Wc = C^-1 - V (C^-1 F)^T, exactly symmetric; built in place (a computed inverse is moved in).
+    if (reuse) {
+        k.kernel_inverse_.resize(m, m);
+        advise_huge_pages(k.kernel_inverse_);
+        k.kernel_inverse_ = cinv;
+    } else {
+        k.kernel_inverse_ = std::move(computed);
+    }
+    k.kernel_inverse_.noalias() -= v * cinv_f.transpose();
+    symmetrize(k.kernel_inverse_);
     k.v_transpose_ = v.transpose();
+    // The kernel operator [-Wc, V] is kept for GLS / OK (their weight operator); OLS folds it into
+    // weight_operator_ below, and solve_block reads Wc and V.
+    if (!ols) {
+        k.operator_.resize(m, m + kk);
+        advise_huge_pages(k.operator_);
+        k.operator_.leftCols(m) = -k.kernel_inverse_;
+        k.operator_.rightCols(kk) = v;
+    }
 #ifdef MOCAPDB_KRIGING_QUERY_KERNELS
-    // The single-query operator (query_kernels.hpp): -Wc is exactly symmetric (symmetrized above).
-    k.query_operator_ =
-        std::make_shared<const detail::QueryOperator>(k.operator_.leftCols(m), v, k.basis_.sample_basis());
+    // The single-query operator (query_kernels.hpp) of -Wc (exactly symmetric).
+    k.query_operator_ = std::make_shared<const detail::QueryOperator>(k.kernel_inverse_, v, k.basis_.sample_basis());
 #endif
     if (ols) {
         k.ols_u_ = k.basis_.sample_basis().rightCols(k.basis_.rank());
@@ -199,10 +273,12 @@ Kriging Kriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const Va
         // g(c) = [1, g_u(c)] the trend basis at c (as for GLS).
         const Eigen::Index r = k.ols_u_.cols();
         k.weight_operator_.resize(m, m + 1 + r);
-        k.weight_operator_.leftCols(m + 1) = k.operator_;
+        advise_huge_pages(k.weight_operator_);
+        k.weight_operator_.leftCols(m) = -k.kernel_inverse_;
+        k.weight_operator_.col(m) = v;
         if (r > 0) {
             Eigen::MatrixXd ut_op(r, m + 1);
-            ut_op.noalias() = k.ols_u_.transpose() * k.operator_;
+            ut_op.noalias() = k.ols_u_.transpose() * k.weight_operator_.leftCols(m + 1);
             k.weight_operator_.leftCols(m + 1).noalias() -= k.ols_u_ * ut_op;
             k.weight_operator_.rightCols(r) = k.ols_u_;
         }
@@ -242,9 +318,9 @@ void Kriging::solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const 
                           Eigen::MatrixXd& out_kernel, Eigen::MatrixXd& out_weights) const {
     const Eigen::Index m = points_.rows();
     out_kernel.resize(m, gamma.cols());
-    out_kernel.noalias() = operator_.leftCols(m) * gamma;
+    out_kernel.noalias() = -kernel_inverse_ * gamma;
     if (options_.trend_fit == TrendFit::OLS && options_.trend == TrendKind::Linear) {
-        out_kernel.colwise() += operator_.col(m);
+        out_kernel.colwise() += v_transpose_.row(0).transpose();
         // Partition of unity enforced exactly (see the GLS branch).
         const Eigen::RowVectorXd defect = (1.0 - out_kernel.colwise().sum().array()) / static_cast<double>(m);
         out_kernel.rowwise() += defect;
@@ -256,7 +332,7 @@ void Kriging::solve_block(const Eigen::Ref<const Eigen::MatrixXd>& gamma, const 
             out_weights.noalias() += ols_u_ * corr;
         }
     } else {
-        out_kernel.noalias() += operator_.rightCols(kernel_trend_size_) * g;
+        out_kernel.noalias() += v_transpose_.transpose() * g;
         // Enforce the unbiasedness constraints G^T w = g exactly (a no-op in exact arithmetic; removes the
         // constraint-violating part of rounding errors of an ill-conditioned system).
         const Eigen::MatrixXd& gb = basis_.sample_basis();

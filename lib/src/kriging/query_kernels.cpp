@@ -6,12 +6,15 @@
 
 #include <algorithm>
 
+#include "mocapdb/core/huge_pages.hpp"
+
 namespace mocapdb::kriging::detail {
 
-Eigen::VectorXd pack_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& a) {
+Eigen::VectorXd pack_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& a, double sign) {
     const Eigen::Index m = a.rows();
     const Eigen::Index nb = padded_size(m) / 4;
     Eigen::VectorXd packed(nb * (nb + 1) / 2 * 16);
+    advise_huge_pages(packed);
     Eigen::Index o = 0;
     for (Eigen::Index bi = 0; bi < nb; ++bi) {
         for (Eigen::Index bj = 0; bj <= bi; ++bj) {
@@ -19,7 +22,8 @@ Eigen::VectorXd pack_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& a) {
                 for (Eigen::Index c = 0; c < 4; ++c) {
                     const Eigen::Index i = 4 * bi + r;
                     const Eigen::Index j = 4 * bj + c;
-                    packed(o++) = i < m && j < m ? a(i, j) : 0.0;
+                    // a(j, i) = a(i, j): down four columns at a time (a(i, j) would stride across them)
+                    packed(o++) = i < m && j < m ? sign * a(j, i) : 0.0;
                 }
             }
         }
@@ -194,10 +198,10 @@ Eigen::MatrixXd pad_rows(const Eigen::Ref<const Eigen::MatrixXd>& a) {
 
 }  // namespace
 
-QueryOperator::QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& neg_wc,
+QueryOperator::QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& wc,
                              const Eigen::Ref<const Eigen::MatrixXd>& v, const Eigen::Ref<const Eigen::MatrixXd>& g)
-    : m(neg_wc.rows()),
-      kernel(pack_symmetric(neg_wc)),
+    : m(wc.rows()),
+      kernel(pack_symmetric(wc, -1.0)),
       trend(pad_rows(v)),
       basis(pad_rows(g)),
       basis_sums(basis.colwise().sum().transpose()) {}

@@ -29,9 +29,9 @@ namespace mocapdb::kriging::detail {
 /// M rounded up to a multiple of 4.
 inline Eigen::Index padded_size(Eigen::Index m) { return (m + 3) / 4 * 4; }
 
-/// The lower block triangle of the symmetric a (M by M): blocks (I, J), J <= I, of 4 by 4 (rows and
-/// columns past M zero), row block after row block, each block as its 4 rows of 4 doubles.
-Eigen::VectorXd pack_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& a);
+/// The lower block triangle of the symmetric sign * a (M by M): blocks (I, J), J <= I, of 4 by 4 (rows
+/// and columns past M zero), row block after row block, each block as its 4 rows of 4 doubles.
+Eigen::VectorXd pack_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& a, double sign = 1.0);
 
 /// y = A x + T g. packed: pack_symmetric(A), A M by M; t: padded_size(M) by K, column-major, rows past
 /// M zero; x: padded_size(M) finite values (the entries past M are multiplied by 0); g: K values; y:
@@ -41,13 +41,13 @@ void packed_symmetric_product(const Eigen::VectorXd& packed, const Eigen::Matrix
 
 struct QueryOperator {
     Eigen::Index m = 0;          ///< unique control points
-    Eigen::VectorXd kernel;      ///< pack_symmetric(-Wc)
+    Eigen::VectorXd kernel;      ///< pack_symmetric(Wc, -1)
     Eigen::MatrixXd trend;       ///< V (M by K_k) with rows padded to padded_size(M)
     Eigen::MatrixXd basis;       ///< G = [1, U] (M by K) with rows padded to padded_size(M)
     Eigen::VectorXd basis_sums;  ///< K: the column sums of basis as stored (M, then 0 up to rounding)
 
-    /// neg_wc: -Wc (M by M, exactly symmetric); v: M by K_k; g: M by K, orthogonal columns, the first 1.
-    QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& neg_wc, const Eigen::Ref<const Eigen::MatrixXd>& v,
+    /// wc: Wc (M by M, exactly symmetric); v: M by K_k; g: M by K, orthogonal columns, the first 1.
+    QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& wc, const Eigen::Ref<const Eigen::MatrixXd>& v,
                   const Eigen::Ref<const Eigen::MatrixXd>& g);
 
     Eigen::Index padded_size() const { return basis.rows(); }

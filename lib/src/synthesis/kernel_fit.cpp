@@ -397,7 +397,7 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     }
     if (static_cast<std::size_t>(n) <= options.max_stored_system_samples)
         fit.system = std::make_shared<const kriging::CovarianceInverse>(
-            kriging::Kriging::covariance_inverse(xc, fit.variogram, options.kriging));
+            kriging::Kriging::covariance_inverse(xc, fit.variogram, options.kriging, options.fit_progress));
     return fit;
 }
 

@@ -111,7 +111,7 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     // The stored factorization of the same inputs (same key) spares the O(N^3) step; it is dropped once
     // used (the model keeps its own operators).
     const kriging::CovarianceInverse* system = report_.kernel_precomputed ? kernel_fit_.system.get() : nullptr;
-    kriging_ = kriging::Kriging::build(xc, model, options.kriging, system);
+    kriging_ = kriging::Kriging::build(xc, model, options.kriging, system, options.fit_progress);
     report_.system_precomputed = system != nullptr && system->inverse.rows() == kriging_.unique_points().rows();
     kernel_fit_.system.reset();
     report_.model = model;
@@ -152,12 +152,13 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
 }
 
 std::size_t SynthesisModel::memory_bytes() const {
-    // Per kriging kernel: the variogram matrix and the inverse data block (N by N each), the kernel
-    // operator and the OLS weight operator (N by N + P + 1 each). Kernels: the coefficient kernel, and
-    // a Separate timing kernel (which keeps its own copy of the increments); plus the increments.
+    // Per kriging kernel: the variogram matrix and the inverse data block (N by N each), the weight
+    // operator (N by N + P + 1) and the single-query operator (the lower half of the N by N block).
+    // Kernels: the coefficient kernel, and a Separate timing kernel (which keeps its own copy of the
+    // increments); plus the increments.
     const auto n = static_cast<std::size_t>(samples());
     const auto k = static_cast<std::size_t>(parameters()) + 1;
-    const std::size_t kernel = 2 * n * n + 2 * n * (n + k);
+    const std::size_t kernel = 2 * n * n + n * (n + k) + n * (n + 1) / 2;
     const std::size_t increments = n * static_cast<std::size_t>(frames_ - 1);
     const bool separate = timing_kernel_ == SynthesisOptions::TimingKernel::Separate;
     return sizeof(double) *

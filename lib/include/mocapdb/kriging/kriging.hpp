@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/kriging/interpolator.hpp"
 #include "mocapdb/kriging/trend.hpp"
 #include "mocapdb/kriging/variogram_model.hpp"
@@ -127,12 +128,16 @@ public:
     static Kriging build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
                          const KrigingOptions& options = {});
     /// The same with the covariance inverse of these inputs precomputed (covariance_inverse()); one of
-    /// another size (or null) is ignored and the system factorized as without it.
+    /// another size (or null) is ignored and the system factorized as without it, reporting to progress
+    /// (may be empty) as covariance_inverse() does.
     static Kriging build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
-                         const KrigingOptions& options, const CovarianceInverse* precomputed);
-    /// What build() factorizes (same errors); O(M^3) time, O(M^2) memory.
+                         const KrigingOptions& options, const CovarianceInverse* precomputed,
+                         const ProgressCallback& progress = {});
+    /// What build() factorizes (same errors); O(M^3) time, O(M^2) memory. progress (may be empty): called
+    /// with item "kernel system" as blocks of the inverse's columns are done (done / total columns).
     static CovarianceInverse covariance_inverse(const Eigen::Ref<const Eigen::MatrixXd>& coords,
-                                                const VariogramModel& model, const KrigingOptions& options = {});
+                                                const VariogramModel& model, const KrigingOptions& options = {},
+                                                const ProgressCallback& progress = {});
 
     Eigen::Index num_samples() const override { return group_.size(); }
     Eigen::Index dimension() const override { return points_.cols(); }
@@ -176,10 +181,9 @@ public:
     const Eigen::MatrixXd& gamma_matrix() const { return gamma_; }
 
 private:
-    // build() up to the covariance matrix of the unique points (validation, duplicates, trend basis,
-    // gamma_): out_cov M by M.
+    // build() up to the unique points (validation, duplicates, trend basis).
     static Kriging prepare(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
-                           const KrigingOptions& options, Eigen::MatrixXd& out_cov);
+                           const KrigingOptions& options);
     friend class KrigingPredictor;  // folds sample values into weight_operator() (kriging_predictor.hpp)
 
     // gamma of the query (the continuous part only when filtering the nugget): out M.
@@ -206,7 +210,8 @@ private:
     bool merged_ = false;
     Eigen::MatrixXd gamma_;  // M by M variogram matrix (diagonal 0)
     // Kernel system (GLS/OK: the full trend basis; OLS: only the constant):
-    //   b = -Wc gamma(c) + V g_k(c)   stored as operator_ = [-Wc, V] (M by M + K_k)
+    //   b = -Wc gamma(c) + V g_k(c), from kernel_inverse_ and v_transpose_; GLS / OK also keep it as
+    //   operator_ = [-Wc, V] (M by M + K_k), their weight operator (empty for OLS).
     Eigen::MatrixXd operator_;
     Eigen::MatrixXd kernel_inverse_;  // Wc (M by M)
     Eigen::MatrixXd v_transpose_;     // V^T (K_k by M)

@@ -94,10 +94,13 @@ struct SynthesisOptions {
     /// candidate; docs/synthesis-scale.md). The kriging system keeps every sample. >= 2.
     std::size_t max_fit_samples = 1000;
     /// fit_kernel factorizes the kriging system for storage (KernelFit::system: N^2 doubles, 74 MB at
-    /// N = 3 043) for sets of up to this many samples; larger sets factorize it at every load (O(N^3)).
+    /// N = 3 043) for sets of up to this many samples; larger sets factorize it at every load (O(N^3):
+    /// docs/synthesis-scale.md gives the costs).
     std::size_t max_stored_system_samples = 6000;
-    /// Called while the coefficient kernel is fitted (one item per candidate variogram scored by
-    /// leave-one-out); not part of the kernel's key; may be empty. The library never prints.
+    /// Called while the coefficient kernel is fitted (item "kernel": one step per candidate variogram
+    /// scored by leave-one-out) and while its kriging system is factorized (item "kernel system": columns
+    /// of the inverse; by fit_kernel for storage, and at construction when no stored system is used); not
+    /// part of the kernel's key; may be empty. The library never prints.
     ProgressCallback fit_progress;
     /// Compressed model only: a precomputed coefficient kernel (kernel_fit.hpp; workflow::load_motion_model reads
     /// the stored one). Used when its key equals kernel_key of the model's inputs and these options,

@@ -213,6 +213,12 @@ void File::write_array(const std::string& path, const T* data, const Shape& shap
               sizeof(T) > 1 ? Filters::ShuffleDeflate : Filters::Deflate, dims, units);
 }
 
+template <class T>
+void File::write_array_checksum_only(const std::string& path, const T* data, const Shape& shape,
+                                     const std::vector<std::string>& dims, const std::string& units) {
+    write_raw(path, Traits<T>::file(), Traits<T>::memory(), shape, data, Filters::ChecksumOnly, dims, units);
+}
+
 void File::write_compressed_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes,
                                   const std::string& dim, const std::string& units) {
     write_raw(path, H5T_STD_U8LE, H5T_NATIVE_UINT8, {bytes.size()}, bytes.data(), Filters::ChecksumOnly, {dim}, units);
@@ -370,6 +376,8 @@ template void File::write_array<std::int32_t>(const std::string&, const std::int
                                               const std::vector<std::string>&, const std::string&);
 template void File::write_array<std::uint8_t>(const std::string&, const std::uint8_t*, const Shape&,
                                               const std::vector<std::string>&, const std::string&);
+template void File::write_array_checksum_only<double>(const std::string&, const double*, const Shape&,
+                                                      const std::vector<std::string>&, const std::string&);
 template Array<double> File::read_array<double>(const std::string&, std::size_t) const;
 template Shape File::read_array_into<double>(const std::string&, std::size_t,
                                              const std::function<double*(const Shape&)>&) const;

@@ -157,6 +157,11 @@ public:
     template <class T>
     void write_array(const std::string& path, const T* data, const Shape& shape, const std::vector<std::string>& dims,
                      const std::string& units);
+    /// The same with fletcher32 only: for values deflate does not shrink (float64 of full precision, such
+    /// as a factorized system), which are then read without inflating them.
+    template <class T>
+    void write_array_checksum_only(const std::string& path, const T* data, const Shape& shape,
+                                   const std::vector<std::string>& dims, const std::string& units);
     /// Writes bytes that are already compressed as a one-dimensional uint8 dataset with attributes dims
     /// = [dim] and units: chunked with fletcher32 only (shuffle and deflate would not shrink them).
     void write_compressed_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes, const std::string& dim,
