@@ -53,6 +53,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -61,7 +62,9 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
+#include "../lib/src/packing/exp_map_batch.hpp"
 #include "../lib/src/packing/group_model.hpp"
+#include "runtime_pose.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::packing;
@@ -166,26 +169,108 @@ std::int32_t quantize(double v, double inv_step, double rounding) {
     return v < 0 ? -m : m;
 }
 
-/// x = U y in float32 (the dof basis rounded to float), then the dofs as pose_of forms them.
-struct FloatModel {
-    Eigen::MatrixXf U;
-    mutable Eigen::VectorXf y, x;
-    mutable std::vector<double> xd;
-    explicit FloatModel(const detail::GroupModel& m)
-        : U(m.dof_basis.cast<float>()), y(m.dof_basis.rows()), x(m.dof_basis.rows()), xd(static_cast<std::size_t>(m.dof_basis.rows())) {}
+/// y -> local pose by runtime_pose.hpp's kernels: the dof basis in float32 (dp by da, zero padded),
+/// and per skeleton entry of the group its weights, lanes and PoseKernel (pointing into them).
+struct PosePlan {
+    std::vector<float> basis;
+    struct Skeleton {
+        std::vector<double> inverse_weights;
+        std::vector<bench::PoseLanes> lanes[3];
+        bench::PoseKernel kernel;
+        bool root_projects = false;  ///< the motion root has rotation channels, but not three: scalar path
+    };
+    std::vector<Skeleton> skeletons;
 };
-void float_pose_of(const FloatModel& f, const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, double* p) {
-    const auto n = f.U.rows();
-    for (Eigen::Index i = 0; i < n; ++i) f.y[i] = static_cast<float>(y[i]);
-    f.x.noalias() = f.U * f.y;
-    for (Eigen::Index i = 0; i < n; ++i) f.xd[static_cast<std::size_t>(i)] = f.x[i];
-    std::copy(m.constant.begin(), m.constant.end(), p);
-    m.unweight(f.xd.data(), m.skeletons[e.skeleton], p);
+
+std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
+    auto plan = std::make_unique<PosePlan>();
+    const int da = static_cast<int>(m.active.size()), dp = (da + 7) / 8 * 8;
+    if (da > 256) throw std::runtime_error("runtime pose kernels: more than 256 active dofs");
+    plan->basis.assign(static_cast<std::size_t>(dp) * static_cast<std::size_t>(da), 0.0f);
+    for (int c = 0; c < da; ++c)
+        for (int r = 0; r < da; ++r) plan->basis[static_cast<std::size_t>(c * dp + r)] = static_cast<float>(m.dof_basis(r, c));
+    plan->skeletons.resize(m.skeletons.size());
+    for (std::size_t e = 0; e < m.skeletons.size(); ++e) {
+        PosePlan::Skeleton& sk = plan->skeletons[e];
+        for (double w : m.skeletons[e].active_weights) sk.inverse_weights.push_back(1.0 / w);
+        const auto view = m.skeletons[e].writer.local_view();
+        const auto& joints = *view.joints;
+        sk.root_projects = view.root_rotates && joints.front().present != 3;
+        const std::size_t count[3] = {view.two_channel_joints, view.one_channel_joints,
+                                      joints.size() - 1 - view.two_channel_joints - view.one_channel_joints};
+        std::size_t first = 1;
+        for (int kind = 0; kind < 3; ++kind) {
+            for (std::size_t g = 0; 4 * g < count[kind]; ++g) {
+                bench::PoseLanes lanes;
+                lanes.count = static_cast<int>(std::min<std::size_t>(4, count[kind] - 4 * g));
+                detail::TwoChannelLanes two;
+                for (int l = 0; l < 4; ++l) {
+                    const auto& j = joints[first + 4 * g + static_cast<std::size_t>(l < lanes.count ? l : 0)];
+                    lanes.pose_row[l] = j.pose_row;
+                    lanes.joint[l] = j.joint;
+                    for (int r = 0; r < 3; ++r) {
+                        for (int c = 0; c < 3; ++c) lanes.frame[3 * r + c][l] = j.euler_frame(r, c);
+                        lanes.axis[r][l] = j.twist_axis[r];
+                    }
+                    if (kind == 0) detail::set_lane(two, l, j.euler_frame, j.missing);
+                }
+                for (int l = 0; l < 4; ++l) {
+                    lanes.missing[l] = two.missing[l];
+                    lanes.dot[l] = two.dot[l];
+                    for (int r = 0; r < 3; ++r) {
+                        lanes.first[r][l] = two.first[r][l];
+                        lanes.second[r][l] = two.second[r][l];
+                        lanes.cross[r][l] = two.cross[r][l];
+                    }
+                }
+                sk.lanes[kind].push_back(lanes);
+            }
+            first += count[kind];
+        }
+        bench::PoseKernel& k = sk.kernel;
+        k.da = da;
+        k.dp = dp;
+        k.dofs = m.dofs;
+        k.basis = plan->basis.data();
+        k.inverse_weights = sk.inverse_weights.data();
+        k.active = m.active.data();
+        k.constant = m.constant.data();
+        for (int kind = 0; kind < 3; ++kind) {
+            k.lanes[kind] = sk.lanes[kind].data();
+            k.groups[kind] = static_cast<int>(sk.lanes[kind].size());
+        }
+    }
+    return plan;
 }
 
-/// --float-dofs 1: x = U y in float32 (float_pose_of) everywhere: in the encoder's bound check, the
-/// check of every frame and the timings (closed loop: the bound holds for what is decoded).
+/// The plans of the groups in use (keyed by address: cleared whenever the models are rebuilt).
+std::map<const detail::GroupModel*, std::unique_ptr<PosePlan>> g_pose_plans;
+const detail::GroupModel* g_last_model = nullptr;
+const PosePlan* g_last_plan = nullptr;
+const PosePlan& pose_plan(const detail::GroupModel& m) {
+    if (g_last_model != &m) {
+        auto& plan = g_pose_plans[&m];
+        if (!plan) plan = make_pose_plan(m);
+        g_last_model = &m;
+        g_last_plan = plan.get();
+    }
+    return *g_last_plan;
+}
+void clear_pose_plans() {
+    g_pose_plans.clear();
+    g_last_model = nullptr;
+    g_last_plan = nullptr;
+}
+
+/// --float-dofs 1: x = U y in float32 (pose_dofs_portable, the same bits as pose_dofs_avx2)
+/// everywhere: in the encoder's bound check, the check of every frame and the timings (closed loop:
+/// the bound holds for what is decoded).
 bool g_float_dofs = false;
+
+/// How y becomes a local pose in the timings: the library's ChannelWriter::write_local after the
+/// portable product, or runtime_pose.hpp's kernels (portable or AVX2 build).
+enum class PosePath { library, portable, avx2 };
+std::size_t g_pose_fallbacks = 0;  ///< poses the kernels left to the library's scalar path
 
 /// y -> the frame's dofs: pose_of, or with an identity dof basis (--dof identity) the copy of y
 /// instead of the product (x = y: the same values, up to the sign of a zero).
@@ -197,16 +282,7 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
         identity = m.dof_basis.isIdentity(0.0);
     }
     if (g_float_dofs) {
-        static thread_local std::map<const detail::GroupModel*, std::unique_ptr<FloatModel>> floats;
-        static thread_local const detail::GroupModel* last = nullptr;
-        static thread_local FloatModel* last_float = nullptr;
-        if (last != &m) {
-            auto& f = floats[&m];
-            if (!f) f = std::make_unique<FloatModel>(m);
-            last = &m;
-            last_float = f.get();
-        }
-        float_pose_of(*last_float, m, e, y, p);
+        bench::pose_dofs_portable(pose_plan(m).skeletons[e.skeleton].kernel, y, p);
         return;
     }
     if (!identity) {
@@ -216,6 +292,54 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
     std::copy(y, y + m.active.size(), s.x.data());
     std::copy(m.constant.begin(), m.constant.end(), p);
     m.unweight(s.x.data(), m.skeletons[e.skeleton], p);
+}
+
+/// Frame y's local pose by `path` (p: the frame's dofs, written). The kernels' paths form the motion
+/// root as write_local does and the other joints by the kernels; a pose they leave (see
+/// pose_rotations_portable) is decoded by the library's write_local from the same dofs.
+void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s,
+                     double* p, LocalPose& out, PosePath path) {
+    if (path == PosePath::library || !g_float_dofs) {
+        dofs_of_y(m, e, y, s, p);
+        m.local_of(e, p, out);
+        return;
+    }
+    const PosePlan::Skeleton& sk = pose_plan(m).skeletons[e.skeleton];
+    if (path == PosePath::avx2) bench::pose_dofs_avx2(sk.kernel, y, p);
+    else bench::pose_dofs_portable(sk.kernel, y, p);
+    const detail::ChannelWriter& writer = m.skeletons[e.skeleton].writer;
+    const auto v = writer.local_view();
+    const std::size_t n = writer.size();
+    out.rotations.resize(n);
+    out.translations.resize(n);
+    std::memcpy(static_cast<void*>(out.rotations.data()), v.rest_rotations->data(), n * sizeof(Quat));
+    std::memcpy(static_cast<void*>(out.translations.data()), v.rest_translations->data(), n * sizeof(Vec3));
+    // The motion root as write_local forms it.
+    const Vec3 local = v.above_inverse * (e.placement.invert(Vec3(p[0], p[1], p[2])) - v.above_position);
+    Vec3& t = out.translations[v.motion_root];
+    for (std::size_t a = 0; a < 3; ++a)
+        if (v.root_translation[a] >= 0) {
+            const auto c = static_cast<Eigen::Index>(a);
+            const double value = local[c] - v.root_offset[c];
+            t[c] = v.adds ? (*v.offsets)[v.motion_root][c] + value : value;
+        }
+    if (v.root_rotates) {
+        detail::Lane4 w, x, yy, z;
+        detail::exp_maps(detail::Lane4{p[3], 0.0, 0.0, 0.0}, detail::Lane4{0.0, p[4], 0.0, 0.0},
+                         detail::Lane4{p[5], 0.0, 0.0, 0.0}, w, x, yy, z);
+        const Quat swing(w[0], x[0], yy[0], z[0]), twist(w[1], x[1], yy[1], z[1]);
+        out.rotations[v.motion_root] = v.above_inverse * e.placement.invert((swing * twist).normalized());
+    }
+    static_assert(sizeof(Quat) == 4 * sizeof(double), "Quat: x, y, z, w");
+    const bool ok = path == PosePath::avx2 ? bench::pose_rotations_avx2(sk.kernel, p, reinterpret_cast<double*>(out.rotations.data()))
+                                           : bench::pose_rotations_portable(sk.kernel, p, reinterpret_cast<double*>(out.rotations.data()));
+    if (!ok || sk.root_projects) {
+        ++g_pose_fallbacks;
+        m.local_of(e, p, out);
+        return;
+    }
+    for (std::size_t c = 0; c < m.extra_columns.size(); ++c)
+        writer.set_position(m.extra_columns[c], p[static_cast<std::size_t>(m.pose_dofs) + c], out);
 }
 
 /// The hierarchical candidate on one group (clips in group order, m parsed from format 2's bytes).
@@ -1664,6 +1788,7 @@ int main(int argc, char** argv) {
             o.max_error_cm = E;
             o.time_basis = TimeBasis::Learned;
             o.dof_basis = identity_dofs ? DofBasis::Identity : DofBasis::Learned;
+            clear_pose_plans();
             std::vector<detail::GroupModel> models(groups.size());
             std::vector<std::vector<const Clip*>> members(groups.size());
             std::size_t f2_bytes = 0, f2_payload = 0, f2_header = 0;
@@ -2024,7 +2149,7 @@ int main(int argc, char** argv) {
                             struct Times {
                                 double cold = 1e300, y = 1e300, hot = 1e300;
                             };
-                            auto time = [&](auto&& frame_fn, Times& t, bool float64_product = false) {
+                            auto time = [&](auto&& frame_fn, Times& t, bool float64_product = false, PosePath path = PosePath::library) {
                                 for (int with_pose = 1; with_pose >= 0; --with_pose) {
                                     const double c0 = bench::thread_cpu_seconds();
                                     for (const auto& [g, i, f] : seq) {
@@ -2033,9 +2158,12 @@ int main(int argc, char** argv) {
                                         double* base = scratch[g].data();
                                         frame_fn(g, i, f, base, Da);
                                         if (with_pose) {
-                                            if (float64_product) m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
-                                            else dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
-                                            m.local_of(m.clips[i], base + 4 * Da, out);
+                                            if (float64_product) {
+                                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                                m.local_of(m.clips[i], base + 4 * Da, out);
+                                            } else {
+                                                local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * Da, out, path);
+                                            }
                                         }
                                     }
                                     double& slot = with_pose ? t.cold : t.y;
@@ -2049,7 +2177,46 @@ int main(int argc, char** argv) {
                                     }
                                 t.hot = std::min(t.hot, (bench::thread_cpu_seconds() - c0) / 6400.0 * 1e6);
                             };
-                            Times t1, t1d, t7[2];
+                            // The kernels' local poses against the library's on every frame (v1's y): the dofs
+                            // of both builds equal to dofs_of_y's, the poses equal bit for bit (else the max
+                            // difference of a component).
+                            const bool avx2 = bench::pose_avx2_available();
+                            std::size_t pose_frames = 0, pose_differ = 0;
+                            double pose_diff = 0.0;
+                            bool dofs_equal = true;
+                            g_pose_fallbacks = 0;
+                            if (g_float_dofs) {
+                                LocalPose ref, got;
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    const auto& m = models[g];
+                                    const std::size_t Da = m.active.size(), D = static_cast<std::size_t>(m.dofs);
+                                    std::vector<double> yv(Da), sa(Da), sb(Da), sc(Da), p0(D), p1(D);
+                                    for (std::size_t i = 0; i < members[g].size(); ++i)
+                                        for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
+                                            runtime_frame(runtime[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            local_pose_of_y(m, m.clips[i], yv.data(), ws[g], p0.data(), ref, PosePath::library);
+                                            for (PosePath path : {PosePath::portable, PosePath::avx2}) {
+                                                if (path == PosePath::avx2 && !avx2) continue;
+                                                local_pose_of_y(m, m.clips[i], yv.data(), ws[g], p1.data(), got, path);
+                                                dofs_equal = dofs_equal && std::memcmp(p0.data(), p1.data(), D * sizeof(double)) == 0;
+                                                ++pose_frames;
+                                                bool same_pose = true;
+                                                for (std::size_t j = 0; j < ref.rotations.size(); ++j) {
+                                                    same_pose = same_pose && std::memcmp(&ref.rotations[j], &got.rotations[j], sizeof(Quat)) == 0 &&
+                                                                std::memcmp(&ref.translations[j], &got.translations[j], sizeof(Vec3)) == 0;
+                                                    pose_diff = std::max({pose_diff, (ref.rotations[j].coeffs() - got.rotations[j].coeffs()).cwiseAbs().maxCoeff(),
+                                                                          (ref.translations[j] - got.translations[j]).cwiseAbs().maxCoeff()});
+                                                }
+                                                if (!same_pose) ++pose_differ;
+                                            }
+                                        }
+                                }
+                                std::printf("#  pose kernels (%s): %zu frame decodes, dofs %s, local poses %zu differ from the library's (max %.3g), %zu left "
+                                            "to the library\n",
+                                            avx2 ? "portable and AVX2" : "portable; no AVX2", pose_frames,
+                                            dofs_equal ? "equal to the library path's" : "DIFFER", pose_differ, pose_diff, g_pose_fallbacks);
+                            }
+                            Times t1, t1d, t7[2], t7k[2][2];
                             std::vector<Times> t4(configs.size());
                             for (int rep = 0; rep < reps; ++rep) {
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
@@ -2058,10 +2225,16 @@ int main(int argc, char** argv) {
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                     runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                 }, t1d, true);
-                                for (int k = 0; k < 2; ++k)
+                                for (int k = 0; k < 2; ++k) {
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame7(r7[k][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                     }, t7[k]);
+                                    if (!g_float_dofs) continue;
+                                    for (int a = 0; a < (avx2 ? 2 : 1); ++a)
+                                        time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                            runtime_frame7(r7[k][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                        }, t7k[k][a], false, a ? PosePath::avx2 : PosePath::portable);
+                                }
                                 for (std::size_t v = 0; v < configs.size(); ++v)
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame4(r4[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
@@ -2075,10 +2248,46 @@ int main(int argc, char** argv) {
                                 std::printf("#    v4 lookup %d bits%s (table %zu kB): bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
                                             configs[v].lookup, configs[v].pairs ? ", pairs" : ", no pairs", r4[v][0].table.size() * 4 / 1024, bytes4,
                                             t4[v].cold, t4[v].y, t4[v].hot);
-                            for (int k = 0; k < 2; ++k)
+                            for (int k = 0; k < 2; ++k) {
                                 std::printf("#    v7 keys at fixed widths%s%s, lookup %d: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
                                             key_centers ? ", centered" : "", k == 0 && key_escapes ? ", escapes" : "", configs[0].lookup, bytes7[k],
                                             t7[k].cold, t7[k].y, t7[k].hot);
+                                if (g_float_dofs)
+                                    std::printf("#      with the pose kernels: cold local pose %.3f us portable, %.3f us AVX2\n", t7k[k][0].cold,
+                                                avx2 ? t7k[k][1].cold : 0.0);
+                            }
+                            // y -> local pose alone (each group's last y, over and over), by each path.
+                            if (g_float_dofs) {
+                                double stage[3] = {1e300, 1e300, 1e300};
+                                for (int rep = 0; rep < reps; ++rep)
+                                    for (int a = 0; a < (avx2 ? 3 : 2); ++a) {
+                                        const double c0 = bench::thread_cpu_seconds();
+                                        for (const auto& [g, i, f] : seq) {
+                                            const auto& m = models[g];
+                                            double* base = scratch[g].data();
+                                            local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * m.active.size(), out, static_cast<PosePath>(a));
+                                        }
+                                        stage[a] = std::min(stage[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                    }
+                                // The AVX2 kernels' parts alone: the dofs, then the rotations.
+                                double part[2] = {1e300, 1e300};
+                                for (int rep = 0; rep < reps && avx2; ++rep)
+                                    for (int a = 0; a < 2; ++a) {
+                                        const double c0 = bench::thread_cpu_seconds();
+                                        for (const auto& [g, i, f] : seq) {
+                                            const auto& m = models[g];
+                                            const auto& k = pose_plan(m).skeletons[m.clips[i].skeleton].kernel;
+                                            double* base = scratch[g].data();
+                                            if (a == 0) bench::pose_dofs_avx2(k, base, base + 4 * m.active.size());
+                                            else bench::pose_rotations_avx2(k, base + 4 * m.active.size(), reinterpret_cast<double*>(out.rotations.data()));
+                                        }
+                                        part[a] = std::min(part[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                    }
+                                const auto& k0 = pose_plan(models[0]).skeletons[0].kernel;
+                                std::printf("#    y -> local pose alone: library %.3f us, kernels portable %.3f us, AVX2 %.3f us (its dofs %.3f, rotations %.3f; "
+                                            "group 0: %d active dofs, lane groups %d / %d / %d of joints with 2 / 1 / 3 channels)\n",
+                                            stage[0], stage[1], avx2 ? stage[2] : 0.0, part[0], part[1], k0.da, k0.groups[0], k0.groups[1], k0.groups[2]);
+                            }
                         }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
                                     no_prefetch, pose_only);
