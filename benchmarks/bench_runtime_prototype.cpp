@@ -62,7 +62,6 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
-#include "../lib/src/packing/exp_map_batch.hpp"
 #include "../lib/src/packing/group_model.hpp"
 #include "runtime_pose.hpp"
 
@@ -177,6 +176,7 @@ struct PosePlan {
         std::vector<double> inverse_weights;
         std::vector<bench::PoseLanes> lanes[3];
         bench::PoseKernel kernel;
+        bench::PoseRoot root;
         bool root_projects = false;  ///< the motion root has rotation channels, but not three: scalar path
     };
     std::vector<Skeleton> skeletons;
@@ -227,7 +227,19 @@ std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
             }
             first += count[kind];
         }
+        bench::PoseRoot& root = sk.root;
+        root.joint = static_cast<int>(view.motion_root);
+        root.rotates = view.root_rotates;
+        root.adds = view.adds;
+        std::memcpy(root.above_inverse, view.above_inverse.coeffs().data(), 4 * sizeof(double));
+        for (int a = 0; a < 3; ++a) {
+            root.translates[a] = view.root_translation[static_cast<std::size_t>(a)] >= 0 ? 1 : 0;
+            root.above_position[a] = view.above_position[a];
+            root.root_offset[a] = view.root_offset[a];
+            root.offset[a] = (*view.offsets)[view.motion_root][a];
+        }
         bench::PoseKernel& k = sk.kernel;
+        k.root = &sk.root;
         k.da = da;
         k.dp = dp;
         k.dofs = m.dofs;
@@ -308,31 +320,22 @@ void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, co
     if (path == PosePath::avx2) bench::pose_dofs_avx2(sk.kernel, y, p);
     else bench::pose_dofs_portable(sk.kernel, y, p);
     const detail::ChannelWriter& writer = m.skeletons[e.skeleton].writer;
-    const auto v = writer.local_view();
+    const auto v = writer.local_view();  // rest transforms
     const std::size_t n = writer.size();
     out.rotations.resize(n);
     out.translations.resize(n);
     std::memcpy(static_cast<void*>(out.rotations.data()), v.rest_rotations->data(), n * sizeof(Quat));
     std::memcpy(static_cast<void*>(out.translations.data()), v.rest_translations->data(), n * sizeof(Vec3));
-    // The motion root as write_local forms it.
-    const Vec3 local = v.above_inverse * (e.placement.invert(Vec3(p[0], p[1], p[2])) - v.above_position);
-    Vec3& t = out.translations[v.motion_root];
-    for (std::size_t a = 0; a < 3; ++a)
-        if (v.root_translation[a] >= 0) {
-            const auto c = static_cast<Eigen::Index>(a);
-            const double value = local[c] - v.root_offset[c];
-            t[c] = v.adds ? (*v.offsets)[v.motion_root][c] + value : value;
-        }
-    if (v.root_rotates) {
-        detail::Lane4 w, x, yy, z;
-        detail::exp_maps(detail::Lane4{p[3], 0.0, 0.0, 0.0}, detail::Lane4{0.0, p[4], 0.0, 0.0},
-                         detail::Lane4{p[5], 0.0, 0.0, 0.0}, w, x, yy, z);
-        const Quat swing(w[0], x[0], yy[0], z[0]), twist(w[1], x[1], yy[1], z[1]);
-        out.rotations[v.motion_root] = v.above_inverse * e.placement.invert((swing * twist).normalized());
-    }
-    static_assert(sizeof(Quat) == 4 * sizeof(double), "Quat: x, y, z, w");
-    const bool ok = path == PosePath::avx2 ? bench::pose_rotations_avx2(sk.kernel, p, reinterpret_cast<double*>(out.rotations.data()))
-                                           : bench::pose_rotations_portable(sk.kernel, p, reinterpret_cast<double*>(out.rotations.data()));
+    static_assert(sizeof(Quat) == 4 * sizeof(double) && sizeof(Vec3) == 3 * sizeof(double), "Quat: x, y, z, w; Vec3: x, y, z");
+    double placement[7];
+    std::memcpy(placement, e.placement.heading.coeffs().data(), 4 * sizeof(double));
+    std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));
+    auto* rotations = reinterpret_cast<double*>(out.rotations.data());
+    auto* translations = reinterpret_cast<double*>(out.translations.data());
+    bool ok = path == PosePath::avx2 ? bench::pose_root_avx2(sk.kernel, placement, p, rotations, translations)
+                                     : bench::pose_root_portable(sk.kernel, placement, p, rotations, translations);
+    ok = (path == PosePath::avx2 ? bench::pose_rotations_avx2(sk.kernel, p, rotations) : bench::pose_rotations_portable(sk.kernel, p, rotations)) &&
+         ok;
     if (!ok || sk.root_projects) {
         ++g_pose_fallbacks;
         m.local_of(e, p, out);

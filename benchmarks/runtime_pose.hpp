@@ -20,6 +20,16 @@ struct PoseLanes {
     double axis[3][4]{};   ///< one channel: C·e
 };
 
+/// The motion root's transform as ChannelWriter::write_local forms it (quaternions x, y, z, w).
+struct PoseRoot {
+    int joint = 0;
+    int translates[3]{};        ///< 1 where the root has that position channel
+    bool rotates = false;       ///< has rotation channels (three: no projection)
+    bool adds = false;          ///< position channels add to the offset
+    double above_inverse[4]{};  ///< the rotation above the motion root, inverted
+    double above_position[3]{}, root_offset[3]{}, offset[3]{};
+};
+
 /// One skeleton of a group: what the kernels read (owned by the caller).
 struct PoseKernel {
     int da = 0, dp = 0, dofs = 0;  ///< active dofs, da rounded up to 8, all dofs
@@ -29,6 +39,7 @@ struct PoseKernel {
     const double* constant = nullptr; ///< dofs values (p where not active)
     const PoseLanes* lanes[3]{};      ///< joints with two, one, three channels
     int groups[3]{};                  ///< lane groups of each kind
+    const PoseRoot* root = nullptr;
 };
 
 /// p (dofs values) of y (da values): x = U y in float32 (each x[i] summed over ascending k, a
@@ -40,6 +51,11 @@ void pose_dofs_avx2(const PoseKernel& k, const double* y, double* p);
 /// the Euler family boundary): then nothing is complete and the caller decodes the pose that way.
 bool pose_rotations_portable(const PoseKernel& k, const double* p, double* rotations);
 bool pose_rotations_avx2(const PoseKernel& k, const double* p, double* rotations);
+/// The motion root's rotation and translation (x, y, z, w and x, y, z at its joint) from p, for a
+/// clip placed by `placement` (heading x, y, z, w, then translation); false when an exp map's angle is
+/// under 1e-12 (then nothing is complete: the caller decodes the pose by ChannelWriter).
+bool pose_root_portable(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations);
+bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations);
 /// Whether this build has the AVX2 kernels and the CPU runs them.
 bool pose_avx2_available();
 

@@ -17,4 +17,8 @@ bool pose_rotations_avx2(const PoseKernel& k, const double* p, double* rotations
     return kernel_rotations(k, p, rotations);
 }
 
+bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations) {
+    return kernel_root(k, placement, p, rotations, translations);
+}
+
 }  // namespace mocapdb::bench

@@ -16,6 +16,10 @@ bool pose_rotations_portable(const PoseKernel& k, const double* p, double* rotat
     return kernel_rotations(k, p, rotations);
 }
 
+bool pose_root_portable(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations) {
+    return kernel_root(k, placement, p, rotations, translations);
+}
+
 bool pose_avx2_available() {
 #if defined(MOCAPDB_POSE_AVX2)
     return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
@@ -29,6 +33,9 @@ bool pose_avx2_available() {
 void pose_dofs_avx2(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }
 bool pose_rotations_avx2(const PoseKernel& k, const double* p, double* rotations) {
     return kernel_rotations(k, p, rotations);
+}
+bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations) {
+    return kernel_root(k, placement, p, rotations, translations);
 }
 #endif
 
