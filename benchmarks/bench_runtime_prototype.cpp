@@ -1455,18 +1455,46 @@ __attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, s
 
 /// From a window's step byte at `bit` (variant 1's directory and columns): frame t's path of columns,
 /// each into its prediction from the keys in a and b (variant 4's decode; the same bits as variant 1).
+struct FixedRows;
+std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t bit, std::size_t i, int Da, double step, double* out);
+
+/// level1 (variant 8): the level-1 column at level1's fixed widths (clip `clip`) between the step byte
+/// and the directory, predicted as the other levels (the same bits as variant 1).
 void decode_path(const RuntimeGroup3& g3, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b,
-                 double* c) {
+                 double* c, const FixedRows* level1 = nullptr, std::size_t clip = 0) {
     const RuntimeGroup& g = *g3.base;
     const int Da = g.Da, B = g3.lookup, W = g.W;
     BitReader in{data, bit};
     const double step = detail::step_of(static_cast<int>(in.get(8)));
     std::size_t skip[8] = {0};
-    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip);
     int lo = 0, hi = W;
     double* lo_y = a;
     double* hi_y = b;
-    for (int l = 1;; ++l) {
+    int l = 1;
+    std::size_t pos;
+    if (level1) {
+        const int mid = W / 2;
+        double* out = mid == t ? y : c;
+        const std::size_t end = read_fixed(*level1, data, in.pos, clip, Da, step, out);
+        for (int d = 0; d < Da; ++d) {
+            const double p = 0.5 * (a[d] + b[d]);
+            out[d] = out[d] != 0.0 ? p + out[d] : p;  // q = 0: the prediction itself (its sign of zero too)
+        }
+        pos = read_directory(data, end, g.levels, t, skip);
+        if (mid == t) return;
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            pos += skip[1];
+            lo = mid;
+            lo_y = out;
+        }
+        l = 2;
+    } else {
+        pos = read_directory(data, in.pos, g.levels, t, skip);
+    }
+    for (;; ++l) {
         const int mid = (lo + hi) / 2;
         double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
         for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
@@ -1536,17 +1564,27 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
 // clip's header), each key row its two's complement value at that width; a key decodes with no
 // symbol chain (every row's place is known). Columns as variant 4 (pairs, same codes). ----
 
+/// Values of one kind (keys; variant 8 also the windows' level-1 columns) at fixed widths per clip
+/// and row: each row's value minus the clip's center for the row at the clip's width for the row;
+/// with escapes, a value outside the width's range is -2^(w-1) in its slot and then in full width
+/// after the slots (see fixed_rows, write_fixed, fixed_key).
+struct FixedRows {
+    std::vector<std::uint8_t> width;   // per clip, Da widths
+    std::vector<std::uint16_t> at;     // per clip, Da + 1 bit offsets of the slots (prefix sums)
+    std::vector<std::int32_t> center;  // per clip, Da values every row is stored relative to (--key-centers)
+    std::vector<std::uint8_t> full;    // per clip, Da widths of an escaped value (> width: the row has escapes)
+    std::vector<std::uint8_t> rows;    // per clip, Da: its rows that have escapes (the first `escapable`)
+    std::vector<int> escapable;        // per clip
+    std::size_t width_bits = 0;        // the widths (and centers) as stored
+};
+
 struct RuntimeGroup7 {
     const RuntimeGroup3* v3 = nullptr;  // tables
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 8 bytes of slack after
-    std::vector<std::uint8_t> width;     // per clip, Da widths
-    std::vector<std::uint16_t> at;       // per clip, Da + 1 bit offsets within a key (prefix sums)
-    std::vector<std::int32_t> center;    // per clip, Da values every key row is stored relative to (--key-centers)
-    std::vector<std::uint8_t> full;      // per clip, Da widths of an escaped value (> width: the row has escapes)
-    std::vector<std::uint8_t> rows;      // per clip, Da: its rows that have escapes (the first `escapable`)
-    std::vector<int> escapable;          // per clip
-    std::size_t width_bits = 0;          // the widths as stored (5 bits each)
+    FixedRows keys;
+    FixedRows level1;  // variant 8: the windows' level-1 columns (center 0)
+    std::size_t width_bits = 0;          // keys' and level 1's widths as stored
 };
 
 /// Two's complement bits that hold q (0 for 0).
@@ -1592,93 +1630,136 @@ std::size_t entries_end(const HierResult& r, std::size_t i) {
     return i + 1 < r.clip_first.size() ? r.clip_first[i + 1] : r.entries.size();
 }
 
-RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool centers, bool escapes) {
+/// Per clip of r and row, the width (with escapes: the one that codes the row smallest), center and
+/// escape width of the values values(e) of its entries (nullptr: an entry without such values).
+template <class Values>
+FixedRows fixed_rows(const HierResult& r, std::size_t Da, Values values, bool centers, bool escapes) {
+    FixedRows f;
+    const std::size_t clips = r.clip_first.size();
+    f.width.assign(clips * Da, 0);
+    f.center.assign(clips * Da, 0);
+    f.full.assign(clips * Da, 0);
+    f.at.assign(clips * (Da + 1), 0);
+    f.rows.assign(clips * Da, 0);
+    for (std::size_t i = 0; i < clips; ++i) {
+        std::vector<const std::vector<std::int32_t>*> of;
+        for (std::size_t e = r.clip_first[i]; e < entries_end(r, i); ++e)
+            if (const std::vector<std::int32_t>* v = values(e)) of.push_back(v);
+        std::uint8_t* w = f.width.data() + i * Da;
+        std::int32_t* center = f.center.data() + i * Da;
+        if (centers && !of.empty())
+            for (std::size_t d = 0; d < Da; ++d) {
+                std::int32_t lo = (*of.front())[d], hi = lo;
+                for (const auto* v : of) {
+                    lo = std::min(lo, (*v)[d]);
+                    hi = std::max(hi, (*v)[d]);
+                }
+                center[d] = static_cast<std::int32_t>((static_cast<std::int64_t>(lo) + hi) >> 1);
+            }
+        for (const auto* v : of)
+            for (std::size_t d = 0; d < Da; ++d)
+                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], twos_bits(static_cast<std::int64_t>((*v)[d]) - center[d])));
+        std::uint8_t* full = f.full.data() + i * Da;
+        for (std::size_t d = 0; d < Da; ++d) {
+            full[d] = w[d];
+            if (!escapes) continue;
+            std::vector<std::int64_t> row;
+            for (const auto* v : of) row.push_back(static_cast<std::int64_t>((*v)[d]) - center[d]);
+            w[d] = static_cast<std::uint8_t>(escape_width(row, full[d], nullptr));
+        }
+        f.escapable.push_back(0);
+        for (std::size_t d = 0; d < Da; ++d)
+            if (full[d] > w[d]) f.rows[i * Da + static_cast<std::size_t>(f.escapable.back()++)] = static_cast<std::uint8_t>(d);
+        std::uint16_t* at = f.at.data() + i * (Da + 1);
+        for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
+    }
+    // The widths as stored: per row the group's largest (5 bits), then each clip's as its difference
+    // from it by a static Huffman code of the group (table: 5 bits per symbol and 8).
+    // With centers: each center at its own width (a Huffman-coded width, then its bits).
+    std::vector<int> largest(Da, 0);
+    for (std::size_t i = 0; i < clips; ++i)
+        for (std::size_t d = 0; d < Da; ++d) largest[d] = std::max<int>(largest[d], f.width[i * Da + d]);
+    std::vector<int> deltas, center_widths, extra;
+    for (std::size_t i = 0; i < clips; ++i)
+        for (std::size_t d = 0; d < Da; ++d) {
+            deltas.push_back(largest[d] - f.width[i * Da + d]);
+            if (escapes) extra.push_back(f.full[i * Da + d] - f.width[i * Da + d]);
+            if (centers) {
+                center_widths.push_back(twos_bits(f.center[i * Da + d]));
+                f.width_bits += static_cast<std::size_t>(center_widths.back());
+            }
+        }
+    f.width_bits += 5 * Da + coded_bits(deltas) + coded_bits(center_widths) + coded_bits(extra);
+    return f;
+}
+
+/// Values v of clip i at f's widths: the slots, then the escaped values.
+void write_fixed(BitWriter& out, const FixedRows& f, std::size_t i, std::size_t Da, const std::vector<std::int32_t>& v) {
+    const std::uint8_t* w = f.width.data() + i * Da;
+    const std::int32_t* center = f.center.data() + i * Da;
+    const std::uint8_t* full = f.full.data() + i * Da;
+    std::vector<std::pair<std::int64_t, int>> escaped;
+    for (std::size_t d = 0; d < Da; ++d) {
+        const std::int64_t x = static_cast<std::int64_t>(v[d]) - center[d];
+        if (full[d] > w[d] && !(x > -(std::int64_t{1} << (w[d] - 1)) && x < (std::int64_t{1} << (w[d] - 1)))) {
+            out.put(static_cast<std::uint32_t>(-(std::int64_t{1} << (w[d] - 1))), w[d]);
+            escaped.push_back({x, full[d]});
+        } else {
+            out.put(static_cast<std::uint32_t>(x), w[d]);
+        }
+    }
+    for (const auto& [x, fw] : escaped) out.put(static_cast<std::uint32_t>(x), fw);
+}
+
+/// Variant 7 (level1 false) or 8 (level1 true: each window's level-1 column at fixed widths, center
+/// 0, after the window's step byte and before its directory).
+RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool centers, bool escapes, bool level1 = false) {
     const RuntimeGroup& g = *g3.base;
     RuntimeGroup7 g7;
     g7.v3 = &g3;
     const auto Da = static_cast<std::size_t>(g.Da);
     std::vector<int> tl, tf;
     tree_order(g.W, tl, tf);
-    g7.width.assign(r.clip_first.size() * Da, 0);
-    g7.center.assign(r.clip_first.size() * Da, 0);
-    g7.full.assign(r.clip_first.size() * Da, 0);
-    g7.at.assign(r.clip_first.size() * (Da + 1), 0);
+    g7.keys = fixed_rows(r, Da, [&](std::size_t e) { return &r.entries[e].key; }, centers, escapes);
+    g7.width_bits = g7.keys.width_bits;
+    if (level1) {
+        g7.level1 = fixed_rows(r, Da, [&](std::size_t e) { return r.entries[e].step >= 0 ? &r.entries[e].columns[0] : nullptr; }, false,
+                               escapes);
+        g7.width_bits += g7.level1.width_bits;
+    }
     std::vector<std::size_t> clip_of(r.entries.size());
-    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
-        const std::size_t last = entries_end(r, i);
-        std::uint8_t* w = g7.width.data() + i * Da;
-        std::int32_t* center = g7.center.data() + i * Da;
-        if (centers)
-            for (std::size_t d = 0; d < Da; ++d) {
-                std::int32_t lo = r.entries[r.clip_first[i]].key[d], hi = lo;
-                for (std::size_t e = r.clip_first[i]; e < last; ++e) {
-                    lo = std::min(lo, r.entries[e].key[d]);
-                    hi = std::max(hi, r.entries[e].key[d]);
-                }
-                center[d] = static_cast<std::int32_t>((static_cast<std::int64_t>(lo) + hi) >> 1);
-            }
-        for (std::size_t e = r.clip_first[i]; e < last; ++e) {
-            clip_of[e] = i;
-            for (std::size_t d = 0; d < Da; ++d)
-                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], twos_bits(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d])));
-        }
-        // Escapes: the width that codes the row smallest when a value outside (-2^(w-1), 2^(w-1)) is
-        // stored as -2^(w-1) and then in full width after the key's slots.
-        std::uint8_t* full = g7.full.data() + i * Da;
-        for (std::size_t d = 0; d < Da; ++d) {
-            full[d] = w[d];
-            if (!escapes) continue;
-            std::vector<std::int64_t> values;
-            for (std::size_t e = r.clip_first[i]; e < last; ++e) values.push_back(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d]);
-            w[d] = static_cast<std::uint8_t>(escape_width(values, full[d], nullptr));
-        }
-        g7.rows.resize(g7.full.size());
-        g7.escapable.push_back(0);
-        for (std::size_t d = 0; d < Da; ++d)
-            if (full[d] > w[d]) g7.rows[i * Da + static_cast<std::size_t>(g7.escapable.back()++)] = static_cast<std::uint8_t>(d);
-        std::uint16_t* at = g7.at.data() + i * (Da + 1);
-        for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
-    }
-    // The widths as stored: per row the group's largest (5 bits), then each clip's as its difference
-    // from it by a static Huffman code of the group (table: 5 bits per symbol and 8).
-    // With centers: each center at its own width (a Huffman-coded width, then its bits).
-    {
-        std::vector<int> largest(Da, 0);
-        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
-            for (std::size_t d = 0; d < Da; ++d) largest[d] = std::max<int>(largest[d], g7.width[i * Da + d]);
-        std::vector<int> deltas, center_widths, extra;
-        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
-            for (std::size_t d = 0; d < Da; ++d) {
-                deltas.push_back(largest[d] - g7.width[i * Da + d]);
-                if (escapes) extra.push_back(g7.full[i * Da + d] - g7.width[i * Da + d]);
-                if (centers) {
-                    center_widths.push_back(twos_bits(g7.center[i * Da + d]));
-                    g7.width_bits += static_cast<std::size_t>(center_widths.back());
-                }
-            }
-        g7.width_bits += 5 * Da + coded_bits(deltas) + coded_bits(center_widths) + coded_bits(extra);
-    }
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i)
+        for (std::size_t e = r.clip_first[i]; e < entries_end(r, i); ++e) clip_of[e] = i;
     BitWriter out;
     for (std::size_t k = 0; k < r.entries.size(); ++k) {
         const auto& e = r.entries[k];
         out.align();
         g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
         out.put(static_cast<std::uint32_t>(e.key_step), 8);
-        const std::uint8_t* w = g7.width.data() + clip_of[k] * Da;
-        const std::int32_t* center = g7.center.data() + clip_of[k] * Da;
-        const std::uint8_t* full = g7.full.data() + clip_of[k] * Da;
-        std::vector<std::pair<std::int64_t, int>> escaped;
-        for (std::size_t d = 0; d < Da; ++d) {
-            const std::int64_t v = static_cast<std::int64_t>(e.key[d]) - center[d];
-            if (full[d] > w[d] && !(v > -(std::int64_t{1} << (w[d] - 1)) && v < (std::int64_t{1} << (w[d] - 1)))) {
-                out.put(static_cast<std::uint32_t>(-(std::int64_t{1} << (w[d] - 1))), w[d]);
-                escaped.push_back({v, full[d]});
-            } else {
-                out.put(static_cast<std::uint32_t>(v), w[d]);
-            }
+        write_fixed(out, g7.keys, clip_of[k], Da, e.key);
+        if (e.step < 0) continue;
+        if (!level1) {
+            write_window(g, out, e, tl);
+            continue;
         }
-        for (const auto& [v, f] : escaped) out.put(static_cast<std::uint32_t>(v), f);
-        if (e.step >= 0) write_window(g, out, e, tl);
+        // write_window's bits with its level-1 column (tree order's first, right after the directory;
+        // never in a left-subtree size) at fixed widths between the step byte and the directory.
+        BitWriter window, first;
+        const std::size_t directory = write_window(g, window, e, tl);
+        g.write_column(first, tl[0], e.columns[0]);
+        const std::size_t bits = window.bits();
+        window.align();
+        window.bytes.resize(window.bytes.size() + 8, 0);
+        BitReader in{window.bytes.data(), 0};
+        out.put(static_cast<std::uint32_t>(in.get(8)), 8);
+        write_fixed(out, g7.level1, clip_of[k], Da, e.columns[0]);
+        auto copy = [&](std::size_t n) {
+            for (; n >= 16; n -= 16) out.put(static_cast<std::uint32_t>(in.get(16)), 16);
+            if (n) out.put(static_cast<std::uint32_t>(in.get(static_cast<int>(n))), static_cast<int>(n));
+        };
+        copy(directory);
+        in.pos += first.bits();
+        copy(bits - 8 - directory - first.bits());
     }
     out.align();
     g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
@@ -1718,6 +1799,15 @@ inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const st
     return escape;
 }
 
+/// Clip i's values of f at bit `bit` into out (out[d] = value * step); returns the bit after them.
+std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t bit, std::size_t i, int Da, double step,
+                              double* out) {
+    const auto n = static_cast<std::size_t>(Da);
+    return fixed_key(data, bit, f.width.data() + i * n, f.at.data() + i * (n + 1), f.center.data() + i * n, f.full.data() + i * n,
+                     f.rows.data() + i * n, f.escapable[i], Da, step, out);
+}
+
+/// Variant 7's frame into y (variant 8's when g7 has level-1 widths); the same bits as variant 1.
 void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
     const RuntimeGroup3& g3 = *g7.v3;
     const RuntimeGroup& g = *g3.base;
@@ -1727,24 +1817,19 @@ void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame
     const std::size_t entry = g.clip_first[clip] + w;
     const std::uint8_t* data = g7.bytes.data();
     const std::size_t o0 = g7.offsets[entry], o1 = g7.offsets[entry + 1];
-    const std::uint8_t* width = g7.width.data() + clip * static_cast<std::size_t>(Da);
-    const std::uint16_t* at = g7.at.data() + clip * static_cast<std::size_t>(Da + 1);
-    const std::int32_t* center = g7.center.data() + clip * static_cast<std::size_t>(Da);
-    const std::uint8_t* full = g7.full.data() + clip * static_cast<std::size_t>(Da);
-    const std::uint8_t* rows = g7.rows.data() + clip * static_cast<std::size_t>(Da);
-    const int escapable = g7.escapable[clip];
     {
-        const std::size_t end = t == 0 ? o0 + at[Da] / 8 + 9 : o1 + at[Da] / 8 + 9;
+        const std::size_t key_bits = g7.keys.at[clip * static_cast<std::size_t>(Da + 1) + static_cast<std::size_t>(Da)];
+        const std::size_t end = (t == 0 ? o0 : o1) + key_bits / 8 + 9;
         for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
     }
     const double key_step = detail::step_of(data[o0]);
     if (t == 0) {
-        fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, y);
+        read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, y);
         return;
     }
-    const std::size_t key_end = fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, a);
-    fixed_key(data, o1 * 8 + 8, width, at, center, full, rows, escapable, Da, detail::step_of(data[o1]), b);
-    decode_path(g3, data, key_end, t, y, a, b, c);
+    const std::size_t key_end = read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, a);
+    read_fixed(g7.keys, data, o1 * 8 + 8, clip, Da, detail::step_of(data[o1]), b);
+    decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.escapable.empty() ? nullptr : &g7.level1, clip);
 }
 
 }  // namespace
@@ -2116,15 +2201,18 @@ int main(int argc, char** argv) {
                             for (const auto& rg : r4[0])
                                 bytes4 += static_cast<double>(rg.bytes.size() - 16) + 3.0 * static_cast<double>(rg.offsets.size());
                             // Variant 7: bytes without the keys' (level 0) code tables, with the clips' key widths.
-                            std::vector<RuntimeGroup7> r7[2];  // [0] with escapes (--key-escapes), [1] without
-                            double bytes7[2] = {tables / 8 + static_cast<double>(f2_header), tables / 8 + static_cast<double>(f2_header)};
+                            // [0] with escapes (--key-escapes), [1] without, [2] variant 8: [0] with the windows' level-1
+                            // columns at fixed widths too (without their code tables).
+                            std::vector<RuntimeGroup7> r7[3];
+                            double bytes7[3];
+                            for (int k = 0; k < 3; ++k) bytes7[k] = tables / 8 + static_cast<double>(f2_header);
                             for (std::size_t g = 0; g < groups.size(); ++g)
-                                for (int k = 0; k < 2; ++k) {
-                                    r7[k].push_back(build_runtime7(r4[0][g], hier_results[g], key_centers, k == 0 && key_escapes));
+                                for (int k = 0; k < 3; ++k) {
+                                    r7[k].push_back(build_runtime7(r4[0][g], hier_results[g], key_centers, k != 1 && key_escapes, k == 2));
                                     const RuntimeGroup7& b7 = r7[k].back();
                                     bytes7[k] += static_cast<double>(b7.bytes.size() - 8) + 3.0 * static_cast<double>(b7.offsets.size()) +
                                                  static_cast<double>(b7.width_bits) / 8;
-                                    for (int c = 0; c < runtime[g].buckets; ++c) {
+                                    for (int c = 0; c < (k == 2 ? 2 : 1) * runtime[g].buckets; ++c) {
                                         const auto& code = runtime[g].codes[static_cast<std::size_t>(c)];
                                         if (!code.length.empty()) bytes7[k] -= (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
                                     }
@@ -2219,7 +2307,7 @@ int main(int argc, char** argv) {
                                             avx2 ? "portable and AVX2" : "portable; no AVX2", pose_frames,
                                             dofs_equal ? "equal to the library path's" : "DIFFER", pose_differ, pose_diff, g_pose_fallbacks);
                             }
-                            Times t1, t1d, t7[2], t7k[2][2];
+                            Times t1, t1d, t7[3], t7k[3][2];  // t7k: with the pose kernels, portable and AVX2
                             std::vector<Times> t4(configs.size());
                             for (int rep = 0; rep < reps; ++rep) {
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
@@ -2228,7 +2316,7 @@ int main(int argc, char** argv) {
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                     runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                 }, t1d, true);
-                                for (int k = 0; k < 2; ++k) {
+                                for (int k = 0; k < 3; ++k) {
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame7(r7[k][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                     }, t7[k]);
@@ -2251,9 +2339,10 @@ int main(int argc, char** argv) {
                                 std::printf("#    v4 lookup %d bits%s (table %zu kB): bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
                                             configs[v].lookup, configs[v].pairs ? ", pairs" : ", no pairs", r4[v][0].table.size() * 4 / 1024, bytes4,
                                             t4[v].cold, t4[v].y, t4[v].hot);
-                            for (int k = 0; k < 2; ++k) {
-                                std::printf("#    v7 keys at fixed widths%s%s, lookup %d: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
-                                            key_centers ? ", centered" : "", k == 0 && key_escapes ? ", escapes" : "", configs[0].lookup, bytes7[k],
+                            for (int k = 0; k < 3; ++k) {
+                                std::printf("#    %s keys at fixed widths%s%s, lookup %d: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                            k == 2 ? "v8 level-1 columns and" : "v7", key_centers ? ", centered" : "",
+                                            k != 1 && key_escapes ? ", escapes" : "", configs[0].lookup, bytes7[k],
                                             t7[k].cold, t7[k].y, t7[k].hot);
                                 if (g_float_dofs)
                                     std::printf("#      with the pose kernels: cold local pose %.3f us portable, %.3f us AVX2\n", t7k[k][0].cold,
