@@ -28,9 +28,14 @@
 //   variant 7  variant 4 with keys at fixed widths: per clip and row a width (coded against the group's
 //              largest), a center and, with --key-escapes, escapes (a value outside the width's range
 //              written after the key's slots): no symbol chain for keys
-// Variants 4 and 7 are checked equal to variant 1 on every frame (so within E) and timed against it in
-// the same repeats. --float-dofs 1: x = U y in float32 in the encoder's bound check, the check of every
-// frame and the timings (closed loop). --dof identity: no dof basis.
+//   variant 8  variant 7 with each window's level-1 column at fixed widths too (per clip and row, with
+//              escapes, center 0), between the window's step byte and its directory
+// Variants 4, 7 and 8 are checked equal to variant 1 on every frame (so within E) and timed against it
+// in the same repeats. --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
+// encoder's bound check, the check of every frame and the timings (closed loop); variants 7 and 8 are
+// also timed with y -> local pose by runtime_pose.hpp's kernels (portable and, where the CPU has it,
+// AVX2), whose dofs and local poses are checked equal, bit for bit, to the library path's on every
+// frame. --dof identity: no dof basis.
 // With --poses N: both bitstreams are built, every frame of every clip is decoded from the bytes and
 // compared with its source (FK, cm), and N cold random local poses (random clip and frame, nothing
 // kept) are timed (thread CPU, best of 3) beside format 2's GroupDecoder::decode_local_pose on the
@@ -1573,8 +1578,6 @@ struct FixedRows {
     std::vector<std::uint16_t> at;     // per clip, Da + 1 bit offsets of the slots (prefix sums)
     std::vector<std::int32_t> center;  // per clip, Da values every row is stored relative to (--key-centers)
     std::vector<std::uint8_t> full;    // per clip, Da widths of an escaped value (> width: the row has escapes)
-    std::vector<std::uint8_t> rows;    // per clip, Da: its rows that have escapes (the first `escapable`)
-    std::vector<int> escapable;        // per clip
     std::size_t width_bits = 0;        // the widths (and centers) as stored
 };
 
@@ -1640,7 +1643,6 @@ FixedRows fixed_rows(const HierResult& r, std::size_t Da, Values values, bool ce
     f.center.assign(clips * Da, 0);
     f.full.assign(clips * Da, 0);
     f.at.assign(clips * (Da + 1), 0);
-    f.rows.assign(clips * Da, 0);
     for (std::size_t i = 0; i < clips; ++i) {
         std::vector<const std::vector<std::int32_t>*> of;
         for (std::size_t e = r.clip_first[i]; e < entries_end(r, i); ++e)
@@ -1667,9 +1669,6 @@ FixedRows fixed_rows(const HierResult& r, std::size_t Da, Values values, bool ce
             for (const auto* v : of) row.push_back(static_cast<std::int64_t>((*v)[d]) - center[d]);
             w[d] = static_cast<std::uint8_t>(escape_width(row, full[d], nullptr));
         }
-        f.escapable.push_back(0);
-        for (std::size_t d = 0; d < Da; ++d)
-            if (full[d] > w[d]) f.rows[i * Da + static_cast<std::size_t>(f.escapable.back()++)] = static_cast<std::uint8_t>(d);
         std::uint16_t* at = f.at.data() + i * (Da + 1);
         for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
     }
@@ -1779,22 +1778,26 @@ inline std::int64_t signed_bits(const std::uint8_t* data, std::size_t p, int w) 
 }
 
 /// A fixed-width key at bit `bit`: out[d] = q * step (+0.0 where q is 0, as the encoder formed it).
-/// Returns the bit after the key (its slots, then its escaped values).
+/// Returns the bit after the key (its slots, then its escaped values). The rows whose slot holds the
+/// escape code (-2^(w-1) in a row that has escapes) are listed in the slots' pass without branches,
+/// and only those read their escaped values (in row order, as written).
 inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const std::uint8_t* width, const std::uint16_t* at,
-                             const std::int32_t* center, const std::uint8_t* full, const std::uint8_t* rows, int escapable, int Da,
-                             double step, double* out) {
-    for (int d = 0; d < Da; ++d) out[d] = static_cast<double>(signed_bits(data, bit + at[d], width[d]) + center[d]) * step;
-    // The clip's rows that may escape, without branches (escapes are frequent enough to be
-    // mispredicted): the escaped value is read at the escape position and kept where the slot says so.
+                             const std::int32_t* center, const std::uint8_t* full, int Da, double step, double* out) {
+    int escaped[256];
+    int n = 0;
+    for (int d = 0; d < Da; ++d) {
+        const int w = width[d];
+        const std::int64_t q = signed_bits(data, bit + at[d], w);
+        out[d] = static_cast<double>(q + center[d]) * step;
+        const auto code = static_cast<std::int64_t>(~std::uint64_t{0} << ((w - 1) & 63));  // -2^(w-1)
+        escaped[n] = d;
+        n += static_cast<int>((full[d] > w) & (q == code));
+    }
     std::size_t escape = bit + at[Da];
-    for (int k = 0; k < escapable; ++k) {
-        const int d = rows[k], w = width[d], f = full[d];
-        const std::int64_t slot = signed_bits(data, bit + at[d], w);
-        const bool escaped = slot == -(std::int64_t{1} << (w - 1));
-        const std::int64_t wide = signed_bits(data, escape, f);
-        escape += escaped ? static_cast<std::size_t>(f) : 0;
-        const double value = static_cast<double>(wide + center[d]) * step;
-        out[d] = escaped ? value : out[d];
+    for (int k = 0; k < n; ++k) {
+        const int d = escaped[k], f = full[d];
+        out[d] = static_cast<double>(signed_bits(data, escape, f) + center[d]) * step;
+        escape += static_cast<std::size_t>(f);
     }
     return escape;
 }
@@ -1803,8 +1806,8 @@ inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const st
 std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t bit, std::size_t i, int Da, double step,
                               double* out) {
     const auto n = static_cast<std::size_t>(Da);
-    return fixed_key(data, bit, f.width.data() + i * n, f.at.data() + i * (n + 1), f.center.data() + i * n, f.full.data() + i * n,
-                     f.rows.data() + i * n, f.escapable[i], Da, step, out);
+    return fixed_key(data, bit, f.width.data() + i * n, f.at.data() + i * (n + 1), f.center.data() + i * n, f.full.data() + i * n, Da,
+                     step, out);
 }
 
 /// Variant 7's frame into y (variant 8's when g7 has level-1 widths); the same bits as variant 1.
@@ -1829,7 +1832,7 @@ void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame
     }
     const std::size_t key_end = read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, a);
     read_fixed(g7.keys, data, o1 * 8 + 8, clip, Da, detail::step_of(data[o1]), b);
-    decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.escapable.empty() ? nullptr : &g7.level1, clip);
+    decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.width.empty() ? nullptr : &g7.level1, clip);
 }
 
 }  // namespace
