@@ -291,7 +291,8 @@ std::size_t g_pose_fallbacks = 0;  ///< poses the kernels left to the library's 
 
 /// y -> the frame's dofs: pose_of, or with an identity dof basis (--dof identity) the copy of y
 /// instead of the product (x = y: the same values, up to the sign of a zero).
-void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s, double* p) {
+void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s, double* p,
+               const PosePlan* plan = nullptr) {
     static thread_local const detail::GroupModel* known = nullptr;
     static thread_local bool identity = false;
     if (known != &m) {
@@ -299,7 +300,7 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
         identity = m.dof_basis.isIdentity(0.0);
     }
     if (g_float_dofs) {
-        bench::pose_dofs_portable(pose_plan(m).skeletons[e.skeleton].kernel, y, p);
+        bench::pose_dofs_portable((plan ? *plan : pose_plan(m)).skeletons[e.skeleton].kernel, y, p);
         return;
     }
     if (!identity) {
@@ -315,13 +316,13 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
 /// root as write_local does and the other joints by the kernels; a pose they leave (see
 /// pose_rotations_portable) is decoded by the library's write_local from the same dofs.
 void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s,
-                     double* p, LocalPose& out, PosePath path) {
+                     double* p, LocalPose& out, PosePath path, const PosePlan* plan = nullptr) {
     if (path == PosePath::library || !g_float_dofs) {
-        dofs_of_y(m, e, y, s, p);
+        dofs_of_y(m, e, y, s, p, plan);
         m.local_of(e, p, out);
         return;
     }
-    const PosePlan::Skeleton& sk = pose_plan(m).skeletons[e.skeleton];
+    const PosePlan::Skeleton& sk = (plan ? *plan : pose_plan(m)).skeletons[e.skeleton];
     if (path == PosePath::avx2) bench::pose_dofs_avx2(sk.kernel, y, p);
     else bench::pose_dofs_portable(sk.kernel, y, p);
     const detail::ChannelWriter& writer = m.skeletons[e.skeleton].writer;
@@ -2243,6 +2244,8 @@ int main(int argc, char** argv) {
                             struct Times {
                                 double cold = 1e300, y = 1e300, hot = 1e300;
                             };
+                            std::vector<const PosePlan*> plans;  // per group (no lookup in the timed loops)
+                            for (const auto& m : models) plans.push_back(g_float_dofs ? &pose_plan(m) : nullptr);
                             auto time = [&](auto&& frame_fn, Times& t, bool float64_product = false, PosePath path = PosePath::library) {
                                 for (int with_pose = 1; with_pose >= 0; --with_pose) {
                                     const double c0 = bench::thread_cpu_seconds();
@@ -2256,7 +2259,7 @@ int main(int argc, char** argv) {
                                                 m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
                                                 m.local_of(m.clips[i], base + 4 * Da, out);
                                             } else {
-                                                local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * Da, out, path);
+                                                local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * Da, out, path, plans[g]);
                                             }
                                         }
                                     }
@@ -2360,7 +2363,8 @@ int main(int argc, char** argv) {
                                         for (const auto& [g, i, f] : seq) {
                                             const auto& m = models[g];
                                             double* base = scratch[g].data();
-                                            local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * m.active.size(), out, static_cast<PosePath>(a));
+                                            local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * m.active.size(), out, static_cast<PosePath>(a),
+                                                            plans[g]);
                                         }
                                         stage[a] = std::min(stage[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                                     }
@@ -2371,7 +2375,7 @@ int main(int argc, char** argv) {
                                         const double c0 = bench::thread_cpu_seconds();
                                         for (const auto& [g, i, f] : seq) {
                                             const auto& m = models[g];
-                                            const auto& k = pose_plan(m).skeletons[m.clips[i].skeleton].kernel;
+                                            const auto& k = plans[g]->skeletons[m.clips[i].skeleton].kernel;
                                             double* base = scratch[g].data();
                                             if (a == 0) bench::pose_dofs_avx2(k, base, base + 4 * m.active.size());
                                             else bench::pose_rotations_avx2(k, base + 4 * m.active.size(), reinterpret_cast<double*>(out.rotations.data()));
@@ -2380,8 +2384,8 @@ int main(int argc, char** argv) {
                                     }
                                 const auto& k0 = pose_plan(models[0]).skeletons[0].kernel;
                                 std::printf("#    y -> local pose alone: library %.3f us, kernels portable %.3f us, AVX2 %.3f us (its dofs %.3f, rotations %.3f; "
-                                            "group 0: %d active dofs, lane groups %d / %d / %d of joints with 2 / 1 / 3 channels)\n",
-                                            stage[0], stage[1], avx2 ? stage[2] : 0.0, part[0], part[1], k0.da, k0.groups[0], k0.groups[1], k0.groups[2]);
+                                            "%zu groups; group 0: %d active dofs, lane groups %d / %d / %d of joints with 2 / 1 / 3 channels)\n",
+                                            stage[0], stage[1], avx2 ? stage[2] : 0.0, part[0], part[1], groups.size(), k0.da, k0.groups[0], k0.groups[1], k0.groups[2]);
                             }
                         }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
