@@ -2383,6 +2383,18 @@ int main(int argc, char** argv) {
                                         part[a] = std::min(part[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                                     }
                                 const auto& k0 = pose_plan(models[0]).skeletons[0].kernel;
+                                // What the kernels hold beyond the stored bytes (the float basis, per skeleton its lanes,
+                                // inverse weights and root).
+                                std::size_t kernel_bytes = 0, skeletons = 0;
+                                for (const PosePlan* plan : plans) {
+                                    kernel_bytes += plan->basis.size() * sizeof(float);
+                                    for (const auto& sk : plan->skeletons) {
+                                        ++skeletons;
+                                        kernel_bytes += sk.inverse_weights.size() * sizeof(double) + sizeof(bench::PoseRoot) + sizeof(bench::PoseKernel);
+                                        for (const auto& lanes : sk.lanes) kernel_bytes += lanes.size() * sizeof(bench::PoseLanes);
+                                    }
+                                }
+                                std::printf("#    pose kernels' resident bytes: %zu (%zu skeletons)\n", kernel_bytes, skeletons);
                                 std::printf("#    y -> local pose alone: library %.3f us, kernels portable %.3f us, AVX2 %.3f us (its dofs %.3f, rotations %.3f; "
                                             "%zu groups; group 0: %d active dofs, lane groups %d / %d / %d of joints with 2 / 1 / 3 channels)\n",
                                             stage[0], stage[1], avx2 ? stage[2] : 0.0, part[0], part[1], groups.size(), k0.da, k0.groups[0], k0.groups[1], k0.groups[2]);

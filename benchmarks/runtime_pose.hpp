@@ -59,4 +59,16 @@ bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* 
 /// Whether this build has the AVX2 kernels and the CPU runs them.
 bool pose_avx2_available();
 
+/// The functions above of one build (suffix portable or avx2), in a file that includes
+/// runtime_pose_kernel.inc.
+#define MOCAPDB_POSE_KERNELS(suffix)                                                                                   \
+    void pose_dofs_##suffix(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }                 \
+    bool pose_rotations_##suffix(const PoseKernel& k, const double* p, double* rotations) {                            \
+        return kernel_rotations(k, p, rotations);                                                                      \
+    }                                                                                                                  \
+    bool pose_root_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations,          \
+                            double* translations) {                                                                    \
+        return kernel_root(k, placement, p, rotations, translations);                                                  \
+    }
+
 }  // namespace mocapdb::bench

@@ -11,14 +11,6 @@ namespace {
 #include "runtime_pose_kernel.inc"
 }  // namespace
 
-void pose_dofs_avx2(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }
-
-bool pose_rotations_avx2(const PoseKernel& k, const double* p, double* rotations) {
-    return kernel_rotations(k, p, rotations);
-}
-
-bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations) {
-    return kernel_root(k, placement, p, rotations, translations);
-}
+MOCAPDB_POSE_KERNELS(avx2)
 
 }  // namespace mocapdb::bench
