@@ -13,11 +13,11 @@ namespace mocapdb::bench {
 /// Four joints of one kind (two, one or three rotation channels); lanes past `count` repeat lane 0.
 struct PoseLanes {
     int count = 0;
-    int pose_row[4]{};  ///< first of each joint's three exp-map dofs in p
-    int joint[4]{};     ///< skeleton index (LocalPose slot)
+    int pose_row[4]{};     ///< first of each joint's three exp-map dofs in p
+    int joint[4]{};        ///< skeleton index (LocalPose slot)
     double frame[9][4]{};  ///< two channels: the Euler frame A (row-major) by lane
     double missing[4]{}, first[3][4]{}, second[3][4]{}, cross[3][4]{}, dot[4]{};  ///< two channels
-    double axis[3][4]{};   ///< one channel: C·e
+    double axis[3][4]{};                                                          ///< one channel: C·e
 };
 
 /// The motion root's transform as ChannelWriter::write_local forms it (quaternions x, y, z, w).
@@ -32,13 +32,13 @@ struct PoseRoot {
 
 /// One skeleton of a group: what the kernels read (owned by the caller).
 struct PoseKernel {
-    int da = 0, dp = 0, dofs = 0;  ///< active dofs, da rounded up to 8, all dofs
-    const float* basis = nullptr;  ///< dp by da, column-major (column k at k·dp), rows past da zero
+    int da = 0, dp = 0, dofs = 0;             ///< active dofs, da rounded up to 8, all dofs
+    const float* basis = nullptr;             ///< dp by da, column-major (column k at k·dp), rows past da zero
     const double* inverse_weights = nullptr;  ///< 1 / the da active weights
-    const int* active = nullptr;      ///< da indices into p
-    const double* constant = nullptr; ///< dofs values (p where not active)
-    const PoseLanes* lanes[3]{};      ///< joints with two, one, three channels
-    int groups[3]{};                  ///< lane groups of each kind
+    const int* active = nullptr;              ///< da indices into p
+    const double* constant = nullptr;         ///< dofs values (p where not active)
+    const PoseLanes* lanes[3]{};              ///< joints with two, one, three channels
+    int groups[3]{};                          ///< lane groups of each kind
     const PoseRoot* root = nullptr;
 };
 
@@ -54,21 +54,23 @@ bool pose_rotations_avx2(const PoseKernel& k, const double* p, double* rotations
 /// The motion root's rotation and translation (x, y, z, w and x, y, z at its joint) from p, for a
 /// clip placed by `placement` (heading x, y, z, w, then translation); false when an exp map's angle is
 /// under 1e-12 (then nothing is complete: the caller decodes the pose by ChannelWriter).
-bool pose_root_portable(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations);
-bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations, double* translations);
+bool pose_root_portable(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                        double* translations);
+bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                    double* translations);
 /// Whether this build has the AVX2 kernels and the CPU runs them.
 bool pose_avx2_available();
 
 /// The functions above of one build (suffix portable or avx2), in a file that includes
 /// runtime_pose_kernel.inc.
-#define MOCAPDB_POSE_KERNELS(suffix)                                                                                   \
-    void pose_dofs_##suffix(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }                 \
-    bool pose_rotations_##suffix(const PoseKernel& k, const double* p, double* rotations) {                            \
-        return kernel_rotations(k, p, rotations);                                                                      \
-    }                                                                                                                  \
-    bool pose_root_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations,          \
-                            double* translations) {                                                                    \
-        return kernel_root(k, placement, p, rotations, translations);                                                  \
+#define MOCAPDB_POSE_KERNELS(suffix)                                                                          \
+    void pose_dofs_##suffix(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }        \
+    bool pose_rotations_##suffix(const PoseKernel& k, const double* p, double* rotations) {                   \
+        return kernel_rotations(k, p, rotations);                                                             \
+    }                                                                                                         \
+    bool pose_root_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations, \
+                            double* translations) {                                                           \
+        return kernel_root(k, placement, p, rotations, translations);                                         \
     }
 
 }  // namespace mocapdb::bench

@@ -91,9 +91,10 @@ public:
         const std::vector<Vec3>* offsets;
     };
     LocalView local_view() const {
-        return {&joints_,       two_channel_joints_, one_channel_joints_, above_inverse_,     above_position_,
-                root_offset_,   root_translation_,   root_rotates_,       adds_,              motion_root_,
-                &rest_rotations_, &rest_translations_, &offsets_};
+        return {&joints_,        two_channel_joints_, one_channel_joints_, above_inverse_,
+                above_position_, root_offset_,        root_translation_,   root_rotates_,
+                adds_,           motion_root_,        &rest_rotations_,    &rest_translations_,
+                &offsets_};
     }
 
 private:
