@@ -28,9 +28,14 @@
 //   variant 7  variant 4 with keys at fixed widths: per clip and row a width (coded against the group's
 //              largest), a center and, with --key-escapes, escapes (a value outside the width's range
 //              written after the key's slots): no symbol chain for keys
-// Variants 4 and 7 are checked equal to variant 1 on every frame (so within E) and timed against it in
-// the same repeats. --float-dofs 1: x = U y in float32 in the encoder's bound check, the check of every
-// frame and the timings (closed loop). --dof identity: no dof basis.
+//   variant 8  variant 7 with each window's level-1 column at fixed widths too (per clip and row, with
+//              escapes, center 0), between the window's step byte and its directory
+// Variants 4, 7 and 8 are checked equal to variant 1 on every frame (so within E) and timed against it
+// in the same repeats. --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
+// encoder's bound check, the check of every frame and the timings (closed loop); variants 7 and 8 are
+// also timed with y -> local pose by runtime_pose.hpp's kernels (portable and, where the CPU has it,
+// AVX2), whose dofs and local poses are checked equal, bit for bit, to the library path's on every
+// frame. --dof identity: no dof basis.
 // With --poses N: both bitstreams are built, every frame of every clip is decoded from the bytes and
 // compared with its source (FK, cm), and N cold random local poses (random clip and frame, nothing
 // kept) are timed (thread CPU, best of 3) beside format 2's GroupDecoder::decode_local_pose on the
@@ -53,6 +58,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,6 +68,7 @@
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 #include "../lib/src/packing/group_model.hpp"
+#include "runtime_pose.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::packing;
@@ -166,30 +173,126 @@ std::int32_t quantize(double v, double inv_step, double rounding) {
     return v < 0 ? -m : m;
 }
 
-/// x = U y in float32 (the dof basis rounded to float), then the dofs as pose_of forms them.
-struct FloatModel {
-    Eigen::MatrixXf U;
-    mutable Eigen::VectorXf y, x;
-    mutable std::vector<double> xd;
-    explicit FloatModel(const detail::GroupModel& m)
-        : U(m.dof_basis.cast<float>()), y(m.dof_basis.rows()), x(m.dof_basis.rows()), xd(static_cast<std::size_t>(m.dof_basis.rows())) {}
+/// y -> local pose by runtime_pose.hpp's kernels: the dof basis in float32 (dp by da, zero padded),
+/// and per skeleton entry of the group its weights, lanes and PoseKernel (pointing into them).
+struct PosePlan {
+    std::vector<float> basis;
+    struct Skeleton {
+        std::vector<double> inverse_weights;
+        std::vector<bench::PoseLanes> lanes[3];
+        bench::PoseKernel kernel;
+        bench::PoseRoot root;
+        bool root_projects = false;  ///< the motion root has rotation channels, but not three: scalar path
+    };
+    std::vector<Skeleton> skeletons;
 };
-void float_pose_of(const FloatModel& f, const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, double* p) {
-    const auto n = f.U.rows();
-    for (Eigen::Index i = 0; i < n; ++i) f.y[i] = static_cast<float>(y[i]);
-    f.x.noalias() = f.U * f.y;
-    for (Eigen::Index i = 0; i < n; ++i) f.xd[static_cast<std::size_t>(i)] = f.x[i];
-    std::copy(m.constant.begin(), m.constant.end(), p);
-    m.unweight(f.xd.data(), m.skeletons[e.skeleton], p);
+
+std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
+    auto plan = std::make_unique<PosePlan>();
+    const int da = static_cast<int>(m.active.size()), dp = (da + 7) / 8 * 8;
+    if (da > 256) throw std::runtime_error("runtime pose kernels: more than 256 active dofs");
+    plan->basis.assign(static_cast<std::size_t>(dp) * static_cast<std::size_t>(da), 0.0f);
+    for (int c = 0; c < da; ++c)
+        for (int r = 0; r < da; ++r) plan->basis[static_cast<std::size_t>(c * dp + r)] = static_cast<float>(m.dof_basis(r, c));
+    plan->skeletons.resize(m.skeletons.size());
+    for (std::size_t e = 0; e < m.skeletons.size(); ++e) {
+        PosePlan::Skeleton& sk = plan->skeletons[e];
+        for (double w : m.skeletons[e].active_weights) sk.inverse_weights.push_back(1.0 / w);
+        const auto view = m.skeletons[e].writer.local_view();
+        const auto& joints = *view.joints;
+        sk.root_projects = view.root_rotates && joints.front().present != 3;
+        const std::size_t count[3] = {view.two_channel_joints, view.one_channel_joints,
+                                      joints.size() - 1 - view.two_channel_joints - view.one_channel_joints};
+        std::size_t first = 1;
+        for (int kind = 0; kind < 3; ++kind) {
+            for (std::size_t g = 0; 4 * g < count[kind]; ++g) {
+                bench::PoseLanes lanes;
+                lanes.count = static_cast<int>(std::min<std::size_t>(4, count[kind] - 4 * g));
+                detail::TwoChannelLanes two;
+                for (int l = 0; l < 4; ++l) {
+                    const auto& j = joints[first + 4 * g + static_cast<std::size_t>(l < lanes.count ? l : 0)];
+                    lanes.pose_row[l] = j.pose_row;
+                    lanes.joint[l] = j.joint;
+                    for (int r = 0; r < 3; ++r) {
+                        for (int c = 0; c < 3; ++c) lanes.frame[3 * r + c][l] = j.euler_frame(r, c);
+                        lanes.axis[r][l] = j.twist_axis[r];
+                    }
+                    if (kind == 0) detail::set_lane(two, l, j.euler_frame, j.missing);
+                }
+                for (int l = 0; l < 4; ++l) {
+                    lanes.missing[l] = two.missing[l];
+                    lanes.dot[l] = two.dot[l];
+                    for (int r = 0; r < 3; ++r) {
+                        lanes.first[r][l] = two.first[r][l];
+                        lanes.second[r][l] = two.second[r][l];
+                        lanes.cross[r][l] = two.cross[r][l];
+                    }
+                }
+                sk.lanes[kind].push_back(lanes);
+            }
+            first += count[kind];
+        }
+        bench::PoseRoot& root = sk.root;
+        root.joint = static_cast<int>(view.motion_root);
+        root.rotates = view.root_rotates;
+        root.adds = view.adds;
+        std::memcpy(root.above_inverse, view.above_inverse.coeffs().data(), 4 * sizeof(double));
+        for (int a = 0; a < 3; ++a) {
+            root.translates[a] = view.root_translation[static_cast<std::size_t>(a)] >= 0 ? 1 : 0;
+            root.above_position[a] = view.above_position[a];
+            root.root_offset[a] = view.root_offset[a];
+            root.offset[a] = (*view.offsets)[view.motion_root][a];
+        }
+        bench::PoseKernel& k = sk.kernel;
+        k.root = &sk.root;
+        k.da = da;
+        k.dp = dp;
+        k.dofs = m.dofs;
+        k.basis = plan->basis.data();
+        k.inverse_weights = sk.inverse_weights.data();
+        k.active = m.active.data();
+        k.constant = m.constant.data();
+        for (int kind = 0; kind < 3; ++kind) {
+            k.lanes[kind] = sk.lanes[kind].data();
+            k.groups[kind] = static_cast<int>(sk.lanes[kind].size());
+        }
+    }
+    return plan;
 }
 
-/// --float-dofs 1: x = U y in float32 (float_pose_of) everywhere: in the encoder's bound check, the
-/// check of every frame and the timings (closed loop: the bound holds for what is decoded).
+/// The plans of the groups in use (keyed by address: cleared whenever the models are rebuilt).
+std::map<const detail::GroupModel*, std::unique_ptr<PosePlan>> g_pose_plans;
+const detail::GroupModel* g_last_model = nullptr;
+const PosePlan* g_last_plan = nullptr;
+const PosePlan& pose_plan(const detail::GroupModel& m) {
+    if (g_last_model != &m) {
+        auto& plan = g_pose_plans[&m];
+        if (!plan) plan = make_pose_plan(m);
+        g_last_model = &m;
+        g_last_plan = plan.get();
+    }
+    return *g_last_plan;
+}
+void clear_pose_plans() {
+    g_pose_plans.clear();
+    g_last_model = nullptr;
+    g_last_plan = nullptr;
+}
+
+/// --float-dofs 1: x = U y in float32 (pose_dofs_portable, the same bits as pose_dofs_avx2)
+/// everywhere: in the encoder's bound check, the check of every frame and the timings (closed loop:
+/// the bound holds for what is decoded).
 bool g_float_dofs = false;
+
+/// How y becomes a local pose in the timings: the library's ChannelWriter::write_local after the
+/// portable product, or runtime_pose.hpp's kernels (portable or AVX2 build).
+enum class PosePath { library, portable, avx2 };
+std::size_t g_pose_fallbacks = 0;  ///< poses the kernels left to the library's scalar path
 
 /// y -> the frame's dofs: pose_of, or with an identity dof basis (--dof identity) the copy of y
 /// instead of the product (x = y: the same values, up to the sign of a zero).
-void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s, double* p) {
+void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s, double* p,
+               const PosePlan* plan = nullptr) {
     static thread_local const detail::GroupModel* known = nullptr;
     static thread_local bool identity = false;
     if (known != &m) {
@@ -197,16 +300,7 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
         identity = m.dof_basis.isIdentity(0.0);
     }
     if (g_float_dofs) {
-        static thread_local std::map<const detail::GroupModel*, std::unique_ptr<FloatModel>> floats;
-        static thread_local const detail::GroupModel* last = nullptr;
-        static thread_local FloatModel* last_float = nullptr;
-        if (last != &m) {
-            auto& f = floats[&m];
-            if (!f) f = std::make_unique<FloatModel>(m);
-            last = &m;
-            last_float = f.get();
-        }
-        float_pose_of(*last_float, m, e, y, p);
+        bench::pose_dofs_portable((plan ? *plan : pose_plan(m)).skeletons[e.skeleton].kernel, y, p);
         return;
     }
     if (!identity) {
@@ -216,6 +310,45 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
     std::copy(y, y + m.active.size(), s.x.data());
     std::copy(m.constant.begin(), m.constant.end(), p);
     m.unweight(s.x.data(), m.skeletons[e.skeleton], p);
+}
+
+/// Frame y's local pose by `path` (p: the frame's dofs, written). The kernels' paths form the motion
+/// root as write_local does and the other joints by the kernels; a pose they leave (see
+/// pose_rotations_portable) is decoded by the library's write_local from the same dofs.
+void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const double* y, detail::WindowScratch& s,
+                     double* p, LocalPose& out, PosePath path, const PosePlan* plan = nullptr) {
+    if (path == PosePath::library || !g_float_dofs) {
+        dofs_of_y(m, e, y, s, p, plan);
+        m.local_of(e, p, out);
+        return;
+    }
+    const PosePlan::Skeleton& sk = (plan ? *plan : pose_plan(m)).skeletons[e.skeleton];
+    if (path == PosePath::avx2) bench::pose_dofs_avx2(sk.kernel, y, p);
+    else bench::pose_dofs_portable(sk.kernel, y, p);
+    const detail::ChannelWriter& writer = m.skeletons[e.skeleton].writer;
+    const auto v = writer.local_view();  // rest transforms
+    const std::size_t n = writer.size();
+    out.rotations.resize(n);
+    out.translations.resize(n);
+    std::memcpy(static_cast<void*>(out.rotations.data()), v.rest_rotations->data(), n * sizeof(Quat));
+    std::memcpy(static_cast<void*>(out.translations.data()), v.rest_translations->data(), n * sizeof(Vec3));
+    static_assert(sizeof(Quat) == 4 * sizeof(double) && sizeof(Vec3) == 3 * sizeof(double), "Quat: x, y, z, w; Vec3: x, y, z");
+    double placement[7];
+    std::memcpy(placement, e.placement.heading.coeffs().data(), 4 * sizeof(double));
+    std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));
+    auto* rotations = reinterpret_cast<double*>(out.rotations.data());
+    auto* translations = reinterpret_cast<double*>(out.translations.data());
+    bool ok = path == PosePath::avx2 ? bench::pose_root_avx2(sk.kernel, placement, p, rotations, translations)
+                                     : bench::pose_root_portable(sk.kernel, placement, p, rotations, translations);
+    ok = (path == PosePath::avx2 ? bench::pose_rotations_avx2(sk.kernel, p, rotations) : bench::pose_rotations_portable(sk.kernel, p, rotations)) &&
+         ok;
+    if (!ok || sk.root_projects) {
+        ++g_pose_fallbacks;
+        m.local_of(e, p, out);
+        return;
+    }
+    for (std::size_t c = 0; c < m.extra_columns.size(); ++c)
+        writer.set_position(m.extra_columns[c], p[static_cast<std::size_t>(m.pose_dofs) + c], out);
 }
 
 /// The hierarchical candidate on one group (clips in group order, m parsed from format 2's bytes).
@@ -1328,18 +1461,46 @@ __attribute__((always_inline)) inline bool lean_step(const std::uint8_t* base, s
 
 /// From a window's step byte at `bit` (variant 1's directory and columns): frame t's path of columns,
 /// each into its prediction from the keys in a and b (variant 4's decode; the same bits as variant 1).
+struct FixedRows;
+std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t bit, std::size_t i, int Da, double step, double* out);
+
+/// level1 (variant 8): the level-1 column at level1's fixed widths (clip `clip`) between the step byte
+/// and the directory, predicted as the other levels (the same bits as variant 1).
 void decode_path(const RuntimeGroup3& g3, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b,
-                 double* c) {
+                 double* c, const FixedRows* level1 = nullptr, std::size_t clip = 0) {
     const RuntimeGroup& g = *g3.base;
     const int Da = g.Da, B = g3.lookup, W = g.W;
     BitReader in{data, bit};
     const double step = detail::step_of(static_cast<int>(in.get(8)));
     std::size_t skip[8] = {0};
-    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip);
     int lo = 0, hi = W;
     double* lo_y = a;
     double* hi_y = b;
-    for (int l = 1;; ++l) {
+    int l = 1;
+    std::size_t pos;
+    if (level1) {
+        const int mid = W / 2;
+        double* out = mid == t ? y : c;
+        const std::size_t end = read_fixed(*level1, data, in.pos, clip, Da, step, out);
+        for (int d = 0; d < Da; ++d) {
+            const double p = 0.5 * (a[d] + b[d]);
+            out[d] = out[d] != 0.0 ? p + out[d] : p;  // q = 0: the prediction itself (its sign of zero too)
+        }
+        pos = read_directory(data, end, g.levels, t, skip);
+        if (mid == t) return;
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            pos += skip[1];
+            lo = mid;
+            lo_y = out;
+        }
+        l = 2;
+    } else {
+        pos = read_directory(data, in.pos, g.levels, t, skip);
+    }
+    for (;; ++l) {
         const int mid = (lo + hi) / 2;
         double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
         for (int d = 0; d < Da; ++d) out[d] = 0.5 * (lo_y[d] + hi_y[d]);
@@ -1409,17 +1570,25 @@ void runtime_frame4(const RuntimeGroup3& g3, std::size_t clip, std::size_t frame
 // clip's header), each key row its two's complement value at that width; a key decodes with no
 // symbol chain (every row's place is known). Columns as variant 4 (pairs, same codes). ----
 
+/// Values of one kind (keys; variant 8 also the windows' level-1 columns) at fixed widths per clip
+/// and row: each row's value minus the clip's center for the row at the clip's width for the row;
+/// with escapes, a value outside the width's range is -2^(w-1) in its slot and then in full width
+/// after the slots (see fixed_rows, write_fixed, fixed_key).
+struct FixedRows {
+    std::vector<std::uint8_t> width;   // per clip, Da widths
+    std::vector<std::uint16_t> at;     // per clip, Da + 1 bit offsets of the slots (prefix sums)
+    std::vector<std::int32_t> center;  // per clip, Da values every row is stored relative to (--key-centers)
+    std::vector<std::uint8_t> full;    // per clip, Da widths of an escaped value (> width: the row has escapes)
+    std::size_t width_bits = 0;        // the widths (and centers) as stored
+};
+
 struct RuntimeGroup7 {
     const RuntimeGroup3* v3 = nullptr;  // tables
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 8 bytes of slack after
-    std::vector<std::uint8_t> width;     // per clip, Da widths
-    std::vector<std::uint16_t> at;       // per clip, Da + 1 bit offsets within a key (prefix sums)
-    std::vector<std::int32_t> center;    // per clip, Da values every key row is stored relative to (--key-centers)
-    std::vector<std::uint8_t> full;      // per clip, Da widths of an escaped value (> width: the row has escapes)
-    std::vector<std::uint8_t> rows;      // per clip, Da: its rows that have escapes (the first `escapable`)
-    std::vector<int> escapable;          // per clip
-    std::size_t width_bits = 0;          // the widths as stored (5 bits each)
+    FixedRows keys;
+    FixedRows level1;  // variant 8: the windows' level-1 columns (center 0)
+    std::size_t width_bits = 0;          // keys' and level 1's widths as stored
 };
 
 /// Two's complement bits that hold q (0 for 0).
@@ -1465,93 +1634,132 @@ std::size_t entries_end(const HierResult& r, std::size_t i) {
     return i + 1 < r.clip_first.size() ? r.clip_first[i + 1] : r.entries.size();
 }
 
-RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool centers, bool escapes) {
+/// Per clip of r and row, the width (with escapes: the one that codes the row smallest), center and
+/// escape width of the values values(e) of its entries (nullptr: an entry without such values).
+template <class Values>
+FixedRows fixed_rows(const HierResult& r, std::size_t Da, Values values, bool centers, bool escapes) {
+    FixedRows f;
+    const std::size_t clips = r.clip_first.size();
+    f.width.assign(clips * Da, 0);
+    f.center.assign(clips * Da, 0);
+    f.full.assign(clips * Da, 0);
+    f.at.assign(clips * (Da + 1), 0);
+    for (std::size_t i = 0; i < clips; ++i) {
+        std::vector<const std::vector<std::int32_t>*> of;
+        for (std::size_t e = r.clip_first[i]; e < entries_end(r, i); ++e)
+            if (const std::vector<std::int32_t>* v = values(e)) of.push_back(v);
+        std::uint8_t* w = f.width.data() + i * Da;
+        std::int32_t* center = f.center.data() + i * Da;
+        if (centers && !of.empty())
+            for (std::size_t d = 0; d < Da; ++d) {
+                std::int32_t lo = (*of.front())[d], hi = lo;
+                for (const auto* v : of) {
+                    lo = std::min(lo, (*v)[d]);
+                    hi = std::max(hi, (*v)[d]);
+                }
+                center[d] = static_cast<std::int32_t>((static_cast<std::int64_t>(lo) + hi) >> 1);
+            }
+        for (const auto* v : of)
+            for (std::size_t d = 0; d < Da; ++d)
+                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], twos_bits(static_cast<std::int64_t>((*v)[d]) - center[d])));
+        std::uint8_t* full = f.full.data() + i * Da;
+        for (std::size_t d = 0; d < Da; ++d) {
+            full[d] = w[d];
+            if (!escapes) continue;
+            std::vector<std::int64_t> row;
+            for (const auto* v : of) row.push_back(static_cast<std::int64_t>((*v)[d]) - center[d]);
+            w[d] = static_cast<std::uint8_t>(escape_width(row, full[d], nullptr));
+        }
+        std::uint16_t* at = f.at.data() + i * (Da + 1);
+        for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
+    }
+    // The widths as stored: per row the group's largest (5 bits), then each clip's as its difference
+    // from it by a static Huffman code of the group (table: 5 bits per symbol and 8).
+    // With centers: each center at its own width (a Huffman-coded width, then its bits).
+    std::vector<int> largest(Da, 0);
+    for (std::size_t i = 0; i < clips; ++i)
+        for (std::size_t d = 0; d < Da; ++d) largest[d] = std::max<int>(largest[d], f.width[i * Da + d]);
+    std::vector<int> deltas, center_widths, extra;
+    for (std::size_t i = 0; i < clips; ++i)
+        for (std::size_t d = 0; d < Da; ++d) {
+            deltas.push_back(largest[d] - f.width[i * Da + d]);
+            if (escapes) extra.push_back(f.full[i * Da + d] - f.width[i * Da + d]);
+            if (centers) {
+                center_widths.push_back(twos_bits(f.center[i * Da + d]));
+                f.width_bits += static_cast<std::size_t>(center_widths.back());
+            }
+        }
+    f.width_bits += 5 * Da + coded_bits(deltas) + coded_bits(center_widths) + coded_bits(extra);
+    return f;
+}
+
+/// Values v of clip i at f's widths: the slots, then the escaped values.
+void write_fixed(BitWriter& out, const FixedRows& f, std::size_t i, std::size_t Da, const std::vector<std::int32_t>& v) {
+    const std::uint8_t* w = f.width.data() + i * Da;
+    const std::int32_t* center = f.center.data() + i * Da;
+    const std::uint8_t* full = f.full.data() + i * Da;
+    std::vector<std::pair<std::int64_t, int>> escaped;
+    for (std::size_t d = 0; d < Da; ++d) {
+        const std::int64_t x = static_cast<std::int64_t>(v[d]) - center[d];
+        if (full[d] > w[d] && !(x > -(std::int64_t{1} << (w[d] - 1)) && x < (std::int64_t{1} << (w[d] - 1)))) {
+            out.put(static_cast<std::uint32_t>(-(std::int64_t{1} << (w[d] - 1))), w[d]);
+            escaped.push_back({x, full[d]});
+        } else {
+            out.put(static_cast<std::uint32_t>(x), w[d]);
+        }
+    }
+    for (const auto& [x, fw] : escaped) out.put(static_cast<std::uint32_t>(x), fw);
+}
+
+/// Variant 7 (level1 false) or 8 (level1 true: each window's level-1 column at fixed widths, center
+/// 0, after the window's step byte and before its directory).
+RuntimeGroup7 build_runtime7(const RuntimeGroup3& g3, const HierResult& r, bool centers, bool escapes, bool level1 = false) {
     const RuntimeGroup& g = *g3.base;
     RuntimeGroup7 g7;
     g7.v3 = &g3;
     const auto Da = static_cast<std::size_t>(g.Da);
     std::vector<int> tl, tf;
     tree_order(g.W, tl, tf);
-    g7.width.assign(r.clip_first.size() * Da, 0);
-    g7.center.assign(r.clip_first.size() * Da, 0);
-    g7.full.assign(r.clip_first.size() * Da, 0);
-    g7.at.assign(r.clip_first.size() * (Da + 1), 0);
+    g7.keys = fixed_rows(r, Da, [&](std::size_t e) { return &r.entries[e].key; }, centers, escapes);
+    g7.width_bits = g7.keys.width_bits;
+    if (level1) {
+        g7.level1 = fixed_rows(r, Da, [&](std::size_t e) { return r.entries[e].step >= 0 ? &r.entries[e].columns[0] : nullptr; }, false,
+                               escapes);
+        g7.width_bits += g7.level1.width_bits;
+    }
     std::vector<std::size_t> clip_of(r.entries.size());
-    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
-        const std::size_t last = entries_end(r, i);
-        std::uint8_t* w = g7.width.data() + i * Da;
-        std::int32_t* center = g7.center.data() + i * Da;
-        if (centers)
-            for (std::size_t d = 0; d < Da; ++d) {
-                std::int32_t lo = r.entries[r.clip_first[i]].key[d], hi = lo;
-                for (std::size_t e = r.clip_first[i]; e < last; ++e) {
-                    lo = std::min(lo, r.entries[e].key[d]);
-                    hi = std::max(hi, r.entries[e].key[d]);
-                }
-                center[d] = static_cast<std::int32_t>((static_cast<std::int64_t>(lo) + hi) >> 1);
-            }
-        for (std::size_t e = r.clip_first[i]; e < last; ++e) {
-            clip_of[e] = i;
-            for (std::size_t d = 0; d < Da; ++d)
-                w[d] = static_cast<std::uint8_t>(std::max<int>(w[d], twos_bits(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d])));
-        }
-        // Escapes: the width that codes the row smallest when a value outside (-2^(w-1), 2^(w-1)) is
-        // stored as -2^(w-1) and then in full width after the key's slots.
-        std::uint8_t* full = g7.full.data() + i * Da;
-        for (std::size_t d = 0; d < Da; ++d) {
-            full[d] = w[d];
-            if (!escapes) continue;
-            std::vector<std::int64_t> values;
-            for (std::size_t e = r.clip_first[i]; e < last; ++e) values.push_back(static_cast<std::int64_t>(r.entries[e].key[d]) - center[d]);
-            w[d] = static_cast<std::uint8_t>(escape_width(values, full[d], nullptr));
-        }
-        g7.rows.resize(g7.full.size());
-        g7.escapable.push_back(0);
-        for (std::size_t d = 0; d < Da; ++d)
-            if (full[d] > w[d]) g7.rows[i * Da + static_cast<std::size_t>(g7.escapable.back()++)] = static_cast<std::uint8_t>(d);
-        std::uint16_t* at = g7.at.data() + i * (Da + 1);
-        for (std::size_t d = 0; d < Da; ++d) at[d + 1] = static_cast<std::uint16_t>(at[d] + w[d]);
-    }
-    // The widths as stored: per row the group's largest (5 bits), then each clip's as its difference
-    // from it by a static Huffman code of the group (table: 5 bits per symbol and 8).
-    // With centers: each center at its own width (a Huffman-coded width, then its bits).
-    {
-        std::vector<int> largest(Da, 0);
-        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
-            for (std::size_t d = 0; d < Da; ++d) largest[d] = std::max<int>(largest[d], g7.width[i * Da + d]);
-        std::vector<int> deltas, center_widths, extra;
-        for (std::size_t i = 0; i < r.clip_first.size(); ++i)
-            for (std::size_t d = 0; d < Da; ++d) {
-                deltas.push_back(largest[d] - g7.width[i * Da + d]);
-                if (escapes) extra.push_back(g7.full[i * Da + d] - g7.width[i * Da + d]);
-                if (centers) {
-                    center_widths.push_back(twos_bits(g7.center[i * Da + d]));
-                    g7.width_bits += static_cast<std::size_t>(center_widths.back());
-                }
-            }
-        g7.width_bits += 5 * Da + coded_bits(deltas) + coded_bits(center_widths) + coded_bits(extra);
-    }
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i)
+        for (std::size_t e = r.clip_first[i]; e < entries_end(r, i); ++e) clip_of[e] = i;
     BitWriter out;
     for (std::size_t k = 0; k < r.entries.size(); ++k) {
         const auto& e = r.entries[k];
         out.align();
         g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
         out.put(static_cast<std::uint32_t>(e.key_step), 8);
-        const std::uint8_t* w = g7.width.data() + clip_of[k] * Da;
-        const std::int32_t* center = g7.center.data() + clip_of[k] * Da;
-        const std::uint8_t* full = g7.full.data() + clip_of[k] * Da;
-        std::vector<std::pair<std::int64_t, int>> escaped;
-        for (std::size_t d = 0; d < Da; ++d) {
-            const std::int64_t v = static_cast<std::int64_t>(e.key[d]) - center[d];
-            if (full[d] > w[d] && !(v > -(std::int64_t{1} << (w[d] - 1)) && v < (std::int64_t{1} << (w[d] - 1)))) {
-                out.put(static_cast<std::uint32_t>(-(std::int64_t{1} << (w[d] - 1))), w[d]);
-                escaped.push_back({v, full[d]});
-            } else {
-                out.put(static_cast<std::uint32_t>(v), w[d]);
-            }
+        write_fixed(out, g7.keys, clip_of[k], Da, e.key);
+        if (e.step < 0) continue;
+        if (!level1) {
+            write_window(g, out, e, tl);
+            continue;
         }
-        for (const auto& [v, f] : escaped) out.put(static_cast<std::uint32_t>(v), f);
-        if (e.step >= 0) write_window(g, out, e, tl);
+        // write_window's bits with its level-1 column (tree order's first, right after the directory;
+        // never in a left-subtree size) at fixed widths between the step byte and the directory.
+        BitWriter window, first;
+        const std::size_t directory = write_window(g, window, e, tl);
+        g.write_column(first, tl[0], e.columns[0]);
+        const std::size_t bits = window.bits();
+        window.align();
+        window.bytes.resize(window.bytes.size() + 8, 0);
+        BitReader in{window.bytes.data(), 0};
+        out.put(static_cast<std::uint32_t>(in.get(8)), 8);
+        write_fixed(out, g7.level1, clip_of[k], Da, e.columns[0]);
+        auto copy = [&](std::size_t n) {
+            for (; n >= 16; n -= 16) out.put(static_cast<std::uint32_t>(in.get(16)), 16);
+            if (n) out.put(static_cast<std::uint32_t>(in.get(static_cast<int>(n))), static_cast<int>(n));
+        };
+        copy(directory);
+        in.pos += first.bits();
+        copy(bits - 8 - directory - first.bits());
     }
     out.align();
     g7.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
@@ -1571,26 +1779,39 @@ inline std::int64_t signed_bits(const std::uint8_t* data, std::size_t p, int w) 
 }
 
 /// A fixed-width key at bit `bit`: out[d] = q * step (+0.0 where q is 0, as the encoder formed it).
-/// Returns the bit after the key (its slots, then its escaped values).
+/// Returns the bit after the key (its slots, then its escaped values). The rows whose slot holds the
+/// escape code (-2^(w-1) in a row that has escapes) are listed in the slots' pass without branches,
+/// and only those read their escaped values (in row order, as written).
 inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const std::uint8_t* width, const std::uint16_t* at,
-                             const std::int32_t* center, const std::uint8_t* full, const std::uint8_t* rows, int escapable, int Da,
-                             double step, double* out) {
-    for (int d = 0; d < Da; ++d) out[d] = static_cast<double>(signed_bits(data, bit + at[d], width[d]) + center[d]) * step;
-    // The clip's rows that may escape, without branches (escapes are frequent enough to be
-    // mispredicted): the escaped value is read at the escape position and kept where the slot says so.
+                             const std::int32_t* center, const std::uint8_t* full, int Da, double step, double* out) {
+    int escaped[256];
+    int n = 0;
+    for (int d = 0; d < Da; ++d) {
+        const int w = width[d];
+        const std::int64_t q = signed_bits(data, bit + at[d], w);
+        out[d] = static_cast<double>(q + center[d]) * step;
+        const auto code = static_cast<std::int64_t>(~std::uint64_t{0} << ((w - 1) & 63));  // -2^(w-1)
+        escaped[n] = d;
+        n += static_cast<int>((full[d] > w) & (q == code));
+    }
     std::size_t escape = bit + at[Da];
-    for (int k = 0; k < escapable; ++k) {
-        const int d = rows[k], w = width[d], f = full[d];
-        const std::int64_t slot = signed_bits(data, bit + at[d], w);
-        const bool escaped = slot == -(std::int64_t{1} << (w - 1));
-        const std::int64_t wide = signed_bits(data, escape, f);
-        escape += escaped ? static_cast<std::size_t>(f) : 0;
-        const double value = static_cast<double>(wide + center[d]) * step;
-        out[d] = escaped ? value : out[d];
+    for (int k = 0; k < n; ++k) {
+        const int d = escaped[k], f = full[d];
+        out[d] = static_cast<double>(signed_bits(data, escape, f) + center[d]) * step;
+        escape += static_cast<std::size_t>(f);
     }
     return escape;
 }
 
+/// Clip i's values of f at bit `bit` into out (out[d] = value * step); returns the bit after them.
+std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t bit, std::size_t i, int Da, double step,
+                              double* out) {
+    const auto n = static_cast<std::size_t>(Da);
+    return fixed_key(data, bit, f.width.data() + i * n, f.at.data() + i * (n + 1), f.center.data() + i * n, f.full.data() + i * n, Da,
+                     step, out);
+}
+
+/// Variant 7's frame into y (variant 8's when g7 has level-1 widths); the same bits as variant 1.
 void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
     const RuntimeGroup3& g3 = *g7.v3;
     const RuntimeGroup& g = *g3.base;
@@ -1600,24 +1821,19 @@ void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame
     const std::size_t entry = g.clip_first[clip] + w;
     const std::uint8_t* data = g7.bytes.data();
     const std::size_t o0 = g7.offsets[entry], o1 = g7.offsets[entry + 1];
-    const std::uint8_t* width = g7.width.data() + clip * static_cast<std::size_t>(Da);
-    const std::uint16_t* at = g7.at.data() + clip * static_cast<std::size_t>(Da + 1);
-    const std::int32_t* center = g7.center.data() + clip * static_cast<std::size_t>(Da);
-    const std::uint8_t* full = g7.full.data() + clip * static_cast<std::size_t>(Da);
-    const std::uint8_t* rows = g7.rows.data() + clip * static_cast<std::size_t>(Da);
-    const int escapable = g7.escapable[clip];
     {
-        const std::size_t end = t == 0 ? o0 + at[Da] / 8 + 9 : o1 + at[Da] / 8 + 9;
+        const std::size_t key_bits = g7.keys.at[clip * static_cast<std::size_t>(Da + 1) + static_cast<std::size_t>(Da)];
+        const std::size_t end = (t == 0 ? o0 : o1) + key_bits / 8 + 9;
         for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
     }
     const double key_step = detail::step_of(data[o0]);
     if (t == 0) {
-        fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, y);
+        read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, y);
         return;
     }
-    const std::size_t key_end = fixed_key(data, o0 * 8 + 8, width, at, center, full, rows, escapable, Da, key_step, a);
-    fixed_key(data, o1 * 8 + 8, width, at, center, full, rows, escapable, Da, detail::step_of(data[o1]), b);
-    decode_path(g3, data, key_end, t, y, a, b, c);
+    const std::size_t key_end = read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, a);
+    read_fixed(g7.keys, data, o1 * 8 + 8, clip, Da, detail::step_of(data[o1]), b);
+    decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.width.empty() ? nullptr : &g7.level1, clip);
 }
 
 }  // namespace
@@ -1664,6 +1880,7 @@ int main(int argc, char** argv) {
             o.max_error_cm = E;
             o.time_basis = TimeBasis::Learned;
             o.dof_basis = identity_dofs ? DofBasis::Identity : DofBasis::Learned;
+            clear_pose_plans();
             std::vector<detail::GroupModel> models(groups.size());
             std::vector<std::vector<const Clip*>> members(groups.size());
             std::size_t f2_bytes = 0, f2_payload = 0, f2_header = 0;
@@ -1988,15 +2205,18 @@ int main(int argc, char** argv) {
                             for (const auto& rg : r4[0])
                                 bytes4 += static_cast<double>(rg.bytes.size() - 16) + 3.0 * static_cast<double>(rg.offsets.size());
                             // Variant 7: bytes without the keys' (level 0) code tables, with the clips' key widths.
-                            std::vector<RuntimeGroup7> r7[2];  // [0] with escapes (--key-escapes), [1] without
-                            double bytes7[2] = {tables / 8 + static_cast<double>(f2_header), tables / 8 + static_cast<double>(f2_header)};
+                            // [0] with escapes (--key-escapes), [1] without, [2] variant 8: [0] with the windows' level-1
+                            // columns at fixed widths too (without their code tables).
+                            std::vector<RuntimeGroup7> r7[3];
+                            double bytes7[3];
+                            for (int k = 0; k < 3; ++k) bytes7[k] = tables / 8 + static_cast<double>(f2_header);
                             for (std::size_t g = 0; g < groups.size(); ++g)
-                                for (int k = 0; k < 2; ++k) {
-                                    r7[k].push_back(build_runtime7(r4[0][g], hier_results[g], key_centers, k == 0 && key_escapes));
+                                for (int k = 0; k < 3; ++k) {
+                                    r7[k].push_back(build_runtime7(r4[0][g], hier_results[g], key_centers, k != 1 && key_escapes, k == 2));
                                     const RuntimeGroup7& b7 = r7[k].back();
                                     bytes7[k] += static_cast<double>(b7.bytes.size() - 8) + 3.0 * static_cast<double>(b7.offsets.size()) +
                                                  static_cast<double>(b7.width_bits) / 8;
-                                    for (int c = 0; c < runtime[g].buckets; ++c) {
+                                    for (int c = 0; c < (k == 2 ? 2 : 1) * runtime[g].buckets; ++c) {
                                         const auto& code = runtime[g].codes[static_cast<std::size_t>(c)];
                                         if (!code.length.empty()) bytes7[k] -= (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
                                     }
@@ -2024,7 +2244,9 @@ int main(int argc, char** argv) {
                             struct Times {
                                 double cold = 1e300, y = 1e300, hot = 1e300;
                             };
-                            auto time = [&](auto&& frame_fn, Times& t, bool float64_product = false) {
+                            std::vector<const PosePlan*> plans;  // per group (no lookup in the timed loops)
+                            for (const auto& m : models) plans.push_back(g_float_dofs ? &pose_plan(m) : nullptr);
+                            auto time = [&](auto&& frame_fn, Times& t, bool float64_product = false, PosePath path = PosePath::library) {
                                 for (int with_pose = 1; with_pose >= 0; --with_pose) {
                                     const double c0 = bench::thread_cpu_seconds();
                                     for (const auto& [g, i, f] : seq) {
@@ -2033,9 +2255,12 @@ int main(int argc, char** argv) {
                                         double* base = scratch[g].data();
                                         frame_fn(g, i, f, base, Da);
                                         if (with_pose) {
-                                            if (float64_product) m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
-                                            else dofs_of_y(m, m.clips[i], base, ws[g], base + 4 * Da);
-                                            m.local_of(m.clips[i], base + 4 * Da, out);
+                                            if (float64_product) {
+                                                m.pose_of(m.clips[i], base, static_cast<int>(Da), ws[g], base + 4 * Da);
+                                                m.local_of(m.clips[i], base + 4 * Da, out);
+                                            } else {
+                                                local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * Da, out, path, plans[g]);
+                                            }
                                         }
                                     }
                                     double& slot = with_pose ? t.cold : t.y;
@@ -2049,7 +2274,46 @@ int main(int argc, char** argv) {
                                     }
                                 t.hot = std::min(t.hot, (bench::thread_cpu_seconds() - c0) / 6400.0 * 1e6);
                             };
-                            Times t1, t1d, t7[2];
+                            // The kernels' local poses against the library's on every frame (v1's y): the dofs
+                            // of both builds equal to dofs_of_y's, the poses equal bit for bit (else the max
+                            // difference of a component).
+                            const bool avx2 = bench::pose_avx2_available();
+                            std::size_t pose_frames = 0, pose_differ = 0;
+                            double pose_diff = 0.0;
+                            bool dofs_equal = true;
+                            g_pose_fallbacks = 0;
+                            if (g_float_dofs) {
+                                LocalPose ref, got;
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    const auto& m = models[g];
+                                    const std::size_t Da = m.active.size(), D = static_cast<std::size_t>(m.dofs);
+                                    std::vector<double> yv(Da), sa(Da), sb(Da), sc(Da), p0(D), p1(D);
+                                    for (std::size_t i = 0; i < members[g].size(); ++i)
+                                        for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f) {
+                                            runtime_frame(runtime[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            local_pose_of_y(m, m.clips[i], yv.data(), ws[g], p0.data(), ref, PosePath::library);
+                                            for (PosePath path : {PosePath::portable, PosePath::avx2}) {
+                                                if (path == PosePath::avx2 && !avx2) continue;
+                                                local_pose_of_y(m, m.clips[i], yv.data(), ws[g], p1.data(), got, path);
+                                                dofs_equal = dofs_equal && std::memcmp(p0.data(), p1.data(), D * sizeof(double)) == 0;
+                                                ++pose_frames;
+                                                bool same_pose = true;
+                                                for (std::size_t j = 0; j < ref.rotations.size(); ++j) {
+                                                    same_pose = same_pose && std::memcmp(&ref.rotations[j], &got.rotations[j], sizeof(Quat)) == 0 &&
+                                                                std::memcmp(&ref.translations[j], &got.translations[j], sizeof(Vec3)) == 0;
+                                                    pose_diff = std::max({pose_diff, (ref.rotations[j].coeffs() - got.rotations[j].coeffs()).cwiseAbs().maxCoeff(),
+                                                                          (ref.translations[j] - got.translations[j]).cwiseAbs().maxCoeff()});
+                                                }
+                                                if (!same_pose) ++pose_differ;
+                                            }
+                                        }
+                                }
+                                std::printf("#  pose kernels (%s): %zu frame decodes, dofs %s, local poses %zu differ from the library's (max %.3g), %zu left "
+                                            "to the library\n",
+                                            avx2 ? "portable and AVX2" : "portable; no AVX2", pose_frames,
+                                            dofs_equal ? "equal to the library path's" : "DIFFER", pose_differ, pose_diff, g_pose_fallbacks);
+                            }
+                            Times t1, t1d, t7[3], t7k[3][2];  // t7k: with the pose kernels, portable and AVX2
                             std::vector<Times> t4(configs.size());
                             for (int rep = 0; rep < reps; ++rep) {
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
@@ -2058,10 +2322,16 @@ int main(int argc, char** argv) {
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                     runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                 }, t1d, true);
-                                for (int k = 0; k < 2; ++k)
+                                for (int k = 0; k < 3; ++k) {
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame7(r7[k][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                     }, t7[k]);
+                                    if (!g_float_dofs) continue;
+                                    for (int a = 0; a < (avx2 ? 2 : 1); ++a)
+                                        time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                            runtime_frame7(r7[k][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                        }, t7k[k][a], false, a ? PosePath::avx2 : PosePath::portable);
+                                }
                                 for (std::size_t v = 0; v < configs.size(); ++v)
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame4(r4[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
@@ -2075,10 +2345,84 @@ int main(int argc, char** argv) {
                                 std::printf("#    v4 lookup %d bits%s (table %zu kB): bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
                                             configs[v].lookup, configs[v].pairs ? ", pairs" : ", no pairs", r4[v][0].table.size() * 4 / 1024, bytes4,
                                             t4[v].cold, t4[v].y, t4[v].hot);
-                            for (int k = 0; k < 2; ++k)
-                                std::printf("#    v7 keys at fixed widths%s%s, lookup %d: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
-                                            key_centers ? ", centered" : "", k == 0 && key_escapes ? ", escapes" : "", configs[0].lookup, bytes7[k],
+                            for (int k = 0; k < 3; ++k) {
+                                std::printf("#    %s keys at fixed widths%s%s, lookup %d: bytes %.0f, cold local pose %.3f us, y %.3f us (hot %.3f)\n",
+                                            k == 2 ? "v8 level-1 columns and" : "v7", key_centers ? ", centered" : "",
+                                            k != 1 && key_escapes ? ", escapes" : "", configs[0].lookup, bytes7[k],
                                             t7[k].cold, t7[k].y, t7[k].hot);
+                                if (g_float_dofs)
+                                    std::printf("#      with the pose kernels: cold local pose %.3f us portable, %.3f us AVX2\n", t7k[k][0].cold,
+                                                avx2 ? t7k[k][1].cold : 0.0);
+                            }
+                            // y -> local pose alone (each group's last y, over and over), by each path.
+                            if (g_float_dofs) {
+                                double stage[3] = {1e300, 1e300, 1e300};
+                                for (int rep = 0; rep < reps; ++rep)
+                                    for (int a = 0; a < (avx2 ? 3 : 2); ++a) {
+                                        const double c0 = bench::thread_cpu_seconds();
+                                        for (const auto& [g, i, f] : seq) {
+                                            const auto& m = models[g];
+                                            double* base = scratch[g].data();
+                                            local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * m.active.size(), out, static_cast<PosePath>(a),
+                                                            plans[g]);
+                                        }
+                                        stage[a] = std::min(stage[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                    }
+                                // The AVX2 kernels' parts alone: the dofs, then the rotations.
+                                double part[2] = {1e300, 1e300};
+                                for (int rep = 0; rep < reps && avx2; ++rep)
+                                    for (int a = 0; a < 2; ++a) {
+                                        const double c0 = bench::thread_cpu_seconds();
+                                        for (const auto& [g, i, f] : seq) {
+                                            const auto& m = models[g];
+                                            const auto& k = plans[g]->skeletons[m.clips[i].skeleton].kernel;
+                                            double* base = scratch[g].data();
+                                            if (a == 0) bench::pose_dofs_avx2(k, base, base + 4 * m.active.size());
+                                            else bench::pose_rotations_avx2(k, base + 4 * m.active.size(), reinterpret_cast<double*>(out.rotations.data()));
+                                        }
+                                        part[a] = std::min(part[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                    }
+                                const auto& k0 = pose_plan(models[0]).skeletons[0].kernel;
+                                // What the kernels hold beyond the stored bytes (the float basis, per skeleton its lanes,
+                                // inverse weights and root).
+                                std::size_t kernel_bytes = 0, skeletons = 0;
+                                for (const PosePlan* plan : plans) {
+                                    kernel_bytes += plan->basis.size() * sizeof(float);
+                                    for (const auto& sk : plan->skeletons) {
+                                        ++skeletons;
+                                        kernel_bytes += sk.inverse_weights.size() * sizeof(double) + sizeof(bench::PoseRoot) + sizeof(bench::PoseKernel);
+                                        for (const auto& lanes : sk.lanes) kernel_bytes += lanes.size() * sizeof(bench::PoseLanes);
+                                    }
+                                }
+                                std::printf("#    pose kernels' resident bytes: %zu (%zu skeletons)\n", kernel_bytes, skeletons);
+                                std::printf("#    y -> local pose alone: library %.3f us, kernels portable %.3f us, AVX2 %.3f us (its dofs %.3f, rotations %.3f; "
+                                            "%zu groups; group 0: %d active dofs, lane groups %d / %d / %d of joints with 2 / 1 / 3 channels)\n",
+                                            stage[0], stage[1], avx2 ? stage[2] : 0.0, part[0], part[1], groups.size(), k0.da, k0.groups[0], k0.groups[1], k0.groups[2]);
+                                // Sequential playback: every frame of every clip in order, each decoded as a cold pose
+                                // (variant 7 with escapes, the fastest pose path; nothing kept between frames).
+                                double sequential = 1e300;
+                                std::size_t frames = 0;
+                                for (int rep = 0; rep < reps; ++rep) {
+                                    frames = 0;
+                                    const double c0 = bench::thread_cpu_seconds();
+                                    for (std::size_t g = 0; g < groups.size(); ++g) {
+                                        const auto& m = models[g];
+                                        const std::size_t Da = m.active.size();
+                                        double* base = scratch[g].data();
+                                        for (std::size_t i = 0; i < members[g].size(); ++i)
+                                            for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f, ++frames) {
+                                                runtime_frame7(r7[0][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                                local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * Da, out,
+                                                                avx2 ? PosePath::avx2 : PosePath::portable, plans[g]);
+                                            }
+                                    }
+                                    sequential = std::min(sequential, bench::thread_cpu_seconds() - c0);
+                                }
+                                std::printf("#    sequential playback (every frame in order, each a cold pose, v7 with escapes, %s kernels): %.3f us a pose, "
+                                            "%.2f M poses/s\n",
+                                            avx2 ? "AVX2" : "portable", sequential / static_cast<double>(frames) * 1e6,
+                                            static_cast<double>(frames) / sequential * 1e-6);
+                            }
                         }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
                                     no_prefetch, pose_only);

@@ -61,7 +61,7 @@ public:
     /// Heap bytes held (containers' capacities).
     std::size_t memory_bytes() const;
 
-private:
+    /// A joint with rotation channels, as write_local computes it.
     struct RotationJoint {
         std::array<int, 3> cols{};  ///< channel column of each Euler axis in order, -1 when absent
         std::array<int, 3> axes{};  ///< the order's axes (0 = x, 1 = y, 2 = z)
@@ -76,6 +76,28 @@ private:
         Vec3 twist_axis = Vec3::UnitX();      ///< with one channel: C · its axis (local frame)
         Mat3 euler_frame = Mat3::Identity();  ///< with two channels: A (channel_lanes.hpp)
     };
+    /// What write_local reads, for decoders of the same local poses outside this class (the runtime
+    /// format prototype, benchmarks/): read only, valid while the writer lives.
+    struct LocalView {
+        const std::vector<RotationJoint>* joints;  ///< motion root first; then two, one, three channels
+        std::size_t two_channel_joints, one_channel_joints;
+        Quat above_inverse;
+        Vec3 above_position, root_offset;
+        std::array<int, 3> root_translation;
+        bool root_rotates, adds;
+        std::size_t motion_root;
+        const std::vector<Quat>* rest_rotations;
+        const std::vector<Vec3>* rest_translations;
+        const std::vector<Vec3>* offsets;
+    };
+    LocalView local_view() const {
+        return {&joints_,        two_channel_joints_, one_channel_joints_, above_inverse_,
+                above_position_, root_offset_,        root_translation_,   root_rotates_,
+                adds_,           motion_root_,        &rest_rotations_,    &rest_translations_,
+                &offsets_};
+    }
+
+private:
     /// The Euler angles write_rotation writes (in the order's axis order; absent axes included).
     static void choose_angles(const RotationJoint& j, const Quat& local, double* angles);
     void write_rotation(const RotationJoint& j, const Quat& local, double* row) const;

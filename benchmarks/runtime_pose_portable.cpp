@@ -1,0 +1,28 @@
+// runtime_pose.hpp's kernels for the compiler's default target, and the run-time choice.
+#include "runtime_pose.hpp"
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace mocapdb::bench {
+namespace {
+#include "runtime_pose_kernel.inc"
+}  // namespace
+
+MOCAPDB_POSE_KERNELS(portable)
+
+bool pose_avx2_available() {
+#if defined(MOCAPDB_POSE_AVX2)
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+    return false;
+#endif
+}
+
+#if !defined(MOCAPDB_POSE_AVX2)
+// No AVX2 build of the kernels: never called (pose_avx2_available() is false); the portable ones.
+MOCAPDB_POSE_KERNELS(avx2)
+#endif
+
+}  // namespace mocapdb::bench
