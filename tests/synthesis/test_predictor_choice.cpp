@@ -116,6 +116,11 @@ TEST_CASE("predictor choice: a sample's twins leave with it, a big set chooses o
     const PredictorChoice subset = choose(curve(40, 0.1, 4), {}, small);
     CHECK(subset.samples == 10);
     CHECK(subset.folds == 4);
+    small.candidates = {Predictor::Kriging, Predictor::Trend};
+    const PredictorChoice two = choose(curve(40, 0.1, 4), {}, small);
+    REQUIRE(two.scores.size() == 2);
+    CHECK(two.chosen != Predictor::Rbf);
+    CHECK(two.scores[0].cv_rms == cv_of(subset, Predictor::Kriging));  // the same folds
     PredictorChoiceOptions bad;
     bad.folds = 0;
     CHECK_THROWS_AS(choose(base, {}, bad), InvalidArgument);

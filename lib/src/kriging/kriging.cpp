@@ -71,8 +71,7 @@ Eigen::MatrixXd inverse_of_factor(const Eigen::LLT<Eigen::MatrixXd>& llt, const 
         trailing.solveInPlace(x);
         trailing.adjoint().solveInPlace(x);
         inv.block(j0, j0, rows, nb) = x;
-        if (progress)
-            progress({static_cast<std::uint64_t>(j0 + nb), static_cast<std::uint64_t>(m), "kernel system"});
+        if (progress) progress({static_cast<std::uint64_t>(j0 + nb), static_cast<std::uint64_t>(m), "kernel system"});
     }
     // The upper triangle: the mirror of the lower one, except in the diagonal blocks (computed whole): their mean.
     each_lower_pair(m, [&inv](Eigen::Index i, Eigen::Index j) {

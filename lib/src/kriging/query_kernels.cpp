@@ -198,8 +198,8 @@ Eigen::MatrixXd pad_rows(const Eigen::Ref<const Eigen::MatrixXd>& a) {
 
 }  // namespace
 
-QueryOperator::QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& wc,
-                             const Eigen::Ref<const Eigen::MatrixXd>& v, const Eigen::Ref<const Eigen::MatrixXd>& g)
+QueryOperator::QueryOperator(const Eigen::Ref<const Eigen::MatrixXd>& wc, const Eigen::Ref<const Eigen::MatrixXd>& v,
+                             const Eigen::Ref<const Eigen::MatrixXd>& g)
     : m(wc.rows()),
       kernel(pack_symmetric(wc, -1.0)),
       trend(pad_rows(v)),

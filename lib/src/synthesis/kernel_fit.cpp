@@ -390,6 +390,10 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     PredictorChoiceOptions choice;
     choice.max_samples = std::max<std::size_t>(options.max_fit_samples, 5);
     choice.elements_per_sample = static_cast<double>(aligned.dofs() * aligned.frames());
+    // RBF's system is not stored: every load factorizes it (O(N^3)), so it is a candidate only where that
+    // stays cheap (up to max_fit_samples samples: about 0.2 s).
+    if (static_cast<std::size_t>(n) > options.max_fit_samples)
+        choice.candidates = {Predictor::Kriging, Predictor::Trend};
     if (n >= 5 && values.allFinite()) {
         const auto twins = find_sample_twins(set, SampleFrames{}).partners(static_cast<std::size_t>(n));
         PredictorChoice c = choose_predictor(xc, values, fit.variogram, options.kriging, twins, choice);

@@ -91,7 +91,8 @@ PredictorChoice choose_predictor(const Eigen::Ref<const MatX>& xc, const Eigen::
         v.row(k) = values.row(rows[static_cast<std::size_t>(k)]);
     }
 
-    const std::vector<Predictor>& predictors = all_predictors();
+    const std::vector<Predictor>& predictors = options.candidates;
+    if (predictors.empty()) throw InvalidArgument(std::string(where) + ": no candidate predictor");
     VecX sum = VecX::Zero(static_cast<Eigen::Index>(predictors.size()));
     PredictorChoice out;
     out.samples = static_cast<std::size_t>(n);
@@ -123,11 +124,13 @@ PredictorChoice choose_predictor(const Eigen::Ref<const MatX>& xc, const Eigen::
         ++out.folds;
     }
     if (out.folds == 0) return out;
+    std::size_t best = 0;
     for (std::size_t p = 0; p < predictors.size(); ++p) {
         const double cv = sum(static_cast<Eigen::Index>(p)) / static_cast<double>(out.folds);
+        if (p == 0 || cv < out.scores[best].cv_rms) best = p;
         out.scores.push_back({predictors[p], cv});
-        if (p == 0 || cv < out.scores[static_cast<std::size_t>(out.chosen)].cv_rms) out.chosen = predictors[p];
     }
+    out.chosen = predictors[best];
     return out;
 }
 

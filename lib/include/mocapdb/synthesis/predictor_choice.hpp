@@ -35,7 +35,7 @@ struct PredictorScore {
 
 struct PredictorChoice {
     Predictor chosen = Predictor::Kriging;  ///< the lowest cv_rms (ties: the earlier in all_predictors())
-    std::vector<PredictorScore> scores;     ///< one per predictor, in all_predictors() order
+    std::vector<PredictorScore> scores;     ///< one per candidate, in all_predictors() order
     std::size_t folds = 0;                  ///< held-out samples (each with its twins)
     std::size_t samples = 0;                ///< samples the choice saw (N, or max_samples of them)
 };
@@ -45,12 +45,14 @@ struct PredictorChoiceOptions {
     std::size_t max_samples = 1000;    ///< larger sets choose on this many, evenly spread (O(n^3) per fold); >= 5
     double elements_per_sample = 1.0;  ///< cv_rms divides a fold's squared error by this (e.g. D x T)
     kriging::RbfOptions rbf;
+    /// The predictors to choose among (a subset of all_predictors(), in that order; not empty).
+    std::vector<Predictor> candidates = all_predictors();
 };
 
 /// The cross-validated choice for samples at normalized control points xc (N by P) with values (N by S,
 /// finite): fold k leaves out sample i_k and its twins (twins: empty or N lists, sample i's twins, the
 /// samples that show some of its frames: dataset/sample_twins.hpp SampleTwins::partners), builds every
-/// predictor on the remaining samples (kriging with `variogram` and `kriging`, RBF with options.rbf, the
+/// candidate on the remaining samples (kriging with `variogram` and `kriging`, RBF with options.rbf, the
 /// trend of kriging.trend) and scores the held-out values. Folds with fewer than 3 training rows are
 /// skipped; when none remains, folds = 0 and the choice stays kriging. InvalidArgument when shapes
 /// disagree, values are not finite or options are out of range.
