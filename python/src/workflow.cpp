@@ -190,18 +190,19 @@ void bind_workflow(py::module_& m) {
           "reference: a sample label, default the library's choice) and stored (committed). Returns {'samples', "
           "'frames', 'dofs', 'reference', 'mean_distance_cm', 'labels', 'phase_min', 'phase_mean', ...}."
           "\n\nExample:\n    >>> mocapdb.align('walks.h5', 'walks', frames=40)['samples']");
-    m.def("compress", &compress, py::arg("db"), py::arg("set"), py::arg("ranks") = py::none(),
-          py::arg("max_error_cm") = 0.0, py::arg("rmse") = py::none(), py::arg("ratio") = py::none(),
-          py::arg("method") = "hosvd", py::arg("max_iterations") = 50, py::arg("progress") = py::none(),
-          "`mocapdb compress`: the aligned set's Tucker model at explicit ranks (R1, R2, R3), or the smallest "
-          "ranks meeting max_error_cm (default 1 cm), rmse or ratio; method 'hosvd', 'sthosvd' or 'hooi'. The model "
-          "and its synthesis kernel are stored (committed). progress: None or a callable progress(done, total, "
-          "item) called as the steps advance (item 'kernel': the kernel's candidate variograms; 'kernel system': "
-          "columns of its factorized system; else the rank search); an exception it raises is raised when "
-          "compress returns. Returns the keys of `mocapdb compress --json` "
-          "(criterion, target_met, ranks, bytes, ratio, max_cm, p99_cm, rmse_cm, ...)."
-          "\n\nExample:\n    >>> mocapdb.compress('walks.h5', 'walks', max_error_cm=1.0)['ranks']"
-          "\n    >>> mocapdb.compress('walks.h5', 'walks', progress=lambda done, total, item: print(item, done, total))");
+    m.def(
+        "compress", &compress, py::arg("db"), py::arg("set"), py::arg("ranks") = py::none(),
+        py::arg("max_error_cm") = 0.0, py::arg("rmse") = py::none(), py::arg("ratio") = py::none(),
+        py::arg("method") = "hosvd", py::arg("max_iterations") = 50, py::arg("progress") = py::none(),
+        "`mocapdb compress`: the aligned set's Tucker model at explicit ranks (R1, R2, R3), or the smallest "
+        "ranks meeting max_error_cm (default 1 cm), rmse or ratio; method 'hosvd', 'sthosvd' or 'hooi'. The model "
+        "and its synthesis kernel are stored (committed). progress: None or a callable progress(done, total, "
+        "item) called as the steps advance (item 'kernel': the kernel's candidate variograms; 'kernel system': "
+        "columns of its factorized system; else the rank search); an exception it raises is raised when "
+        "compress returns. Returns the keys of `mocapdb compress --json` "
+        "(criterion, target_met, ranks, bytes, ratio, max_cm, p99_cm, rmse_cm, ...)."
+        "\n\nExample:\n    >>> mocapdb.compress('walks.h5', 'walks', max_error_cm=1.0)['ranks']"
+        "\n    >>> mocapdb.compress('walks.h5', 'walks', progress=lambda done, total, item: print(item, done, total))");
     m.def("pack", &pack, py::arg("db"), py::arg("max_error_cm") = py::none(), py::arg("max_bytes") = py::none(),
           py::arg("threads") = 2, py::arg("replace") = false, py::arg("drop_lossless") = false,
           "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm, default 1), or with "
