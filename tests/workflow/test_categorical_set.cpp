@@ -15,14 +15,9 @@
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/dataset/set_builder.hpp"
 #include "mocapdb/store/database.hpp"
-#include "mocapdb/workflow/clip_import.hpp"
 #include "mocapdb/workflow/load_model.hpp"
-#include "mocapdb/workflow/set_alignment.hpp"
-#include "mocapdb/workflow/set_compression.hpp"
-#include "mocapdb/workflow/set_creation.hpp"
 #include "mocapdb/workflow/synthesis_step.hpp"
-#include "shared_data.hpp"
-#include "test_support.hpp"
+#include "walk_database.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::test;
@@ -30,21 +25,16 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-struct GaitDatabase {
-    std::unique_ptr<TempDir> dir;
-    std::filesystem::path path;
-};
-
 // Walks 16_11 .. 16_19 and runs 16_40 .. 16_46 of cmu-asfamc, imported once per test process.
-const GaitDatabase& gait_database() {
-    static const GaitDatabase g = [] {
-        GaitDatabase r;
+const WalkDatabase& gait_database() {
+    static const WalkDatabase g = [] {
+        WalkDatabase r;
         r.dir = std::make_unique<TempDir>("categorical_gaits");
         r.path = r.dir->path() / "gaits.h5";
         std::vector<std::filesystem::path> files;
         for (int t : {11, 12, 13, 14, 15, 16, 17, 18, 19, 40, 41, 42, 43, 44, 45, 46})
             files.push_back(datasets_dir() / "cmu-asfamc" / ("16_" + std::to_string(t) + ".amc"));
-        workflow::import_clips(r.path, files, workflow::ImportOptions{}, false);
+        r.imported = workflow::import_clips(r.path, files, workflow::ImportOptions{}, false);
         return r;
     }();
     return g;
@@ -62,7 +52,7 @@ double measurement(const workflow::SynthOutcome& o, const std::string& name) {
 TEST_CASE("workflow: walk vs run as a category: the measured-back speed follows the category's samples",
           "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const GaitDatabase& g = gait_database();
+    const WalkDatabase& g = gait_database();
     workflow::SetRequest r;
     r.name = "gaits";
     r.clips = {"16_1?", "16_4?"};
@@ -98,14 +88,7 @@ TEST_CASE("workflow: walk vs run as a category: the measured-back speed follows 
                                  << speeds[1].size() << ")");
     REQUIRE(run_mean > 1.5 * walk_mean);  // the data: runs are much faster
 
-    workflow::AlignRequest align;
-    align.set = "gaits";
-    align.frames = 40;
-    workflow::align_set(g.path, align);
-    workflow::CompressRequest compress;
-    compress.set = "gaits";
-    compress.max_error_cm = 1.0;
-    workflow::compress_set(g.path, compress);
+    align_and_compress(g.path, "gaits", 40);
     const Database done(g.path);
     const auto model = workflow::load_motion_model(done, "gaits");
 
@@ -134,6 +117,8 @@ TEST_CASE("workflow: walk vs run as a category: the measured-back speed follows 
     INFO("measured speeds: walk " << measured[0] << ", run " << measured[1] << "; sample means " << walk_mean << ", "
                                   << run_mean);
     CHECK(measured[1] - measured[0] > 0.5 * (run_mean - walk_mean));
+    WARN("walk vs run at turn " << turn << " rad: measured speeds " << measured[0] << " and " << measured[1]
+                                << " cm/s; the samples' mean speeds " << walk_mean << " and " << run_mean << " cm/s");
 
     // An unknown level: refused, listing the known ones; a level index that is not one: refused.
     CHECK_THROWS_WITH(parameter_request(set, {"gait=skip", "turn=0"}), Contains("no level 'skip'") && Contains("1, 4"));
@@ -144,7 +129,7 @@ TEST_CASE("workflow: walk vs run as a category: the measured-back speed follows 
 
 TEST_CASE("workflow: a CSV column of names is categorical beside extracted parameters", "[workflow][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-asfamc");
-    const GaitDatabase& g = gait_database();
+    const WalkDatabase& g = gait_database();
     const std::filesystem::path csv = g.dir->path() / "effort.csv";
     {
         std::ofstream out(csv);
