@@ -36,7 +36,11 @@ TEST_CASE("set create --category and synth --param name=level", "[cli][synthesis
         INFO("mocapdb " << s << "\n" << c.output);
         REQUIRE(c.exit_code == 0);
     }
-    CommandResult r = run_cli("set show " + db + " gaits --json");
+    // The levels are stored as format-v4.md §6 specifies them.
+    CommandResult r = run_cli("validate " + db);
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    r = run_cli("set show " + db + " gaits --json");
     REQUIRE(r.exit_code == 0);
     const Json show = parse_json(r.out);
     REQUIRE(show["parameters"].items.size() == 2);
