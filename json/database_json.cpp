@@ -133,6 +133,7 @@ void write_set_show(JsonWriter& j, const MotionSet& set, const std::vector<std::
         j.begin_object().key("name").value(set.parameter_names[p]).key("unit").value(set.parameter_units[p]);
         if (set.parameter_periods.size() != 0)
             j.key("period").value(set.parameter_periods(static_cast<Eigen::Index>(p)));
+        if (is_categorical(set, p)) fields::strings(j, "levels", set.parameter_levels[p]);  // values: level indices
         j.end_object();
     }
     j.end_array();

@@ -14,14 +14,30 @@ void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthO
     j.end_array();
     j.key("parameters").begin_array();
     for (Eigen::Index k = 0; k < c.size(); ++k) {
+        const auto p = static_cast<std::size_t>(k);
+        const bool categorical = p < r.parameter_levels.size() && !r.parameter_levels[p].empty();
         j.begin_object();
-        j.key("name").value(r.parameter_names[static_cast<std::size_t>(k)]);
-        j.key("unit").value(r.parameter_units[static_cast<std::size_t>(k)]);
-        j.key("requested").value(c(k));
-        if (o.measured.size() == c.size()) j.key("measured").value(o.measured(k));
+        j.key("name").value(r.parameter_names[p]);
+        j.key("unit").value(r.parameter_units[p]);
+        if (categorical) {  // the level by name (c holds its index)
+            j.key("kind").value("categorical");
+            j.key("requested").value(r.parameter_levels[p][static_cast<std::size_t>(c(k))]);
+            fields::strings(j, "levels", r.parameter_levels[p]);
+        } else {
+            j.key("kind").value("numeric");
+            j.key("requested").value(c(k));
+        }
+        if (p < o.parameter_measured.size() && o.parameter_measured[p])
+            j.key("measured").value(*o.parameter_measured[p]);
         j.end_object();
     }
     j.end_array();
+    j.key("measured").begin_object();  // every applicable extractor's columns (workflow/synthesis_step.hpp)
+    for (const workflow::Measurement& m : o.measurements) j.key(m.name).value(m.value);
+    j.end_object();
+    j.key("measured_units").begin_object();
+    for (const workflow::Measurement& m : o.measurements) j.key(m.name).value(m.unit);
+    j.end_object();
     j.key("reliability").value(o.reliability);
     fields::strings(j, "warnings", r.warnings);
     j.key("frames").value(static_cast<long long>(o.clip.frame_count()));

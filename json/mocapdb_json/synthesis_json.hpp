@@ -25,6 +25,7 @@ struct SynthReport {
     tensor::Ranks ranks{};  ///< at the level synthesized
     std::vector<std::string> parameter_names;
     std::vector<std::string> parameter_units;
+    std::vector<std::vector<std::string>> parameter_levels;  ///< MotionSet::parameter_levels (empty: none)
     std::vector<std::string> warnings;
     double load_s = 0.0;  ///< loading the set and the model
     double precompute_s = 0.0;

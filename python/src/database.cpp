@@ -92,7 +92,10 @@ void bind_records(py::module_& m) {
         .def_readonly("parameter_names", &MotionSet::parameter_names, "The P control parameters.")
         .def_readonly("parameter_units", &MotionSet::parameter_units, "Their units ('rad', 'cm/s', ...).")
         .def_readonly("parameter_source", &MotionSet::parameter_source,
-                      "How they were obtained ('extract:turn,speed', 'csv:FILE').")
+                      "How they were obtained ('extract:turn,speed', 'csv:FILE', joined by '; ').")
+        .def_readonly("parameter_levels", &MotionSet::parameter_levels,
+                      "Per parameter its level names (a categorical parameter, whose column holds level indices), "
+                      "[] for a numeric one; [] when none is categorical.")
         .def_property_readonly(
             "parameters", [](const MotionSet& s) { return copy_rows(s.parameters); },
             "(N, P) control parameters of the samples.");

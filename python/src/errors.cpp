@@ -42,7 +42,6 @@ std::string with_hint(const Error& e) {
         case Remedy::CompressFirst: return text + "; run mocapdb.compress(db, set) first";
         case Remedy::AlignFirst: return text + "; run mocapdb.align(db, set) first";
         case Remedy::GiveParameters: return text + "; create the set with extract= or params_csv=";
-        case Remedy::ParametersOrExtract: return text + " (extract= or params_csv=)";
         case Remedy::Ranks: return text + " (ranks=)";
         case Remedy::Segmentation: return text + " (segment=)";
         case Remedy::Feet: return text + " (feet=[LEFT, RIGHT])";

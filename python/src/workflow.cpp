@@ -50,7 +50,8 @@ py::object import_files(const std::filesystem::path& db, const std::vector<std::
 py::object create_set(const std::filesystem::path& db, const std::string& name, const std::vector<std::string>& clips,
                       std::optional<std::vector<std::string>> extract, std::optional<std::filesystem::path> params_csv,
                       std::optional<std::map<std::string, double>> periodic, const std::string& segment,
-                      std::optional<std::vector<std::string>> feet, bool replace) {
+                      std::optional<std::vector<std::string>> feet, bool replace,
+                      std::optional<std::map<std::string, std::string>> categories) {
     workflow::SetRequest r;
     r.name = name;
     r.clips = clips;
@@ -60,6 +61,8 @@ py::object create_set(const std::filesystem::path& db, const std::string& name, 
         for (const auto& [p, period] : *periodic) r.periodic.emplace_back(p, period);
     r.segment = segment;
     if (feet) r.feet = *feet;
+    if (categories)
+        for (const auto& [p, pattern] : *categories) r.categories.emplace_back(p, pattern);
     r.replace = replace;
     workflow::SetOutcome o;
     {
@@ -178,10 +181,11 @@ void bind_workflow(py::module_& m) {
     m.def(
         "create_set", &create_set, py::arg("db"), py::arg("name"), py::arg("clips"), py::arg("extract") = py::none(),
         py::arg("params_csv") = py::none(), py::arg("periodic") = py::none(), py::arg("segment") = "auto",
-        py::arg("feet") = py::none(), py::arg("replace") = false,
+        py::arg("feet") = py::none(), py::arg("replace") = false, py::arg("categories") = py::none(),
         "`mocapdb set create`: a motion set of the stored clips matching `clips` (ids or fnmatch patterns), "
-        "its parameters measured by the `extract` extractors (e.g. ['turn', 'speed']) or read from `params_csv`; "
-        "periodic: {name: period}; segment: 'auto', 'none', 'gait[:N]' or 'window:LENGTH[:HOP]'. Committed. Returns "
+        "its parameters measured by the `extract` extractors (e.g. ['turn', 'speed']) and/or read from `params_csv` "
+        "(a column of level names is categorical); categories: {name: regex} categorical parameters whose level is "
+        "the regex's first group in the clip id; periodic: {name: period}; segment: 'auto', 'none', 'gait[:N]' or 'window:LENGTH[:HOP]'. Committed. Returns "
         "{'set', 'samples', 'clips', 'skipped', 'segmentation', 'parameter_names', 'parameters', 'repaired_runs'}."
         "\n\nExample:\n    >>> mocapdb.create_set('walks.h5', 'walks', ['16_*'], extract=['turn', 'speed'])['samples']");
     m.def("align", &align, py::arg("db"), py::arg("set"), py::arg("frames") = 100, py::arg("method") = "dtw",

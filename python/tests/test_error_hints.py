@@ -10,11 +10,8 @@ def test_refusals_name_the_python_keyword_not_the_flag(db_copy):
     with pytest.raises(mocapdb.InvalidArgument) as existing:
         mocapdb.create_set(db_copy, "walks2", ["16_1*"], extract=["speed"])
     assert "set 'walks2' exists; pass replace=True" in str(existing.value)
-    with pytest.raises(mocapdb.InvalidArgument) as both:
-        mocapdb.create_set(db_copy, "both", ["16_1*"], extract=["speed"], params_csv="p.csv")
-    assert str(both.value).endswith("not both (extract= or params_csv=)")
     with pytest.raises(mocapdb.InvalidArgument) as unaligned:
         mocapdb.compress(db_copy, "walks2")
     assert "is not aligned; run mocapdb.align(db, set) first" in str(unaligned.value)
-    for error in (existing, both, unaligned):
+    for error in (existing, unaligned):
         assert "--" not in str(error.value)

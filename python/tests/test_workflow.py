@@ -20,6 +20,26 @@ def test_create_set_equals_the_cli(cli, db_copy, tmp_path):
         assert [s.clip for s in db.set("turns").samples] == [s["clip"] for s in theirs["samples"]]
 
 
+def test_create_set_with_a_category_equals_the_cli(cli, db_copy, tmp_path):
+    """categories={name: regex}: the level is the regex's first group in the clip id (16_1x against 16_2x)."""
+    cli_copy = tmp_path / "cli.h5"
+    mocapdb.copy_database(db_copy, cli_copy)
+    ours = mocapdb.create_set(db_copy, "decades", ["16_*"], extract=["turn"], segment="none",
+                              categories={"decade": "^16_([12])"})
+    run_cli(cli, "set", "create", cli_copy, "--name", "decades", "--clips", "16_*", "--extract", "turn",
+            "--segment", "none", "--category", "decade=^16_([12])")
+    theirs = cli_json(cli, "set", "show", cli_copy, "decades")
+    assert ours["parameter_names"] == ["turn", "decade"] == [p["name"] for p in theirs["parameters"]]
+    assert theirs["parameters"][1]["levels"] == ["1", "2"]
+    assert np.allclose(ours["parameters"], [s["values"] for s in theirs["samples"]], rtol=1e-12, atol=0)
+    with mocapdb.open(db_copy) as db:
+        s = db.set("decades")
+        assert s.parameter_levels == [[], ["1", "2"]]
+        assert [int(row[1]) for row in s.parameters] == [0 if x.clip < "16_20" else 1 for x in s.samples]
+    with pytest.raises(mocapdb.InvalidArgument, match="does not match clip"):
+        mocapdb.create_set(db_copy, "bad", ["16_*"], segment="none", categories={"decade": "^16_(1)"})
+
+
 def test_pack_equals_the_cli(cli, db_copy, tmp_path):
     cli_copy = tmp_path / "cli.h5"
     mocapdb.copy_database(db_copy, cli_copy)

@@ -261,6 +261,38 @@ TEST_CASE("store: periodic parameters round-trip, sets without them store no par
     CHECK(validate_database(db_path).ok());
 }
 
+TEST_CASE("store: categorical parameter levels round-trip; sets without them store none", "[store]") {
+    TempDir dir("levels");
+    const auto db_path = dir / "db.h5";
+    MotionSet styled = two_sample_set("walk");
+    styled.name = "styles";
+    styled.parameter_names.push_back("style");
+    styled.parameter_units.emplace_back();
+    styled.parameters.conservativeResize(2, 3);
+    styled.parameters.col(2) << 1.0, 0.0;  // level indices
+    styled.parameter_levels = {{}, {}, {"calm", "lively"}};
+    {
+        DatabaseWriter w(db_path);
+        w.add_clip(synthetic_clip(40, 3, 7), synthetic_source("walk.bvh", "w"));
+        w.put_set(two_sample_set("walk"), false);
+        w.put_set(styled, false);
+        MotionSet bad = styled;  // a level index that is none: refused before anything is written
+        bad.name = "bad";
+        bad.parameters(0, 2) = 2.0;
+        CHECK_THROWS_WITH(w.put_set(bad, false), Catch::Contains("not a level index in [0, 2)"));
+        w.commit();
+    }
+    const Database db(db_path);
+    CHECK(db.load_set("walks").parameter_levels.empty());
+    const MotionSet back = db.load_set("styles");
+    CHECK(back.parameter_levels == styled.parameter_levels);
+    CHECK(back.parameters == styled.parameters);
+    CHECK_FALSE(db.has_set("bad"));
+    const CommandResult ls = run_command("h5ls " + quoted(db_path.string() + "/sets/walks"));
+    CHECK(ls.output.find("parameter_level") == std::string::npos);
+    CHECK(validate_database(db_path).ok());
+}
+
 TEST_CASE("store: put_set and put_aligned refuse sets that do not fit the stored clips", "[store]") {
     TempDir dir("badsets");
     const auto db_path = dir / "db.h5";

@@ -46,8 +46,9 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     // /clips/{clip}/channels_packed, the packed tier (/packed, /packed/{group} and its 5 datasets),
     // the synthesis kernel /sets/{set}/model/kernel, the repaired dropouts /sets/{set}/repairs
     // with its 3 datasets and the periodic parameters' /sets/{set}/parameter_period. Version 4 changes
-    // the layout (index and segments) and adds the kernel's optional factorized system (issue #38).
-    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 50}, {4, 51}};
+    // the layout (index and segments) and adds the kernel's optional factorized system and the sets'
+    // categorical parameter levels (issue #38).
+    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 50}, {4, 53}};
     for (const auto& [version, path_count] : versions) {
         const std::string json = file_bytes(kSchemas / mirror_name(version));
         const std::string md = file_bytes(kSchemas / ("format-v" + std::to_string(version) + ".md"));
@@ -93,6 +94,8 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
                    path == "/sets/{set}/parameter_period"));
     auto v4 = matches(file_bytes(kSchemas / "format-v4.json"), "\"path\": \"([^\"]+)\"");
     CHECK(v4.erase("/sets/{set}/model/kernel/covariance_inverse") == 1);
+    CHECK(v4.erase("/sets/{set}/parameter_level_count") == 1);
+    CHECK(v4.erase("/sets/{set}/parameter_level") == 1);
     CHECK(v4 == v3);
 }
 

@@ -34,6 +34,21 @@ struct WalkDatabase {
     workflow::CompressOutcome compressed;
 };
 
+/// Aligns set `name` of `db` to `frames` frames and compresses it to a max joint error of 1 cm.
+inline void align_and_compress(const std::filesystem::path& db, const std::string& name, Eigen::Index frames,
+                               WalkDatabase* out = nullptr) {
+    workflow::AlignRequest align;
+    align.set = name;
+    align.frames = frames;
+    workflow::AlignOutcome aligned = workflow::align_set(db, align);
+    workflow::CompressRequest compress;
+    compress.set = name;
+    compress.max_error_cm = 1.0;
+    if (out) out->aligned = std::move(aligned);
+    workflow::CompressOutcome compressed = workflow::compress_set(db, compress);
+    if (out) out->compressed = std::move(compressed);
+}
+
 inline WalkDatabase make_walk_database(const std::string& tag, WalkStage upto) {
     WalkDatabase w;
     w.dir = std::make_unique<TempDir>(tag);
@@ -47,15 +62,14 @@ inline WalkDatabase make_walk_database(const std::string& tag, WalkStage upto) {
     set.extract = {"turn", "speed"};
     w.set = workflow::create_set(w.path, set);
     if (upto == WalkStage::SetCreated) return w;
-    workflow::AlignRequest align;
-    align.set = "walks";
-    align.frames = 40;
-    w.aligned = workflow::align_set(w.path, align);
-    if (upto == WalkStage::Aligned) return w;
-    workflow::CompressRequest compress;
-    compress.set = "walks";
-    compress.max_error_cm = 1.0;
-    w.compressed = workflow::compress_set(w.path, compress);
+    if (upto == WalkStage::Aligned) {
+        workflow::AlignRequest align;
+        align.set = "walks";
+        align.frames = 40;
+        w.aligned = workflow::align_set(w.path, align);
+        return w;
+    }
+    align_and_compress(w.path, "walks", 40, &w);
     return w;
 }
 

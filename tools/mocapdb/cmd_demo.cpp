@@ -201,7 +201,7 @@ void synthesize_new(const DemoArgs& a, const DemoInputs& in, bool procedural, co
     const auto& units = set.parameter_units;
     std::vector<VecX> targets_in;
     if (!a.at.empty()) {
-        for (const std::string& text : a.at) targets_in.push_back(parse_parameters(text, names, units, "--at"));
+        for (const std::string& text : a.at) targets_in.push_back(parse_parameters(text, set, "--at"));
     } else if (procedural && a.motion == "reach") {
         targets_in = workflow::reach_cell_centres(in.reach_grid);
         if (a.quick) targets_in.resize(std::min<std::size_t>(targets_in.size(), 3));
@@ -230,8 +230,7 @@ void synthesize_new(const DemoArgs& a, const DemoInputs& in, bool procedural, co
             "height [cm], horizontal distance [cm]";
 
     std::printf("\n== synthesis at new parameters (%s model, ranks %s; %zu samples; parameters: %s)\n", model.kind(),
-                ranks_text(model.level_ranks(0)).c_str(), set.samples.size(),
-                describe_parameters(names, units).c_str());
+                ranks_text(model.level_ranks(0)).c_str(), set.samples.size(), describe_parameters(set).c_str());
     const kriging::VariogramModel& vg = syn.variogram;
     std::printf(
         "   kriging: variogram p = %g, nugget %.4g, sill %.4g, range %.4g (normalized parameters: each axis "

@@ -27,7 +27,7 @@ struct QueryArgs {
 void run_query(const QueryArgs& a) {
     const Database db(a.db);
     const MotionSet set = db.load_set(a.set);
-    const VecX c = parse_parameters(a.param, set.parameter_names, set.parameter_units, "--param");
+    const VecX c = parse_parameters(a.param, set, "--param");
     const auto model = load_synthesis_model(db, a.set, a.naive, a.lod, "shared", a.predictor);
     if (!(a.frame >= 0.0 && a.frame <= static_cast<double>(model->frames() - 1)))
         throw InvalidArgument("--frame: the aligned frame must lie in [0, " + std::to_string(model->frames() - 1) +
@@ -88,11 +88,13 @@ void setup_query(CLI::App& app) {
     cmd->footer(
         "Example:\n"
         "  mocapdb query db.h5 --set walks --param 0.3,130 --frame 42.5 --joints --json\n"
+        "  mocapdb query db.h5 --set gaits --param gait=run,turn=0.3 --frame 10\n"
         "--frame is a (fractional) frame of the aligned timeline [0, T-1]. Channels are in cm and radians;\n"
         "--joints gives joint positions in cm (canonical frame: the motion starts at the origin facing +Z).");
     cmd->add_option("db", a->db, "database file")->required()->check(CLI::ExistingFile);
     cmd->add_option("--set", a->set, "motion set")->required();
-    cmd->add_option("--param", a->param, "control parameters v1,v2,...")->required();
+    cmd->add_option("--param", a->param, "control parameters v1,v2,... or name=v,... (a category: its level)")
+        ->required();
     cmd->add_option("--frame", a->frame, "aligned frame t")->required();
     cmd->add_option("--lod", a->lod, "level of detail: ranks R1xR2xR3");
     add_predictor_option(cmd, a->predictor);

@@ -21,6 +21,7 @@ struct CreateArgs {
     std::string db;
     SetRequest request;
     std::vector<std::string> periodic;  ///< NAME=PERIOD, parsed into request.periodic
+    std::vector<std::string> category;  ///< NAME=REGEX, parsed into request.categories
     std::string feet;                   ///< left,right, split into request.feet
     bool json = false;
 };
@@ -52,6 +53,7 @@ void warn_twins(const SetOutcome& o) {
 
 void run_create(CreateArgs a) {
     a.request.periodic = periodic_parameters(a.periodic);
+    a.request.categories = category_parameters(a.category);
     if (!a.feet.empty()) a.request.feet = split_names(a.feet, "--feet");
     const SetOutcome o = create_set(a.db, a.request);
     warn_twins(o);
@@ -93,14 +95,25 @@ void print_set(const Database& db, const std::string& name, bool json) {
     std::printf("\n");
     for (std::size_t i = 0; i < set.samples.size(); ++i) {
         std::printf("%-22s", labels[i].c_str());
-        for (Eigen::Index p = 0; p < set.parameters.cols(); ++p)
-            std::printf(" %14.4f", set.parameters(static_cast<Eigen::Index>(i), p));
+        for (Eigen::Index p = 0; p < set.parameters.cols(); ++p) {
+            const double v = set.parameters(static_cast<Eigen::Index>(i), p);
+            if (is_categorical(set, static_cast<std::size_t>(p)))
+                std::printf(" %14s",
+                            set.parameter_levels[static_cast<std::size_t>(p)][static_cast<std::size_t>(v)].c_str());
+            else std::printf(" %14.4f", v);
+        }
         std::printf("\n");
     }
     for (Eigen::Index p = 0; p < set.parameter_periods.size(); ++p) {
         if (!(set.parameter_periods(p) > 0.0)) continue;
         std::printf("periodic: %s, period %g %s\n", set.parameter_names[static_cast<std::size_t>(p)].c_str(),
                     set.parameter_periods(p), set.parameter_units[static_cast<std::size_t>(p)].c_str());
+    }
+    for (std::size_t p = 0; p < set.parameter_levels.size(); ++p) {
+        if (!is_categorical(set, p)) continue;
+        std::string levels;
+        for (const std::string& l : set.parameter_levels[p]) levels += (levels.empty() ? "" : ", ") + l;
+        std::printf("categorical: %s, levels %s\n", set.parameter_names[p].c_str(), levels.c_str());
     }
     if (!set.dropouts_checked) {
         std::printf("dropouts: not checked (set stored before the check; 'set create --force' rebuilds it)\n");
@@ -130,6 +143,8 @@ void setup_set(CLI::App& app) {
         "  mocapdb set create db.h5 --name jumps --clips '16_0[5-9]' --segment flight:0.5:0.5 --extract jump\n"
         "  mocapdb set create db.h5 --name dirs --clips 'strafe_*' --segment gait:1 --extract bearing speed\n"
         "  mocapdb set create db.h5 --name reach --clips 'reach_*' --params targets.csv\n"
+        "  mocapdb set create db.h5 --name gaits --clips '16_1[235]*' '16_3[579]*' --extract turn\n"
+        "      --category 'gait=^16_([13])'\n"
         "Extractors: displacement (dx, dz cm), turn (rad), speed (cm/s), jump (cm), reach:JOINT@FRAME (cm;\n"
         "FRAME = offset, end or P%); definitions in lib/include/mocapdb/dataset/param_extractors.hpp.\n"
         "Segmentation: auto (default: flights when a jump is extracted; else gait cycles when parameters are\n"
@@ -138,13 +153,17 @@ void setup_set(CLI::App& app) {
         "same phase; at most N per clip, evenly spread, 1 = the middle one), window:LENGTH[:HOP] (frames),\n"
         "flight[:BEFORE[:AFTER]] (the clip's longest flight with BEFORE s before take-off and AFTER s after landing,\n"
         "default 0.5 each: every jump sample starts the same time before its take-off). Params CSV: header\n"
-        "'sample,name[unit],...', one row per sample\n"
-        "labelled CLIP (whole clip) or CLIP:BEGIN-END.");
+        "'sample,name[unit],...', one row per sample labelled CLIP (whole clip) or CLIP:BEGIN-END; a column of\n"
+        "names (no numbers) is a categorical parameter. Parameters: extracted, then the CSV's, then categories.\n"
+        "--category NAME=REGEX: the level of each sample is the first group of REGEX (ECMAScript) searched in\n"
+        "its clip id; every level needs at least 2 samples. Categories: docs/synthesis.md.");
     create->add_option("db", c->db, "database file")->required();
     create->add_option("--name", c->request.name, "set name")->required();
     create->add_option("--clips", c->request.clips, "clip ids or shell patterns (quoted), in sample order")->required();
     create->add_option("--params", c->request.params_csv, "control parameters from a CSV")->check(CLI::ExistingFile);
     create->add_option("--extract", c->request.extract, "control parameters measured from the motion");
+    create->add_option("--category", c->category,
+                       "NAME=REGEX: a categorical parameter whose level is REGEX's first group in the clip id");
     create->add_option(
         "--periodic", c->periodic,
         "NAME=PERIOD: a periodic parameter (e.g. bearing=360 for degrees); 'bearing' extracted is periodic by itself");
@@ -192,7 +211,7 @@ void setup_set(CLI::App& app) {
     show->add_option("name", *show_name, "set name")->required();
     show->add_flag(
         "--json", *show_json,
-        "print JSON: {name, parameter_source, parameters:[{name,unit}], aligned, samples:[{label,clip,begin,end,values}],\n"
+        "print JSON: {name, parameter_source, parameters:[{name,unit,[period],[levels]}], aligned, samples:[{label,clip,begin,end,values}],\n"
         "dropouts_checked, repairs:[{clip,joint,begin,end}]} (repaired solver dropouts, frames [begin, end))");
     show->callback([show_db, show_name, show_json] { print_set(Database(*show_db), *show_name, *show_json); });
 }

@@ -26,7 +26,6 @@ std::string hint(const mocapdb::Error& e) {
         case mocapdb::Remedy::CompressFirst: return "; run: mocapdb compress DB --set SET";
         case mocapdb::Remedy::AlignFirst: return "; run: mocapdb align DB --set SET";
         case mocapdb::Remedy::GiveParameters: return "; create the set with --extract or --params";
-        case mocapdb::Remedy::ParametersOrExtract: return " (--params or --extract)";
         case mocapdb::Remedy::Ranks: return " (--ranks)";
         case mocapdb::Remedy::Segmentation: return " (--segment)";
         case mocapdb::Remedy::Feet: return " (--feet LEFT,RIGHT)";

@@ -99,6 +99,17 @@ std::vector<std::pair<std::string, double>> periodic_parameters(const std::vecto
     return out;
 }
 
+std::vector<std::pair<std::string, std::string>> category_parameters(const std::vector<std::string>& specs) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const std::string& spec : specs) {
+        const auto eq = spec.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+            throw InvalidArgument("--category '" + spec + "': expected NAME=REGEX, e.g. 'style=_([a-z]+)_[0-9]+$'");
+        out.emplace_back(spec.substr(0, eq), spec.substr(eq + 1));
+    }
+    return out;
+}
+
 SetOutcome create_set(const std::string& db_path, SetRequest r) {
     ProgressBar bar("set create");
     r.progress = bar.callback();

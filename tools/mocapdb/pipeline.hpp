@@ -45,6 +45,8 @@ using SetOutcome = workflow::SetOutcome;
 SetOutcome create_set(const std::string& db, SetRequest request);
 /// `--periodic NAME=PERIOD ...` as the request's (name, period) pairs; InvalidArgument naming the flag.
 std::vector<std::pair<std::string, double>> periodic_parameters(const std::vector<std::string>& specs);
+/// `--category NAME=REGEX ...` as the request's (name, pattern) pairs; InvalidArgument naming the flag.
+std::vector<std::pair<std::string, std::string>> category_parameters(const std::vector<std::string>& specs);
 
 /// "set 'NAME': N samples (KIND) from C clips, P parameters (SOURCE)\n", then, when dropouts were
 /// repaired, "repaired solver dropouts in K clips (R joint runs of up to F frames): CLIPS; ...\n".

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/synthesis/naive_motion_model.hpp"
 #include "mocapdb/workflow/load_model.hpp"
@@ -14,35 +15,17 @@
 
 namespace mocapdb::cli {
 
-std::string describe_parameters(const std::vector<std::string>& names, const std::vector<std::string>& units) {
-    std::string s;
-    for (std::size_t k = 0; k < names.size(); ++k) {
-        if (k) s += ", ";
-        s += names[k];
-        if (k < units.size() && !units[k].empty()) s += " [" + units[k] + "]";
-    }
-    return s;
-}
-
-VecX parse_parameters(const std::string& text, const std::vector<std::string>& names,
-                      const std::vector<std::string>& units, const std::string& option) {
-    std::vector<double> values;
+VecX parse_parameters(const std::string& text, const MotionSet& set, const std::string& option) {
+    std::vector<std::string> items;
     std::stringstream in(text);
     std::string item;
-    while (std::getline(in, item, ',')) {
-        const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
-        const std::string word = b == std::string::npos ? "" : item.substr(b, e - b + 1);
-        char* end = nullptr;
-        const double v = std::strtod(word.c_str(), &end);
-        if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(v))
-            throw InvalidArgument(option + ": '" + word + "' is not a finite number (expected " +
-                                  std::to_string(names.size()) + " values: " + describe_parameters(names, units) + ")");
-        values.push_back(v);
+    while (std::getline(in, item, ',')) items.push_back(item);
+    if (!text.empty() && text.back() == ',') items.emplace_back();  // "1," : an empty last value
+    try {
+        return parameter_request(set, items);
+    } catch (const InvalidArgument& e) {
+        throw InvalidArgument(option + ": " + e.what());
     }
-    if (values.size() != names.size())
-        throw InvalidArgument(option + ": expected " + std::to_string(names.size()) + " values (" +
-                              describe_parameters(names, units) + "), got " + std::to_string(values.size()));
-    return Eigen::Map<const VecX>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
 tensor::Ranks parse_ranks(const std::string& text, const std::string& option) {

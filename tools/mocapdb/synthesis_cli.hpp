@@ -12,13 +12,9 @@
 
 namespace mocapdb::cli {
 
-/// "v1,v2,..." into P values in the set's units; InvalidArgument naming the set's parameters (with units)
-/// when the count is wrong or a value is not a finite number.
-VecX parse_parameters(const std::string& text, const std::vector<std::string>& names,
-                      const std::vector<std::string>& units, const std::string& option);
-
-/// "name [unit], ..." of the set's parameters, for messages.
-std::string describe_parameters(const std::vector<std::string>& names, const std::vector<std::string>& units);
+/// "v1,v2,..." (positional) or "name=v,..." (named; a categorical parameter takes a level name) into the
+/// set's P values (dataset/parameter_request.hpp); InvalidArgument prefixed with `option` otherwise.
+VecX parse_parameters(const std::string& text, const MotionSet& set, const std::string& option);
 
 /// "R1xR2xR3" into ranks (InvalidArgument otherwise).
 tensor::Ranks parse_ranks(const std::string& text, const std::string& option);

@@ -124,6 +124,7 @@ EvalSet subset(const EvalSet& set, const std::vector<Eigen::Index>& keep) {
     out.set.parameter_units = set.set.parameter_units;
     out.set.parameter_source = set.set.parameter_source;
     out.set.parameter_periods = set.set.parameter_periods;  // periodic axes stay periodic in every fold
+    out.set.parameter_levels = set.set.parameter_levels;    // and categorical ones categorical
     out.set.dropouts_checked = set.set.dropouts_checked;
     out.set.repairs = set.set.repairs;  // samples keep their repaired frames
     const Eigen::Index m = static_cast<Eigen::Index>(keep.size());

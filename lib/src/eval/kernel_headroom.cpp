@@ -46,9 +46,10 @@ KernelHeadroom kernel_headroom(const EvalSet& set, const KernelHeadroomOptions& 
         for (Eigen::Index i = 0; i < n; ++i) left_out.push_back(i);
     const MatX& params = set.set.parameters;
     const VecX periods = set.set.parameter_periods;
-    const bool periodic = periods.size() > 0 && (periods.array() > 0.0).any();
+    const bool embedded = (periods.size() > 0 && (periods.array() > 0.0).any()) ||
+                          !parameter_level_counts(set.set).empty();  // (no anisotropy over indicator axes)
     std::vector<double> anisotropy = {1.0};
-    if (params.cols() >= 2 && !periodic) anisotropy = options.anisotropy;
+    if (params.cols() >= 2 && !embedded) anisotropy = options.anisotropy;
 
     std::vector<Fold> folds;
     for (Eigen::Index i : left_out) {
@@ -59,7 +60,8 @@ KernelHeadroom kernel_headroom(const EvalSet& set, const KernelHeadroomOptions& 
             train.row(k++) = params.row(j);
             f.poses.push_back(aligned_sample(set.aligned, j));
         }
-        const kriging::ControlScaling scaling = kriging::ControlScaling::from_data(train, periods);
+        const kriging::ControlScaling scaling =
+            kriging::ControlScaling::from_data(train, periods, parameter_level_counts(set.set));
         f.coords = scaling.apply(train);
         scaling.apply_point(params.row(i).transpose(), f.query);
         f.truth = aligned_sample(set.aligned, i);

@@ -204,7 +204,13 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
     MatX requested(m, set.set.parameters.cols());
     for (Eigen::Index k = 0; k < m; ++k)
         requested.row(k) = set.set.parameters.row(out.folds[static_cast<std::size_t>(k)]);
-    if (out.parameters_measured) out.hit_tolerance = hit_tolerances(set.set.parameters, options.hit_share);
+    if (out.parameters_measured) {
+        out.hit_tolerance = hit_tolerances(set.set.parameters, options.hit_share);
+        // Only the extracted parameters (the first columns) are measured back: not the CSV's or categories.
+        std::size_t extracted = 0;
+        for (const ParameterExtractor& x : set.extractors) extracted += x.names().size();
+        for (std::size_t p = extracted; p < out.hit_tolerance.size(); ++p) out.hit_tolerance[p].reset();
+    }
     for (std::size_t q = 0; q < methods.size(); ++q) {
         MethodEvaluation e;
         e.spec = methods[q];

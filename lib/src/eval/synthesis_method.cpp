@@ -9,6 +9,7 @@
 #include "mocapdb/compression/rank_search.hpp"
 #include "mocapdb/compression/set_model.hpp"
 #include "mocapdb/core/error.hpp"
+#include "mocapdb/dataset/set_scaling.hpp"
 #include "mocapdb/dataset/unwarp.hpp"
 #include "mocapdb/compression/joint_error.hpp"
 #include "mocapdb/kriging/motion_kriging.hpp"
@@ -60,8 +61,10 @@ public:
             o.scope = kriging::KernelScope::PerSet;
             o.method = kriging::InterpolationMethod::Rbf;
         }
+        o.scaling = set_control_scaling(s.set);  // the set's periodic and categorical axes
         poses_ = kriging::MotionKriging::build(s.set.parameters, sample_rows(s.aligned), signal, MatX(), o);
         kriging::MotionKrigingOptions t;
+        t.scaling = o.scaling;
         t.scope = kriging::KernelScope::PerSet;
         t.method = o.method;
         timing_ = kriging::MotionKriging::build(s.set.parameters, clamp_.increments, MatX(), MatX(), t);
@@ -87,7 +90,7 @@ class TrendSynthesizer final : public Synthesizer {
 public:
     explicit TrendSynthesizer(const EvalSet& s)
         : clamp_(s.aligned),
-          scaling_(kriging::ControlScaling::from_data(s.set.parameters)),
+          scaling_(set_control_scaling(s.set)),
           basis_(kriging::TrendBasis::build(scaling_.apply(s.set.parameters), kriging::TrendKind::Linear)),
           motion_(kriging::fit_trend_ols(basis_, sample_rows(s.aligned)).coefficients),
           timing_(kriging::fit_trend_ols(basis_, clamp_.increments).coefficients),
@@ -134,7 +137,7 @@ class NeighbourSynthesizer final : public Synthesizer {
 public:
     NeighbourSynthesizer(const MethodSpec& m, const EvalSet& s)
         : clamp_(s.aligned),
-          scaling_(kriging::ControlScaling::from_data(s.set.parameters)),
+          scaling_(set_control_scaling(s.set)),
           blend_(scaling_.apply(s.set.parameters), m.nn),
           rows_(sample_rows(s.aligned)),
           dofs_(s.aligned.dofs()),

@@ -1,5 +1,6 @@
 #include "mocapdb/kriging/trend.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -115,7 +116,8 @@ double wrap_to_half_period(double x, double period) {
 }
 
 ControlScaling ControlScaling::from_data(const Eigen::Ref<const Eigen::MatrixXd>& coords,
-                                         const Eigen::Ref<const Eigen::VectorXd>& periods) {
+                                         const Eigen::Ref<const Eigen::VectorXd>& periods,
+                                         const std::vector<int>& levels) {
     if (coords.rows() < 1 || coords.cols() < 1 || !coords.allFinite()) {
         throw InvalidArgument("ControlScaling::from_data: coords must be a finite N by P matrix with N, P >= 1");
     }
@@ -128,9 +130,13 @@ ControlScaling ControlScaling::from_data(const Eigen::Ref<const Eigen::MatrixXd>
     s.offset = coords.colwise().mean().transpose();
     s.scale.resize(coords.cols());
     if ((periods.array() > 0.0).any()) s.period = periods;
+    if (std::any_of(levels.begin(), levels.end(), [](int l) { return l != 0; })) s.levels = levels;
     for (Eigen::Index k = 0; k < coords.cols(); ++k) {
         double sd;
-        if (s.period.size() != 0 && s.period(k) > 0.0) {
+        if (s.categorical(k)) {  // a level index: neither centred nor scaled
+            s.offset(k) = 0.0;
+            sd = 1.0;
+        } else if (s.period.size() != 0 && s.period(k) > 0.0) {
             const double t = s.period(k);
             const double two_pi = 2.0 * kPi;
             const Eigen::ArrayXd angle = coords.col(k).array() * (two_pi / t);
@@ -169,17 +175,37 @@ void ControlScaling::validate(Eigen::Index dimension) const {
     if (period.size() != 0 && (period.size() != dimension || !period.allFinite() || (period.array() < 0.0).any()))
         throw InvalidArgument("ControlScaling: periods must be empty or P = " + std::to_string(dimension) +
                               " finite values >= 0");
+    if (!levels.empty() && static_cast<Eigen::Index>(levels.size()) != dimension)
+        throw InvalidArgument("ControlScaling: level counts must be empty or P = " + std::to_string(dimension));
+    for (std::size_t k = 0; k < levels.size(); ++k)
+        if (levels[k] == 1 || levels[k] < 0 ||
+            (levels[k] > 0 && period.size() != 0 && period(static_cast<Eigen::Index>(k)) > 0.0))
+            throw InvalidArgument("ControlScaling: axis " + std::to_string(k) +
+                                  ": a level count must be 0 (numeric) or >= 2 (categorical, not periodic), got " +
+                                  std::to_string(levels[k]));
 }
 
 bool ControlScaling::has_periodic_axis() const { return period.size() != 0 && (period.array() > 0.0).any(); }
 
+bool ControlScaling::has_categorical_axis() const {
+    return std::any_of(levels.begin(), levels.end(), [](int l) { return l > 0; });
+}
+
+bool ControlScaling::categorical(Eigen::Index k) const {
+    return static_cast<std::size_t>(k) < levels.size() && levels[static_cast<std::size_t>(k)] > 0;
+}
+
 Eigen::Index ControlScaling::embedded_dimension() const {
-    return offset.size() + (period.size() != 0 ? static_cast<Eigen::Index>((period.array() > 0.0).count()) : 0);
+    Eigen::Index d =
+        offset.size() + (period.size() != 0 ? static_cast<Eigen::Index>((period.array() > 0.0).count()) : 0);
+    for (const int l : levels)
+        if (l > 0) d += l - 1;
+    return d;
 }
 
 Eigen::MatrixXd ControlScaling::apply(const Eigen::Ref<const Eigen::MatrixXd>& coords) const {
     validate(coords.cols());
-    if (!has_periodic_axis()) {
+    if (!has_periodic_axis() && !has_categorical_axis()) {
         Eigen::MatrixXd out = (coords.rowwise() - offset.transpose());
         out.array().rowwise() /= scale.transpose().array();
         return out;
@@ -188,7 +214,20 @@ Eigen::MatrixXd ControlScaling::apply(const Eigen::Ref<const Eigen::MatrixXd>& c
     Eigen::MatrixXd out(coords.rows(), embedded_dimension());
     Eigen::Index col = 0;
     for (Eigen::Index k = 0; k < coords.cols(); ++k) {
-        if (period(k) > 0.0) {
+        if (categorical(k)) {
+            const int count = levels[static_cast<std::size_t>(k)];
+            out.middleCols(col, count).setZero();
+            for (Eigen::Index i = 0; i < coords.rows(); ++i) {
+                const double x = coords(i, k);
+                if (!(x >= 0.0 && x < count && x == std::floor(x)))
+                    throw InvalidArgument("ControlScaling: coordinate " + std::to_string(k) + " of point " +
+                                          std::to_string(i) + " is categorical with " + std::to_string(count) +
+                                          " levels; expected a level index 0 to " + std::to_string(count - 1) +
+                                          ", got " + std::to_string(x));
+                out(i, col + static_cast<Eigen::Index>(x)) = kLevelCoordinate;
+            }
+            col += count;
+        } else if (period.size() != 0 && period(k) > 0.0) {
             const double radius = period(k) / (two_pi * scale(k));
             const Eigen::ArrayXd angle = (coords.col(k).array() - offset(k)) * (two_pi / period(k));
             out.col(col++) = radius * angle.cos();
@@ -203,7 +242,7 @@ Eigen::MatrixXd ControlScaling::apply(const Eigen::Ref<const Eigen::MatrixXd>& c
 void ControlScaling::apply_point(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::VectorXd& out) const {
     if (c.size() != offset.size())
         throw InvalidArgument("ControlScaling: a point must have P = " + std::to_string(offset.size()) + " entries");
-    if (!has_periodic_axis()) {
+    if (!has_periodic_axis() && !has_categorical_axis()) {
         if (out.size() != c.size()) out.resize(c.size());
         out = ((c - offset).array() / scale.array()).matrix();
         return;

@@ -14,9 +14,9 @@ namespace {
 using namespace detail;
 
 constexpr double kGravity = 981.0;      // cm/s²
-constexpr double kAnkleHeight = 8.0;    // cm, foot flat
+constexpr double kWalkAnkleHeight = 8.0;    // cm, foot flat
 constexpr double kStepHalfWidth = 6.5;  // cm from the path to each ankle
-constexpr double kToeOut = 6.0 * deg;
+constexpr double kWalkToeOut = 6.0 * deg;
 constexpr double kStartPhase = 0.8;   // the clip starts late in the left swing
 constexpr double kAnchor = 0.3;       // the ankle passes under the pelvis path at 30 % of its cycle
 constexpr double kHeelRocker = 0.08;  // heel strike → foot flat, fraction of the cycle
@@ -119,12 +119,12 @@ private:
         return (n + (side == kLeft ? 0.0 : 0.5) + kAnchor - kStartPhase) * g_.period;
     }
     double footprint_yaw(Side side, double n) const {
-        return g_.heading(anchor_time(side, n)) + (side == kLeft ? kToeOut : -kToeOut);
+        return g_.heading(anchor_time(side, n)) + (side == kLeft ? kWalkToeOut : -kWalkToeOut);
     }
     Vec3 footprint(Side side, double n) const {
         const double t = anchor_time(side, n);
         const double sign = side == kLeft ? 1.0 : -1.0;
-        return g_.centre(t) + sign * kStepHalfWidth * Gait::left_of(g_.heading(t)) + Vec3(0.0, kAnkleHeight, 0.0);
+        return g_.centre(t) + sign * kStepHalfWidth * Gait::left_of(g_.heading(t)) + Vec3(0.0, kWalkAnkleHeight, 0.0);
     }
 
     const Gait& g_;
@@ -188,7 +188,7 @@ WalkMotion generate_walk(const WalkParams& p, const WalkOptions& o) {
     // nominal amplitude peaking at mid-stance.
     const Feet feet(g);
     const double e = o.max_leg_extension, leg = rig.thigh + rig.shin;
-    const double standing = -sk.joint(rig.upleg[0]).offset.y() + leg + kAnkleHeight - 0.2;
+    const double standing = -sk.joint(rig.upleg[0]).offset.y() + leg + kWalkAnkleHeight - 0.2;
     std::vector<double> ceiling(frames, standing), wave(frames);
     for (std::size_t f = 0; f < frames; ++f) {
         const double t = time[f];

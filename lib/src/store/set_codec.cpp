@@ -35,6 +35,18 @@ void write_set(h5::File& file, const MotionSet& set) {
         file.write_array(g + "/parameter_period", periods.data(), {static_cast<std::uint64_t>(periods.size())},
                          {"parameter"}, "parameter_unit");
     }
+    if (!parameter_level_counts(set).empty()) {
+        // Categorical parameters (format-v4.md §6): level counts (0 = numeric) and the names, concatenated.
+        std::vector<std::int64_t> counts;
+        std::vector<std::string> names;
+        for (const auto& levels : set.parameter_levels) {
+            counts.push_back(static_cast<std::int64_t>(levels.size()));
+            names.insert(names.end(), levels.begin(), levels.end());
+        }
+        file.write_array(g + "/parameter_level_count", counts.data(), {static_cast<std::uint64_t>(counts.size())},
+                         {"parameter"}, "");
+        file.write_strings(g + "/parameter_level", names, "level", "");
+    }
     if (set.dropouts_checked) {
         // The dropout check's outcome (format-v3.md §6.1); the datasets only when something was repaired.
         const std::string r = repairs_path(set.name);
@@ -95,6 +107,38 @@ MotionSet read_set(const h5::File& file, const std::string& name) {
                                      ": expected a period >= 0 (0 = not periodic), found " +
                                      std::to_string(periods.data[k]));
         set.parameter_periods = Eigen::Map<const VecX>(periods.data.data(), static_cast<Eigen::Index>(p));
+    }
+    if (file.type_of(g + "/parameter_level_count") == h5::ObjectType::Dataset) {
+        const std::string where = g + "/parameter_level_count";
+        const auto counts = file.read_array<std::int64_t>(where, 1);
+        expect_shape(file, where, {p}, "(one level count per parameter_name)", counts.shape);
+        const auto names = file.read_strings(g + "/parameter_level");
+        std::size_t next = 0;
+        for (std::size_t k = 0; k < counts.data.size(); ++k) {
+            const std::int64_t c = counts.data[k];
+            if (c == 1 || c < 0 || next + static_cast<std::size_t>(c) > names.size())
+                throw StoreError(
+                    file.name(), where,
+                    "parameter " + std::to_string(k) + ": expected 0 (numeric) or >= 2 levels within the " +
+                        std::to_string(names.size()) + " names of parameter_level, found " + std::to_string(c));
+            set.parameter_levels.emplace_back(
+                names.begin() + static_cast<std::ptrdiff_t>(next),
+                names.begin() + static_cast<std::ptrdiff_t>(next + static_cast<std::size_t>(c)));
+            next += static_cast<std::size_t>(c);
+        }
+        if (next != names.size())
+            shape_error(file, g + "/parameter_level", {next}, "(the sum of parameter_level_count)", {names.size()});
+        for (std::size_t k = 0; k < set.parameter_levels.size(); ++k) {
+            const double levels = static_cast<double>(set.parameter_levels[k].size());
+            const auto col = set.parameters.col(static_cast<Eigen::Index>(k));
+            for (Eigen::Index i = 0; levels > 0 && i < col.size(); ++i)
+                if (col(i) < 0.0 || col(i) >= levels || col(i) != std::floor(col(i)))
+                    throw StoreError(file.name(), g + "/parameters",
+                                     "sample " + std::to_string(i) + ", categorical parameter " + std::to_string(k) +
+                                         ": expected a level index 0 to " +
+                                         std::to_string(static_cast<long long>(levels) - 1) + ", found " +
+                                         std::to_string(col(i)));
+        }
     }
     // Sets stored before the dropout check have no repairs group: taken as stored, unrepaired.
     const std::string r = repairs_path(name);

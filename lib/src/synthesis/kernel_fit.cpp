@@ -121,6 +121,8 @@ std::uint64_t kernel_key(const compression::SetModel& model, const MotionSet& se
     for (Eigen::Index i = 0; i < t.core.size(); ++i) d.number(core[i]);
     // Periodic parameters change the control-space distances (sets without them keep their keys).
     for (Eigen::Index k = 0; k < set.parameter_periods.size(); ++k) d.number(set.parameter_periods(k));
+    // So do categorical ones (level counts; sets without them keep their keys).
+    for (const int levels : parameter_level_counts(set)) d.word(static_cast<std::uint64_t>(levels));
     // A subset fit depends on the subset's size (smaller sets, fitted on all samples, keep their keys).
     if (static_cast<std::size_t>(set.parameters.rows()) > options.max_fit_samples) d.word(options.max_fit_samples);
     return d.h == 0 ? 1 : d.h;
@@ -375,8 +377,10 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
         options.scaling->validate(set.parameters.cols());
         scaling = *options.scaling;
         if (scaling.period.size() == 0) scaling.period = set.parameter_periods;
+        if (scaling.levels.empty()) scaling.levels = parameter_level_counts(set);
     } else {
-        scaling = kriging::ControlScaling::from_data(set.parameters, set.parameter_periods);
+        scaling =
+            kriging::ControlScaling::from_data(set.parameters, set.parameter_periods, parameter_level_counts(set));
     }
     const MatX xc = scaling.apply(set.parameters);
     const MatX values = core_slice_values(model);

@@ -74,9 +74,10 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     if (options.scaling) {
         options.scaling->validate(coords_.cols());
         scaling_ = *options.scaling;
-        if (scaling_.period.size() == 0) scaling_.period = set.parameter_periods;  // the set's periodic axes
+        if (scaling_.period.size() == 0) scaling_.period = set.parameter_periods;    // the set's periodic axes
+        if (scaling_.levels.empty()) scaling_.levels = parameter_level_counts(set);  // and categorical ones
     } else {
-        scaling_ = kriging::ControlScaling::from_data(coords_, set.parameter_periods);
+        scaling_ = kriging::ControlScaling::from_data(coords_, set.parameter_periods, parameter_level_counts(set));
     }
     const MatX xc = scaling_.apply(coords_);
 
@@ -219,7 +220,7 @@ void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref
                               " and finite, got " + std::to_string(C.rows()) + "x" + std::to_string(C.cols()));
     }
     const Eigen::Index q = C.rows();
-    if (scaling_.has_periodic_axis()) {
+    if (scaling_.has_periodic_axis() || scaling_.has_categorical_axis()) {
         ws.c_normalized = scaling_.apply(C);
     } else {
         if (ws.c_normalized.rows() != q || ws.c_normalized.cols() != parameters())

@@ -2,6 +2,9 @@
 
 #include <fnmatch.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <map>
 #include <set>
 
@@ -20,41 +23,93 @@ std::pair<std::string, std::string> name_and_unit(const std::string& header) {
     return {header.substr(0, open), header.substr(open + 1, header.size() - open - 2)};
 }
 
-// Fills the set's parameters from a CSV: first column the sample label, then one column per
-// parameter, headers "name" or "name[unit]".
+// Appends a numeric parameter column (the set's periods and levels, when kept, get a linear entry).
+void append_numeric_parameter(MotionSet& set, const std::string& name, const std::string& unit, const VecX& column) {
+    const Eigen::Index p = set.parameters.cols();
+    set.parameters.conservativeResize(column.size(), p + 1);
+    set.parameters.col(p) = column;
+    set.parameter_names.push_back(name);
+    set.parameter_units.push_back(unit);
+    if (set.parameter_periods.size() != 0) {
+        set.parameter_periods.conservativeResize(p + 1);
+        set.parameter_periods(p) = 0.0;
+    }
+    if (!set.parameter_levels.empty()) set.parameter_levels.emplace_back();
+}
+
+bool is_number(const std::string& cell) {
+    char* end = nullptr;
+    const double v = std::strtod(cell.c_str(), &end);
+    return !cell.empty() && end == cell.c_str() + cell.size() && std::isfinite(v);
+}
+
+// Appends the CSV's parameters to the set's (after any extracted ones): first column the sample label,
+// then one column per parameter, headers "name" or "name[unit]". A column of numbers is numeric; a
+// column without any number is categorical (its cells are the levels); a mix is refused.
 void apply_params_csv(MotionSet& set, const std::filesystem::path& path, const Database& db) {
     const std::string file = path.string();
     const CsvTable csv = CsvTable::read(path);
     csv.require_data_rows();
     if (csv.header.size() < 2)
         throw ParseError(file, 1, 0, "expected a header 'sample,p1[,p2...]' with at least one parameter column");
-    std::vector<std::string> names(csv.header.begin() + 1, csv.header.end());
-    set.parameter_names.clear();
-    set.parameter_units.clear();
-    set.parameter_periods.resize(0);
-    for (const std::string& h : names) {
-        const auto [n, u] = name_and_unit(h);
-        set.parameter_names.push_back(n);
-        set.parameter_units.push_back(u);
-    }
-    const MatX values = csv.columns(names);
-    std::map<std::string, Eigen::Index> row_of;
+    std::map<std::string, std::size_t> row_of;
     for (std::size_t r = 0; r < csv.cells.size(); ++r) {
-        if (!row_of.emplace(csv.cells[r][0], static_cast<Eigen::Index>(r)).second)
+        if (!row_of.emplace(csv.cells[r][0], r).second)
             throw ParseError(file, csv.line_of_row[r], 1, "sample '" + csv.cells[r][0] + "' appears twice");
     }
-    set.parameters.resize(static_cast<Eigen::Index>(set.samples.size()), static_cast<Eigen::Index>(names.size()));
-    for (std::size_t i = 0; i < set.samples.size(); ++i) {
-        const SampleRef& s = set.samples[i];
+    std::vector<std::size_t> rows;  // the CSV row of each sample
+    for (const SampleRef& s : set.samples) {
         const std::string label = sample_label(s, db.find_clip(s.clip)->frames);
         auto it = row_of.find(label);
         if (it == row_of.end())
             throw ParseError(
                 file, 0, 0,
                 "no row for sample '" + label + "' (first column: sample labels as 'CLIP' or 'CLIP:BEGIN-END')");
-        set.parameters.row(static_cast<Eigen::Index>(i)) = values.row(it->second);
+        rows.push_back(it->second);
     }
-    set.parameter_source = "csv:" + std::filesystem::path(file).filename().string();
+    if (set.parameters.rows() != static_cast<Eigen::Index>(rows.size()))
+        set.parameters.resize(static_cast<Eigen::Index>(rows.size()), 0);
+    for (std::size_t c = 1; c < csv.header.size(); ++c) {
+        const auto [name, unit] = name_and_unit(csv.header[c]);
+        const std::size_t header_column = c < csv.header_columns.size() ? csv.header_columns[c] : 0;
+        if (std::find(set.parameter_names.begin(), set.parameter_names.end(), name) != set.parameter_names.end())
+            throw ParseError(file, csv.header_line, header_column,
+                             "parameter '" + name + "' is given twice (also measured, or a repeated column)");
+        std::size_t numbers = 0, first_text = 0, first_number = 0;
+        for (std::size_t r = csv.cells.size(); r-- > 0;) {
+            if (is_number(csv.cells[r][c])) {
+                ++numbers;
+                first_number = r;
+            } else {
+                first_text = r;
+            }
+        }
+        if (numbers == csv.cells.size()) {
+            VecX column(static_cast<Eigen::Index>(rows.size()));
+            for (std::size_t i = 0; i < rows.size(); ++i)
+                column(static_cast<Eigen::Index>(i)) = std::strtod(csv.cells[rows[i]][c].c_str(), nullptr);
+            append_numeric_parameter(set, name, unit, column);
+            continue;
+        }
+        if (numbers > 0)
+            throw ParseError(file, csv.line_of_row[first_text], csv.column_of_cell[first_text][c],
+                             "column '" + csv.header[c] + "' mixes numbers (line " +
+                                 std::to_string(csv.line_of_row[first_number]) + ") and text ('" +
+                                 csv.cells[first_text][c] +
+                                 "'): a numeric parameter needs finite numbers, a categorical one level names");
+        if (!unit.empty())
+            throw ParseError(file, csv.header_line, header_column,
+                             "column '" + csv.header[c] + "' holds level names (a categorical parameter): no unit");
+        for (std::size_t r = 0; r < csv.cells.size(); ++r)
+            if (csv.cells[r][c].empty())
+                throw ParseError(file, csv.line_of_row[r], csv.column_of_cell[r][c],
+                                 "column '" + name + "' (categorical): empty level name");
+        std::vector<std::string> levels;
+        for (const std::size_t r : rows) levels.push_back(csv.cells[r][c]);
+        add_categorical_parameter(set, name, levels);
+    }
+    const std::string source = "csv:" + std::filesystem::path(file).filename().string();
+    set.parameter_source += (set.parameter_source.empty() ? "" : "; ") + source;
 }
 
 }  // namespace
@@ -80,9 +135,6 @@ std::vector<std::string> select_clips(const Database& db, const std::string& db_
 
 SetOutcome create_set(const std::filesystem::path& db_file, const SetRequest& a) {
     const std::string db_path = db_file.string();
-    if (!a.params_csv.empty() && !a.extract.empty())
-        throw Refused<InvalidArgument>(Remedy::ParametersOrExtract,
-                                       "give either a parameter table or extractors, not both");
     DatabaseWriter writer(db_path, DatabaseWriter::Mode::OpenOrCreate);
     const Database& db = writer.view();
     if (db.clips().empty()) throw InvalidArgument(db_path + ": the database holds no clips; import some first");
@@ -105,6 +157,10 @@ SetOutcome create_set(const std::filesystem::path& db_file, const SetRequest& a)
     o.set = build_motion_set(
         ids, [&](const std::string& id) { return db.load_clip(id); }, options, &o.skipped, &o.segmentation);
     if (!a.params_csv.empty()) apply_params_csv(o.set, a.params_csv, db);
+    for (const auto& [name, pattern] : a.categories) {
+        add_categorical_parameter(o.set, name, levels_from_clip_names(o.set, pattern));
+        o.set.parameter_source += (o.set.parameter_source.empty() ? "" : "; ") + ("category:" + name + "=" + pattern);
+    }
     for (const auto& [name, period] : a.periodic) set_parameter_period(o.set, name, period);
     validate(o.set);
     check_distinguishable(o.set);

@@ -7,17 +7,16 @@
 namespace mocapdb {
 
 enum class Remedy {
-    Overwrite,            ///< an output exists: allow replacing it
-    ReplaceFile,          ///< the file is not a mocapdb database: replace it with a new one
-    NameSkeletonFile,     ///< an AMC without a skeleton found beside it: name the ASF file
-    PackFirst,            ///< the database has no packed tier: pack it
-    CompressFirst,        ///< the set has no compressed model: compress it
-    AlignFirst,           ///< the set is not aligned: align it
-    GiveParameters,       ///< the set has no control parameters: create it with a table or extractors
-    ParametersOrExtract,  ///< both a parameter table and extractors given: keep one
-    Ranks,                ///< requested Tucker ranks out of range: change them
-    Segmentation,         ///< too few samples: select more clips or segment finer
-    Feet,                 ///< foot joints not found by name: name them
+    Overwrite,         ///< an output exists: allow replacing it
+    ReplaceFile,       ///< the file is not a mocapdb database: replace it with a new one
+    NameSkeletonFile,  ///< an AMC without a skeleton found beside it: name the ASF file
+    PackFirst,         ///< the database has no packed tier: pack it
+    CompressFirst,     ///< the set has no compressed model: compress it
+    AlignFirst,        ///< the set is not aligned: align it
+    GiveParameters,    ///< the set has no control parameters: create it with a table or extractors
+    Ranks,             ///< requested Tucker ranks out of range: change them
+    Segmentation,      ///< too few samples: select more clips or segment finer
+    Feet,              ///< foot joints not found by name: name them
 };
 
 /// The remedy carried by an error; front ends find it with dynamic_cast<const Remediable*>.

@@ -63,7 +63,8 @@ struct SetEvaluation {
     std::vector<std::string> parameter_units;
     bool parameters_measured = false;  ///< extractor set: hits measured
     double hit_share = 0.0;            ///< SetEvaluationOptions::hit_share
-    /// Per parameter (empty without extractors): hit_share x SD; empty for a constant one (not checked).
+    /// Per parameter (empty without extractors): hit_share x SD; empty for a constant one or one not
+    /// extracted (a CSV column, a category): not checked.
     std::vector<std::optional<double>> hit_tolerance;
     std::vector<MethodEvaluation> methods;
     ChosenEvaluation chosen;

@@ -10,6 +10,8 @@
 // below rank_tolerance * s_max and are dropped: the trend is taken as flat along them (the
 // minimum-norm / pseudo-inverse solution the paper uses), and the status reports the deficiency.
 // The function space is that of the plain hyperplane whenever the points are in general position.
+#include <vector>
+
 #include <Eigen/Core>
 
 namespace mocapdb::kriging {
@@ -83,26 +85,40 @@ Eigen::MatrixXd evaluate_trend(const TrendBasis& basis, const Eigen::Ref<const E
 /// along it are chords, so c and c + period coincide, and two values delta apart are
 /// (period / (pi scale)) sin(pi delta / period) ~ delta / scale apart for small delta, as on a linear
 /// axis. The kriging then works in embedded_dimension() coordinates (its linear trend in cos and sin of
-/// the angle). Thread safety: plain data.
+/// the angle).
+///
+/// Categorical axes (L >= 2 levels; the coordinate is a level index 0 .. L-1, never standardized:
+/// offset 0, scale 1) become L indicator coordinates, kLevelCoordinate at the level's one and 0 at the
+/// others: two points of different levels are 2 apart along it (a balanced two-level indicator after
+/// standardization), points of one level 0. A linear trend over the indicators is a mean per level
+/// (universal kriging's per-category trend). A coordinate that is not a level index is refused.
+/// Thread safety: plain data.
 struct ControlScaling {
-    Eigen::VectorXd offset;  ///< P
-    Eigen::VectorXd scale;   ///< P, all > 0
-    Eigen::VectorXd period;  ///< P periods (0 = a linear axis), or empty: every axis linear
+    Eigen::VectorXd offset;   ///< P
+    Eigen::VectorXd scale;    ///< P, all > 0
+    Eigen::VectorXd period;   ///< P periods (0 = a linear axis), or empty: every axis linear
+    std::vector<int> levels;  ///< P level counts (0 = numeric, >= 2 = categorical), or empty: none categorical
+    static constexpr double kLevelCoordinate = 1.4142135623730951;  ///< sqrt 2
 
     /// offset = per-axis mean, scale = per-axis population standard deviation; an axis with zero spread
     /// keeps scale 1. coords: N by P. periods: empty or P values >= 0 (0 = linear); on a periodic axis
     /// offset = the circular mean and scale = the root mean square of the deviations from it, each
     /// wrapped into [-period / 2, period / 2).
+    /// levels: empty or P counts (0 = numeric); a categorical axis keeps offset 0, scale 1.
     static ControlScaling from_data(const Eigen::Ref<const Eigen::MatrixXd>& coords,
-                                    const Eigen::Ref<const Eigen::VectorXd>& periods = Eigen::VectorXd());
+                                    const Eigen::Ref<const Eigen::VectorXd>& periods = Eigen::VectorXd(),
+                                    const std::vector<int>& levels = {});
     /// offset = 0, scale = 1 (identity).
     static ControlScaling identity(Eigen::Index dimension);
 
-    /// Throws InvalidArgument unless sizes agree, every scale is finite and > 0 and every period finite
-    /// and >= 0.
+    /// Throws InvalidArgument unless sizes agree, every scale is finite and > 0, every period finite
+    /// and >= 0, and every level count 0 or >= 2 on an axis that is not periodic.
     void validate(Eigen::Index dimension) const;
     bool has_periodic_axis() const;
-    /// Coordinates after apply(): P plus one per periodic axis.
+    bool has_categorical_axis() const;
+    /// True when axis k has levels.
+    bool categorical(Eigen::Index k) const;
+    /// Coordinates after apply(): P plus one per periodic axis plus L - 1 per categorical axis.
     Eigen::Index embedded_dimension() const;
     /// coords: M by P; returns M by embedded_dimension() (M by P when no axis is periodic).
     Eigen::MatrixXd apply(const Eigen::Ref<const Eigen::MatrixXd>& coords) const;

@@ -1,12 +1,13 @@
 #pragma once
 // `mocapdb set create` as a library step: select stored clips by id or pattern, build the
-// motion set (segmentation, parameters measured by extractors or read from a CSV, periodic parameters,
-// dropout repairs; dataset/set_builder.hpp) and store it, committed. Nothing is printed: the clips that
+// motion set (segmentation; parameters measured by extractors, then read from a CSV (a column of level
+// names is categorical), then categorical ones from the clip ids; periodic parameters; dropout repairs;
+// dataset/set_builder.hpp) and store it, committed. Nothing is printed: the clips that
 // gave no sample and the samples that are twins (overlapping or duplicated frames) are in the outcome.
 //
 // Errors: InvalidArgument (no clips stored, a pattern that matches nothing, the set exists and
-// replace is false, both a CSV and extractors, an unknown periodic parameter, a set that cannot tell
-// motions apart), ParseError naming the CSV's line, StoreError / IoError from the database. Nothing is
+// replace is false, a parameter given twice, an unknown periodic parameter, a category pattern that
+// misses a clip, a level with too few samples, a set that cannot tell motions apart), ParseError naming the CSV's line, StoreError / IoError from the database. Nothing is
 // stored when it throws. Threads: the database's writer lock serializes writers (store/writer_lock.hpp).
 #include <filesystem>
 #include <string>
@@ -26,9 +27,11 @@ namespace mocapdb::workflow {
 
 struct SetRequest {
     std::string name;
-    std::vector<std::string> clips;                        ///< clip ids or fnmatch patterns, in sample order
-    std::filesystem::path params_csv;                      ///< parameters from a CSV (first column: sample labels) ...
-    std::vector<std::string> extract;                      ///< ... or measured by these extractors (not both)
+    std::vector<std::string> clips;    ///< clip ids or fnmatch patterns, in sample order
+    std::filesystem::path params_csv;  ///< parameters from a CSV (first column: sample labels)
+    std::vector<std::string> extract;  ///< parameters measured by these extractors (first)
+    /// Categorical parameters from the clip ids: name and pattern (levels_from_clip_names), last.
+    std::vector<std::pair<std::string, std::string>> categories;
     std::vector<std::pair<std::string, double>> periodic;  ///< parameter name and period (bearing is by itself)
     std::string segment = "auto";                          ///< parse_segmentation's spec
     std::vector<std::string> feet;                         ///< left, right foot joints; empty: found by name
