@@ -13,9 +13,9 @@ namespace mocapdb::procedural {
 namespace {
 using namespace detail;
 
-constexpr double kGravity = 981.0;      // cm/s²
-constexpr double kWalkAnkleHeight = 8.0;    // cm, foot flat
-constexpr double kStepHalfWidth = 6.5;  // cm from the path to each ankle
+constexpr double kGravity = 981.0;        // cm/s²
+constexpr double kWalkAnkleHeight = 8.0;  // cm, foot flat
+constexpr double kStepHalfWidth = 6.5;    // cm from the path to each ankle
 constexpr double kWalkToeOut = 6.0 * deg;
 constexpr double kStartPhase = 0.8;   // the clip starts late in the left swing
 constexpr double kAnchor = 0.3;       // the ankle passes under the pelvis path at 30 % of its cycle
