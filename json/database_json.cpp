@@ -124,7 +124,8 @@ void write_set_list(JsonWriter& j, const std::vector<SetRecord>& sets) {
 
 void write_set_show(JsonWriter& j, const MotionSet& set, const std::vector<std::string>& labels,
                     const std::optional<AlignedSet>& aligned,
-                    const std::optional<synthesis::PredictorChoice>& predictor) {
+                    const std::optional<synthesis::PredictorChoice>& predictor,
+                    const std::optional<synthesis::EdgeWarning>& edge_warning) {
     j.begin_object();
     j.key("name").value(set.name);
     j.key("parameter_source").value(set.parameter_source);
@@ -146,6 +147,9 @@ void write_set_show(JsonWriter& j, const MotionSet& set, const std::vector<std::
     }
     j.key("predictor");
     if (predictor) fields::predictor_choice(j, *predictor);
+    else j.null();
+    j.key("reliability_warning");
+    if (edge_warning) fields::edge_warning(j, *edge_warning);
     else j.null();
     j.key("samples").begin_array();
     for (std::size_t i = 0; i < set.samples.size(); ++i) {

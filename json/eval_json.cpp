@@ -86,6 +86,26 @@ void write_eval_results(JsonWriter& j, const eval::EvalResults& e) {
             if (c.diff_se_cm) j.key("paired_se_cm").value(*c.diff_se_cm);
             j.end_object();
         }
+        if (r.has_edge) {
+            // Where rho warns (eval/edge_evaluation.hpp): calibrated on one draw, judged on a fresh one.
+            const eval::EdgeEvaluation& g = r.edge;
+            const auto rates = [&j](const char* key, const workflow::FlagRates& f) {
+                j.key(key).begin_object();
+                j.key("misses").value(f.misses).key("flagged_misses").value(f.flagged_misses);
+                j.key("inside_hits").value(f.inside_hits).key("flagged_inside_hits").value(f.flagged_inside_hits);
+                j.key("detection").value(f.detection).key("false_alarms").value(f.false_alarms);
+                j.end_object();
+            };
+            j.key("edge_warning").begin_object();
+            j.key("calibration");
+            fields::edge_warning(j, g.calibration);
+            j.key("fresh_inside").value(g.fresh_inside).key("fresh_beyond").value(g.fresh_beyond);
+            j.key("shell_sd").value(g.options.shell_sd);
+            rates("calibrated", g.calibrated);
+            j.key("fixed_rho_threshold").value(g.fixed_threshold);
+            rates("fixed", g.fixed);
+            j.end_object();
+        }
         if (r.has_loo) {
             j.key("loo").begin_object();
             j.key("seconds").value(r.loo_seconds);

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "mocapdb/dataset/motion_set.hpp"
+#include "mocapdb/synthesis/edge_warning.hpp"
 #include "mocapdb/synthesis/predictor_choice.hpp"
 #include "mocapdb_json/json_writer.hpp"
 
@@ -57,6 +58,20 @@ inline void repairs(JsonWriter& j, const std::vector<RepairedFrames>& runs) {
 }
 
 /// {chosen, folds, samples, cv_rms: {name: value}} of a cross-validated predictor (no key: after key()).
+// A calibrated reliability threshold (synthesis/edge_warning.hpp) as an object.
+inline void edge_warning(JsonWriter& j, const synthesis::EdgeWarning& w) {
+    j.begin_object();
+    j.key("variance_ratio").value(w.variance_ratio);
+    j.key("rho_threshold").value(synthesis::rho_threshold(w));
+    j.key("beyond_sd").value(w.beyond_sd);
+    j.key("tolerance_share").value(w.tolerance_share);
+    j.key("probes").value(static_cast<long long>(w.probes));
+    j.key("misses").value(static_cast<long long>(w.misses));
+    j.key("detection").value(w.detection);
+    j.key("false_alarms").value(w.false_alarms);
+    j.end_object();
+}
+
 inline void predictor_choice(JsonWriter& j, const synthesis::PredictorChoice& c) {
     j.begin_object().key("chosen").value(synthesis::to_string(c.chosen));
     j.key("folds").value(c.folds).key("samples").value(c.samples);

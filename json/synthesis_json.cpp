@@ -1,5 +1,7 @@
 #include "mocapdb_json/synthesis_json.hpp"
 
+#include <cmath>
+
 #include "json_fields.hpp"
 
 namespace mocapdb::json {
@@ -29,6 +31,11 @@ void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthO
         }
         if (p < o.parameter_measured.size() && o.parameter_measured[p])
             j.key("measured").value(*o.parameter_measured[p]);
+        for (const workflow::ParameterMiss& m : r.judged.misses)
+            if (m.parameter == p) {
+                j.key("missed").value(true);
+                j.key("tolerance").value(m.tolerance);
+            }
         j.end_object();
     }
     j.end_array();
@@ -39,6 +46,15 @@ void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthO
     for (const workflow::Measurement& m : o.measurements) j.key(m.name).value(m.unit);
     j.end_object();
     j.key("reliability").value(o.reliability);
+    j.key("reliability_threshold").value(synthesis::rho_threshold(r.judged.threshold));
+    j.key("variance_ratio").value(r.judged.variance_ratio);
+    j.key("max_variance_ratio").value(r.judged.threshold.variance_ratio);
+    j.key("beyond_sd").value(r.judged.beyond_sd);
+    j.key("max_beyond_sd");
+    if (std::isfinite(r.judged.threshold.beyond_sd)) j.value(r.judged.threshold.beyond_sd);
+    else j.null();
+    j.key("reliability_calibrated").value(r.judged.calibrated);
+    j.key("flagged").value(r.judged.flagged());
     fields::strings(j, "warnings", r.warnings);
     j.key("frames").value(static_cast<long long>(o.clip.frame_count()));
     j.key("frame_rate").value(o.clip.frame_rate);
@@ -64,6 +80,15 @@ void write_pose_query(JsonWriter& j, const PoseQuery& q) {
     j.key("predictor").value(q.predictor);
     j.key("frame").value(q.frame);
     j.key("reliability").value(q.reliability);
+    j.key("reliability_threshold").value(synthesis::rho_threshold(q.judged.threshold));
+    j.key("variance_ratio").value(q.judged.variance_ratio);
+    j.key("max_variance_ratio").value(q.judged.threshold.variance_ratio);
+    j.key("beyond_sd").value(q.judged.beyond_sd);
+    j.key("max_beyond_sd");
+    if (std::isfinite(q.judged.threshold.beyond_sd)) j.value(q.judged.threshold.beyond_sd);
+    else j.null();
+    j.key("reliability_calibrated").value(q.judged.calibrated);
+    j.key("flagged").value(q.judged.flagged());
     fields::strings(j, "warnings", q.warnings);
     if (q.joints) {
         const MatX& p = q.joint_positions;

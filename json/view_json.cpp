@@ -106,6 +106,11 @@ void write_synthesis_view(JsonWriter& j, const SynthesisView& s, const workflow:
     j.key("reliability").value(s.outcome.reliability).key("inside").value(s.inside);
     j.key("warnings").begin_object();
     j.key("low_reliability").value(s.warnings.low_reliability).key("kernel_fit").value(s.warnings.kernel_fit);
+    j.key("reliability_threshold").value(synthesis::rho_threshold(s.warnings.threshold));
+    j.key("calibrated").value(s.warnings.calibrated).key("flagged").value(s.warnings.flagged());
+    j.key("missed").begin_array();
+    for (const workflow::ParameterMiss& m : s.warnings.misses) j.value(static_cast<long long>(m.parameter));
+    j.end_array();
     j.key("regularized").value(s.warnings.regularized).key("jittered").value(s.warnings.jittered).end_object();
     j.key("duration_s").value(s.outcome.clip.duration()).key("seconds").value(s.outcome.seconds);
     frames(j, p);

@@ -315,7 +315,7 @@ Reply Api::State::synth(const Query& q, Download as) {
     v.units = m.model->parameter_units();
     v.outcome = workflow::synthesize(*m.model, m.set, c);
     v.inside = workflow::inside_box(m.model->sample_parameters(), c);
-    v.warnings = workflow::synthesis_warnings(*m.model, v.outcome.reliability);
+    v.warnings = workflow::synthesis_warnings(*m.model, v.outcome, m.set);
     v.model = m.model->kind();
     if (as != Download::None) return download(v.outcome.clip, as, set + "_synthesized");
     const std::size_t frames = v.outcome.clip.frame_count();

@@ -14,6 +14,7 @@
 #include "mocapdb/workflow/reliability_map.hpp"
 #include "mocapdb/workflow/set_reduction.hpp"
 #include "mocapdb/workflow/synthesis_step.hpp"
+#include "mocapdb/workflow/synthesis_warnings.hpp"
 #include "mocapdb_json/json_writer.hpp"
 
 namespace mocapdb::json {
@@ -27,7 +28,8 @@ struct SynthReport {
     std::vector<std::string> parameter_units;
     std::vector<std::vector<std::string>> parameter_levels;  ///< MotionSet::parameter_levels (empty: none)
     std::vector<std::string> warnings;
-    double load_s = 0.0;  ///< loading the set and the model
+    workflow::SynthesisWarnings judged;  ///< the judgement behind the warnings (threshold, misses)
+    double load_s = 0.0;                 ///< loading the set and the model
     double precompute_s = 0.0;
     bool kernel_stored = false;
     std::string predictor;  ///< what blended the samples (synthesis::to_string(Predictor))
@@ -44,6 +46,7 @@ struct PoseQuery {
     double frame = 0.0;
     double reliability = 0.0;
     std::vector<std::string> warnings;
+    workflow::SynthesisWarnings judged;  ///< the judgement behind the warnings (threshold)
     std::shared_ptr<const Skeleton> skeleton;
     VecX pose;             ///< the pose vector
     bool joints = false;   ///< positions rather than channels

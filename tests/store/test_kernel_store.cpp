@@ -19,6 +19,7 @@
 #include "mocapdb/store/validate.hpp"
 #include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/workflow/load_model.hpp"
+#include "mocapdb/workflow/synthesis_warnings.hpp"
 #include "shared_data.hpp"
 #include "store_test_support.hpp"
 
@@ -214,6 +215,67 @@ TEST_CASE("kernel: the cross-validated predictor round-trips, is used by the loa
     e = kernel_error(path);
     CHECK(e.first == kKernel);
     CHECK_THAT(e.second, Contains("predictor_folds"));
+}
+
+TEST_CASE("kernel: the calibrated warning threshold round-trips, warns the loaded model and is checked when read",
+          "[store][kernel]") {
+    TempDir dir("kernel-edge");
+    const auto path = dir / "db.h5";
+    const KernelFixture fx;
+    fx.write(path, false);
+    synthesis::KernelFit fit = synthesis::fit_kernel(fx.model, fx.aligned, fx.set, {});
+    synthesis::EdgeWarning edge;
+    edge.variance_ratio = 1.0 / 3.0;
+    edge.beyond_sd = 0.75;
+    edge.tolerance_share = 0.25;
+    edge.probes = 40;
+    edge.misses = 7;
+    edge.detection = 6.0 / 7.0;
+    edge.false_alarms = 0.05;
+    fit.edge_warning = edge;
+    {
+        DatabaseWriter w(path);
+        w.put_kernel_fit("walks", fit);
+        w.commit();
+    }
+    const auto back = Database(path).load_kernel_fit("walks");
+    REQUIRE(back->edge_warning.has_value());
+    CHECK(back->edge_warning->variance_ratio == edge.variance_ratio);
+    CHECK(back->edge_warning->beyond_sd == edge.beyond_sd);
+    CHECK(back->edge_warning->tolerance_share == edge.tolerance_share);
+    CHECK(back->edge_warning->probes == 40);
+    CHECK(back->edge_warning->misses == 7);
+    CHECK(back->edge_warning->detection == edge.detection);
+    CHECK(back->edge_warning->false_alarms == edge.false_alarms);
+    CHECK(validate_database(path).ok());
+    // The loaded model flags by the stored thresholds: rho below 2/3 instead of the fixed 0.5.
+    const auto loaded = workflow::load_motion_model(Database(path), "walks");
+    CHECK(workflow::edge_warning(*loaded).variance_ratio == edge.variance_ratio);
+    CHECK(workflow::edge_warning(*loaded).beyond_sd == edge.beyond_sd);
+
+    {
+        DatabaseWriter w(path);
+        synthesis::KernelFit bad = fit;
+        bad.edge_warning->misses = 41;
+        CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("edge warning"));
+        bad = fit;
+        bad.edge_warning->variance_ratio = -1.0;
+        CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("edge warning"));
+    }
+    set_kernel_attributes(path, {"edge_variance_ratio:f=-0.5"});
+    auto e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("edge_variance_ratio"));
+    set_kernel_attributes(path, {"edge_variance_ratio:f=0.5", "edge_misses:i=41"});
+    e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("edge_misses"));
+    set_kernel_attributes(path, {"edge_misses:i=7", "edge_detection:f=1.5"});
+    e = kernel_error(path);
+    CHECK_THAT(e.second, Contains("edge_detection"));
+    set_kernel_attributes(path, {"edge_detection:f=0.5", "edge_beyond_sd:f=inf"});
+    e = kernel_error(path);
+    CHECK_THAT(e.second, Contains("edge_beyond_sd"));
 }
 
 TEST_CASE("kernel: put_kernel_fit refuses a fit without a key or with an invalid variogram", "[store][kernel]") {

@@ -64,11 +64,18 @@ TEST_CASE("workflow: synthesis warnings judge reliability and the kernel", "[wor
     const VecX near = model->sample_parameters().row(0).transpose();
     VecX far = workflow::samples_mean(*model);
     far(1) += 100.0 * (model->sample_parameters().col(1).maxCoeff() - model->sample_parameters().col(1).minCoeff());
-    const double rho_near = model->reliability(near), rho_far = model->reliability(far);
-    CHECK(workflow::synthesis_warnings(*model, rho_near).low_reliability == (rho_near < workflow::kLowReliability));
-    CHECK(workflow::synthesis_warnings(*model, rho_far).low_reliability);
+    // The set's calibrated threshold (compress): flagged where the variance ratio exceeds it.
+    const MotionSet set = db.load_set("walks");
+    const workflow::SynthesisWarnings wn = workflow::synthesis_warnings(*model, set, near);
+    const workflow::SynthesisWarnings wf = workflow::synthesis_warnings(*model, set, far);
+    CHECK(wn.calibrated);
+    CHECK(wn.rho == model->reliability(near));
+    CHECK(wn.beyond_sd == 0.0);
+    CHECK(wn.low_reliability == workflow::edge_warning(*model).flags(model->variance_ratio(near), 0.0));
+    CHECK_FALSE(wn.low_reliability);
+    CHECK(wf.low_reliability);
+    CHECK(wf.rho == 0.0);
     CHECK(workflow::is_low_reliability(0.49));
     CHECK_FALSE(workflow::is_low_reliability(0.5));
-    const workflow::SynthesisWarnings wn = workflow::synthesis_warnings(*model, rho_near);
     CHECK_FALSE((wn.regularized && wn.jittered));
 }

@@ -45,6 +45,7 @@ std::string bar_label(eval::EvalStage stage, const std::string& set) {
         case eval::EvalStage::KernelHeadroom: return "eval " + set + ": kernel headroom";
         case eval::EvalStage::NestedChoice: return "eval " + set + ": nested cross-validation";
         case eval::EvalStage::Constraint: return "eval " + set + ": constraints";
+        case eval::EvalStage::EdgeWarning: return "eval " + set + ": edge warning";
         case eval::EvalStage::Reduction: return "eval " + set + ": reduction";
         case eval::EvalStage::Compression: return "eval " + set + ": compression";
         case eval::EvalStage::Runtime: return "eval: runtime";
@@ -78,6 +79,15 @@ void print_stage(const eval::EvalStageDone& d) {
             say("[eval] %s: constraint accuracy on %lld grid points (%.1f s)\n", name,
                 static_cast<long long>(d.results->constraint.grid.rows()), d.seconds);
             break;
+        case eval::EvalStage::EdgeWarning: {
+            const eval::EdgeEvaluation& e = d.results->edge;
+            say("[eval] %s: edge warning above variance ratio %.3f or %.2f SD beyond flags %zu of %zu misses, %zu of %zu hits inside (fresh "
+                "probes; fixed %.2f: %zu of %zu, %zu of %zu) (%.1f s)\n",
+                name, e.calibration.variance_ratio, e.calibration.beyond_sd, e.calibrated.flagged_misses,
+                e.calibrated.misses, e.calibrated.flagged_inside_hits, e.calibrated.inside_hits, e.fixed_threshold,
+                e.fixed.flagged_misses, e.fixed.misses, e.fixed.flagged_inside_hits, e.fixed.inside_hits, d.seconds);
+            break;
+        }
         case eval::EvalStage::Reduction:
             say("[eval] %s: sample reduction, %lld of %lld kept at tau %.2f (%.1f s)\n", name,
                 static_cast<long long>(d.results->reduction.kept_at_tau), static_cast<long long>(set.size()),

@@ -36,7 +36,8 @@ void run_query(const QueryArgs& a) {
     const VecX pose = model->pose(c, a.frame, level);
     const double rho = model->reliability(c);
     const Skeleton& sk = *model->skeleton();
-    const std::vector<std::string> warnings = synthesis_warnings(*model, rho);
+    const workflow::SynthesisWarnings judged = workflow::synthesis_warnings(*model, set, c);
+    const std::vector<std::string> warnings = warning_lines(judged, set);
     for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
     json::PoseQuery q;
@@ -46,6 +47,7 @@ void run_query(const QueryArgs& a) {
     q.frame = a.frame;
     q.reliability = rho;
     q.warnings = warnings;
+    q.judged = judged;
     q.skeleton = model->skeleton();
     q.pose = pose;
     q.joints = a.joints;

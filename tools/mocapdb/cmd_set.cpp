@@ -73,9 +73,10 @@ void print_set(const Database& db, const std::string& name, bool json) {
     const auto aligned = db.load_aligned(name);
     const auto kernel = db.load_kernel_fit(name);
     const std::optional<synthesis::PredictorChoice> predictor = kernel ? kernel->predictor : std::nullopt;
+    const std::optional<synthesis::EdgeWarning> edge = kernel ? kernel->edge_warning : std::nullopt;
     if (json) {
         JsonWriter j;
-        json::write_set_show(j, set, labels, aligned, predictor);
+        json::write_set_show(j, set, labels, aligned, predictor, edge);
         std::cout << j.str();
         return;
     }
@@ -86,6 +87,7 @@ void print_set(const Database& db, const std::string& name, bool json) {
                     static_cast<long long>(aligned->frames()), static_cast<long long>(aligned->dofs()),
                     aligned->reference);
     if (predictor) std::printf("synthesis predictor: %s\n", synthesis::describe(*predictor).c_str());
+    if (edge) std::printf("reliability: %s\n", synthesis::describe(*edge).c_str());
     std::printf("%-22s", "sample");
     for (std::size_t p = 0; p < set.parameter_names.size(); ++p) {
         const std::string h =

@@ -51,7 +51,8 @@ void run_synth(const SynthArgs& a) {
     const double rho = o.reliability;
     const double synth_s = o.seconds;
     const tensor::Ranks ranks = model->level_ranks(level);
-    const std::vector<std::string> warnings = synthesis_warnings(*model, rho);
+    const workflow::SynthesisWarnings judged = workflow::synthesis_warnings(*model, o, set);
+    const std::vector<std::string> warnings = warning_lines(judged, set);
     for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     if (a.json) {
         json::SynthReport r;
@@ -62,6 +63,7 @@ void run_synth(const SynthArgs& a) {
         r.parameter_units = set.parameter_units;
         r.parameter_levels = set.parameter_levels;
         r.warnings = warnings;
+        r.judged = judged;
         r.load_s = load_s;
         r.precompute_s = model->report().precompute_seconds;
         r.kernel_stored = model->report().kernel_precomputed;

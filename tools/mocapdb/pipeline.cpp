@@ -240,6 +240,7 @@ std::string describe_compression(const std::string& set, const CompressOutcome& 
                 ")\n";
     }
     if (o.kernel_predictor) text += "  synthesis predictor: " + synthesis::describe(*o.kernel_predictor) + "\n";
+    if (o.kernel_edge_warning) text += "  reliability: " + synthesis::describe(*o.kernel_edge_warning) + "\n";
     if (!o.kernel_warning.empty()) text += "  warning: " + o.kernel_warning + "\n";
     return text;
 }

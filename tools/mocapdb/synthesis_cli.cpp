@@ -86,15 +86,41 @@ Eigen::Index parameter_index(const std::vector<std::string>& names, const std::s
 
 namespace mocapdb::cli {
 
-std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& model, double rho) {
-    const workflow::SynthesisWarnings w = workflow::synthesis_warnings(model, rho);
+std::vector<std::string> warning_lines(const workflow::SynthesisWarnings& w, const MotionSet& set) {
     std::vector<std::string> out;
-    if (w.low_reliability) {
-        char buf[200];
+    char buf[400];
+    if (w.low_reliability && w.calibrated) {
+        const bool by_variance = w.variance_ratio > w.threshold.variance_ratio;
+        if (by_variance)
+            std::snprintf(buf, sizeof buf,
+                          "prediction variance %.3f of the sill (reliability %.3f) above %.3f, where this set's "
+                          "syntheses miss their parameters (calibrated by compress): the motion may not meet them",
+                          w.variance_ratio, w.rho, w.threshold.variance_ratio);
+        else
+            std::snprintf(buf, sizeof buf,
+                          "the request lies %.2f SD beyond the samples (more than %.2f, where this set's syntheses "
+                          "miss their parameters; calibrated by compress): the motion may not meet them",
+                          w.beyond_sd, w.threshold.beyond_sd);
+        out.emplace_back(buf);
+    } else if (w.low_reliability) {
         std::snprintf(buf, sizeof buf,
-                      "reliability %.3f < %.1f: the parameters are far from the samples; the motion is extrapolated "
-                      "and may not meet them (see mocapdb reliability)",
-                      rho, workflow::kLowReliability);
+                      "reliability %.3f < %.1f: the parameters are far from the samples; the motion is "
+                      "extrapolated and may not meet them (see mocapdb reliability)",
+                      w.rho, workflow::kLowReliability);
+        out.emplace_back(buf);
+    }
+    for (const workflow::ParameterMiss& m : w.misses) {
+        const std::string& unit = set.parameter_units[m.parameter];
+        const std::string u = unit.empty() ? "" : " " + unit;
+        const std::string requested = parameter_value_text(set, m.parameter, m.requested) + u;
+        if (m.measured)
+            std::snprintf(buf, sizeof buf, "%s measured %s on the result, %s requested: off by more than %s%s",
+                          set.parameter_names[m.parameter].c_str(),
+                          (parameter_value_text(set, m.parameter, *m.measured) + u).c_str(), requested.c_str(),
+                          parameter_value_text(set, m.parameter, m.tolerance).c_str(), u.c_str());
+        else
+            std::snprintf(buf, sizeof buf, "%s could not be measured on the result (%s requested)",
+                          set.parameter_names[m.parameter].c_str(), requested.c_str());
         out.emplace_back(buf);
     }
     if (!w.kernel_fit.empty()) out.push_back(w.kernel_fit);

@@ -9,6 +9,7 @@
 
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
+#include "mocapdb/workflow/synthesis_warnings.hpp"
 
 namespace mocapdb::cli {
 
@@ -31,8 +32,9 @@ std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& 
 /// Adds --predictor (auto | kriging | rbf | trend) to a synthesis command.
 void add_predictor_option(CLI::App* cmd, std::string& predictor);
 
-/// The warnings a synthesis at reliability rho deserves (workflow/synthesis_warnings.hpp), one line each.
-std::vector<std::string> synthesis_warnings(const synthesis::SynthesisModel& model, double rho);
+/// The warnings `w` (workflow/synthesis_warnings.hpp) of a synthesis, one line each; `set` names the
+/// parameters that missed.
+std::vector<std::string> warning_lines(const workflow::SynthesisWarnings& w, const MotionSet& set);
 
 /// Index of a parameter by name (InvalidArgument listing the names otherwise).
 Eigen::Index parameter_index(const std::vector<std::string>& names, const std::string& name, const std::string& option);

@@ -152,6 +152,13 @@ EvalResults run_evaluation(const EvalPlan& plan, const std::filesystem::path& cm
                 r.constraint = constraint_accuracy(set, r.methods, plan.constraint, progress);
                 r.has_constraint = true;
             });
+            const auto tucker = std::find_if(r.methods.begin(), r.methods.end(),
+                                             [](const MethodSpec& m) { return m.kind == MethodKind::TuckerKriging; });
+            if (tucker != r.methods.end() && set.set.parameters.cols() > 0)
+                stage(observer, EvalStage::EdgeWarning, set, &r, [&](const ProgressCallback&) {
+                    r.edge = evaluate_edge_warning(set, tucker->ranks);
+                    r.has_edge = true;
+                });
         }
         if (sp.reduction) {
             r.reduction_options = plan.reduction;

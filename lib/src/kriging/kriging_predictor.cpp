@@ -60,7 +60,7 @@ void KrigingPredictor::predict(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen
 }
 
 namespace {
-constexpr Eigen::Index kBlock = 256;  // queries per matrix product (as Kriging::weights_batch)
+constexpr Eigen::Index kQueriesPerProduct = 256;  // queries per matrix product (as Kriging::weights_batch)
 }  // namespace
 
 void KrigingPredictor::predict_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries, Eigen::Ref<Eigen::MatrixXd> out,
@@ -72,10 +72,10 @@ void KrigingPredictor::predict_batch(const Eigen::Ref<const Eigen::MatrixXd>& qu
     }
     const Eigen::Index m = points_.rows();
     const Eigen::Index kk = basis_.size();
-    const Eigen::Index block = std::min(kBlock, queries.rows());
+    const Eigen::Index block = std::min(kQueriesPerProduct, queries.rows());
     if (scratch.rows() != m + kk || scratch.cols() != block) scratch.resize(m + kk, block);
-    for (Eigen::Index q0 = 0; q0 < queries.rows(); q0 += kBlock) {
-        const Eigen::Index nb = std::min(kBlock, queries.rows() - q0);
+    for (Eigen::Index q0 = 0; q0 < queries.rows(); q0 += kQueriesPerProduct) {
+        const Eigen::Index nb = std::min(kQueriesPerProduct, queries.rows() - q0);
         auto rhs = scratch.leftCols(nb);
         detail::gamma_block(points_, model_, queries.middleRows(q0, nb), rhs.topRows(m));
         rhs.bottomRows(kk) = basis_.evaluate_batch(queries.middleRows(q0, nb));

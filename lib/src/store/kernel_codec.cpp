@@ -113,6 +113,57 @@ synthesis::PredictorChoice read_predictor_choice(const h5::File& file, const std
     return c;
 }
 
+// The calibrated warning threshold (edge_warning.hpp) as attributes of the kernel group.
+const char* const kEdgeShares[] = {"edge_detection", "edge_false_alarms"};
+
+void write_edge_warning(h5::File& file, const std::string& g, const synthesis::EdgeWarning& w) {
+    file.write_double_attribute(g, "edge_variance_ratio", w.variance_ratio);
+    file.write_double_attribute(g, "edge_beyond_sd", w.beyond_sd);
+    file.write_double_attribute(g, "edge_detection", w.detection);
+    file.write_double_attribute(g, "edge_false_alarms", w.false_alarms);
+    file.write_double_attribute(g, "edge_tolerance_share", w.tolerance_share);
+    file.write_int_attribute(g, "edge_probes", static_cast<std::int64_t>(w.probes));
+    file.write_int_attribute(g, "edge_misses", static_cast<std::int64_t>(w.misses));
+}
+
+// The stored calibration, checked: a finite ratio and distance >= 0, shares in [0, 1], a positive tolerance, 0 <= misses <= probes, probes >= 1.
+synthesis::EdgeWarning read_edge_warning(const h5::File& file, const std::string& g) {
+    synthesis::EdgeWarning w;
+    w.variance_ratio = file.read_double_attribute(g, "edge_variance_ratio");
+    if (!(w.variance_ratio >= 0.0) || !std::isfinite(w.variance_ratio))
+        throw StoreError(
+            file.name(), g,
+            "attribute 'edge_variance_ratio': expected a finite number >= 0, found " + number_text(w.variance_ratio));
+    w.beyond_sd = file.read_double_attribute(g, "edge_beyond_sd");
+    if (!(w.beyond_sd >= 0.0) || !std::isfinite(w.beyond_sd))
+        throw StoreError(
+            file.name(), g,
+            "attribute 'edge_beyond_sd': expected a finite number >= 0, found " + number_text(w.beyond_sd));
+    double* const shares[] = {&w.detection, &w.false_alarms};
+    for (int k = 0; k < 2; ++k) {
+        *shares[k] = file.read_double_attribute(g, kEdgeShares[k]);
+        if (!(*shares[k] >= 0.0 && *shares[k] <= 1.0))
+            throw StoreError(file.name(), g,
+                             std::string("attribute '") + kEdgeShares[k] + "': expected a number in [0, 1], found " +
+                                 number_text(*shares[k]));
+    }
+    w.tolerance_share = file.read_double_attribute(g, "edge_tolerance_share");
+    if (!(w.tolerance_share > 0.0) || !std::isfinite(w.tolerance_share))
+        throw StoreError(
+            file.name(), g,
+            "attribute 'edge_tolerance_share': expected a finite number > 0, found " + number_text(w.tolerance_share));
+    const std::int64_t probes = file.read_int_attribute(g, "edge_probes");
+    const std::int64_t misses = file.read_int_attribute(g, "edge_misses");
+    if (probes < 1 || misses < 0 || misses > probes)
+        throw StoreError(file.name(), g,
+                         "attributes 'edge_probes' and 'edge_misses': expected 0 <= misses <= probes, probes >= 1, "
+                         "found " +
+                             std::to_string(misses) + " and " + std::to_string(probes));
+    w.probes = static_cast<std::size_t>(probes);
+    w.misses = static_cast<std::size_t>(misses);
+    return w;
+}
+
 }  // namespace
 
 void check_kernel_fit(const synthesis::KernelFit& fit, const std::string& who) {
@@ -124,6 +175,15 @@ void check_kernel_fit(const synthesis::KernelFit& fit, const std::string& who) {
     if (fit.system && (fit.system->inverse.rows() != fit.system->inverse.cols() || fit.system->inverse.size() == 0 ||
                        !fit.system->inverse.allFinite()))
         throw InvalidArgument(who + ": the factorized system must be a square, non-empty, finite matrix");
+    if (const auto& w = fit.edge_warning;
+        w && !(w->variance_ratio >= 0.0 && std::isfinite(w->variance_ratio) && w->beyond_sd >= 0.0 &&
+               std::isfinite(w->beyond_sd) && w->detection >= 0.0 && w->detection <= 1.0 && w->false_alarms >= 0.0 &&
+               w->false_alarms <= 1.0 && w->tolerance_share > 0.0 && std::isfinite(w->tolerance_share) &&
+               w->probes >= 1 && w->misses <= w->probes))
+        throw InvalidArgument(
+            who +
+            ": the edge warning needs a finite variance ratio and distance >= 0, shares in [0, 1], a positive tolerance "
+            "and 0 <= misses <= probes >= 1");
 }
 
 void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::KernelFit& fit) {
@@ -138,6 +198,7 @@ void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::K
         file.write_double_attribute(g, "residual_variance", fit.residual_variance);
     }
     if (fit.predictor) write_predictor_choice(file, g, *fit.predictor);
+    if (fit.edge_warning) write_edge_warning(file, g, *fit.edge_warning);
     if (fit.system) {
         // The factorized system in C order: the column-major buffer itself when the matrix is exactly
         // symmetric (as Kriging::covariance_inverse returns it), else transposed on the way. Fletcher32
@@ -249,6 +310,7 @@ synthesis::KernelFit read_kernel_fit(const h5::File& file, const std::string& se
                                  number_text(fit.residual_variance));
     }
     if (file.has_attribute(g, "predictor")) fit.predictor = read_predictor_choice(file, g);
+    if (file.has_attribute(g, "edge_variance_ratio")) fit.edge_warning = read_edge_warning(file, g);
     if (file.exists(g + "/covariance_inverse")) fit.system = read_system(file, g);
     return fit;
 }

@@ -316,6 +316,12 @@ double SynthesisModel::reliability(const Eigen::Ref<const VecX>& c) const {
     return kriging_.estimate(cn).reliability;
 }
 
+double SynthesisModel::variance_ratio(const Eigen::Ref<const VecX>& c) const {
+    VecX cn;
+    normalize(c, cn, "SynthesisModel::variance_ratio");
+    return kriging_.estimate(cn).variance / kriging_.model().total_sill();
+}
+
 VecX SynthesisModel::reliability_batch(const Eigen::Ref<const MatX>& C) const {
     if (C.cols() != parameters() || !C.allFinite()) {
         throw InvalidArgument("SynthesisModel::reliability_batch: C must be Q by P = " + std::to_string(parameters()) +

@@ -3,17 +3,13 @@
 #include <string>
 
 #include "mocapdb/core/error.hpp"
+#include "check_mode.hpp"
 
 namespace mocapdb::tensor {
 
 namespace {
 
-void check_mode(int mode, const char* where) {
-    if (mode < 0 || mode > 2) {
-        throw InvalidArgument(std::string(where) + ": mode must be 0 (dof), 1 (time) or 2 (sample), got " +
-                              std::to_string(mode));
-    }
-}
+using detail::check_mode;
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "mocapdb/core/stopwatch.hpp"
 #include "mocapdb/workflow/set_compression.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 
@@ -12,8 +13,10 @@
 #include "mocapdb/core/remedy.hpp"
 #include "mocapdb/store/database.hpp"
 #include "mocapdb/synthesis/kernel_fit.hpp"
+#include "mocapdb/synthesis/motion_model.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
 #include "mocapdb/workflow/aligned_set_data.hpp"
+#include "mocapdb/workflow/edge_calibration.hpp"
 
 namespace mocapdb::workflow {
 namespace {
@@ -57,6 +60,20 @@ compression::RankSearchResult choose_ranks(compression::PreparedSet prepared, co
     }
     o.search_s = seconds_since(search_start);
     return chosen;
+}
+
+// rho's warning threshold calibrated on the set's own syntheses (edge_calibration.hpp), where the
+// parameters are measured back and the kernel's system is stored (the model then builds in O(N^2);
+// above max_stored_system_samples the fixed threshold stays).
+void calibrate_warning(const compression::SetModel& model, const AlignedSetData& c, synthesis::KernelFit& kernel) {
+    const auto tolerance = parameter_tolerance(c.set, EdgeCalibrationOptions{}.tolerance_share);
+    if (!kernel.system || std::none_of(tolerance.begin(), tolerance.end(), [](const auto& t) { return t.has_value(); }))
+        return;
+    synthesis::SynthesisOptions options;
+    options.kernel_fit = kernel;
+    if (kernel.predictor) options.predictor = kernel.predictor->chosen;
+    const synthesis::MotionModel synth(model, timing_of(c.aligned), c.set, c.skeleton, c.frame_rate, options);
+    kernel.edge_warning = calibrate_edge_warning(edge_probes(synth, c.set));
 }
 
 }  // namespace
@@ -117,6 +134,8 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
         o.kernel_status = kernel->status;
         o.kernel_warning = synthesis::fit_status_warning(*kernel);
         o.kernel_predictor = kernel->predictor;
+        calibrate_warning(o.model, c, *kernel);
+        o.kernel_edge_warning = kernel->edge_warning;
     }
 
     const auto store_start = Clock::now();

@@ -18,6 +18,7 @@
 #include "mocapdb/compression/rate_distortion.hpp"
 #include "mocapdb/core/progress.hpp"
 #include "mocapdb/eval/constraint_accuracy.hpp"
+#include "mocapdb/eval/edge_evaluation.hpp"
 #include "mocapdb/eval/eval_set.hpp"
 #include "mocapdb/eval/evaluation_plan.hpp"
 #include "mocapdb/eval/kernel_headroom.hpp"
@@ -64,6 +65,10 @@ struct SetResults {
     bool has_constraint = false;
     ConstraintResult constraint;
     ConstraintOptions constraint_options;
+    /// How well rho warns where synthesis misses (edge_evaluation.hpp), with the constraints, on the
+    /// first Tucker method's ranks.
+    bool has_edge = false;
+    EdgeEvaluation edge;
     bool has_reduction = false;
     ReductionCurve reduction;
     ReductionCurveOptions reduction_options;
@@ -85,6 +90,7 @@ enum class EvalStage {
     KernelHeadroom,
     NestedChoice,
     Constraint,
+    EdgeWarning,
     Reduction,
     Compression,
     Runtime

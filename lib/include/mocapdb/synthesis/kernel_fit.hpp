@@ -15,6 +15,7 @@
 #include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/variogram_fit.hpp"
 #include "mocapdb/kriging/variogram_model.hpp"
+#include "mocapdb/synthesis/edge_warning.hpp"
 #include "mocapdb/synthesis/predictor_choice.hpp"
 
 namespace mocapdb {
@@ -62,6 +63,11 @@ struct KernelFit {
     /// The predictor cross-validation chose for these inputs (predictor_choice.hpp): set by fit_kernel,
     /// stored with the kernel; empty when read from a kernel stored without it (kriging is then used).
     std::optional<PredictorChoice> predictor;
+    /// The rho below which a synthesis is flagged, calibrated on the set (edge_warning.hpp;
+    /// workflow/edge_calibration.hpp): set by `compress` after the fit, stored with the kernel; empty for
+    /// sets whose parameters are not measured back and in kernels stored without it (the fixed threshold
+    /// workflow::kLowReliability then applies).
+    std::optional<EdgeWarning> edge_warning;
 };
 
 /// Message for a fit status that is not Ok (what the CLI prints as a warning), "" for Ok.

@@ -232,6 +232,10 @@ public:
     double reliability(const Eigen::Ref<const VecX>& c) const;
     /// rho at Q queries (Q by P); returns Q.
     VecX reliability_batch(const Eigen::Ref<const MatX>& C) const;
+    /// The coefficient kernel's prediction variance at c over its total sill, not clamped: rho =
+    /// clamp(1 - ratio, 0, 1), and beyond rho = 0 the ratio keeps growing away from the samples
+    /// (the trend's extrapolation), which the calibrated warning uses (workflow/edge_calibration.hpp).
+    double variance_ratio(const Eigen::Ref<const VecX>& c) const;
 
 protected:
     /// Common construction: parameters, scaling, the timing kernel and the coefficient kernel whose

@@ -3,8 +3,8 @@
 // (explicit, or the smallest meeting a max joint error, a weighted RMSE or a compression ratio;
 // compression/rank_search.hpp), decompose with the requested method, measure the joint-position
 // errors after forward kinematics, fit the synthesis kernel's variogram (synthesis/kernel_fit.hpp; on a
-// subset above SynthesisOptions::max_fit_samples samples) and store model and kernel, committed (replacing the set's
-// previous model). Nothing is printed: every figure is in the outcome.
+// subset above SynthesisOptions::max_fit_samples samples), calibrate rho's warning threshold on the set
+// (edge_calibration.hpp) and store model and kernel, committed (replacing the set's previous model). Nothing is printed: every figure is in the outcome.
 //
 // Errors: InvalidArgument (no such set, the set not aligned, a rank outside [1, dimension]),
 // StoreError / IoError from the database; nothing is stored when it throws. Threads: the database's
@@ -62,6 +62,9 @@ struct CompressOutcome {
     /// The predictor cross-validation chose, stored with the kernel (synthesis/predictor_choice.hpp);
     /// empty without a kernel or when no sample could be left out.
     std::optional<synthesis::PredictorChoice> kernel_predictor;
+    /// rho's warning threshold calibrated on the set and stored with the kernel (KernelFit::edge_warning);
+    /// empty without a kernel, without parameters measured back, or above max_stored_system_samples.
+    std::optional<synthesis::EdgeWarning> kernel_edge_warning;
 
     double ratio() const { return static_cast<double>(raw_bytes) / static_cast<double>(bytes); }
 };
