@@ -70,10 +70,19 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
     };
     const EvalResults e = run_evaluation(plan, test::datasets_dir() / "cmu-asfamc", describe_run("test", EvalMode::Tiny), observer);
     CHECK(done == std::vector<EvalStage>{EvalStage::BuildSet, EvalStage::LeaveOneOut, EvalStage::KernelHeadroom,
-                                         EvalStage::NestedChoice, EvalStage::Constraint, EvalStage::Compression,
-                                         EvalStage::Runtime});
+                                         EvalStage::NestedChoice, EvalStage::Constraint, EvalStage::EdgeWarning,
+                                         EvalStage::Compression, EvalStage::Runtime});
     CHECK(started == std::vector<EvalStage>{EvalStage::LeaveOneOut, EvalStage::KernelHeadroom, EvalStage::NestedChoice,
-                                            EvalStage::Constraint, EvalStage::Compression, EvalStage::Runtime});
+                                            EvalStage::Constraint, EvalStage::EdgeWarning, EvalStage::Compression,
+                                            EvalStage::Runtime});
+    // The edge warning was calibrated on one draw and judged on another of the same sizes.
+    REQUIRE(e.sets.front().has_edge);
+    const EdgeEvaluation& edge_eval = e.sets.front().edge;
+    CHECK(edge_eval.calibration.probes == edge_eval.options.inside + edge_eval.options.beyond);
+    CHECK(edge_eval.fresh_inside + edge_eval.fresh_beyond == edge_eval.calibration.probes);
+    CHECK(edge_eval.calibrated.detection >= 0.0);
+    CHECK(edge_eval.calibrated.detection <= 1.0);
+    CHECK(edge_eval.calibrated.false_alarms <= 1.0);
     CHECK(e.info.command == "test");
     CHECK(e.info.mode == "tiny");
     CHECK(e.info.wall_seconds > 0.0);
