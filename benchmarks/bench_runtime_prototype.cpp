@@ -49,10 +49,14 @@
 //                           [--lookups 11,9,8] [--reps 3] [--float-dofs 0|1] [--key-centers 0|1] [--key-escapes 0|1]
 //                           [--dof learned|identity]
 #include <Eigen/LU>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 #include <algorithm>
 #include <cmath>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <map>
@@ -969,35 +973,41 @@ void tree_order(int W, std::vector<int>& level, std::vector<int>& frame) {
 /// From the window's step byte on: the step, the directory (per level a 5-bit width, then each
 /// internal node's left-subtree size in bits at that width) and the columns in tree order (levels tl).
 /// Returns the directory's bits.
-std::size_t write_window(const RuntimeGroup& g, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl) {
+/// write_column(out, level, values) codes one column (variant 1: run/size codes; variant 9: quads).
+template <class WriteColumn>
+std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl, WriteColumn write_column) {
     out.put(static_cast<std::uint32_t>(e.step), 8);
     std::vector<std::size_t> size;
     for (std::size_t i = 0; i < e.columns.size(); ++i) {
         BitWriter scratch;
-        g.write_column(scratch, tl[i], e.columns[i]);
+        write_column(scratch, tl[i], e.columns[i]);
         size.push_back(scratch.bits());
     }
-    std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
+    std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(levels));
     for (std::size_t i = 0; i < e.columns.size(); ++i) {
         const int l = tl[i];
-        if (l >= g.levels) continue;
-        const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
+        if (l >= levels) continue;
+        const std::size_t span = (std::size_t{1} << (levels - l)) - 1;
         std::size_t s = 0;
         for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
         left[static_cast<std::size_t>(l)].push_back(s);
     }
     const std::size_t before = out.bits();
-    std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
-    for (int l = 1; l < g.levels; ++l) {
+    std::vector<int> width(static_cast<std::size_t>(levels), 0);
+    for (int l = 1; l < levels; ++l) {
         for (std::size_t s : left[static_cast<std::size_t>(l)])
             width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
         out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
     }
-    for (int l = 1; l < g.levels; ++l)
+    for (int l = 1; l < levels; ++l)
         for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
     const std::size_t directory = out.bits() - before;
-    for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+    for (std::size_t i = 0; i < e.columns.size(); ++i) write_column(out, tl[i], e.columns[i]);
     return directory;
+}
+
+std::size_t write_window(const RuntimeGroup& g, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl) {
+    return write_window_by(g.levels, out, e, tl, [&](BitWriter& o, int level, const std::vector<std::int32_t>& v) { g.write_column(o, level, v); });
 }
 
 RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
@@ -1803,6 +1813,43 @@ inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const st
     return escape;
 }
 
+/// Two keys of clip i (the same widths) at bits bit_a and bit_b into a and b in one pass: fixed_key's
+/// values, with the rows' widths, offsets and centers loaded once. Returns the bit after key a.
+inline std::size_t read_fixed_pair(const FixedRows& f, const std::uint8_t* data, std::size_t bit_a, std::size_t bit_b, std::size_t i, int Da,
+                                   double step_a, double step_b, double* a, double* b) {
+    const auto n = static_cast<std::size_t>(Da);
+    const std::uint8_t* width = f.width.data() + i * n;
+    const std::uint16_t* at = f.at.data() + i * (n + 1);
+    const std::int32_t* center = f.center.data() + i * n;
+    const std::uint8_t* full = f.full.data() + i * n;
+    int escaped_a[256], escaped_b[256];
+    int na = 0, nb = 0;
+    for (int d = 0; d < Da; ++d) {
+        const int w = width[d];
+        const std::int64_t qa = signed_bits(data, bit_a + at[d], w), qb = signed_bits(data, bit_b + at[d], w);
+        a[d] = static_cast<double>(qa + center[d]) * step_a;
+        b[d] = static_cast<double>(qb + center[d]) * step_b;
+        const auto code = static_cast<std::int64_t>(~std::uint64_t{0} << ((w - 1) & 63));  // -2^(w-1)
+        const bool escapes = full[d] > w;
+        escaped_a[na] = d;
+        na += static_cast<int>(escapes & (qa == code));
+        escaped_b[nb] = d;
+        nb += static_cast<int>(escapes & (qb == code));
+    }
+    std::size_t escape_a = bit_a + at[Da], escape_b = bit_b + at[Da];
+    for (int k = 0; k < na; ++k) {
+        const int d = escaped_a[k], fw = full[d];
+        a[d] = static_cast<double>(signed_bits(data, escape_a, fw) + center[d]) * step_a;
+        escape_a += static_cast<std::size_t>(fw);
+    }
+    for (int k = 0; k < nb; ++k) {
+        const int d = escaped_b[k], fw = full[d];
+        b[d] = static_cast<double>(signed_bits(data, escape_b, fw) + center[d]) * step_b;
+        escape_b += static_cast<std::size_t>(fw);
+    }
+    return escape_a;
+}
+
 /// Clip i's values of f at bit `bit` into out (out[d] = value * step); returns the bit after them.
 std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t bit, std::size_t i, int Da, double step,
                               double* out) {
@@ -1811,29 +1858,332 @@ std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t
                      step, out);
 }
 
-/// Variant 7's frame into y (variant 8's when g7 has level-1 widths); the same bits as variant 1.
-void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
-    const RuntimeGroup3& g3 = *g7.v3;
-    const RuntimeGroup& g = *g3.base;
+/// A frame into y from entries that start with a step byte and a key at `keys`' fixed widths: the
+/// frame's key (t = 0), or its window's two keys into a and b and then path(key_end, t) for the rest.
+/// pair: the two keys in one pass (read_fixed_pair).
+template <class Path>
+void frame_with_fixed_keys(const RuntimeGroup& g, const FixedRows& keys, const std::vector<std::uint32_t>& offsets, const std::uint8_t* data,
+                           std::size_t clip, std::size_t frame, double* y, double* a, double* b, Path path, bool pair = false) {
     const int Da = g.Da, W = g.W;
     const std::size_t w = frame / static_cast<std::size_t>(W);
     const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
     const std::size_t entry = g.clip_first[clip] + w;
-    const std::uint8_t* data = g7.bytes.data();
-    const std::size_t o0 = g7.offsets[entry], o1 = g7.offsets[entry + 1];
+    const std::size_t o0 = offsets[entry], o1 = offsets[entry + 1];
     {
-        const std::size_t key_bits = g7.keys.at[clip * static_cast<std::size_t>(Da + 1) + static_cast<std::size_t>(Da)];
+        const std::size_t key_bits = keys.at[clip * static_cast<std::size_t>(Da + 1) + static_cast<std::size_t>(Da)];
         const std::size_t end = (t == 0 ? o0 : o1) + key_bits / 8 + 9;
         for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
     }
     const double key_step = detail::step_of(data[o0]);
     if (t == 0) {
-        read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, y);
+        read_fixed(keys, data, o0 * 8 + 8, clip, Da, key_step, y);
         return;
     }
-    const std::size_t key_end = read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, a);
-    read_fixed(g7.keys, data, o1 * 8 + 8, clip, Da, detail::step_of(data[o1]), b);
-    decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.width.empty() ? nullptr : &g7.level1, clip);
+    if (pair) {
+        path(read_fixed_pair(keys, data, o0 * 8 + 8, o1 * 8 + 8, clip, Da, key_step, detail::step_of(data[o1]), a, b), t);
+        return;
+    }
+    const std::size_t key_end = read_fixed(keys, data, o0 * 8 + 8, clip, Da, key_step, a);
+    read_fixed(keys, data, o1 * 8 + 8, clip, Da, detail::step_of(data[o1]), b);
+    path(key_end, t);
+}
+
+/// Variant 7's frame into y (variant 8's when g7 has level-1 widths); the same bits as variant 1.
+void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
+    const RuntimeGroup3& g3 = *g7.v3;
+    const std::uint8_t* data = g7.bytes.data();
+    frame_with_fixed_keys(*g3.base, g7.keys, g7.offsets, data, clip, frame, y, a, b, [&](std::size_t key_end, int t) {
+        decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.width.empty() ? nullptr : &g7.level1, clip);
+    });
+}
+
+
+// ---- Variant 9: variant 7's keys; each detail column by QUADS, four rows per symbol. A quad whose
+// values are all within [-S, S] is one symbol (its pattern); else a width symbol (the two's complement
+// width of its largest value, 2-32) followed by its four values at that width; an end symbol after
+// the column's last nonzero quad (none when that quad reaches the last row). Static canonical Huffman
+// codes per (level, row >> shift), at most kMaxCode bits, so one lookup decodes a quad. The same
+// quantized values as variant 1: every frame's y is checked equal to variant 1's, bit for bit. ----
+
+constexpr int kQuadWide = 1000;  // symbol kQuadWide + w: a quad at width w
+
+struct QuadCode {
+    int S = 1, shift = 3, per_level = 0, levels = 0;
+    std::vector<HuffmanCode> codes;       // (level - 1) * per_level + (row >> shift)
+    std::vector<std::uint32_t> table;     // per code 2^kMaxCode entries: bits 0-3 length, 4-13 pattern or
+                                          // width, 14 wide, 15 end (0: no code)
+    std::vector<std::int32_t> patterns;   // four values per pattern
+    std::size_t table_bits = 0;           // the codes as stored
+    std::size_t code(int level, int row) const { return static_cast<std::size_t>((level - 1) * per_level + (row >> shift)); }
+    int symbol(const std::int32_t* v, int Da, int d, int* width) const {
+        int mx = 0, pattern = 0, w = 0;
+        for (int k = d; k < d + 4; ++k) {
+            const std::int32_t q = k < Da ? v[k] : 0;
+            mx = std::max(mx, std::abs(q));
+            w = std::max(w, twos_bits(q));
+            pattern = pattern * (2 * S + 1) + (std::clamp(q, -S, S) + S);
+        }
+        *width = w;
+        return mx <= S ? pattern : kQuadWide + w;
+    }
+    /// Calls fn(code index, symbol, width) for each symbol of column v.
+    template <class Fn>
+    void each_symbol(int level, const std::vector<std::int32_t>& v, Fn fn) const {
+        const int Da = static_cast<int>(v.size());
+        int n = Da;
+        while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+        int d = 0;
+        for (; d < n; d += 4) {
+            int w = 0;
+            const int s = symbol(v.data(), Da, d, &w);
+            fn(code(level, d), s, s >= kQuadWide ? w : 0, d);
+        }
+        if (d < Da) fn(code(level, d), kEnd, 0, d);
+    }
+    void write_column(BitWriter& out, int level, const std::vector<std::int32_t>& v) const {
+        const int Da = static_cast<int>(v.size());
+        each_symbol(level, v, [&](std::size_t c, int s, int w, int d) {
+            codes[c].write(out, s);
+            for (int k = d; w && k < d + 4; ++k) out.put(static_cast<std::uint32_t>(k < Da ? v[static_cast<std::size_t>(k)] : 0), w);
+        });
+    }
+};
+
+QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift) {
+    QuadCode qc;
+    qc.S = S;
+    qc.shift = shift;
+    while ((1 << qc.levels) < W) ++qc.levels;
+    qc.per_level = ((Da + 3) >> shift) + 1;
+    std::vector<int> tl, tf;
+    tree_order(W, tl, tf);
+    std::vector<std::map<int, std::size_t>> hist(static_cast<std::size_t>(qc.levels * qc.per_level));
+    for (const auto& e : r.entries)
+        for (std::size_t i = 0; i < e.columns.size(); ++i)
+            qc.each_symbol(tl[i], e.columns[i], [&](std::size_t c, int s, int, int) { ++hist[c][s]; });
+    const int patterns = (2 * S + 1) * (2 * S + 1) * (2 * S + 1) * (2 * S + 1);
+    if (patterns > kQuadWide) throw std::runtime_error("quads: S too large");
+    // The codes as stored: per code the smaller of a length per symbol of the alphabet (4 bits each)
+    // and a list of the used symbols (symbol index and length), and 8 bits.
+    const double alphabet = patterns + 32 + 1;
+    const std::size_t n = std::size_t{1} << kMaxCode;
+    qc.codes.resize(hist.size());
+    qc.table.assign(hist.size() * n, 0);
+    for (std::size_t c = 0; c < hist.size(); ++c) {
+        if (hist[c].empty()) continue;
+        qc.codes[c].build(hist[c]);
+        const auto used = static_cast<double>(hist[c].size());
+        qc.table_bits += 8 + static_cast<std::size_t>(std::min(4.0 * alphabet, (std::ceil(std::log2(alphabet)) + 4.0) * used));
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto f = qc.codes[c].fast[i];
+            if (!f.length) continue;
+            std::uint32_t e = f.length;
+            if (f.symbol == kEnd) e |= 1u << 15;
+            else if (f.symbol >= kQuadWide) e |= static_cast<std::uint32_t>(f.symbol - kQuadWide) << 4 | 1u << 14;
+            else e |= static_cast<std::uint32_t>(f.symbol) << 4;
+            qc.table[c * n + i] = e;
+        }
+    }
+    qc.patterns.assign(static_cast<std::size_t>(4 * patterns), 0);
+    for (int p = 0; p < patterns; ++p)
+        for (int k = 3, x = p; k >= 0; --k, x /= 2 * S + 1) qc.patterns[static_cast<std::size_t>(4 * p + k)] = x % (2 * S + 1) - S;
+    return qc;
+}
+
+struct RuntimeGroup9 {
+    const RuntimeGroup* base = nullptr;
+    QuadCode quads;
+    FixedRows keys;
+    std::vector<std::uint32_t> offsets;  // per entry, then one past the last
+    std::vector<std::uint8_t> bytes;     // 8 bytes of slack after
+};
+
+RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const FixedRows& keys, int S, int shift) {
+    RuntimeGroup9 g9;
+    g9.base = &g;
+    g9.quads = build_quads(r, g.W, g.Da, S, shift);
+    g9.keys = keys;
+    const auto Da = static_cast<std::size_t>(g.Da);
+    std::vector<int> tl, tf;
+    tree_order(g.W, tl, tf);
+    BitWriter out;
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i)
+        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k) {
+            const auto& e = r.entries[k];
+            out.align();
+            g9.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+            out.put(static_cast<std::uint32_t>(e.key_step), 8);
+            write_fixed(out, keys, i, Da, e.key);
+            if (e.step >= 0)
+                write_window_by(g.levels, out, e, tl,
+                                [&](BitWriter& o, int level, const std::vector<std::int32_t>& v) { g9.quads.write_column(o, level, v); });
+        }
+    out.align();
+    g9.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+    g9.bytes = std::move(out.bytes);
+    g9.bytes.resize(g9.bytes.size() + 16, 0);
+    return g9;
+}
+
+/// One column of quads at bit pos into q (rows past the last decoded quad zero, up to Da rounded up to
+/// 4); returns the bit after the column.
+inline std::size_t read_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
+    const int B = kMaxCode, shift = qc.shift;
+    const std::uint32_t* table = qc.table.data() + (qc.code(level, 0) << B);
+    const std::int32_t* patterns = qc.patterns.data();
+    int d = 0;
+    while (d < Da) {
+        const std::uint64_t w = peek3<false>(data, pos);
+        const std::uint32_t e = table[(static_cast<std::size_t>(d >> shift) << B) | static_cast<std::size_t>(w >> (64 - B))];
+        pos += e & 15;
+        if (__builtin_expect((e & 0xC000u) == 0, 1)) {
+            std::memcpy(q + d, patterns + 4 * ((e >> 4) & 1023), 4 * sizeof(std::int32_t));
+            d += 4;
+            continue;
+        }
+        if (e & (1u << 15)) break;
+        const int wd = static_cast<int>((e >> 4) & 1023);
+        if (wd <= 14) {
+            const std::uint64_t x = peek3<false>(data, pos);
+            for (int k = 0; k < 4; ++k) q[d + k] = static_cast<std::int32_t>(static_cast<std::int64_t>(x << (k * wd)) >> (64 - wd));
+            pos += static_cast<std::size_t>(4 * wd);
+        } else {
+            for (int k = 0; k < 4; ++k, pos += static_cast<std::size_t>(wd)) q[d + k] = static_cast<std::int32_t>(signed_bits(data, pos, wd));
+        }
+        d += 4;
+    }
+    for (; d < Da; ++d) q[d] = 0;
+    return pos;
+}
+
+/// out[d] = p + q[d] * step where q[d] is nonzero, else p, with p = 0.5 * (lo[d] + hi[d]): the
+/// encoder's expressions (SSE2 two rows at a time: the same operations, a select instead of a branch).
+inline void combine(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) {
+    int d = 0;
+#ifdef __SSE2__
+    const __m128d half = _mm_set1_pd(0.5), s = _mm_set1_pd(step), zero = _mm_setzero_pd();
+    for (; d + 2 <= Da; d += 2) {
+        const __m128d p = _mm_mul_pd(half, _mm_add_pd(_mm_loadu_pd(lo + d), _mm_loadu_pd(hi + d)));
+        const __m128d v = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + d)));
+        const __m128d nonzero = _mm_cmpneq_pd(v, zero);
+        const __m128d sum = _mm_add_pd(p, _mm_mul_pd(v, s));
+        _mm_storeu_pd(out + d, _mm_or_pd(_mm_and_pd(nonzero, sum), _mm_andnot_pd(nonzero, p)));
+    }
+#endif
+    for (; d < Da; ++d) {
+        const double p = 0.5 * (lo[d] + hi[d]);
+        out[d] = q[d] ? p + q[d] * step : p;
+    }
+}
+
+/// Variant 9's path from the window's step byte at `bit`: each column's quads into q, then
+/// out = prediction (+ q * step where q is nonzero), the encoder's expressions.
+void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b, double* c) {
+    const RuntimeGroup& g = *g9.base;
+    const int Da = g.Da, W = g.W;
+    alignas(16) std::int32_t q[260];
+    BitReader in{data, bit};
+    const double step = detail::step_of(static_cast<int>(in.get(8)));
+    std::size_t skip[8] = {0};
+    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip);
+    int lo = 0, hi = W;
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 1;; ++l) {
+        const int mid = (lo + hi) / 2;
+        double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        pos = read_quads(g9.quads, data, pos, l, Da, q);
+        combine(out, lo_y, hi_y, q, step, Da);
+        if (mid == t) return;
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            pos += skip[l];
+            lo = mid;
+            lo_y = out;
+        }
+    }
+}
+
+/// Variant 9's frame into y; the same bits as variant 1.
+/// pair: the two keys in one pass; keys_only: no path (timing of the keys alone: y is not complete).
+void runtime_frame9(const RuntimeGroup9& g9, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c, bool pair = true,
+                    bool keys_only = false) {
+    const std::uint8_t* data = g9.bytes.data();
+    frame_with_fixed_keys(*g9.base, g9.keys, g9.offsets, data, clip, frame, y, a, b,
+                          [&](std::size_t key_end, int t) {
+                              if (!keys_only) decode_path9(g9, data, key_end, t, y, a, b, c);
+                          }, pair);
+}
+
+/// Estimate (RT_STATS): bits per level of a column code by groups of G rows: a group whose values are
+/// all within [-S, S] is one joint symbol (its pattern), else a width symbol (two's complement width
+/// of its largest) and the G values raw at that width; an end symbol after the last nonzero group.
+/// Context: (level, row/8). scheme 0: today's run/size symbols (RuntimeGroup::symbols) for comparison.
+struct SchemeBits {
+    double bits[6] = {}, symbols[6] = {}, columns[6] = {}, tables = 0.0;
+};
+SchemeBits scheme_bits(const HierResult& r, int W, int scheme, int G, int S, int cdiv = 8) {
+    std::vector<int> tl, tf;
+    tree_order(W, tl, tf);
+    std::map<std::pair<int, int>, std::map<int, std::size_t>> hist;
+    struct Sym { int level, ctx, sym; double extra; };
+    std::vector<Sym> all;
+    auto column = [&](int level, const std::vector<std::int32_t>& v) {
+        const int Da = static_cast<int>(v.size());
+        int n = Da;
+        while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+        if (scheme == 0) {
+            int start = 0;
+            for (int d = 0; d < n; ++d) {
+                const std::int32_t q = v[static_cast<std::size_t>(d)];
+                if (q == 0) continue;
+                while (d - start >= 16) { all.push_back({level, start / 8, kZeroRun, 0}); start += 16; }
+                const int c = bit_length(static_cast<std::uint32_t>(std::abs(q)));
+                all.push_back({level, start / 8, (d - start) * 32 + c, static_cast<double>(c)});
+                start = d + 1;
+            }
+            if (n < Da) all.push_back({level, start / 8, kEnd, 0});
+            return;
+        }
+        int d = 0;
+        for (; d < n; d += G) {
+            int mx = 0, pattern = 0;
+            for (int k = d; k < d + G; ++k) {
+                const int q = k < Da ? v[static_cast<std::size_t>(k)] : 0;
+                mx = std::max(mx, std::abs(q));
+                pattern = pattern * (2 * S + 1) + (std::clamp(q, -S, S) + S);
+            }
+            if (mx <= S) all.push_back({level, d / cdiv, pattern, 0});
+            else {
+                int w = 0;
+                for (int k = d; k < d + G && k < Da; ++k) w = std::max(w, twos_bits(v[static_cast<std::size_t>(k)]));
+                all.push_back({level, d / cdiv, 100000 + w, static_cast<double>(G * w)});
+            }
+        }
+        if (d < Da) all.push_back({level, d / cdiv, -1, 0});
+    };
+    SchemeBits out;
+    for (const auto& e : r.entries) {
+        for (std::size_t i = 0; i < e.columns.size(); ++i) {
+            column(tl[i], e.columns[i]);
+            out.columns[tl[i]] += 1;
+        }
+    }
+    for (const Sym& x : all) ++hist[{x.level, x.ctx}][x.sym];
+    std::map<std::pair<int, int>, std::map<int, int>> lengths;
+    const double alphabet = scheme == 0 ? 16 * 20 + 2 : std::pow(2 * S + 1, G) + 22;
+    for (const auto& [ctx, h] : hist) {
+        lengths[ctx] = huffman_lengths(h);
+        const auto used = static_cast<double>(h.size());
+        out.tables += 8.0 + std::min(4.0 * alphabet, (std::ceil(std::log2(alphabet)) + 4.0) * used);
+    }
+    for (const Sym& x : all) {
+        out.bits[x.level] += lengths[{x.level, x.ctx}][x.sym] + x.extra;
+        out.symbols[x.level] += 1;
+    }
+    return out;
 }
 
 }  // namespace
@@ -1851,6 +2201,7 @@ int main(int argc, char** argv) {
     bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
+    std::vector<std::pair<int, int>> quad_configs;  // variant 9: (S, context shift) each (--quads 1:3,2:2)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -1867,6 +2218,7 @@ int main(int argc, char** argv) {
         else if (k == "--key-escapes") key_escapes = v == "1";
         else if (k == "--float-dofs") g_float_dofs = v == "1";
         else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
+        else if (k == "--quads") { quad_configs.clear(); for (auto& x : split(v)) quad_configs.push_back({std::stoi(x.substr(0, x.find(':'))), std::stoi(x.substr(x.find(':') + 1))}); }
     }
     std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
                 "windows,keys,nonzero,seconds\n");
@@ -1908,6 +2260,37 @@ int main(int argc, char** argv) {
                     for (std::size_t g = 0; g < groups.size(); ++g) {
                         StaticCost cost, widths;
                         const HierResult r = run_hier(models[g], members[g], E, W, ko, cost, widths, rounding);
+                        if (std::getenv("RT_STATS")) {
+                            std::vector<int> tl, tf;
+                            tree_order(W, tl, tf);
+                            // per level: histogram of |v| buckets 0,1,2,3,4-7,8-15,16+; columns; rows up to last nonzero
+                            double h[6][8] = {}, cols[6] = {}, used[6] = {}, quads_small[6] = {}, quads[6] = {};
+                            for (const auto& e : r.entries) {
+                                auto add = [&](int l, const std::vector<std::int32_t>& v) {
+                                    cols[l] += 1;
+                                    int n = static_cast<int>(v.size());
+                                    while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+                                    used[l] += n;
+                                    for (int d = 0; d < n; ++d) {
+                                        const int a = std::abs(v[static_cast<std::size_t>(d)]);
+                                        h[l][a == 0 ? 0 : a == 1 ? 1 : a == 2 ? 2 : a == 3 ? 3 : a < 8 ? 4 : a < 16 ? 5 : 6] += 1;
+                                    }
+                                    for (int d = 0; d < n; d += 4) {
+                                        int mx = 0;
+                                        for (int k = d; k < d + 4 && k < static_cast<int>(v.size()); ++k) mx = std::max(mx, std::abs(v[static_cast<std::size_t>(k)]));
+                                        quads[l] += 1;
+                                        if (mx <= 1) quads_small[l] += 1;
+                                    }
+                                };
+                                add(0, e.key);
+                                for (std::size_t i = 0; i < e.columns.size(); ++i) add(tl[i], e.columns[i]);
+                            }
+                            for (int l = 0; l < 5; ++l) {
+                                std::printf("#STATS g%zu level %d: columns %.0f, rows used %.1f/col;", g, l, cols[l], used[l] / std::max(1.0, cols[l]));
+                                for (int b = 0; b < 7; ++b) std::printf(" %.3f", h[l][b] / std::max(1.0, used[l]));
+                                std::printf("; quads/col %.1f, all |v|<=1 %.3f\n", quads[l] / std::max(1.0, cols[l]), quads_small[l] / std::max(1.0, quads[l]));
+                            }
+                        }
                         for (int j = 0; j < 10; ++j) by_level[static_cast<std::size_t>(j)] += cost.bits(j) / 8;
                         static_bits += r.static_bits + cost.bits();
                         if (poses > 0) {
@@ -1916,6 +2299,19 @@ int main(int argc, char** argv) {
                         }
                         const HuffmanFigures h = huffman_bits(r, W, 0);
                         const HuffmanFigures h1 = huffman_bits(r, W, 1);
+                        if (std::getenv("RT_STATS")) {
+                            const int cfg[][4] = {{0, 1, 0, 8}, {1, 4, 1, 8}, {1, 4, 1, 4}, {1, 4, 2, 8}, {1, 4, 2, 4}};
+                            for (const auto& c : cfg) {
+                                const SchemeBits b = scheme_bits(r, W, c[0], c[1], c[2], c[3]);
+                                double tot = 0;
+                                std::printf("#SCHEME g%zu %s G=%d S=%d ctx=row/%d:", g, c[0] ? "groups" : "run/size", c[1], c[2], c[3]);
+                                for (int l = 1; l < 5; ++l) {
+                                    tot += b.bits[l];
+                                    std::printf(" L%d %.0f B (%.1f sym/col)", l, b.bits[l] / 8, b.symbols[l] / std::max(1.0, b.columns[l]));
+                                }
+                                std::printf(" total %.0f B, tables %.0f B\n", tot / 8, b.tables / 8);
+                            }
+                        }
                         rle.bits += h1.bits;
                         rle.symbols_per_frame += h1.symbols_per_frame * static_cast<double>(r.windows);
                         huff.bits += h.bits;
@@ -2221,6 +2617,18 @@ int main(int argc, char** argv) {
                                         if (!code.length.empty()) bytes7[k] -= (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
                                     }
                                 }
+                            // Variant 9 per --quads config: v7's keys (with escapes), the columns by quads.
+                            std::vector<std::vector<RuntimeGroup9>> r9(quad_configs.size());
+                            std::vector<double> bytes9(quad_configs.size(), static_cast<double>(f2_header)), tables9_5bit(quad_configs.size(), 0.0);
+                            for (std::size_t v = 0; v < quad_configs.size(); ++v)
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v].first, quad_configs[v].second));
+                                    const RuntimeGroup9& b9 = r9[v].back();
+                                    bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + 3.0 * static_cast<double>(b9.offsets.size()) +
+                                                 static_cast<double>(r7[0][g].width_bits + b9.quads.table_bits) / 8;
+                                    for (const auto& code : b9.quads.codes)
+                                        if (!code.length.empty()) tables9_5bit[v] += (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
+                                }
                             // Every frame of every variant equal to variant 1's, bit for bit (so within E: the max above).
                             bool equal = true;
                             for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -2236,6 +2644,10 @@ int main(int argc, char** argv) {
                                         }
                                         for (const auto& rv : r7) {
                                             runtime_frame7(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            same();
+                                        }
+                                        for (const auto& rv : r9) {
+                                            runtime_frame9(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
                                             same();
                                         }
                                     }
@@ -2314,8 +2726,20 @@ int main(int argc, char** argv) {
                                             dofs_equal ? "equal to the library path's" : "DIFFER", pose_differ, pose_diff, g_pose_fallbacks);
                             }
                             Times t1, t1d, t7[3], t7k[3][2];  // t7k: with the pose kernels, portable and AVX2
-                            std::vector<Times> t4(configs.size());
+                            std::vector<Times> t4(configs.size()), t9(quad_configs.size()), t9s(quad_configs.size()), t9k(quad_configs.size());
+                            const PosePath fastest = !g_float_dofs ? PosePath::library : avx2 ? PosePath::avx2 : PosePath::portable;
                             for (int rep = 0; rep < reps; ++rep) {
+                                for (std::size_t v = 0; v < quad_configs.size(); ++v) {
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    }, t9[v], false, fastest);
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, false);
+                                    }, t9s[v], false, fastest);
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, true, true);
+                                    }, t9k[v], false, fastest);
+                                }
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                     runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                 }, t1);
@@ -2354,6 +2778,15 @@ int main(int argc, char** argv) {
                                     std::printf("#      with the pose kernels: cold local pose %.3f us portable, %.3f us AVX2\n", t7k[k][0].cold,
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
+                            for (std::size_t v = 0; v < quad_configs.size(); ++v)
+                                std::printf("#    v9 quads S=%d, contexts row>>%d (table %zu kB): bytes %.0f (code tables %.0f; at 5 bits a used symbol %.0f), "
+                                            "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
+                                            quad_configs[v].first, quad_configs[v].second, r9[v][0].quads.table.size() * 4 / 1024, bytes9[v],
+                                            [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
+                                            tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
+                            for (std::size_t v = 0; v < quad_configs.size(); ++v)
+                                std::printf("#      v9 S=%d row>>%d: keys one after the other: cold %.3f us, y %.3f (hot %.3f); keys alone (paired): y %.3f (hot %.3f)\n",
+                                            quad_configs[v].first, quad_configs[v].second, t9s[v].cold, t9s[v].y, t9s[v].hot, t9k[v].y, t9k[v].hot);
                             // y -> local pose alone (each group's last y, over and over), by each path.
                             if (g_float_dofs) {
                                 double stage[3] = {1e300, 1e300, 1e300};
