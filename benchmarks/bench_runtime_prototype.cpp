@@ -58,6 +58,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <map>
 #include <memory>
@@ -1850,6 +1851,86 @@ inline std::size_t read_fixed_pair(const FixedRows& f, const std::uint8_t* data,
     return escape_a;
 }
 
+/// FixedRows' keys as a per-clip plan for a decoder whose keys start at a byte (variant 9): the rows
+/// with a nonzero width first (ascending), each its slot's byte and shifts (value = (bswap(8 bytes at
+/// byte) << shl) >> sar, arithmetic), whether it has escapes; then the rows of width 0 (value 0).
+struct KeyPlan {
+    struct Row {
+        std::uint16_t byte;
+        std::uint8_t d, shl, sar, escapes;
+    };
+    std::vector<Row> rows;               // per clip Da rows
+    std::vector<std::uint16_t> nonzero;  // per clip, its rows of nonzero width
+    std::size_t bytes() const { return rows.size() * sizeof(Row) + nonzero.size() * sizeof(std::uint16_t); }
+};
+
+KeyPlan key_plan(const FixedRows& f, std::size_t clips, int Da) {
+    KeyPlan plan;
+    const auto n = static_cast<std::size_t>(Da);
+    for (std::size_t i = 0; i < clips; ++i) {
+        std::uint16_t nonzero = 0;
+        for (int pass = 0; pass < 2; ++pass)
+            for (std::size_t d = 0; d < n; ++d) {
+                const int w = f.width[i * n + d];
+                if ((w > 0) != (pass == 0)) continue;
+                const std::uint16_t at = f.at[i * (n + 1) + d];
+                plan.rows.push_back({static_cast<std::uint16_t>(at >> 3), static_cast<std::uint8_t>(d), static_cast<std::uint8_t>(at & 7),
+                                     static_cast<std::uint8_t>(64 - w), static_cast<std::uint8_t>(f.full[i * n + d] > w)});
+                nonzero = static_cast<std::uint16_t>(nonzero + (pass == 0));
+            }
+        plan.nonzero.push_back(nonzero);
+    }
+    return plan;
+}
+
+/// Two keys of clip i, starting at bytes at_a and at_b, by the plan into a and b (fixed_key's values).
+/// Returns the bit after key a.
+inline std::size_t read_plan_pair(const KeyPlan& plan, const FixedRows& f, const std::uint8_t* data, std::size_t at_a, std::size_t at_b,
+                                  std::size_t i, int Da, double step_a, double step_b, double* a, double* b) {
+    const auto n = static_cast<std::size_t>(Da);
+    const KeyPlan::Row* rows = plan.rows.data() + i * n;
+    const int nonzero = plan.nonzero[i];
+    const std::int32_t* center = f.center.data() + i * n;
+    const std::uint8_t* pa = data + at_a;
+    const std::uint8_t* pb = data + at_b;
+    int escaped_a[256], escaped_b[256];
+    int na = 0, nb = 0;
+    for (int k = 0; k < nonzero; ++k) {
+        const KeyPlan::Row r = rows[k];
+        std::uint64_t va, vb;
+        std::memcpy(&va, pa + r.byte, 8);
+        std::memcpy(&vb, pb + r.byte, 8);
+        const std::int64_t qa = static_cast<std::int64_t>(__builtin_bswap64(va) << r.shl) >> r.sar;
+        const std::int64_t qb = static_cast<std::int64_t>(__builtin_bswap64(vb) << r.shl) >> r.sar;
+        a[r.d] = static_cast<double>(qa + center[r.d]) * step_a;
+        b[r.d] = static_cast<double>(qb + center[r.d]) * step_b;
+        const std::int64_t code = std::numeric_limits<std::int64_t>::min() >> r.sar;  // -2^(w-1)
+        escaped_a[na] = r.d;
+        na += r.escapes & static_cast<int>(qa == code);
+        escaped_b[nb] = r.d;
+        nb += r.escapes & static_cast<int>(qb == code);
+    }
+    for (int k = nonzero; k < Da; ++k) {
+        const int d = rows[k].d;
+        a[d] = static_cast<double>(std::int64_t{0} + center[d]) * step_a;
+        b[d] = static_cast<double>(std::int64_t{0} + center[d]) * step_b;
+    }
+    const std::uint8_t* full = f.full.data() + i * n;
+    const std::size_t slots = f.at[i * (n + 1) + n];
+    std::size_t escape_a = at_a * 8 + slots, escape_b = at_b * 8 + slots;
+    for (int k = 0; k < na; ++k) {
+        const int d = escaped_a[k], fw = full[d];
+        a[d] = static_cast<double>(signed_bits(data, escape_a, fw) + center[d]) * step_a;
+        escape_a += static_cast<std::size_t>(fw);
+    }
+    for (int k = 0; k < nb; ++k) {
+        const int d = escaped_b[k], fw = full[d];
+        b[d] = static_cast<double>(signed_bits(data, escape_b, fw) + center[d]) * step_b;
+        escape_b += static_cast<std::size_t>(fw);
+    }
+    return escape_a;
+}
+
 /// Clip i's values of f at bit `bit` into out (out[d] = value * step); returns the bit after them.
 std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t bit, std::size_t i, int Da, double step,
                               double* out) {
@@ -1860,10 +1941,11 @@ std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t
 
 /// A frame into y from entries that start with a step byte and a key at `keys`' fixed widths: the
 /// frame's key (t = 0), or its window's two keys into a and b and then path(key_end, t) for the rest.
-/// pair: the two keys in one pass (read_fixed_pair).
+/// pair: the two keys in one pass (read_fixed_pair, or by `plan` when given).
 template <class Path>
 void frame_with_fixed_keys(const RuntimeGroup& g, const FixedRows& keys, const std::vector<std::uint32_t>& offsets, const std::uint8_t* data,
-                           std::size_t clip, std::size_t frame, double* y, double* a, double* b, Path path, bool pair = false) {
+                           std::size_t clip, std::size_t frame, double* y, double* a, double* b, Path path, bool pair = false,
+                           const KeyPlan* plan = nullptr) {
     const int Da = g.Da, W = g.W;
     const std::size_t w = frame / static_cast<std::size_t>(W);
     const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
@@ -1877,6 +1959,10 @@ void frame_with_fixed_keys(const RuntimeGroup& g, const FixedRows& keys, const s
     const double key_step = detail::step_of(data[o0]);
     if (t == 0) {
         read_fixed(keys, data, o0 * 8 + 8, clip, Da, key_step, y);
+        return;
+    }
+    if (plan) {
+        path(read_plan_pair(*plan, keys, data, o0 + 1, o1 + 1, clip, Da, key_step, detail::step_of(data[o1]), a, b), t);
         return;
     }
     if (pair) {
@@ -1910,7 +1996,7 @@ constexpr int kQuadWide = 1000;  // symbol kQuadWide + w: a quad at width w
 struct QuadCode {
     int S = 1, shift = 3, per_level = 0, levels = 0;
     std::vector<HuffmanCode> codes;       // (level - 1) * per_level + (row >> shift)
-    std::vector<std::uint32_t> table;     // per code 2^kMaxCode entries: bits 0-3 length, 4-13 pattern or
+    std::vector<std::uint16_t> table;     // per code 2^kMaxCode entries: bits 0-3 length, 4-13 pattern or
                                           // width, 14 wide, 15 end (0: no code)
     std::vector<std::int32_t> patterns;   // four values per pattern
     std::size_t table_bits = 0;           // the codes as stored
@@ -1962,7 +2048,7 @@ QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift) {
         for (std::size_t i = 0; i < e.columns.size(); ++i)
             qc.each_symbol(tl[i], e.columns[i], [&](std::size_t c, int s, int, int) { ++hist[c][s]; });
     const int patterns = (2 * S + 1) * (2 * S + 1) * (2 * S + 1) * (2 * S + 1);
-    if (patterns > kQuadWide) throw std::runtime_error("quads: S too large");
+    if (patterns > 1024 || kMaxCode > 15) throw std::runtime_error("quads: S or the code length too large for the 16-bit table");
     // The codes as stored: per code the smaller of a length per symbol of the alphabet (4 bits each)
     // and a list of the used symbols (symbol index and length), and 8 bits.
     const double alphabet = patterns + 32 + 1;
@@ -1981,7 +2067,7 @@ QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift) {
             if (f.symbol == kEnd) e |= 1u << 15;
             else if (f.symbol >= kQuadWide) e |= static_cast<std::uint32_t>(f.symbol - kQuadWide) << 4 | 1u << 14;
             else e |= static_cast<std::uint32_t>(f.symbol) << 4;
-            qc.table[c * n + i] = e;
+            qc.table[c * n + i] = static_cast<std::uint16_t>(e);
         }
     }
     qc.patterns.assign(static_cast<std::size_t>(4 * patterns), 0);
@@ -1994,8 +2080,9 @@ struct RuntimeGroup9 {
     const RuntimeGroup* base = nullptr;
     QuadCode quads;
     FixedRows keys;
+    KeyPlan plan;
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
-    std::vector<std::uint8_t> bytes;     // 8 bytes of slack after
+    std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
 
 RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const FixedRows& keys, int S, int shift) {
@@ -2003,6 +2090,7 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
     g9.base = &g;
     g9.quads = build_quads(r, g.W, g.Da, S, shift);
     g9.keys = keys;
+    g9.plan = key_plan(keys, r.clip_first.size(), g.Da);
     const auto Da = static_cast<std::size_t>(g.Da);
     std::vector<int> tl, tf;
     tree_order(g.W, tl, tf);
@@ -2029,7 +2117,7 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
 /// 4); returns the bit after the column.
 inline std::size_t read_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
     const int B = kMaxCode, shift = qc.shift;
-    const std::uint32_t* table = qc.table.data() + (qc.code(level, 0) << B);
+    const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
     const std::int32_t* patterns = qc.patterns.data();
     int d = 0;
     while (d < Da) {
@@ -2107,14 +2195,15 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
 }
 
 /// Variant 9's frame into y; the same bits as variant 1.
-/// pair: the two keys in one pass; keys_only: no path (timing of the keys alone: y is not complete).
-void runtime_frame9(const RuntimeGroup9& g9, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c, bool pair = true,
+/// keys: 2 by the key plan, 1 paired (read_fixed_pair), 0 one after the other; keys_only: no path
+/// (timing of the keys alone: y is not complete).
+void runtime_frame9(const RuntimeGroup9& g9, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c, int keys = 2,
                     bool keys_only = false) {
     const std::uint8_t* data = g9.bytes.data();
     frame_with_fixed_keys(*g9.base, g9.keys, g9.offsets, data, clip, frame, y, a, b,
                           [&](std::size_t key_end, int t) {
                               if (!keys_only) decode_path9(g9, data, key_end, t, y, a, b, c);
-                          }, pair);
+                          }, keys > 0, keys == 2 ? &g9.plan : nullptr);
 }
 
 /// Estimate (RT_STATS): bits per level of a column code by groups of G rows: a group whose values are
@@ -2734,10 +2823,10 @@ int main(int argc, char** argv) {
                                         runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                     }, t9[v], false, fastest);
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, false);
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, 1);
                                     }, t9s[v], false, fastest);
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
-                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, true, true);
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, 2, true);
                                     }, t9k[v], false, fastest);
                                 }
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
@@ -2781,11 +2870,11 @@ int main(int argc, char** argv) {
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 std::printf("#    v9 quads S=%d, contexts row>>%d (table %zu kB): bytes %.0f (code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v].first, quad_configs[v].second, r9[v][0].quads.table.size() * 4 / 1024, bytes9[v],
+                                            quad_configs[v].first, quad_configs[v].second, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#      v9 S=%d row>>%d: keys one after the other: cold %.3f us, y %.3f (hot %.3f); keys alone (paired): y %.3f (hot %.3f)\n",
+                                std::printf("#      v9 S=%d row>>%d: keys paired without the plan: cold %.3f us, y %.3f (hot %.3f); keys alone (plan): y %.3f (hot %.3f)\n",
                                             quad_configs[v].first, quad_configs[v].second, t9s[v].cold, t9s[v].y, t9s[v].hot, t9k[v].y, t9k[v].hot);
                             // y -> local pose alone (each group's last y, over and over), by each path.
                             if (g_float_dofs) {
