@@ -2245,7 +2245,12 @@ SchemeBits scheme_bits(const HierResult& r, int W, int scheme, int G, int S, int
                 pattern = pattern * (2 * S + 1) + (std::clamp(q, -S, S) + S);
             }
             if (mx <= S) all.push_back({level, d / cdiv, pattern, 0});
-            else {
+            else if (scheme == 2) {  // two widths: rows d, d + 1 and rows d + 2, d + 3
+                int w1 = 0, w2 = 0;
+                for (int k = d; k < d + 2 && k < Da; ++k) w1 = std::max(w1, twos_bits(v[static_cast<std::size_t>(k)]));
+                for (int k = d + 2; k < d + 4 && k < Da; ++k) w2 = std::max(w2, twos_bits(v[static_cast<std::size_t>(k)]));
+                all.push_back({level, d / cdiv, 100000 + 64 * w1 + w2, 2.0 * (w1 + w2)});
+            } else {
                 int w = 0;
                 for (int k = d; k < d + G && k < Da; ++k) w = std::max(w, twos_bits(v[static_cast<std::size_t>(k)]));
                 all.push_back({level, d / cdiv, 100000 + w, static_cast<double>(G * w)});
@@ -2389,7 +2394,7 @@ int main(int argc, char** argv) {
                         const HuffmanFigures h = huffman_bits(r, W, 0);
                         const HuffmanFigures h1 = huffman_bits(r, W, 1);
                         if (std::getenv("RT_STATS")) {
-                            const int cfg[][4] = {{0, 1, 0, 8}, {1, 4, 1, 8}, {1, 4, 1, 4}, {1, 4, 2, 8}, {1, 4, 2, 4}};
+                            const int cfg[][4] = {{0, 1, 0, 8}, {1, 4, 1, 8}, {2, 4, 1, 8}, {2, 4, 0, 8}, {2, 4, 2, 8}};
                             for (const auto& c : cfg) {
                                 const SchemeBits b = scheme_bits(r, W, c[0], c[1], c[2], c[3]);
                                 double tot = 0;
