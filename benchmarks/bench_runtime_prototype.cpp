@@ -1942,15 +1942,16 @@ std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t
 /// A frame into y from entries that start with a step byte and a key at `keys`' fixed widths: the
 /// frame's key (t = 0), or its window's two keys into a and b and then path(key_end, t) for the rest.
 /// pair: the two keys in one pass (read_fixed_pair, or by `plan` when given).
-template <class Path>
-void frame_with_fixed_keys(const RuntimeGroup& g, const FixedRows& keys, const std::vector<std::uint32_t>& offsets, const std::uint8_t* data,
+/// offsets(clip, window, o0, o1): the byte offsets of the window's entry and the next.
+template <class Offsets, class Path>
+void frame_with_fixed_keys(const RuntimeGroup& g, const FixedRows& keys, Offsets offsets, const std::uint8_t* data,
                            std::size_t clip, std::size_t frame, double* y, double* a, double* b, Path path, bool pair = false,
                            const KeyPlan* plan = nullptr) {
     const int Da = g.Da, W = g.W;
     const std::size_t w = frame / static_cast<std::size_t>(W);
     const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
-    const std::size_t entry = g.clip_first[clip] + w;
-    const std::size_t o0 = offsets[entry], o1 = offsets[entry + 1];
+    std::size_t o0, o1;
+    offsets(clip, w, o0, o1);
     {
         const std::size_t key_bits = keys.at[clip * static_cast<std::size_t>(Da + 1) + static_cast<std::size_t>(Da)];
         const std::size_t end = (t == 0 ? o0 : o1) + key_bits / 8 + 9;
@@ -1978,7 +1979,12 @@ void frame_with_fixed_keys(const RuntimeGroup& g, const FixedRows& keys, const s
 void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
     const RuntimeGroup3& g3 = *g7.v3;
     const std::uint8_t* data = g7.bytes.data();
-    frame_with_fixed_keys(*g3.base, g7.keys, g7.offsets, data, clip, frame, y, a, b, [&](std::size_t key_end, int t) {
+    const RuntimeGroup& g = *g3.base;
+    auto offsets = [&](std::size_t i, std::size_t w, std::size_t& o0, std::size_t& o1) {
+        o0 = g7.offsets[g.clip_first[i] + w];
+        o1 = g7.offsets[g.clip_first[i] + w + 1];
+    };
+    frame_with_fixed_keys(g, g7.keys, offsets, data, clip, frame, y, a, b, [&](std::size_t key_end, int t) {
         decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.width.empty() ? nullptr : &g7.level1, clip);
     });
 }
@@ -2076,11 +2082,57 @@ QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift) {
     return qc;
 }
 
+/// Entry offsets as stored (variant 9): per clip its first entry's byte offset, the bit at which its
+/// later entries' offsets start and their width (4 + 4 + 1 bytes), then each later entry's byte
+/// offset from the clip's first at that width (`bits`).
+struct PackedOffsets {
+    struct Clip {
+        std::uint32_t base = 0, at = 0;
+        std::uint8_t width = 0;
+    };
+    std::vector<Clip> clips;
+    std::vector<std::uint8_t> bits;  // 8 bytes of slack after
+    std::size_t bit_count = 0;
+    std::size_t stored_bytes() const { return 9 * clips.size() + (bit_count + 7) / 8; }
+    static std::size_t read(const std::uint8_t* data, std::size_t p, int w) {
+        std::uint64_t v;
+        std::memcpy(&v, data + (p >> 3), 8);
+        return static_cast<std::size_t>((__builtin_bswap64(v) << (p & 7)) >> (64 - w));
+    }
+    /// Byte offsets of clip i's entries k and k + 1.
+    void pair(std::size_t i, std::size_t k, std::size_t& o0, std::size_t& o1) const {
+        const Clip& c = clips[i];
+        const std::size_t p = c.at + k * c.width;  // entry k + 1's slot (entry 0 has none)
+        o0 = c.base + (k ? read(bits.data(), p - c.width, c.width) : 0);
+        o1 = c.base + read(bits.data(), p, c.width);
+    }
+};
+
+PackedOffsets pack_offsets(const HierResult& r, const std::vector<std::uint32_t>& offsets) {
+    PackedOffsets p;
+    BitWriter out;
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
+        const std::size_t first = r.clip_first[i], last = entries_end(r, i);  // entries first..last-1
+        PackedOffsets::Clip c;
+        c.base = offsets[first];
+        c.at = static_cast<std::uint32_t>(out.bits());
+        c.width = static_cast<std::uint8_t>(bit_length(offsets[last - 1] - c.base));
+        for (std::size_t k = first + 1; k < last; ++k) out.put(offsets[k] - c.base, c.width);
+        p.clips.push_back(c);
+    }
+    p.bit_count = out.bits();
+    out.align();
+    p.bits = std::move(out.bytes);
+    p.bits.resize(p.bits.size() + 8, 0);
+    return p;
+}
+
 struct RuntimeGroup9 {
     const RuntimeGroup* base = nullptr;
     QuadCode quads;
     FixedRows keys;
     KeyPlan plan;
+    PackedOffsets packed;                // the offsets as stored and read
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
@@ -2110,6 +2162,7 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
     g9.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
     g9.bytes = std::move(out.bytes);
     g9.bytes.resize(g9.bytes.size() + 16, 0);
+    g9.packed = pack_offsets(r, g9.offsets);
     return g9;
 }
 
@@ -2200,7 +2253,8 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
 void runtime_frame9(const RuntimeGroup9& g9, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c, int keys = 2,
                     bool keys_only = false) {
     const std::uint8_t* data = g9.bytes.data();
-    frame_with_fixed_keys(*g9.base, g9.keys, g9.offsets, data, clip, frame, y, a, b,
+    auto offsets = [&](std::size_t i, std::size_t w, std::size_t& o0, std::size_t& o1) { g9.packed.pair(i, w, o0, o1); };
+    frame_with_fixed_keys(*g9.base, g9.keys, offsets, data, clip, frame, y, a, b,
                           [&](std::size_t key_end, int t) {
                               if (!keys_only) decode_path9(g9, data, key_end, t, y, a, b, c);
                           }, keys > 0, keys == 2 ? &g9.plan : nullptr);
@@ -2713,13 +2767,16 @@ int main(int argc, char** argv) {
                                 }
                             // Variant 9 per --quads config: v7's keys (with escapes), the columns by quads.
                             std::vector<std::vector<RuntimeGroup9>> r9(quad_configs.size());
-                            std::vector<double> bytes9(quad_configs.size(), static_cast<double>(f2_header)), tables9_5bit(quad_configs.size(), 0.0);
+                            std::vector<double> bytes9(quad_configs.size(), static_cast<double>(f2_header)), tables9_5bit(quad_configs.size(), 0.0),
+                                offsets9(quad_configs.size(), 0.0), offsets9_3byte(quad_configs.size(), 0.0);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 for (std::size_t g = 0; g < groups.size(); ++g) {
                                     r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v].first, quad_configs[v].second));
                                     const RuntimeGroup9& b9 = r9[v].back();
-                                    bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + 3.0 * static_cast<double>(b9.offsets.size()) +
+                                    bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
                                                  static_cast<double>(r7[0][g].width_bits + b9.quads.table_bits) / 8;
+                                    offsets9_3byte[v] += 3.0 * static_cast<double>(b9.offsets.size() - 1);
+                                    offsets9[v] += static_cast<double>(b9.packed.stored_bytes());
                                     for (const auto& code : b9.quads.codes)
                                         if (!code.length.empty()) tables9_5bit[v] += (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
                                 }
@@ -2873,9 +2930,9 @@ int main(int argc, char** argv) {
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#    v9 quads S=%d, contexts row>>%d (table %zu kB): bytes %.0f (code tables %.0f; at 5 bits a used symbol %.0f), "
+                                std::printf("#    v9 quads S=%d, contexts row>>%d (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v].first, quad_configs[v].second, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v],
+                                            quad_configs[v].first, quad_configs[v].second, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
