@@ -975,9 +975,12 @@ void tree_order(int W, std::vector<int>& level, std::vector<int>& frame) {
 /// internal node's left-subtree size in bits at that width) and the columns in tree order (levels tl).
 /// Returns the directory's bits.
 /// write_column(out, level, values) codes one column (variant 1: run/size codes; variant 9: quads).
+/// widths: the directory's width per level given (not written: variant 9 keeps them per clip); with
+/// need (per level) instead, only each level's largest width into need[l] (nothing written).
 template <class WriteColumn>
-std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl, WriteColumn write_column) {
-    out.put(static_cast<std::uint32_t>(e.step), 8);
+std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl, WriteColumn write_column,
+                            const int* widths = nullptr, int* need = nullptr) {
+    if (!need) out.put(static_cast<std::uint32_t>(e.step), 8);
     std::vector<std::size_t> size;
     for (std::size_t i = 0; i < e.columns.size(); ++i) {
         BitWriter scratch;
@@ -998,8 +1001,11 @@ std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry&
     for (int l = 1; l < levels; ++l) {
         for (std::size_t s : left[static_cast<std::size_t>(l)])
             width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
-        out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
+        if (need) need[l] = std::max(need[l], width[static_cast<std::size_t>(l)]);
+        if (widths) width[static_cast<std::size_t>(l)] = widths[l];
+        else if (!need) out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
     }
+    if (need) return 0;
     for (int l = 1; l < levels; ++l)
         for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
     const std::size_t directory = out.bits() - before;
@@ -1055,10 +1061,11 @@ RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
 
 /// A window's directory at bit pos (per level a width, then the left-subtree sizes): into skip[l] the
 /// size of the left subtree frame t's path skips at level l; returns the bit after the directory.
-std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip) {
+/// widths: the widths per level when the window does not hold them (variant 9: per clip).
+std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip, const std::uint8_t* widths = nullptr) {
     BitReader in{data, pos};
     int width[8] = {0};
-    for (int l = 1; l < levels; ++l) width[l] = static_cast<int>(in.get(5));
+    for (int l = 1; l < levels; ++l) width[l] = widths ? widths[l] : static_cast<int>(in.get(5));
     // Level l's sizes start after the earlier levels' (2^(l-1) each).
     std::size_t at = in.pos;
     for (int l = 1; l < levels; ++l) {
@@ -2133,6 +2140,8 @@ struct RuntimeGroup9 {
     FixedRows keys;
     KeyPlan plan;
     PackedOffsets packed;                // the offsets as stored and read
+    std::vector<std::uint8_t> directory_widths;  // per clip 8: the directory's width per level, or 0: in each window
+    std::size_t directory_bits = 0;              // the clip table's flags and widths as stored
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
@@ -2147,17 +2156,37 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
     std::vector<int> tl, tf;
     tree_order(g.W, tl, tf);
     BitWriter out;
-    for (std::size_t i = 0; i < r.clip_first.size(); ++i)
-        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k) {
+    auto quads = [&](BitWriter& o, int level, const std::vector<std::int32_t>& v) { g9.quads.write_column(o, level, v); };
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
+        // The directory's widths per clip (in the clip table) or per window (in each window), whichever
+        // gives the clip's entries fewer bytes (a clip with per-window widths has width 0 in the table).
+        int widths[8] = {0};
+        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k)
+            if (r.entries[k].step >= 0) write_window_by(g.levels, out, r.entries[k], tl, quads, nullptr, widths);
+        auto entry = [&](BitWriter& o, std::size_t k, const int* w) {
             const auto& e = r.entries[k];
+            o.put(static_cast<std::uint32_t>(e.key_step), 8);
+            write_fixed(o, keys, i, Da, e.key);
+            if (e.step >= 0) write_window_by(g.levels, o, e, tl, quads, w);
+            o.align();
+        };
+        std::size_t per_clip = 0, per_window = 0;
+        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k) {
+            BitWriter a, b;
+            entry(a, k, widths);
+            entry(b, k, nullptr);
+            per_clip += a.bytes.size();
+            per_window += b.bytes.size();
+        }
+        const bool clip_widths = 8 * per_clip + 5 * static_cast<std::size_t>(g.levels - 1) < 8 * per_window;
+        g9.directory_bits += 1 + (clip_widths ? 5 * static_cast<std::size_t>(g.levels - 1) : 0);
+        for (int l = 0; l < 8; ++l) g9.directory_widths.push_back(static_cast<std::uint8_t>(clip_widths ? widths[l] : 0));
+        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k) {
             out.align();
             g9.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
-            out.put(static_cast<std::uint32_t>(e.key_step), 8);
-            write_fixed(out, keys, i, Da, e.key);
-            if (e.step >= 0)
-                write_window_by(g.levels, out, e, tl,
-                                [&](BitWriter& o, int level, const std::vector<std::int32_t>& v) { g9.quads.write_column(o, level, v); });
+            entry(out, k, clip_widths ? widths : nullptr);
         }
+    }
     out.align();
     g9.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
     g9.bytes = std::move(out.bytes);
@@ -2219,14 +2248,16 @@ inline void combine(double* out, const double* lo, const double* hi, const std::
 
 /// Variant 9's path from the window's step byte at `bit`: each column's quads into q, then
 /// out = prediction (+ q * step where q is nonzero), the encoder's expressions.
-void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b, double* c) {
+void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b, double* c,
+                  std::size_t clip) {
     const RuntimeGroup& g = *g9.base;
     const int Da = g.Da, W = g.W;
     alignas(16) std::int32_t q[260];
     BitReader in{data, bit};
     const double step = detail::step_of(static_cast<int>(in.get(8)));
     std::size_t skip[8] = {0};
-    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip);
+    const std::uint8_t* widths = g9.directory_widths.data() + 8 * clip;
+    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip, widths[1] ? widths : nullptr);
     int lo = 0, hi = W;
     double* lo_y = a;
     double* hi_y = b;
@@ -2256,7 +2287,7 @@ void runtime_frame9(const RuntimeGroup9& g9, std::size_t clip, std::size_t frame
     auto offsets = [&](std::size_t i, std::size_t w, std::size_t& o0, std::size_t& o1) { g9.packed.pair(i, w, o0, o1); };
     frame_with_fixed_keys(*g9.base, g9.keys, offsets, data, clip, frame, y, a, b,
                           [&](std::size_t key_end, int t) {
-                              if (!keys_only) decode_path9(g9, data, key_end, t, y, a, b, c);
+                              if (!keys_only) decode_path9(g9, data, key_end, t, y, a, b, c, clip);
                           }, keys > 0, keys == 2 ? &g9.plan : nullptr);
 }
 
@@ -2774,6 +2805,7 @@ int main(int argc, char** argv) {
                                     r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v].first, quad_configs[v].second));
                                     const RuntimeGroup9& b9 = r9[v].back();
                                     bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
+                                                 std::ceil(static_cast<double>(b9.directory_bits) / 8) +
                                                  static_cast<double>(r7[0][g].width_bits + b9.quads.table_bits) / 8;
                                     offsets9_3byte[v] += 3.0 * static_cast<double>(b9.offsets.size() - 1);
                                     offsets9[v] += static_cast<double>(b9.packed.stored_bytes());
