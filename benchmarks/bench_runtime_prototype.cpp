@@ -977,9 +977,11 @@ void tree_order(int W, std::vector<int>& level, std::vector<int>& frame) {
 /// write_column(out, level, values) codes one column (variant 1: run/size codes; variant 9: quads).
 /// widths: the directory's width per level given (not written: variant 9 keeps them per clip); with
 /// need (per level) instead, only each level's largest width into need[l] (nothing written).
+/// stored: the directory holds levels 1..stored (default: every level with a left subtree, levels - 1).
 template <class WriteColumn>
 std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl, WriteColumn write_column,
-                            const int* widths = nullptr, int* need = nullptr) {
+                            const int* widths = nullptr, int* need = nullptr, int stored = -1) {
+    if (stored < 0) stored = levels - 1;
     if (!need) out.put(static_cast<std::uint32_t>(e.step), 8);
     std::vector<std::size_t> size;
     for (std::size_t i = 0; i < e.columns.size(); ++i) {
@@ -998,7 +1000,7 @@ std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry&
     }
     const std::size_t before = out.bits();
     std::vector<int> width(static_cast<std::size_t>(levels), 0);
-    for (int l = 1; l < levels; ++l) {
+    for (int l = 1; l <= stored; ++l) {
         for (std::size_t s : left[static_cast<std::size_t>(l)])
             width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
         if (need) need[l] = std::max(need[l], width[static_cast<std::size_t>(l)]);
@@ -1006,7 +1008,7 @@ std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry&
         else if (!need) out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
     }
     if (need) return 0;
-    for (int l = 1; l < levels; ++l)
+    for (int l = 1; l <= stored; ++l)
         for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
     const std::size_t directory = out.bits() - before;
     for (std::size_t i = 0; i < e.columns.size(); ++i) write_column(out, tl[i], e.columns[i]);
@@ -1062,13 +1064,16 @@ RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
 /// A window's directory at bit pos (per level a width, then the left-subtree sizes): into skip[l] the
 /// size of the left subtree frame t's path skips at level l; returns the bit after the directory.
 /// widths: the widths per level when the window does not hold them (variant 9: per clip).
-std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip, const std::uint8_t* widths = nullptr) {
+/// stored: the directory holds levels 1..stored (default levels - 1).
+std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip, const std::uint8_t* widths = nullptr,
+                           int stored = -1) {
+    if (stored < 0) stored = levels - 1;
     BitReader in{data, pos};
     int width[8] = {0};
-    for (int l = 1; l < levels; ++l) width[l] = widths ? widths[l] : static_cast<int>(in.get(5));
+    for (int l = 1; l <= stored; ++l) width[l] = widths ? widths[l] : static_cast<int>(in.get(5));
     // Level l's sizes start after the earlier levels' (2^(l-1) each).
     std::size_t at = in.pos;
-    for (int l = 1; l < levels; ++l) {
+    for (int l = 1; l <= stored; ++l) {
         const std::size_t node = static_cast<std::size_t>(t) >> (levels - l + 1);
         BitReader s{data, at + node * static_cast<std::size_t>(width[l])};
         skip[l] = s.get(width[l]);
@@ -2142,13 +2147,15 @@ struct RuntimeGroup9 {
     PackedOffsets packed;                // the offsets as stored and read
     std::vector<std::uint8_t> directory_widths;  // per clip 8: the directory's width per level, or 0: in each window
     std::size_t directory_bits = 0;              // the clip table's flags and widths as stored
+    int stored = 0;                              // the directory's levels (finer left subtrees are skipped by scanning)
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
 
-RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const FixedRows& keys, int S, int shift) {
+RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const FixedRows& keys, int S, int shift, int stored) {
     RuntimeGroup9 g9;
     g9.base = &g;
+    g9.stored = std::min(stored, g.levels - 1);
     g9.quads = build_quads(r, g.W, g.Da, S, shift);
     g9.keys = keys;
     g9.plan = key_plan(keys, r.clip_first.size(), g.Da);
@@ -2162,12 +2169,12 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
         // gives the clip's entries fewer bytes (a clip with per-window widths has width 0 in the table).
         int widths[8] = {0};
         for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k)
-            if (r.entries[k].step >= 0) write_window_by(g.levels, out, r.entries[k], tl, quads, nullptr, widths);
+            if (r.entries[k].step >= 0) write_window_by(g.levels, out, r.entries[k], tl, quads, nullptr, widths, g9.stored);
         auto entry = [&](BitWriter& o, std::size_t k, const int* w) {
             const auto& e = r.entries[k];
             o.put(static_cast<std::uint32_t>(e.key_step), 8);
             write_fixed(o, keys, i, Da, e.key);
-            if (e.step >= 0) write_window_by(g.levels, o, e, tl, quads, w);
+            if (e.step >= 0) write_window_by(g.levels, o, e, tl, quads, w, nullptr, g9.stored);
             o.align();
         };
         std::size_t per_clip = 0, per_window = 0;
@@ -2178,8 +2185,8 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
             per_clip += a.bytes.size();
             per_window += b.bytes.size();
         }
-        const bool clip_widths = 8 * per_clip + 5 * static_cast<std::size_t>(g.levels - 1) < 8 * per_window;
-        g9.directory_bits += 1 + (clip_widths ? 5 * static_cast<std::size_t>(g.levels - 1) : 0);
+        const bool clip_widths = 8 * per_clip + 5 * static_cast<std::size_t>(g9.stored) < 8 * per_window;
+        g9.directory_bits += 1 + (clip_widths ? 5 * static_cast<std::size_t>(g9.stored) : 0);
         for (int l = 0; l < 8; ++l) g9.directory_widths.push_back(static_cast<std::uint8_t>(clip_widths ? widths[l] : 0));
         for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k) {
             out.align();
@@ -2246,6 +2253,29 @@ inline void combine(double* out, const double* lo, const double* hi, const std::
     }
 }
 
+/// The bit after the column of quads at bit pos (its codes and raw bits summed, nothing decoded).
+inline std::size_t skip_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da) {
+    const int B = kMaxCode, shift = qc.shift;
+    const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
+    for (int d = 0; d < Da; d += 4) {
+        const std::uint64_t w = peek3<false>(data, pos);
+        const std::uint32_t e = table[(static_cast<std::size_t>(d >> shift) << B) | static_cast<std::size_t>(w >> (64 - B))];
+        pos += (e & 15) + ((e >> 14) & 1) * 4 * ((e >> 4) & 1023);
+        if (e & (1u << 15)) break;
+    }
+    return pos;
+}
+
+/// The bit after the subtree of columns (tree order) whose root column, at bit pos, is at `level`.
+inline std::size_t skip_subtree(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da) {
+    pos = skip_quads(qc, data, pos, level, Da);
+    if (level < qc.levels) {
+        pos = skip_subtree(qc, data, pos, level + 1, Da);
+        pos = skip_subtree(qc, data, pos, level + 1, Da);
+    }
+    return pos;
+}
+
 /// Variant 9's path from the window's step byte at `bit`: each column's quads into q, then
 /// out = prediction (+ q * step where q is nonzero), the encoder's expressions.
 void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b, double* c,
@@ -2257,7 +2287,7 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
     const double step = detail::step_of(static_cast<int>(in.get(8)));
     std::size_t skip[8] = {0};
     const std::uint8_t* widths = g9.directory_widths.data() + 8 * clip;
-    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip, widths[1] ? widths : nullptr);
+    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip, widths[1] ? widths : nullptr, g9.stored);
     int lo = 0, hi = W;
     double* lo_y = a;
     double* hi_y = b;
@@ -2271,7 +2301,7 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
             hi = mid;
             hi_y = out;
         } else {
-            pos += skip[l];
+            pos = l <= g9.stored ? pos + skip[l] : skip_subtree(g9.quads, data, pos, l + 1, Da);
             lo = mid;
             lo_y = out;
         }
@@ -2380,7 +2410,7 @@ int main(int argc, char** argv) {
     bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
-    std::vector<std::pair<int, int>> quad_configs;  // variant 9: (S, context shift) each (--quads 1:3,2:2)
+    std::vector<std::array<int, 3>> quad_configs;  // variant 9: S, context shift, directory levels (--quads 1:3:3,1:3:2)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -2397,7 +2427,16 @@ int main(int argc, char** argv) {
         else if (k == "--key-escapes") key_escapes = v == "1";
         else if (k == "--float-dofs") g_float_dofs = v == "1";
         else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
-        else if (k == "--quads") { quad_configs.clear(); for (auto& x : split(v)) quad_configs.push_back({std::stoi(x.substr(0, x.find(':'))), std::stoi(x.substr(x.find(':') + 1))}); }
+        else if (k == "--quads") {
+            quad_configs.clear();
+            for (auto& x : split(v)) {
+                std::array<int, 3> c{1, 3, 9};
+                std::stringstream in(x);
+                std::string part;
+                for (int n = 0; n < 3 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
+                quad_configs.push_back(c);
+            }
+        }
     }
     std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
                 "windows,keys,nonzero,seconds\n");
@@ -2802,7 +2841,7 @@ int main(int argc, char** argv) {
                                 offsets9(quad_configs.size(), 0.0), offsets9_3byte(quad_configs.size(), 0.0);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 for (std::size_t g = 0; g < groups.size(); ++g) {
-                                    r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v].first, quad_configs[v].second));
+                                    r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2]));
                                     const RuntimeGroup9& b9 = r9[v].back();
                                     bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
                                                  std::ceil(static_cast<double>(b9.directory_bits) / 8) +
@@ -2962,14 +3001,14 @@ int main(int argc, char** argv) {
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#    v9 quads S=%d, contexts row>>%d (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
+                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v].first, quad_configs[v].second, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
+                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 std::printf("#      v9 S=%d row>>%d: keys paired without the plan: cold %.3f us, y %.3f (hot %.3f); keys alone (plan): y %.3f (hot %.3f)\n",
-                                            quad_configs[v].first, quad_configs[v].second, t9s[v].cold, t9s[v].y, t9s[v].hot, t9k[v].y, t9k[v].hot);
+                                            quad_configs[v][0], quad_configs[v][1], t9s[v].cold, t9s[v].y, t9s[v].hot, t9k[v].y, t9k[v].hot);
                             // y -> local pose alone (each group's last y, over and over), by each path.
                             if (g_float_dofs) {
                                 double stage[3] = {1e300, 1e300, 1e300};
