@@ -2012,7 +2012,7 @@ void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame
 constexpr int kQuadWide = 1000;  // symbol kQuadWide + w: a quad at width w
 
 struct QuadCode {
-    int S = 1, shift = 3, per_level = 0, levels = 0;
+    int S = 1, shift = 3, per_level = 0, levels = 0, bits = 11;  // bits: code lengths at most, lookup width
     std::vector<HuffmanCode> codes;       // (level - 1) * per_level + (row >> shift)
     std::vector<std::uint16_t> table;     // per code 2^kMaxCode entries: bits 0-3 length, 4-13 pattern or
                                           // width, 14 wide, 15 end (0: no code)
@@ -2053,10 +2053,16 @@ struct QuadCode {
     }
 };
 
-QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift) {
+QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift, int bits) {
     QuadCode qc;
     qc.S = S;
     qc.shift = shift;
+    qc.bits = bits;
+    struct Restore {  // HuffmanCode::build limits lengths to kMaxCode: the quads' own limit meanwhile
+        int saved = kMaxCode;
+        ~Restore() { kMaxCode = saved; }
+    } restore;
+    kMaxCode = bits;
     while ((1 << qc.levels) < W) ++qc.levels;
     qc.per_level = ((Da + 3) >> shift) + 1;
     std::vector<int> tl, tf;
@@ -2066,11 +2072,11 @@ QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift) {
         for (std::size_t i = 0; i < e.columns.size(); ++i)
             qc.each_symbol(tl[i], e.columns[i], [&](std::size_t c, int s, int, int) { ++hist[c][s]; });
     const int patterns = (2 * S + 1) * (2 * S + 1) * (2 * S + 1) * (2 * S + 1);
-    if (patterns > 1024 || kMaxCode > 15) throw std::runtime_error("quads: S or the code length too large for the 16-bit table");
+    if (patterns > 1024 || bits > 15) throw std::runtime_error("quads: S or the code length too large for the 16-bit table");
     // The codes as stored: per code the smaller of a length per symbol of the alphabet (4 bits each)
     // and a list of the used symbols (symbol index and length), and 8 bits.
     const double alphabet = patterns + 32 + 1;
-    const std::size_t n = std::size_t{1} << kMaxCode;
+    const std::size_t n = std::size_t{1} << bits;
     qc.codes.resize(hist.size());
     qc.table.assign(hist.size() * n, 0);
     for (std::size_t c = 0; c < hist.size(); ++c) {
@@ -2152,11 +2158,11 @@ struct RuntimeGroup9 {
     std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
 
-RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const FixedRows& keys, int S, int shift, int stored) {
+RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const FixedRows& keys, int S, int shift, int stored, int bits) {
     RuntimeGroup9 g9;
     g9.base = &g;
     g9.stored = std::min(stored, g.levels - 1);
-    g9.quads = build_quads(r, g.W, g.Da, S, shift);
+    g9.quads = build_quads(r, g.W, g.Da, S, shift, bits);
     g9.keys = keys;
     g9.plan = key_plan(keys, r.clip_first.size(), g.Da);
     const auto Da = static_cast<std::size_t>(g.Da);
@@ -2205,7 +2211,7 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
 /// One column of quads at bit pos into q (rows past the last decoded quad zero, up to Da rounded up to
 /// 4); returns the bit after the column.
 inline std::size_t read_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
-    const int B = kMaxCode, shift = qc.shift;
+    const int B = qc.bits, shift = qc.shift;
     const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
     const std::int32_t* patterns = qc.patterns.data();
     int d = 0;
@@ -2255,7 +2261,7 @@ inline void combine(double* out, const double* lo, const double* hi, const std::
 
 /// The bit after the column of quads at bit pos (its codes and raw bits summed, nothing decoded).
 inline std::size_t skip_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da) {
-    const int B = kMaxCode, shift = qc.shift;
+    const int B = qc.bits, shift = qc.shift;
     const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
     for (int d = 0; d < Da; d += 4) {
         const std::uint64_t w = peek3<false>(data, pos);
@@ -2410,7 +2416,7 @@ int main(int argc, char** argv) {
     bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
-    std::vector<std::array<int, 3>> quad_configs;  // variant 9: S, context shift, directory levels (--quads 1:3:3,1:3:2)
+    std::vector<std::array<int, 4>> quad_configs;  // variant 9: S, context shift, directory levels, code bits (--quads 1:3:2:11,1:3:2:10)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -2430,10 +2436,10 @@ int main(int argc, char** argv) {
         else if (k == "--quads") {
             quad_configs.clear();
             for (auto& x : split(v)) {
-                std::array<int, 3> c{1, 3, 9};
+                std::array<int, 4> c{1, 3, 9, 11};
                 std::stringstream in(x);
                 std::string part;
-                for (int n = 0; n < 3 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
+                for (int n = 0; n < 4 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
                 quad_configs.push_back(c);
             }
         }
@@ -2841,7 +2847,7 @@ int main(int argc, char** argv) {
                                 offsets9(quad_configs.size(), 0.0), offsets9_3byte(quad_configs.size(), 0.0);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 for (std::size_t g = 0; g < groups.size(); ++g) {
-                                    r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2]));
+                                    r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2], quad_configs[v][3]));
                                     const RuntimeGroup9& b9 = r9[v].back();
                                     bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
                                                  std::ceil(static_cast<double>(b9.directory_bits) / 8) +
@@ -3001,9 +3007,9 @@ int main(int argc, char** argv) {
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
+                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
+                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
