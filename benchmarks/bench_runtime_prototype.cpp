@@ -2154,6 +2154,7 @@ struct RuntimeGroup9 {
     std::vector<std::uint8_t> directory_widths;  // per clip 8: the directory's width per level, or 0: in each window
     std::size_t directory_bits = 0;              // the clip table's flags and widths as stored
     int stored = 0;                              // the directory's levels (finer left subtrees are skipped by scanning)
+    bool buffered = false;                       // read_quads_buffered (the same values)
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
@@ -2259,6 +2260,43 @@ inline void combine(double* out, const double* lo, const double* hi, const std::
     }
 }
 
+/// read_quads with the bits in a register (FastBits: a branch-free refill whose load does not wait for
+/// the symbol being decoded), so that a quad's lookup waits only for the previous one's length.
+inline std::size_t read_quads_buffered(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
+    const int B = qc.bits, shift = qc.shift;
+    const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
+    const std::int32_t* patterns = qc.patterns.data();
+    FastBits bits(data, pos);
+    int d = 0;
+    while (d < Da) {
+        bits.refill();
+        const std::uint32_t e = table[(static_cast<std::size_t>(d >> shift) << B) | static_cast<std::size_t>(bits.buf >> (64 - B))];
+        bits.drop(static_cast<int>(e & 15));
+        if (__builtin_expect((e & 0xC000u) == 0, 1)) {
+            std::memcpy(q + d, patterns + 4 * ((e >> 4) & 1023), 4 * sizeof(std::int32_t));
+            d += 4;
+            continue;
+        }
+        if (e & (1u << 15)) break;
+        const int wd = static_cast<int>((e >> 4) & 1023);
+        if (wd <= 14) {
+            bits.refill();
+            const std::uint64_t x = bits.buf;
+            for (int k = 0; k < 4; ++k) q[d + k] = static_cast<std::int32_t>(static_cast<std::int64_t>(x << (k * wd)) >> (64 - wd));
+            bits.drop(4 * wd);
+        } else {
+            for (int k = 0; k < 4; ++k) {
+                bits.refill();
+                q[d + k] = static_cast<std::int32_t>(static_cast<std::int64_t>(bits.buf) >> (64 - wd));
+                bits.drop(wd);
+            }
+        }
+        d += 4;
+    }
+    for (; d < Da; ++d) q[d] = 0;
+    return bits.consumed;
+}
+
 /// The bit after the column of quads at bit pos (its codes and raw bits summed, nothing decoded).
 inline std::size_t skip_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da) {
     const int B = qc.bits, shift = qc.shift;
@@ -2300,7 +2338,7 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
     for (int l = 1;; ++l) {
         const int mid = (lo + hi) / 2;
         double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
-        pos = read_quads(g9.quads, data, pos, l, Da, q);
+        pos = g9.buffered ? read_quads_buffered(g9.quads, data, pos, l, Da, q) : read_quads(g9.quads, data, pos, l, Da, q);
         combine(out, lo_y, hi_y, q, step, Da);
         if (mid == t) return;
         if (t < mid) {
@@ -2416,7 +2454,7 @@ int main(int argc, char** argv) {
     bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
-    std::vector<std::array<int, 4>> quad_configs;  // variant 9: S, context shift, directory levels, code bits (--quads 1:3:2:11,1:3:2:10)
+    std::vector<std::array<int, 5>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, buffered reader (--quads 1:3:2:11:1)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -2436,10 +2474,10 @@ int main(int argc, char** argv) {
         else if (k == "--quads") {
             quad_configs.clear();
             for (auto& x : split(v)) {
-                std::array<int, 4> c{1, 3, 9, 11};
+                std::array<int, 5> c{1, 3, 9, 11, 0};
                 std::stringstream in(x);
                 std::string part;
-                for (int n = 0; n < 4 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
+                for (int n = 0; n < 5 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
                 quad_configs.push_back(c);
             }
         }
@@ -2848,6 +2886,7 @@ int main(int argc, char** argv) {
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 for (std::size_t g = 0; g < groups.size(); ++g) {
                                     r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2], quad_configs[v][3]));
+                                    r9[v].back().buffered = quad_configs[v][4] != 0;
                                     const RuntimeGroup9& b9 = r9[v].back();
                                     bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
                                                  std::ceil(static_cast<double>(b9.directory_bits) / 8) +
@@ -3007,9 +3046,9 @@ int main(int argc, char** argv) {
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
+                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits, %s reader (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
+                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].buffered ? "buffered" : "peek", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
