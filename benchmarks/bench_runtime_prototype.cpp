@@ -3099,7 +3099,9 @@ int main(int argc, char** argv) {
                                             "%zu groups; group 0: %d active dofs, lane groups %d / %d / %d of joints with 2 / 1 / 3 channels)\n",
                                             stage[0], stage[1], avx2 ? stage[2] : 0.0, part[0], part[1], groups.size(), k0.da, k0.groups[0], k0.groups[1], k0.groups[2]);
                                 // Sequential playback: every frame of every clip in order, each decoded as a cold pose
-                                // (variant 7 with escapes, the fastest pose path; nothing kept between frames).
+                                // (variant 7 with escapes and variant 9's first --quads config, the fastest pose path;
+                                // nothing kept between frames).
+                                for (int variant = 0; variant < (r9.empty() ? 1 : 2); ++variant) {
                                 double sequential = 1e300;
                                 std::size_t frames = 0;
                                 for (int rep = 0; rep < reps; ++rep) {
@@ -3111,17 +3113,19 @@ int main(int argc, char** argv) {
                                         double* base = scratch[g].data();
                                         for (std::size_t i = 0; i < members[g].size(); ++i)
                                             for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f, ++frames) {
-                                                runtime_frame7(r7[0][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                                if (variant) runtime_frame9(r9[0][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                                else runtime_frame7(r7[0][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                                 local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * Da, out,
                                                                 avx2 ? PosePath::avx2 : PosePath::portable, plans[g]);
                                             }
                                     }
                                     sequential = std::min(sequential, bench::thread_cpu_seconds() - c0);
                                 }
-                                std::printf("#    sequential playback (every frame in order, each a cold pose, v7 with escapes, %s kernels): %.3f us a pose, "
+                                std::printf("#    sequential playback (every frame in order, each a cold pose, %s, %s kernels): %.3f us a pose, "
                                             "%.2f M poses/s\n",
-                                            avx2 ? "AVX2" : "portable", sequential / static_cast<double>(frames) * 1e6,
+                                            variant ? "v9" : "v7 with escapes", avx2 ? "AVX2" : "portable", sequential / static_cast<double>(frames) * 1e6,
                                             static_cast<double>(frames) / sequential * 1e-6);
+                                }
                             }
                         }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
