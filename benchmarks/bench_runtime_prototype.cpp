@@ -2155,6 +2155,7 @@ struct RuntimeGroup9 {
     std::size_t directory_bits = 0;              // the clip table's flags and widths as stored
     int stored = 0;                              // the directory's levels (finer left subtrees are skipped by scanning)
     bool buffered = false;                       // read_quads_buffered (the same values)
+    bool prefetch_clip = false;                  // prefetch the clip's key plan first
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
@@ -2358,6 +2359,15 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
 void runtime_frame9(const RuntimeGroup9& g9, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c, int keys = 2,
                     bool keys_only = false) {
     const std::uint8_t* data = g9.bytes.data();
+    if (g9.prefetch_clip) {
+        // The clip's key plan, centers and escape widths: known before the entry's offset is.
+        const auto n = static_cast<std::size_t>(g9.base->Da);
+        const auto* rows = reinterpret_cast<const char*>(g9.plan.rows.data() + clip * n);
+        for (std::size_t x = 0; x < n * sizeof(KeyPlan::Row); x += 64) __builtin_prefetch(rows + x);
+        const auto* center = reinterpret_cast<const char*>(g9.keys.center.data() + clip * n);
+        for (std::size_t x = 0; x < n * sizeof(std::int32_t); x += 64) __builtin_prefetch(center + x);
+        __builtin_prefetch(g9.keys.full.data() + clip * n);
+    }
     auto offsets = [&](std::size_t i, std::size_t w, std::size_t& o0, std::size_t& o1) { g9.packed.pair(i, w, o0, o1); };
     frame_with_fixed_keys(*g9.base, g9.keys, offsets, data, clip, frame, y, a, b,
                           [&](std::size_t key_end, int t) {
@@ -2454,7 +2464,7 @@ int main(int argc, char** argv) {
     bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
-    std::vector<std::array<int, 5>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, buffered reader (--quads 1:3:2:11:1)
+    std::vector<std::array<int, 6>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, buffered reader, prefetch of the clip's key plan (--quads 1:3:2:11:1:1)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -2474,10 +2484,10 @@ int main(int argc, char** argv) {
         else if (k == "--quads") {
             quad_configs.clear();
             for (auto& x : split(v)) {
-                std::array<int, 5> c{1, 3, 9, 11, 0};
+                std::array<int, 6> c{1, 3, 9, 11, 0, 0};
                 std::stringstream in(x);
                 std::string part;
-                for (int n = 0; n < 5 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
+                for (int n = 0; n < 6 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
                 quad_configs.push_back(c);
             }
         }
@@ -2887,6 +2897,7 @@ int main(int argc, char** argv) {
                                 for (std::size_t g = 0; g < groups.size(); ++g) {
                                     r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2], quad_configs[v][3]));
                                     r9[v].back().buffered = quad_configs[v][4] != 0;
+                                    r9[v].back().prefetch_clip = quad_configs[v][5] != 0;
                                     const RuntimeGroup9& b9 = r9[v].back();
                                     bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
                                                  std::ceil(static_cast<double>(b9.directory_bits) / 8) +
@@ -3046,9 +3057,9 @@ int main(int argc, char** argv) {
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits, %s reader (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
+                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits, %s reader%s (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].buffered ? "buffered" : "peek", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
+                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].buffered ? "buffered" : "peek", r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
