@@ -30,8 +30,15 @@
 //              written after the key's slots): no symbol chain for keys
 //   variant 8  variant 7 with each window's level-1 column at fixed widths too (per clip and row, with
 //              escapes, center 0), between the window's step byte and its directory
-// Variants 4, 7 and 8 are checked equal to variant 1 on every frame (so within E) and timed against it
-// in the same repeats. --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
+//   variant 9  variant 7's keys (decoded two at once by a per-clip plan); each detail column by QUADS
+//              (--quads S:shift:levels:bits:buffered:prefetch): four rows per symbol, a pattern when
+//              all four are within [-S, S], else a width and the four values raw; codes per (level,
+//              row >> shift) of at most `bits` bits, one lookup a quad; the directory holds `levels`
+//              levels (a finer left subtree is skipped by scanning its codes), its widths per clip
+//              where smaller; entry offsets per clip at the clip's width (counted and read so)
+// Variants 4, 7, 8 and 9 are checked equal to variant 1 on every frame (so within E) and timed against
+// it in the same repeats. RT_STATS=1 in the environment: per level value histograms and estimates of
+// codes by groups of rows (scheme_bits). --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
 // encoder's bound check, the check of every frame and the timings (closed loop); variants 7 and 8 are
 // also timed with y -> local pose by runtime_pose.hpp's kernels (portable and, where the CPU has it,
 // AVX2), whose dofs and local poses are checked equal, bit for bit, to the library path's on every
@@ -47,7 +54,7 @@
 //   bench_runtime_prototype [--folders cmu-walkrun-pfnn,cmu-asfamc] [--errors 1,0.1] [--windows 16,32]
 //                           [--key-offsets 0,12] [--rounding 0.4] [--code-bits 11] [--poses N] [--limit N]
 //                           [--lookups 11,9,8] [--reps 3] [--float-dofs 0|1] [--key-centers 0|1] [--key-escapes 0|1]
-//                           [--dof learned|identity]
+//                           [--dof learned|identity] [--quads 1:3:2:11:1:1,...]
 #include <Eigen/LU>
 #ifdef __SSE2__
 #include <emmintrin.h>
