@@ -54,7 +54,7 @@
 //   bench_runtime_prototype [--folders cmu-walkrun-pfnn,cmu-asfamc] [--errors 1,0.1] [--windows 16,32]
 //                           [--key-offsets 0,12] [--rounding 0.4] [--code-bits 11] [--poses N] [--limit N]
 //                           [--lookups 11,9,8] [--reps 3] [--float-dofs 0|1] [--key-centers 0|1] [--key-escapes 0|1]
-//                           [--dof learned|identity] [--quads 1:3:2:11:1:1,...]
+//                           [--dof learned|identity] [--quads 1:3:2:11:1:1,...] [--combos 16:12,8:4]
 #include <Eigen/LU>
 #ifdef __SSE2__
 #include <emmintrin.h>
@@ -2471,6 +2471,7 @@ int main(int argc, char** argv) {
     bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
+    std::vector<std::pair<int, int>> combos;  // --combos 16:12,8:4: (W, key offset) pairs instead of every W with every offset
     std::vector<std::array<int, 6>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, buffered reader, prefetch of the clip's key plan (--quads 1:3:2:11:1:1)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
@@ -2488,6 +2489,9 @@ int main(int argc, char** argv) {
         else if (k == "--key-escapes") key_escapes = v == "1";
         else if (k == "--float-dofs") g_float_dofs = v == "1";
         else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
+        else if (k == "--combos") {
+            for (auto& x : split(v)) combos.push_back({std::stoi(x.substr(0, x.find(':'))), std::stoi(x.substr(x.find(':') + 1))});
+        }
         else if (k == "--quads") {
             quad_configs.clear();
             for (auto& x : split(v)) {
@@ -2527,8 +2531,13 @@ int main(int argc, char** argv) {
                 models[g].read_header(pg.bytes.data(), pg.bytes.size());
                 f2_static += format2_static_bits(models[g], members[g]);
             }
-            for (int W : windows)
-                for (int ko : key_offsets) {
+            std::vector<std::pair<int, int>> runs = combos;  // (W, key offset)
+            if (runs.empty())
+                for (int W : windows)
+                    for (int ko : key_offsets) runs.push_back({W, ko});
+            for (const auto& run : runs) {
+                {
+                    const int W = run.first, ko = run.second;
                     const auto t0 = bench::Clock::now();
                     HierResult total;
                     double static_bits = 0.0, fixed_bits = 0.0;
@@ -3158,6 +3167,7 @@ int main(int argc, char** argv) {
                     std::printf("\n");
                     std::fflush(stdout);
                 }
+            }
         }
     }
     return 0;
