@@ -31,11 +31,12 @@
 //   variant 8  variant 7 with each window's level-1 column at fixed widths too (per clip and row, with
 //              escapes, center 0), between the window's step byte and its directory
 //   variant 9  variant 7's keys (decoded two at once by a per-clip plan); each detail column by QUADS
-//              (--quads S:shift:levels:bits:buffered:prefetch): four rows per symbol, a pattern when
+//              (--quads S:shift:levels:bits:buffered:prefetch:avx2): four rows per symbol, a pattern when
 //              all four are within [-S, S], else a width and the four values raw; codes per (level,
 //              row >> shift) of at most `bits` bits, one lookup a quad; the directory holds `levels`
 //              levels (a finer left subtree is skipped by scanning its codes), its widths per clip
-//              where smaller; entry offsets per clip at the clip's width (counted and read so)
+//              where smaller; entry offsets per clip at the clip's width (counted and read so);
+//              `prefetch`: the clip's key plan first; then --quads' 7th field: the combine with AVX2
 // Variants 4, 7, 8 and 9 are checked equal to variant 1 on every frame (so within E) and timed against
 // it in the same repeats. RT_STATS=1 in the environment: per level value histograms and estimates of
 // codes by groups of rows (scheme_bits). --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
@@ -1808,6 +1809,18 @@ inline std::int64_t signed_bits(const std::uint8_t* data, std::size_t p, int w) 
     return w ? q : 0;
 }
 
+/// A key's escaped values from bit `escape` on (rows escaped[0..n), in row order, each at its width
+/// full[d]): out[d] = (value + center[d]) * step. Returns the bit after them.
+inline std::size_t read_escapes(const std::uint8_t* data, std::size_t escape, const int* escaped, int n, const std::uint8_t* full,
+                                const std::int32_t* center, double step, double* out) {
+    for (int k = 0; k < n; ++k) {
+        const int d = escaped[k], f = full[d];
+        out[d] = static_cast<double>(signed_bits(data, escape, f) + center[d]) * step;
+        escape += static_cast<std::size_t>(f);
+    }
+    return escape;
+}
+
 /// A fixed-width key at bit `bit`: out[d] = q * step (+0.0 where q is 0, as the encoder formed it).
 /// Returns the bit after the key (its slots, then its escaped values). The rows whose slot holds the
 /// escape code (-2^(w-1) in a row that has escapes) are listed in the slots' pass without branches,
@@ -1824,13 +1837,7 @@ inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const st
         escaped[n] = d;
         n += static_cast<int>((full[d] > w) & (q == code));
     }
-    std::size_t escape = bit + at[Da];
-    for (int k = 0; k < n; ++k) {
-        const int d = escaped[k], f = full[d];
-        out[d] = static_cast<double>(signed_bits(data, escape, f) + center[d]) * step;
-        escape += static_cast<std::size_t>(f);
-    }
-    return escape;
+    return read_escapes(data, bit + at[Da], escaped, n, full, center, step, out);
 }
 
 /// Two keys of clip i (the same widths) at bits bit_a and bit_b into a and b in one pass: fixed_key's
@@ -1857,17 +1864,8 @@ inline std::size_t read_fixed_pair(const FixedRows& f, const std::uint8_t* data,
         nb += static_cast<int>(escapes & (qb == code));
     }
     std::size_t escape_a = bit_a + at[Da], escape_b = bit_b + at[Da];
-    for (int k = 0; k < na; ++k) {
-        const int d = escaped_a[k], fw = full[d];
-        a[d] = static_cast<double>(signed_bits(data, escape_a, fw) + center[d]) * step_a;
-        escape_a += static_cast<std::size_t>(fw);
-    }
-    for (int k = 0; k < nb; ++k) {
-        const int d = escaped_b[k], fw = full[d];
-        b[d] = static_cast<double>(signed_bits(data, escape_b, fw) + center[d]) * step_b;
-        escape_b += static_cast<std::size_t>(fw);
-    }
-    return escape_a;
+    read_escapes(data, escape_b, escaped_b, nb, full, center, step_b, b);
+    return read_escapes(data, escape_a, escaped_a, na, full, center, step_a, a);
 }
 
 /// FixedRows' keys as a per-clip plan for a decoder whose keys start at a byte (variant 9): the rows
@@ -1937,17 +1935,8 @@ inline std::size_t read_plan_pair(const KeyPlan& plan, const FixedRows& f, const
     const std::uint8_t* full = f.full.data() + i * n;
     const std::size_t slots = f.at[i * (n + 1) + n];
     std::size_t escape_a = at_a * 8 + slots, escape_b = at_b * 8 + slots;
-    for (int k = 0; k < na; ++k) {
-        const int d = escaped_a[k], fw = full[d];
-        a[d] = static_cast<double>(signed_bits(data, escape_a, fw) + center[d]) * step_a;
-        escape_a += static_cast<std::size_t>(fw);
-    }
-    for (int k = 0; k < nb; ++k) {
-        const int d = escaped_b[k], fw = full[d];
-        b[d] = static_cast<double>(signed_bits(data, escape_b, fw) + center[d]) * step_b;
-        escape_b += static_cast<std::size_t>(fw);
-    }
-    return escape_a;
+    read_escapes(data, escape_b, escaped_b, nb, full, center, step_b, b);
+    return read_escapes(data, escape_a, escaped_a, na, full, center, step_a, a);
 }
 
 /// Clip i's values of f at bit `bit` into out (out[d] = value * step); returns the bit after them.
@@ -2163,6 +2152,7 @@ struct RuntimeGroup9 {
     int stored = 0;                              // the directory's levels (finer left subtrees are skipped by scanning)
     bool buffered = false;                       // read_quads_buffered (the same values)
     bool prefetch_clip = false;                  // prefetch the clip's key plan first
+    bool avx2_combine = false;                   // combine_avx2 (where the CPU has it; the same bits)
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
     std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
 };
@@ -2328,6 +2318,39 @@ inline std::size_t skip_subtree(const QuadCode& qc, const std::uint8_t* data, st
     return pos;
 }
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+/// combine with AVX2 (four rows at a time; the same operations per row, no FMA: the same bits), for
+/// CPUs that have it (variant 9's `avx2_combine`).
+__attribute__((target("avx2"))) void combine_avx2(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) {
+    typedef double V4d __attribute__((vector_size(32)));
+    typedef std::int32_t V4i __attribute__((vector_size(16)));
+    typedef std::int64_t V4l __attribute__((vector_size(32)));
+    const V4d half = {0.5, 0.5, 0.5, 0.5}, s = {step, step, step, step}, zero = {0.0, 0.0, 0.0, 0.0};
+    int d = 0;
+    for (; d + 4 <= Da; d += 4) {
+        V4d l, h;
+        V4i qi;
+        std::memcpy(&l, lo + d, sizeof l);
+        std::memcpy(&h, hi + d, sizeof h);
+        std::memcpy(&qi, q + d, sizeof qi);
+        const V4d p = half * (l + h);
+        const V4d v = __builtin_convertvector(qi, V4d);
+        const V4l nonzero = v != zero;
+        const V4d sum = p + v * s;
+        const V4d r = nonzero ? sum : p;
+        std::memcpy(out + d, &r, sizeof r);
+    }
+    for (; d < Da; ++d) {
+        const double p = 0.5 * (lo[d] + hi[d]);
+        out[d] = q[d] ? p + q[d] * step : p;
+    }
+}
+bool cpu_has_avx2() { return __builtin_cpu_supports("avx2"); }
+#else
+void combine_avx2(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) { combine(out, lo, hi, q, step, Da); }
+bool cpu_has_avx2() { return false; }
+#endif
+
 /// Variant 9's path from the window's step byte at `bit`: each column's quads into q, then
 /// out = prediction (+ q * step where q is nonzero), the encoder's expressions.
 void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b, double* c,
@@ -2347,7 +2370,8 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
         const int mid = (lo + hi) / 2;
         double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
         pos = g9.buffered ? read_quads_buffered(g9.quads, data, pos, l, Da, q) : read_quads(g9.quads, data, pos, l, Da, q);
-        combine(out, lo_y, hi_y, q, step, Da);
+        if (g9.avx2_combine) combine_avx2(out, lo_y, hi_y, q, step, Da);
+        else combine(out, lo_y, hi_y, q, step, Da);
         if (mid == t) return;
         if (t < mid) {
             hi = mid;
@@ -2472,7 +2496,7 @@ int main(int argc, char** argv) {
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
     std::vector<std::pair<int, int>> combos;  // --combos 16:12,8:4: (W, key offset) pairs instead of every W with every offset
-    std::vector<std::array<int, 6>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, buffered reader, prefetch of the clip's key plan (--quads 1:3:2:11:1:1)
+    std::vector<std::array<int, 7>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, buffered reader, prefetch of the clip's key plan, AVX2 combine (--quads 1:3:2:11:1:1:1)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -2495,10 +2519,10 @@ int main(int argc, char** argv) {
         else if (k == "--quads") {
             quad_configs.clear();
             for (auto& x : split(v)) {
-                std::array<int, 6> c{1, 3, 9, 11, 0, 0};
+                std::array<int, 7> c{1, 3, 9, 11, 0, 0, 0};
                 std::stringstream in(x);
                 std::string part;
-                for (int n = 0; n < 6 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
+                for (int n = 0; n < 7 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
                 quad_configs.push_back(c);
             }
         }
@@ -2914,6 +2938,7 @@ int main(int argc, char** argv) {
                                     r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2], quad_configs[v][3]));
                                     r9[v].back().buffered = quad_configs[v][4] != 0;
                                     r9[v].back().prefetch_clip = quad_configs[v][5] != 0;
+                                    r9[v].back().avx2_combine = quad_configs[v][6] != 0 && cpu_has_avx2();
                                     const RuntimeGroup9& b9 = r9[v].back();
                                     bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
                                                  std::ceil(static_cast<double>(b9.directory_bits) / 8) +
@@ -3073,9 +3098,9 @@ int main(int argc, char** argv) {
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits, %s reader%s (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
+                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits, %s reader%s%s (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].buffered ? "buffered" : "peek", r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
+                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].buffered ? "buffered" : "peek", r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].avx2_combine ? ", AVX2 combine" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
