@@ -31,7 +31,7 @@
 //   variant 8  variant 7 with each window's level-1 column at fixed widths too (per clip and row, with
 //              escapes, center 0), between the window's step byte and its directory
 //   variant 9  variant 7's keys (decoded two at once by a per-clip plan); each detail column by QUADS
-//              (--quads S:shift:levels:bits:buffered:prefetch:avx2): four rows per symbol, a pattern when
+//              (--quads S:shift:levels:bits:1:prefetch:avx2; the 5th field is unused): four rows per symbol, a pattern when
 //              all four are within [-S, S], else a width and the four values raw; codes per (level,
 //              row >> shift) of at most `bits` bits, one lookup a quad; the directory holds `levels`
 //              levels (a finer left subtree is skipped by scanning its codes), its widths per clip
@@ -2150,7 +2150,6 @@ struct RuntimeGroup9 {
     std::vector<std::uint8_t> directory_widths;  // per clip 8: the directory's width per level, or 0: in each window
     std::size_t directory_bits = 0;              // the clip table's flags and widths as stored
     int stored = 0;                              // the directory's levels (finer left subtrees are skipped by scanning)
-    bool buffered = false;                       // read_quads_buffered (the same values)
     bool prefetch_clip = false;                  // prefetch the clip's key plan first
     bool avx2_combine = false;                   // combine_avx2 (where the CPU has it; the same bits)
     std::vector<std::uint32_t> offsets;  // per entry, then one past the last
@@ -2207,37 +2206,6 @@ RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const F
     return g9;
 }
 
-/// One column of quads at bit pos into q (rows past the last decoded quad zero, up to Da rounded up to
-/// 4); returns the bit after the column.
-inline std::size_t read_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
-    const int B = qc.bits, shift = qc.shift;
-    const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
-    const std::int32_t* patterns = qc.patterns.data();
-    int d = 0;
-    while (d < Da) {
-        const std::uint64_t w = peek3<false>(data, pos);
-        const std::uint32_t e = table[(static_cast<std::size_t>(d >> shift) << B) | static_cast<std::size_t>(w >> (64 - B))];
-        pos += e & 15;
-        if (__builtin_expect((e & 0xC000u) == 0, 1)) {
-            std::memcpy(q + d, patterns + 4 * ((e >> 4) & 1023), 4 * sizeof(std::int32_t));
-            d += 4;
-            continue;
-        }
-        if (e & (1u << 15)) break;
-        const int wd = static_cast<int>((e >> 4) & 1023);
-        if (wd <= 14) {
-            const std::uint64_t x = peek3<false>(data, pos);
-            for (int k = 0; k < 4; ++k) q[d + k] = static_cast<std::int32_t>(static_cast<std::int64_t>(x << (k * wd)) >> (64 - wd));
-            pos += static_cast<std::size_t>(4 * wd);
-        } else {
-            for (int k = 0; k < 4; ++k, pos += static_cast<std::size_t>(wd)) q[d + k] = static_cast<std::int32_t>(signed_bits(data, pos, wd));
-        }
-        d += 4;
-    }
-    for (; d < Da; ++d) q[d] = 0;
-    return pos;
-}
-
 /// out[d] = p + q[d] * step where q[d] is nonzero, else p, with p = 0.5 * (lo[d] + hi[d]): the
 /// encoder's expressions (SSE2 two rows at a time: the same operations, a select instead of a branch).
 inline void combine(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) {
@@ -2258,9 +2226,11 @@ inline void combine(double* out, const double* lo, const double* hi, const std::
     }
 }
 
-/// read_quads with the bits in a register (FastBits: a branch-free refill whose load does not wait for
-/// the symbol being decoded), so that a quad's lookup waits only for the previous one's length.
-inline std::size_t read_quads_buffered(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
+/// One column of quads at bit pos into q (rows past the last decoded quad zero, up to Da rounded up to
+/// 4); returns the bit after the column. The bits are held in a register (FastBits: a branch-free
+/// refill whose load does not wait for the symbol being decoded), so that a quad's lookup waits only
+/// for the previous one's length (reading 8 bytes at each quad's bit instead: hot poses 9 % slower).
+inline std::size_t read_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
     const int B = qc.bits, shift = qc.shift;
     const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
     const std::int32_t* patterns = qc.patterns.data();
@@ -2369,7 +2339,7 @@ void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t
     for (int l = 1;; ++l) {
         const int mid = (lo + hi) / 2;
         double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
-        pos = g9.buffered ? read_quads_buffered(g9.quads, data, pos, l, Da, q) : read_quads(g9.quads, data, pos, l, Da, q);
+        pos = read_quads(g9.quads, data, pos, l, Da, q);
         if (g9.avx2_combine) combine_avx2(out, lo_y, hi_y, q, step, Da);
         else combine(out, lo_y, hi_y, q, step, Da);
         if (mid == t) return;
@@ -2496,7 +2466,7 @@ int main(int argc, char** argv) {
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
     std::vector<std::pair<int, int>> combos;  // --combos 16:12,8:4: (W, key offset) pairs instead of every W with every offset
-    std::vector<std::array<int, 7>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, buffered reader, prefetch of the clip's key plan, AVX2 combine (--quads 1:3:2:11:1:1:1)
+    std::vector<std::array<int, 7>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, (unused), prefetch of the clip's key plan, AVX2 combine (--quads 1:3:2:11:1:1:1)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -2936,7 +2906,6 @@ int main(int argc, char** argv) {
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 for (std::size_t g = 0; g < groups.size(); ++g) {
                                     r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2], quad_configs[v][3]));
-                                    r9[v].back().buffered = quad_configs[v][4] != 0;
                                     r9[v].back().prefetch_clip = quad_configs[v][5] != 0;
                                     r9[v].back().avx2_combine = quad_configs[v][6] != 0 && cpu_has_avx2();
                                     const RuntimeGroup9& b9 = r9[v].back();
@@ -3098,9 +3067,9 @@ int main(int argc, char** argv) {
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
-                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits, %s reader%s%s (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
+                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits%s%s (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
                                             "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
-                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].buffered ? "buffered" : "peek", r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].avx2_combine ? ", AVX2 combine" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
+                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].avx2_combine ? ", AVX2 combine" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
