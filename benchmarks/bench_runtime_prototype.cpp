@@ -1869,33 +1869,37 @@ inline std::size_t read_fixed_pair(const FixedRows& f, const std::uint8_t* data,
 }
 
 /// FixedRows' keys as a per-clip plan for a decoder whose keys start at a byte (variant 9): the rows
-/// with a nonzero width first (ascending), each its slot's byte and shifts (value = (bswap(8 bytes at
-/// byte) << shl) >> sar, arithmetic), whether it has escapes; then the rows of width 0 (value 0).
+/// with a nonzero width and no escapes first, then those with escapes (each ascending), each its slot's
+/// byte and shifts (value = (bswap(8 bytes at byte) << shl) >> sar, arithmetic); then the rows of
+/// width 0 (value 0).
 struct KeyPlan {
     struct Row {
         std::uint16_t byte;
         std::uint8_t d, shl, sar, escapes;
     };
-    std::vector<Row> rows;               // per clip Da rows
+    std::vector<Row> rows;               // per clip Da rows: nonzero width without escapes, with escapes, width 0
+    std::vector<std::uint16_t> plain;    // per clip, its rows of nonzero width without escapes
     std::vector<std::uint16_t> nonzero;  // per clip, its rows of nonzero width
-    std::size_t bytes() const { return rows.size() * sizeof(Row) + nonzero.size() * sizeof(std::uint16_t); }
+    std::size_t bytes() const { return rows.size() * sizeof(Row) + 2 * nonzero.size() * sizeof(std::uint16_t); }
 };
 
 KeyPlan key_plan(const FixedRows& f, std::size_t clips, int Da) {
     KeyPlan plan;
     const auto n = static_cast<std::size_t>(Da);
     for (std::size_t i = 0; i < clips; ++i) {
-        std::uint16_t nonzero = 0;
-        for (int pass = 0; pass < 2; ++pass)
+        std::uint16_t count[3] = {0, 0, 0};
+        for (int pass = 0; pass < 3; ++pass)
             for (std::size_t d = 0; d < n; ++d) {
                 const int w = f.width[i * n + d];
-                if ((w > 0) != (pass == 0)) continue;
+                const bool escapes = f.full[i * n + d] > w;
+                if ((w == 0 ? 2 : escapes ? 1 : 0) != pass) continue;
                 const std::uint16_t at = f.at[i * (n + 1) + d];
                 plan.rows.push_back({static_cast<std::uint16_t>(at >> 3), static_cast<std::uint8_t>(d), static_cast<std::uint8_t>(at & 7),
-                                     static_cast<std::uint8_t>(64 - w), static_cast<std::uint8_t>(f.full[i * n + d] > w)});
-                nonzero = static_cast<std::uint16_t>(nonzero + (pass == 0));
+                                     static_cast<std::uint8_t>(64 - w), static_cast<std::uint8_t>(escapes)});
+                ++count[pass];
             }
-        plan.nonzero.push_back(nonzero);
+        plan.plain.push_back(count[0]);
+        plan.nonzero.push_back(static_cast<std::uint16_t>(count[0] + count[1]));
     }
     return plan;
 }
@@ -1906,13 +1910,25 @@ inline std::size_t read_plan_pair(const KeyPlan& plan, const FixedRows& f, const
                                   std::size_t i, int Da, double step_a, double step_b, double* a, double* b) {
     const auto n = static_cast<std::size_t>(Da);
     const KeyPlan::Row* rows = plan.rows.data() + i * n;
-    const int nonzero = plan.nonzero[i];
+    const int plain = plan.plain[i], nonzero = plan.nonzero[i];
     const std::int32_t* center = f.center.data() + i * n;
     const std::uint8_t* pa = data + at_a;
     const std::uint8_t* pb = data + at_b;
+    for (int k = 0; k < plain; ++k) {
+        const KeyPlan::Row r = rows[k];
+        std::uint64_t va, vb;
+        std::memcpy(&va, pa + r.byte, 8);
+        std::memcpy(&vb, pb + r.byte, 8);
+        const std::int64_t qa = static_cast<std::int64_t>(__builtin_bswap64(va) << r.shl) >> r.sar;
+        const std::int64_t qb = static_cast<std::int64_t>(__builtin_bswap64(vb) << r.shl) >> r.sar;
+        a[r.d] = static_cast<double>(qa + center[r.d]) * step_a;
+        b[r.d] = static_cast<double>(qb + center[r.d]) * step_b;
+    }
+    // Rows with escapes (ascending, as the escaped values are written): the escape code -2^(w-1) in a
+    // slot lists the row for its escaped value.
     int escaped_a[256], escaped_b[256];
     int na = 0, nb = 0;
-    for (int k = 0; k < nonzero; ++k) {
+    for (int k = plain; k < nonzero; ++k) {
         const KeyPlan::Row r = rows[k];
         std::uint64_t va, vb;
         std::memcpy(&va, pa + r.byte, 8);
@@ -1923,9 +1939,9 @@ inline std::size_t read_plan_pair(const KeyPlan& plan, const FixedRows& f, const
         b[r.d] = static_cast<double>(qb + center[r.d]) * step_b;
         const std::int64_t code = std::numeric_limits<std::int64_t>::min() >> r.sar;  // -2^(w-1)
         escaped_a[na] = r.d;
-        na += r.escapes & static_cast<int>(qa == code);
+        na += static_cast<int>(qa == code);
         escaped_b[nb] = r.d;
-        nb += r.escapes & static_cast<int>(qb == code);
+        nb += static_cast<int>(qb == code);
     }
     for (int k = nonzero; k < Da; ++k) {
         const int d = rows[k].d;
