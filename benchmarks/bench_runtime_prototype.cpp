@@ -1904,6 +1904,19 @@ KeyPlan key_plan(const FixedRows& f, std::size_t clips, int Da) {
     return plan;
 }
 
+/// Row r of two keys whose slots start at pa and pb: its stored values into qa and qb, and a[r.d],
+/// b[r.d] as fixed_key forms them (value + center, times the key's step).
+inline void plan_row(const KeyPlan::Row r, const std::uint8_t* pa, const std::uint8_t* pb, const std::int32_t* center, double step_a,
+                     double step_b, double* a, double* b, std::int64_t& qa, std::int64_t& qb) {
+    std::uint64_t va, vb;
+    std::memcpy(&va, pa + r.byte, 8);
+    std::memcpy(&vb, pb + r.byte, 8);
+    qa = static_cast<std::int64_t>(__builtin_bswap64(va) << r.shl) >> r.sar;
+    qb = static_cast<std::int64_t>(__builtin_bswap64(vb) << r.shl) >> r.sar;
+    a[r.d] = static_cast<double>(qa + center[r.d]) * step_a;
+    b[r.d] = static_cast<double>(qb + center[r.d]) * step_b;
+}
+
 /// Two keys of clip i, starting at bytes at_a and at_b, by the plan into a and b (fixed_key's values).
 /// Returns the bit after key a.
 inline std::size_t read_plan_pair(const KeyPlan& plan, const FixedRows& f, const std::uint8_t* data, std::size_t at_a, std::size_t at_b,
@@ -1914,29 +1927,15 @@ inline std::size_t read_plan_pair(const KeyPlan& plan, const FixedRows& f, const
     const std::int32_t* center = f.center.data() + i * n;
     const std::uint8_t* pa = data + at_a;
     const std::uint8_t* pb = data + at_b;
-    for (int k = 0; k < plain; ++k) {
-        const KeyPlan::Row r = rows[k];
-        std::uint64_t va, vb;
-        std::memcpy(&va, pa + r.byte, 8);
-        std::memcpy(&vb, pb + r.byte, 8);
-        const std::int64_t qa = static_cast<std::int64_t>(__builtin_bswap64(va) << r.shl) >> r.sar;
-        const std::int64_t qb = static_cast<std::int64_t>(__builtin_bswap64(vb) << r.shl) >> r.sar;
-        a[r.d] = static_cast<double>(qa + center[r.d]) * step_a;
-        b[r.d] = static_cast<double>(qb + center[r.d]) * step_b;
-    }
+    std::int64_t qa, qb;
+    for (int k = 0; k < plain; ++k) plan_row(rows[k], pa, pb, center, step_a, step_b, a, b, qa, qb);
     // Rows with escapes (ascending, as the escaped values are written): the escape code -2^(w-1) in a
     // slot lists the row for its escaped value.
     int escaped_a[256], escaped_b[256];
     int na = 0, nb = 0;
     for (int k = plain; k < nonzero; ++k) {
         const KeyPlan::Row r = rows[k];
-        std::uint64_t va, vb;
-        std::memcpy(&va, pa + r.byte, 8);
-        std::memcpy(&vb, pb + r.byte, 8);
-        const std::int64_t qa = static_cast<std::int64_t>(__builtin_bswap64(va) << r.shl) >> r.sar;
-        const std::int64_t qb = static_cast<std::int64_t>(__builtin_bswap64(vb) << r.shl) >> r.sar;
-        a[r.d] = static_cast<double>(qa + center[r.d]) * step_a;
-        b[r.d] = static_cast<double>(qb + center[r.d]) * step_b;
+        plan_row(r, pa, pb, center, step_a, step_b, a, b, qa, qb);
         const std::int64_t code = std::numeric_limits<std::int64_t>::min() >> r.sar;  // -2^(w-1)
         escaped_a[na] = r.d;
         na += static_cast<int>(qa == code);
