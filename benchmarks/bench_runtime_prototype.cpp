@@ -30,8 +30,16 @@
 //              written after the key's slots): no symbol chain for keys
 //   variant 8  variant 7 with each window's level-1 column at fixed widths too (per clip and row, with
 //              escapes, center 0), between the window's step byte and its directory
-// Variants 4, 7 and 8 are checked equal to variant 1 on every frame (so within E) and timed against it
-// in the same repeats. --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
+//   variant 9  variant 7's keys (decoded two at once by a per-clip plan); each detail column by QUADS
+//              (--quads S:shift:levels:bits:1:prefetch:avx2; the 5th field is unused): four rows per symbol, a pattern when
+//              all four are within [-S, S], else a width and the four values raw; codes per (level,
+//              row >> shift) of at most `bits` bits, one lookup a quad; the directory holds `levels`
+//              levels (a finer left subtree is skipped by scanning its codes), its widths per clip
+//              where smaller; entry offsets per clip at the clip's width (counted and read so);
+//              `prefetch`: the clip's key plan first; then --quads' 7th field: the combine with AVX2
+// Variants 4, 7, 8 and 9 are checked equal to variant 1 on every frame (so within E) and timed against
+// it in the same repeats. RT_STATS=1 in the environment: per level value histograms and estimates of
+// codes by groups of rows (scheme_bits). --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
 // encoder's bound check, the check of every frame and the timings (closed loop); variants 7 and 8 are
 // also timed with y -> local pose by runtime_pose.hpp's kernels (portable and, where the CPU has it,
 // AVX2), whose dofs and local poses are checked equal, bit for bit, to the library path's on every
@@ -47,13 +55,18 @@
 //   bench_runtime_prototype [--folders cmu-walkrun-pfnn,cmu-asfamc] [--errors 1,0.1] [--windows 16,32]
 //                           [--key-offsets 0,12] [--rounding 0.4] [--code-bits 11] [--poses N] [--limit N]
 //                           [--lookups 11,9,8] [--reps 3] [--float-dofs 0|1] [--key-centers 0|1] [--key-escapes 0|1]
-//                           [--dof learned|identity]
+//                           [--dof learned|identity] [--quads 1:3:2:11:1:1,...] [--combos 16:12,8:4]
 #include <Eigen/LU>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 #include <algorithm>
 #include <cmath>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <map>
 #include <memory>
@@ -969,35 +982,49 @@ void tree_order(int W, std::vector<int>& level, std::vector<int>& frame) {
 /// From the window's step byte on: the step, the directory (per level a 5-bit width, then each
 /// internal node's left-subtree size in bits at that width) and the columns in tree order (levels tl).
 /// Returns the directory's bits.
-std::size_t write_window(const RuntimeGroup& g, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl) {
-    out.put(static_cast<std::uint32_t>(e.step), 8);
+/// write_column(out, level, values) codes one column (variant 1: run/size codes; variant 9: quads).
+/// widths: the directory's width per level given (not written: variant 9 keeps them per clip); with
+/// need (per level) instead, only each level's largest width into need[l] (nothing written).
+/// stored: the directory holds levels 1..stored (default: every level with a left subtree, levels - 1).
+template <class WriteColumn>
+std::size_t write_window_by(int levels, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl, WriteColumn write_column,
+                            const int* widths = nullptr, int* need = nullptr, int stored = -1) {
+    if (stored < 0) stored = levels - 1;
+    if (!need) out.put(static_cast<std::uint32_t>(e.step), 8);
     std::vector<std::size_t> size;
     for (std::size_t i = 0; i < e.columns.size(); ++i) {
         BitWriter scratch;
-        g.write_column(scratch, tl[i], e.columns[i]);
+        write_column(scratch, tl[i], e.columns[i]);
         size.push_back(scratch.bits());
     }
-    std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(g.levels));
+    std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(levels));
     for (std::size_t i = 0; i < e.columns.size(); ++i) {
         const int l = tl[i];
-        if (l >= g.levels) continue;
-        const std::size_t span = (std::size_t{1} << (g.levels - l)) - 1;
+        if (l >= levels) continue;
+        const std::size_t span = (std::size_t{1} << (levels - l)) - 1;
         std::size_t s = 0;
         for (std::size_t k = i + 1; k <= i + span; ++k) s += size[k];
         left[static_cast<std::size_t>(l)].push_back(s);
     }
     const std::size_t before = out.bits();
-    std::vector<int> width(static_cast<std::size_t>(g.levels), 0);
-    for (int l = 1; l < g.levels; ++l) {
+    std::vector<int> width(static_cast<std::size_t>(levels), 0);
+    for (int l = 1; l <= stored; ++l) {
         for (std::size_t s : left[static_cast<std::size_t>(l)])
             width[static_cast<std::size_t>(l)] = std::max(width[static_cast<std::size_t>(l)], bit_length(static_cast<std::uint32_t>(s)));
-        out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
+        if (need) need[l] = std::max(need[l], width[static_cast<std::size_t>(l)]);
+        if (widths) width[static_cast<std::size_t>(l)] = widths[l];
+        else if (!need) out.put(static_cast<std::uint32_t>(width[static_cast<std::size_t>(l)]), 5);
     }
-    for (int l = 1; l < g.levels; ++l)
+    if (need) return 0;
+    for (int l = 1; l <= stored; ++l)
         for (std::size_t s : left[static_cast<std::size_t>(l)]) out.put(static_cast<std::uint32_t>(s), width[static_cast<std::size_t>(l)]);
     const std::size_t directory = out.bits() - before;
-    for (std::size_t i = 0; i < e.columns.size(); ++i) g.write_column(out, tl[i], e.columns[i]);
+    for (std::size_t i = 0; i < e.columns.size(); ++i) write_column(out, tl[i], e.columns[i]);
     return directory;
+}
+
+std::size_t write_window(const RuntimeGroup& g, BitWriter& out, const HierResult::Entry& e, const std::vector<int>& tl) {
+    return write_window_by(g.levels, out, e, tl, [&](BitWriter& o, int level, const std::vector<std::int32_t>& v) { g.write_column(o, level, v); });
 }
 
 RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
@@ -1044,13 +1071,17 @@ RuntimeGroup build_runtime(const HierResult& r, int W, int Da) {
 
 /// A window's directory at bit pos (per level a width, then the left-subtree sizes): into skip[l] the
 /// size of the left subtree frame t's path skips at level l; returns the bit after the directory.
-std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip) {
+/// widths: the widths per level when the window does not hold them (variant 9: per clip).
+/// stored: the directory holds levels 1..stored (default levels - 1).
+std::size_t read_directory(const std::uint8_t* data, std::size_t pos, int levels, int t, std::size_t* skip, const std::uint8_t* widths = nullptr,
+                           int stored = -1) {
+    if (stored < 0) stored = levels - 1;
     BitReader in{data, pos};
     int width[8] = {0};
-    for (int l = 1; l < levels; ++l) width[l] = static_cast<int>(in.get(5));
+    for (int l = 1; l <= stored; ++l) width[l] = widths ? widths[l] : static_cast<int>(in.get(5));
     // Level l's sizes start after the earlier levels' (2^(l-1) each).
     std::size_t at = in.pos;
-    for (int l = 1; l < levels; ++l) {
+    for (int l = 1; l <= stored; ++l) {
         const std::size_t node = static_cast<std::size_t>(t) >> (levels - l + 1);
         BitReader s{data, at + node * static_cast<std::size_t>(width[l])};
         skip[l] = s.get(width[l]);
@@ -1778,6 +1809,18 @@ inline std::int64_t signed_bits(const std::uint8_t* data, std::size_t p, int w) 
     return w ? q : 0;
 }
 
+/// A key's escaped values from bit `escape` on (rows escaped[0..n), in row order, each at its width
+/// full[d]): out[d] = (value + center[d]) * step. Returns the bit after them.
+inline std::size_t read_escapes(const std::uint8_t* data, std::size_t escape, const int* escaped, int n, const std::uint8_t* full,
+                                const std::int32_t* center, double step, double* out) {
+    for (int k = 0; k < n; ++k) {
+        const int d = escaped[k], f = full[d];
+        out[d] = static_cast<double>(signed_bits(data, escape, f) + center[d]) * step;
+        escape += static_cast<std::size_t>(f);
+    }
+    return escape;
+}
+
 /// A fixed-width key at bit `bit`: out[d] = q * step (+0.0 where q is 0, as the encoder formed it).
 /// Returns the bit after the key (its slots, then its escaped values). The rows whose slot holds the
 /// escape code (-2^(w-1) in a row that has escapes) are listed in the slots' pass without branches,
@@ -1794,13 +1837,121 @@ inline std::size_t fixed_key(const std::uint8_t* data, std::size_t bit, const st
         escaped[n] = d;
         n += static_cast<int>((full[d] > w) & (q == code));
     }
-    std::size_t escape = bit + at[Da];
-    for (int k = 0; k < n; ++k) {
-        const int d = escaped[k], f = full[d];
-        out[d] = static_cast<double>(signed_bits(data, escape, f) + center[d]) * step;
-        escape += static_cast<std::size_t>(f);
+    return read_escapes(data, bit + at[Da], escaped, n, full, center, step, out);
+}
+
+/// Two keys of clip i (the same widths) at bits bit_a and bit_b into a and b in one pass: fixed_key's
+/// values, with the rows' widths, offsets and centers loaded once. Returns the bit after key a.
+inline std::size_t read_fixed_pair(const FixedRows& f, const std::uint8_t* data, std::size_t bit_a, std::size_t bit_b, std::size_t i, int Da,
+                                   double step_a, double step_b, double* a, double* b) {
+    const auto n = static_cast<std::size_t>(Da);
+    const std::uint8_t* width = f.width.data() + i * n;
+    const std::uint16_t* at = f.at.data() + i * (n + 1);
+    const std::int32_t* center = f.center.data() + i * n;
+    const std::uint8_t* full = f.full.data() + i * n;
+    int escaped_a[256], escaped_b[256];
+    int na = 0, nb = 0;
+    for (int d = 0; d < Da; ++d) {
+        const int w = width[d];
+        const std::int64_t qa = signed_bits(data, bit_a + at[d], w), qb = signed_bits(data, bit_b + at[d], w);
+        a[d] = static_cast<double>(qa + center[d]) * step_a;
+        b[d] = static_cast<double>(qb + center[d]) * step_b;
+        const auto code = static_cast<std::int64_t>(~std::uint64_t{0} << ((w - 1) & 63));  // -2^(w-1)
+        const bool escapes = full[d] > w;
+        escaped_a[na] = d;
+        na += static_cast<int>(escapes & (qa == code));
+        escaped_b[nb] = d;
+        nb += static_cast<int>(escapes & (qb == code));
     }
-    return escape;
+    std::size_t escape_a = bit_a + at[Da], escape_b = bit_b + at[Da];
+    read_escapes(data, escape_b, escaped_b, nb, full, center, step_b, b);
+    return read_escapes(data, escape_a, escaped_a, na, full, center, step_a, a);
+}
+
+/// FixedRows' keys as a per-clip plan for a decoder whose keys start at a byte (variant 9): the rows
+/// with a nonzero width and no escapes first, then those with escapes (each ascending), each its slot's
+/// byte and shifts (value = (bswap(8 bytes at byte) << shl) >> sar, arithmetic); then the rows of
+/// width 0 (value 0).
+struct KeyPlan {
+    struct Row {
+        std::uint16_t byte;
+        std::uint8_t d, shl, sar, escapes;
+    };
+    std::vector<Row> rows;               // per clip Da rows: nonzero width without escapes, with escapes, width 0
+    std::vector<std::uint16_t> plain;    // per clip, its rows of nonzero width without escapes
+    std::vector<std::uint16_t> nonzero;  // per clip, its rows of nonzero width
+    std::size_t bytes() const { return rows.size() * sizeof(Row) + 2 * nonzero.size() * sizeof(std::uint16_t); }
+};
+
+KeyPlan key_plan(const FixedRows& f, std::size_t clips, int Da) {
+    KeyPlan plan;
+    const auto n = static_cast<std::size_t>(Da);
+    for (std::size_t i = 0; i < clips; ++i) {
+        std::uint16_t count[3] = {0, 0, 0};
+        for (int pass = 0; pass < 3; ++pass)
+            for (std::size_t d = 0; d < n; ++d) {
+                const int w = f.width[i * n + d];
+                const bool escapes = f.full[i * n + d] > w;
+                if ((w == 0 ? 2 : escapes ? 1 : 0) != pass) continue;
+                const std::uint16_t at = f.at[i * (n + 1) + d];
+                plan.rows.push_back({static_cast<std::uint16_t>(at >> 3), static_cast<std::uint8_t>(d), static_cast<std::uint8_t>(at & 7),
+                                     static_cast<std::uint8_t>(64 - w), static_cast<std::uint8_t>(escapes)});
+                ++count[pass];
+            }
+        plan.plain.push_back(count[0]);
+        plan.nonzero.push_back(static_cast<std::uint16_t>(count[0] + count[1]));
+    }
+    return plan;
+}
+
+/// Row r of two keys whose slots start at pa and pb: its stored values into qa and qb, and a[r.d],
+/// b[r.d] as fixed_key forms them (value + center, times the key's step).
+inline void plan_row(const KeyPlan::Row r, const std::uint8_t* pa, const std::uint8_t* pb, const std::int32_t* center, double step_a,
+                     double step_b, double* a, double* b, std::int64_t& qa, std::int64_t& qb) {
+    std::uint64_t va, vb;
+    std::memcpy(&va, pa + r.byte, 8);
+    std::memcpy(&vb, pb + r.byte, 8);
+    qa = static_cast<std::int64_t>(__builtin_bswap64(va) << r.shl) >> r.sar;
+    qb = static_cast<std::int64_t>(__builtin_bswap64(vb) << r.shl) >> r.sar;
+    a[r.d] = static_cast<double>(qa + center[r.d]) * step_a;
+    b[r.d] = static_cast<double>(qb + center[r.d]) * step_b;
+}
+
+/// Two keys of clip i, starting at bytes at_a and at_b, by the plan into a and b (fixed_key's values).
+/// Returns the bit after key a.
+inline std::size_t read_plan_pair(const KeyPlan& plan, const FixedRows& f, const std::uint8_t* data, std::size_t at_a, std::size_t at_b,
+                                  std::size_t i, int Da, double step_a, double step_b, double* a, double* b) {
+    const auto n = static_cast<std::size_t>(Da);
+    const KeyPlan::Row* rows = plan.rows.data() + i * n;
+    const int plain = plan.plain[i], nonzero = plan.nonzero[i];
+    const std::int32_t* center = f.center.data() + i * n;
+    const std::uint8_t* pa = data + at_a;
+    const std::uint8_t* pb = data + at_b;
+    std::int64_t qa, qb;
+    for (int k = 0; k < plain; ++k) plan_row(rows[k], pa, pb, center, step_a, step_b, a, b, qa, qb);
+    // Rows with escapes (ascending, as the escaped values are written): the escape code -2^(w-1) in a
+    // slot lists the row for its escaped value.
+    int escaped_a[256], escaped_b[256];
+    int na = 0, nb = 0;
+    for (int k = plain; k < nonzero; ++k) {
+        const KeyPlan::Row r = rows[k];
+        plan_row(r, pa, pb, center, step_a, step_b, a, b, qa, qb);
+        const std::int64_t code = std::numeric_limits<std::int64_t>::min() >> r.sar;  // -2^(w-1)
+        escaped_a[na] = r.d;
+        na += static_cast<int>(qa == code);
+        escaped_b[nb] = r.d;
+        nb += static_cast<int>(qb == code);
+    }
+    for (int k = nonzero; k < Da; ++k) {
+        const int d = rows[k].d;
+        a[d] = static_cast<double>(std::int64_t{0} + center[d]) * step_a;
+        b[d] = static_cast<double>(std::int64_t{0} + center[d]) * step_b;
+    }
+    const std::uint8_t* full = f.full.data() + i * n;
+    const std::size_t slots = f.at[i * (n + 1) + n];
+    std::size_t escape_a = at_a * 8 + slots, escape_b = at_b * 8 + slots;
+    read_escapes(data, escape_b, escaped_b, nb, full, center, step_b, b);
+    return read_escapes(data, escape_a, escaped_a, na, full, center, step_a, a);
 }
 
 /// Clip i's values of f at bit `bit` into out (out[d] = value * step); returns the bit after them.
@@ -1811,29 +1962,507 @@ std::size_t read_fixed(const FixedRows& f, const std::uint8_t* data, std::size_t
                      step, out);
 }
 
-/// Variant 7's frame into y (variant 8's when g7 has level-1 widths); the same bits as variant 1.
-void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
-    const RuntimeGroup3& g3 = *g7.v3;
-    const RuntimeGroup& g = *g3.base;
+/// A frame into y from entries that start with a step byte and a key at `keys`' fixed widths: the
+/// frame's key (t = 0), or its window's two keys into a and b and then path(key_end, t) for the rest.
+/// pair: the two keys in one pass (read_fixed_pair, or by `plan` when given).
+/// offsets(clip, window, o0, o1): the byte offsets of the window's entry and the next.
+template <class Offsets, class Path>
+void frame_with_fixed_keys(const RuntimeGroup& g, const FixedRows& keys, Offsets offsets, const std::uint8_t* data,
+                           std::size_t clip, std::size_t frame, double* y, double* a, double* b, Path path, bool pair = false,
+                           const KeyPlan* plan = nullptr) {
     const int Da = g.Da, W = g.W;
     const std::size_t w = frame / static_cast<std::size_t>(W);
     const int t = static_cast<int>(frame % static_cast<std::size_t>(W));
-    const std::size_t entry = g.clip_first[clip] + w;
-    const std::uint8_t* data = g7.bytes.data();
-    const std::size_t o0 = g7.offsets[entry], o1 = g7.offsets[entry + 1];
+    std::size_t o0, o1;
+    offsets(clip, w, o0, o1);
     {
-        const std::size_t key_bits = g7.keys.at[clip * static_cast<std::size_t>(Da + 1) + static_cast<std::size_t>(Da)];
+        const std::size_t key_bits = keys.at[clip * static_cast<std::size_t>(Da + 1) + static_cast<std::size_t>(Da)];
         const std::size_t end = (t == 0 ? o0 : o1) + key_bits / 8 + 9;
         for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
     }
     const double key_step = detail::step_of(data[o0]);
     if (t == 0) {
-        read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, y);
+        read_fixed(keys, data, o0 * 8 + 8, clip, Da, key_step, y);
         return;
     }
-    const std::size_t key_end = read_fixed(g7.keys, data, o0 * 8 + 8, clip, Da, key_step, a);
-    read_fixed(g7.keys, data, o1 * 8 + 8, clip, Da, detail::step_of(data[o1]), b);
-    decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.width.empty() ? nullptr : &g7.level1, clip);
+    if (plan) {
+        path(read_plan_pair(*plan, keys, data, o0 + 1, o1 + 1, clip, Da, key_step, detail::step_of(data[o1]), a, b), t);
+        return;
+    }
+    if (pair) {
+        path(read_fixed_pair(keys, data, o0 * 8 + 8, o1 * 8 + 8, clip, Da, key_step, detail::step_of(data[o1]), a, b), t);
+        return;
+    }
+    const std::size_t key_end = read_fixed(keys, data, o0 * 8 + 8, clip, Da, key_step, a);
+    read_fixed(keys, data, o1 * 8 + 8, clip, Da, detail::step_of(data[o1]), b);
+    path(key_end, t);
+}
+
+/// Variant 7's frame into y (variant 8's when g7 has level-1 widths); the same bits as variant 1.
+void runtime_frame7(const RuntimeGroup7& g7, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) {
+    const RuntimeGroup3& g3 = *g7.v3;
+    const std::uint8_t* data = g7.bytes.data();
+    const RuntimeGroup& g = *g3.base;
+    auto offsets = [&](std::size_t i, std::size_t w, std::size_t& o0, std::size_t& o1) {
+        o0 = g7.offsets[g.clip_first[i] + w];
+        o1 = g7.offsets[g.clip_first[i] + w + 1];
+    };
+    frame_with_fixed_keys(g, g7.keys, offsets, data, clip, frame, y, a, b, [&](std::size_t key_end, int t) {
+        decode_path(g3, data, key_end, t, y, a, b, c, g7.level1.width.empty() ? nullptr : &g7.level1, clip);
+    });
+}
+
+
+// ---- Variant 9: variant 7's keys; each detail column by QUADS, four rows per symbol. A quad whose
+// values are all within [-S, S] is one symbol (its pattern); else a width symbol (the two's complement
+// width of its largest value, 2-32) followed by its four values at that width; an end symbol after
+// the column's last nonzero quad (none when that quad reaches the last row). Static canonical Huffman
+// codes per (level, row >> shift), at most kMaxCode bits, so one lookup decodes a quad. The same
+// quantized values as variant 1: every frame's y is checked equal to variant 1's, bit for bit. ----
+
+constexpr int kQuadWide = 1000;  // symbol kQuadWide + w: a quad at width w
+
+struct QuadCode {
+    int S = 1, shift = 3, per_level = 0, levels = 0, bits = 11;  // bits: code lengths at most, lookup width
+    std::vector<HuffmanCode> codes;       // (level - 1) * per_level + (row >> shift)
+    std::vector<std::uint16_t> table;     // per code 2^kMaxCode entries: bits 0-3 length, 4-13 pattern or
+                                          // width, 14 wide, 15 end (0: no code)
+    std::vector<std::int32_t> patterns;   // four values per pattern
+    std::size_t table_bits = 0;           // the codes as stored
+    std::size_t code(int level, int row) const { return static_cast<std::size_t>((level - 1) * per_level + (row >> shift)); }
+    int symbol(const std::int32_t* v, int Da, int d, int* width) const {
+        int mx = 0, pattern = 0, w = 0;
+        for (int k = d; k < d + 4; ++k) {
+            const std::int32_t q = k < Da ? v[k] : 0;
+            mx = std::max(mx, std::abs(q));
+            w = std::max(w, twos_bits(q));
+            pattern = pattern * (2 * S + 1) + (std::clamp(q, -S, S) + S);
+        }
+        *width = w;
+        return mx <= S ? pattern : kQuadWide + w;
+    }
+    /// Calls fn(code index, symbol, width) for each symbol of column v.
+    template <class Fn>
+    void each_symbol(int level, const std::vector<std::int32_t>& v, Fn fn) const {
+        const int Da = static_cast<int>(v.size());
+        int n = Da;
+        while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+        int d = 0;
+        for (; d < n; d += 4) {
+            int w = 0;
+            const int s = symbol(v.data(), Da, d, &w);
+            fn(code(level, d), s, s >= kQuadWide ? w : 0, d);
+        }
+        if (d < Da) fn(code(level, d), kEnd, 0, d);
+    }
+    void write_column(BitWriter& out, int level, const std::vector<std::int32_t>& v) const {
+        const int Da = static_cast<int>(v.size());
+        each_symbol(level, v, [&](std::size_t c, int s, int w, int d) {
+            codes[c].write(out, s);
+            for (int k = d; w && k < d + 4; ++k) out.put(static_cast<std::uint32_t>(k < Da ? v[static_cast<std::size_t>(k)] : 0), w);
+        });
+    }
+};
+
+QuadCode build_quads(const HierResult& r, int W, int Da, int S, int shift, int bits) {
+    QuadCode qc;
+    qc.S = S;
+    qc.shift = shift;
+    qc.bits = bits;
+    struct Restore {  // HuffmanCode::build limits lengths to kMaxCode: the quads' own limit meanwhile
+        int saved = kMaxCode;
+        ~Restore() { kMaxCode = saved; }
+    } restore;
+    kMaxCode = bits;
+    while ((1 << qc.levels) < W) ++qc.levels;
+    qc.per_level = ((Da + 3) >> shift) + 1;
+    std::vector<int> tl, tf;
+    tree_order(W, tl, tf);
+    std::vector<std::map<int, std::size_t>> hist(static_cast<std::size_t>(qc.levels * qc.per_level));
+    for (const auto& e : r.entries)
+        for (std::size_t i = 0; i < e.columns.size(); ++i)
+            qc.each_symbol(tl[i], e.columns[i], [&](std::size_t c, int s, int, int) { ++hist[c][s]; });
+    const int patterns = (2 * S + 1) * (2 * S + 1) * (2 * S + 1) * (2 * S + 1);
+    if (patterns > 1024 || bits > 15) throw std::runtime_error("quads: S or the code length too large for the 16-bit table");
+    // The codes as stored: per code the smaller of a length per symbol of the alphabet (4 bits each)
+    // and a list of the used symbols (symbol index and length), and 8 bits.
+    const double alphabet = patterns + 32 + 1;
+    const std::size_t n = std::size_t{1} << bits;
+    qc.codes.resize(hist.size());
+    qc.table.assign(hist.size() * n, 0);
+    for (std::size_t c = 0; c < hist.size(); ++c) {
+        if (hist[c].empty()) continue;
+        qc.codes[c].build(hist[c]);
+        const auto used = static_cast<double>(hist[c].size());
+        qc.table_bits += 8 + static_cast<std::size_t>(std::min(4.0 * alphabet, (std::ceil(std::log2(alphabet)) + 4.0) * used));
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto f = qc.codes[c].fast[i];
+            if (!f.length) continue;
+            std::uint32_t e = f.length;
+            if (f.symbol == kEnd) e |= 1u << 15;
+            else if (f.symbol >= kQuadWide) e |= static_cast<std::uint32_t>(f.symbol - kQuadWide) << 4 | 1u << 14;
+            else e |= static_cast<std::uint32_t>(f.symbol) << 4;
+            qc.table[c * n + i] = static_cast<std::uint16_t>(e);
+        }
+    }
+    qc.patterns.assign(static_cast<std::size_t>(4 * patterns), 0);
+    for (int p = 0; p < patterns; ++p)
+        for (int k = 3, x = p; k >= 0; --k, x /= 2 * S + 1) qc.patterns[static_cast<std::size_t>(4 * p + k)] = x % (2 * S + 1) - S;
+    return qc;
+}
+
+/// Entry offsets as stored (variant 9): per clip its first entry's byte offset, the bit at which its
+/// later entries' offsets start and their width (4 + 4 + 1 bytes), then each later entry's byte
+/// offset from the clip's first at that width (`bits`).
+struct PackedOffsets {
+    struct Clip {
+        std::uint32_t base = 0, at = 0;
+        std::uint8_t width = 0;
+    };
+    std::vector<Clip> clips;
+    std::vector<std::uint8_t> bits;  // 8 bytes of slack after
+    std::size_t bit_count = 0;
+    std::size_t stored_bytes() const { return 9 * clips.size() + (bit_count + 7) / 8; }
+    static std::size_t read(const std::uint8_t* data, std::size_t p, int w) {
+        std::uint64_t v;
+        std::memcpy(&v, data + (p >> 3), 8);
+        return static_cast<std::size_t>((__builtin_bswap64(v) << (p & 7)) >> (64 - w));
+    }
+    /// Byte offsets of clip i's entries k and k + 1.
+    void pair(std::size_t i, std::size_t k, std::size_t& o0, std::size_t& o1) const {
+        const Clip& c = clips[i];
+        const std::size_t p = c.at + k * c.width;  // entry k + 1's slot (entry 0 has none)
+        o0 = c.base + (k ? read(bits.data(), p - c.width, c.width) : 0);
+        o1 = c.base + read(bits.data(), p, c.width);
+    }
+};
+
+PackedOffsets pack_offsets(const HierResult& r, const std::vector<std::uint32_t>& offsets) {
+    PackedOffsets p;
+    BitWriter out;
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
+        const std::size_t first = r.clip_first[i], last = entries_end(r, i);  // entries first..last-1
+        PackedOffsets::Clip c;
+        c.base = offsets[first];
+        c.at = static_cast<std::uint32_t>(out.bits());
+        c.width = static_cast<std::uint8_t>(bit_length(offsets[last - 1] - c.base));
+        for (std::size_t k = first + 1; k < last; ++k) out.put(offsets[k] - c.base, c.width);
+        p.clips.push_back(c);
+    }
+    p.bit_count = out.bits();
+    out.align();
+    p.bits = std::move(out.bytes);
+    p.bits.resize(p.bits.size() + 8, 0);
+    return p;
+}
+
+struct RuntimeGroup9 {
+    const RuntimeGroup* base = nullptr;
+    QuadCode quads;
+    FixedRows keys;
+    KeyPlan plan;
+    PackedOffsets packed;                // the offsets as stored and read
+    std::vector<std::uint8_t> directory_widths;  // per clip 8: the directory's width per level, or 0: in each window
+    std::size_t directory_bits = 0;              // the clip table's flags and widths as stored
+    int stored = 0;                              // the directory's levels (finer left subtrees are skipped by scanning)
+    bool prefetch_clip = false;                  // prefetch the clip's key plan first
+    bool avx2_combine = false;                   // combine_avx2 (where the CPU has it; the same bits)
+    std::vector<std::uint32_t> offsets;  // per entry, then one past the last
+    std::vector<std::uint8_t> bytes;     // 16 bytes of slack after
+};
+
+RuntimeGroup9 build_runtime9(const RuntimeGroup& g, const HierResult& r, const FixedRows& keys, int S, int shift, int stored, int bits) {
+    RuntimeGroup9 g9;
+    g9.base = &g;
+    g9.stored = std::min(stored, g.levels - 1);
+    g9.quads = build_quads(r, g.W, g.Da, S, shift, bits);
+    g9.keys = keys;
+    g9.plan = key_plan(keys, r.clip_first.size(), g.Da);
+    const auto Da = static_cast<std::size_t>(g.Da);
+    std::vector<int> tl, tf;
+    tree_order(g.W, tl, tf);
+    BitWriter out;
+    auto quads = [&](BitWriter& o, int level, const std::vector<std::int32_t>& v) { g9.quads.write_column(o, level, v); };
+    for (std::size_t i = 0; i < r.clip_first.size(); ++i) {
+        // The directory's widths per clip (in the clip table) or per window (in each window), whichever
+        // gives the clip's entries fewer bytes (a clip with per-window widths has width 0 in the table).
+        int widths[8] = {0};
+        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k)
+            if (r.entries[k].step >= 0) write_window_by(g.levels, out, r.entries[k], tl, quads, nullptr, widths, g9.stored);
+        auto entry = [&](BitWriter& o, std::size_t k, const int* w) {
+            const auto& e = r.entries[k];
+            o.put(static_cast<std::uint32_t>(e.key_step), 8);
+            write_fixed(o, keys, i, Da, e.key);
+            if (e.step >= 0) write_window_by(g.levels, o, e, tl, quads, w, nullptr, g9.stored);
+            o.align();
+        };
+        std::size_t per_clip = 0, per_window = 0;
+        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k) {
+            BitWriter a, b;
+            entry(a, k, widths);
+            entry(b, k, nullptr);
+            per_clip += a.bytes.size();
+            per_window += b.bytes.size();
+        }
+        const bool clip_widths = 8 * per_clip + 5 * static_cast<std::size_t>(g9.stored) < 8 * per_window;
+        g9.directory_bits += 1 + (clip_widths ? 5 * static_cast<std::size_t>(g9.stored) : 0);
+        for (int l = 0; l < 8; ++l) g9.directory_widths.push_back(static_cast<std::uint8_t>(clip_widths ? widths[l] : 0));
+        for (std::size_t k = r.clip_first[i]; k < entries_end(r, i); ++k) {
+            out.align();
+            g9.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+            entry(out, k, clip_widths ? widths : nullptr);
+        }
+    }
+    out.align();
+    g9.offsets.push_back(static_cast<std::uint32_t>(out.bytes.size()));
+    g9.bytes = std::move(out.bytes);
+    g9.bytes.resize(g9.bytes.size() + 16, 0);
+    g9.packed = pack_offsets(r, g9.offsets);
+    return g9;
+}
+
+/// out[d] = p + q[d] * step where q[d] is nonzero, else p, with p = 0.5 * (lo[d] + hi[d]): the
+/// encoder's expressions (SSE2 two rows at a time: the same operations, a select instead of a branch).
+inline void combine(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) {
+    int d = 0;
+#ifdef __SSE2__
+    const __m128d half = _mm_set1_pd(0.5), s = _mm_set1_pd(step), zero = _mm_setzero_pd();
+    for (; d + 2 <= Da; d += 2) {
+        const __m128d p = _mm_mul_pd(half, _mm_add_pd(_mm_loadu_pd(lo + d), _mm_loadu_pd(hi + d)));
+        const __m128d v = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + d)));
+        const __m128d nonzero = _mm_cmpneq_pd(v, zero);
+        const __m128d sum = _mm_add_pd(p, _mm_mul_pd(v, s));
+        _mm_storeu_pd(out + d, _mm_or_pd(_mm_and_pd(nonzero, sum), _mm_andnot_pd(nonzero, p)));
+    }
+#endif
+    for (; d < Da; ++d) {
+        const double p = 0.5 * (lo[d] + hi[d]);
+        out[d] = q[d] ? p + q[d] * step : p;
+    }
+}
+
+/// One column of quads at bit pos into q (rows past the last decoded quad zero, up to Da rounded up to
+/// 4); returns the bit after the column. The bits are held in a register (FastBits: a branch-free
+/// refill whose load does not wait for the symbol being decoded), so that a quad's lookup waits only
+/// for the previous one's length (reading 8 bytes at each quad's bit instead: hot poses 9 % slower).
+inline std::size_t read_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da, std::int32_t* q) {
+    const int B = qc.bits, shift = qc.shift;
+    const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
+    const std::int32_t* patterns = qc.patterns.data();
+    FastBits bits(data, pos);
+    int d = 0;
+    while (d < Da) {
+        bits.refill();
+        const std::uint32_t e = table[(static_cast<std::size_t>(d >> shift) << B) | static_cast<std::size_t>(bits.buf >> (64 - B))];
+        bits.drop(static_cast<int>(e & 15));
+        if (__builtin_expect((e & 0xC000u) == 0, 1)) {
+            std::memcpy(q + d, patterns + 4 * ((e >> 4) & 1023), 4 * sizeof(std::int32_t));
+            d += 4;
+            continue;
+        }
+        if (e & (1u << 15)) break;
+        const int wd = static_cast<int>((e >> 4) & 1023);
+        if (wd <= 14) {
+            bits.refill();
+            const std::uint64_t x = bits.buf;
+            for (int k = 0; k < 4; ++k) q[d + k] = static_cast<std::int32_t>(static_cast<std::int64_t>(x << (k * wd)) >> (64 - wd));
+            bits.drop(4 * wd);
+        } else {
+            for (int k = 0; k < 4; ++k) {
+                bits.refill();
+                q[d + k] = static_cast<std::int32_t>(static_cast<std::int64_t>(bits.buf) >> (64 - wd));
+                bits.drop(wd);
+            }
+        }
+        d += 4;
+    }
+    for (; d < Da; ++d) q[d] = 0;
+    return bits.consumed;
+}
+
+/// The bit after the column of quads at bit pos (its codes and raw bits summed, nothing decoded).
+inline std::size_t skip_quads(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da) {
+    const int B = qc.bits, shift = qc.shift;
+    const std::uint16_t* table = qc.table.data() + (qc.code(level, 0) << B);
+    for (int d = 0; d < Da; d += 4) {
+        const std::uint64_t w = peek3<false>(data, pos);
+        const std::uint32_t e = table[(static_cast<std::size_t>(d >> shift) << B) | static_cast<std::size_t>(w >> (64 - B))];
+        pos += (e & 15) + ((e >> 14) & 1) * 4 * ((e >> 4) & 1023);
+        if (e & (1u << 15)) break;
+    }
+    return pos;
+}
+
+/// The bit after the subtree of columns (tree order) whose root column, at bit pos, is at `level`.
+inline std::size_t skip_subtree(const QuadCode& qc, const std::uint8_t* data, std::size_t pos, int level, int Da) {
+    pos = skip_quads(qc, data, pos, level, Da);
+    if (level < qc.levels) {
+        pos = skip_subtree(qc, data, pos, level + 1, Da);
+        pos = skip_subtree(qc, data, pos, level + 1, Da);
+    }
+    return pos;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+/// combine with AVX2 (four rows at a time; the same operations per row, no FMA: the same bits), for
+/// CPUs that have it (variant 9's `avx2_combine`).
+__attribute__((target("avx2"))) void combine_avx2(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) {
+    typedef double V4d __attribute__((vector_size(32)));
+    typedef std::int32_t V4i __attribute__((vector_size(16)));
+    typedef std::int64_t V4l __attribute__((vector_size(32)));
+    const V4d half = {0.5, 0.5, 0.5, 0.5}, s = {step, step, step, step}, zero = {0.0, 0.0, 0.0, 0.0};
+    int d = 0;
+    for (; d + 4 <= Da; d += 4) {
+        V4d l, h;
+        V4i qi;
+        std::memcpy(&l, lo + d, sizeof l);
+        std::memcpy(&h, hi + d, sizeof h);
+        std::memcpy(&qi, q + d, sizeof qi);
+        const V4d p = half * (l + h);
+        const V4d v = __builtin_convertvector(qi, V4d);
+        const V4l nonzero = v != zero;
+        const V4d sum = p + v * s;
+        const V4d r = nonzero ? sum : p;
+        std::memcpy(out + d, &r, sizeof r);
+    }
+    for (; d < Da; ++d) {
+        const double p = 0.5 * (lo[d] + hi[d]);
+        out[d] = q[d] ? p + q[d] * step : p;
+    }
+}
+bool cpu_has_avx2() { return __builtin_cpu_supports("avx2"); }
+#else
+void combine_avx2(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) { combine(out, lo, hi, q, step, Da); }
+bool cpu_has_avx2() { return false; }
+#endif
+
+/// Variant 9's path from the window's step byte at `bit`: each column's quads into q, then
+/// out = prediction (+ q * step where q is nonzero), the encoder's expressions.
+void decode_path9(const RuntimeGroup9& g9, const std::uint8_t* data, std::size_t bit, int t, double* y, double* a, double* b, double* c,
+                  std::size_t clip) {
+    const RuntimeGroup& g = *g9.base;
+    const int Da = g.Da, W = g.W;
+    alignas(16) std::int32_t q[260];
+    BitReader in{data, bit};
+    const double step = detail::step_of(static_cast<int>(in.get(8)));
+    std::size_t skip[8] = {0};
+    const std::uint8_t* widths = g9.directory_widths.data() + 8 * clip;
+    std::size_t pos = read_directory(data, in.pos, g.levels, t, skip, widths[1] ? widths : nullptr, g9.stored);
+    int lo = 0, hi = W;
+    double* lo_y = a;
+    double* hi_y = b;
+    for (int l = 1;; ++l) {
+        const int mid = (lo + hi) / 2;
+        double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        pos = read_quads(g9.quads, data, pos, l, Da, q);
+        if (g9.avx2_combine) combine_avx2(out, lo_y, hi_y, q, step, Da);
+        else combine(out, lo_y, hi_y, q, step, Da);
+        if (mid == t) return;
+        if (t < mid) {
+            hi = mid;
+            hi_y = out;
+        } else {
+            pos = l <= g9.stored ? pos + skip[l] : skip_subtree(g9.quads, data, pos, l + 1, Da);
+            lo = mid;
+            lo_y = out;
+        }
+    }
+}
+
+/// Variant 9's frame into y; the same bits as variant 1.
+/// keys: 2 by the key plan, 1 paired (read_fixed_pair), 0 one after the other; keys_only: no path
+/// (timing of the keys alone: y is not complete).
+void runtime_frame9(const RuntimeGroup9& g9, std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c, int keys = 2,
+                    bool keys_only = false) {
+    const std::uint8_t* data = g9.bytes.data();
+    if (g9.prefetch_clip) {
+        // The clip's key plan, centers and escape widths: known before the entry's offset is.
+        const auto n = static_cast<std::size_t>(g9.base->Da);
+        const auto* rows = reinterpret_cast<const char*>(g9.plan.rows.data() + clip * n);
+        for (std::size_t x = 0; x < n * sizeof(KeyPlan::Row); x += 64) __builtin_prefetch(rows + x);
+        const auto* center = reinterpret_cast<const char*>(g9.keys.center.data() + clip * n);
+        for (std::size_t x = 0; x < n * sizeof(std::int32_t); x += 64) __builtin_prefetch(center + x);
+        __builtin_prefetch(g9.keys.full.data() + clip * n);
+    }
+    auto offsets = [&](std::size_t i, std::size_t w, std::size_t& o0, std::size_t& o1) { g9.packed.pair(i, w, o0, o1); };
+    frame_with_fixed_keys(*g9.base, g9.keys, offsets, data, clip, frame, y, a, b,
+                          [&](std::size_t key_end, int t) {
+                              if (!keys_only) decode_path9(g9, data, key_end, t, y, a, b, c, clip);
+                          }, keys > 0, keys == 2 ? &g9.plan : nullptr);
+}
+
+/// Estimate (RT_STATS): bits per level of a column code by groups of G rows: a group whose values are
+/// all within [-S, S] is one joint symbol (its pattern), else a width symbol (two's complement width
+/// of its largest) and the G values raw at that width; an end symbol after the last nonzero group.
+/// Context: (level, row/8). scheme 0: today's run/size symbols (RuntimeGroup::symbols) for comparison.
+struct SchemeBits {
+    double bits[6] = {}, symbols[6] = {}, columns[6] = {}, tables = 0.0;
+};
+SchemeBits scheme_bits(const HierResult& r, int W, int scheme, int G, int S, int cdiv = 8) {
+    std::vector<int> tl, tf;
+    tree_order(W, tl, tf);
+    std::map<std::pair<int, int>, std::map<int, std::size_t>> hist;
+    struct Sym { int level, ctx, sym; double extra; };
+    std::vector<Sym> all;
+    auto column = [&](int level, const std::vector<std::int32_t>& v) {
+        const int Da = static_cast<int>(v.size());
+        int n = Da;
+        while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+        if (scheme == 0) {
+            int start = 0;
+            for (int d = 0; d < n; ++d) {
+                const std::int32_t q = v[static_cast<std::size_t>(d)];
+                if (q == 0) continue;
+                while (d - start >= 16) { all.push_back({level, start / 8, kZeroRun, 0}); start += 16; }
+                const int c = bit_length(static_cast<std::uint32_t>(std::abs(q)));
+                all.push_back({level, start / 8, (d - start) * 32 + c, static_cast<double>(c)});
+                start = d + 1;
+            }
+            if (n < Da) all.push_back({level, start / 8, kEnd, 0});
+            return;
+        }
+        int d = 0;
+        for (; d < n; d += G) {
+            int mx = 0, pattern = 0;
+            for (int k = d; k < d + G; ++k) {
+                const int q = k < Da ? v[static_cast<std::size_t>(k)] : 0;
+                mx = std::max(mx, std::abs(q));
+                pattern = pattern * (2 * S + 1) + (std::clamp(q, -S, S) + S);
+            }
+            if (mx <= S) all.push_back({level, d / cdiv, pattern, 0});
+            else if (scheme == 2) {  // two widths: rows d, d + 1 and rows d + 2, d + 3
+                int w1 = 0, w2 = 0;
+                for (int k = d; k < d + 2 && k < Da; ++k) w1 = std::max(w1, twos_bits(v[static_cast<std::size_t>(k)]));
+                for (int k = d + 2; k < d + 4 && k < Da; ++k) w2 = std::max(w2, twos_bits(v[static_cast<std::size_t>(k)]));
+                all.push_back({level, d / cdiv, 100000 + 64 * w1 + w2, 2.0 * (w1 + w2)});
+            } else {
+                int w = 0;
+                for (int k = d; k < d + G && k < Da; ++k) w = std::max(w, twos_bits(v[static_cast<std::size_t>(k)]));
+                all.push_back({level, d / cdiv, 100000 + w, static_cast<double>(G * w)});
+            }
+        }
+        if (d < Da) all.push_back({level, d / cdiv, -1, 0});
+    };
+    SchemeBits out;
+    for (const auto& e : r.entries) {
+        for (std::size_t i = 0; i < e.columns.size(); ++i) {
+            column(tl[i], e.columns[i]);
+            out.columns[tl[i]] += 1;
+        }
+    }
+    for (const Sym& x : all) ++hist[{x.level, x.ctx}][x.sym];
+    std::map<std::pair<int, int>, std::map<int, int>> lengths;
+    const double alphabet = scheme == 0 ? 16 * 20 + 2 : std::pow(2 * S + 1, G) + 22;
+    for (const auto& [ctx, h] : hist) {
+        lengths[ctx] = huffman_lengths(h);
+        const auto used = static_cast<double>(h.size());
+        out.tables += 8.0 + std::min(4.0 * alphabet, (std::ceil(std::log2(alphabet)) + 4.0) * used);
+    }
+    for (const Sym& x : all) {
+        out.bits[x.level] += lengths[{x.level, x.ctx}][x.sym] + x.extra;
+        out.symbols[x.level] += 1;
+    }
+    return out;
 }
 
 }  // namespace
@@ -1851,6 +2480,8 @@ int main(int argc, char** argv) {
     bool key_centers = true;             // --key-centers 0: variant 7's keys without per-clip centers
     bool key_escapes = true;             // --key-escapes 0: variant 7's keys without escapes
     std::size_t poses = 0;  // > 0: build the bitstream, verify every frame, time this many cold poses
+    std::vector<std::pair<int, int>> combos;  // --combos 16:12,8:4: (W, key offset) pairs instead of every W with every offset
+    std::vector<std::array<int, 7>> quad_configs;  // variant 9: S, context shift, directory levels, code bits, (unused), prefetch of the clip's key plan, AVX2 combine (--quads 1:3:2:11:1:1:1)
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
         if (k == "--folders") folders = split(v);
@@ -1867,6 +2498,19 @@ int main(int argc, char** argv) {
         else if (k == "--key-escapes") key_escapes = v == "1";
         else if (k == "--float-dofs") g_float_dofs = v == "1";
         else if (k == "--lookups") { lookups.clear(); for (auto& x : split(v)) lookups.push_back(std::stoi(x)); }
+        else if (k == "--combos") {
+            for (auto& x : split(v)) combos.push_back({std::stoi(x.substr(0, x.find(':'))), std::stoi(x.substr(x.find(':') + 1))});
+        }
+        else if (k == "--quads") {
+            quad_configs.clear();
+            for (auto& x : split(v)) {
+                std::array<int, 7> c{1, 3, 9, 11, 0, 0, 0};
+                std::stringstream in(x);
+                std::string part;
+                for (int n = 0; n < 7 && std::getline(in, part, ':'); ++n) c[static_cast<std::size_t>(n)] = std::stoi(part);
+                quad_configs.push_back(c);
+            }
+        }
     }
     std::printf("folder,E,format2_bytes,format2_payload,format2_static,W,key_offset,hier_static,hier_fixed,hier_max,"
                 "windows,keys,nonzero,seconds\n");
@@ -1896,8 +2540,13 @@ int main(int argc, char** argv) {
                 models[g].read_header(pg.bytes.data(), pg.bytes.size());
                 f2_static += format2_static_bits(models[g], members[g]);
             }
-            for (int W : windows)
-                for (int ko : key_offsets) {
+            std::vector<std::pair<int, int>> runs = combos;  // (W, key offset)
+            if (runs.empty())
+                for (int W : windows)
+                    for (int ko : key_offsets) runs.push_back({W, ko});
+            for (const auto& run : runs) {
+                {
+                    const int W = run.first, ko = run.second;
                     const auto t0 = bench::Clock::now();
                     HierResult total;
                     double static_bits = 0.0, fixed_bits = 0.0;
@@ -1908,6 +2557,37 @@ int main(int argc, char** argv) {
                     for (std::size_t g = 0; g < groups.size(); ++g) {
                         StaticCost cost, widths;
                         const HierResult r = run_hier(models[g], members[g], E, W, ko, cost, widths, rounding);
+                        if (std::getenv("RT_STATS")) {
+                            std::vector<int> tl, tf;
+                            tree_order(W, tl, tf);
+                            // per level: histogram of |v| buckets 0,1,2,3,4-7,8-15,16+; columns; rows up to last nonzero
+                            double h[6][8] = {}, cols[6] = {}, used[6] = {}, quads_small[6] = {}, quads[6] = {};
+                            for (const auto& e : r.entries) {
+                                auto add = [&](int l, const std::vector<std::int32_t>& v) {
+                                    cols[l] += 1;
+                                    int n = static_cast<int>(v.size());
+                                    while (n > 0 && v[static_cast<std::size_t>(n - 1)] == 0) --n;
+                                    used[l] += n;
+                                    for (int d = 0; d < n; ++d) {
+                                        const int a = std::abs(v[static_cast<std::size_t>(d)]);
+                                        h[l][a == 0 ? 0 : a == 1 ? 1 : a == 2 ? 2 : a == 3 ? 3 : a < 8 ? 4 : a < 16 ? 5 : 6] += 1;
+                                    }
+                                    for (int d = 0; d < n; d += 4) {
+                                        int mx = 0;
+                                        for (int k = d; k < d + 4 && k < static_cast<int>(v.size()); ++k) mx = std::max(mx, std::abs(v[static_cast<std::size_t>(k)]));
+                                        quads[l] += 1;
+                                        if (mx <= 1) quads_small[l] += 1;
+                                    }
+                                };
+                                add(0, e.key);
+                                for (std::size_t i = 0; i < e.columns.size(); ++i) add(tl[i], e.columns[i]);
+                            }
+                            for (int l = 0; l < 5; ++l) {
+                                std::printf("#STATS g%zu level %d: columns %.0f, rows used %.1f/col;", g, l, cols[l], used[l] / std::max(1.0, cols[l]));
+                                for (int b = 0; b < 7; ++b) std::printf(" %.3f", h[l][b] / std::max(1.0, used[l]));
+                                std::printf("; quads/col %.1f, all |v|<=1 %.3f\n", quads[l] / std::max(1.0, cols[l]), quads_small[l] / std::max(1.0, quads[l]));
+                            }
+                        }
                         for (int j = 0; j < 10; ++j) by_level[static_cast<std::size_t>(j)] += cost.bits(j) / 8;
                         static_bits += r.static_bits + cost.bits();
                         if (poses > 0) {
@@ -1916,6 +2596,19 @@ int main(int argc, char** argv) {
                         }
                         const HuffmanFigures h = huffman_bits(r, W, 0);
                         const HuffmanFigures h1 = huffman_bits(r, W, 1);
+                        if (std::getenv("RT_STATS")) {
+                            const int cfg[][4] = {{0, 1, 0, 8}, {1, 4, 1, 8}, {2, 4, 1, 8}, {2, 4, 0, 8}, {2, 4, 2, 8}};
+                            for (const auto& c : cfg) {
+                                const SchemeBits b = scheme_bits(r, W, c[0], c[1], c[2], c[3]);
+                                double tot = 0;
+                                std::printf("#SCHEME g%zu %s G=%d S=%d ctx=row/%d:", g, c[0] ? "groups" : "run/size", c[1], c[2], c[3]);
+                                for (int l = 1; l < 5; ++l) {
+                                    tot += b.bits[l];
+                                    std::printf(" L%d %.0f B (%.1f sym/col)", l, b.bits[l] / 8, b.symbols[l] / std::max(1.0, b.columns[l]));
+                                }
+                                std::printf(" total %.0f B, tables %.0f B\n", tot / 8, b.tables / 8);
+                            }
+                        }
                         rle.bits += h1.bits;
                         rle.symbols_per_frame += h1.symbols_per_frame * static_cast<double>(r.windows);
                         huff.bits += h.bits;
@@ -2221,6 +2914,24 @@ int main(int argc, char** argv) {
                                         if (!code.length.empty()) bytes7[k] -= (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
                                     }
                                 }
+                            // Variant 9 per --quads config: v7's keys (with escapes), the columns by quads.
+                            std::vector<std::vector<RuntimeGroup9>> r9(quad_configs.size());
+                            std::vector<double> bytes9(quad_configs.size(), static_cast<double>(f2_header)), tables9_5bit(quad_configs.size(), 0.0),
+                                offsets9(quad_configs.size(), 0.0), offsets9_3byte(quad_configs.size(), 0.0);
+                            for (std::size_t v = 0; v < quad_configs.size(); ++v)
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    r9[v].push_back(build_runtime9(runtime[g], hier_results[g], r7[0][g].keys, quad_configs[v][0], quad_configs[v][1], quad_configs[v][2], quad_configs[v][3]));
+                                    r9[v].back().prefetch_clip = quad_configs[v][5] != 0;
+                                    r9[v].back().avx2_combine = quad_configs[v][6] != 0 && cpu_has_avx2();
+                                    const RuntimeGroup9& b9 = r9[v].back();
+                                    bytes9[v] += static_cast<double>(b9.bytes.size() - 16) + static_cast<double>(b9.packed.stored_bytes()) +
+                                                 std::ceil(static_cast<double>(b9.directory_bits) / 8) +
+                                                 static_cast<double>(r7[0][g].width_bits + b9.quads.table_bits) / 8;
+                                    offsets9_3byte[v] += 3.0 * static_cast<double>(b9.offsets.size() - 1);
+                                    offsets9[v] += static_cast<double>(b9.packed.stored_bytes());
+                                    for (const auto& code : b9.quads.codes)
+                                        if (!code.length.empty()) tables9_5bit[v] += (8.0 + 5.0 * static_cast<double>(code.length.size())) / 8;
+                                }
                             // Every frame of every variant equal to variant 1's, bit for bit (so within E: the max above).
                             bool equal = true;
                             for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -2236,6 +2947,10 @@ int main(int argc, char** argv) {
                                         }
                                         for (const auto& rv : r7) {
                                             runtime_frame7(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
+                                            same();
+                                        }
+                                        for (const auto& rv : r9) {
+                                            runtime_frame9(rv[g], i, f, yv.data(), sa.data(), sb.data(), sc.data());
                                             same();
                                         }
                                     }
@@ -2314,8 +3029,20 @@ int main(int argc, char** argv) {
                                             dofs_equal ? "equal to the library path's" : "DIFFER", pose_differ, pose_diff, g_pose_fallbacks);
                             }
                             Times t1, t1d, t7[3], t7k[3][2];  // t7k: with the pose kernels, portable and AVX2
-                            std::vector<Times> t4(configs.size());
+                            std::vector<Times> t4(configs.size()), t9(quad_configs.size()), t9s(quad_configs.size()), t9k(quad_configs.size());
+                            const PosePath fastest = !g_float_dofs ? PosePath::library : avx2 ? PosePath::avx2 : PosePath::portable;
                             for (int rep = 0; rep < reps; ++rep) {
+                                for (std::size_t v = 0; v < quad_configs.size(); ++v) {
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                    }, t9[v], false, fastest);
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, 1);
+                                    }, t9s[v], false, fastest);
+                                    time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
+                                        runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da, 2, true);
+                                    }, t9k[v], false, fastest);
+                                }
                                 time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                     runtime_frame(runtime[g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                 }, t1);
@@ -2354,6 +3081,15 @@ int main(int argc, char** argv) {
                                     std::printf("#      with the pose kernels: cold local pose %.3f us portable, %.3f us AVX2\n", t7k[k][0].cold,
                                                 avx2 ? t7k[k][1].cold : 0.0);
                             }
+                            for (std::size_t v = 0; v < quad_configs.size(); ++v)
+                                std::printf("#    v9 quads S=%d, contexts row>>%d, directory levels %d, codes <= %d bits%s%s (table %zu kB): bytes %.0f (offsets %.0f, at 3 bytes an entry %.0f; code tables %.0f; at 5 bits a used symbol %.0f), "
+                                            "cold local pose %.3f us (%s), y %.3f us (hot %.3f)\n",
+                                            quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].avx2_combine ? ", AVX2 combine" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
+                                            [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
+                                            tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
+                            for (std::size_t v = 0; v < quad_configs.size(); ++v)
+                                std::printf("#      v9 S=%d row>>%d: keys paired without the plan: cold %.3f us, y %.3f (hot %.3f); keys alone (plan): y %.3f (hot %.3f)\n",
+                                            quad_configs[v][0], quad_configs[v][1], t9s[v].cold, t9s[v].y, t9s[v].hot, t9k[v].y, t9k[v].hot);
                             // y -> local pose alone (each group's last y, over and over), by each path.
                             if (g_float_dofs) {
                                 double stage[3] = {1e300, 1e300, 1e300};
@@ -2399,7 +3135,9 @@ int main(int argc, char** argv) {
                                             "%zu groups; group 0: %d active dofs, lane groups %d / %d / %d of joints with 2 / 1 / 3 channels)\n",
                                             stage[0], stage[1], avx2 ? stage[2] : 0.0, part[0], part[1], groups.size(), k0.da, k0.groups[0], k0.groups[1], k0.groups[2]);
                                 // Sequential playback: every frame of every clip in order, each decoded as a cold pose
-                                // (variant 7 with escapes, the fastest pose path; nothing kept between frames).
+                                // (variant 7 with escapes and variant 9's first --quads config, the fastest pose path;
+                                // nothing kept between frames).
+                                for (int variant = 0; variant < (r9.empty() ? 1 : 2); ++variant) {
                                 double sequential = 1e300;
                                 std::size_t frames = 0;
                                 for (int rep = 0; rep < reps; ++rep) {
@@ -2411,17 +3149,19 @@ int main(int argc, char** argv) {
                                         double* base = scratch[g].data();
                                         for (std::size_t i = 0; i < members[g].size(); ++i)
                                             for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f, ++frames) {
-                                                runtime_frame7(r7[0][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                                if (variant) runtime_frame9(r9[0][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
+                                                else runtime_frame7(r7[0][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
                                                 local_pose_of_y(m, m.clips[i], base, ws[g], base + 4 * Da, out,
                                                                 avx2 ? PosePath::avx2 : PosePath::portable, plans[g]);
                                             }
                                     }
                                     sequential = std::min(sequential, bench::thread_cpu_seconds() - c0);
                                 }
-                                std::printf("#    sequential playback (every frame in order, each a cold pose, v7 with escapes, %s kernels): %.3f us a pose, "
+                                std::printf("#    sequential playback (every frame in order, each a cold pose, %s, %s kernels): %.3f us a pose, "
                                             "%.2f M poses/s\n",
-                                            avx2 ? "AVX2" : "portable", sequential / static_cast<double>(frames) * 1e6,
+                                            variant ? "v9" : "v7 with escapes", avx2 ? "AVX2" : "portable", sequential / static_cast<double>(frames) * 1e6,
                                             static_cast<double>(frames) / sequential * 1e-6);
+                                }
                             }
                         }
                         std::printf("#  stages: y from bytes %.3f us (without prefetch %.3f), y -> local pose %.3f us\n", decode_only,
@@ -2436,6 +3176,7 @@ int main(int argc, char** argv) {
                     std::printf("\n");
                     std::fflush(stdout);
                 }
+            }
         }
     }
     return 0;
