@@ -76,19 +76,23 @@ TEST_CASE("local kriging with a small neighbourhood interpolates the samples and
             CHECK(e.variance < 1e-9);
             CHECK(e.reliability > 1.0 - 1e-9);
         }
-        // Anywhere: the weights sum to one and reproduce the linear trend (sum w_i x_i = c), with at most k
-        // nonzero, all in the neighbourhood.
+        // Anywhere: the weights sum to one and reproduce the linear trend (sum w_i x_i = c); GLS: nonzero
+        // only in the neighbourhood.
         const Eigen::MatrixXd q = uniform(20, 2, 12, -0.5, 4.5);
         const Eigen::MatrixXd w = local.weights_batch(q);
         for (Eigen::Index k = 0; k < q.rows(); ++k) {
             CHECK(std::abs(w.col(k).sum() - 1.0) < 1e-10);
             CHECK((x.transpose() * w.col(k) - q.row(k).transpose()).norm() < 1e-9);
-            const Eigen::VectorXi nb = local.neighbourhood(q.row(k).transpose());
-            std::set<int> in(nb.data(), nb.data() + nb.size());
-            for (Eigen::Index i = 0; i < 200; ++i)
-                if (in.count(static_cast<int>(i)) == 0) CHECK(w(i, k) == 0.0);
+            if (fit == TrendFit::GLS) {
+                const Eigen::VectorXi nb = local.neighbourhood(q.row(k).transpose());
+                std::set<int> in(nb.data(), nb.data() + nb.size());
+                for (Eigen::Index i = 0; i < 200; ++i)
+                    if (in.count(static_cast<int>(i)) == 0) CHECK(w(i, k) == 0.0);
+            }
         }
-        // rho equals the one of the exact kriging of the 12 neighbours alone.
+        // GLS (gstat's local universal kriging): rho is the one of the exact kriging of the 12 neighbours
+        // alone. (OLS keeps the global trend: its weights reach every sample, tested above.)
+        if (fit != TrendFit::GLS) continue;
         const Eigen::VectorXd c = q.row(4).transpose();
         const Eigen::VectorXi nb = local.neighbourhood(c);
         Eigen::MatrixXd xn(nb.size(), 2);
@@ -96,6 +100,32 @@ TEST_CASE("local kriging with a small neighbourhood interpolates the samples and
         const Kriging alone = Kriging::build(xn, model, local_test_options(fit, false));
         CHECK(std::abs(alone.estimate(c).reliability - local.estimate(c).reliability) < 1e-12);
         CHECK(std::abs(alone.estimate(c).variance - local.estimate(c).variance) < 1e-12);
+    }
+}
+
+TEST_CASE("local kriging's OLS variance is the error variance of the weights it uses") {
+    // OLS keeps the global trend, so its weights reach every sample: V = 2 w^T gamma(c) - w^T Gamma w
+    // (+ the nugget when filtered), computed here directly with the whole variogram matrix.
+    const Eigen::MatrixXd x = uniform(80, 2, 31, 0.0, 3.0);
+    const VariogramModel model = VariogramModel::stable(1.2, 0.05, 1.0, 1.0);
+    Eigen::MatrixXd gamma(80, 80);
+    for (Eigen::Index i = 0; i < 80; ++i)
+        for (Eigen::Index j = 0; j < 80; ++j) gamma(i, j) = model((x.row(i) - x.row(j)).norm());
+    for (const bool filter : {false, true}) {
+        VariogramModel query = model;
+        if (filter) query.nugget = 0.0;
+        const LocalKriging local = LocalKriging::build(x, model, local_test_options(TrendFit::OLS, filter), 10);
+        const Eigen::MatrixXd q = uniform(6, 2, 32, -0.5, 3.5);
+        for (Eigen::Index k = 0; k < q.rows(); ++k) {
+            const KrigingEstimate e = local.estimate(q.row(k).transpose());
+            Eigen::VectorXd gq(80);
+            for (Eigen::Index i = 0; i < 80; ++i) gq(i) = query((x.row(i) - q.row(k)).norm());
+            const double v = 2.0 * e.weights.dot(gq) - e.weights.dot(gamma * e.weights) + (filter ? model.nugget : 0.0);
+            INFO("filter " << filter << " query " << k);
+            CHECK(std::abs(e.variance - std::max(v, 0.0)) < 1e-10);
+            CHECK(std::abs(e.reliability - std::clamp(1.0 - e.variance / model.total_sill(), 0.0, 1.0)) < 1e-12);
+            CHECK(std::abs(e.paper_variance - e.kernel.dot(gq)) < 1e-10);
+        }
     }
 }
 

@@ -6,9 +6,15 @@
 #include <vector>
 
 #include "mocapdb/core/error.hpp"
+#include "gamma_vector.hpp"
 #include "prepared_points.hpp"
 
 namespace mocapdb::kriging {
+
+namespace {
+// Columns of the variogram matrix computed at a time (OLS variance precomputation).
+constexpr Eigen::Index kGammaBlock = 256;
+}  // namespace
 
 LocalKriging LocalKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
                                  const KrigingOptions& options, Eigen::Index neighbours) {
@@ -34,6 +40,25 @@ LocalKriging LocalKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords
     lk.status_.duplicate_pairs = prepared.duplicate_pairs;
     lk.status_.trend_rank = prepared.basis.rank();
     lk.status_.trend_rank_deficient = prepared.basis.rank_deficient();
+    lk.basis_ = std::move(prepared.basis);
+    lk.local_options_ = options;
+    lk.ols_ = options.trend_fit == TrendFit::OLS && options.trend == TrendKind::Linear;
+    if (lk.ols_) {
+        // The residuals of the global trend are kriged locally: ordinary kriging in each neighbourhood.
+        lk.local_options_.trend = TrendKind::None;
+        lk.u_ = lk.basis_.sample_basis().rightCols(lk.basis_.rank());
+        // Gamma U by blocks of Gamma's columns (M by block at a time; Gamma itself is never held).
+        const Eigen::Index m = lk.points_.rows();
+        lk.gamma_u_ = Eigen::MatrixXd::Zero(m, lk.u_.cols());
+        Eigen::MatrixXd block;
+        for (Eigen::Index j0 = 0; j0 < m && lk.u_.cols() > 0; j0 += kGammaBlock) {
+            const Eigen::Index nb = std::min(kGammaBlock, m - j0);
+            block.resize(m, nb);
+            detail::gamma_block(lk.points_, model, lk.points_.middleRows(j0, nb), block);
+            lk.gamma_u_.noalias() += block * lk.u_.middleRows(j0, nb);
+        }
+        lk.ut_gamma_u_ = lk.u_.transpose() * lk.gamma_u_;
+    }
     return lk;
 }
 
@@ -56,34 +81,73 @@ Eigen::VectorXi LocalKriging::neighbourhood(const Eigen::Ref<const Eigen::Vector
     return nb;
 }
 
-Kriging LocalKriging::local_system(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::VectorXi& nb) const {
-    nb = neighbourhood(c);
-    Eigen::MatrixXd local(nb.size(), points_.cols());
-    for (Eigen::Index j = 0; j < nb.size(); ++j) local.row(j) = points_.row(nb(j));
-    return Kriging::build(local, model_, options_);
+LocalKriging::Solution LocalKriging::solve(const Eigen::Ref<const Eigen::VectorXd>& c, bool with_variance) const {
+    const Eigen::VectorXi nb = neighbourhood(c);
+    const Eigen::Index k = nb.size();
+    const Eigen::Index m = points_.rows();
+    Eigen::MatrixXd local(k, points_.cols());
+    for (Eigen::Index j = 0; j < k; ++j) local.row(j) = points_.row(nb(j));
+    const Kriging system = Kriging::build(local, model_, local_options_);
+    // Local weights (== the kernel: GLS, ordinary kriging, and the OLS residuals' ordinary kriging).
+    Eigen::VectorXd lw(k);
+    Solution s;
+    if (with_variance) {
+        const KrigingEstimate e = system.estimate(c);
+        lw = e.kernel;
+        s.variance = e.variance;
+        s.paper_variance = e.paper_variance;
+    } else {
+        QueryWorkspace ws;
+        system.weights(c, lw, ws);
+    }
+    s.kernel = Eigen::VectorXd::Zero(m);
+    for (Eigen::Index j = 0; j < k; ++j) s.kernel(nb(j)) = lw(j);
+    if (!ols_) {
+        s.weights = s.kernel;
+        return s;
+    }
+    // OLS: w = b + U a, a = g_u(c) - U^T b, with the global trend basis (as Kriging's OLS weights).
+    const Eigen::Index r = u_.cols();
+    Eigen::VectorXd g(basis_.size());
+    basis_.evaluate(c, g);
+    Eigen::VectorXd a = g.tail(r);
+    Eigen::VectorXd ugb = Eigen::VectorXd::Zero(r);  // U^T Gamma b
+    for (Eigen::Index j = 0; j < k; ++j) {
+        a -= lw(j) * u_.row(nb(j)).transpose();
+        ugb += lw(j) * gamma_u_.row(nb(j)).transpose();
+    }
+    s.weights = s.kernel;
+    s.weights.noalias() += u_ * a;
+    if (with_variance) {
+        // V = 2 w^T gamma(c) - w^T Gamma w (+ the nugget when filtered), as Kriging's OLS variance, with
+        // w^T Gamma w = b^T Gamma b + 2 a^T U^T Gamma b + a^T U^T Gamma U a (b nonzero on the neighbours only).
+        VariogramModel query_model = model_;
+        if (options_.filter_nugget) query_model.nugget = 0.0;
+        Eigen::VectorXd gq(m);
+        detail::gamma_vector(points_, query_model, c, gq);
+        const Eigen::MatrixXd& gnb = system.gamma_matrix();
+        const double bgb = lw.dot(gnb * lw);
+        const double wgw = bgb + 2.0 * a.dot(ugb) + a.dot(ut_gamma_u_ * a);
+        s.variance = std::max(2.0 * s.weights.dot(gq) - wgw + (options_.filter_nugget ? model_.nugget : 0.0), 0.0);
+    }
+    return s;
 }
 
-void LocalKriging::scatter(const Eigen::VectorXi& nb, const Eigen::Ref<const Eigen::VectorXd>& local,
-                           Eigen::Ref<Eigen::VectorXd> out) const {
-    // position of each unique point in the neighbourhood (-1: outside), then one pass over the samples.
-    Eigen::VectorXi slot = Eigen::VectorXi::Constant(points_.rows(), -1);
-    for (Eigen::Index j = 0; j < nb.size(); ++j) slot(nb(j)) = static_cast<int>(j);
-    for (Eigen::Index i = 0; i < group_.size(); ++i) {
-        const int u = group_(i);
-        out(i) = slot(u) < 0 ? 0.0 : local(slot(u)) / group_size_(u);
-    }
+void LocalKriging::expand(const Eigen::VectorXd& unique, Eigen::Ref<Eigen::VectorXd> out) const {
+    for (Eigen::Index i = 0; i < group_.size(); ++i) out(i) = unique(group_(i)) / group_size_(group_(i));
+}
+
+double LocalKriging::reliability_of(const Solution& s) const {
+    const double v = options_.reliability == ReliabilityVariance::Paper ? s.paper_variance : s.variance;
+    return std::clamp(1.0 - v / model_.total_sill(), 0.0, 1.0);
 }
 
 void LocalKriging::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out_weights,
-                           QueryWorkspace& ws) const {
+                           QueryWorkspace& /*workspace*/) const {
     if (out_weights.size() != num_samples())
         throw InvalidArgument("LocalKriging::weights: out_weights must have N = " + std::to_string(num_samples()) +
                               " entries");
-    Eigen::VectorXi nb;
-    const Kriging k = local_system(c, nb);
-    Eigen::VectorXd local(nb.size());
-    k.weights(c, local, ws);
-    scatter(nb, local, out_weights);
+    expand(solve(c, false).weights, out_weights);
 }
 
 void LocalKriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries,
@@ -92,22 +156,20 @@ void LocalKriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& querie
         throw InvalidArgument("LocalKriging::weights_batch: queries must be Q by P (P = " +
                               std::to_string(dimension()) + ") and out_weights N by Q (N = " +
                               std::to_string(num_samples()) + ")");
-    QueryWorkspace ws;
-    for (Eigen::Index q = 0; q < queries.rows(); ++q) weights(queries.row(q).transpose(), out_weights.col(q), ws);
+    for (Eigen::Index q = 0; q < queries.rows(); ++q)
+        expand(solve(queries.row(q).transpose(), false).weights, out_weights.col(q));
 }
 
 KrigingEstimate LocalKriging::estimate(const Eigen::Ref<const Eigen::VectorXd>& c) const {
-    Eigen::VectorXi nb;
-    const Kriging k = local_system(c, nb);
-    const KrigingEstimate local = k.estimate(c);
+    const Solution s = solve(c, true);
     KrigingEstimate e;
-    e.variance = local.variance;
-    e.paper_variance = local.paper_variance;
-    e.reliability = local.reliability;
+    e.variance = s.variance;
+    e.paper_variance = s.paper_variance;
+    e.reliability = reliability_of(s);
     e.weights.resize(num_samples());
     e.kernel.resize(num_samples());
-    scatter(nb, local.weights, e.weights);
-    scatter(nb, local.kernel, e.kernel);
+    expand(s.weights, e.weights);
+    expand(s.kernel, e.kernel);
     return e;
 }
 
@@ -122,13 +184,11 @@ KrigingBatch LocalKriging::estimate_batch(const Eigen::Ref<const Eigen::MatrixXd
     out.paper_variance.resize(nq);
     out.reliability.resize(nq);
     for (Eigen::Index q = 0; q < nq; ++q) {
-        Eigen::VectorXi nb;
-        const Kriging k = local_system(queries.row(q).transpose(), nb);
-        const KrigingBatch b = k.estimate_batch(queries.row(q));
-        scatter(nb, b.weights.col(0), out.weights.col(q));
-        out.variance(q) = b.variance(0);
-        out.paper_variance(q) = b.paper_variance(0);
-        out.reliability(q) = b.reliability(0);
+        const Solution s = solve(queries.row(q).transpose(), true);
+        expand(s.weights, out.weights.col(q));
+        out.variance(q) = s.variance;
+        out.paper_variance(q) = s.paper_variance;
+        out.reliability(q) = reliability_of(s);
     }
     return out;
 }
@@ -138,10 +198,7 @@ Eigen::VectorXd LocalKriging::reliability(const Eigen::Ref<const Eigen::MatrixXd
         throw InvalidArgument("LocalKriging::reliability: queries must be Q by P with P = " +
                               std::to_string(dimension()));
     Eigen::VectorXd rho(queries.rows());
-    for (Eigen::Index q = 0; q < queries.rows(); ++q) {
-        Eigen::VectorXi nb;
-        rho(q) = local_system(queries.row(q).transpose(), nb).estimate_batch(queries.row(q)).reliability(0);
-    }
+    for (Eigen::Index q = 0; q < queries.rows(); ++q) rho(q) = reliability_of(solve(queries.row(q).transpose(), true));
     return rho;
 }
 

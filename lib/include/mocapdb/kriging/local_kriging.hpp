@@ -1,9 +1,11 @@
 #pragma once
 // Moving-neighbourhood (local) kriging, as gstat's nmax: a query is answered by the kriging system
-// (kriging.hpp, same variogram and options) of its k nearest control points only, the trend fitted in
-// that neighbourhood. Cost per query: O(M P) for the search, O(k^3) for the local system; memory O(M P)
-// plus O(k^2) per query, no M by M matrix. With k >= M it is Kriging::build on all points (to rounding).
-// The prediction jumps where the neighbourhood changes (at most the local error: docs/synthesis-scale.md).
+// (kriging.hpp, same variogram and options) of its k nearest control points only. GLS / ordinary
+// kriging: the trend is fitted in that neighbourhood (gstat's local universal kriging). OLS (the
+// paper's): the global least-squares trend of all points is kept, its residuals are kriged locally.
+// Cost per query: O(M P) for the search, O(k^3) for the local system; memory O(M P) plus O(k^2) per
+// query, no M by M matrix (OLS: O(M^2 P) time once at build for the variance). With k >= M it is
+// Kriging::build on all points (to rounding). The prediction jumps where the neighbourhood changes.
 //
 // Immutable after build(); thread-safe (each query builds its own local system).
 //
@@ -59,11 +61,15 @@ public:
     const Eigen::VectorXi& unique_index() const { return group_; }
 
 private:
-    // The local system at c and its neighbourhood (into `nb`).
-    Kriging local_system(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::VectorXi& nb) const;
-    // Local weights on the neighbourhood's points (local: k) to the N samples (out: N).
-    void scatter(const Eigen::VectorXi& nb, const Eigen::Ref<const Eigen::VectorXd>& local,
-                 Eigen::Ref<Eigen::VectorXd> out) const;
+    // One query on the unique points: weights and kernel (M), variances (when asked for).
+    struct Solution {
+        Eigen::VectorXd weights, kernel;
+        double variance = 0.0, paper_variance = 0.0;
+    };
+    Solution solve(const Eigen::Ref<const Eigen::VectorXd>& c, bool with_variance) const;
+    // Unique-point values (M) to the N samples (out: N), a merged point's value split among its samples.
+    void expand(const Eigen::VectorXd& unique, Eigen::Ref<Eigen::VectorXd> out) const;
+    double reliability_of(const Solution& s) const;
 
     VariogramModel model_;
     KrigingOptions options_;
@@ -72,6 +78,12 @@ private:
     Eigen::VectorXi group_;       // N -> unique index
     Eigen::VectorXd group_size_;  // M
     Eigen::Index neighbours_ = 0;
+    KrigingOptions local_options_;  // of the local systems (OLS: ordinary kriging of the residuals)
+    bool ols_ = false;
+    TrendBasis basis_;          // global, over the unique points
+    Eigen::MatrixXd u_;         // OLS: M by r orthonormal trend columns (basis_ without the constant)
+    Eigen::MatrixXd gamma_u_;   // OLS: Gamma U (M by r), Gamma the variogram matrix of the unique points
+    Eigen::MatrixXd ut_gamma_u_;  // OLS: U^T Gamma U (r by r)
 };
 
 }  // namespace mocapdb::kriging
