@@ -182,22 +182,28 @@ int local_mode(const Database& db, const std::string& name, int queries, int k, 
                 load_default_s, exact.report().system_precomputed ? 1 : 0, synth_exact_s,
                 static_cast<long long>(frames_exact));
 
-    // At the requests: the two models.
+    // At the requests: the two models (also split at the exact rho 0.5: near the samples / far from them).
+    const VecX rho_exact = exact.reliability_batch(c);
     double rel_sum = 0.0, rel_max = 0.0;
-    Gaps at_requests;
+    Gaps at_requests, near, far;
     for (Eigen::Index q = 0; q < c.rows(); ++q) {
         exact.coefficients(c.row(q).transpose(), ue, ws);
         local->coefficients(c.row(q).transpose(), ul, ws);
         const double rel = (ul - ue).norm() / std::max(ue.norm(), 1e-300);
         rel_sum += rel;
         rel_max = std::max(rel_max, rel);
-        at_requests.add(gap(positions(exact, ue), positions(exact, ul)));
+        const Gap g = gap(positions(exact, ue), positions(exact, ul));
+        at_requests.add(g);
+        (rho_exact(q) >= 0.5 ? near : far).add(g);
     }
-    const VecX drho = (local->reliability_batch(c) - exact.reliability_batch(c)).cwiseAbs();
-    std::printf("queries %d\nrequests_rho_exact_mean %.4f\n", queries, exact.reliability_batch(c).mean());
+    const VecX drho = (local->reliability_batch(c) - rho_exact).cwiseAbs();
+    std::printf("queries %d\nrequests_rho_exact_mean %.4f\n", queries, rho_exact.mean());
     std::printf("requests_coefficients_rel_diff_mean %.5f\nrequests_coefficients_rel_diff_max %.5f\n",
                 rel_sum / queries, rel_max);
     at_requests.print("requests_pose_diff");
+    std::printf("requests_rho_at_least_half %d\n", near.n);
+    near.print("requests_rho_at_least_half_pose_diff");
+    far.print("requests_rho_below_half_pose_diff");
     std::printf("requests_rho_abs_diff_mean %.5f\nrequests_rho_abs_diff_max %.5f\n", drho.mean(), drho.maxCoeff());
 
     // Held-out samples: both systems on the others, each prediction against the sample itself.
