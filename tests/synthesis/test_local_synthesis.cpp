@@ -166,15 +166,21 @@ TEST_CASE("a model over the bound with a small neighbourhood interpolates its sa
         const VecX cq = c.row(q).transpose();
         local->weights(cq, w, ws);
         CHECK(std::abs(w.sum() - 1.0) < 1e-10);
-        CHECK((w.array() != 0.0).count() <= 8);
         CHECK(max_abs(batch.col(q) - local->pose(cq, 4.25)) < 1e-9);
         const double rho = local->reliability(cq);
         CHECK((rho >= 0.0 && rho <= 1.0));
     }
-    // Each side's request draws on its own side's samples first (the level is a distance of 2).
-    local->weights(VecX((VecX(3) << -60.0, 110.0, 0.0).finished()), w, ws);
-    for (Eigen::Index i = 0; i < local->samples(); ++i)
-        if (w(i) != 0.0) CHECK(r.set.parameters(i, 2) == 0.0);
+    // A request's neighbourhood is its own side's samples (the level indicators are 2 apart), and its
+    // weights reproduce the per-level trend (the global one: sum_i w_i level_i = the request's level).
+    for (const double side : {0.0, 1.0}) {
+        const VecX c_side = (VecX(3) << -60.0 + 120.0 * side, 110.0, side).finished();
+        VecX cn;
+        local->scaling().apply_point(c_side, cn);
+        const Eigen::VectorXi nb = local->local_kernel()->neighbourhood(cn);
+        for (Eigen::Index j = 0; j < nb.size(); ++j) CHECK(r.set.parameters(nb(j), 2) == side);
+        local->weights(c_side, w, ws);
+        CHECK(std::abs(w.dot(r.set.parameters.col(2)) - side) < 1e-9);
+    }
 }
 
 TEST_CASE("what local kriging cannot serve is refused, and compress stores no system above the bound",

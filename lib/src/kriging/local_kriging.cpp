@@ -7,7 +7,6 @@
 
 #include "mocapdb/core/error.hpp"
 #include "gamma_vector.hpp"
-#include "prepared_points.hpp"
 
 namespace mocapdb::kriging {
 
@@ -18,29 +17,21 @@ constexpr Eigen::Index kGammaBlock = 256;
 
 LocalKriging LocalKriging::build(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
                                  const KrigingOptions& options, Eigen::Index neighbours) {
-    detail::validate_coords("LocalKriging::build", coords);
     if (neighbours < 1)
         throw InvalidArgument("LocalKriging::build: the neighbourhood must have k >= 1 points, got " +
                               std::to_string(neighbours));
-    // The model and options are checked as Kriging::build checks them (a one-point system: no cost).
-    (void)Kriging::build(coords.topRows(1), model, options);
+    // Validation, duplicates grouped and the trend basis, exactly as Kriging::build (the local systems
+    // then see unique points only).
+    Kriging prepared = Kriging::prepare(coords, model, options);
     LocalKriging lk;
     lk.model_ = model;
     lk.options_ = options;
-    // Duplicates grouped as the exact kriging groups them (the local systems then see unique points only).
-    detail::PreparedPoints prepared =
-        detail::prepare_points(coords, options.duplicate_tolerance, options.duplicates == DuplicatePolicy::Merge,
-                               options.trend, options.trend_rank_tolerance);
-    lk.points_ = std::move(prepared.points);
-    lk.group_ = std::move(prepared.group);
-    lk.group_size_ = std::move(prepared.group_size);
+    lk.points_ = std::move(prepared.points_);
+    lk.group_ = std::move(prepared.group_);
+    lk.group_size_ = std::move(prepared.group_size_);
+    lk.basis_ = std::move(prepared.basis_);
+    lk.status_ = prepared.status_;
     lk.neighbours_ = std::min(neighbours, lk.points_.rows());
-    lk.status_.unique_points = lk.points_.rows();
-    lk.status_.duplicates_merged = coords.rows() - lk.points_.rows();
-    lk.status_.duplicate_pairs = prepared.duplicate_pairs;
-    lk.status_.trend_rank = prepared.basis.rank();
-    lk.status_.trend_rank_deficient = prepared.basis.rank_deficient();
-    lk.basis_ = std::move(prepared.basis);
     lk.local_options_ = options;
     lk.ols_ = options.trend_fit == TrendFit::OLS && options.trend == TrendKind::Linear;
     if (lk.ols_) {
