@@ -144,9 +144,9 @@ void LocalKriging::weights(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Re
 void LocalKriging::weights_batch(const Eigen::Ref<const Eigen::MatrixXd>& queries,
                                  Eigen::Ref<Eigen::MatrixXd> out_weights) const {
     if (queries.cols() != dimension() || out_weights.rows() != num_samples() || out_weights.cols() != queries.rows())
-        throw InvalidArgument("LocalKriging::weights_batch: queries must be Q by P (P = " +
-                              std::to_string(dimension()) + ") and out_weights N by Q (N = " +
-                              std::to_string(num_samples()) + ")");
+        throw InvalidArgument(
+            "LocalKriging::weights_batch: queries must be Q by P (P = " + std::to_string(dimension()) +
+            ") and out_weights N by Q (N = " + std::to_string(num_samples()) + ")");
     for (Eigen::Index q = 0; q < queries.rows(); ++q)
         expand(solve(queries.row(q).transpose(), false).weights, out_weights.col(q));
 }

@@ -70,7 +70,8 @@ MatX same_residual_norms(const Eigen::Ref<const MatX>& values) {
 MatX spread_rows(const Eigen::Ref<const MatX>& a, Eigen::Index m) {
     const double step = static_cast<double>(a.rows() - 1) / static_cast<double>(m - 1);
     MatX out(m, a.cols());
-    for (Eigen::Index i = 0; i < m; ++i) out.row(i) = a.row(static_cast<Eigen::Index>(std::lround(step * static_cast<double>(i))));
+    for (Eigen::Index i = 0; i < m; ++i)
+        out.row(i) = a.row(static_cast<Eigen::Index>(std::lround(step * static_cast<double>(i))));
     return out;
 }
 

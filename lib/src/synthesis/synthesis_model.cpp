@@ -201,8 +201,8 @@ std::size_t SynthesisModel::memory_bytes() const {
     const auto n = static_cast<std::size_t>(samples());
     const auto k = static_cast<std::size_t>(parameters()) + 1;
     // The local kriging keeps the normalized points only (its k by k systems live during a query).
-    const std::size_t kernel = local_ ? n * static_cast<std::size_t>(local_->dimension())
-                                      : 2 * n * n + n * (n + k) + n * (n + 1) / 2;
+    const std::size_t kernel =
+        local_ ? n * static_cast<std::size_t>(local_->dimension()) : 2 * n * n + n * (n + k) + n * (n + 1) / 2;
     const std::size_t increments = n * static_cast<std::size_t>(frames_ - 1);
     const bool separate = timing_kernel_ == SynthesisOptions::TimingKernel::Separate;
     return sizeof(double) *

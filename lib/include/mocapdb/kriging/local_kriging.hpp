@@ -80,9 +80,9 @@ private:
     Eigen::Index neighbours_ = 0;
     KrigingOptions local_options_;  // of the local systems (OLS: ordinary kriging of the residuals)
     bool ols_ = false;
-    TrendBasis basis_;          // global, over the unique points
-    Eigen::MatrixXd u_;         // OLS: M by r orthonormal trend columns (basis_ without the constant)
-    Eigen::MatrixXd gamma_u_;   // OLS: Gamma U (M by r), Gamma the variogram matrix of the unique points
+    TrendBasis basis_;            // global, over the unique points
+    Eigen::MatrixXd u_;           // OLS: M by r orthonormal trend columns (basis_ without the constant)
+    Eigen::MatrixXd gamma_u_;     // OLS: Gamma U (M by r), Gamma the variogram matrix of the unique points
     Eigen::MatrixXd ut_gamma_u_;  // OLS: U^T Gamma U (r by r)
 };
 
