@@ -63,6 +63,7 @@ void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthO
     j.key("load_s").value(r.load_s);
     j.key("precompute_s").value(r.precompute_s);
     j.key("kernel_stored").value(r.kernel_stored);
+    j.key("local_neighbours").value(r.local_neighbours);
     j.key("predictor").value(r.predictor);
     j.key("predictor_choice");
     if (r.predictor_choice) fields::predictor_choice(j, *r.predictor_choice);

@@ -32,7 +32,8 @@ struct SynthReport {
     double load_s = 0.0;                 ///< loading the set and the model
     double precompute_s = 0.0;
     bool kernel_stored = false;
-    std::string predictor;  ///< what blended the samples (synthesis::to_string(Predictor))
+    long long local_neighbours = 0;  ///< SynthesisReport::local_neighbours (0: exact kriging of all samples)
+    std::string predictor;           ///< what blended the samples (synthesis::to_string(Predictor))
     std::optional<synthesis::PredictorChoice> predictor_choice;  ///< the stored cross-validated choice
     std::string output;                                          ///< the BVH file written
 };

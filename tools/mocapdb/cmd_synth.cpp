@@ -67,6 +67,7 @@ void run_synth(const SynthArgs& a) {
         r.load_s = load_s;
         r.precompute_s = model->report().precompute_seconds;
         r.kernel_stored = model->report().kernel_precomputed;
+        r.local_neighbours = static_cast<long long>(model->report().local_neighbours);
         r.predictor = synthesis::to_string(model->report().predictor);
         r.predictor_choice = model->report().predictor_choice;
         r.output = a.out;
@@ -75,9 +76,13 @@ void run_synth(const SynthArgs& a) {
         std::fputs(j.str().c_str(), stdout);
         return;
     }
+    const Eigen::Index local = model->report().local_neighbours;
+    const std::string predictor =
+        std::string(synthesis::to_string(model->report().predictor)) +
+        (local > 0 ? "; local kriging: each request from its " + std::to_string(local) + " nearest samples" : "");
     std::printf("synthesized '%s' (%s model, ranks %lldx%lldx%lld, %s) -> %s\n", a.set.c_str(), model->kind(),
                 static_cast<long long>(ranks[0]), static_cast<long long>(ranks[1]), static_cast<long long>(ranks[2]),
-                synthesis::to_string(model->report().predictor), a.out.c_str());
+                predictor.c_str(), a.out.c_str());
     std::printf("  %-16s %14s %14s\n", "parameter", "requested", "measured");
     for (std::size_t k = 0; k < set.parameter_names.size(); ++k) {
         const std::string unit = set.parameter_units[k].empty() ? "" : " " + set.parameter_units[k];

@@ -62,11 +62,11 @@ ReductionCurve reduction_curve(const EvalSet& set, const ReductionCurveOptions& 
     const synthesis::NaiveMotionModel model(set.aligned, set.set, set.skeleton, set.frame_rate, weight);
     const MatX xc = model.scaling().apply(model.sample_parameters());
     kriging::ReductionOptions ro;
-    ro.kriging = model.kernel().options();
+    ro.kriging = model.kriging_options();
     ro.tau = options.tau;
-    const kriging::ReductionResult at_tau = kriging::reduce_samples(xc, model.kernel().model(), ro);
+    const kriging::ReductionResult at_tau = kriging::reduce_samples(xc, model.report().model, ro);
     ro.tau = 0.0;  // never stops on the threshold: the full order down to the minimum
-    const kriging::ReductionResult full = kriging::reduce_samples(xc, model.kernel().model(), ro);
+    const kriging::ReductionResult full = kriging::reduce_samples(xc, model.report().model, ro);
 
     ReductionCurve out;
     out.samples = n;

@@ -65,6 +65,16 @@ MatX same_residual_norms(const Eigen::Ref<const MatX>& values) {
     return r.transpose();
 }
 
+// m rows of a evenly spread in row order (rows round(i (N - 1) / (m - 1)), m >= 2): the subset of data the
+// variogram of a big set is fitted on.
+MatX spread_rows(const Eigen::Ref<const MatX>& a, Eigen::Index m) {
+    const double step = static_cast<double>(a.rows() - 1) / static_cast<double>(m - 1);
+    MatX out(m, a.cols());
+    for (Eigen::Index i = 0; i < m; ++i)
+        out.row(i) = a.row(static_cast<Eigen::Index>(std::lround(step * static_cast<double>(i))));
+    return out;
+}
+
 }  // namespace
 
 std::string kernel_options_text(const SynthesisOptions& o) {
@@ -178,14 +188,7 @@ KernelFit fit_coefficient_kernel(const Eigen::Ref<const MatX>& xc, const Eigen::
     if (static_cast<std::size_t>(xc.rows()) > options.max_fit_samples) {
         // Subset of data: evenly spread rows (sample order follows the clips, so every clip is represented).
         const auto m = static_cast<Eigen::Index>(options.max_fit_samples);
-        const double step = static_cast<double>(xc.rows() - 1) / static_cast<double>(m - 1);
-        MatX x_sub(m, xc.cols()), v_sub(m, sample_values.cols());
-        for (Eigen::Index i = 0; i < m; ++i) {
-            const auto row = static_cast<Eigen::Index>(std::lround(step * static_cast<double>(i)));
-            x_sub.row(i) = xc.row(row);
-            v_sub.row(i) = sample_values.row(row);
-        }
-        return fit_coefficient_kernel(x_sub, v_sub, options, where);
+        return fit_coefficient_kernel(spread_rows(xc, m), spread_rows(sample_values, m), options, where);
     }
     // Residuals of the trend the kriging will remove (gstat: variogram(z ~ x + y)), so that a variogram
     // rising as h^2 because of the drift is not taken for spatial correlation.
@@ -334,6 +337,12 @@ kriging::FitStatus assess_coefficient_kernel(const Eigen::Ref<const MatX>& xc,
                                              const Eigen::Ref<const MatX>& sample_values,
                                              const kriging::VariogramModel& variogram,
                                              const SynthesisOptions& options) {
+    // Sets synthesized by local kriging: on the subset the variogram was fitted on (no N x N distances).
+    if (static_cast<std::size_t>(xc.rows()) > options.max_exact_samples &&
+        static_cast<std::size_t>(xc.rows()) > options.max_fit_samples && options.max_fit_samples >= 2) {
+        const auto m = static_cast<Eigen::Index>(options.max_fit_samples);
+        return assess_coefficient_kernel(spread_rows(xc, m), spread_rows(sample_values, m), variogram, options);
+    }
     const kriging::TrendBasis basis =
         kriging::TrendBasis::build(xc, options.kriging.trend, options.kriging.trend_rank_tolerance);
     const MatX residuals = kriging::fit_trend_ols(basis, sample_values).residuals;
@@ -403,7 +412,8 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
         PredictorChoice c = choose_predictor(xc, values, fit.variogram, options.kriging, twins, choice);
         if (c.folds > 0) fit.predictor = std::move(c);
     }
-    if (static_cast<std::size_t>(n) <= options.max_stored_system_samples)
+    // Above max_exact_samples the model uses local kriging: no N x N system is built, none stored.
+    if (static_cast<std::size_t>(n) <= std::min(options.max_stored_system_samples, options.max_exact_samples))
         fit.system = std::make_shared<const kriging::CovarianceInverse>(
             kriging::Kriging::covariance_inverse(xc, fit.variogram, options.kriging, options.fit_progress));
     return fit;

@@ -52,7 +52,9 @@ MotionModel::MotionModel(compression::SetModel model, const AlignedTiming& align
     }
     for (const tensor::Ranks& lod : level_ranks_) evaluators_.emplace_back(model_.tucker, lod);
     // Kriging: coefficients(c) = U_sample^T w(c) as one R3 by (N + K) product (kriging_predictor.hpp).
-    if (report_.predictor == Predictor::Kriging) folded_ = kriging::KrigingPredictor::build(kriging_, u_sample_);
+    // (The local kriging has no global operator to fold: coefficients() goes through its sparse weights.)
+    if (report_.predictor == Predictor::Kriging && !local_kernel())
+        folded_ = kriging::KrigingPredictor::build(kriging_, u_sample_);
 }
 
 tensor::Ranks MotionModel::level_ranks(Eigen::Index level) const {

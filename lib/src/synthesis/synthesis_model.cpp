@@ -63,6 +63,21 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
         throw InvalidArgument(std::string(where) + ": min_increment_fraction must be in (0, 1]");
     if (!(options.max_increment_factor >= 1.0) || !std::isfinite(options.max_increment_factor))
         throw InvalidArgument(std::string(where) + ": max_increment_factor must be >= 1");
+    // Above the bound the local kriging: nothing may build an N x N system.
+    const bool local = static_cast<std::size_t>(n) > options.max_exact_samples;
+    if (local) {
+        const std::string bound = " (the set has " + std::to_string(n) + " samples, more than max_exact_samples = " +
+                                  std::to_string(options.max_exact_samples) + ": local kriging)";
+        if (options.local_neighbours < 1)
+            throw InvalidArgument(std::string(where) + ": local_neighbours must be >= 1" + bound);
+        if (options.timing_kernel == SynthesisOptions::TimingKernel::Separate)
+            throw InvalidArgument(std::string(where) +
+                                  ": the separate timing kernel solves an N x N kriging system; use the shared one" +
+                                  bound);
+        if (options.predictor == Predictor::Rbf)
+            throw InvalidArgument(std::string(where) +
+                                  ": the RBF predictor solves an N x N system; use kriging or the trend" + bound);
+    }
 
     dofs_ = aligned.dofs();
     frames_ = aligned.frames();
@@ -109,14 +124,22 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     }
     const kriging::VariogramModel& model = kernel_fit_.variogram;
     report_.exponent_loo_mse = kernel_fit_.exponent_loo_mse;
-    // The stored factorization of the same inputs (same key) spares the O(N^3) step; it is dropped once
-    // used (the model keeps its own operators).
-    const kriging::CovarianceInverse* system = report_.kernel_precomputed ? kernel_fit_.system.get() : nullptr;
-    kriging_ = kriging::Kriging::build(xc, model, options.kriging, system, options.fit_progress);
-    report_.system_precomputed = system != nullptr && system->inverse.rows() == kriging_.unique_points().rows();
+    kriging_options_ = options.kriging;
+    if (local) {
+        local_ = std::make_unique<kriging::LocalKriging>(kriging::LocalKriging::build(
+            xc, model, options.kriging, static_cast<Eigen::Index>(options.local_neighbours)));
+        report_.local_neighbours = local_->neighbours();
+        report_.status = local_->status();
+    } else {
+        // The stored factorization of the same inputs (same key) spares the O(N^3) step; it is dropped once
+        // used (the model keeps its own operators).
+        const kriging::CovarianceInverse* system = report_.kernel_precomputed ? kernel_fit_.system.get() : nullptr;
+        kriging_ = kriging::Kriging::build(xc, model, options.kriging, system, options.fit_progress);
+        report_.system_precomputed = system != nullptr && system->inverse.rows() == kriging_.unique_points().rows();
+        report_.status = kriging_.status();
+    }
     kernel_fit_.system.reset();
     report_.model = model;
-    report_.status = kriging_.status();
     report_.fit_status = kernel_fit_.status;
     report_.loo_mean_z2 = kernel_fit_.loo_mean_z2;
     // The weights' interpolator: the one asked for, kriging by default (workflow::load_motion_model asks
@@ -152,6 +175,24 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     report_.precompute_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+const kriging::Kriging& SynthesisModel::kernel() const {
+    if (local_)
+        throw InvalidArgument("SynthesisModel::kernel: the model of " + std::to_string(samples()) +
+                              " samples uses local kriging of " + std::to_string(local_->neighbours()) +
+                              " neighbours, which has no global kriging system");
+    return kriging_;
+}
+
+const kriging::Interpolator& SynthesisModel::weight_interpolator() const {
+    if (predictor_) return *predictor_;
+    if (local_) return *local_;
+    return kriging_;
+}
+
+VecX SynthesisModel::kernel_reliability(const Eigen::Ref<const MatX>& xc) const {
+    return local_ ? local_->reliability(xc) : kriging_.reliability(xc);
+}
+
 std::size_t SynthesisModel::memory_bytes() const {
     // Per kriging kernel: the variogram matrix and the inverse data block (N by N each), the weight
     // operator (N by N + P + 1) and the single-query operator (the lower half of the N by N block).
@@ -159,7 +200,9 @@ std::size_t SynthesisModel::memory_bytes() const {
     // increments); plus the increments.
     const auto n = static_cast<std::size_t>(samples());
     const auto k = static_cast<std::size_t>(parameters()) + 1;
-    const std::size_t kernel = 2 * n * n + n * (n + k) + n * (n + 1) / 2;
+    // The local kriging keeps the normalized points only (its k by k systems live during a query).
+    const std::size_t kernel =
+        local_ ? n * static_cast<std::size_t>(local_->dimension()) : 2 * n * n + n * (n + k) + n * (n + 1) / 2;
     const std::size_t increments = n * static_cast<std::size_t>(frames_ - 1);
     const bool separate = timing_kernel_ == SynthesisOptions::TimingKernel::Separate;
     return sizeof(double) *
@@ -180,8 +223,7 @@ void SynthesisModel::weights(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> o
     if (out.size() != samples()) {
         throw InvalidArgument("SynthesisModel::weights: out must have N = " + std::to_string(samples()) + " entries");
     }
-    if (predictor_) predictor_->weights(ws.c_normalized, out, ws.kriging);
-    else kriging_.weights(ws.c_normalized, out, ws.kriging);
+    weight_interpolator().weights(ws.c_normalized, out, ws.kriging);
 }
 
 void SynthesisModel::coefficients(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, Workspace& ws) const {
@@ -233,10 +275,19 @@ void SynthesisModel::poses(const Eigen::Ref<const MatX>& C, double t, Eigen::Ref
         if (ws.coefficients.rows() != coefficient_size() || ws.coefficients.cols() != q)
             ws.coefficients.resize(coefficient_size(), q);
         folded_.predict_batch(ws.c_normalized, ws.coefficients, ws.kriging);
+    } else if (local_ && !predictor_) {
+        // One local system per character, its coefficients straight from its weights (no N by Q matrix).
+        if (ws.coefficients.rows() != coefficient_size() || ws.coefficients.cols() != q)
+            ws.coefficients.resize(coefficient_size(), q);
+        kriging::QueryWorkspace kws;
+        VecX w(samples());
+        for (Eigen::Index k = 0; k < q; ++k) {
+            local_->weights(ws.c_normalized.row(k).transpose(), w, kws);
+            coefficients_from_weights(w, ws.coefficients.col(k));
+        }
     } else {
         if (ws.weights.rows() != samples() || ws.weights.cols() != q) ws.weights.resize(samples(), q);
-        if (predictor_) predictor_->weights_batch(ws.c_normalized, ws.weights);
-        else kriging_.weights_batch(ws.c_normalized, ws.weights);
+        weight_interpolator().weights_batch(ws.c_normalized, ws.weights);
         coefficients_from_weights_batch(ws.weights, ws.coefficients);
     }
     poses_from_coefficients(ws.coefficients, t, out, ws, level);
@@ -267,8 +318,7 @@ Timing SynthesisModel::timing(const Eigen::Ref<const VecX>& c) const {
     } else {
         kriging::QueryWorkspace kws;
         VecX w(samples());
-        if (predictor_) predictor_->weights(cn, w, kws);
-        else kriging_.weights(cn, w, kws);
+        weight_interpolator().weights(cn, w, kws);
         tm.increments.noalias() = increments_.transpose() * w;
     }
     tm.warp.resize(frames_);
@@ -313,7 +363,7 @@ Clip SynthesisModel::motion(const Eigen::Ref<const VecX>& c, Eigen::Index level)
 double SynthesisModel::reliability(const Eigen::Ref<const VecX>& c) const {
     VecX cn;
     normalize(c, cn, "SynthesisModel::reliability");
-    return kriging_.estimate(cn).reliability;
+    return kernel_reliability(cn.transpose())(0);
 }
 
 double SynthesisModel::variance_ratio(const Eigen::Ref<const VecX>& c) const {
@@ -327,7 +377,7 @@ VecX SynthesisModel::reliability_batch(const Eigen::Ref<const MatX>& C) const {
         throw InvalidArgument("SynthesisModel::reliability_batch: C must be Q by P = " + std::to_string(parameters()) +
                               " and finite");
     }
-    return kriging_.reliability(scaling_.apply(C));
+    return kernel_reliability(scaling_.apply(C));
 }
 
 }  // namespace mocapdb::synthesis

@@ -22,10 +22,10 @@ ReductionOutcome reduce_set(const std::filesystem::path& db_path, const Reductio
     kriging::ReductionOptions options;
     options.tau = request.tau;
     options.min_samples = request.min_samples;
-    options.kriging = model->kernel().options();
-    out.result = kriging::reduce_samples(xc, model->kernel().model(), options);
+    options.kriging = model->kriging_options();
+    out.result = kriging::reduce_samples(xc, model->report().model, options);
     out.model_kind = model->kind();
-    out.kernel = model->kernel().model();
+    out.kernel = model->report().model;
     for (const SampleRef& s : out.set.samples) {
         const auto rec = db.find_clip(s.clip);
         out.labels.push_back(sample_label(s, rec ? rec->frames : s.end));

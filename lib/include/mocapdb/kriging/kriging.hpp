@@ -118,6 +118,7 @@ struct CovarianceInverse {
 };
 
 class KrigingPredictor;
+class LocalKriging;
 
 class Kriging final : public Interpolator {
 public:
@@ -185,6 +186,7 @@ private:
     static Kriging prepare(const Eigen::Ref<const Eigen::MatrixXd>& coords, const VariogramModel& model,
                            const KrigingOptions& options);
     friend class KrigingPredictor;  // folds sample values into weight_operator() (kriging_predictor.hpp)
+    friend class LocalKriging;      // prepares its points as build() does (local_kriging.hpp)
 
     // gamma of the query (the continuous part only when filtering the nugget): out M.
     void gamma_vector(const Eigen::Ref<const Eigen::VectorXd>& c, Eigen::Ref<Eigen::VectorXd> out) const;

@@ -18,6 +18,7 @@
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/kriging/kriging.hpp"
 #include "mocapdb/kriging/kriging_predictor.hpp"
+#include "mocapdb/kriging/local_kriging.hpp"
 #include "mocapdb/kriging/motion_kriging.hpp"
 #include "mocapdb/kriging/trend.hpp"
 #include "mocapdb/kriging/variogram.hpp"
@@ -97,6 +98,13 @@ struct SynthesisOptions {
     /// N = 3 043) for sets of up to this many samples; larger sets factorize it at every load (O(N^3):
     /// docs/synthesis-scale.md gives the costs).
     std::size_t max_stored_system_samples = 6000;
+    /// Sets of more samples are synthesized by local kriging (kriging/local_kriging.hpp: each query by
+    /// its local_neighbours nearest samples, the same variogram and trend), with no N x N matrix anywhere:
+    /// O(N k) memory at most, O(k^3) per query; fit_kernel stores no system for them. Up to this many,
+    /// the exact kriging of all samples. The error of the approximation: docs/synthesis-scale.md.
+    std::size_t max_exact_samples = 6000;
+    /// k of the local kriging (>= 1): 300 keeps one query at a few milliseconds.
+    std::size_t local_neighbours = 300;
     /// Called while the coefficient kernel is fitted (item "kernel": one step per candidate variogram
     /// scored by leave-one-out) and while its kriging system is factorized (item "kernel system": columns
     /// of the inverse; by fit_kernel for storage, and at construction when no stored system is used); not
@@ -125,6 +133,8 @@ struct SynthesisReport {
     bool kernel_precomputed = false;   ///< the coefficient kernel's variogram came from options.kernel_fit
     bool system_precomputed = false;   ///< and its factorized system (KernelFit::system) too
     Predictor predictor = Predictor::Kriging;  ///< what blends the samples (SynthesisOptions::predictor)
+    /// 0: the exact kriging of all samples; else k of the local kriging (N > max_exact_samples).
+    Eigen::Index local_neighbours = 0;
     /// The cross-validated choice stored with the kernel (empty for a kernel fitted here or stored without it).
     std::optional<PredictorChoice> predictor_choice;
 };
@@ -184,7 +194,13 @@ public:
     const std::shared_ptr<const Skeleton>& skeleton() const { return skeleton_; }
     double frame_rate() const { return frame_rate_; }
     const SynthesisReport& report() const { return report_; }
-    const kriging::Kriging& kernel() const { return kriging_; }
+    /// The coefficient kernel's exact kriging; InvalidArgument when the model uses the local kriging
+    /// (local_kernel()), which has no global system.
+    const kriging::Kriging& kernel() const;
+    /// The local kriging of a set of more than max_exact_samples samples; null for the exact kriging.
+    const kriging::LocalKriging* local_kernel() const { return local_.get(); }
+    /// The coefficient kernel's kriging options (either kriging).
+    const kriging::KrigingOptions& kriging_options() const { return kriging_options_; }
     /// The coefficient kernel's variogram and LOO MSE, with the key of the model's inputs (0 for the
     /// naive model): what `compress` stores (kernel_fit.hpp).
     const KernelFit& kernel_fit() const { return kernel_fit_; }
@@ -258,6 +274,10 @@ protected:
     void frame_pair(double t, Eigen::Index level, Eigen::Index& t0, Eigen::Index& t1, double& a,
                     const char* where) const;
     void normalize(const Eigen::Ref<const VecX>& c, VecX& out, const char* where) const;
+    /// What blends the samples: the predictor asked for, else the local or the exact kriging.
+    const kriging::Interpolator& weight_interpolator() const;
+    /// rho at normalized queries (Q by embedded P) from the coefficient kernel.
+    VecX kernel_reliability(const Eigen::Ref<const MatX>& xc) const;
 
     Eigen::Index dofs_ = 0;
     Eigen::Index frames_ = 0;
@@ -265,7 +285,10 @@ protected:
     std::vector<std::string> units_;
     MatX coords_;
     kriging::ControlScaling scaling_;
-    kriging::Kriging kriging_;
+    kriging::Kriging kriging_;  ///< empty when local_ is set
+    /// The local kriging (N > options.max_exact_samples), null otherwise.
+    std::unique_ptr<kriging::LocalKriging> local_;
+    kriging::KrigingOptions kriging_options_;
     /// The weights' interpolator when report_.predictor is not kriging (null for kriging).
     std::unique_ptr<kriging::Interpolator> predictor_;
     KernelFit kernel_fit_;
