@@ -369,6 +369,7 @@ double SynthesisModel::reliability(const Eigen::Ref<const VecX>& c) const {
 double SynthesisModel::variance_ratio(const Eigen::Ref<const VecX>& c) const {
     VecX cn;
     normalize(c, cn, "SynthesisModel::variance_ratio");
+    if (local_) return local_->estimate(cn).variance / local_->model().total_sill();
     return kriging_.estimate(cn).variance / kriging_.model().total_sill();
 }
 
