@@ -242,7 +242,7 @@ void constraint_section(std::ostream& o, const EvalResults& e) {
 
 /// 3, last part: where the calibrated warning fires (eval/edge_evaluation.hpp), against the fixed ρ < 0.5.
 void edge_warning_table(std::ostream& o, const EvalResults& e) {
-    Table t{{"set", "calibration probes", "misses", "warns above V/sill", "(ρ below)", "fresh probes in / beyond",
+    Table t{{"set", "calibration probes", "misses", "warns above V/sill", "(ρ below)", "or SD beyond", "fresh probes in / beyond",
              "misses", "warned", "hits inside", "false alarms", "ρ < 0.5: warned", "false alarms"},
             {}};
     const eval::EdgeEvaluation* any = nullptr;
@@ -257,6 +257,7 @@ void edge_warning_table(std::ostream& o, const EvalResults& e) {
         };
         t.rows.push_back({r.set->spec.name, std::to_string(g.calibration.probes), std::to_string(g.calibration.misses),
                           fixed(g.calibration.variance_ratio, 3), fixed(synthesis::rho_threshold(g.calibration), 3),
+                          fixed(g.calibration.beyond_sd, 2),
                           std::to_string(g.fresh_inside) + " / " + std::to_string(g.fresh_beyond),
                           std::to_string(g.calibrated.misses), share(g.calibrated.flagged_misses, g.calibrated.misses),
                           std::to_string(g.calibrated.inside_hits),
@@ -273,10 +274,13 @@ void edge_warning_table(std::ostream& o, const EvalResults& e) {
          "predictor), their parameters measured back, and a request *misses* when a parameter lands more than "
       << fixed(any->options.tolerance_share, 2)
       << " SD of the samples from the request. The warning fires where the prediction variance V exceeds the "
-         "largest share of the sill that flags "
+         "share of the sill above which at most "
+      << fixed(100.0 * any->options.false_alarms, 0)
+      << " % of the calibration's hits inside the box lie (ρ = 1 − V/sill clamped to [0, 1] cannot tell "
+         "requests apart where it is 0), or where the request lies further beyond the samples' range than the "
+         "distance that then flags "
       << fixed(100.0 * any->options.detection, 0)
-      << " % of the calibration's misses (ρ = 1 − V/sill clamped to [0, 1] cannot tell these apart where it is "
-         "0). Judged here on a fresh draw of requests (another seed): *warned* = misses flagged, *false alarms* = "
+      << " % of the calibration's misses (at most the probed shell). Judged here on a fresh draw of requests (another seed): *warned* = misses flagged, *false alarms* = "
          "requests inside the box that hit and are flagged; beside it the fixed rule ρ < 0.5 on the same requests. "
          "The requirement: warned >= 90 %, false alarms < 10 %.\n\n"
       << t.str() << "\n"
