@@ -242,8 +242,9 @@ void constraint_section(std::ostream& o, const EvalResults& e) {
 
 /// 3, last part: where the calibrated warning fires (eval/edge_evaluation.hpp), against the fixed ρ < 0.5.
 void edge_warning_table(std::ostream& o, const EvalResults& e) {
-    Table t{{"set", "calibration probes", "misses", "warns above V/sill", "(ρ below)", "or SD beyond", "fresh probes in / beyond",
-             "misses", "warned", "hits inside", "false alarms", "ρ < 0.5: warned", "false alarms"},
+    Table t{{"set", "calibration probes", "misses", "warns above V/sill", "(ρ below)", "or SD beyond",
+             "fresh probes in / beyond", "misses", "warned", "hits inside", "false alarms", "ρ < 0.5: warned",
+             "false alarms"},
             {}};
     const eval::EdgeEvaluation* any = nullptr;
     for (const SetResults& r : e.sets) {
@@ -255,15 +256,14 @@ void edge_warning_table(std::ostream& o, const EvalResults& e) {
                            " %)"
                      : std::string("-");
         };
-        t.rows.push_back({r.set->spec.name, std::to_string(g.calibration.probes), std::to_string(g.calibration.misses),
-                          fixed(g.calibration.variance_ratio, 3), fixed(synthesis::rho_threshold(g.calibration), 3),
-                          fixed(g.calibration.beyond_sd, 2),
-                          std::to_string(g.fresh_inside) + " / " + std::to_string(g.fresh_beyond),
-                          std::to_string(g.calibrated.misses), share(g.calibrated.flagged_misses, g.calibrated.misses),
-                          std::to_string(g.calibrated.inside_hits),
-                          share(g.calibrated.flagged_inside_hits, g.calibrated.inside_hits),
-                          share(g.fixed.flagged_misses, g.fixed.misses),
-                          share(g.fixed.flagged_inside_hits, g.fixed.inside_hits)});
+        t.rows.push_back(
+            {r.set->spec.name, std::to_string(g.calibration.probes), std::to_string(g.calibration.misses),
+             fixed(g.calibration.variance_ratio, 3), fixed(synthesis::rho_threshold(g.calibration), 3),
+             fixed(g.calibration.beyond_sd, 2), std::to_string(g.fresh_inside) + " / " + std::to_string(g.fresh_beyond),
+             std::to_string(g.calibrated.misses), share(g.calibrated.flagged_misses, g.calibrated.misses),
+             std::to_string(g.calibrated.inside_hits),
+             share(g.calibrated.flagged_inside_hits, g.calibrated.inside_hits),
+             share(g.fixed.flagged_misses, g.fixed.misses), share(g.fixed.flagged_inside_hits, g.fixed.inside_hits)});
     }
     if (!any) return;
     o << "### Where ρ warns (edge calibration)\n\n"
