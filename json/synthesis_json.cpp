@@ -5,6 +5,22 @@
 #include "json_fields.hpp"
 
 namespace mocapdb::json {
+namespace {
+
+// The judgement behind a synthesis's warnings (workflow/synthesis_warnings.hpp).
+void warning_fields(JsonWriter& j, const workflow::SynthesisWarnings& w) {
+    j.key("reliability_threshold").value(synthesis::rho_threshold(w.threshold));
+    j.key("variance_ratio").value(w.variance_ratio);
+    j.key("max_variance_ratio").value(w.threshold.variance_ratio);
+    j.key("beyond_sd").value(w.beyond_sd);
+    j.key("max_beyond_sd");
+    if (std::isfinite(w.threshold.beyond_sd)) j.value(w.threshold.beyond_sd);
+    else j.null();
+    j.key("reliability_calibrated").value(w.calibrated);
+    j.key("flagged").value(w.flagged());
+}
+
+}  // namespace
 
 void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthOutcome& o) {
     const VecX& c = o.requested;
@@ -46,15 +62,7 @@ void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthO
     for (const workflow::Measurement& m : o.measurements) j.key(m.name).value(m.unit);
     j.end_object();
     j.key("reliability").value(o.reliability);
-    j.key("reliability_threshold").value(synthesis::rho_threshold(r.judged.threshold));
-    j.key("variance_ratio").value(r.judged.variance_ratio);
-    j.key("max_variance_ratio").value(r.judged.threshold.variance_ratio);
-    j.key("beyond_sd").value(r.judged.beyond_sd);
-    j.key("max_beyond_sd");
-    if (std::isfinite(r.judged.threshold.beyond_sd)) j.value(r.judged.threshold.beyond_sd);
-    else j.null();
-    j.key("reliability_calibrated").value(r.judged.calibrated);
-    j.key("flagged").value(r.judged.flagged());
+    warning_fields(j, r.judged);
     fields::strings(j, "warnings", r.warnings);
     j.key("frames").value(static_cast<long long>(o.clip.frame_count()));
     j.key("frame_rate").value(o.clip.frame_rate);
@@ -81,15 +89,7 @@ void write_pose_query(JsonWriter& j, const PoseQuery& q) {
     j.key("predictor").value(q.predictor);
     j.key("frame").value(q.frame);
     j.key("reliability").value(q.reliability);
-    j.key("reliability_threshold").value(synthesis::rho_threshold(q.judged.threshold));
-    j.key("variance_ratio").value(q.judged.variance_ratio);
-    j.key("max_variance_ratio").value(q.judged.threshold.variance_ratio);
-    j.key("beyond_sd").value(q.judged.beyond_sd);
-    j.key("max_beyond_sd");
-    if (std::isfinite(q.judged.threshold.beyond_sd)) j.value(q.judged.threshold.beyond_sd);
-    else j.null();
-    j.key("reliability_calibrated").value(q.judged.calibrated);
-    j.key("flagged").value(q.judged.flagged());
+    warning_fields(j, q.judged);
     fields::strings(j, "warnings", q.warnings);
     if (q.joints) {
         const MatX& p = q.joint_positions;

@@ -12,31 +12,12 @@
 #include "mocapdb/synthesis/kernel_fit.hpp"
 #include "mocapdb/synthesis/predictor_choice.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
+#include "mocapdb/workflow/edge_calibration.hpp"
 
 namespace mocapdb::eval {
 namespace {
 
-// Per parameter: hit_share x the samples' SD; empty for a constant parameter (not checked).
-std::vector<std::optional<double>> hit_tolerances(const MatX& parameters, double share) {
-    std::vector<std::optional<double>> out(static_cast<std::size_t>(parameters.cols()));
-    for (Eigen::Index p = 0; p < parameters.cols(); ++p) {
-        const VecX c = parameters.col(p).array() - parameters.col(p).mean();
-        const double sd =
-            parameters.rows() > 1 ? std::sqrt(c.squaredNorm() / static_cast<double>(parameters.rows() - 1)) : 0.0;
-        if (sd > 0.0) out[static_cast<std::size_t>(p)] = share * sd;
-    }
-    return out;
-}
-
-// |a - b|, around the circle for a periodic parameter (period > 0).
-double parameter_distance(double a, double b, double period) {
-    double d = std::abs(a - b);
-    if (period > 0.0) {
-        d = std::fmod(d, period);
-        d = std::min(d, period - d);
-    }
-    return d;
-}
+using workflow::parameter_distance;
 
 // 1 when every checked parameter measured back within its tolerance, else 0 (undefined = miss).
 VecX fold_hits(const std::vector<std::vector<std::optional<double>>>& measured, const MatX& requested,
@@ -205,7 +186,7 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
     for (Eigen::Index k = 0; k < m; ++k)
         requested.row(k) = set.set.parameters.row(out.folds[static_cast<std::size_t>(k)]);
     if (out.parameters_measured) {
-        out.hit_tolerance = hit_tolerances(set.set.parameters, options.hit_share);
+        out.hit_tolerance = workflow::sd_tolerance(set.set.parameters, options.hit_share);
         // Only the extracted parameters (the first columns) are measured back: not the CSV's or categories.
         std::size_t extracted = 0;
         for (const ParameterExtractor& x : set.extractors) extracted += x.names().size();
