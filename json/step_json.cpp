@@ -157,9 +157,10 @@ void write_compression(JsonWriter& j, const std::string& set, const workflow::Co
     j.key("predictor");
     if (o.kernel_predictor) fields::predictor_choice(j, *o.kernel_predictor);
     else j.null();
-    j.key("reliability_warning");
-    if (o.kernel_edge_warning) fields::edge_warning(j, *o.kernel_edge_warning);
-    else j.null();
+    if (o.kernel_edge_warning) {  // absent without a calibration (the demo report holds no nulls)
+        j.key("reliability_warning");
+        fields::edge_warning(j, *o.kernel_edge_warning);
+    }
     j.key("us_per_pose").value(o.us_per_pose);
     j.key("store_s").value(o.store_s);
     j.key("total_s").value(o.total_s);
