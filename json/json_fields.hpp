@@ -57,8 +57,7 @@ inline void repairs(JsonWriter& j, const std::vector<RepairedFrames>& runs) {
     j.end_array();
 }
 
-/// {chosen, folds, samples, cv_rms: {name: value}} of a cross-validated predictor (no key: after key()).
-// A calibrated reliability threshold (synthesis/edge_warning.hpp) as an object.
+/// A calibrated reliability threshold (synthesis/edge_warning.hpp) as an object (no key: after key()).
 inline void edge_warning(JsonWriter& j, const synthesis::EdgeWarning& w) {
     j.begin_object();
     j.key("variance_ratio").value(w.variance_ratio);
@@ -69,9 +68,12 @@ inline void edge_warning(JsonWriter& j, const synthesis::EdgeWarning& w) {
     j.key("misses").value(static_cast<long long>(w.misses));
     j.key("detection").value(w.detection);
     j.key("false_alarms").value(w.false_alarms);
+    j.key("neighbours").value(static_cast<long long>(w.neighbours));
+    j.key("votes").value(static_cast<long long>(w.votes));
     j.end_object();
 }
 
+/// {chosen, folds, samples, cv_rms: {name: value}} of a cross-validated predictor (no key: after key()).
 inline void predictor_choice(JsonWriter& j, const synthesis::PredictorChoice& c) {
     j.begin_object().key("chosen").value(synthesis::to_string(c.chosen));
     j.key("folds").value(c.folds).key("samples").value(c.samples);

@@ -16,11 +16,17 @@ void warning_fields(JsonWriter& j, const workflow::SynthesisWarnings& w) {
     j.key("max_beyond_sd");
     if (std::isfinite(w.threshold.beyond_sd)) j.value(w.threshold.beyond_sd);
     else j.null();
+    j.key("nearby_misses").value(static_cast<long long>(w.nearby_misses));
+    j.key("min_nearby_misses");  // null: no vote rule
+    if (w.threshold.votes > 0) j.value(static_cast<long long>(w.threshold.votes));
+    else j.null();
     j.key("reliability_calibrated").value(w.calibrated);
     j.key("flagged").value(w.flagged());
 }
 
 }  // namespace
+
+void write_edge_warning(JsonWriter& j, const synthesis::EdgeWarning& w) { fields::edge_warning(j, w); }
 
 void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthOutcome& o) {
     const VecX& c = o.requested;

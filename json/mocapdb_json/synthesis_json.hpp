@@ -39,6 +39,11 @@ struct SynthReport {
 };
 void write_synthesis(JsonWriter& j, const SynthReport& r, const workflow::SynthOutcome& o);
 
+/// A set's calibrated reliability threshold as one object (the `reliability_warning` of `set show` and
+/// `compress`): variance_ratio, rho_threshold, beyond_sd, tolerance_share, probes, misses, detection,
+/// false_alarms.
+void write_edge_warning(JsonWriter& j, const synthesis::EdgeWarning& w);
+
 /// One pose of `mocapdb query`: as joint positions (3J by 1, cm) or as channels (1 by C).
 struct PoseQuery {
     std::string set;

@@ -10,6 +10,8 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "json_dict.hpp"
+#include "mocapdb_json/synthesis_json.hpp"
 #include "mocapdb/workflow/load_model.hpp"
 #include "model_handle.hpp"
 
@@ -59,6 +61,22 @@ void bind_synthesis(py::module_& m) {
             "predictor",
             [](const ModelHandle& h) { return std::string(synthesis::to_string(h.model->report().predictor)); },
             "What blends the samples: 'kriging', 'rbf' or 'trend' (the one compress chose by cross-validation).")
+        .def_property_readonly(
+            "reliability_warning",
+            [](const ModelHandle& h) -> py::object {
+                const auto& w = h.model->kernel_fit().edge_warning;
+                if (!w) return py::none();
+                json::JsonWriter j;
+                json::write_edge_warning(j, *w);
+                return to_python(j.tree());
+            },
+            "Where the set's syntheses are flagged, as compress calibrated it (the reliability_warning of set "
+            "show --json: variance_ratio, rho_threshold, beyond_sd, ...); None when the set has no calibration "
+            "(then rho < 0.5 flags).")
+        .def_property_readonly(
+            "local_neighbours", [](const ModelHandle& h) { return h.model->report().local_neighbours; },
+            "0 when every synthesis krigs all samples; else k, the nearest samples each request is kriged from "
+            "(sets above the exact kriging's size).")
         .def_property_readonly(
             "dofs", [](const ModelHandle& h) { return h.model->dofs(); }, "D, values per pose vector.")
         .def_property_readonly(
@@ -148,6 +166,13 @@ void bind_synthesis(py::module_& m) {
             "Reliability rho(c) in [0, 1] (1 at a sample, falling where the samples do not support the "
             "result): a float for c of shape (P,), an array (Q,) for c of shape (Q, P)."
             "\n\nExample:\n    >>> rho = model.reliability(model.sample_parameters)   # (N,), 1 at the samples")
+        .def(
+            "variance_ratio",
+            [](const ModelHandle& h, const Array& c) { return h.model->variance_ratio(parameters_of(h, c)); },
+            py::arg("c"),
+            "The prediction variance at c (P,) over the kernel's total sill, not clamped: rho = clamp(1 - it, 0, "
+            "1). The calibrated warning flags above reliability_warning['variance_ratio']."
+            "\n\nExample:\n    >>> model.variance_ratio(model.sample_parameters[0])   # ~0 at a sample")
         .def(
             "weights",
             [](const ModelHandle& h, const Array& c) {

@@ -97,3 +97,16 @@ def test_naive_model_and_bad_queries(test_db, model):
         model.pose(model.sample_parameters[0], model.frames + 3.0)
     with pytest.raises(mocapdb.InvalidArgument):
         model.poses(np.zeros((4, 3)), 1.0)
+
+
+def test_reliability_warning_and_variance_ratio_equal_the_cli(cli, test_db, model):
+    shown = cli_json(cli, "set", "show", test_db, "walks")
+    assert model.reliability_warning == shown["reliability_warning"]  # the same object, or None for both
+    assert model.local_neighbours == 0  # a small set: exact kriging of all samples
+    c = between_samples(model, 1, 3, 0.5)
+    query = cli_json(cli, "query", test_db, "--set", "walks", "--param", param_text(c), "--frame", 3)
+    assert model.variance_ratio(c) == pytest.approx(query["variance_ratio"], abs=1e-12)
+    assert model.reliability(c) == pytest.approx(min(max(1 - model.variance_ratio(c), 0), 1), abs=1e-12)
+    s = model.sample_parameters
+    far = s.max(axis=0) + 3 * s.std(axis=0)
+    assert model.variance_ratio(s[0]) < model.variance_ratio(far)  # not clamped: grows beyond rho's 0

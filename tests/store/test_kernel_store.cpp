@@ -232,6 +232,10 @@ TEST_CASE("kernel: the calibrated warning threshold round-trips, warns the loade
     edge.misses = 7;
     edge.detection = 6.0 / 7.0;
     edge.false_alarms = 0.05;
+    edge.neighbours = 5;  // the vote rule and the calibration's requests it reads
+    edge.votes = 3;
+    edge.probe_requests = MatX::Random(40, fx.set.parameters.cols());
+    for (std::size_t i = 0; i < 40; ++i) edge.probe_missed.push_back(i % 6 == 0 ? 1 : 0);
     fit.edge_warning = edge;
     {
         DatabaseWriter w(path);
@@ -247,6 +251,10 @@ TEST_CASE("kernel: the calibrated warning threshold round-trips, warns the loade
     CHECK(back->edge_warning->misses == 7);
     CHECK(back->edge_warning->detection == edge.detection);
     CHECK(back->edge_warning->false_alarms == edge.false_alarms);
+    CHECK(back->edge_warning->neighbours == 5);
+    CHECK(back->edge_warning->votes == 3);
+    CHECK(back->edge_warning->probe_requests == edge.probe_requests);
+    CHECK(back->edge_warning->probe_missed == edge.probe_missed);
     CHECK(validate_database(path).ok());
     // The loaded model flags by the stored thresholds: rho below 2/3 instead of the fixed 0.5.
     const auto loaded = workflow::load_motion_model(Database(path), "walks");
@@ -261,7 +269,15 @@ TEST_CASE("kernel: the calibrated warning threshold round-trips, warns the loade
         bad = fit;
         bad.edge_warning->variance_ratio = -1.0;
         CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("edge warning"));
+        bad = fit;
+        bad.edge_warning->probe_missed.pop_back();
+        CHECK_THROWS_WITH(w.put_kernel_fit("walks", bad), Contains("vote rule"));
     }
+    set_kernel_attributes(path, {"edge_votes:i=6"});
+    auto votes = kernel_error(path);
+    CHECK(votes.first == kKernel);
+    CHECK_THAT(votes.second, Contains("edge_votes"));
+    set_kernel_attributes(path, {"edge_votes:i=3"});
     set_kernel_attributes(path, {"edge_variance_ratio:f=-0.5"});
     auto e = kernel_error(path);
     CHECK(e.first == kKernel);

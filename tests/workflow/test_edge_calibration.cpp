@@ -28,6 +28,26 @@ workflow::EdgeProbe probe(double ratio, double beyond, bool miss) {
     return p;
 }
 
+/// A set of one numeric parameter x, samples at 0 .. n - 1.
+MotionSet line_set(int n) {
+    MotionSet set;
+    set.parameter_names = {"x"};
+    set.parameter_units = {""};
+    set.parameters = VecX::LinSpaced(n, 0.0, n - 1.0);
+    return set;
+}
+
+/// The probes' requests on the line: the misses at every 4th position, the hits between them, so that
+/// no probe's five nearest others hold more than two misses (the vote rule cannot find the misses).
+void spread(std::vector<workflow::EdgeProbe>& probes) {
+    int miss_at = 0, hit_at = 1;
+    for (workflow::EdgeProbe& p : probes) {
+        int& at = p.miss ? miss_at : hit_at;
+        p.requested = VecX::Constant(1, at);
+        at += p.miss ? 4 : (at % 4 == 3 ? 2 : 1);
+    }
+}
+
 const WalkDatabase& edge_walks() {
     static const WalkDatabase w = make_walk_database("workflow_edge", WalkStage::Compressed);
     return w;
@@ -45,10 +65,12 @@ TEST_CASE("edge calibration: the variance rule keeps false alarms inside, the di
     probes.push_back(probe(0.3, 0.0, true));
     for (int k = 1; k <= 8; ++k) probes.push_back(probe(0.5, 0.1 * k, true));
     for (int k = 0; k < 10; ++k) probes.push_back(probe(0.2, 0.05, false));
+    spread(probes);
+    const MotionSet set = line_set(40);
     workflow::EdgeCalibrationOptions o;
     o.false_alarms = 0.05;  // floor(0.05 x 20) = 1 hit inside may lie above the variance threshold
     o.detection = 0.9;      // ceil(0.9 x 10) = 9 misses
-    const synthesis::EdgeWarning w = workflow::calibrate_edge_warning(probes, o);
+    const synthesis::EdgeWarning w = workflow::calibrate_edge_warning(probes, set, o);
     CHECK(w.variance_ratio == Approx(0.95));  // the 19th hit: only 1.00 above
     CHECK(w.misses == 10);
     CHECK(w.probes == 40);
@@ -56,56 +78,116 @@ TEST_CASE("edge calibration: the variance rule keeps false alarms inside, the di
     // distance threshold lies just below the nearest (0.1 SD), above the beyond hits' 0.05.
     CHECK(w.beyond_sd < 0.1);
     CHECK(w.beyond_sd > 0.05);
+    CHECK(w.votes == 0);  // spread out, the misses have no missing neighbours to vote
+    CHECK(w.probe_requests.size() == 0);
     CHECK(w.detection == Approx(0.9));     // the inside miss at 0.3 is left
     CHECK(w.false_alarms == Approx(0.05));  // the hit at 1.00
-    const workflow::FlagRates r = workflow::flag_rates(probes, w);
+    const workflow::FlagRates r = workflow::flag_rates(probes, w, set);
     CHECK(r.flagged_misses == 9);
     CHECK(r.inside_hits == 20);
     CHECK(r.flagged_inside_hits == 1);
 
     o.detection = 0.5;  // 5 misses: the variance rule's one and the four furthest beyond
-    const synthesis::EdgeWarning half = workflow::calibrate_edge_warning(probes, o);
+    const synthesis::EdgeWarning half = workflow::calibrate_edge_warning(probes, set, o);
     CHECK(half.beyond_sd < 0.5);
     CHECK(half.beyond_sd > 0.4);
-    CHECK(workflow::flag_rates(probes, half).flagged_misses == 5);
+    CHECK(workflow::flag_rates(probes, half, set).flagged_misses == 5);
 
     o.detection = 1.0;  // the inside miss at 0.3 cannot be reached by distance: everything beyond is flagged
-    const synthesis::EdgeWarning all = workflow::calibrate_edge_warning(probes, o);
+    const synthesis::EdgeWarning all = workflow::calibrate_edge_warning(probes, set, o);
     CHECK(all.beyond_sd == 0.0);
     CHECK(all.detection == Approx(0.9));
     CHECK(all.false_alarms == Approx(0.05));  // the distance rule never flags inside the box
 }
 
 TEST_CASE("edge calibration: without misses only what lies beyond every probe is flagged", "[workflow]") {
-    const std::vector<workflow::EdgeProbe> probes{probe(0.2, 0.0, false), probe(0.7, 0.0, false),
-                                                  probe(1.3, 0.4, false)};
+    std::vector<workflow::EdgeProbe> probes{probe(0.2, 0.0, false), probe(0.7, 0.0, false), probe(1.3, 0.4, false)};
+    spread(probes);
+    const MotionSet set = line_set(3);
     workflow::EdgeCalibrationOptions o;
     o.false_alarms = 0.0;
-    const synthesis::EdgeWarning w = workflow::calibrate_edge_warning(probes, o);
+    const synthesis::EdgeWarning w = workflow::calibrate_edge_warning(probes, set, o);
     CHECK(w.variance_ratio == 0.7);
     CHECK(w.beyond_sd == o.shell_sd);
     CHECK(w.misses == 0);
     CHECK(w.detection == 1.0);
     CHECK(w.false_alarms == 0.0);
-    CHECK(w.flags(0.5, 1.5 * o.shell_sd));
-    CHECK_FALSE(w.flags(0.5, 0.5 * o.shell_sd));
+    CHECK(w.flags(0.5, 1.5 * o.shell_sd, 0));
+    CHECK_FALSE(w.flags(0.5, 0.5 * o.shell_sd, 5));  // no vote rule
+}
+
+TEST_CASE("edge calibration: misses together inside the box are found by the votes of their neighbours",
+          "[workflow]") {
+    // 100 probes inside on a line: hits at 0 .. 79 with variance ratios spread over [0, 1), misses at
+    // 80 .. 99 whose ratios are the hits' (no variance threshold tells them apart).
+    std::vector<workflow::EdgeProbe> probes;
+    for (int k = 0; k < 100; ++k) {
+        probes.push_back(probe((k * 37 % 80) / 80.0, 0.0, k >= 80));
+        probes.back().requested = VecX::Constant(1, k);
+    }
+    const MotionSet set = line_set(100);
+    workflow::EdgeCalibrationOptions o;  // 5 neighbours; floor(0.05 x 80) = 4 false alarms allowed
+    const synthesis::EdgeWarning w = workflow::calibrate_edge_warning(probes, set, o);
+    // Judged by its five nearest others, every miss has at least 2 missing neighbours (the miss at 80:
+    // 81, 82, perhaps 83), the hits at 78 and 79 at most 2 and 3 and the hits below them none: a vote of
+    // 2 finds every miss at 2 false alarms, within the 4 allowed.
+    REQUIRE(w.votes > 0);
+    CHECK(w.neighbours == 5);
+    CHECK(w.votes >= 2);
+    CHECK(w.probe_requests.rows() == 100);
+    CHECK(w.probe_missed.size() == 100);
+    CHECK(w.detection >= 0.95);
+    CHECK(w.false_alarms <= 0.05);
+    // A new request among the misses is flagged, one among the hits is not.
+    CHECK(workflow::nearby_misses(w, set, VecX::Constant(1, 90.5)) == 5);
+    CHECK(workflow::nearby_misses(w, set, VecX::Constant(1, 10.5)) == 0);
+    CHECK(w.flags(0.0, 0.0, workflow::nearby_misses(w, set, VecX::Constant(1, 90.5))));
+    CHECK_FALSE(w.flags(0.0, 0.0, workflow::nearby_misses(w, set, VecX::Constant(1, 10.5))));
+    // Leaving a probe out: the miss at 99 sees 94 .. 98.
+    CHECK(workflow::nearby_misses(w, set, VecX::Constant(1, 99.0), std::size_t{99}) == 5);
+    CHECK_THROWS_AS(workflow::nearby_misses(w, set, VecX::Constant(2, 1.0)), InvalidArgument);
+}
+
+TEST_CASE("edge calibration: nearby misses prefer requests of the same level", "[workflow]") {
+    MotionSet set;
+    set.parameter_names = {"x", "style"};
+    set.parameter_units = {"", ""};
+    set.parameters = MatX(4, 2);
+    set.parameters << 0, 0, 1, 1, 2, 0, 3, 1;
+    set.parameter_levels = {{}, {"happy", "sad"}};
+    synthesis::EdgeWarning w;
+    w.neighbours = 3;
+    w.votes = 2;
+    w.probes = 8;
+    w.probe_requests = MatX(8, 2);
+    for (int k = 0; k < 8; ++k) {
+        w.probe_requests.row(k) << k % 4, k / 4;  // x 0..3 of level 0, then of level 1
+        w.probe_missed.push_back(k < 4 ? 1 : 0);  // every request of level 0 missed
+    }
+    CHECK(workflow::nearby_misses(w, set, (VecX(2) << 1.0, 0.0).finished()) == 3);
+    CHECK(workflow::nearby_misses(w, set, (VecX(2) << 1.0, 1.0).finished()) == 0);
 }
 
 TEST_CASE("edge calibration: bad options and no probes are refused", "[workflow]") {
-    const std::vector<workflow::EdgeProbe> probes{probe(0.2, 0.0, true)};
+    std::vector<workflow::EdgeProbe> probes{probe(0.2, 0.0, true)};
+    spread(probes);
+    const MotionSet set = line_set(3);
     workflow::EdgeCalibrationOptions o;
     o.detection = 0.0;
-    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, o), InvalidArgument);
+    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, set, o), InvalidArgument);
     o = {};
     o.tolerance_share = -1.0;
-    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, o), InvalidArgument);
+    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, set, o), InvalidArgument);
     o = {};
     o.shell_sd = std::nan("");
-    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, o), InvalidArgument);
+    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, set, o), InvalidArgument);
     o = {};
     o.false_alarms = 1.0;
-    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, o), InvalidArgument);
-    CHECK_THROWS_AS(workflow::calibrate_edge_warning({}, {}), InvalidArgument);
+    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, set, o), InvalidArgument);
+    CHECK_THROWS_AS(workflow::calibrate_edge_warning({}, set, {}), InvalidArgument);
+    o = {};
+    o.neighbours = 0;
+    CHECK_THROWS_AS(workflow::calibrate_edge_warning(probes, set, o), InvalidArgument);
 }
 
 TEST_CASE("edge calibration: tolerances and distances", "[workflow]") {

@@ -71,11 +71,9 @@ TEST_CASE("workflow: synthesis warnings judge reliability and the kernel", "[wor
     CHECK(wn.calibrated);
     CHECK(wn.rho == model->reliability(near));
     CHECK(wn.beyond_sd == 0.0);
-    CHECK(wn.low_reliability == workflow::edge_warning(*model).flags(model->variance_ratio(near), 0.0));
+    CHECK(wn.low_reliability == workflow::edge_warning(*model).flags(model->variance_ratio(near), 0.0, wn.nearby_misses));
     CHECK_FALSE(wn.low_reliability);
     CHECK(wf.low_reliability);
     CHECK(wf.rho == 0.0);
-    CHECK(workflow::is_low_reliability(0.49));
-    CHECK_FALSE(workflow::is_low_reliability(0.5));
     CHECK_FALSE((wn.regularized && wn.jittered));
 }

@@ -250,11 +250,11 @@ void synthesize_new(const DemoArgs& a, const DemoInputs& in, bool procedural, co
         std::printf("%-20s requested %s\n", name, values_text(s.outcome.requested, units).c_str());
         std::printf("%-20s measured  %s\n", "",
                     s.measured.size() == s.outcome.requested.size() ? values_text(s.measured, units).c_str() : "-");
-        std::printf("%-20s rho %.4f, %zu frames (%.2f s), synthesized in %.4f s; %s%s\n", "", s.outcome.reliability,
-                    s.outcome.clip.frame_count(), s.outcome.clip.duration(), s.outcome.seconds, s.where.c_str(),
-                    workflow::is_low_reliability(s.outcome.reliability)
-                        ? "\n                     warning: reliability below 0.5: far from the samples, extrapolated"
-                        : "");
+        std::printf("%-20s rho %.4f, %zu frames (%.2f s), synthesized in %.4f s; %s\n", "", s.outcome.reliability,
+                    s.outcome.clip.frame_count(), s.outcome.clip.duration(), s.outcome.seconds, s.where.c_str());
+        // The warnings synth prints: the set's calibrated thresholds and the parameters measured back.
+        for (const std::string& w : warning_lines(workflow::synthesis_warnings(model, s.outcome, set), set))
+            std::printf("%-20s warning: %s\n", "", w.c_str());
         syn.motions.push_back(std::move(s));
     }
 }

@@ -81,11 +81,13 @@ void print_stage(const eval::EvalStageDone& d) {
             break;
         case eval::EvalStage::EdgeWarning: {
             const eval::EdgeEvaluation& e = d.results->edge;
-            say("[eval] %s: edge warning above variance ratio %.3f or %.2f SD beyond flags %zu of %zu misses, %zu of %zu hits inside (fresh "
-                "probes; fixed %.2f: %zu of %zu, %zu of %zu) (%.1f s)\n",
-                name, e.calibration.variance_ratio, e.calibration.beyond_sd, e.calibrated.flagged_misses,
-                e.calibrated.misses, e.calibrated.flagged_inside_hits, e.calibrated.inside_hits, e.fixed_threshold,
-                e.fixed.flagged_misses, e.fixed.misses, e.fixed.flagged_inside_hits, e.fixed.inside_hits, d.seconds);
+            say("[eval] %s: edge warning above variance ratio %.3f, %.2f SD beyond or %zu of %zu nearby misses flags "
+                "%zu of %zu misses, %zu of %zu hits inside (fresh probes; fixed %.2f: %zu of %zu, %zu of %zu) "
+                "(%.1f s)\n",
+                name, e.calibration.variance_ratio, e.calibration.beyond_sd, e.calibration.votes,
+                e.calibration.neighbours, e.calibrated.flagged_misses, e.calibrated.misses,
+                e.calibrated.flagged_inside_hits, e.calibrated.inside_hits, e.fixed_threshold, e.fixed.flagged_misses,
+                e.fixed.misses, e.fixed.flagged_inside_hits, e.fixed.inside_hits, d.seconds);
             break;
         }
         case eval::EvalStage::Reduction:

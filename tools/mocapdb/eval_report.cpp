@@ -243,8 +243,8 @@ void constraint_section(std::ostream& o, const EvalResults& e) {
 /// 3, last part: where the calibrated warning fires (eval/edge_evaluation.hpp), against the fixed ρ < 0.5.
 void edge_warning_table(std::ostream& o, const EvalResults& e) {
     Table t{{"set", "calibration probes", "misses", "warns above V/sill", "(ρ below)", "or SD beyond",
-             "fresh probes in / beyond", "misses", "warned", "hits inside", "false alarms", "ρ < 0.5: warned",
-             "false alarms"},
+             "or nearby misses", "fresh probes in / beyond", "misses", "warned", "hits inside", "false alarms",
+             "ρ < 0.5: warned", "false alarms"},
             {}};
     const eval::EdgeEvaluation* any = nullptr;
     for (const SetResults& r : e.sets) {
@@ -256,14 +256,18 @@ void edge_warning_table(std::ostream& o, const EvalResults& e) {
                            " %)"
                      : std::string("-");
         };
-        t.rows.push_back(
-            {r.set->spec.name, std::to_string(g.calibration.probes), std::to_string(g.calibration.misses),
-             fixed(g.calibration.variance_ratio, 3), fixed(synthesis::rho_threshold(g.calibration), 3),
-             fixed(g.calibration.beyond_sd, 2), std::to_string(g.fresh_inside) + " / " + std::to_string(g.fresh_beyond),
-             std::to_string(g.calibrated.misses), share(g.calibrated.flagged_misses, g.calibrated.misses),
-             std::to_string(g.calibrated.inside_hits),
-             share(g.calibrated.flagged_inside_hits, g.calibrated.inside_hits),
-             share(g.fixed.flagged_misses, g.fixed.misses), share(g.fixed.flagged_inside_hits, g.fixed.inside_hits)});
+        t.rows.push_back({r.set->spec.name, std::to_string(g.calibration.probes), std::to_string(g.calibration.misses),
+                          fixed(g.calibration.variance_ratio, 3), fixed(synthesis::rho_threshold(g.calibration), 3),
+                          fixed(g.calibration.beyond_sd, 2),
+                          g.calibration.votes
+                              ? std::to_string(g.calibration.votes) + " of " + std::to_string(g.calibration.neighbours)
+                              : std::string("-"),
+                          std::to_string(g.fresh_inside) + " / " + std::to_string(g.fresh_beyond),
+                          std::to_string(g.calibrated.misses), share(g.calibrated.flagged_misses, g.calibrated.misses),
+                          std::to_string(g.calibrated.inside_hits),
+                          share(g.calibrated.flagged_inside_hits, g.calibrated.inside_hits),
+                          share(g.fixed.flagged_misses, g.fixed.misses),
+                          share(g.fixed.flagged_inside_hits, g.fixed.inside_hits)});
     }
     if (!any) return;
     o << "### Where ρ warns (edge calibration)\n\n"
@@ -277,8 +281,10 @@ void edge_warning_table(std::ostream& o, const EvalResults& e) {
          "share of the sill above which at most "
       << fixed(100.0 * any->options.false_alarms, 0)
       << " % of the calibration's hits inside the box lie (ρ = 1 − V/sill clamped to [0, 1] cannot tell "
-         "requests apart where it is 0), or where the request lies further beyond the samples' range than the "
-         "distance that then flags "
+         "requests apart where it is 0) together with the vote rule where the calibration chose one (*nearby "
+         "misses*: m of the k calibration requests nearest to the request missed; each calibration request "
+         "judged by the others when it is chosen), or where the request lies further beyond the samples' range "
+         "than the distance that then flags "
       << fixed(100.0 * any->options.detection, 0)
       << " % of the calibration's misses (at most the probed shell). Judged here on a fresh draw of requests (another seed): *warned* = misses flagged, *false alarms* = "
          "requests inside the box that hit and are flagged; beside it the fixed rule ρ < 0.5 on the same requests. "

@@ -91,11 +91,17 @@ std::vector<std::string> warning_lines(const workflow::SynthesisWarnings& w, con
     char buf[400];
     if (w.low_reliability && w.calibrated) {
         const bool by_variance = w.variance_ratio > w.threshold.variance_ratio;
+        const bool by_votes = w.threshold.votes > 0 && w.nearby_misses >= w.threshold.votes;
         if (by_variance)
             std::snprintf(buf, sizeof buf,
                           "prediction variance %.3f of the sill (reliability %.3f) above %.3f, where this set's "
                           "syntheses miss their parameters (calibrated by compress): the motion may not meet them",
                           w.variance_ratio, w.rho, w.threshold.variance_ratio);
+        else if (by_votes)
+            std::snprintf(buf, sizeof buf,
+                          "%zu of the %zu requests nearest to this one that compress synthesized to calibrate the "
+                          "warning missed their parameters: the motion may not meet them",
+                          w.nearby_misses, w.threshold.neighbours);
         else
             std::snprintf(buf, sizeof buf,
                           "the request lies %.2f SD beyond the samples (more than %.2f, where this set's syntheses "

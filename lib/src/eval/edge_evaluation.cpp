@@ -29,17 +29,17 @@ EdgeEvaluation evaluate_edge_warning(const EvalSet& set, const tensor::Ranks& ra
 
     EdgeEvaluation e;
     e.options = options;
-    e.calibration = workflow::calibrate_edge_warning(workflow::edge_probes(model, set.set, options), options);
+    e.calibration = workflow::calibrate_edge_warning(workflow::edge_probes(model, set.set, options), set.set, options);
     workflow::EdgeCalibrationOptions fresh_options = options;
     fresh_options.seed = options.seed + 1;
     const std::vector<workflow::EdgeProbe> fresh = workflow::edge_probes(model, set.set, fresh_options);
     for (const workflow::EdgeProbe& p : fresh) ++(p.inside ? e.fresh_inside : e.fresh_beyond);
-    e.calibrated = workflow::flag_rates(fresh, e.calibration);
+    e.calibrated = workflow::flag_rates(fresh, e.calibration, set.set);
     e.fixed_threshold = workflow::kLowReliability;
     synthesis::EdgeWarning fixed;  // rho < 0.5 alone
     fixed.variance_ratio = 1.0 - e.fixed_threshold;
     fixed.beyond_sd = std::numeric_limits<double>::infinity();
-    e.fixed = workflow::flag_rates(fresh, fixed);
+    e.fixed = workflow::flag_rates(fresh, fixed, set.set);
     return e;
 }
 

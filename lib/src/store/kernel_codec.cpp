@@ -124,6 +124,45 @@ void write_edge_warning(h5::File& file, const std::string& g, const synthesis::E
     file.write_double_attribute(g, "edge_tolerance_share", w.tolerance_share);
     file.write_int_attribute(g, "edge_probes", static_cast<std::int64_t>(w.probes));
     file.write_int_attribute(g, "edge_misses", static_cast<std::int64_t>(w.misses));
+    if (w.votes == 0) return;
+    // The vote rule: its counts, and the calibration's requests (C order: a row each) and misses.
+    file.write_int_attribute(g, "edge_neighbours", static_cast<std::int64_t>(w.neighbours));
+    file.write_int_attribute(g, "edge_votes", static_cast<std::int64_t>(w.votes));
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = w.probe_requests;
+    file.write_array(g + "/edge_probe_requests", rows.data(),
+                     {static_cast<std::uint64_t>(rows.rows()), static_cast<std::uint64_t>(rows.cols())},
+                     {"probe", "parameter"}, "parameter_unit");
+    file.write_ints_attribute(g + "/edge_probe_requests", "missed",
+                              std::vector<std::int64_t>(w.probe_missed.begin(), w.probe_missed.end()));
+}
+
+// The vote rule's counts and requests, checked: 1 <= votes <= neighbours, finite requests, a 0/1 miss
+// flag per request.
+void read_edge_votes(const h5::File& file, const std::string& g, synthesis::EdgeWarning& w) {
+    const std::int64_t neighbours = file.read_int_attribute(g, "edge_neighbours");
+    const std::int64_t votes = file.read_int_attribute(g, "edge_votes");
+    if (neighbours < 1 || votes < 1 || votes > neighbours)
+        throw StoreError(file.name(), g,
+                         "attributes 'edge_neighbours' and 'edge_votes': expected 1 <= votes <= neighbours, found " +
+                             std::to_string(votes) + " and " + std::to_string(neighbours));
+    w.neighbours = static_cast<std::size_t>(neighbours);
+    w.votes = static_cast<std::size_t>(votes);
+    const std::string path = g + "/edge_probe_requests";
+    const h5::Array<double> a = file.read_array<double>(path, 2);
+    w.probe_requests.resize(static_cast<Eigen::Index>(a.shape[0]), static_cast<Eigen::Index>(a.shape[1]));
+    for (Eigen::Index i = 0; i < w.probe_requests.rows(); ++i)
+        for (Eigen::Index p = 0; p < w.probe_requests.cols(); ++p)
+            w.probe_requests(i, p) = a.data[static_cast<std::size_t>(i * w.probe_requests.cols() + p)];
+    if (!w.probe_requests.allFinite())
+        throw StoreError(file.name(), path, "expected finite requests, found a NaN or infinity");
+    const std::vector<std::int64_t> missed = file.read_ints_attribute(path, "missed");
+    if (missed.size() != a.shape[0] || a.shape[0] != w.probes ||
+        std::any_of(missed.begin(), missed.end(), [](std::int64_t m) { return m != 0 && m != 1; }))
+        throw StoreError(file.name(), path,
+                         "attribute 'missed': expected a 0 or 1 per request, one request per probe (" +
+                             std::to_string(w.probes) + "), found " + std::to_string(missed.size()) + " flags for " +
+                             std::to_string(a.shape[0]) + " requests");
+    w.probe_missed.assign(missed.begin(), missed.end());
 }
 
 // The stored calibration, checked: a finite ratio and distance >= 0, shares in [0, 1], a positive tolerance, 0 <= misses <= probes, probes >= 1.
@@ -161,6 +200,7 @@ synthesis::EdgeWarning read_edge_warning(const h5::File& file, const std::string
                              std::to_string(misses) + " and " + std::to_string(probes));
     w.probes = static_cast<std::size_t>(probes);
     w.misses = static_cast<std::size_t>(misses);
+    if (file.has_attribute(g, "edge_votes")) read_edge_votes(file, g, w);
     return w;
 }
 
@@ -184,6 +224,13 @@ void check_kernel_fit(const synthesis::KernelFit& fit, const std::string& who) {
             who +
             ": the edge warning needs a finite variance ratio and distance >= 0, shares in [0, 1], a positive tolerance "
             "and 0 <= misses <= probes >= 1");
+    if (const auto& w = fit.edge_warning;
+        w && w->votes > 0 &&
+        !(w->votes <= w->neighbours && w->probe_requests.rows() == static_cast<Eigen::Index>(w->probes) &&
+          w->probe_missed.size() == w->probes && w->probe_requests.allFinite()))
+        throw InvalidArgument(who +
+                              ": the edge warning's vote rule needs 1 <= votes <= neighbours and a finite request and "
+                              "a miss flag per probe");
 }
 
 void write_kernel_fit(h5::File& file, const std::string& set, const synthesis::KernelFit& fit) {

@@ -73,7 +73,7 @@ void calibrate_warning(const compression::SetModel& model, const AlignedSetData&
     options.kernel_fit = kernel;
     if (kernel.predictor) options.predictor = kernel.predictor->chosen;
     const synthesis::MotionModel synth(model, timing_of(c.aligned), c.set, c.skeleton, c.frame_rate, options);
-    kernel.edge_warning = calibrate_edge_warning(edge_probes(synth, c.set));
+    kernel.edge_warning = calibrate_edge_warning(edge_probes(synth, c.set), c.set);
 }
 
 }  // namespace

@@ -21,7 +21,8 @@ SynthesisWarnings synthesis_warnings(const synthesis::SynthesisModel& model, con
     w.beyond_sd = beyond_samples_sd(set, c);
     w.threshold = edge_warning(model);
     w.calibrated = model.kernel_fit().edge_warning.has_value();
-    w.low_reliability = w.threshold.flags(w.variance_ratio, w.beyond_sd);
+    w.nearby_misses = nearby_misses(w.threshold, set, c);
+    w.low_reliability = w.threshold.flags(w.variance_ratio, w.beyond_sd, w.nearby_misses);
     w.kernel_fit = synthesis::fit_status_warning(model.kernel_fit());
     const kriging::KrigingStatus& st = model.report().status;
     w.regularized = st.factorization == kriging::FactorizationStatus::Regularized;

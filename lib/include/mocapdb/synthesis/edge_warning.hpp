@@ -1,9 +1,15 @@
 #pragma once
-// The prediction variance above which a synthesis of one set is flagged as likely to miss its
-// parameters (rho = clamp(1 - variance ratio, 0, 1) below the matching level), calibrated on that set (workflow/edge_calibration.hpp computes it; `compress` stores it with the
-// kernel, docs/synthesis.md "When rho warns"). Plain data; describe is pure.
+// Where a synthesis of one set is flagged as likely to miss its parameters, calibrated on that set's own
+// syntheses (workflow/edge_calibration.hpp computes it; `compress` stores it with the kernel;
+// docs/synthesis.md "When rho warns"): a prediction variance above a level (rho = clamp(1 - variance
+// ratio, 0, 1) below the matching one), a distance beyond the samples, or misses among the nearest
+// calibration requests. Plain data; describe is pure.
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <vector>
+
+#include "mocapdb/core/types.hpp"
 
 namespace mocapdb::synthesis {
 
@@ -19,8 +25,17 @@ struct EdgeWarning {
     std::size_t misses = 0;        ///< of those, the ones that missed
     double detection = 0.0;        ///< share of the misses the threshold flags (1 when none missed)
     double false_alarms = 0.0;     ///< share of the probes inside the samples' box that hit and are flagged
-    /// Whether a request is flagged (either rule).
-    bool flags(double ratio, double beyond) const { return ratio > variance_ratio || beyond > beyond_sd; }
+    /// The vote rule: flag a request when at least `votes` of its `neighbours` nearest calibration requests
+    /// (workflow::nearby_misses) missed; votes = 0: no vote rule (a calibration stored without it).
+    std::size_t neighbours = 0;
+    std::size_t votes = 0;
+    MatX probe_requests;                     ///< the calibration's requests, one row each (the set's units)
+    std::vector<std::uint8_t> probe_missed;  ///< per row: 1 when that request missed
+
+    /// Whether a request is flagged (any rule); nearby: misses among its `neighbours` nearest probes.
+    bool flags(double ratio, double beyond, std::size_t nearby) const {
+        return ratio > variance_ratio || beyond > beyond_sd || (votes > 0 && nearby >= votes);
+    }
 };
 
 /// rho at the threshold: clamp(1 - variance_ratio, 0, 1) (0 when the threshold lies beyond rho's range).

@@ -3,10 +3,11 @@
 // 4): requests inside the samples' parameter box and in a shell beyond it are synthesized
 // (synthesis_step.hpp), their parameters measured back, and a request misses when a measured parameter
 // lies further from the request than tolerance_share x that parameter's SD over the samples, or cannot
-// be measured. Two thresholds flag a request: the prediction variance ratio (SynthesisModel::
-// variance_ratio; rho = clamp(1 - ratio, 0, 1)) above the level that flags at most `false_alarms` of the
-// hits inside the box, or a distance beyond the samples' range (in SDs) above the level that then
-// flags `detection` of the misses.
+// be measured. Three rules flag a request: the prediction variance ratio (SynthesisModel::
+// variance_ratio; rho = clamp(1 - ratio, 0, 1)) above a level, enough misses among its nearest
+// calibration requests (kept with the thresholds), together flagging at most `false_alarms` of the hits
+// inside the box; or a distance beyond the samples' range (in SDs) above the level that then flags
+// `detection` of the misses.
 // Details: docs/synthesis.md, "When rho warns".
 // Errors: InvalidArgument when no parameter of the set is measured back by an extractor (nothing to tell
 // a miss by), or for options out of range. Threads: reads the model only. Cost: one synthesis and its
@@ -33,6 +34,8 @@ struct EdgeCalibrationOptions {
     double detection = 0.95;
     /// Share of the hits inside the box the variance rule may flag; in [0, 1).
     double false_alarms = 0.05;
+    /// k of the vote rule (>= 1): a request's nearest calibration requests whose misses are counted.
+    std::size_t neighbours = 5;
     std::uint64_t seed = 1;
 };
 
@@ -56,6 +59,13 @@ std::vector<std::optional<double>> parameter_tolerance(const MotionSet& set, dou
 /// outside [min, max] of the samples in that axis's SD; 0 inside the box. c: P values.
 double beyond_samples_sd(const MotionSet& set, const VecX& c);
 
+/// Misses among the warning's `neighbours` calibration requests nearest to c (P values; distance over the
+/// numeric, varying axes in the samples' SDs, around the circle on periodic ones; a request of another
+/// level of a categorical parameter counts as further than any of the same level). `skip`: a probe row
+/// to leave out (a calibration request judged by the others). 0 without stored requests.
+std::size_t nearby_misses(const synthesis::EdgeWarning& warning, const MotionSet& set, const VecX& c,
+                          std::optional<std::size_t> skip = std::nullopt);
+
 /// |a - b|, around the circle for a periodic parameter (period > 0).
 double parameter_distance(double a, double b, double period);
 
@@ -76,14 +86,19 @@ struct FlagRates {
     double false_alarms = 0.0;                             ///< flagged_inside_hits / inside_hits
 };
 
-/// The probes a warning flags (EdgeWarning::flags), counted.
-FlagRates flag_rates(const std::vector<EdgeProbe>& probes, const synthesis::EdgeWarning& warning);
+/// The probes of `set` a warning flags (EdgeWarning::flags, misses nearby by nearby_misses), counted.
+FlagRates flag_rates(const std::vector<EdgeProbe>& probes, const synthesis::EdgeWarning& warning, const MotionSet& set);
 
-/// The variance ratio: the smallest above all but floor(false_alarms x hits) of the inside hits (without
-/// inside hits: the largest probed); then the distance beyond the samples: just below the one that flags
-/// ceil(detection x misses) of the misses with the variance rule (at most options.shell_sd: nothing is
-/// known beyond the probed shell; 0 when the inside misses the variance rule leaves out are too many).
-synthesis::EdgeWarning calibrate_edge_warning(const std::vector<EdgeProbe>& probes,
+/// Keeps the probes' requests and misses in the warning and, for each vote count m of
+/// options.neighbours (and for no vote rule): the votes flag the probes at least m of whose nearest other
+/// probes missed, within floor(false_alarms x inside hits); the variance ratio then takes what is left of
+/// that budget (the smallest ratio above all but that many of the inside hits the votes leave; without
+/// inside hits: the largest probed); the distance beyond the samples is just below the one that flags
+/// ceil(detection x misses) of the misses together with the other two (at most options.shell_sd: nothing
+/// is known beyond the probed shell; 0 when too many inside misses are left). The m flagging the most
+/// misses wins (ties: fewer false alarms, then the larger m). detection and false_alarms: those of the
+/// probes, each judged by the others.
+synthesis::EdgeWarning calibrate_edge_warning(const std::vector<EdgeProbe>& probes, const MotionSet& set,
                                               const EdgeCalibrationOptions& options = {});
 
 }  // namespace mocapdb::workflow

@@ -19,8 +19,6 @@ namespace mocapdb::workflow {
 /// Below this reliability a synthesis is extrapolated (the threshold of a set without a calibration).
 inline constexpr double kLowReliability = 0.5;
 
-inline bool is_low_reliability(double rho) { return rho < kLowReliability; }
-
 /// Where `model`'s syntheses are flagged: its kernel's calibration (KernelFit::edge_warning), else the
 /// fixed rule (a variance ratio above 1 - kLowReliability, i.e. rho < kLowReliability; no distance rule).
 synthesis::EdgeWarning edge_warning(const synthesis::SynthesisModel& model);
@@ -34,12 +32,14 @@ struct ParameterMiss {
 };
 
 struct SynthesisWarnings {
-    double rho = 1.0;                   ///< at the request
-    double variance_ratio = 0.0;        ///< at the request
-    double beyond_sd = 0.0;             ///< at the request (edge_calibration.hpp beyond_samples_sd)
-    synthesis::EdgeWarning threshold;   ///< edge_warning(model)
-    bool calibrated = false;            ///< the thresholds are the set's calibration
-    bool low_reliability = false;       ///< threshold.flags(variance_ratio, beyond_sd)
+    double rho = 1.0;                  ///< at the request
+    double variance_ratio = 0.0;       ///< at the request
+    double beyond_sd = 0.0;            ///< at the request (edge_calibration.hpp beyond_samples_sd)
+    synthesis::EdgeWarning threshold;  ///< edge_warning(model)
+    bool calibrated = false;           ///< the thresholds are the set's calibration
+    /// Misses among the calibration's requests nearest to this one (edge_calibration.hpp nearby_misses).
+    std::size_t nearby_misses = 0;
+    bool low_reliability = false;       ///< threshold.flags(variance_ratio, beyond_sd, nearby_misses)
     std::vector<ParameterMiss> misses;  ///< (with an outcome) the parameters that missed
     std::string kernel_fit;             ///< the fit's warning ("" when clean)
     bool regularized = false;           ///< the covariance matrix's eigenvalues were clamped
