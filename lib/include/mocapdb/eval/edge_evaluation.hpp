@@ -1,5 +1,5 @@
 #pragma once
-// How well rho warns where synthesis misses (issue #38 item 4) on one evaluation set: the Tucker model
+// How well rho warns where synthesis misses on one evaluation set: the Tucker model
 // synthesis uses (ranks given, kernel and predictor chosen as `compress` chooses them), calibrated on one
 // draw of probes (workflow/edge_calibration.hpp, seed 1) and judged on a fresh draw (seed 2), beside the
 // fixed threshold workflow::kLowReliability on the same fresh probes. Details: docs/evaluation.md.

@@ -1,6 +1,5 @@
 #pragma once
-// rho calibrated on one set so that it warns where a synthesis misses its parameters (issue #38 item
-// 4): requests inside the samples' parameter box and in a shell beyond it are synthesized
+// rho calibrated on one set so that it warns where a synthesis misses its parameters: requests inside the samples' parameter box and in a shell beyond it are synthesized
 // (synthesis_step.hpp), their parameters measured back, and a request misses when a measured parameter
 // lies further from the request than tolerance_share x that parameter's SD over the samples, or cannot
 // be measured. Three rules flag a request: the prediction variance ratio (SynthesisModel::
