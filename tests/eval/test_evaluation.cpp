@@ -107,7 +107,10 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
     CHECK(r.nested.folds.size() == r.loo.samples.size());
     REQUIRE(r.nested.methods.size() == 3);
     CHECK(r.nested.chosen.picks.size() == 3);
-    CHECK(r.nested.chosen.counts[0] + r.nested.chosen.counts[1] + r.nested.chosen.counts[2] == 3);
+    REQUIRE(r.nested.chosen.counts.size() == 4);  // kriging, rbf, trend, averages
+    CHECK(r.nested.chosen.counts[0] + r.nested.chosen.counts[1] + r.nested.chosen.counts[2] +
+              r.nested.chosen.counts[3] ==
+          3);
     CHECK(r.has_constraint);
     CHECK(r.constraint.grid.rows() == 9);
     CHECK_FALSE(r.has_reduction);
