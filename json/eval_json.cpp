@@ -81,9 +81,23 @@ void write_eval_results(JsonWriter& j, const eval::EvalResults& e) {
                     .value(c.counts[q])
                     .end_object();
             j.end_array();
+            j.key("averaged").value(c.counts.size() > n.methods.size() ? c.counts[n.methods.size()] : 0);
             j.key("chosen_pose_mean_cm").value(c.pose_mean).key("best").value(n.methods[c.best].spec.name);
             j.key("chosen_minus_best_cm").value(c.diff_mean_cm);
             if (c.diff_se_cm) j.key("paired_se_cm").value(*c.diff_se_cm);
+            if (n.learned_metric) {
+                const eval::LearnedMetricEvaluation& l = *n.learned_metric;
+                j.key("learned_metric").begin_object();
+                j.key("kind").value(l.kind).key("pose_mean_cm").value(l.pose_mean);
+                j.key("fold_factors").begin_array();
+                for (const VecX& f : l.factors) {
+                    j.begin_array();
+                    for (Eigen::Index a = 0; a < f.size(); ++a) j.value(f(a));
+                    j.end_array();
+                }
+                j.end_array();
+                j.end_object();
+            }
             j.end_object();
         }
         if (r.has_edge) {

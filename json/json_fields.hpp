@@ -77,8 +77,14 @@ inline void edge_warning(JsonWriter& j, const synthesis::EdgeWarning& w) {
 inline void predictor_choice(JsonWriter& j, const synthesis::PredictorChoice& c) {
     j.begin_object().key("chosen").value(synthesis::to_string(c.chosen));
     j.key("folds").value(c.folds).key("samples").value(c.samples);
+    j.key("members").begin_array();
+    for (const synthesis::Predictor p : c.members()) j.value(synthesis::to_string(p));
+    j.end_array();
     j.key("cv_rms").begin_object();
     for (const synthesis::PredictorScore& s : c.scores) j.key(synthesis::to_string(s.predictor)).value(s.cv_rms);
+    j.end_object();
+    j.key("cv_se").begin_object();
+    for (const synthesis::PredictorScore& s : c.scores) j.key(synthesis::to_string(s.predictor)).value(s.cv_se);
     j.end_object().end_object();
 }
 

@@ -79,9 +79,10 @@ void write_set_evaluation(JsonWriter& j, const eval::SetEvaluation& e) {
     j.key("hit_rate").value(c.hit_rate);
     j.key("picks").begin_object();
     for (std::size_t q = 0; q < e.methods.size(); ++q) j.key(e.methods[q].spec.name).value(c.counts[q]);
+    j.key("average").value(c.counts.size() > e.methods.size() ? c.counts[e.methods.size()] : 0);
     j.end_object();
     j.key("fold_picks").begin_array();
-    for (std::size_t q : c.picks) j.value(e.methods[q].spec.name);
+    for (const std::string& name : c.pick_names) j.value(name);
     j.end_array();
     j.key("best_single").value(e.methods[c.best].spec.name);
     j.key("diff_mean_cm").value(c.diff_mean_cm);

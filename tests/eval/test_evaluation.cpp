@@ -107,7 +107,23 @@ TEST_CASE("evaluation run: every experiment on six walks, stage events, verdicts
     CHECK(r.nested.folds.size() == r.loo.samples.size());
     REQUIRE(r.nested.methods.size() == 3);
     CHECK(r.nested.chosen.picks.size() == 3);
-    CHECK(r.nested.chosen.counts[0] + r.nested.chosen.counts[1] + r.nested.chosen.counts[2] == 3);
+    REQUIRE(r.nested.chosen.counts.size() == 4);  // kriging, rbf, trend, averages
+    // The learned-metric kriging over the same folds: walks have two numeric parameters, so ARD (the
+    // first axis kept, the second scaled within the grid).
+    REQUIRE(r.nested.learned_metric.has_value());
+    CHECK(r.nested.learned_metric->kind == "ard");
+    CHECK(r.nested.learned_metric->pose_mean_cm.size() == 3);
+    CHECK(std::isfinite(r.nested.learned_metric->pose_mean));
+    REQUIRE(r.nested.learned_metric->factors.size() == 3);
+    for (const VecX& f : r.nested.learned_metric->factors) {
+        REQUIRE(f.size() == 2);
+        CHECK(f(0) == 1.0);
+        CHECK(f(1) >= 0.25);
+        CHECK(f(1) <= 4.0);
+    }
+    CHECK(r.nested.chosen.counts[0] + r.nested.chosen.counts[1] + r.nested.chosen.counts[2] +
+              r.nested.chosen.counts[3] ==
+          3);
     CHECK(r.has_constraint);
     CHECK(r.constraint.grid.rows() == 9);
     CHECK_FALSE(r.has_reduction);

@@ -217,6 +217,72 @@ TEST_CASE("kernel: the cross-validated predictor round-trips, is used by the loa
     CHECK_THAT(e.second, Contains("predictor_folds"));
 }
 
+TEST_CASE("kernel: an averaged predictor round-trips with its weights and errors, blends the loaded model, is checked",
+          "[store][kernel]") {
+    TempDir dir("kernel-average");
+    const auto path = dir / "db.h5";
+    const KernelFixture fx;
+    fx.write(path, false);
+    synthesis::KernelFit fit = synthesis::fit_kernel(fx.model, fx.aligned, fx.set, {});
+    using synthesis::Predictor;
+    synthesis::PredictorChoice choice;
+    choice.chosen = Predictor::Average;
+    choice.scores = {{Predictor::Kriging, 2.5, 0.0, 0.5}, {Predictor::Rbf, 2.625, 0.25, 0.5}, {Predictor::Trend, 4.0, 0.5, 0.0}};
+    choice.folds = 4;
+    choice.samples = 6;
+    fit.predictor = choice;
+    {
+        DatabaseWriter w(path);
+        w.put_kernel_fit("walks", fit);
+        w.commit();
+    }
+    const auto back = Database(path).load_kernel_fit("walks");
+    REQUIRE(back->predictor.has_value());
+    CHECK(back->predictor->chosen == Predictor::Average);
+    REQUIRE(back->predictor->scores.size() == 3);
+    for (std::size_t k = 0; k < 3; ++k) {
+        CHECK(back->predictor->scores[k].cv_se == choice.scores[k].cv_se);
+        CHECK(back->predictor->scores[k].weight == choice.scores[k].weight);
+    }
+    CHECK(back->predictor->members() == std::vector<Predictor>{Predictor::Kriging, Predictor::Rbf});
+    const ValidationReport report = validate_database(path);
+    INFO(all_violations(report));
+    CHECK(report.ok());
+
+    // The loaded model blends with the mean of kriging's and RBF's weights.
+    const auto loaded = workflow::load_motion_model(Database(path), "walks");
+    CHECK(loaded->report().predictor == Predictor::Average);
+    const VecX c = 0.5 * (fx.set.parameters.row(1) + fx.set.parameters.row(2)).transpose();
+    VecX expected = VecX::Zero(6);
+    for (const Predictor p : {Predictor::Kriging, Predictor::Rbf}) {
+        synthesis::SynthesisOptions one;
+        one.predictor = p;
+        synthesis::Workspace ws;
+        VecX w(6);
+        workflow::load_motion_model(Database(path), "walks", one)->weights(c, w, ws);
+        expected += 0.5 * w;
+    }
+    synthesis::Workspace ws;
+    VecX got(6);
+    loaded->weights(c, got, ws);
+    CHECK((got - expected).norm() < 1e-12);
+
+    // A stored choice of one predictor read as an average has a single positive weight: refused.
+    fit.predictor->chosen = Predictor::Rbf;
+    fit.predictor->scores[0].weight = 0.0;
+    fit.predictor->scores[1].weight = 1.0;
+    {
+        DatabaseWriter w(path);
+        w.put_kernel_fit("walks", fit);
+        w.commit();
+    }
+    CHECK(Database(path).load_kernel_fit("walks")->predictor->chosen == Predictor::Rbf);
+    set_kernel_attributes(path, {"predictor:s=average"});
+    const auto e = kernel_error(path);
+    CHECK(e.first == kKernel);
+    CHECK_THAT(e.second, Contains("predictor_weights") && Contains("at least 2"));
+}
+
 TEST_CASE("kernel: the calibrated warning threshold round-trips, warns the loaded model and is checked when read",
           "[store][kernel]") {
     TempDir dir("kernel-edge");

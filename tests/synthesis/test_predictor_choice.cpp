@@ -1,7 +1,8 @@
 // The predictor synthesis blends the samples with (synthesis/predictor_choice.hpp): the cross-validated
-// choice scores every candidate and picks the lowest, keeps a curved response off the trend, leaves twins
-// out with their sample, chooses on a bounded subset of a big set; a model built with a predictor blends
-// with that interpolator's weights (poses and timing) and keeps the kriging kernel's rho.
+// choice scores every candidate and picks the lowest, averages it with those within one paired standard
+// error, keeps a curved response off the trend, leaves twins out with their sample, chooses on a bounded
+// subset of a big set; a model built with a predictor blends with that interpolator's weights (poses and
+// timing; the average with the mean of its members') and keeps the kriging kernel's rho.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -63,7 +64,9 @@ double cv_of(const PredictorChoice& c, Predictor p) {
 TEST_CASE("predictor choice: every candidate scored, the lowest chosen, a curve is not left to the trend",
           "[synthesis][predictor]") {
     const CurveData d = curve(25, 0.0, 1);
-    const PredictorChoice c = choose(d);
+    PredictorChoiceOptions alone;
+    alone.average_within_se = 0.0;  // the lowest alone
+    const PredictorChoice c = choose(d, {}, alone);
     REQUIRE(c.scores.size() == all_predictors().size());
     CHECK(c.folds == 15);
     CHECK(c.samples == 25);
@@ -71,10 +74,57 @@ TEST_CASE("predictor choice: every candidate scored, the lowest chosen, a curve 
     CHECK(c.chosen != Predictor::Trend);
     CHECK(cv_of(c, Predictor::Trend) > 3.0 * cv_of(c, c.chosen));  // a sine over 6 rad is far from a line
     CHECK_THAT(describe(c), Catch::Contains("15 folds of 25 samples"));
+    CHECK(c.members() == std::vector<Predictor>{c.chosen});
     // Deterministic: the same inputs give the same choice and scores.
     const PredictorChoice again = choose(d);
     CHECK(again.chosen == c.chosen);
     CHECK(cv_of(again, Predictor::Rbf) == cv_of(c, Predictor::Rbf));
+}
+
+TEST_CASE("predictor choice: candidates within one paired standard error of the lowest are averaged",
+          "[synthesis][predictor]") {
+    const CurveData d = curve(25, 0.3, 5);
+    const PredictorChoice c = choose(d);
+    std::size_t lowest = 0;
+    for (std::size_t p = 0; p < c.scores.size(); ++p)
+        if (c.scores[p].cv_rms < c.scores[lowest].cv_rms) lowest = p;
+    CHECK(c.scores[lowest].cv_se == 0.0);
+    double weights = 0.0;
+    for (const PredictorScore& s : c.scores) {
+        INFO(to_string(s.predictor) << " cv " << s.cv_rms << " se " << s.cv_se << " weight " << s.weight);
+        CHECK(s.cv_se >= 0.0);
+        // Averaged exactly when within one SE of the lowest (the lowest always is).
+        const bool within = s.cv_rms - c.scores[lowest].cv_rms <= s.cv_se;
+        CHECK((s.weight > 0.0) == within);
+        weights += s.weight;
+    }
+    CHECK(weights == Approx(1.0));
+    CHECK((c.chosen == Predictor::Average) == (c.members().size() >= 2));
+    CHECK(c.scores[2].weight == 0.0);  // the trend misses the sine by far more than its SE
+    // Any allowance that covers every excess averages all three, equally; none keeps the lowest alone.
+    PredictorChoiceOptions all;
+    all.average_within_se = 1e9;
+    const PredictorChoice every = choose(d, {}, all);
+    CHECK(every.chosen == Predictor::Average);
+    CHECK(every.members() == all_predictors());
+    for (const PredictorScore& s : every.scores) CHECK(s.weight == Approx(1.0 / 3.0));
+    CHECK_THAT(describe(every), Catch::StartsWith("average of kriging, rbf, trend (cv "));
+    PredictorChoiceOptions none;
+    none.average_within_se = 0.0;
+    const PredictorChoice one = choose(d, {}, none);
+    CHECK(one.chosen == all_predictors()[lowest]);
+    CHECK(one.members().size() == 1);
+    none.average_within_se = -1.0;
+    CHECK_THROWS_AS(choose(d, {}, none), InvalidArgument);
+    none.average_within_se = 0.0;
+    none.candidates = {Predictor::Kriging, Predictor::Average};
+    CHECK_THROWS_AS(choose(d, {}, none), InvalidArgument);
+    // The posture metric drops the root's floor position and heading from every frame.
+    MatX rows = MatX::Constant(2, 3 * 7, 1.0);
+    const MatX posture = posture_values(rows, 7);
+    CHECK(posture.sum() == Approx(2.0 * 3.0 * 4.0));
+    CHECK(posture(1, 7 + 4) == 0.0);
+    CHECK_THROWS_AS(posture_values(rows, 4), InvalidArgument);
 }
 
 TEST_CASE("predictor choice: pure noise about a constant favours the trend over interpolating it",
@@ -86,6 +136,7 @@ TEST_CASE("predictor choice: pure noise about a constant favours the trend over 
     const PredictorChoice c = choose(d);
     CHECK(cv_of(c, Predictor::Trend) < cv_of(c, Predictor::Rbf));  // RBF reproduces the noise of neighbours
     CHECK(c.chosen != Predictor::Rbf);
+    CHECK(c.members().front() != Predictor::Rbf);
 }
 
 TEST_CASE("predictor choice: a sample's twins leave with it, a big set chooses on a bounded subset",
@@ -167,4 +218,29 @@ TEST_CASE("a model built with a predictor blends with its weights, poses and tim
         model.poses(c.transpose(), 3.0, batch, bws);
         CHECK((batch.col(0) - model.pose(c, 3.0)).norm() < 1e-9);
     }
+    // The average blends with the mean of its members' weights (kriging's own, with the others').
+    SynthesisOptions o;
+    PredictorChoice choice;
+    choice.chosen = Predictor::Average;
+    choice.scores = {{Predictor::Kriging, 1.0, 0.0, 0.5}, {Predictor::Rbf, 1.1, 0.2, 0.5}, {Predictor::Trend, 3.0, 0.5, 0.0}};
+    use_predictor_choice(choice, o);
+    REQUIRE(o.averaged == std::vector<Predictor>{Predictor::Kriging, Predictor::Rbf});
+    const MotionModel averaged(sm, w.aligned, w.set, skeleton, 120.0, o);
+    CHECK(averaged.report().predictor == Predictor::Average);
+    Workspace ws;
+    VecX got(8), kriged_w(8);
+    averaged.weights(c, got, ws);
+    kriged.weights(c, kriged_w, ws);
+    const VecX expected = 0.5 * (kriged_w + kriging::RbfInterpolator::build(xc).weights(cn));
+    CHECK((got - expected).norm() < 1e-12);
+    CHECK(averaged.reliability(c) == kriged.reliability(c));
+    BatchWorkspace bws;
+    MatX batch(averaged.dofs(), 2);
+    averaged.poses(MatX(c.transpose()).replicate(2, 1), 3.0, batch, bws);
+    CHECK((batch.col(1) - averaged.pose(c, 3.0)).norm() < 1e-9);
+    CHECK((averaged.timing(c).increments - w.aligned.inverse_warp_increments() * expected).norm() < 1e-9);
+    o.averaged = {Predictor::Kriging};
+    CHECK_THROWS_AS(MotionModel(sm, w.aligned, w.set, skeleton, 120.0, o), InvalidArgument);
+    o.averaged = {Predictor::Rbf, Predictor::Rbf};
+    CHECK_THROWS_AS(MotionModel(sm, w.aligned, w.set, skeleton, 120.0, o), InvalidArgument);
 }

@@ -53,6 +53,9 @@ void print_table(const eval::SetEvaluation& e) {
     const eval::ChosenEvaluation& c = e.chosen;
     std::printf("%-10s %10.3f %10.2f %10.3f %10.2f %8s %8s %7s\n", "chosen", c.pose_mean, c.pose_max, c.motion_mean,
                 c.motion_max, hits(c.hit_rate, e.folds.size()).c_str(), "", "");
+    if (c.counts.size() > e.methods.size() && c.counts[e.methods.size()] > 0)
+        std::printf("%zu fold%s averaged predictors the inner cross-validation could not tell apart\n",
+                    c.counts[e.methods.size()], c.counts[e.methods.size()] == 1 ? "" : "s");
     std::printf("chosen - best single (%s): %+.3f cm, paired standard error %s cm over %zu folds\n",
                 e.methods[c.best].spec.name.c_str(), c.diff_mean_cm, cell(c.diff_se_cm, "%.3f").c_str(),
                 e.folds.size());

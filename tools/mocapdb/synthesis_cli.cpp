@@ -55,7 +55,8 @@ std::unique_ptr<synthesis::SynthesisModel> load_synthesis_model(const Database& 
     else if (timing != "shared") throw InvalidArgument("--timing: expected shared or separate, got '" + timing + "'");
     if (predictor != "auto") {
         options.predictor = synthesis::parse_predictor(predictor);
-        if (!options.predictor)
+        // The average is compress's choice of members (auto uses it), not one to name here.
+        if (!options.predictor || *options.predictor == synthesis::Predictor::Average)
             throw InvalidArgument("--predictor: expected auto, kriging, rbf or trend, got '" + predictor + "'");
     }
     if (naive) {

@@ -24,7 +24,7 @@ EdgeEvaluation evaluate_edge_warning(const EvalSet& set, const tensor::Ranks& ra
     // The model synth loads after `compress`: the stored kernel and the predictor chosen with it.
     synthesis::SynthesisOptions so;
     so.kernel_fit = synthesis::fit_kernel(sm, set.aligned, set.set, so);
-    if (so.kernel_fit->predictor) so.predictor = so.kernel_fit->predictor->chosen;
+    if (so.kernel_fit->predictor) synthesis::use_predictor_choice(*so.kernel_fit->predictor, so);
     const synthesis::MotionModel model(sm, set.aligned, set.set, set.skeleton, set.frame_rate, so);
 
     EdgeEvaluation e;

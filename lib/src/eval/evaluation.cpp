@@ -140,6 +140,7 @@ EvalResults run_evaluation(const EvalPlan& plan, const std::filesystem::path& cm
             });
             SetEvaluationOptions no;
             no.max_folds = lo.samples.size();
+            no.learned_metric = true;
             if (set.size() >= 5)  // nested cross-validation needs 5 (smoke-test sets may have fewer)
                 stage(observer, EvalStage::NestedChoice, set, &r, [&](const ProgressCallback& progress) {
                     r.nested = evaluate_set(set, set_methods({0, 0, 0}), no, progress);

@@ -139,12 +139,12 @@ EvalPlan make_eval_plan(EvalMode mode) {
 SetMethods methods_for_set(const EvalSet& set, const std::vector<double>& tucker_targets) {
     SetMethods out;
     auto& m = out.methods;
-    m.push_back({MethodKind::PerPoseKriging, "per-pose kriging", {0, 0, 0}, {}});
-    m.push_back({MethodKind::PerElementKriging, "per-element kriging", {0, 0, 0}, {}});
+    m.push_back({MethodKind::PerPoseKriging, "per-pose kriging", {0, 0, 0}, {}, {}});
+    m.push_back({MethodKind::PerElementKriging, "per-element kriging", {0, 0, 0}, {}, {}});
     for (double t : tucker_targets) {
         std::ostringstream name;
         name << "tucker-" << t << "cm";
-        m.push_back({MethodKind::TuckerKriging, name.str(), ranks_for_max_error(set, t), {}});
+        m.push_back({MethodKind::TuckerKriging, name.str(), ranks_for_max_error(set, t), {}, {}});
         out.tucker_targets_cm.push_back(t);
     }
     // The error targets above keep every sample direction on these sets; a truncated sample mode
@@ -153,13 +153,13 @@ SetMethods methods_for_set(const EvalSet& set, const std::vector<double>& tucker
         const double loosest = *std::max_element(tucker_targets.begin(), tucker_targets.end());
         tensor::Ranks ranks = ranks_for_max_error(set, loosest);
         ranks[2] = std::min<Eigen::Index>(ranks[2], (set.size() + 2) / 3);
-        m.push_back({MethodKind::TuckerKriging, "tucker-R3=N/3", ranks, {}});
+        m.push_back({MethodKind::TuckerKriging, "tucker-R3=N/3", ranks, {}, {}});
         out.tucker_targets_cm.push_back(loosest);
     }
-    m.push_back({MethodKind::NaiveKriging, "naive kriging", {0, 0, 0}, {}});
-    m.push_back({MethodKind::Rbf, "rbf", {0, 0, 0}, {}});
-    m.push_back({MethodKind::NearestNeighbour, "nn-blend k=3", {0, 0, 0}, {}});
-    m.push_back({MethodKind::TrendOnly, "trend only", {0, 0, 0}, {}});
+    m.push_back({MethodKind::NaiveKriging, "naive kriging", {0, 0, 0}, {}, {}});
+    m.push_back({MethodKind::Rbf, "rbf", {0, 0, 0}, {}, {}});
+    m.push_back({MethodKind::NearestNeighbour, "nn-blend k=3", {0, 0, 0}, {}, {}});
+    m.push_back({MethodKind::TrendOnly, "trend only", {0, 0, 0}, {}, {}});
     return out;
 }
 

@@ -55,10 +55,11 @@ std::vector<std::vector<Eigen::Index>> twin_lists(const SampleTwins& twins, std:
 }
 
 // What synthesis would choose on `training` alone (synthesis/predictor_choice.hpp), as `compress` does on
-// a whole set: the values are the samples' position-weighted, centred aligned poses (the naive model's,
-// whose distances the Tucker core slices keep), the kriging candidate has the variogram fitted to them.
-synthesis::Predictor synthesis_choice(const EvalSet& training, const std::vector<std::vector<Eigen::Index>>& twins,
-                                      std::size_t folds) {
+// a whole set: the kriging candidate has the variogram fitted to the samples' position-weighted, centred
+// aligned poses (the naive model's, whose distances the Tucker core slices keep), and the candidates are
+// scored on their posture (the root's path left out), as the outer pose error.
+synthesis::PredictorChoice synthesis_choice(const EvalSet& training,
+                                            const std::vector<std::vector<Eigen::Index>>& twins, std::size_t folds) {
     const AlignedSet& a = training.aligned;
     const VecX weight = compression::position_error_weights(*training.skeleton);
     const Tensor3 x = compression::weighted_centred(a.tensor, compression::dof_means(a.tensor), weight);
@@ -75,14 +76,23 @@ synthesis::Predictor synthesis_choice(const EvalSet& training, const std::vector
     synthesis::PredictorChoiceOptions choice;
     choice.folds = folds;
     choice.elements_per_sample = static_cast<double>(a.dofs() * a.frames());
-    return synthesis::choose_predictor(xc, values, kernel.variogram, options.kriging, partners, choice).chosen;
+    return synthesis::choose_predictor(xc, synthesis::posture_values(values, a.dofs()), kernel.variogram,
+                                       options.kriging, partners, choice);
+}
+
+MethodKind method_kind(synthesis::Predictor predictor) {
+    switch (predictor) {
+        case synthesis::Predictor::Kriging: return MethodKind::NaiveKriging;
+        case synthesis::Predictor::Rbf: return MethodKind::Rbf;
+        case synthesis::Predictor::Trend: return MethodKind::TrendOnly;
+        case synthesis::Predictor::Average: break;
+    }
+    return MethodKind::Average;
 }
 
 // The method that evaluates `predictor` (the naive model's kriging, RBF or the trend).
 std::size_t method_of(const std::vector<MethodSpec>& methods, synthesis::Predictor predictor) {
-    const MethodKind kind = predictor == synthesis::Predictor::Kriging ? MethodKind::NaiveKriging
-                            : predictor == synthesis::Predictor::Rbf   ? MethodKind::Rbf
-                                                                       : MethodKind::TrendOnly;
+    const MethodKind kind = method_kind(predictor);
     for (std::size_t q = 0; q < methods.size(); ++q)
         if (methods[q].kind == kind) return q;
     throw InvalidArgument(std::string("nested cross-validation: no method evaluates the predictor '") +
@@ -91,18 +101,83 @@ std::size_t method_of(const std::vector<MethodSpec>& methods, synthesis::Predict
 
 // Nested CV: per outer fold, the predictor synthesis chooses on the fold's training samples alone (its
 // inner cross-validation never sees the held-out sample or its twins).
-std::vector<std::size_t> nested_picks(const EvalSet& set, const std::vector<MethodSpec>& methods,
-                                      const std::vector<Eigen::Index>& folds,
-                                      const std::vector<std::vector<Eigen::Index>>& twins, std::size_t inner_folds,
-                                      const ProgressCallback& progress, std::uint64_t done, std::uint64_t total) {
-    std::vector<std::size_t> picks;
+std::vector<synthesis::PredictorChoice> nested_choices(const EvalSet& set, const std::vector<Eigen::Index>& folds,
+                                                       const std::vector<std::vector<Eigen::Index>>& twins,
+                                                       std::size_t inner_folds, const ProgressCallback& progress,
+                                                       std::uint64_t done, std::uint64_t total) {
+    std::vector<synthesis::PredictorChoice> out;
     for (Eigen::Index i : folds) {
         const std::vector<Eigen::Index> keep = loo_training(set.size(), i, twins);
         const EvalSet training = subset(set, keep);
-        picks.push_back(method_of(methods, synthesis_choice(training, subset_twins(twins, keep), inner_folds)));
+        out.push_back(synthesis_choice(training, subset_twins(twins, keep), inner_folds));
         if (progress) progress({++done, total, "nested " + set.labels[static_cast<std::size_t>(i)]});
     }
-    return picks;
+    return out;
+}
+
+// The learned metric of LearnedMetricEvaluation applied to normalized points x (rows), for a training
+// range [lo, hi] of the single parameter (warp) or the per-axis factors (ard).
+MatX learned_metric_points(const MatX& x, const VecX& factors, bool warp, double lo, double hi) {
+    MatX out = x;
+    if (!warp) {
+        for (Eigen::Index a = 0; a < x.cols(); ++a) out.col(a) *= factors(a);
+        return out;
+    }
+    const double span = hi > lo ? hi - lo : 1.0;
+    for (Eigen::Index r = 0; r < x.rows(); ++r) {
+        const double u = 2.0 * (x(r, 0) - lo) / span - 1.0;
+        out(r, 0) = lo + 0.5 * span * (std::copysign(std::pow(std::abs(u), factors(0)), u) + 1.0);
+    }
+    return out;
+}
+
+// One outer fold of LearnedMetricEvaluation: the metric with the lowest leave-one-out MSE of the training
+// values, its kriging's pose error at the left-out sample, and the chosen factors.
+std::pair<double, VecX> learned_metric_fold(const EvalSet& set, Eigen::Index left_out,
+                                            const std::vector<Eigen::Index>& keep) {
+    const EvalSet training = subset(set, keep);
+    const AlignedSet& a = training.aligned;
+    const VecX weight = compression::position_error_weights(*training.skeleton);
+    const Tensor3 t = compression::weighted_centred(a.tensor, compression::dof_means(a.tensor), weight);
+    const MatX values = Eigen::Map<const MatX>(t.data(), a.dofs() * a.frames(), a.samples()).transpose();
+    const kriging::ControlScaling scaling = kriging::ControlScaling::from_data(training.set.parameters);
+    const MatX xc = scaling.apply(training.set.parameters);
+    VecX query;
+    scaling.apply_point(set.set.parameters.row(left_out).transpose(), query);
+    const bool warp = xc.cols() == 1;
+    const double lo = xc.col(0).minCoeff(), hi = xc.col(0).maxCoeff();
+    const synthesis::SynthesisOptions options;
+    const auto fit = [&](const VecX& factors) {
+        const synthesis::KernelFit k = synthesis::fit_coefficient_kernel(
+            learned_metric_points(xc, factors, warp, lo, hi), values, options, "learned metric");
+        const double mse = k.exponent_loo_mse.size() > 0 ? k.exponent_loo_mse.minCoeff() : HUGE_VAL;
+        return std::make_pair(std::isfinite(mse) ? mse : HUGE_VAL, k.variogram);
+    };
+    VecX factors = VecX::Ones(xc.cols());
+    auto best = fit(factors);
+    const std::vector<double> grid =
+        warp ? std::vector<double>{0.5, 0.7, 1.4, 2.0} : std::vector<double>{0.25, 0.35, 0.5, 0.7, 1.4, 2.0, 2.8, 4.0};
+    for (Eigen::Index axis = warp ? 0 : 1; axis < xc.cols(); ++axis) {
+        const double kept = factors(axis);
+        double chosen = kept;
+        for (const double g : grid) {
+            factors(axis) = g;
+            const auto trial = fit(factors);
+            if (trial.first < best.first) {
+                best = trial;
+                chosen = g;
+            }
+        }
+        factors(axis) = chosen;
+    }
+    const MatX x = learned_metric_points(xc, factors, warp, lo, hi);
+    const MatX q = learned_metric_points(query.transpose(), factors, warp, lo, hi);
+    const VecX w = kriging::Kriging::build(x, best.second, options.kriging).weights(q.row(0).transpose());
+    MatX blend = MatX::Zero(a.dofs(), a.frames());
+    for (Eigen::Index k = 0; k < w.size(); ++k) blend += w(k) * aligned_sample(a, k);
+    const double pose =
+        frame_joint_errors(*set.skeleton, aligned_sample(set.aligned, left_out), blend, true).col(0).mean();
+    return {pose, factors};
 }
 
 }  // namespace
@@ -206,20 +281,51 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
     }
 
     ChosenEvaluation& c = out.chosen;
-    c.picks = nested_picks(set, methods, out.folds, twins, options.inner_folds, progress, out.folds.size(), total);
-    c.counts.assign(methods.size(), 0);
+    const std::vector<synthesis::PredictorChoice> choices =
+        nested_choices(set, out.folds, twins, options.inner_folds, progress, out.folds.size(), total);
+    c.counts.assign(methods.size() + 1, 0);
     c.pose_mean_cm.resize(m);
     c.motion_mean_cm.resize(m);
     VecX hits(m);
     bool every_hit_measured = out.parameters_measured;
     for (Eigen::Index k = 0; k < m; ++k) {
-        const std::size_t q = c.picks[static_cast<std::size_t>(k)];
-        ++c.counts[q];
-        c.pose_mean_cm(k) = out.methods[q].loo.sample_pose_mean_cm(k);
-        c.motion_mean_cm(k) = out.methods[q].loo.sample_mean_cm(k);
-        c.pose_max = std::max(c.pose_max, out.methods[q].loo.sample_pose_max_cm(k));
-        c.motion_max = std::max(c.motion_max, out.methods[q].loo.sample_max_cm(k));
-        if (out.methods[q].hits.size() == m) hits(k) = out.methods[q].hits(k);
+        const synthesis::PredictorChoice& choice = choices[static_cast<std::size_t>(k)];
+        if (choice.chosen != synthesis::Predictor::Average) {
+            const std::size_t q = method_of(methods, choice.chosen);
+            c.picks.push_back(q);
+            c.pick_names.push_back(methods[q].name);
+            ++c.counts[q];
+            c.pose_mean_cm(k) = out.methods[q].loo.sample_pose_mean_cm(k);
+            c.motion_mean_cm(k) = out.methods[q].loo.sample_mean_cm(k);
+            c.pose_max = std::max(c.pose_max, out.methods[q].loo.sample_pose_max_cm(k));
+            c.motion_max = std::max(c.motion_max, out.methods[q].loo.sample_max_cm(k));
+            if (out.methods[q].hits.size() == m) hits(k) = out.methods[q].hits(k);
+            else every_hit_measured = false;
+            continue;
+        }
+        // An average: its own leave-one-out fold (the mean of the members' motions, as synthesis blends).
+        MethodSpec average;
+        average.kind = MethodKind::Average;
+        average.name = "average";
+        for (const synthesis::Predictor p : choice.members()) {
+            average.averaged.push_back(method_kind(p));
+            average.name += (average.averaged.size() == 1 ? " of " : "+") + methods[method_of(methods, p)].name;
+        }
+        c.picks.push_back(methods.size());
+        c.pick_names.push_back(average.name);
+        ++c.counts[methods.size()];
+        LooOptions one;
+        one.foot_skating = false;
+        one.samples = {out.folds[static_cast<std::size_t>(k)]};
+        one.twins = twins;
+        one.measure_parameters = true;
+        const LooMethodResult r = leave_one_out(set, {average}, one).methods.front();
+        c.pose_mean_cm(k) = r.sample_pose_mean_cm(0);
+        c.motion_mean_cm(k) = r.sample_mean_cm(0);
+        c.pose_max = std::max(c.pose_max, r.sample_pose_max_cm(0));
+        c.motion_max = std::max(c.motion_max, r.sample_max_cm(0));
+        if (out.parameters_measured && r.measured.size() == 1)
+            hits(k) = fold_hits(r.measured, requested.row(k), out.hit_tolerance, set.set.parameter_periods)(0);
         else every_hit_measured = false;
     }
     c.pose_mean = c.pose_mean_cm.mean();
@@ -234,6 +340,22 @@ SetEvaluation evaluate_set(const EvalSet& set, const std::vector<MethodSpec>& me
     const VecX diff = c.pose_mean_cm - out.methods[c.best].loo.sample_pose_mean_cm;
     c.diff_mean_cm = diff.mean();
     c.diff_se_cm = standard_error(diff);
+
+    const bool numeric = (set.set.parameter_periods.size() == 0 || !(set.set.parameter_periods.array() > 0.0).any()) &&
+                         parameter_level_counts(set.set).empty();
+    if (options.learned_metric && numeric && set.set.parameters.cols() >= 1) {
+        LearnedMetricEvaluation l;
+        l.kind = set.set.parameters.cols() == 1 ? "warp" : "ard";
+        l.pose_mean_cm.resize(m);
+        for (Eigen::Index k = 0; k < m; ++k) {
+            const Eigen::Index i = out.folds[static_cast<std::size_t>(k)];
+            auto [pose, factors] = learned_metric_fold(set, i, loo_training(set.size(), i, twins));
+            l.pose_mean_cm(k) = pose;
+            l.factors.push_back(std::move(factors));
+        }
+        l.pose_mean = l.pose_mean_cm.mean();
+        out.learned_metric = std::move(l);
+    }
     return out;
 }
 

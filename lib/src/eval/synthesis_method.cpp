@@ -158,6 +158,39 @@ private:
     Eigen::Index dofs_, frames_;
 };
 
+// The mean of several methods' motions: each built on the same samples, their aligned poses and warps
+// averaged.
+class AverageSynthesizer final : public Synthesizer {
+public:
+    AverageSynthesizer(const MethodSpec& m, const EvalSet& s) {
+        if (m.averaged.size() < 2)
+            throw InvalidArgument("build_synthesizer: the average of methods needs at least two of them");
+        for (const MethodKind kind : m.averaged) {
+            if (kind == MethodKind::Average) throw InvalidArgument("build_synthesizer: an average cannot hold another");
+            MethodSpec one;
+            one.kind = kind;
+            one.name = to_string(kind);
+            one.ranks = m.ranks;
+            one.nn = m.nn;
+            members_.push_back(build_synthesizer(one, s));
+        }
+    }
+    void synthesize(const Eigen::Ref<const VecX>& c, SynthesizedMotion& out) const override {
+        SynthesizedMotion one;
+        members_.front()->synthesize(c, out);
+        for (std::size_t k = 1; k < members_.size(); ++k) {
+            members_[k]->synthesize(c, one);
+            out.aligned += one.aligned;
+            out.warp += one.warp;
+        }
+        out.aligned /= static_cast<double>(members_.size());
+        out.warp /= static_cast<double>(members_.size());
+    }
+
+private:
+    std::vector<std::unique_ptr<Synthesizer>> members_;
+};
+
 }  // namespace
 
 const char* to_string(MethodKind kind) {
@@ -169,6 +202,7 @@ const char* to_string(MethodKind kind) {
         case MethodKind::Rbf: return "RBF (Rose et al.)";
         case MethodKind::NearestNeighbour: return "nearest-neighbour blend";
         case MethodKind::TrendOnly: return "linear trend only";
+        case MethodKind::Average: return "average";
     }
     return "?";
 }
@@ -234,6 +268,7 @@ std::unique_ptr<Synthesizer> build_synthesizer(const MethodSpec& m, const EvalSe
         }
         case MethodKind::NearestNeighbour: out = std::make_unique<NeighbourSynthesizer>(m, s); break;
         case MethodKind::TrendOnly: out = std::make_unique<TrendSynthesizer>(s); break;
+        case MethodKind::Average: out = std::make_unique<AverageSynthesizer>(m, s); break;
     }
     out->build_seconds = seconds_since(start);
     return out;

@@ -57,24 +57,32 @@ std::string violation(const synthesis::KernelFit& fit) {
 // The cross-validated predictor (predictor_choice.hpp) as attributes of the kernel group.
 void write_predictor_choice(h5::File& file, const std::string& g, const synthesis::PredictorChoice& c) {
     std::vector<std::string> names;
-    std::vector<double> cv;
+    std::vector<double> cv, se, weight;
     for (const synthesis::PredictorScore& s : c.scores) {
         names.emplace_back(synthesis::to_string(s.predictor));
         cv.push_back(s.cv_rms);
+        se.push_back(s.cv_se);
+        weight.push_back(s.weight);
     }
+    // A choice whose scores carry no weights blends with the chosen predictor alone.
+    if (std::all_of(weight.begin(), weight.end(), [](double w) { return w <= 0.0; }))
+        for (std::size_t k = 0; k < weight.size(); ++k) weight[k] = c.scores[k].predictor == c.chosen ? 1.0 : 0.0;
     file.write_string_attribute(g, "predictor", synthesis::to_string(c.chosen));
     file.write_strings_attribute(g, "predictor_candidates", names);
     file.write_doubles_attribute(g, "predictor_cv_rms", cv);
+    file.write_doubles_attribute(g, "predictor_cv_se", se);
+    file.write_doubles_attribute(g, "predictor_weights", weight);
     file.write_int_attribute(g, "predictor_folds", static_cast<std::int64_t>(c.folds));
     file.write_int_attribute(g, "predictor_samples", static_cast<std::int64_t>(c.samples));
 }
 
 synthesis::Predictor predictor_named(const h5::File& file, const std::string& g, const std::string& attribute,
                                      const std::string& name) {
-    if (const auto p = synthesis::parse_predictor(name)) return *p;
-    throw StoreError(
-        file.name(), g,
-        "attribute '" + attribute + "': expected \"kriging\", \"rbf\" or \"trend\", found \"" + name + "\"");
+    const auto p = synthesis::parse_predictor(name);
+    if (p && (*p != synthesis::Predictor::Average || attribute == "predictor")) return *p;
+    throw StoreError(file.name(), g,
+                     "attribute '" + attribute + "': expected \"kriging\", \"rbf\", \"trend\"" +
+                         (attribute == "predictor" ? " or \"average\"" : "") + ", found \"" + name + "\"");
 }
 
 // The stored choice, checked: a known chosen predictor among the candidates, one finite cv >= 0 each.
@@ -88,19 +96,62 @@ synthesis::PredictorChoice read_predictor_choice(const h5::File& file, const std
                          "attributes 'predictor_candidates' and 'predictor_cv_rms': expected the same non-zero "
                          "length, found " +
                              std::to_string(names.size()) + " and " + std::to_string(cv.size()));
+    // The paired standard errors and the blend's weights (written since the average exists; before: the
+    // chosen one alone, no errors).
+    const bool has_weights = file.has_attribute(g, "predictor_weights");
+    if (has_weights != file.has_attribute(g, "predictor_cv_se"))
+        throw StoreError(file.name(), g, "attributes 'predictor_cv_se' and 'predictor_weights': expected both or none");
+    std::vector<double> se(names.size(), 0.0), weight(names.size(), 0.0);
+    if (has_weights) {
+        se = file.read_doubles_attribute(g, "predictor_cv_se");
+        weight = file.read_doubles_attribute(g, "predictor_weights");
+        if (se.size() != names.size() || weight.size() != names.size())
+            throw StoreError(file.name(), g,
+                             "attributes 'predictor_cv_se' and 'predictor_weights': expected " +
+                                 std::to_string(names.size()) + " values each (one per candidate), found " +
+                                 std::to_string(se.size()) + " and " + std::to_string(weight.size()));
+    }
     bool chosen_listed = false;
+    std::size_t members = 0;
+    double weight_sum = 0.0;
     for (std::size_t k = 0; k < names.size(); ++k) {
         const synthesis::Predictor p = predictor_named(file, g, "predictor_candidates", names[k]);
         if (!(cv[k] >= 0.0) || !std::isfinite(cv[k]))
             throw StoreError(file.name(), g,
                              "attribute 'predictor_cv_rms': expected finite values >= 0, found " + number_text(cv[k]));
+        if (!(se[k] >= 0.0) || !std::isfinite(se[k]))
+            throw StoreError(file.name(), g,
+                             "attribute 'predictor_cv_se': expected finite values >= 0, found " + number_text(se[k]));
+        if (!(weight[k] >= 0.0 && weight[k] <= 1.0))
+            throw StoreError(
+                file.name(), g,
+                "attribute 'predictor_weights': expected values in [0, 1], found " + number_text(weight[k]));
+        if (!has_weights && p == c.chosen) weight[k] = 1.0;
         chosen_listed = chosen_listed || p == c.chosen;
-        c.scores.push_back({p, cv[k]});
+        members += weight[k] > 0.0 ? 1 : 0;
+        weight_sum += weight[k];
+        synthesis::PredictorScore score;
+        score.predictor = p;
+        score.cv_rms = cv[k];
+        score.cv_se = se[k];
+        score.weight = weight[k];
+        c.scores.push_back(score);
     }
-    if (!chosen_listed)
+    const bool average = c.chosen == synthesis::Predictor::Average;
+    if (!average && !chosen_listed)
         throw StoreError(file.name(), g,
                          "attribute 'predictor': \"" + std::string(synthesis::to_string(c.chosen)) +
                              "\" is not among 'predictor_candidates'");
+    if (average && members < 2)
+        throw StoreError(file.name(), g,
+                         "attribute 'predictor' is \"average\": expected 'predictor_weights' with at least 2 "
+                         "positive values, found " +
+                             std::to_string(members));
+    if (has_weights && (std::abs(weight_sum - 1.0) > 1e-9 || (!average && members != 1)))
+        throw StoreError(file.name(), g,
+                         "attribute 'predictor_weights': expected weights summing to 1, positive for the chosen "
+                         "predictor (or the averaged ones) only, found a sum of " +
+                             number_text(weight_sum) + " over " + std::to_string(members) + " positive");
     const std::int64_t folds = file.read_int_attribute(g, "predictor_folds");
     const std::int64_t samples = file.read_int_attribute(g, "predictor_samples");
     if (folds < 1 || samples < folds)

@@ -75,6 +75,27 @@ MatX spread_rows(const Eigen::Ref<const MatX>& a, Eigen::Index m) {
     return out;
 }
 
+// The core slices (rows of core_slice_values) as values whose distances are the posture metric of the
+// choice (predictor_choice.hpp posture_values): sample i's weighted poses are U_dof S_i U_time^T with
+// orthonormal U_time, so with L = U_dof without the root-path rows and L = Q R, the norm of their posture
+// part is |R S_i|_F. At most R1 R2 values per sample.
+MatX posture_slice_values(const compression::SetModel& model, const Eigen::Ref<const MatX>& slices) {
+    const tensor::Ranks& r = model.tucker.ranks;
+    MatX l = model.tucker.U[0];
+    for (const Eigen::Index k : kRootPathDofs)
+        if (k < l.rows()) l.row(k).setZero();
+    const Eigen::HouseholderQR<MatX> qr(l);
+    const Eigen::Index m = std::min(l.rows(), r[0]);
+    const MatX rr = qr.matrixQR().topRows(m).triangularView<Eigen::Upper>();
+    MatX out(slices.rows(), m * r[1]);
+    for (Eigen::Index i = 0; i < slices.rows(); ++i) {
+        const VecX row = slices.row(i).transpose();
+        const MatX t = rr * Eigen::Map<const MatX>(row.data(), r[0], r[1]);
+        out.row(i) = Eigen::Map<const VecX>(t.data(), t.size()).transpose();
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string kernel_options_text(const SynthesisOptions& o) {
@@ -398,7 +419,8 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
     // What the model built from this fit reports (SynthesisModel's precomputed path, on the same inputs
     // and hence the same key), so that loading a stored fit need not recompute it.
     if (values.allFinite()) fit.assessed_status = assess_coefficient_kernel(xc, values, fit.variogram, options);
-    // The predictor cross-validation picks (predictor_choice.hpp), leaving out the overlapping windows
+    // The predictor cross-validation picks (predictor_choice.hpp; an average where it cannot tell the best
+    // apart from others), leaving out the overlapping windows
     // of a held-out sample's clip with it (twins of different clips need the frames: not here).
     PredictorChoiceOptions choice;
     choice.max_samples = std::max<std::size_t>(options.max_fit_samples, 5);
@@ -409,7 +431,9 @@ KernelFit fit_kernel(const compression::SetModel& model, const AlignedSet& align
         choice.candidates = {Predictor::Kriging, Predictor::Trend};
     if (n >= 5 && values.allFinite()) {
         const auto twins = find_sample_twins(set, SampleFrames{}).partners(static_cast<std::size_t>(n));
-        PredictorChoice c = choose_predictor(xc, values, fit.variogram, options.kriging, twins, choice);
+        // Scored on the posture, as the evaluation's pose error (the root's path left out).
+        const MatX posture = posture_slice_values(model, values);
+        PredictorChoice c = choose_predictor(xc, posture, fit.variogram, options.kriging, twins, choice);
         if (c.folds > 0) fit.predictor = std::move(c);
     }
     // Above max_exact_samples the model uses local kriging: no N x N system is built, none stored.

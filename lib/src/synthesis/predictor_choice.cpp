@@ -32,8 +32,9 @@ std::unique_ptr<kriging::Interpolator> build_predictor(Predictor p, const MatX& 
         case Predictor::Trend:
             return std::make_unique<kriging::TrendInterpolator>(
                 kriging::TrendInterpolator::build(x, kriging.trend, kriging.trend_rank_tolerance));
+        case Predictor::Average: break;
     }
-    throw InvalidArgument("choose_predictor: unknown predictor");
+    throw InvalidArgument("choose_predictor: the average is a choice, not a candidate");
 }
 
 }  // namespace
@@ -43,6 +44,7 @@ const char* to_string(Predictor predictor) {
         case Predictor::Kriging: return "kriging";
         case Predictor::Rbf: return "rbf";
         case Predictor::Trend: return "trend";
+        case Predictor::Average: return "average";
     }
     return "unknown";
 }
@@ -50,7 +52,26 @@ const char* to_string(Predictor predictor) {
 std::optional<Predictor> parse_predictor(const std::string& name) {
     for (const Predictor p : all_predictors())
         if (name == to_string(p)) return p;
+    if (name == to_string(Predictor::Average)) return Predictor::Average;
     return std::nullopt;
+}
+
+std::vector<Predictor> PredictorChoice::members() const {
+    std::vector<Predictor> out;
+    for (const PredictorScore& s : scores)
+        if (s.weight > 0.0) out.push_back(s.predictor);
+    if (out.empty()) out.push_back(chosen == Predictor::Average ? Predictor::Kriging : chosen);
+    return out;
+}
+
+MatX posture_values(const Eigen::Ref<const MatX>& weighted_rows, Eigen::Index dofs) {
+    if (dofs <= kRootPathDofs.back() || weighted_rows.cols() % dofs != 0)
+        throw InvalidArgument("posture values: the rows must hold whole pose vectors of " + std::to_string(dofs) +
+                              " dofs (more than " + std::to_string(kRootPathDofs.back()) + ")");
+    MatX out = weighted_rows;
+    for (Eigen::Index t = 0; t < out.cols() / dofs; ++t)
+        for (const Eigen::Index k : kRootPathDofs) out.col(t * dofs + k).setZero();
+    return out;
 }
 
 const std::vector<Predictor>& all_predictors() {
@@ -67,8 +88,11 @@ PredictorChoice choose_predictor(const Eigen::Ref<const MatX>& xc, const Eigen::
     if (values.rows() != n_all || !values.allFinite() || !xc.allFinite())
         throw InvalidArgument(std::string(where) + ": values must be N by S and finite, with N = " +
                               std::to_string(n_all) + " control points");
-    if (options.folds < 1 || options.max_samples < 5 || !(options.elements_per_sample > 0.0))
-        throw InvalidArgument(std::string(where) + ": folds must be >= 1, max_samples >= 5, elements per sample > 0");
+    if (options.folds < 1 || options.max_samples < 5 || !(options.elements_per_sample > 0.0) ||
+        !(options.average_within_se >= 0.0))
+        throw InvalidArgument(
+            std::string(where) +
+            ": folds must be >= 1, max_samples >= 5, elements per sample > 0, average_within_se >= 0");
 
     if (!twins.empty() && static_cast<Eigen::Index>(twins.size()) != n_all)
         throw InvalidArgument(std::string(where) + ": twins must be empty or one list per sample");
@@ -93,7 +117,9 @@ PredictorChoice choose_predictor(const Eigen::Ref<const MatX>& xc, const Eigen::
 
     const std::vector<Predictor>& predictors = options.candidates;
     if (predictors.empty()) throw InvalidArgument(std::string(where) + ": no candidate predictor");
-    VecX sum = VecX::Zero(static_cast<Eigen::Index>(predictors.size()));
+    for (const Predictor p : predictors)
+        if (p == Predictor::Average) throw InvalidArgument(std::string(where) + ": the average is not a candidate");
+    std::vector<std::vector<double>> errors(predictors.size());  // per candidate, per fold
     PredictorChoice out;
     out.samples = static_cast<std::size_t>(n);
     kriging::QueryWorkspace ws;
@@ -119,32 +145,68 @@ PredictorChoice choose_predictor(const Eigen::Ref<const MatX>& xc, const Eigen::
             const auto interpolator = build_predictor(predictors[p], xt, variogram, kriging, options.rbf);
             interpolator->weights(query, w, ws);
             const double squared = (vt.transpose() * w - target).squaredNorm();
-            sum(static_cast<Eigen::Index>(p)) += std::sqrt(squared / options.elements_per_sample);
+            errors[p].push_back(std::sqrt(squared / options.elements_per_sample));
         }
         ++out.folds;
     }
     if (out.folds == 0) return out;
+    const auto folds = static_cast<double>(out.folds);
     std::size_t best = 0;
     for (std::size_t p = 0; p < predictors.size(); ++p) {
-        const double cv = sum(static_cast<Eigen::Index>(p)) / static_cast<double>(out.folds);
-        if (p == 0 || cv < out.scores[best].cv_rms) best = p;
-        out.scores.push_back({predictors[p], cv});
+        double sum = 0.0;
+        for (const double e : errors[p]) sum += e;
+        PredictorScore score;
+        score.predictor = predictors[p];
+        score.cv_rms = sum / folds;
+        if (p == 0 || score.cv_rms < out.scores[best].cv_rms) best = p;
+        out.scores.push_back(score);
     }
-    out.chosen = predictors[best];
+    // The paired standard error of each candidate's excess over the lowest; those within the allowance
+    // are averaged with it.
+    std::size_t members = 0;
+    for (std::size_t p = 0; p < predictors.size(); ++p) {
+        PredictorScore& score = out.scores[p];
+        if (p != best && out.folds >= 2) {
+            const double mean = score.cv_rms - out.scores[best].cv_rms;
+            double ss = 0.0;
+            for (std::size_t k = 0; k < out.folds; ++k) {
+                const double d = errors[p][k] - errors[best][k] - mean;
+                ss += d * d;
+            }
+            score.cv_se = std::sqrt(ss / (folds - 1.0) / folds);
+        }
+        const bool within = p == best || (out.folds >= 2 && score.cv_rms - out.scores[best].cv_rms <=
+                                                                options.average_within_se * score.cv_se);
+        score.weight = within ? 1.0 : 0.0;
+        if (within) ++members;
+    }
+    for (PredictorScore& score : out.scores) score.weight /= static_cast<double>(members);
+    out.chosen = members > 1 ? Predictor::Average : predictors[best];
     return out;
 }
 
 std::string describe(const PredictorChoice& choice) {
     if (choice.folds == 0) return std::string(to_string(choice.chosen)) + " (no fold could be left out)";
-    char buf[64];
-    std::string chosen, others;
-    for (const PredictorScore& score : choice.scores) {
-        std::snprintf(buf, sizeof buf, "%.3g", score.cv_rms);
-        if (score.predictor == choice.chosen) chosen = buf;
-        else others += std::string(", ") + to_string(score.predictor) + " " + buf;
+    std::string head = to_string(choice.chosen);
+    if (choice.chosen == Predictor::Average) {
+        head += " of";
+        const std::vector<Predictor> members = choice.members();
+        for (std::size_t k = 0; k < members.size(); ++k) head += (k ? ", " : " ") + std::string(to_string(members[k]));
     }
-    return std::string(to_string(choice.chosen)) + " (cv " + chosen + others + "; " + std::to_string(choice.folds) +
-           " folds of " + std::to_string(choice.samples) + " samples)";
+    // The lowest first, then the others with their paired standard errors against it.
+    std::size_t best = 0;
+    for (std::size_t p = 0; p < choice.scores.size(); ++p)
+        if (choice.scores[p].cv_rms < choice.scores[best].cv_rms) best = p;
+    char buf[96];
+    std::string scores;
+    for (std::size_t p = 0; p < choice.scores.size(); ++p) {
+        const PredictorScore& s = choice.scores[p];
+        if (p == best) std::snprintf(buf, sizeof buf, "%s %.3g", to_string(s.predictor), s.cv_rms);
+        else std::snprintf(buf, sizeof buf, "%s %.3g ± %.2g", to_string(s.predictor), s.cv_rms, s.cv_se);
+        scores = p == best ? buf + (scores.empty() ? "" : ", " + scores) : scores + (scores.empty() ? "" : ", ") + buf;
+    }
+    return head + " (cv " + scores + "; " + std::to_string(choice.folds) + " folds of " +
+           std::to_string(choice.samples) + " samples)";
 }
 
 }  // namespace mocapdb::synthesis

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "mocapdb/core/error.hpp"
 #include "mocapdb/kriging/rbf.hpp"
@@ -11,7 +13,51 @@
 #include "mocapdb/motion/pose_vector.hpp"
 
 namespace mocapdb::synthesis {
-namespace {}  // namespace
+namespace {
+
+// The mean of the weights of several interpolators over the same samples (the Average predictor). The
+// kriging member is the model's own (not owned: the model cannot move), the others are owned.
+class MeanOfPredictors final : public kriging::Interpolator {
+public:
+    MeanOfPredictors(const kriging::Interpolator* kriging, std::vector<std::unique_ptr<kriging::Interpolator>> owned)
+        : owned_(std::move(owned)) {
+        if (kriging) members_.push_back(kriging);
+        for (const auto& p : owned_) members_.push_back(p.get());
+    }
+    Eigen::Index num_samples() const override { return members_.front()->num_samples(); }
+    Eigen::Index dimension() const override { return members_.front()->dimension(); }
+    void weights(const Eigen::Ref<const VecX>& c, Eigen::Ref<VecX> out, kriging::QueryWorkspace& ws) const override {
+        VecX one(out.size());
+        members_.front()->weights(c, out, ws);
+        for (std::size_t k = 1; k < members_.size(); ++k) {
+            members_[k]->weights(c, one, ws);
+            out += one;
+        }
+        out /= static_cast<double>(members_.size());
+    }
+    void weights_batch(const Eigen::Ref<const MatX>& queries, Eigen::Ref<MatX> out) const override {
+        MatX one(out.rows(), out.cols());
+        members_.front()->weights_batch(queries, out);
+        for (std::size_t k = 1; k < members_.size(); ++k) {
+            members_[k]->weights_batch(queries, one);
+            out += one;
+        }
+        out /= static_cast<double>(members_.size());
+    }
+    using Interpolator::weights;
+    using Interpolator::weights_batch;
+
+private:
+    std::vector<std::unique_ptr<kriging::Interpolator>> owned_;
+    std::vector<const kriging::Interpolator*> members_;
+};
+
+}  // namespace
+
+void use_predictor_choice(const PredictorChoice& choice, SynthesisOptions& options) {
+    options.predictor = choice.chosen;
+    options.averaged = choice.chosen == Predictor::Average ? choice.members() : std::vector<Predictor>{};
+}
 
 Eigen::Index Timing::frame_count() const {
     if (warp.size() == 0) return 0;
@@ -74,7 +120,10 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
             throw InvalidArgument(std::string(where) +
                                   ": the separate timing kernel solves an N x N kriging system; use the shared one" +
                                   bound);
-        if (options.predictor == Predictor::Rbf)
+        const bool rbf = options.predictor == Predictor::Rbf ||
+                         (options.predictor == Predictor::Average &&
+                          std::count(options.averaged.begin(), options.averaged.end(), Predictor::Rbf) > 0);
+        if (rbf)
             throw InvalidArgument(std::string(where) +
                                   ": the RBF predictor solves an N x N system; use kriging or the trend" + bound);
     }
@@ -146,11 +195,30 @@ SynthesisModel::SynthesisModel(const AlignedTiming& aligned, const MotionSet& se
     // for the stored choice).
     if (report_.kernel_precomputed) report_.predictor_choice = kernel_fit_.predictor;
     report_.predictor = options.predictor.value_or(Predictor::Kriging);
-    if (report_.predictor == Predictor::Rbf) {
-        predictor_ = std::make_unique<kriging::RbfInterpolator>(kriging::RbfInterpolator::build(xc));
-    } else if (report_.predictor == Predictor::Trend) {
-        predictor_ = std::make_unique<kriging::TrendInterpolator>(
+    const auto build_one = [&](Predictor p) -> std::unique_ptr<kriging::Interpolator> {
+        if (p == Predictor::Rbf) return std::make_unique<kriging::RbfInterpolator>(kriging::RbfInterpolator::build(xc));
+        return std::make_unique<kriging::TrendInterpolator>(
             kriging::TrendInterpolator::build(xc, options.kriging.trend, options.kriging.trend_rank_tolerance));
+    };
+    if (report_.predictor == Predictor::Rbf || report_.predictor == Predictor::Trend) {
+        predictor_ = build_one(report_.predictor);
+    } else if (report_.predictor == Predictor::Average) {
+        const std::vector<Predictor>& members = options.averaged;
+        bool distinct = members.size() >= 2;
+        for (std::size_t k = 0; k < members.size(); ++k)
+            for (std::size_t m = 0; m < k; ++m) distinct = distinct && members[k] != members[m];
+        if (!distinct || std::count(members.begin(), members.end(), Predictor::Average) > 0)
+            throw InvalidArgument(std::string(where) +
+                                  ": the average predictor needs two or three distinct of kriging, rbf and trend");
+        const kriging::Interpolator* kriged = nullptr;
+        std::vector<std::unique_ptr<kriging::Interpolator>> owned;
+        for (const Predictor p : members) {
+            if (p == Predictor::Kriging)
+                kriged = local_ ? static_cast<const kriging::Interpolator*>(local_.get())
+                                : static_cast<const kriging::Interpolator*>(&kriging_);
+            else owned.push_back(build_one(p));
+        }
+        predictor_ = std::make_unique<MeanOfPredictors>(kriged, std::move(owned));
     }
 
     // Timing kernel on the inverse-warp increments.

@@ -36,7 +36,7 @@ std::unique_ptr<synthesis::MotionModel> load_motion_model(const Database& db, co
     // The predictor compress chose for these inputs, unless another is asked for.
     if (!with_fit.predictor && with_fit.kernel_fit && with_fit.kernel_fit->predictor &&
         with_fit.kernel_fit->key == synthesis::kernel_key(stored->model, d.set, with_fit))
-        with_fit.predictor = with_fit.kernel_fit->predictor->chosen;
+        synthesis::use_predictor_choice(*with_fit.kernel_fit->predictor, with_fit);
     return std::make_unique<synthesis::MotionModel>(std::move(stored->model), d.timing, d.set, std::move(d.skeleton),
                                                     d.frame_rate, with_fit);
 }

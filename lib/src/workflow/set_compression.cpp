@@ -71,7 +71,7 @@ void calibrate_warning(const compression::SetModel& model, const AlignedSetData&
         return;
     synthesis::SynthesisOptions options;
     options.kernel_fit = kernel;
-    if (kernel.predictor) options.predictor = kernel.predictor->chosen;
+    if (kernel.predictor) synthesis::use_predictor_choice(*kernel.predictor, options);
     const synthesis::MotionModel synth(model, timing_of(c.aligned), c.set, c.skeleton, c.frame_rate, options);
     kernel.edge_warning = calibrate_edge_warning(edge_probes(synth, c.set), c.set);
 }

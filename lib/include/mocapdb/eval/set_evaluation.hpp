@@ -5,8 +5,8 @@
 // stored model, Tucker kriging at its ranks; per method the pose / motion error, the parameter hit
 // rate (extractor sets) and Pearson(rho, pose error); and the `chosen` predictor of nested
 // cross-validation: in each outer fold the choice synthesis makes (synthesis/predictor_choice.hpp, with
-// at most inner_folds folds) on that fold's training samples only picks kriging, RBF or the trend, and the
-// chosen column is the outer error of those picks. Details and definitions: docs/evaluation.md.
+// at most inner_folds folds) on that fold's training samples only picks kriging, RBF, the trend or an
+// average of them, and the chosen column is the outer error of those picks. Details and definitions: docs/evaluation.md.
 // Errors: InvalidArgument naming the set when it has fewer than 5 samples or a fold too few training
 // samples; those of load_eval_set. Cost: folds builds of every method, and per fold a kernel fit and inner folds x 3 interpolators.
 #include <array>
@@ -26,6 +26,21 @@ struct SetEvaluationOptions {
     std::size_t inner_folds = 15;  ///< nested CV: inner folds per outer fold (evenly spread); >= 1
     double hit_share = 0.25;       ///< hit: every |measured - requested| <= hit_share x that parameter's SD
     TwinOptions twins;
+    /// Also try the learned-metric kriging (LearnedMetricEvaluation) over the outer folds.
+    bool learned_metric = false;
+};
+
+/// A kriging whose metric is learned per outer fold from its training samples, as the kernel's shape is:
+/// ARD (a length scale per numeric parameter: the normalized axes after the first scaled by a factor of
+/// 0.25 .. 4, one axis after the other) or, with one parameter, an input warp (the parameter mapped
+/// through sign(u)|u|^a, u its position in the training range on [-1, 1], a = 0.5 .. 2); each candidate
+/// metric gets its own kernel fit (synthesis/kernel_fit.hpp) and the lowest closed-form leave-one-out MSE
+/// of the weighted sample values wins. An experiment: not a candidate of synthesis's choice.
+struct LearnedMetricEvaluation {
+    std::string kind;   ///< "ard" or "warp"
+    VecX pose_mean_cm;  ///< per outer fold: the left-out sample's pose error (naive model's poses)
+    double pose_mean = 0.0;
+    std::vector<VecX> factors;  ///< per outer fold: the chosen factor of each axis (ard) or the exponent (warp)
 };
 
 struct MethodEvaluation {
@@ -39,10 +54,13 @@ struct MethodEvaluation {
 };
 
 struct ChosenEvaluation {
-    std::vector<std::size_t> picks;   ///< per outer fold: index into methods (kriging, rbf or trend)
-    std::vector<std::size_t> counts;  ///< per method: folds that picked it
-    VecX pose_mean_cm;                ///< per fold: outer pose error of the pick
-    VecX motion_mean_cm;              ///< per fold: outer motion error of the pick
+    /// Per outer fold: index into methods (kriging, rbf or trend), or methods.size() where the choice averaged
+    /// several (synthesis's Average predictor; that fold's errors are then the average's own).
+    std::vector<std::size_t> picks;
+    std::vector<std::string> pick_names;  ///< per outer fold: the method's name, or "average of kriging+rbf"
+    std::vector<std::size_t> counts;      ///< per method: folds that picked it; last (methods.size()): averages
+    VecX pose_mean_cm;                    ///< per fold: outer pose error of the pick
+    VecX motion_mean_cm;                  ///< per fold: outer motion error of the pick
     double pose_mean = 0.0, motion_mean = 0.0;
     double pose_max = 0.0, motion_max = 0.0;  ///< the largest joint error of the picks' folds (as LooMethodResult)
     std::optional<double> hit_rate;           ///< empty without extractors
@@ -68,6 +86,8 @@ struct SetEvaluation {
     std::vector<std::optional<double>> hit_tolerance;
     std::vector<MethodEvaluation> methods;
     ChosenEvaluation chosen;
+    /// With options.learned_metric, for sets whose parameters are all numeric and linear; empty otherwise.
+    std::optional<LearnedMetricEvaluation> learned_metric;
     std::vector<std::string> not_evaluated;  ///< methods left out and why, one line each
 };
 

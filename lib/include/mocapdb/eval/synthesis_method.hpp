@@ -21,7 +21,8 @@ enum class MethodKind {
     NaiveKriging,
     Rbf,
     NearestNeighbour,
-    TrendOnly
+    TrendOnly,
+    Average  ///< the mean of the motions of MethodSpec::averaged (synthesis's Average predictor)
 };
 
 struct MethodSpec {
@@ -29,6 +30,9 @@ struct MethodSpec {
     std::string name;              ///< label in reports (e.g. "tucker-1cm")
     tensor::Ranks ranks{0, 0, 0};  ///< TuckerKriging: (R1, R2, R3), R3 clamped to the training size
     NearestNeighbourOptions nn;    ///< NearestNeighbour
+    /// Average: the methods (two or more; not Average) whose synthesized aligned poses and warps are averaged
+    /// (the poses as the mean of their weights; the warps of their clamped increments).
+    std::vector<MethodKind> averaged;
     bool is_kriging() const {
         return kind != MethodKind::Rbf && kind != MethodKind::NearestNeighbour && kind != MethodKind::TrendOnly;
     }

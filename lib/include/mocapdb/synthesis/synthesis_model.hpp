@@ -118,7 +118,13 @@ struct SynthesisOptions {
     /// default is the choice stored with its kernel: workflow::load_motion_model). rho always comes from
     /// the kriging kernel.
     std::optional<Predictor> predictor;
+    /// predictor = Average: the candidates whose weights are averaged (two or three distinct of kriging,
+    /// rbf, trend; use_predictor_choice sets them); ignored otherwise.
+    std::vector<Predictor> averaged;
 };
+
+/// options.predictor (and options.averaged) as `choice` chose.
+void use_predictor_choice(const PredictorChoice& choice, SynthesisOptions& options);
 
 /// What was built (for reports and the CLI).
 struct SynthesisReport {
