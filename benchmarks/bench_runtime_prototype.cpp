@@ -81,7 +81,7 @@
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
 #include "../lib/src/packing/group_model.hpp"
-#include "runtime_pose.hpp"
+#include "../lib/src/packing/runtime_pose.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::packing;
@@ -192,9 +192,9 @@ struct PosePlan {
     std::vector<float> basis;
     struct Skeleton {
         std::vector<double> inverse_weights;
-        std::vector<bench::PoseLanes> lanes[3];
-        bench::PoseKernel kernel;
-        bench::PoseRoot root;
+        std::vector<detail::PoseLanes> lanes[3];
+        detail::PoseKernel kernel;
+        detail::PoseRoot root;
         bool root_projects = false;  ///< the motion root has rotation channels, but not three: scalar path
     };
     std::vector<Skeleton> skeletons;
@@ -219,7 +219,7 @@ std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
         std::size_t first = 1;
         for (int kind = 0; kind < 3; ++kind) {
             for (std::size_t g = 0; 4 * g < count[kind]; ++g) {
-                bench::PoseLanes lanes;
+                detail::PoseLanes lanes;
                 lanes.count = static_cast<int>(std::min<std::size_t>(4, count[kind] - 4 * g));
                 detail::TwoChannelLanes two;
                 for (int l = 0; l < 4; ++l) {
@@ -245,7 +245,7 @@ std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
             }
             first += count[kind];
         }
-        bench::PoseRoot& root = sk.root;
+        detail::PoseRoot& root = sk.root;
         root.joint = static_cast<int>(view.motion_root);
         root.rotates = view.root_rotates;
         root.adds = view.adds;
@@ -256,7 +256,7 @@ std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
             root.root_offset[a] = view.root_offset[a];
             root.offset[a] = (*view.offsets)[view.motion_root][a];
         }
-        bench::PoseKernel& k = sk.kernel;
+        detail::PoseKernel& k = sk.kernel;
         k.root = &sk.root;
         k.da = da;
         k.dp = dp;
@@ -313,7 +313,7 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
         identity = m.dof_basis.isIdentity(0.0);
     }
     if (g_float_dofs) {
-        bench::pose_dofs_portable((plan ? *plan : pose_plan(m)).skeletons[e.skeleton].kernel, y, p);
+        detail::pose_dofs_portable((plan ? *plan : pose_plan(m)).skeletons[e.skeleton].kernel, y, p);
         return;
     }
     if (!identity) {
@@ -336,8 +336,8 @@ void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, co
         return;
     }
     const PosePlan::Skeleton& sk = (plan ? *plan : pose_plan(m)).skeletons[e.skeleton];
-    if (path == PosePath::avx2) bench::pose_dofs_avx2(sk.kernel, y, p);
-    else bench::pose_dofs_portable(sk.kernel, y, p);
+    if (path == PosePath::avx2) detail::pose_dofs_avx2(sk.kernel, y, p);
+    else detail::pose_dofs_portable(sk.kernel, y, p);
     const detail::ChannelWriter& writer = m.skeletons[e.skeleton].writer;
     const auto v = writer.local_view();  // rest transforms
     const std::size_t n = writer.size();
@@ -351,9 +351,9 @@ void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, co
     std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));
     auto* rotations = reinterpret_cast<double*>(out.rotations.data());
     auto* translations = reinterpret_cast<double*>(out.translations.data());
-    bool ok = path == PosePath::avx2 ? bench::pose_root_avx2(sk.kernel, placement, p, rotations, translations)
-                                     : bench::pose_root_portable(sk.kernel, placement, p, rotations, translations);
-    ok = (path == PosePath::avx2 ? bench::pose_rotations_avx2(sk.kernel, p, rotations) : bench::pose_rotations_portable(sk.kernel, p, rotations)) &&
+    bool ok = path == PosePath::avx2 ? detail::pose_root_avx2(sk.kernel, placement, p, rotations, translations)
+                                     : detail::pose_root_portable(sk.kernel, placement, p, rotations, translations);
+    ok = (path == PosePath::avx2 ? detail::pose_rotations_avx2(sk.kernel, p, rotations) : detail::pose_rotations_portable(sk.kernel, p, rotations)) &&
          ok;
     if (!ok || sk.root_projects) {
         ++g_pose_fallbacks;
@@ -2992,7 +2992,7 @@ int main(int argc, char** argv) {
                             // The kernels' local poses against the library's on every frame (v1's y): the dofs
                             // of both builds equal to dofs_of_y's, the poses equal bit for bit (else the max
                             // difference of a component).
-                            const bool avx2 = bench::pose_avx2_available();
+                            const bool avx2 = detail::pose_avx2_available();
                             std::size_t pose_frames = 0, pose_differ = 0;
                             double pose_diff = 0.0;
                             bool dofs_equal = true;
@@ -3113,8 +3113,8 @@ int main(int argc, char** argv) {
                                             const auto& m = models[g];
                                             const auto& k = plans[g]->skeletons[m.clips[i].skeleton].kernel;
                                             double* base = scratch[g].data();
-                                            if (a == 0) bench::pose_dofs_avx2(k, base, base + 4 * m.active.size());
-                                            else bench::pose_rotations_avx2(k, base + 4 * m.active.size(), reinterpret_cast<double*>(out.rotations.data()));
+                                            if (a == 0) detail::pose_dofs_avx2(k, base, base + 4 * m.active.size());
+                                            else detail::pose_rotations_avx2(k, base + 4 * m.active.size(), reinterpret_cast<double*>(out.rotations.data()));
                                         }
                                         part[a] = std::min(part[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                                     }
@@ -3126,8 +3126,8 @@ int main(int argc, char** argv) {
                                     kernel_bytes += plan->basis.size() * sizeof(float);
                                     for (const auto& sk : plan->skeletons) {
                                         ++skeletons;
-                                        kernel_bytes += sk.inverse_weights.size() * sizeof(double) + sizeof(bench::PoseRoot) + sizeof(bench::PoseKernel);
-                                        for (const auto& lanes : sk.lanes) kernel_bytes += lanes.size() * sizeof(bench::PoseLanes);
+                                        kernel_bytes += sk.inverse_weights.size() * sizeof(double) + sizeof(detail::PoseRoot) + sizeof(detail::PoseKernel);
+                                        for (const auto& lanes : sk.lanes) kernel_bytes += lanes.size() * sizeof(detail::PoseLanes);
                                     }
                                 }
                                 std::printf("#    pose kernels' resident bytes: %zu (%zu skeletons)\n", kernel_bytes, skeletons);
