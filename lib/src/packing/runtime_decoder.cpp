@@ -73,6 +73,7 @@ struct RuntimeDecoder::Impl {
     std::vector<std::uint16_t> table;    ///< per quad context 2^kQuadCodeBits: bits 0-3 length, 4-13 pattern or
                                          ///< width, 14 wide, 15 end (0: no code)
     std::vector<std::int32_t> patterns;  ///< four values per pattern
+    double steps[kMaxStep + 1] = {};     ///< step_of(k): a lookup instead of exp2 on the hot path
 
     void parse(const std::uint8_t* group, std::size_t group_size, bool allow_avx2);
     void walk() const;
@@ -210,6 +211,7 @@ void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_si
     offsets = side + side_bytes;
     data = offsets + offset_bytes;
     make_runtime_pose_plan(model, allow_avx2, plan);
+    for (int k = 0; k <= kMaxStep; ++k) steps[k] = step_of(k);
 
     RtCheckedReader in{side, side_bytes, 0, "runtime body (side stream)"};
     // Quad codes.
@@ -262,8 +264,8 @@ void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_si
             const int cw = center_code.read(in);
             const std::int64_t ce = in.get_signed(cw);
             const int f = w + extra_code.read(in);
-            if (w < 0 || f > kKeyMaxWidth || cw > 32 || ce < std::numeric_limits<std::int32_t>::min() ||
-                ce > std::numeric_limits<std::int32_t>::max())
+            if (w < 0 || f > kKeyMaxWidth || (w == 0 && f != 0) || cw > 32 ||
+                ce < std::numeric_limits<std::int32_t>::min() || ce > std::numeric_limits<std::int32_t>::max())
                 throw Error("runtime body: clip " + std::to_string(i) + " key row " + std::to_string(d) +
                             ": width, escape width or center out of range");
             width[i * rowsn + d] = static_cast<std::uint8_t>(w);
@@ -411,7 +413,7 @@ void RuntimeDecoder::Impl::key_one(std::size_t clip, std::size_t at, double* out
     const RtClipInfo& c = clips[clip];
     const RtPlanRow* r = rows.data() + clip * n;
     const std::int32_t* ce = center.data() + clip * n;
-    const double step = step_of(data[at]);
+    const double step = steps[data[at]];
     const std::uint8_t* pa = data + at + 1;
     int escaped[256];
     int ne = 0;
@@ -439,7 +441,7 @@ std::size_t RuntimeDecoder::Impl::key_pair(std::size_t clip, std::size_t at_a, s
     const RtClipInfo& c = clips[clip];
     const RtPlanRow* r = rows.data() + clip * n;
     const std::int32_t* ce = center.data() + clip * n;
-    const double step_a = step_of(data[at_a]), step_b = step_of(data[at_b]);
+    const double step_a = steps[data[at_a]], step_b = steps[data[at_b]];
     const std::uint8_t* pa = data + at_a + 1;
     const std::uint8_t* pb = data + at_b + 1;
     auto row = [&](const RtPlanRow x, std::int64_t& qa, std::int64_t& qb) {
@@ -563,7 +565,7 @@ std::size_t RuntimeDecoder::Impl::directory(std::size_t clip, std::size_t pos, i
 void RuntimeDecoder::Impl::path(std::size_t clip, std::size_t bit, int t, double* y, double* a, double* b,
                                 double* c) const {
     alignas(16) std::int32_t q[260];
-    const double step = step_of(static_cast<int>(rt_unsigned_bits(data, bit, 8)));
+    const double step = steps[rt_unsigned_bits(data, bit, 8)];
     std::size_t skip[kMaxLevels + 1] = {0};
     std::size_t pos = directory(clip, bit + 8, t, skip);
     int lo = 0, hi = W;
@@ -620,7 +622,7 @@ void RuntimeDecoder::Impl::window_y(std::size_t clip, std::size_t w, double* fra
     const std::size_t o0 = entry_offset(clip, w);
     const std::size_t o1 = ci.base + rt_unsigned_bits(offsets, ci.at + w * ci.offset_width, ci.offset_width);
     const std::size_t bit = key_pair(clip, o0, o1, frames, frames + static_cast<std::size_t>(W) * n);
-    const double step = step_of(static_cast<int>(rt_unsigned_bits(data, bit, 8)));
+    const double step = steps[rt_unsigned_bits(data, bit, 8)];
     std::size_t skip[kMaxLevels + 1] = {0};
     std::size_t pos = directory(clip, bit + 8, 1, skip);
     alignas(16) std::int32_t q[260];
