@@ -37,6 +37,9 @@
 //              levels (a finer left subtree is skipped by scanning its codes), its widths per clip
 //              where smaller; entry offsets per clip at the clip's width (counted and read so);
 //              `prefetch`: the clip's key plan first; then --quads' 7th field: the combine with AVX2
+// With --combos 8:4 or 16:12 the library's runtime tier (packing::encode_runtime, RuntimeDecoder: variant
+// 9 with 1 or 2 directory levels) is built from the same packed groups, its local poses checked equal to
+// variant 9's (first --quads config) on every frame, and timed in the same repeats ("library" row).
 // Variants 4, 7, 8 and 9 are checked equal to variant 1 on every frame (so within E) and timed against
 // it in the same repeats. RT_STATS=1 in the environment: per level value histograms and estimates of
 // codes by groups of rows (scheme_bits). --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
@@ -80,6 +83,8 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/packing/runtime_decoder.hpp"
+#include "mocapdb/packing/runtime_encoder.hpp"
 #include "../lib/src/packing/group_model.hpp"
 #include "../lib/src/packing/runtime_pose.hpp"
 
@@ -3028,10 +3033,57 @@ int main(int argc, char** argv) {
                                             avx2 ? "portable and AVX2" : "portable; no AVX2", pose_frames,
                                             dofs_equal ? "equal to the library path's" : "DIFFER", pose_differ, pose_diff, g_pose_fallbacks);
                             }
+                            // The library's runtime tier (packing::encode_runtime, RuntimeDecoder) on the same packed
+                            // groups at this W (its key offset and directory levels: W 8 -> 4 and 1, W 16 -> 12 and 2, as
+                            // the --combos 8:4 / 16:12 and --quads 1:3:1 / 1:3:2 runs): its bytes (bodies + the same header
+                            // stand-in as v9), every frame's local pose against v9's (the first --quads config; the same
+                            // bits when that config matches), and its cold local pose timed in the same repeats.
+                            const bool library_tier = (W == 8 && ko == 4) || (W == 16 && ko == 12);
+                            std::vector<RuntimeBody> lib_bodies;
+                            std::vector<RuntimeDecoder> lib_decoders;
+                            double lib_bytes = static_cast<double>(f2_header);
+                            std::size_t lib_resident = 0, lib_differ = 0, lib_frames = 0;
+                            if (library_tier) {
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    RuntimeOptions ro;
+                                    ro.max_error_cm = E;
+                                    ro.window = W;
+                                    lib_bodies.push_back(encode_runtime(f2[g], members[g], ro));
+                                    lib_bytes += static_cast<double>(lib_bodies.back().bytes.size());
+                                }
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    lib_decoders.emplace_back(f2[g].data(), f2[g].size(), lib_bodies[g].bytes.data(), lib_bodies[g].bytes.size());
+                                    lib_resident += lib_decoders.back().resident_bytes();
+                                }
+                                if (!r9.empty() && g_float_dofs)
+                                    for (std::size_t g = 0; g < groups.size(); ++g) {
+                                        const auto& m = models[g];
+                                        const std::size_t Da = m.active.size();
+                                        std::vector<double> buf(4 * Da + static_cast<std::size_t>(m.dofs));
+                                        LocalPose ref, got;
+                                        for (std::size_t i = 0; i < members[g].size(); ++i)
+                                            for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f, ++lib_frames) {
+                                                runtime_frame9(r9[0][g], i, f, buf.data(), buf.data() + Da, buf.data() + 2 * Da, buf.data() + 3 * Da);
+                                                local_pose_of_y(m, m.clips[i], buf.data(), ws[g], buf.data() + 4 * Da, ref,
+                                                                avx2 ? PosePath::avx2 : PosePath::portable, plans[g]);
+                                                lib_decoders[g].decode_local_pose(i, f, got);
+                                                const bool same = ref.rotations.size() == got.rotations.size() &&
+                                                                  std::memcmp(ref.rotations.data(), got.rotations.data(), ref.rotations.size() * sizeof(Quat)) == 0 &&
+                                                                  std::memcmp(ref.translations.data(), got.translations.data(), ref.translations.size() * sizeof(Vec3)) == 0;
+                                                if (!same) ++lib_differ;
+                                            }
+                                    }
+                            }
+                            double lib_cold = 1e300;
                             Times t1, t1d, t7[3], t7k[3][2];  // t7k: with the pose kernels, portable and AVX2
                             std::vector<Times> t4(configs.size()), t9(quad_configs.size()), t9s(quad_configs.size()), t9k(quad_configs.size());
                             const PosePath fastest = !g_float_dofs ? PosePath::library : avx2 ? PosePath::avx2 : PosePath::portable;
                             for (int rep = 0; rep < reps; ++rep) {
+                                if (library_tier) {
+                                    const double c0 = bench::thread_cpu_seconds();
+                                    for (const auto& [g, i, f] : seq) lib_decoders[g].decode_local_pose(i, f, out);
+                                    lib_cold = std::min(lib_cold, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                }
                                 for (std::size_t v = 0; v < quad_configs.size(); ++v) {
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
@@ -3087,6 +3139,11 @@ int main(int argc, char** argv) {
                                             quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].avx2_combine ? ", AVX2 combine" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
+                            if (library_tier)
+                                std::printf("#    library RuntimeDecoder (W %d, %s kernels): bytes %.0f, resident %zu; %zu of %zu frames' local poses differ from v9's; "
+                                            "cold local pose %.3f us (v9 above: %.3f us, the same repeats)\n",
+                                            W, lib_decoders.front().uses_avx2() ? "AVX2" : "portable", lib_bytes, lib_resident, lib_differ, lib_frames,
+                                            lib_cold, r9.empty() ? 0.0 : t9[0].cold);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 std::printf("#      v9 S=%d row>>%d: keys paired without the plan: cold %.3f us, y %.3f (hot %.3f); keys alone (plan): y %.3f (hot %.3f)\n",
                                             quad_configs[v][0], quad_configs[v][1], t9s[v].cold, t9s[v].y, t9s[v].hot, t9k[v].y, t9k[v].hot);
