@@ -5,9 +5,9 @@
 // clip within E of its source by forward kinematics of every joint and end site (checked here, on
 // every frame, through the decoder's own arithmetic). Format and measurements: docs/packing.md, "The runtime tier".
 //
-// Inputs are read only and not kept; the result owns its bytes. Thread-safe (no shared state). Cost:
-// a few times pack_group's bound check per window choice (every key and window step is searched by
-// full decodes and forward kinematics of its frames).
+// Inputs are read only and not kept; the result owns its bytes. Thread-safe (no shared state); one
+// thread. Cost: every key and window step is searched by decodes and forward kinematics of its frames,
+// about half of pack_group's time per window length on the shared folders (twice that with window 0).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
