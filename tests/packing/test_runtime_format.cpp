@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "mocapdb/packing/runtime_decoder.hpp"
 #include "mocapdb/packing/runtime_encoder.hpp"
 #include "fk_error.hpp"
+#include "rig_clips.hpp"
 #include "shared_clips.hpp"
 #include "shared_data.hpp"
 #include "six_channel_rig.hpp"
@@ -119,6 +121,20 @@ void check_runtime(const std::vector<Clip>& clips, double E, int window) {
 const char* convention_name(PositionChannels p) { return p == PositionChannels::replace_offset ? "replace" : "add"; }
 
 }  // namespace
+
+TEST_CASE("runtime tier: clips of 1, 2, 8, 9, 16, 17 and 40 frames (a key alone, windows cut short, whole windows) "
+          "at W 8 and 16",
+          "[packing]") {
+    const std::vector<Clip> walks = procedural_walks();
+    std::vector<Clip> clips;
+    const std::size_t lengths[] = {1, 2, 8, 9, 16, 17, 40};
+    for (std::size_t i = 0; i < std::size(lengths); ++i) {
+        clips.push_back(slice(walks[i % walks.size()], 3 * i, 3 * i + lengths[i]));
+        clips.back().name = "cut" + std::to_string(lengths[i]);
+    }
+    check_runtime(clips, 0.5, 8);
+    check_runtime(clips, 0.5, 16);
+}
 
 TEST_CASE("runtime tier: PFNN clips within E at 1 and 0.1 cm, cold = sequential = portable, bit for bit", "[packing][shared]") {
     MOCAPDB_REQUIRE_SHARED(datasets_dir() / "cmu-walkrun-pfnn");
