@@ -37,6 +37,9 @@
 //              levels (a finer left subtree is skipped by scanning its codes), its widths per clip
 //              where smaller; entry offsets per clip at the clip's width (counted and read so);
 //              `prefetch`: the clip's key plan first; then --quads' 7th field: the combine with AVX2
+// With --combos 8:4 or 16:12 the library's runtime tier (packing::encode_runtime, RuntimeDecoder: variant
+// 9 with 1 or 2 directory levels) is built from the same packed groups, its local poses checked equal to
+// variant 9's (first --quads config) on every frame, and timed in the same repeats ("library" row).
 // Variants 4, 7, 8 and 9 are checked equal to variant 1 on every frame (so within E) and timed against
 // it in the same repeats. RT_STATS=1 in the environment: per level value histograms and estimates of
 // codes by groups of rows (scheme_bits). --float-dofs 1: x = U y in float32 (runtime_pose.hpp's product) in the
@@ -80,8 +83,10 @@
 #include "mocapdb/motion/forward_kinematics.hpp"
 #include "mocapdb/packing/group_decoder.hpp"
 #include "mocapdb/packing/packed_group.hpp"
+#include "mocapdb/packing/runtime_decoder.hpp"
+#include "mocapdb/packing/runtime_encoder.hpp"
 #include "../lib/src/packing/group_model.hpp"
-#include "runtime_pose.hpp"
+#include "../lib/src/packing/runtime_pose.hpp"
 
 using namespace mocapdb;
 using namespace mocapdb::packing;
@@ -192,9 +197,9 @@ struct PosePlan {
     std::vector<float> basis;
     struct Skeleton {
         std::vector<double> inverse_weights;
-        std::vector<bench::PoseLanes> lanes[3];
-        bench::PoseKernel kernel;
-        bench::PoseRoot root;
+        std::vector<detail::PoseLanes> lanes[3];
+        detail::PoseKernel kernel;
+        detail::PoseRoot root;
         bool root_projects = false;  ///< the motion root has rotation channels, but not three: scalar path
     };
     std::vector<Skeleton> skeletons;
@@ -219,7 +224,7 @@ std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
         std::size_t first = 1;
         for (int kind = 0; kind < 3; ++kind) {
             for (std::size_t g = 0; 4 * g < count[kind]; ++g) {
-                bench::PoseLanes lanes;
+                detail::PoseLanes lanes;
                 lanes.count = static_cast<int>(std::min<std::size_t>(4, count[kind] - 4 * g));
                 detail::TwoChannelLanes two;
                 for (int l = 0; l < 4; ++l) {
@@ -245,7 +250,7 @@ std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
             }
             first += count[kind];
         }
-        bench::PoseRoot& root = sk.root;
+        detail::PoseRoot& root = sk.root;
         root.joint = static_cast<int>(view.motion_root);
         root.rotates = view.root_rotates;
         root.adds = view.adds;
@@ -256,7 +261,7 @@ std::unique_ptr<PosePlan> make_pose_plan(const detail::GroupModel& m) {
             root.root_offset[a] = view.root_offset[a];
             root.offset[a] = (*view.offsets)[view.motion_root][a];
         }
-        bench::PoseKernel& k = sk.kernel;
+        detail::PoseKernel& k = sk.kernel;
         k.root = &sk.root;
         k.da = da;
         k.dp = dp;
@@ -313,7 +318,7 @@ void dofs_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, const do
         identity = m.dof_basis.isIdentity(0.0);
     }
     if (g_float_dofs) {
-        bench::pose_dofs_portable((plan ? *plan : pose_plan(m)).skeletons[e.skeleton].kernel, y, p);
+        detail::pose_dofs_portable((plan ? *plan : pose_plan(m)).skeletons[e.skeleton].kernel, y, p);
         return;
     }
     if (!identity) {
@@ -336,8 +341,8 @@ void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, co
         return;
     }
     const PosePlan::Skeleton& sk = (plan ? *plan : pose_plan(m)).skeletons[e.skeleton];
-    if (path == PosePath::avx2) bench::pose_dofs_avx2(sk.kernel, y, p);
-    else bench::pose_dofs_portable(sk.kernel, y, p);
+    if (path == PosePath::avx2) detail::pose_dofs_avx2(sk.kernel, y, p);
+    else detail::pose_dofs_portable(sk.kernel, y, p);
     const detail::ChannelWriter& writer = m.skeletons[e.skeleton].writer;
     const auto v = writer.local_view();  // rest transforms
     const std::size_t n = writer.size();
@@ -351,9 +356,9 @@ void local_pose_of_y(const detail::GroupModel& m, const detail::ClipEntry& e, co
     std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));
     auto* rotations = reinterpret_cast<double*>(out.rotations.data());
     auto* translations = reinterpret_cast<double*>(out.translations.data());
-    bool ok = path == PosePath::avx2 ? bench::pose_root_avx2(sk.kernel, placement, p, rotations, translations)
-                                     : bench::pose_root_portable(sk.kernel, placement, p, rotations, translations);
-    ok = (path == PosePath::avx2 ? bench::pose_rotations_avx2(sk.kernel, p, rotations) : bench::pose_rotations_portable(sk.kernel, p, rotations)) &&
+    bool ok = path == PosePath::avx2 ? detail::pose_root_avx2(sk.kernel, placement, p, rotations, translations)
+                                     : detail::pose_root_portable(sk.kernel, placement, p, rotations, translations);
+    ok = (path == PosePath::avx2 ? detail::pose_rotations_avx2(sk.kernel, p, rotations) : detail::pose_rotations_portable(sk.kernel, p, rotations)) &&
          ok;
     if (!ok || sk.root_projects) {
         ++g_pose_fallbacks;
@@ -2992,7 +2997,7 @@ int main(int argc, char** argv) {
                             // The kernels' local poses against the library's on every frame (v1's y): the dofs
                             // of both builds equal to dofs_of_y's, the poses equal bit for bit (else the max
                             // difference of a component).
-                            const bool avx2 = bench::pose_avx2_available();
+                            const bool avx2 = detail::pose_avx2_available();
                             std::size_t pose_frames = 0, pose_differ = 0;
                             double pose_diff = 0.0;
                             bool dofs_equal = true;
@@ -3028,10 +3033,57 @@ int main(int argc, char** argv) {
                                             avx2 ? "portable and AVX2" : "portable; no AVX2", pose_frames,
                                             dofs_equal ? "equal to the library path's" : "DIFFER", pose_differ, pose_diff, g_pose_fallbacks);
                             }
+                            // The library's runtime tier (packing::encode_runtime, RuntimeDecoder) on the same packed
+                            // groups at this W (its key offset and directory levels: W 8 -> 4 and 1, W 16 -> 12 and 2, as
+                            // the --combos 8:4 / 16:12 and --quads 1:3:1 / 1:3:2 runs): its bytes (bodies + the same header
+                            // stand-in as v9), every frame's local pose against v9's (the first --quads config; the same
+                            // bits when that config matches), and its cold local pose timed in the same repeats.
+                            const bool library_tier = (W == 8 && ko == 4) || (W == 16 && ko == 12);
+                            std::vector<RuntimeBody> lib_bodies;
+                            std::vector<RuntimeDecoder> lib_decoders;
+                            double lib_bytes = static_cast<double>(f2_header);
+                            std::size_t lib_resident = 0, lib_differ = 0, lib_frames = 0;
+                            if (library_tier) {
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    RuntimeOptions ro;
+                                    ro.max_error_cm = E;
+                                    ro.window = W;
+                                    lib_bodies.push_back(encode_runtime(f2[g], members[g], ro));
+                                    lib_bytes += static_cast<double>(lib_bodies.back().bytes.size());
+                                }
+                                for (std::size_t g = 0; g < groups.size(); ++g) {
+                                    lib_decoders.emplace_back(f2[g].data(), f2[g].size(), lib_bodies[g].bytes.data(), lib_bodies[g].bytes.size());
+                                    lib_resident += lib_decoders.back().resident_bytes();
+                                }
+                                if (!r9.empty() && g_float_dofs)
+                                    for (std::size_t g = 0; g < groups.size(); ++g) {
+                                        const auto& m = models[g];
+                                        const std::size_t Da = m.active.size();
+                                        std::vector<double> buf(4 * Da + static_cast<std::size_t>(m.dofs));
+                                        LocalPose ref, got;
+                                        for (std::size_t i = 0; i < members[g].size(); ++i)
+                                            for (std::size_t f = 0; f < members[g][i]->frame_count(); ++f, ++lib_frames) {
+                                                runtime_frame9(r9[0][g], i, f, buf.data(), buf.data() + Da, buf.data() + 2 * Da, buf.data() + 3 * Da);
+                                                local_pose_of_y(m, m.clips[i], buf.data(), ws[g], buf.data() + 4 * Da, ref,
+                                                                avx2 ? PosePath::avx2 : PosePath::portable, plans[g]);
+                                                lib_decoders[g].decode_local_pose(i, f, got);
+                                                const bool same = ref.rotations.size() == got.rotations.size() &&
+                                                                  std::memcmp(ref.rotations.data(), got.rotations.data(), ref.rotations.size() * sizeof(Quat)) == 0 &&
+                                                                  std::memcmp(ref.translations.data(), got.translations.data(), ref.translations.size() * sizeof(Vec3)) == 0;
+                                                if (!same) ++lib_differ;
+                                            }
+                                    }
+                            }
+                            double lib_cold = 1e300;
                             Times t1, t1d, t7[3], t7k[3][2];  // t7k: with the pose kernels, portable and AVX2
                             std::vector<Times> t4(configs.size()), t9(quad_configs.size()), t9s(quad_configs.size()), t9k(quad_configs.size());
                             const PosePath fastest = !g_float_dofs ? PosePath::library : avx2 ? PosePath::avx2 : PosePath::portable;
                             for (int rep = 0; rep < reps; ++rep) {
+                                if (library_tier) {
+                                    const double c0 = bench::thread_cpu_seconds();
+                                    for (const auto& [g, i, f] : seq) lib_decoders[g].decode_local_pose(i, f, out);
+                                    lib_cold = std::min(lib_cold, (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
+                                }
                                 for (std::size_t v = 0; v < quad_configs.size(); ++v) {
                                     time([&](std::size_t g, std::size_t i, std::size_t f, double* base, std::size_t Da) {
                                         runtime_frame9(r9[v][g], i, f, base, base + Da, base + 2 * Da, base + 3 * Da);
@@ -3087,6 +3139,11 @@ int main(int argc, char** argv) {
                                             quad_configs[v][0], quad_configs[v][1], r9[v][0].stored, r9[v][0].quads.bits, r9[v][0].prefetch_clip ? ", clip prefetch" : "", r9[v][0].avx2_combine ? ", AVX2 combine" : "", r9[v][0].quads.table.size() * 2 / 1024, bytes9[v], offsets9[v], offsets9_3byte[v],
                                             [&] { double tb = 0; for (const auto& rg : r9[v]) tb += static_cast<double>(rg.quads.table_bits) / 8; return tb; }(),
                                             tables9_5bit[v], t9[v].cold, !g_float_dofs ? "library pose" : avx2 ? "AVX2 kernels" : "portable kernels", t9[v].y, t9[v].hot);
+                            if (library_tier)
+                                std::printf("#    library RuntimeDecoder (W %d, %s kernels): bytes %.0f, resident %zu; %zu of %zu frames' local poses differ from v9's; "
+                                            "cold local pose %.3f us (v9 above: %.3f us, the same repeats)\n",
+                                            W, lib_decoders.front().uses_avx2() ? "AVX2" : "portable", lib_bytes, lib_resident, lib_differ, lib_frames,
+                                            lib_cold, r9.empty() ? 0.0 : t9[0].cold);
                             for (std::size_t v = 0; v < quad_configs.size(); ++v)
                                 std::printf("#      v9 S=%d row>>%d: keys paired without the plan: cold %.3f us, y %.3f (hot %.3f); keys alone (plan): y %.3f (hot %.3f)\n",
                                             quad_configs[v][0], quad_configs[v][1], t9s[v].cold, t9s[v].y, t9s[v].hot, t9k[v].y, t9k[v].hot);
@@ -3113,8 +3170,8 @@ int main(int argc, char** argv) {
                                             const auto& m = models[g];
                                             const auto& k = plans[g]->skeletons[m.clips[i].skeleton].kernel;
                                             double* base = scratch[g].data();
-                                            if (a == 0) bench::pose_dofs_avx2(k, base, base + 4 * m.active.size());
-                                            else bench::pose_rotations_avx2(k, base + 4 * m.active.size(), reinterpret_cast<double*>(out.rotations.data()));
+                                            if (a == 0) detail::pose_dofs_avx2(k, base, base + 4 * m.active.size());
+                                            else detail::pose_rotations_avx2(k, base + 4 * m.active.size(), reinterpret_cast<double*>(out.rotations.data()));
                                         }
                                         part[a] = std::min(part[a], (bench::thread_cpu_seconds() - c0) / static_cast<double>(seq.size()) * 1e6);
                                     }
@@ -3126,8 +3183,8 @@ int main(int argc, char** argv) {
                                     kernel_bytes += plan->basis.size() * sizeof(float);
                                     for (const auto& sk : plan->skeletons) {
                                         ++skeletons;
-                                        kernel_bytes += sk.inverse_weights.size() * sizeof(double) + sizeof(bench::PoseRoot) + sizeof(bench::PoseKernel);
-                                        for (const auto& lanes : sk.lanes) kernel_bytes += lanes.size() * sizeof(bench::PoseLanes);
+                                        kernel_bytes += sk.inverse_weights.size() * sizeof(double) + sizeof(detail::PoseRoot) + sizeof(detail::PoseKernel);
+                                        for (const auto& lanes : sk.lanes) kernel_bytes += lanes.size() * sizeof(detail::PoseLanes);
                                     }
                                 }
                                 std::printf("#    pose kernels' resident bytes: %zu (%zu skeletons)\n", kernel_bytes, skeletons);

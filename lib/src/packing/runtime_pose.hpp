@@ -1,14 +1,14 @@
 #pragma once
-// The runtime prototype's y -> local pose (bench_runtime_prototype): x = U y in float32, the dofs,
+// The runtime tier's y -> local pose (internal to the packing module): x = U y in float32, the dofs,
 // and the non-root joints' rotations as ChannelWriter::write_local forms them (exp maps, projections
 // onto the joints' channels), from plain arrays. One kernel source (runtime_pose_kernel.inc) built
 // twice: portable (runtime_pose_portable.cpp) and with AVX2 + FMA (runtime_pose_avx2.cpp, when the
 // compiler takes the flags), chosen at run time by the CPU. No Eigen and no shared inline code in the
 // kernels, so the AVX2 build's code cannot stand in for the portable one's (ODR). Both builds give
-// the same bits (IEEE operations lane by lane, no contraction); the benchmark checks it.
+// the same bits (IEEE operations lane by lane, no contraction); tests/packing checks it.
 #include <cstddef>
 
-namespace mocapdb::bench {
+namespace mocapdb::packing::detail {
 
 /// Four joints of one kind (two, one or three rotation channels); lanes past `count` repeat lane 0.
 struct PoseLanes {
@@ -73,4 +73,4 @@ bool pose_avx2_available();
         return kernel_root(k, placement, p, rotations, translations);                                         \
     }
 
-}  // namespace mocapdb::bench
+}  // namespace mocapdb::packing::detail

@@ -5,7 +5,7 @@
 #include <immintrin.h>
 #endif
 
-namespace mocapdb::bench {
+namespace mocapdb::packing::detail {
 namespace {
 #include "runtime_pose_kernel.inc"
 }  // namespace
@@ -25,4 +25,4 @@ bool pose_avx2_available() {
 MOCAPDB_POSE_KERNELS(avx2)
 #endif
 
-}  // namespace mocapdb::bench
+}  // namespace mocapdb::packing::detail

@@ -1,4 +1,4 @@
-// runtime_pose.hpp's kernels built with -mavx2 -mfma -ffp-contract=off (benchmarks/CMakeLists.txt);
+// runtime_pose.hpp's kernels built with -mavx2 -mfma -ffp-contract=off (lib/CMakeLists.txt);
 // called only when pose_avx2_available(). Nothing here is shared with other translation units.
 #include "runtime_pose.hpp"
 
@@ -6,11 +6,11 @@
 #include <immintrin.h>
 #endif
 
-namespace mocapdb::bench {
+namespace mocapdb::packing::detail {
 namespace {
 #include "runtime_pose_kernel.inc"
 }  // namespace
 
 MOCAPDB_POSE_KERNELS(avx2)
 
-}  // namespace mocapdb::bench
+}  // namespace mocapdb::packing::detail

@@ -1,0 +1,179 @@
+#include "runtime_transform.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "mocapdb/motion/forward_kinematics.hpp"
+
+namespace mocapdb::packing::detail {
+
+namespace {
+
+/// Coarsest step index in [0, kMaxStep] for which passes(k) holds, galloping from `start`; -1 if none.
+template <class F>
+int rt_coarsest_step(int start, F passes) {
+    int lo = -1, hi = -1;
+    if (passes(start)) {
+        lo = start;
+        for (int stride = 1; lo < kMaxStep; stride *= 2) {
+            const int c = std::min(kMaxStep, lo + stride);
+            if (!passes(c)) {
+                hi = c;
+                break;
+            }
+            lo = c;
+        }
+    } else {
+        hi = start;
+        for (int stride = 1; lo < 0 && hi > 0; stride *= 2) {
+            const int c = std::max(0, hi - stride);
+            if (passes(c)) lo = c;
+            else hi = c;
+        }
+    }
+    while (hi >= 0 && lo >= 0 && hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        if (passes(mid)) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+
+std::int32_t rt_quantize(double v, double inv_step, double rounding) {
+    const double a = std::abs(v) * inv_step;
+    const auto m = static_cast<std::int32_t>(std::floor(a + rounding));
+    return v < 0 ? -m : m;
+}
+
+}  // namespace
+
+RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan& plan,
+                                      const std::vector<const Clip*>& clips, double E, int W, int key_offset,
+                                      double rounding) {
+    RuntimeCoefficients r;
+    r.window = W;
+    r.key_offset = key_offset;
+    while ((1 << r.levels) < W) ++r.levels;
+    const auto Da = static_cast<Eigen::Index>(m.active.size());
+    const MatX Uinv = Da > 0 ? MatX(m.dof_basis.partialPivLu().inverse()) : MatX(0, 0);
+    std::vector<double> row, p(static_cast<std::size_t>(m.dofs));
+    GlobalPose pose;
+    int k_prev = std::clamp(static_cast<int>(std::lround(12.0 * (std::log2(E) + 14.0))), 0, kMaxStep);
+    int kk_prev = k_prev;
+    std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W));
+    VecX tmp(Da);
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        r.clip_first.push_back(r.entries.size());
+        const Clip& clip = *clips[i];
+        const ClipEntry& e = m.clips[i];
+        if (clip.frame_count() == 0) continue;
+        const Skeleton& sk = *m.skeletons[e.skeleton].skeleton;
+        row.resize(sk.channel_count());
+        const MatX x = m.weighted_active(clip, m.skeletons[e.skeleton], e.canonical);
+        const MatX source = joint_positions(clip);
+        const auto F = static_cast<Eigen::Index>(clip.frame_count());
+        const auto J = static_cast<Eigen::Index>(sk.size());
+        const Eigen::Index nw = (F - 1 + W - 1) / W;
+        const Eigen::Index T = nw * W + 1;
+        MatX y(Da, T), yh(Da, T);
+        for (Eigen::Index t = 0; t < T; ++t) y.col(t) = Uinv * x.col(std::min(t, F - 1));
+        double worst = 0.0;
+        // Decoded frame t (a source frame) within E, by the decoder's routine.
+        auto frame_ok = [&](Eigen::Index t, const double* yt) {
+            runtime_dofs(plan, e, yt, p.data());
+            m.row_of(e, p.data(), row.data());
+            forward_kinematics(sk, row.data(), pose);
+            for (Eigen::Index j = 0; j < J; ++j) {
+                const double d = (pose.positions[static_cast<std::size_t>(j)] - source.block<3, 1>(3 * j, t)).norm();
+                if (!(d <= E)) return false;
+                worst = std::max(worst, d);
+            }
+            return true;
+        };
+        const std::string where =
+            "runtime tier: clip " + std::to_string(i) + (clip.name.empty() ? "" : " (" + clip.name + ")");
+        // Keys.
+        std::vector<std::vector<std::int32_t>> key_q(static_cast<std::size_t>(nw + 1));
+        std::vector<int> key_step(static_cast<std::size_t>(nw + 1));
+        for (Eigen::Index w = 0; w <= nw; ++w) {
+            const Eigen::Index t = w * W;
+            const Eigen::Index real = std::min(t, F - 1);
+            auto passes = [&](int k) {
+                const double step = step_of(k), inv = 1.0 / step;
+                for (Eigen::Index d = 0; d < Da; ++d) tmp[d] = rt_quantize(y(d, t), inv, rounding) * step;
+                return frame_ok(real, tmp.data());
+            };
+            int k = rt_coarsest_step(kk_prev, passes);
+            if (k < 0)
+                throw PackingFailed(where + ": key frame " + std::to_string(real) + " fails E even at the finest step");
+            kk_prev = k;
+            // A finer step for the key (better predictions); the bound is not monotone in the step,
+            // so the key is checked again and made finer until it holds.
+            auto& kq = key_q[static_cast<std::size_t>(w)];
+            kq.resize(static_cast<std::size_t>(Da));
+            for (k = std::max(0, k - key_offset);; --k) {
+                if (k < 0)
+                    throw PackingFailed(where + ": key frame " + std::to_string(real) +
+                                        " fails E even at the finest step");
+                const double step = step_of(k), inv = 1.0 / step;
+                for (Eigen::Index d = 0; d < Da; ++d) {
+                    kq[static_cast<std::size_t>(d)] = rt_quantize(y(d, t), inv, rounding);
+                    yh(d, t) = kq[static_cast<std::size_t>(d)] * step;
+                }
+                worst = 0.0;
+                if (frame_ok(real, yh.col(t).data())) break;
+            }
+            key_step[static_cast<std::size_t>(w)] = k;
+            r.max_error_cm = std::max(r.max_error_cm, worst);
+        }
+        // Windows.
+        std::vector<int> tree_level, tree_frame;
+        runtime_tree_order(W, tree_level, tree_frame);
+        for (Eigen::Index w = 0; w < nw; ++w) {
+            const Eigen::Index t0 = w * W;
+            auto encode = [&](int k) {
+                const double step = step_of(k), inv = 1.0 / step;
+                for (int j = 1; j <= r.levels; ++j) {
+                    const int h = W >> j;
+                    for (int t = h; t < W; t += 2 * h) {
+                        for (Eigen::Index d = 0; d < Da; ++d) {
+                            const double pred = 0.5 * (yh(d, t0 + t - h) + yh(d, t0 + t + h));
+                            const std::int32_t v = rt_quantize(y(d, t0 + t) - pred, inv, rounding);
+                            q[static_cast<std::size_t>(t * Da + d)] = v;
+                            yh(d, t0 + t) = v ? pred + v * step : pred;  // the decoder's form: zeros add nothing
+                        }
+                    }
+                }
+            };
+            auto passes = [&](int k) {
+                encode(k);
+                for (int t = 1; t < W && t0 + t < F; ++t)
+                    if (!frame_ok(t0 + t, yh.col(t0 + t).data())) return false;
+                return true;
+            };
+            const int k = rt_coarsest_step(k_prev, passes);
+            if (k < 0)
+                throw PackingFailed(where + ": window " + std::to_string(w) + " fails E even at the finest step");
+            k_prev = k;
+            worst = 0.0;
+            passes(k);
+            r.max_error_cm = std::max(r.max_error_cm, worst);
+            RuntimeEntry entry;
+            entry.key_step = key_step[static_cast<std::size_t>(w)];
+            entry.key = std::move(key_q[static_cast<std::size_t>(w)]);
+            entry.step = k;
+            for (int t : tree_frame) entry.columns.emplace_back(q.begin() + t * Da, q.begin() + (t + 1) * Da);
+            r.entries.push_back(std::move(entry));
+        }
+        RuntimeEntry end;
+        end.key_step = key_step[static_cast<std::size_t>(nw)];
+        end.key = std::move(key_q[static_cast<std::size_t>(nw)]);
+        r.entries.push_back(std::move(end));
+    }
+    r.clip_first.push_back(r.entries.size());
+    return r;
+}
+
+}  // namespace mocapdb::packing::detail
