@@ -263,7 +263,7 @@ TEST_CASE("edge calibration: probes on the shared walks, stored by compress and 
     // compress stored a calibration with the kernel; the model loaded from it warns by it.
     REQUIRE(w.compressed.kernel_edge_warning);
     const synthesis::EdgeWarning& stored = *w.compressed.kernel_edge_warning;
-    CHECK(stored.probes == 300);
+    CHECK(stored.probes == 600);
     REQUIRE(model->kernel_fit().edge_warning);
     CHECK(model->kernel_fit().edge_warning->variance_ratio == stored.variance_ratio);
     CHECK(workflow::edge_warning(*model).beyond_sd == stored.beyond_sd);

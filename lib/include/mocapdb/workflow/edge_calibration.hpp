@@ -24,8 +24,8 @@
 namespace mocapdb::workflow {
 
 struct EdgeCalibrationOptions {
-    std::size_t inside = 100;       ///< probes drawn uniformly in the samples' box
-    std::size_t beyond = 200;       ///< probes moved out of the box along one axis by up to shell_sd SDs
+    std::size_t inside = 200;       ///< probes drawn uniformly in the samples' box
+    std::size_t beyond = 400;       ///< probes moved out of the box along one axis by up to shell_sd SDs
     double shell_sd = 1.0;          ///< > 0
     double tolerance_share = 0.25;  ///< > 0 (the evaluation's hit rule, eval/set_evaluation.hpp)
     /// Share of the probes' misses to flag; in (0, 1]. Above the 90 % asked of the warning, so that it
