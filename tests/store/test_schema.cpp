@@ -47,8 +47,8 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     // the synthesis kernel /sets/{set}/model/kernel, the repaired dropouts /sets/{set}/repairs
     // with its 3 datasets and the periodic parameters' /sets/{set}/parameter_period. Version 4 changes
     // the layout (index and segments) and adds the kernel's optional factorized system and the sets'
-    // categorical parameter levels (issue #38).
-    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 50}, {4, 53}};
+    // categorical parameter levels and the reliability warning's calibration requests (issue #38).
+    const std::pair<int, std::size_t> versions[] = {{1, 29}, {2, 36}, {3, 50}, {4, 54}};
     for (const auto& [version, path_count] : versions) {
         const std::string json = file_bytes(kSchemas / mirror_name(version));
         const std::string md = file_bytes(kSchemas / ("format-v" + std::to_string(version) + ".md"));
@@ -96,6 +96,7 @@ TEST_CASE("schema: every object and attribute of each mirror is specified in its
     CHECK(v4.erase("/sets/{set}/model/kernel/covariance_inverse") == 1);
     CHECK(v4.erase("/sets/{set}/parameter_level_count") == 1);
     CHECK(v4.erase("/sets/{set}/parameter_level") == 1);
+    CHECK(v4.erase("/sets/{set}/model/kernel/edge_probe_requests") == 1);
     CHECK(v4 == v3);
 }
 

@@ -194,7 +194,7 @@ std::vector<std::size_t> missed_parameters(const SynthOutcome& outcome, const Mo
 }
 
 std::vector<EdgeProbe> edge_probes(const synthesis::SynthesisModel& model, const MotionSet& set,
-                                   const EdgeCalibrationOptions& options) {
+                                   const EdgeCalibrationOptions& options, const ProgressCallback& progress) {
     check(options);
     const std::vector<std::optional<double>> tolerance = parameter_tolerance(set, options.tolerance_share);
     if (std::none_of(tolerance.begin(), tolerance.end(), [](const auto& t) { return t.has_value(); }))
@@ -238,6 +238,7 @@ std::vector<EdgeProbe> edge_probes(const synthesis::SynthesisModel& model, const
         probe.beyond_sd = beyond_samples_sd(set, c);
         probe.miss = !missed_parameters(o, set, tolerance).empty();
         probes.push_back(std::move(probe));
+        if (progress) progress({k + 1, options.inside + options.beyond, "reliability calibration"});
     }
     return probes;
 }

@@ -65,7 +65,8 @@ compression::RankSearchResult choose_ranks(compression::PreparedSet prepared, co
 // rho's warning threshold calibrated on the set's own syntheses (edge_calibration.hpp), where the
 // parameters are measured back and the kernel's system is stored (the model then builds in O(N^2);
 // above max_stored_system_samples the fixed threshold stays).
-void calibrate_warning(const compression::SetModel& model, const AlignedSetData& c, synthesis::KernelFit& kernel) {
+void calibrate_warning(const compression::SetModel& model, const AlignedSetData& c, synthesis::KernelFit& kernel,
+                       const ProgressCallback& progress) {
     const auto tolerance = parameter_tolerance(c.set, EdgeCalibrationOptions{}.tolerance_share);
     if (!kernel.system || std::none_of(tolerance.begin(), tolerance.end(), [](const auto& t) { return t.has_value(); }))
         return;
@@ -73,7 +74,7 @@ void calibrate_warning(const compression::SetModel& model, const AlignedSetData&
     options.kernel_fit = kernel;
     if (kernel.predictor) synthesis::use_predictor_choice(*kernel.predictor, options);
     const synthesis::MotionModel synth(model, timing_of(c.aligned), c.set, c.skeleton, c.frame_rate, options);
-    kernel.edge_warning = calibrate_edge_warning(edge_probes(synth, c.set), c.set);
+    kernel.edge_warning = calibrate_edge_warning(edge_probes(synth, c.set, {}, progress), c.set);
 }
 
 }  // namespace
@@ -128,15 +129,15 @@ CompressOutcome compress_set(const std::filesystem::path& db, const CompressRequ
     }
     o.kernel_stored = kernel.has_value();
     if (!kernel) o.kernel_not_stored_reason = "the set has no control parameters: nothing to synthesize at";
-    o.kernel_s = seconds_since(kernel_start);
     if (kernel) {
         o.kernel_variogram = kernel->variogram.to_string();
         o.kernel_status = kernel->status;
         o.kernel_warning = synthesis::fit_status_warning(*kernel);
         o.kernel_predictor = kernel->predictor;
-        calibrate_warning(o.model, c, *kernel);
+        calibrate_warning(o.model, c, *kernel, a.kernel_progress);
         o.kernel_edge_warning = kernel->edge_warning;
     }
+    o.kernel_s = seconds_since(kernel_start);  // the warning's calibration included
 
     const auto store_start = Clock::now();
     const ModelFigures figures{o.stats.dof_rmse, o.stats.rmse_cm, o.stats.mean_cm, o.stats.max_cm, o.stats.p99_cm};

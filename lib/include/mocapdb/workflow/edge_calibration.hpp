@@ -16,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "mocapdb/core/progress.hpp"
 #include "mocapdb/dataset/motion_set.hpp"
 #include "mocapdb/synthesis/edge_warning.hpp"
 #include "mocapdb/synthesis/synthesis_model.hpp"
@@ -74,9 +75,10 @@ std::vector<std::size_t> missed_parameters(const SynthOutcome& outcome, const Mo
                                            const std::vector<std::optional<double>>& tolerance);
 
 /// options.inside + options.beyond requests (seeded), each synthesized with `model` (the model of `set`)
-/// and judged. Categorical axes take a random level.
+/// and judged. Categorical axes take a random level. progress (may be empty): after each request, item
+/// "reliability calibration".
 std::vector<EdgeProbe> edge_probes(const synthesis::SynthesisModel& model, const MotionSet& set,
-                                   const EdgeCalibrationOptions& options = {});
+                                   const EdgeCalibrationOptions& options = {}, const ProgressCallback& progress = {});
 
 struct FlagRates {
     std::size_t misses = 0, flagged_misses = 0;            ///< over every probe

@@ -52,7 +52,7 @@ struct CompressOutcome {
     double fit_s = 0.0;                  ///< decomposing at the chosen ranks with the requested method
     double store_s = 0.0;                ///< writing and committing model and kernel
     double total_s = 0.0;
-    double kernel_s = 0.0;                 ///< fitting the synthesis kernel's variogram stored with the model
+    double kernel_s = 0.0;  ///< fitting the synthesis kernel stored with the model, its warning calibration included
     bool kernel_stored = false;            ///< false without parameters
     std::size_t kernel_fit_samples = 0;    ///< samples its variogram was chosen on (KernelFit::fit_samples)
     std::string kernel_not_stored_reason;  ///< why not, when not ("" when stored)
