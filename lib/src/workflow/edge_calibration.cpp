@@ -53,8 +53,9 @@ FlagRates count_flags(const std::vector<EdgeProbe>& probes, const synthesis::Edg
 }
 
 /// `w` (its probes and vote count set) completed by the variance and distance rules of
-/// calibrate_edge_warning, the votes counted from `nearby`.
-void fit_thresholds(synthesis::EdgeWarning& w, const std::vector<EdgeProbe>& probes,
+/// calibrate_edge_warning, the votes counted from `nearby`; false (w unfinished) when the votes alone flag
+/// more inside hits than `budget`.
+bool fit_thresholds(synthesis::EdgeWarning& w, const std::vector<EdgeProbe>& probes,
                     const std::vector<std::size_t>& nearby, std::size_t budget, const EdgeCalibrationOptions& options) {
     const auto voted = [&](std::size_t i) { return w.votes > 0 && nearby[i] >= w.votes; };
     std::vector<double> hits;  // inside hits the votes leave
@@ -66,6 +67,7 @@ void fit_thresholds(synthesis::EdgeWarning& w, const std::vector<EdgeProbe>& pro
         if (voted(i)) ++voted_hits;
         else hits.push_back(probes[i].variance_ratio);
     }
+    if (voted_hits > budget) return false;
     std::sort(hits.begin(), hits.end());
     if (hits.empty()) {
         w.variance_ratio = largest;
@@ -89,6 +91,7 @@ void fit_thresholds(synthesis::EdgeWarning& w, const std::vector<EdgeProbe>& pro
         w.beyond_sd = std::max(0.0, std::nextafter(left[more - 1], -std::numeric_limits<double>::infinity()));
         w.beyond_sd = std::min(w.beyond_sd, options.shell_sd);
     }
+    return true;
 }
 
 }  // namespace
@@ -281,11 +284,7 @@ synthesis::EdgeWarning calibrate_edge_warning(const std::vector<EdgeProbe>& prob
     for (const std::size_t m : counts) {
         synthesis::EdgeWarning w = base;
         w.votes = m;
-        std::size_t voted_hits = 0;
-        for (std::size_t i = 0; i < probes.size(); ++i)
-            voted_hits += m > 0 && !probes[i].miss && probes[i].inside && nearby[i] >= m ? 1 : 0;
-        if (voted_hits > budget) continue;
-        fit_thresholds(w, probes, nearby, budget, options);
+        if (!fit_thresholds(w, probes, nearby, budget, options)) continue;
         const FlagRates r = count_flags(probes, w, nearby);
         if (!best || r.flagged_misses > best_rates.flagged_misses ||
             (r.flagged_misses == best_rates.flagged_misses && r.flagged_inside_hits < best_rates.flagged_inside_hits)) {
