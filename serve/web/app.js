@@ -103,20 +103,25 @@ function renderClipList() {
 }
 $('filter').oninput = renderClipList;
 
+// Choices overlap (a view switch, a click, a new E): only the latest one's answer is drawn.
+let clipTicket = 0;
 async function chooseClip(id) {
   state.clip = id;
   renderClipList();
+  const ticket = ++clipTicket;
+  const latest = () => ticket === clipTicket;
   try {
     clearError();
-    if (state.view === 'packed') await showPacked(id);
-    else await showClip(id);
+    if (state.view === 'packed') await showPacked(id, latest);
+    else await showClip(id, latest);
   } catch (e) {
-    showError(`clip ${id}: ${e.message}`);
+    if (latest()) showError(`clip ${id}: ${e.message}`);
   }
 }
 
-async function showClip(id) {
+async function showClip(id, latest) {
   const { header, floats } = await readMotion(`/api/clip?id=${encodeURIComponent(id)}`);
+  if (!latest()) return;
   viewer.clear();
   viewer.add({ joints: header.joints, frames: header.frames, positions: floats, colour: 0x1565c0 });
   viewer.frameAll();
@@ -137,9 +142,10 @@ function fillPackedChoices(storedE) {
   select.onchange = () => { if (state.clip) chooseClip(state.clip); };
 }
 
-async function showPacked(id) {
+async function showPacked(id, latest) {
   const e = $('packed-e').value;
   const { header, floats } = await readMotion(`/api/packed?id=${encodeURIComponent(id)}` + (e ? `&e=${e}` : ''));
+  if (!latest()) return;
   const n = header.frames * header.joints.length;
   const source = floats.subarray(0, 3 * n), packed = floats.subarray(3 * n, 6 * n), errors = floats.subarray(6 * n, 7 * n);
   viewer.clear();

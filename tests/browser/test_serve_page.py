@@ -128,8 +128,10 @@ def test_packed_view_shows_packs_max_error(server, database, browser, request):
     shown = []
     for clip in WALKS:
         click_clip(browser, clip)
-        wait_for(browser, f"return mocapdbState.packed && mocapdbState.packed.clip === '{clip}'")
-        shown.append(float(browser.find_element("id", "packed-max").text))
+        # The state and the shown figure in one script: the page redraws #info on every answer.
+        text = wait_for(browser, f"return mocapdbState.packed && mocapdbState.packed.clip === '{clip}' && "
+                                 "document.getElementById('packed-max').textContent")
+        shown.append(float(text))
         assert browser.execute_script("return mocapdbState.packed.max_cm") <= 1.0 + 1e-4
     # The page's per-clip maxima: their largest is the tier's max measured by `pack` (4 decimals shown).
     assert max(shown) == pytest.approx(packed["max_cm"], abs=1e-4)
