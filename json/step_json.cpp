@@ -211,6 +211,8 @@ void write_pack(JsonWriter& j, const std::string& db, const workflow::PackDataba
         packed_figures(j, r.bytes, o.group_float32_bytes.at(g), o.group_ratio_float32(g), r.clips.size(), r.frames,
                        r.max_cm, r.p99_cm, r.rmse_cm);
         j.key("seconds").value(o.group_seconds.at(g));
+        j.key("format").value(o.group_formats.at(g) == packing::PackFormat::Runtime ? "runtime" : "archive");
+        j.key("window").value(o.group_windows.at(g));
         write_parts(j, o.group_parts.at(g));
         j.end_object();
     }

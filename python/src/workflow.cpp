@@ -75,10 +75,14 @@ py::object create_set(const std::filesystem::path& db, const std::string& name, 
 }
 
 py::object pack(const std::filesystem::path& db, std::optional<double> max_error_cm,
-                std::optional<std::uint64_t> max_bytes, int threads, bool replace, bool drop_lossless) {
+                std::optional<std::uint64_t> max_bytes, int threads, bool replace, bool drop_lossless,
+                const std::string& format) {
     if (max_error_cm && max_bytes) throw InvalidArgument("pack: give max_error_cm or max_bytes, not both");
     if (max_bytes && *max_bytes == 0) throw InvalidArgument("pack: max_bytes must be >= 1");
+    if (format != "runtime" && format != "archive")
+        throw InvalidArgument("pack: format must be 'runtime' or 'archive', got '" + format + "'");
     workflow::PackDatabaseOptions options;
+    options.format = format == "archive" ? packing::PackFormat::Archive : packing::PackFormat::Runtime;
     options.max_error_cm = max_error_cm.value_or(1.0);
     options.max_bytes = max_bytes.value_or(0);
     options.threads = threads;
@@ -207,14 +211,16 @@ void bind_workflow(py::module_& m) {
         "(criterion, target_met, ranks, bytes, ratio, max_cm, p99_cm, rmse_cm, ...)."
         "\n\nExample:\n    >>> mocapdb.compress('walks.h5', 'walks', max_error_cm=1.0)['ranks']"
         "\n    >>> mocapdb.compress('walks.h5', 'walks', progress=lambda done, total, item: print(item, done, total))");
-    m.def("pack", &pack, py::arg("db"), py::arg("max_error_cm") = py::none(), py::arg("max_bytes") = py::none(),
-          py::arg("threads") = 2, py::arg("replace") = false, py::arg("drop_lossless") = false,
-          "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm, default 1), or with "
-          "max_bytes at the smallest max error whose bytes fit max_bytes (not both), stored as the packed tier "
-          "(committed). Returns the keys of `mocapdb pack --json` (bytes, max_error_cm, max_cm, p99_cm, rmse_cm, "
-          "clips, frames, parts: bytes per kind of stored data summing to bytes, budget: None or {max_bytes, "
-          "max_error_cm, tried}, groups: [{name, bytes, parts, ...}], ...)."
-          "\n\nExample:\n    >>> mocapdb.pack('walks.h5', max_error_cm=1.0)['bytes']");
+    m.def(
+        "pack", &pack, py::arg("db"), py::arg("max_error_cm") = py::none(), py::arg("max_bytes") = py::none(),
+        py::arg("threads") = 2, py::arg("replace") = false, py::arg("drop_lossless") = false,
+        py::arg("format") = "runtime",
+        "`mocapdb pack`: every clip packed with max FK joint error <= max_error_cm (cm, default 1), or with "
+        "max_bytes at the smallest max error whose bytes fit max_bytes (not both), stored as the packed tier "
+        "(committed); format 'runtime' (a pose decodes in about a microsecond) or 'archive' (smallest). Returns the keys of `mocapdb pack --json` (bytes, max_error_cm, max_cm, p99_cm, rmse_cm, "
+        "clips, frames, parts: bytes per kind of stored data summing to bytes, budget: None or {max_bytes, "
+        "max_error_cm, tried}, groups: [{name, bytes, parts, ...}], ...)."
+        "\n\nExample:\n    >>> mocapdb.pack('walks.h5', max_error_cm=1.0)['bytes']");
     m.def(
         "collection_report", &collection_report_dict, py::arg("db"),
         py::arg("max_error_cm") = std::vector<double>{1.0, 0.5, 0.1, 0.03, 0.01}, py::arg("threads") = 2,

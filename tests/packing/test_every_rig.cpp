@@ -26,22 +26,26 @@ namespace {
 
 const char* name_of(PositionChannels p) { return p == PositionChannels::replace_offset ? "replace" : "add"; }
 
-/// Packs `clips` (one group) at every E on every thread count: decoded max <= E on every clip (and the
-/// encoder's figure is the decoded one), the decoder's skeletons are the sources' (structure, motion
+/// Packs `clips` (one group) in both formats at every E on every thread count: decoded max <= E on
+/// every clip (and the encoder's figure is the decoded one), the decoder's skeletons are the sources' (structure, motion
 /// root, convention), and the bytes do not depend on the thread count.
 void check_packs(const std::vector<Clip>& clips, const std::vector<double>& errors, const std::vector<int>& threads) {
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
     REQUIRE(group_clips(ptrs).size() == 1);
+    for (PackFormat format : {PackFormat::Runtime, PackFormat::Archive})
     for (double E : errors) {
         std::vector<std::uint8_t> first_bytes;
         for (int t : threads) {
             PackOptions options;
+            options.format = format;
             options.max_error_cm = E;
             options.threads = t;
             const PackedGroup packed = pack_group(ptrs, options);
-            INFO("E " << E << ", " << t << " threads: " << packed.stats.bytes << " bytes, " << packed.stats.raw_windows
-                      << " raw windows, encode-time max " << packed.stats.error.max_cm);
+            INFO((format == PackFormat::Runtime ? "runtime" : "archive")
+                 << ", E " << E << ", " << t << " threads: " << packed.stats.bytes << " bytes, "
+                 << packed.stats.raw_windows << " raw windows, encode-time max " << packed.stats.error.max_cm);
+            CHECK(packed.stats.format == format);
             CHECK(packed.stats.error.max_cm <= E);
             if (first_bytes.empty())
                 first_bytes = packed.bytes;

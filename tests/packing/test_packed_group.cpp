@@ -26,6 +26,13 @@ using mocapdb::test::procedural_walks;
 
 namespace {
 
+/// The archive format (format 3), whose windows these tests are about.
+const PackOptions kArchivePackOptions = [] {
+    PackOptions o;
+    o.format = PackFormat::Archive;
+    return o;
+}();
+
 /// The group's bytes per kind of stored data (issue 36 item 5): every part present, in the format's
 /// order, summing exactly to the bytes; payload and tables agreeing with the other statistics.
 void check_parts(const PackedGroup& packed) {
@@ -58,6 +65,7 @@ void check_bound(const std::vector<Clip>& clips, std::size_t max_frames_per_clip
     REQUIRE(group_clips(ptrs).size() == 1);
     for (double E : {1.0, 0.5, 0.1}) {
         PackOptions options;
+        options.format = PackFormat::Archive;
         options.max_error_cm = E;
         const PackedGroup packed = pack_group(ptrs, options);
         INFO("E " << E << ": " << packed.stats.bytes << " bytes, encode-time max " << packed.stats.error.max_cm);
@@ -108,6 +116,7 @@ TEST_CASE("a decoded window equals the same frames of a full decode, poses by ra
     std::vector<const Clip*> ptrs;
     for (const Clip& c : clips) ptrs.push_back(&c);
     PackOptions options;
+    options.format = PackFormat::Archive;
     options.max_error_cm = 0.5;
     options.window = 16;
     const GroupDecoder decoder(pack_group(ptrs, options).bytes);
@@ -137,6 +146,7 @@ TEST_CASE("packing refuses a bad bound, an empty group and one short clip work",
     const std::vector<const Clip*> one{&clips[0]};
     for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
         PackOptions o;
+        o.format = PackFormat::Archive;
         o.max_error_cm = bad;
         CHECK_THROWS_AS(pack_group(one, o), InvalidArgument);
     }
@@ -145,11 +155,12 @@ TEST_CASE("packing refuses a bad bound, an empty group and one short clip work",
         std::vector<const Clip*> all;
         for (const Clip& c : clips) all.push_back(&c);
         PackOptions a, b;
+        a.format = b.format = PackFormat::Archive;
         a.threads = 1;
         b.threads = 3;
         CHECK(pack_group(all, a).bytes == pack_group(all, b).bytes);
     }
-    const PackedGroup empty = pack_group({}, PackOptions{});
+    const PackedGroup empty = pack_group({}, kArchivePackOptions);
     CHECK(GroupDecoder(empty.bytes).clip_count() == 0);
     CHECK(empty.bytes.size() < 16);
     REQUIRE(empty.stats.parts.size() == 1);  // an empty group is its header
@@ -158,6 +169,7 @@ TEST_CASE("packing refuses a bad bound, an empty group and one short clip work",
 
     const Clip short_clip = slice(clips[0], 0, 5);  // shorter than one window
     PackOptions o;
+    o.format = PackFormat::Archive;
     o.max_error_cm = 0.1;
     const PackedGroup packed = pack_group({&short_clip}, o);
     const GroupDecoder decoder(packed.bytes);
@@ -190,6 +202,7 @@ TEST_CASE("moving non-root position channels are coded too, a one-frame clip wor
     const Clip one_frame = slice(clip, 7, 8);
     for (double E : {1.0, 0.1}) {
         PackOptions o;
+        o.format = PackFormat::Archive;
         o.max_error_cm = E;
         const GroupDecoder decoder(pack_group({&clip, &one_frame}, o).bytes);
         const Clip back = decoder.decode_clip(0);
@@ -199,6 +212,7 @@ TEST_CASE("moving non-root position channels are coded too, a one-frame clip wor
     }
     // A group of one one-frame clip: every dof is constant.
     PackOptions o;
+    o.format = PackFormat::Archive;
     o.max_error_cm = 0.1;
     const GroupDecoder single(pack_group({&one_frame}, o).bytes);
     CHECK(max_position_error(one_frame, single.decode_clip(0)) <= 0.1);
@@ -206,7 +220,7 @@ TEST_CASE("moving non-root position channels are coded too, a one-frame clip wor
 
 TEST_CASE("a truncated or foreign packed group is refused with an error", "[packing]") {
     const std::vector<Clip> clips = procedural_walks();
-    const std::vector<std::uint8_t> bytes = pack_group({&clips[0], &clips[1]}, PackOptions{}).bytes;
+    const std::vector<std::uint8_t> bytes = pack_group({&clips[0], &clips[1]}, kArchivePackOptions).bytes;
     for (std::size_t cut : {std::size_t(0), std::size_t(3), bytes.size() / 3, bytes.size() - 1}) {
         INFO("cut at " << cut << " of " << bytes.size());
         CHECK_THROWS_AS(GroupDecoder(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + static_cast<long>(cut))),
@@ -222,7 +236,7 @@ TEST_CASE("a truncated or foreign packed group is refused with an error", "[pack
     // other bits than its encoder verified: refused, not decoded differently.
     std::vector<std::uint8_t> older = bytes;
     older[4] = 1;
-    CHECK_THROWS_WITH(GroupDecoder(older), Catch::Contains("version 1, this build reads 2 to 3"));
+    CHECK_THROWS_WITH(GroupDecoder(older), Catch::Contains("version 1, this build reads 2 to 4"));
 }
 
 TEST_CASE("packing works at 24 Hz and 120 Hz, frame rates form separate groups", "[packing]") {
@@ -235,9 +249,10 @@ TEST_CASE("packing works at 24 Hz and 120 Hz, frame rates form separate groups",
     }
     std::vector<const Clip*> ptrs{&clips[0], &clips[1]};
     REQUIRE(group_clips(ptrs).size() == 2);
-    CHECK_THROWS_AS(pack_group(ptrs, PackOptions{}), InvalidArgument);
+    CHECK_THROWS_AS(pack_group(ptrs, kArchivePackOptions), InvalidArgument);
     for (const Clip& c : clips) {
         PackOptions o;
+        o.format = PackFormat::Archive;
         o.max_error_cm = 0.5;
         const GroupDecoder decoder(pack_group({&c}, o).bytes);
         CHECK(decoder.frame_rate() == c.frame_rate);
@@ -252,6 +267,7 @@ TEST_CASE("automatic and fixed bases all meet the bound", "[packing]") {
     for (TimeBasis tb : {TimeBasis::Auto, TimeBasis::Cosine})
         for (DofBasis db : {DofBasis::Auto, DofBasis::Identity}) {
             PackOptions o;
+            o.format = PackFormat::Archive;
             o.max_error_cm = 0.5;
             o.time_basis = tb;
             o.dof_basis = db;
@@ -268,6 +284,7 @@ TEST_CASE("a window no step brings within the bound is stored as its source rows
     // window can reach 1e-9 cm.
     const Clip clip = slice(procedural_walks()[1], 0, 40);
     PackOptions o;
+    o.format = PackFormat::Archive;
     o.max_error_cm = 1e-9;
     const PackedGroup packed = pack_group({&clip}, o);
     CHECK(packed.stats.raw_windows == 2);
@@ -295,6 +312,7 @@ TEST_CASE("packing meets the bound on a 100-joint rig at 24 Hz, clips of 1 s and
     REQUIRE(group_clips(ptrs).size() == 1);
     for (double E : {1.0, 0.1}) {
         PackOptions o;
+        o.format = PackFormat::Archive;
         o.max_error_cm = E;
         const PackedGroup packed = pack_group(ptrs, o);
         INFO("E " << E << ": " << packed.stats.bytes << " bytes for " << packed.stats.frames << " frames");
@@ -313,6 +331,7 @@ TEST_CASE("GroupDecoder::resident_bytes counts what the decoder holds beyond the
     std::vector<const Clip*> one{&walks[0]}, all;
     for (const Clip& c : walks) all.push_back(&c);
     PackOptions o;
+    o.format = PackFormat::Archive;
     o.max_error_cm = 1.0;
     o.time_basis = TimeBasis::Learned;
     o.dof_basis = DofBasis::Learned;

@@ -24,6 +24,13 @@ using namespace mocapdb::packing;
 
 namespace {
 
+/// The archive format (format 3), whose windows these tests are about.
+const PackOptions kArchiveAccessOptions = [] {
+    PackOptions o;
+    o.format = PackFormat::Archive;
+    return o;
+}();
+
 bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
 
 bool same_bits(const LocalPose& a, const LocalPose& b) {
@@ -62,6 +69,7 @@ std::array<std::size_t, 3> check_every_frame(const std::vector<Clip>& clips, con
     for (const Clip& c : clips) ptrs.push_back(&c);
     for (double E : errors) {
         PackOptions options;
+        options.format = PackFormat::Archive;
         options.max_error_cm = E;
         const GroupDecoder decoder(pack_group(ptrs, options).bytes);
         const PoseIndex index(decoder);
@@ -235,7 +243,7 @@ TEST_CASE("PoseSampler: playback hits its cache, bad indices and capacity are re
         o.cycles = 2;
         clips.push_back(procedural::generate_walk({1.2, turn, 0.0}, o).clip);
     }
-    const GroupDecoder decoder(pack_group({&clips[0], &clips[1]}, PackOptions{}).bytes);
+    const GroupDecoder decoder(pack_group({&clips[0], &clips[1]}, kArchiveAccessOptions).bytes);
     CHECK_THROWS_AS(PoseSampler(decoder, 0), InvalidArgument);
     PoseSampler sampler(decoder, 1);
     CHECK(sampler.capacity() == 1);
@@ -266,7 +274,7 @@ TEST_CASE("PoseIndex: bad indices are refused, threads sharing one index decode 
         o.cycles = 3;
         clips.push_back(procedural::generate_walk({1.2, turn, 0.0}, o).clip);
     }
-    const GroupDecoder decoder(pack_group({&clips[0], &clips[1], &clips[2]}, PackOptions{}).bytes);
+    const GroupDecoder decoder(pack_group({&clips[0], &clips[1], &clips[2]}, kArchiveAccessOptions).bytes);
     const PoseIndex index(decoder);
     CHECK(index.memory_bytes() >= index.coefficient_count() * 2);
     std::vector<double> row(decoder.skeleton(0)->channel_count());

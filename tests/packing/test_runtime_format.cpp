@@ -43,6 +43,7 @@ Packed pack_runtime(const std::vector<Clip>& clips, double E, int window) {
     for (const Clip& c : clips) ptrs.push_back(&c);
     REQUIRE(group_clips(ptrs).size() == 1);
     PackOptions po;
+    po.format = PackFormat::Archive;  // the header encode_runtime reads
     po.max_error_cm = E;
     po.time_basis = TimeBasis::Learned;
     po.dof_basis = DofBasis::Learned;

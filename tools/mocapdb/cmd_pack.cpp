@@ -19,6 +19,7 @@ struct PackArgs {
     double max_error_cm = 0.0;
     std::uint64_t max_bytes = 0;  ///< --max-bytes (0: not given)
     int threads = 2;
+    std::string format = "runtime";
     bool json = false;
     bool force = false;
     bool drop_lossless = false;
@@ -48,13 +49,15 @@ void print_text(const std::string& db, const workflow::PackDatabaseOutcome& o) {
         std::printf("dropped the lossless channels of %zu clips: they are now stored within %g cm only\n",
                     o.dropped_lossless, t.max_error_cm);
     if (t.groups.empty()) return;
-    std::printf("\n%-6s %-16s %8s %6s %9s %11s %8s %9s %9s %9s\n", "group", "skeleton", "rate Hz", "clips", "frames",
-                "bytes", "ratio", "max cm", "p99 cm", "rmse cm");
+    std::printf("\n%-6s %-16s %8s %6s %9s %-11s %11s %8s %9s %9s %9s\n", "group", "skeleton", "rate Hz", "clips",
+                "frames", "format", "bytes", "ratio", "max cm", "p99 cm", "rmse cm");
     for (std::size_t g = 0; g < t.groups.size(); ++g) {
         const PackedGroupRecord& r = t.groups[g];
-        std::printf("%-6s %-16s %8.6g %6zu %9zu %11zu %7.1f:1 %9.4f %9.4f %9.4f\n", r.name.c_str(), r.skeleton.c_str(),
-                    r.frame_rate, r.clips.size(), r.frames, static_cast<std::size_t>(r.bytes), o.group_ratio_float32(g),
-                    r.max_cm, r.p99_cm, r.rmse_cm);
+        const std::string format = (o.group_formats.at(g) == packing::PackFormat::Runtime ? "runtime W" : "archive W") +
+                                   std::to_string(o.group_windows.at(g));
+        std::printf("%-6s %-16s %8.6g %6zu %9zu %-11s %11zu %7.1f:1 %9.4f %9.4f %9.4f\n", r.name.c_str(),
+                    r.skeleton.c_str(), r.frame_rate, r.clips.size(), r.frames, format.c_str(),
+                    static_cast<std::size_t>(r.bytes), o.group_ratio_float32(g), r.max_cm, r.p99_cm, r.rmse_cm);
     }
 }
 
@@ -77,6 +80,7 @@ void run_pack(const PackArgs& a) {
     options.max_error_cm = a.max_error_cm;
     options.max_bytes = a.max_bytes;
     options.threads = a.threads;
+    options.format = a.format == "archive" ? packing::PackFormat::Archive : packing::PackFormat::Runtime;
     options.replace = a.force;
     workflow::PackDatabaseOutcome o;
     {
@@ -101,6 +105,9 @@ void setup_pack(CLI::App& app) {
         "end site of every source frame is within --max-error-cm of the source clip (forward kinematics,\n"
         "world frame), and stores the groups under /packed (schemas/format-v4.md §9) in one atomic\n"
         "session. The lossless clips stay; the figures are measured by decoding the stored bytes.\n"
+        "--format runtime (default) stores groups from which one pose decodes in about a microsecond\n"
+        "(keys and detail levels, static codes; a group it cannot hold within E is stored as archive);\n"
+        "--format archive stores whole windows range-coded: smaller at fine E, a pose costs 15-100 us.\n"
         "An existing packed tier is replaced only with --force.\n"
         "--max-bytes N instead packs to a byte budget: the smallest E (3 significant digits, to about 2 %,\n"
         "between 0.001 and 100 cm) whose bytes fit N, found by packing the collection in memory at several E\n"
@@ -113,9 +120,11 @@ void setup_pack(CLI::App& app) {
         "JSON keys: file, max_error_cm, bytes (everything the decoder needs), float32_bytes,\n"
         "ratio_float32, clips, frames, max_cm, p99_cm, rmse_cm, motion_seconds, bytes_per_second,\n"
         "replaced, dropped_lossless_clips, file_bytes, seconds, parts (bytes per kind of stored data:\n"
-        "header, topology, skeletons, constant_dofs, bases, contexts, clip_table, window_table, payload,\n"
-        "raw_windows; they sum to bytes), budget ({max_bytes, max_error_cm, tried[] {max_error_cm, bytes,\n"
-        "fits}} or null), groups[] (name, path, skeleton, frame_rate, the same figures and parts).\n"
+        "header, topology, skeletons, constant_dofs, bases, clip_table; runtime: checksum, body_header,\n"
+        "code_tables, offsets, payload, slack; archive: contexts, window_table, payload, raw_windows;\n"
+        "they sum to bytes), budget ({max_bytes, max_error_cm, tried[] {max_error_cm, bytes, fits}} or\n"
+        "null), groups[] (name, path, skeleton, frame_rate, the same figures, format \"runtime\" or\n"
+        "\"archive\", window: frames from key to key or per window, and parts).\n"
         "Examples:\n"
         "  mocapdb pack cmu.h5 --max-error-cm 1\n"
         "  mocapdb pack cmu.h5 --max-error-cm 0.5 --force --json\n"
@@ -139,6 +148,8 @@ void setup_pack(CLI::App& app) {
         run_pack(*a);
     });
     cmd->add_option("--threads", a->threads, "encoder threads")->check(CLI::Range(1, 64));
+    cmd->add_option("--format", a->format, "runtime (a pose in about a microsecond) or archive (smallest)")
+        ->check(CLI::IsMember({"runtime", "archive"}));
     cmd->add_flag("--json", a->json, "print one JSON object");
     cmd->add_flag("--force", a->force, "replace an existing packed tier");
 }

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "mocapdb/packing/runtime_decoder.hpp"
 #include "group_model.hpp"
 
 namespace mocapdb::packing {
@@ -14,6 +15,13 @@ GroupDecoder::GroupDecoder(std::vector<std::uint8_t> bytes)
     : bytes_(std::move(bytes)), model_(std::make_unique<detail::GroupModel>()) {
     payload_ = model_->read_header(bytes_.data(), bytes_.size());
     if (!model_->skeletons.empty()) channels_ = model_->skeletons.front().skeleton->channel_count();
+    if (model_->runtime && !model_->clips.empty()) {
+        // The runtime decoder views bytes_ (its heap buffer stays put when the decoder moves) and
+        // parses the header itself: this model is not kept.
+        runtime_ = std::make_unique<RuntimeDecoder>(bytes_.data(), bytes_.size());
+        model_.reset();
+        return;
+    }
     // The classes depend only on the step: worked out once per step in use, not per decode.
     classes_.resize(detail::kMaxStep + 1);
     for (const detail::WindowEntry& e : model_->windows)
@@ -24,14 +32,18 @@ GroupDecoder::~GroupDecoder() = default;
 GroupDecoder::GroupDecoder(GroupDecoder&&) noexcept = default;
 GroupDecoder& GroupDecoder::operator=(GroupDecoder&&) noexcept = default;
 
-std::size_t GroupDecoder::clip_count() const { return model_->clips.size(); }
-double GroupDecoder::frame_rate() const { return model_->frame_rate; }
-std::size_t GroupDecoder::window_length() const { return static_cast<std::size_t>(model_->window); }
+PackFormat GroupDecoder::format() const {
+    return runtime_ || model_->runtime ? PackFormat::Runtime : PackFormat::Archive;
+}
+std::size_t GroupDecoder::clip_count() const { return runtime_ ? runtime_->clip_count() : model_->clips.size(); }
+double GroupDecoder::frame_rate() const { return runtime_ ? runtime_->frame_rate() : model_->frame_rate; }
+std::size_t GroupDecoder::window_length() const {
+    return runtime_ ? runtime_->window_length() : static_cast<std::size_t>(model_->window);
+}
 
 void GroupDecoder::check(std::size_t clip) const {
-    if (clip >= model_->clips.size())
-        throw InvalidArgument("GroupDecoder: clip " + std::to_string(clip) + " of " +
-                              std::to_string(model_->clips.size()));
+    if (clip >= clip_count())
+        throw InvalidArgument("GroupDecoder: clip " + std::to_string(clip) + " of " + std::to_string(clip_count()));
 }
 
 void GroupDecoder::check(std::size_t clip, std::size_t frame) const {
@@ -42,15 +54,15 @@ void GroupDecoder::check(std::size_t clip, std::size_t frame) const {
 
 std::size_t GroupDecoder::frame_count(std::size_t clip) const {
     check(clip);
-    return model_->clips[clip].frames;
+    return runtime_ ? runtime_->frame_count(clip) : model_->clips[clip].frames;
 }
 
 std::size_t GroupDecoder::window_count(std::size_t clip) const {
-    check(clip);
-    return (model_->clips[clip].frames + window_length() - 1) / window_length();
+    return (frame_count(clip) + window_length() - 1) / window_length();
 }
 
 std::size_t GroupDecoder::clip_payload_bytes(std::size_t clip) const {
+    if (runtime_) return runtime_->clip_bytes(clip);
     const std::size_t first = static_cast<std::size_t>(model_->clips.at(clip).first_window);
     std::size_t total = 0;
     for (std::size_t w = 0, n = window_count(clip); w < n; ++w) total += model_->windows.at(first + w).size;
@@ -58,6 +70,7 @@ std::size_t GroupDecoder::clip_payload_bytes(std::size_t clip) const {
 }
 
 std::size_t GroupDecoder::resident_bytes() const {
+    if (runtime_) return sizeof(RuntimeDecoder) + runtime_->resident_bytes();
     const detail::GroupModel& m = *model_;
     std::size_t total = sizeof(detail::GroupModel);
     total += m.extra_columns.capacity() * sizeof(int) + m.active.capacity() * sizeof(int) +
@@ -86,6 +99,7 @@ std::size_t GroupDecoder::resident_bytes() const {
 
 std::shared_ptr<const Skeleton> GroupDecoder::skeleton(std::size_t clip) const {
     check(clip);
+    if (runtime_) return runtime_->skeleton(clip);
     return model_->skeletons[model_->clips[clip].skeleton].skeleton;
 }
 
@@ -129,6 +143,10 @@ FrameMatrix GroupDecoder::decode_window(std::size_t clip, std::size_t window) co
     if (window >= window_count(clip))
         throw InvalidArgument("GroupDecoder: window " + std::to_string(window) + " of " +
                               std::to_string(window_count(clip)));
+    if (runtime_) {
+        const std::size_t W = window_length();
+        return runtime_->decode_frames(clip, window * W, std::min(frame_count(clip), (window + 1) * W));
+    }
     const detail::WindowEntry& e = entry(clip, window);
     const int count = frames_in(clip, window);
     FrameMatrix rows(count, static_cast<Eigen::Index>(channels_));
@@ -148,6 +166,7 @@ FrameMatrix GroupDecoder::decode_frames(std::size_t clip, std::size_t begin, std
     if (begin > end || end > frame_count(clip))
         throw InvalidArgument("GroupDecoder: frames [" + std::to_string(begin) + ", " + std::to_string(end) +
                               ") outside [0, " + std::to_string(frame_count(clip)) + ")");
+    if (runtime_) return runtime_->decode_frames(clip, begin, end);
     FrameMatrix out(static_cast<Eigen::Index>(end - begin), static_cast<Eigen::Index>(channels_));
     const std::size_t W = window_length();
     for (std::size_t w = begin / W; w * W < end; ++w) {
@@ -169,6 +188,7 @@ Clip GroupDecoder::decode_clip(std::size_t clip) const {
 }
 
 void GroupDecoder::decode_pose(std::size_t clip, std::size_t frame, double* out_row) const {
+    if (runtime_) return runtime_->decode_pose(clip, frame, out_row);
     check(clip, frame);
     const std::size_t W = window_length();
     const std::size_t w = frame / W;
@@ -184,6 +204,7 @@ void GroupDecoder::decode_pose(std::size_t clip, std::size_t frame, double* out_
 }
 
 void GroupDecoder::decode_local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const {
+    if (runtime_) return runtime_->decode_local_pose(clip, frame, out);
     check(clip, frame);
     const std::size_t W = window_length();
     const std::size_t w = frame / W;

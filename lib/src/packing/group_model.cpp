@@ -385,6 +385,16 @@ SkeletonEntry stored_entry(std::vector<Joint> joints, const SourceUnits& units, 
     return e;
 }
 
+void GroupModel::write_clip_table(ByteWriter& w) const {
+    for (const ClipEntry& c : clips) {
+        w.varint(c.skeleton);
+        w.varint(c.frames);
+        w.f32(c.canonical.translation.x());
+        w.f32(c.canonical.translation.z());
+        w.f32(c.canonical.yaw);
+    }
+}
+
 void GroupModel::write_header(std::vector<std::uint8_t>& out, ByteParts* parts) const {
     ByteWriter w(out);
     // Each section's bytes, named as PackStats::parts reports them.
@@ -394,11 +404,11 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out, ByteParts* parts) 
         section_start = out.size();
     };
     w.raw<std::uint32_t>(0x5042444Du);  // "MDBP"
-    w.u8(kFormatVersion);
+    w.u8(runtime ? kRuntimeFormatVersion : kFormatVersion);
     w.varint(clips.size());
     if (clips.empty()) return section("header");
     w.raw<double>(frame_rate);
-    w.varint(static_cast<std::uint64_t>(window));
+    if (!runtime) w.varint(static_cast<std::uint64_t>(window));
     section("header");
     // Topology (from the first skeleton).
     const Skeleton& s = *skeletons.front().skeleton;
@@ -444,9 +454,17 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out, ByteParts* parts) 
     }
     section("constant_dofs");
     for (const MatX* basis : {&dof_basis, &time_basis}) {
+        if (runtime && basis == &time_basis) continue;
         const std::vector<std::uint8_t> coded = encode_basis(*basis);
         w.varint(coded.size());
         w.bytes(coded);
+    }
+    if (runtime) {
+        section("bases");
+        write_clip_table(w);
+        section("clip_table");
+        w.raw<std::uint32_t>(body_crc);
+        return section("checksum");
     }
     for (float v : dof_energy) w.raw<float>(v);
     for (float v : time_energy) w.raw<float>(v);
@@ -459,13 +477,7 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out, ByteParts* parts) 
     for (BitContext c : contexts.p)
         if (c != kProbabilityHalf) w.u8(static_cast<std::uint8_t>(c >> (kProbabilityBits - 8)));
     section("contexts");
-    for (const ClipEntry& c : clips) {
-        w.varint(c.skeleton);
-        w.varint(c.frames);
-        w.f32(c.canonical.translation.x());
-        w.f32(c.canonical.translation.z());
-        w.f32(c.canonical.yaw);
-    }
+    write_clip_table(w);
     section("clip_table");
     for (const WindowEntry& e : windows) {
         w.u8(e.step);
@@ -474,18 +486,41 @@ void GroupModel::write_header(std::vector<std::uint8_t>& out, ByteParts* parts) 
     section("window_table");
 }
 
+std::uint64_t GroupModel::read_clip_table(ByteReader& r, std::uint64_t clip_count) {
+    clips.assign(clip_count, ClipEntry{});
+    std::uint64_t window_total = 0;
+    for (ClipEntry& c : clips) {
+        c.skeleton = static_cast<std::uint32_t>(r.varint());
+        if (c.skeleton >= skeletons.size()) throw Error("packed group: bad skeleton index");
+        c.frames = r.varint();
+        if (c.frames == 0) throw Error("packed group: clip without frames");
+        const double tx = r.f32();  // one read per statement: argument order is unspecified
+        const double tz = r.f32();
+        Canonicalization canonical;
+        canonical.translation = Vec3(tx, 0.0, tz);
+        canonical.yaw = r.f32();
+        c.set_canonical(canonical);
+        c.first_window = window_total;
+        if (window > 0)
+            window_total += (c.frames + static_cast<std::uint64_t>(window) - 1) / static_cast<std::uint64_t>(window);
+    }
+    return window_total;
+}
+
 std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) {
     ByteReader r(data, size);
     if (r.raw<std::uint32_t>() != 0x5042444Du) throw Error("packed group: bad magic");
     const auto version = r.u8();
-    if (version < kOldestFormatVersion || version > kFormatVersion)
+    if (version < kOldestFormatVersion || version > kRuntimeFormatVersion)
         throw Error("packed group: version " + std::to_string(version) + ", this build reads " +
-                    std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion));
+                    std::to_string(kOldestFormatVersion) + " to " + std::to_string(kRuntimeFormatVersion));
+    runtime = version == kRuntimeFormatVersion;
     const auto clip_count = r.varint();
     if (clip_count == 0) return r.position();
     frame_rate = r.raw<double>();
-    window = static_cast<int>(r.varint());
-    if (window < 2 || window > 256) throw Error("packed group: bad window length");
+    if (!(frame_rate > 0.0) || !std::isfinite(frame_rate)) throw Error("packed group: bad frame rate");
+    window = runtime ? 0 : static_cast<int>(r.varint());
+    if (!runtime && (window < 2 || window > 256)) throw Error("packed group: bad window length");
     const auto joint_count = r.varint();
     if (joint_count == 0 || joint_count > 100000) throw Error("packed group: bad joint count");
     std::vector<Joint> topology(joint_count);
@@ -551,12 +586,27 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
     }
     fold_constant_joints();
     const auto da = static_cast<Eigen::Index>(active.size());
+    time_basis.resize(0, 0);
     for (MatX* basis : {&dof_basis, &time_basis}) {
+        if (runtime && basis == &time_basis) continue;
         const Eigen::Index n = basis == &dof_basis ? da : window;
         const auto coded = r.varint();
         if (coded > r.size() - r.position()) throw Error("packed group: truncated basis");
         *basis = decode_basis(data + r.position(), coded, n);
         for (std::uint64_t i = 0; i < coded; ++i) r.u8();
+    }
+    if (runtime) {
+        dof_energy = {};
+        time_energy = {};
+        scan = {};
+        scan_row = {};
+        sigma = {};
+        levels = {};
+        contexts = ContextSet{};
+        read_clip_table(r, clip_count);
+        windows = {};
+        body_crc = r.raw<std::uint32_t>();
+        return r.position();
     }
     dof_energy.resize(active.size());
     for (float& v : dof_energy) v = r.raw<float>();
@@ -571,23 +621,7 @@ std::size_t GroupModel::read_header(const std::uint8_t* data, std::size_t size) 
                                 : kProbabilityHalf;
     }
     build_scan();
-    // Tables.
-    clips.assign(clip_count, ClipEntry{});
-    std::uint64_t window_total = 0;
-    for (ClipEntry& c : clips) {
-        c.skeleton = static_cast<std::uint32_t>(r.varint());
-        if (c.skeleton >= skeletons.size()) throw Error("packed group: bad skeleton index");
-        c.frames = r.varint();
-        if (c.frames == 0) throw Error("packed group: clip without frames");
-        const double tx = r.f32();  // one read per statement: argument order is unspecified
-        const double tz = r.f32();
-        Canonicalization canonical;
-        canonical.translation = Vec3(tx, 0.0, tz);
-        canonical.yaw = r.f32();
-        c.set_canonical(canonical);
-        c.first_window = window_total;
-        window_total += (c.frames + static_cast<std::uint64_t>(window) - 1) / static_cast<std::uint64_t>(window);
-    }
+    const std::uint64_t window_total = read_clip_table(r, clip_count);
     windows.assign(window_total, WindowEntry{});
     std::uint64_t offset = 0;
     for (WindowEntry& e : windows) {

@@ -19,6 +19,9 @@
 
 namespace mocapdb::packing::detail {
 
+class ByteWriter;
+class ByteReader;
+
 /// 3: the skeletons keep what the pose vector <-> channel mapping depends on besides offsets and
 /// axes: the motion root (in the topology) and the position-channel convention (per skeleton).
 /// Version 2 stored neither: its bytes are read as motion root 0 and positions added to OFFSET,
@@ -26,6 +29,9 @@ namespace mocapdb::packing::detail {
 /// window-wide) decode to different bits than their encoder verified and are refused.
 constexpr std::uint8_t kFormatVersion = 3;
 constexpr std::uint8_t kOldestFormatVersion = 2;
+/// 4, the runtime group: version 3's header without what only its windows need (time basis,
+/// energies, contexts, window table), then the runtime body (runtime_layout.hpp) to the end.
+constexpr std::uint8_t kRuntimeFormatVersion = 4;
 /// Weight of a translation dof (cm) relative to a rotation dof's lever weight (see weights_of).
 constexpr double kTranslationWeight = 3.0;
 /// Range (pose units: cm or rad) under which a dof counts as constant in the group.
@@ -95,8 +101,12 @@ WindowScratch& thread_scratch();
 constexpr int kFrameBlock = 4;
 
 struct GroupModel {
+    /// A runtime group (format 4): no time basis, energies, contexts or windows; the body follows the
+    /// clip table.
+    bool runtime = false;
+    std::uint32_t body_crc = 0;  ///< runtime group: CRC-32 (zlib's) of the body
     double frame_rate = 0.0;
-    int window = 0;                  ///< W
+    int window = 0;                  ///< W (format 3; 0 in a runtime group)
     int pose_dofs = 0;               ///< D0 (pose vector)
     int dofs = 0;                    ///< D = D0 + extra
     std::vector<int> extra_columns;  ///< channel columns of non-root position channels (extra dofs)
@@ -174,8 +184,11 @@ struct GroupModel {
     /// bytes of each section are added to it by name (header, topology, skeletons, constant_dofs,
     /// bases, contexts, clip_table, window_table).
     void write_header(std::vector<std::uint8_t>& out, ByteParts* parts = nullptr) const;
-    /// Parses a header; returns the offset of the payload.
+    void write_clip_table(ByteWriter& w) const;
+    /// Parses a header; returns the offset of the payload (of a runtime group: of its body).
     std::size_t read_header(const std::uint8_t* data, std::size_t size);
+    /// The clip table (clips' entries); returns the group's window count (0 in a runtime group).
+    std::uint64_t read_clip_table(ByteReader& r, std::uint64_t clip_count);
 };
 
 /// The decoder's copy of a skeleton (offsets, axes, forward rounded to float32) and its dof weights

@@ -3,12 +3,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include <zdict.h>
 #include <zstd.h>
 
 #include "../core/byte_stream.hpp"
 #include "pack_stages.hpp"
+#include "runtime_encoder_body.hpp"
+#include "runtime_layout.hpp"
+#include "runtime_pose.hpp"
 
 namespace mocapdb::packing {
 namespace {
@@ -181,6 +185,68 @@ void count_sizes(const std::vector<const Clip*>& clips, const GroupModel& m, std
     st.header_bytes = before_payload - table;
 }
 
+/// The Runtime format (format 4): the model's layout, active dofs and dof basis as Archive fits them
+/// (no window search), its header read back (what the decoder will see), the body encoded from that,
+/// then header (with the body's checksum) and body. Nothing when the group has more active dofs than
+/// the runtime format holds.
+std::optional<PackedGroup> pack_runtime(const std::vector<const Clip*>& clips, const PackOptions& options,
+                                        const ProgressCallback& progress) {
+    if (options.runtime_window != 0 && options.runtime_window != 8 && options.runtime_window != 16)
+        throw InvalidArgument("pack: runtime window must be 0 (choose), 8 or 16 frames, got " +
+                              std::to_string(options.runtime_window));
+    PackedGroup result;
+    result.stats.format = PackFormat::Runtime;
+    result.stats.dof_basis = options.dof_basis == DofBasis::Identity ? DofBasis::Identity : DofBasis::Learned;
+    GroupModel m;
+    m.runtime = true;
+    if (clips.empty()) {
+        m.write_header(result.bytes, &result.stats.parts);
+        result.stats.bytes = result.stats.header_bytes = result.bytes.size();
+        return result;
+    }
+    PackOptions fit = options;
+    fit.dof_basis = result.stats.dof_basis;
+    fit.time_basis = TimeBasis::Learned;
+    const std::uint64_t window_total = detail::layout_group(clips, fit.window, m);
+    detail::PackRun run(clips, fit, progress, window_total);
+    detail::find_active_dofs(run, m);
+    if (m.active.size() > static_cast<std::size_t>(detail::kRuntimeMaxDofs)) return std::nullopt;
+    detail::fit_bases(run, m);
+    std::vector<std::uint8_t> header;
+    m.write_header(header);
+    GroupModel seen;  // the decoder's view: float32 skeletons, canonicalizations and basis as stored
+    seen.read_header(header.data(), header.size());
+    RuntimeOptions ro;
+    ro.max_error_cm = options.max_error_cm;
+    ro.window = options.runtime_window;
+    ro.rounding = options.rounding;
+    ro.threads = options.threads;
+    RuntimeBody body = detail::encode_runtime_body(seen, clips, ro);
+    m.body_crc = detail::runtime_body_crc(body.bytes.data(), body.bytes.size());
+    m.write_header(result.bytes, &result.stats.parts);
+    PackStats& st = result.stats;
+    for (const BytePart& p : st.parts)
+        if (p.name == "clip_table") st.table_bytes = p.bytes;
+    st.header_bytes = result.bytes.size() - st.table_bytes;
+    add_part(st.parts, "body_header", body.stats.header_bytes);
+    add_part(st.parts, "code_tables", body.stats.side_bytes);
+    add_part(st.parts, "offsets", body.stats.offset_bytes);
+    add_part(st.parts, "payload", body.stats.entry_bytes);
+    add_part(st.parts, "slack", body.stats.slack_bytes);
+    st.payload_bytes = body.bytes.size();
+    result.bytes.insert(result.bytes.end(), body.bytes.begin(), body.bytes.end());
+    st.bytes = result.bytes.size();
+    st.clips = clips.size();
+    for (const Clip* c : clips) st.frames += c->frame_count();
+    st.channels = clips.front()->skeleton->channel_count();
+    st.runtime_window = body.stats.window;
+    for (const Clip* c : clips) st.windows += detail::runtime_entry_count(c->frame_count(), body.stats.window) - 1;
+    st.error.max_cm = body.stats.max_error_cm;
+    for (const Clip* c : clips) st.error.positions += c->frame_count() * c->skeleton->size();
+    if (progress) progress(Progress{window_total * 2, window_total * 2, {}});
+    return result;
+}
+
 }  // namespace
 
 std::vector<std::vector<std::size_t>> group_clips(const std::vector<const Clip*>& clips) {
@@ -206,6 +272,24 @@ PackedGroup pack_group(const std::vector<const Clip*>& clips, const PackOptions&
     check_options(options);
     const auto started = std::chrono::steady_clock::now();
     check_clips(clips);
+    if (options.format == PackFormat::Runtime) {
+        std::optional<PackedGroup> runtime;
+        try {
+            runtime = pack_runtime(clips, options, progress);
+        } catch (const PackingFailed&) {
+            // A frame no step of the runtime format brings within E (Archive stores such windows as
+            // their source rows).
+        }
+        if (runtime) {
+            runtime->stats.encode_seconds = seconds_since(started);
+            return std::move(*runtime);
+        }
+        PackOptions archive = options;  // more active dofs than the runtime format holds, or E too fine for it
+        archive.format = PackFormat::Archive;
+        PackedGroup packed = pack_group(clips, archive, progress);
+        packed.stats.encode_seconds = seconds_since(started);
+        return packed;
+    }
     if (!clips.empty() && (options.time_basis == TimeBasis::Auto || options.dof_basis == DofBasis::Auto)) {
         PackedGroup chosen = pack_group(clips, choose_bases(clips, options), progress);
         chosen.stats.encode_seconds = seconds_since(started);

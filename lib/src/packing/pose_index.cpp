@@ -89,6 +89,7 @@ void put_level(std::uint8_t* at, std::int32_t level, unsigned width) {
 
 PoseIndex::PoseIndex(const GroupDecoder& decoder) : decoder_(&decoder) {
     static_assert(kBlockRows == 16, "accumulate_columns works on 16 rows");
+    if (decoder.format() == PackFormat::Runtime) return;  // its cold pose is already this fast: nothing to hold
     const detail::GroupModel& m = *decoder.model_;
     const std::size_t da = std::max<std::size_t>(1, m.active.size());
     const auto W = static_cast<std::size_t>(m.window);
@@ -213,12 +214,14 @@ const double* PoseIndex::frame_dofs(std::size_t clip, std::size_t frame) const {
 }
 
 void PoseIndex::pose(std::size_t clip, std::size_t frame, double* out_row) const {
+    if (decoder_->format() == PackFormat::Runtime) return decoder_->decode_pose(clip, frame, out_row);
     const detail::GroupModel& m = *decoder_->model_;
     if (const double* p = frame_dofs(clip, frame)) m.row_of(m.clips[clip], p, out_row);
     else decoder_->decode_pose(clip, frame, out_row);  // a window stored as source rows
 }
 
 void PoseIndex::local_pose(std::size_t clip, std::size_t frame, LocalPose& out) const {
+    if (decoder_->format() == PackFormat::Runtime) return decoder_->decode_local_pose(clip, frame, out);
     const detail::GroupModel& m = *decoder_->model_;
     if (const double* p = frame_dofs(clip, frame)) m.local_of(m.clips[clip], p, out);
     else decoder_->decode_local_pose(clip, frame, out);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "mocapdb/packing/runtime_decoder.hpp"
 #include "group_model.hpp"
 
 namespace mocapdb::packing {
@@ -19,15 +20,28 @@ struct PoseSampler::Slot {
     std::vector<std::uint8_t> posed;  ///< per frame: poses holds it
     std::uint64_t used = 0;           ///< tick of the last request (least recently used is evicted)
     bool raw = false;                 ///< a raw window: rows hold every frame, poses nothing
+    /// Runtime groups: the window's rows and local poses, each decoded whole on first use.
+    std::vector<LocalPose> locals;
+    bool rows_ready = false, locals_ready = false;
 };
 
 PoseSampler::PoseSampler(const GroupDecoder& decoder, std::size_t capacity)
     : decoder_(&decoder), channels_(decoder.channels_), scratch_(std::make_unique<detail::WindowScratch>()) {
     if (capacity == 0) throw InvalidArgument("PoseSampler: capacity must be at least 1 window");
+    std::uint64_t windows = 0;
+    for (std::size_t c = 0; c < decoder.clip_count(); ++c) {
+        first_window_.push_back(windows);
+        windows += decoder.window_count(c);
+    }
+    slot_of_.assign(windows, -1);
+    slots_.resize(capacity);
+    if (decoder.runtime_) {
+        for (Slot& s : slots_) s.rows.resize(decoder.window_length() * channels_);
+        return;
+    }
     const detail::GroupModel& m = *decoder.model_;
     m.prepare(*scratch_);
     const auto W = static_cast<std::size_t>(m.window);
-    slots_.resize(capacity);
     for (Slot& s : slots_) {
         s.g.resize(scratch_->g.size());
         s.rows.resize(W * channels_);
@@ -35,7 +49,6 @@ PoseSampler::PoseSampler(const GroupDecoder& decoder, std::size_t capacity)
         s.poses.resize(W * static_cast<std::size_t>(m.dofs));
         s.posed.assign(W, 0);
     }
-    slot_of_.assign(m.windows.size(), -1);
 }
 
 PoseSampler::~PoseSampler() = default;
@@ -63,8 +76,10 @@ std::size_t PoseSampler::fill(std::size_t clip, std::size_t window, std::uint64_
     s.window = std::numeric_limits<std::uint64_t>::max();  // stays empty should decoding throw
     std::fill(s.done.begin(), s.done.end(), std::uint8_t(0));
     std::fill(s.posed.begin(), s.posed.end(), std::uint8_t(0));
-    const detail::WindowEntry& e = decoder_->entry(clip, window);
-    if (e.step == detail::kRawStep) {
+    if (decoder_->runtime_) {
+        s.rows_ready = s.locals_ready = false;  // decoded when first asked for
+        s.raw = false;
+    } else if (const detail::WindowEntry& e = decoder_->entry(clip, window); e.step == detail::kRawStep) {
         const int frames = decoder_->frames_in(clip, window);
         decoder_->raw_rows(e, frames, channels_, 0, frames, s.rows.data());
         std::fill(s.done.begin(), s.done.begin() + frames, std::uint8_t(1));
@@ -84,10 +99,8 @@ std::size_t PoseSampler::fill(std::size_t clip, std::size_t window, std::uint64_
 
 PoseSampler::Slot& PoseSampler::slot(std::size_t clip, std::size_t frame) {
     decoder_->check(clip, frame);
-    const detail::GroupModel& m = *decoder_->model_;
-    const auto W = static_cast<std::size_t>(m.window);
-    const std::size_t window = frame / W;
-    const std::uint64_t global = m.clips[clip].first_window + window;
+    const std::size_t window = frame / decoder_->window_length();
+    const std::uint64_t global = first_window_[clip] + window;
     std::int32_t index = slot_of_[global];
     if (index < 0) {
         index = static_cast<std::int32_t>(fill(clip, window, global));
@@ -128,6 +141,16 @@ const double* PoseSampler::dofs(Slot& s, std::size_t clip, std::size_t t) {
 
 const double* PoseSampler::pose(std::size_t clip, std::size_t frame) {
     Slot& s = slot(clip, frame);
+    if (decoder_->runtime_) {
+        const std::size_t W = decoder_->window_length(), first = frame / W * W;
+        if (!s.rows_ready) {
+            const FrameMatrix rows =
+                decoder_->runtime_->decode_frames(clip, first, std::min(first + W, decoder_->frame_count(clip)));
+            std::copy(rows.data(), rows.data() + rows.size(), s.rows.data());
+            s.rows_ready = true;
+        }
+        return s.rows.data() + (frame - first) * channels_;
+    }
     const detail::GroupModel& m = *decoder_->model_;
     const std::size_t t = frame % static_cast<std::size_t>(m.window);
     double* row = s.rows.data() + t * channels_;
@@ -140,6 +163,18 @@ const double* PoseSampler::pose(std::size_t clip, std::size_t frame) {
 
 void PoseSampler::local_pose(std::size_t clip, std::size_t frame, LocalPose& out) {
     Slot& s = slot(clip, frame);
+    if (decoder_->runtime_) {
+        const std::size_t W = decoder_->window_length(), first = frame / W * W;
+        if (!s.locals_ready) {
+            decoder_->runtime_->decode_local_poses(clip, first, std::min(first + W, decoder_->frame_count(clip)),
+                                                   s.locals);
+            s.locals_ready = true;
+        }
+        const LocalPose& p = s.locals[frame - first];
+        out.rotations.assign(p.rotations.begin(), p.rotations.end());
+        out.translations.assign(p.translations.begin(), p.translations.end());
+        return;
+    }
     const detail::GroupModel& m = *decoder_->model_;
     const std::size_t t = frame % static_cast<std::size_t>(m.window);
     if (s.raw) m.local_of_row(m.clips[clip], s.rows.data() + t * channels_, out);

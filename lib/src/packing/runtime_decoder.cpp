@@ -24,8 +24,8 @@ namespace detail {
 /// A key row of a clip's plan: its slot's byte and shifts (value = (bswap(8 bytes at byte) << shl) >>
 /// sar, arithmetic), its row, and whether it has escapes.
 struct RtPlanRow {
-    std::uint16_t byte;
-    std::uint8_t d, shl, sar, escapes;
+    std::uint16_t byte, d;
+    std::uint8_t shl, sar, escapes;
 };
 
 /// Per clip: where its entries' offsets are, its key plan's counts, its directory widths.
@@ -172,7 +172,16 @@ inline void rt_combine(double* out, const double* lo, const double* hi, const st
 }  // namespace
 
 void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_size, bool allow_avx2) {
-    model.read_header(group, group_size);
+    const std::size_t header_end = model.read_header(group, group_size);
+    if (model.runtime != (body == nullptr))
+        throw Error(model.runtime ? "runtime body: a runtime group holds its own body, none is expected beside it"
+                                  : "runtime body: none given for a packed group of format 3");
+    if (model.runtime) {
+        body = group + header_end;
+        body_size = group_size - header_end;
+        if (runtime_body_crc(body, body_size) != model.body_crc)
+            throw Error("runtime body: checksum mismatch (the bytes are damaged)");
+    }
     // What only format 3's windows need.
     model.windows = {};
     model.time_basis.resize(0, 0);
@@ -283,7 +292,7 @@ void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_si
                 const int w = width[i * rowsn + d];
                 const bool escapes = full[i * rowsn + d] > w;
                 if ((w == 0 ? 2 : escapes ? 1 : 0) != pass) continue;
-                rows.push_back({static_cast<std::uint16_t>(at[d] >> 3), static_cast<std::uint8_t>(d),
+                rows.push_back({static_cast<std::uint16_t>(at[d] >> 3), static_cast<std::uint16_t>(d),
                                 static_cast<std::uint8_t>(at[d] & 7), static_cast<std::uint8_t>(64 - w),
                                 static_cast<std::uint8_t>(escapes)});
                 ++count[pass];
@@ -415,7 +424,7 @@ void RuntimeDecoder::Impl::key_one(std::size_t clip, std::size_t at, double* out
     const std::int32_t* ce = center.data() + clip * n;
     const double step = steps[data[at]];
     const std::uint8_t* pa = data + at + 1;
-    int escaped[256];
+    int escaped[kRuntimeMaxDofs];
     int ne = 0;
     for (int k = 0; k < c.nonzero; ++k) {
         std::uint64_t v;
@@ -455,7 +464,7 @@ std::size_t RuntimeDecoder::Impl::key_pair(std::size_t clip, std::size_t at_a, s
     };
     std::int64_t qa, qb;
     for (int k = 0; k < c.plain; ++k) row(r[k], qa, qb);
-    int escaped_a[256], escaped_b[256];
+    int escaped_a[kRuntimeMaxDofs], escaped_b[kRuntimeMaxDofs];
     int na = 0, nb = 0;
     for (int k = c.plain; k < c.nonzero; ++k) {
         row(r[k], qa, qb);
@@ -654,6 +663,11 @@ RuntimeDecoder::RuntimeDecoder(const std::uint8_t* group, std::size_t group_size
     impl_->body_size = body_size;
     impl_->parse(group, group_size, kernels == RuntimeKernels::Automatic);
 }
+RuntimeDecoder::RuntimeDecoder(const std::uint8_t* group, std::size_t group_size, RuntimeKernels kernels)
+    : impl_(std::make_unique<Impl>()) {
+    if (!group) throw InvalidArgument("RuntimeDecoder: null bytes");
+    impl_->parse(group, group_size, kernels == RuntimeKernels::Automatic);
+}
 RuntimeDecoder::~RuntimeDecoder() = default;
 RuntimeDecoder::RuntimeDecoder(RuntimeDecoder&&) noexcept = default;
 RuntimeDecoder& RuntimeDecoder::operator=(RuntimeDecoder&&) noexcept = default;
@@ -666,6 +680,12 @@ std::size_t RuntimeDecoder::frame_count(std::size_t clip) const {
 double RuntimeDecoder::frame_rate() const { return impl_->model.frame_rate; }
 std::size_t RuntimeDecoder::window_length() const { return static_cast<std::size_t>(impl_->W); }
 bool RuntimeDecoder::uses_avx2() const { return impl_->plan.avx2; }
+std::size_t RuntimeDecoder::clip_bytes(std::size_t clip) const {
+    const Impl& d = *impl_;
+    d.check(clip);
+    const std::size_t end = clip + 1 < d.clips.size() ? d.clips[clip + 1].base : d.entry_bytes;
+    return end - d.clips[clip].base;
+}
 
 std::shared_ptr<const Skeleton> RuntimeDecoder::skeleton(std::size_t clip) const {
     impl_->check(clip);

@@ -8,6 +8,7 @@
 #include "group_model.hpp"
 #include "runtime_pose_plan.hpp"
 #include "runtime_transform.hpp"
+#include "runtime_encoder_body.hpp"
 #include "runtime_writer.hpp"
 
 namespace mocapdb::packing {
@@ -26,7 +27,7 @@ RuntimeBody rt_encode_at(const detail::GroupModel& m, const detail::RuntimePoseP
                          const std::vector<const Clip*>& clips, const RuntimeOptions& o, int W) {
     const int key_offset = rt_key_offset_of(W), stored = rt_directory_levels_of(W);
     const detail::RuntimeCoefficients r =
-        detail::runtime_transform(m, plan, clips, o.max_error_cm, W, key_offset, o.rounding);
+        detail::runtime_transform(m, plan, clips, o.max_error_cm, W, key_offset, o.rounding, o.threads);
     detail::RuntimeBodyParts parts;
     RuntimeBody out;
     out.bytes = detail::write_runtime_body(r, static_cast<int>(m.active.size()), stored, &parts);
@@ -48,6 +49,21 @@ RuntimeBody rt_encode_at(const detail::GroupModel& m, const detail::RuntimePoseP
 
 }  // namespace
 
+namespace detail {
+
+RuntimeBody encode_runtime_body(const GroupModel& m, const std::vector<const Clip*>& clips, const RuntimeOptions& o) {
+    // The encoder checks with the portable kernels; the AVX2 ones give the same bits.
+    RuntimePosePlan plan;
+    make_runtime_pose_plan(m, false, plan);
+    if (o.window != 0) return rt_encode_at(m, plan, clips, o, o.window);
+    RuntimeBody w16 = rt_encode_at(m, plan, clips, o, 16);
+    RuntimeBody w8 = rt_encode_at(m, plan, clips, o, 8);
+    return static_cast<double>(w8.stats.bytes) <= 1.01 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
+                                                                                              : std::move(w16);
+}
+
+}  // namespace detail
+
 RuntimeBody encode_runtime(const std::vector<std::uint8_t>& group, const std::vector<const Clip*>& clips,
                            const RuntimeOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -58,8 +74,11 @@ RuntimeBody encode_runtime(const std::vector<std::uint8_t>& group, const std::ve
         throw InvalidArgument("encode_runtime: window " + std::to_string(o.window) + ", expected 0 (choose), 8 or 16");
     if (!(o.rounding >= 0.1 && o.rounding <= 0.5))
         throw InvalidArgument("encode_runtime: rounding " + std::to_string(o.rounding) + ", expected 0.1 to 0.5");
+    if (o.threads < 1)
+        throw InvalidArgument("encode_runtime: threads " + std::to_string(o.threads) + ", expected >= 1");
     detail::GroupModel m;
     m.read_header(group.data(), group.size());
+    if (m.runtime) throw InvalidArgument("encode_runtime: the group is a runtime group already (it holds its body)");
     if (clips.size() != m.clips.size())
         throw InvalidArgument("encode_runtime: " + std::to_string(clips.size()) + " clips, the packed group has " +
                               std::to_string(m.clips.size()));
@@ -73,18 +92,7 @@ RuntimeBody encode_runtime(const std::vector<std::uint8_t>& group, const std::ve
                                   std::to_string(i) + " (" + std::to_string(c.frame_count()) + " frames, expected " +
                                   std::to_string(e.frames) + ", or another topology)");
     }
-    // The encoder checks with the portable kernels; the AVX2 ones give the same bits.
-    detail::RuntimePosePlan plan;
-    detail::make_runtime_pose_plan(m, false, plan);
-    RuntimeBody out;
-    if (o.window != 0) {
-        out = rt_encode_at(m, plan, clips, o, o.window);
-    } else {
-        RuntimeBody w16 = rt_encode_at(m, plan, clips, o, 16);
-        RuntimeBody w8 = rt_encode_at(m, plan, clips, o, 8);
-        out = static_cast<double>(w8.stats.bytes) <= 1.01 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
-                                                                                                 : std::move(w16);
-    }
+    RuntimeBody out = detail::encode_runtime_body(m, clips, o);
     out.stats.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }

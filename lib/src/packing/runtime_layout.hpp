@@ -15,11 +15,25 @@
 // row's escape width) and, unless it is the clip's last, its window: step byte, the directory (per
 // level 1..stored the width unless the clip table holds it, then each node's left-subtree size in
 // bits), and the detail columns in tree order, each by quads.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include <zlib.h>
+
 namespace mocapdb::packing::detail {
+
+/// CRC-32 (zlib's) of a runtime body, as a runtime group's header stores it.
+inline std::uint32_t runtime_body_crc(const std::uint8_t* data, std::size_t size) {
+    uLong crc = ::crc32(0L, Z_NULL, 0);
+    for (std::size_t done = 0; done < size;) {
+        const std::size_t chunk = std::min<std::size_t>(size - done, std::size_t{1} << 30);
+        crc = ::crc32(crc, data + done, static_cast<uInt>(chunk));
+        done += chunk;
+    }
+    return static_cast<std::uint32_t>(crc);
+}
 
 constexpr std::uint8_t kRuntimeVersion = 1;
 constexpr std::size_t kRuntimeHeaderBytes = 24;

@@ -10,6 +10,9 @@
 
 namespace mocapdb::packing::detail {
 
+/// Active dofs a runtime group holds at most (the kernels' and key walk's stack arrays).
+constexpr int kRuntimeMaxDofs = 1024;
+
 /// Four joints of one kind (two, one or three rotation channels); lanes past `count` repeat lane 0.
 struct PoseLanes {
     int count = 0;

@@ -21,8 +21,9 @@ std::size_t RuntimePosePlan::memory_bytes() const {
 
 void make_runtime_pose_plan(const GroupModel& m, bool allow_avx2, RuntimePosePlan& plan) {
     const int da = static_cast<int>(m.active.size()), dp = (da + 7) / 8 * 8;
-    if (da > 256)
-        throw InvalidArgument("runtime tier: " + std::to_string(da) + " active dofs in a group, expected at most 256");
+    if (da > kRuntimeMaxDofs)
+        throw InvalidArgument("runtime tier: " + std::to_string(da) + " active dofs in a group, expected at most " +
+                              std::to_string(kRuntimeMaxDofs));
     plan.avx2 = allow_avx2 && pose_avx2_available();
     plan.basis.assign(static_cast<std::size_t>(dp) * static_cast<std::size_t>(da), 0.0f);
     for (int c = 0; c < da; ++c)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "mocapdb/core/parallel_tasks.hpp"
 #include "mocapdb/motion/forward_kinematics.hpp"
 
 namespace mocapdb::packing::detail {
@@ -51,24 +52,30 @@ std::int32_t rt_quantize(double v, double inv_step, double rounding) {
 
 RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan& plan,
                                       const std::vector<const Clip*>& clips, double E, int W, int key_offset,
-                                      double rounding) {
+                                      double rounding, int threads) {
     RuntimeCoefficients r;
     r.window = W;
     r.key_offset = key_offset;
     while ((1 << r.levels) < W) ++r.levels;
     const auto Da = static_cast<Eigen::Index>(m.active.size());
     const MatX Uinv = Da > 0 ? MatX(m.dof_basis.partialPivLu().inverse()) : MatX(0, 0);
-    std::vector<double> row, p(static_cast<std::size_t>(m.dofs));
-    GlobalPose pose;
-    int k_prev = std::clamp(static_cast<int>(std::lround(12.0 * (std::log2(E) + 14.0))), 0, kMaxStep);
-    int kk_prev = k_prev;
-    std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W));
-    VecX tmp(Da);
-    for (std::size_t i = 0; i < clips.size(); ++i) {
-        r.clip_first.push_back(r.entries.size());
+    // Clip by clip on the workers, each clip's search from the same start: the bytes do not depend
+    // on the thread count.
+    const int k_start = std::clamp(static_cast<int>(std::lround(12.0 * (std::log2(E) + 14.0))), 0, kMaxStep);
+    std::vector<std::vector<RuntimeEntry>> clip_entries(clips.size());
+    std::vector<double> clip_max(clips.size(), 0.0);
+    const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(std::max(1, threads)), clips.size());
+    run_on_workers(workers, clips.size(), [&](std::size_t i, std::size_t) {
+        std::vector<double> row, p(static_cast<std::size_t>(m.dofs));
+        GlobalPose pose;
+        int k_prev = k_start, kk_prev = k_start;
+        std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W));
+        VecX tmp(Da);
+        std::vector<RuntimeEntry>& entries = clip_entries[i];
+        double& max_error_cm = clip_max[i];
         const Clip& clip = *clips[i];
         const ClipEntry& e = m.clips[i];
-        if (clip.frame_count() == 0) continue;
+        if (clip.frame_count() == 0) return;
         const Skeleton& sk = *m.skeletons[e.skeleton].skeleton;
         row.resize(sk.channel_count());
         const MatX x = m.weighted_active(clip, m.skeletons[e.skeleton], e.canonical);
@@ -126,7 +133,7 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                 if (frame_ok(real, yh.col(t).data())) break;
             }
             key_step[static_cast<std::size_t>(w)] = k;
-            r.max_error_cm = std::max(r.max_error_cm, worst);
+            max_error_cm = std::max(max_error_cm, worst);
         }
         // Windows.
         std::vector<int> tree_level, tree_frame;
@@ -159,18 +166,23 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
             k_prev = k;
             worst = 0.0;
             passes(k);
-            r.max_error_cm = std::max(r.max_error_cm, worst);
+            max_error_cm = std::max(max_error_cm, worst);
             RuntimeEntry entry;
             entry.key_step = key_step[static_cast<std::size_t>(w)];
             entry.key = std::move(key_q[static_cast<std::size_t>(w)]);
             entry.step = k;
             for (int t : tree_frame) entry.columns.emplace_back(q.begin() + t * Da, q.begin() + (t + 1) * Da);
-            r.entries.push_back(std::move(entry));
+            entries.push_back(std::move(entry));
         }
         RuntimeEntry end;
         end.key_step = key_step[static_cast<std::size_t>(nw)];
         end.key = std::move(key_q[static_cast<std::size_t>(nw)]);
-        r.entries.push_back(std::move(end));
+        entries.push_back(std::move(end));
+    });
+    for (std::size_t i = 0; i < clips.size(); ++i) {
+        r.clip_first.push_back(r.entries.size());
+        for (RuntimeEntry& entry : clip_entries[i]) r.entries.push_back(std::move(entry));
+        r.max_error_cm = std::max(r.max_error_cm, clip_max[i]);
     }
     r.clip_first.push_back(r.entries.size());
     return r;

@@ -36,6 +36,17 @@ void expect_rows(const h5::File& file, const std::string& path, const h5::Shape&
 
 }  // namespace
 
+std::string packed_group_codec(const std::vector<std::uint8_t>& bytes) {
+    if (bytes.size() < 5 || bytes[0] != 'M' || bytes[1] != 'D' || bytes[2] != 'B' || bytes[3] != 'P')
+        throw Error("packed group bytes: no 'MDBP' magic");
+    switch (bytes[4]) {
+        case 4: return kPackedGroupCodecRuntime;
+        case 3: return kPackedGroupCodec;
+        case 2: return kPackedGroupCodecV2;
+        default: throw Error("packed group bytes: version " + std::to_string(bytes[4]) + ", expected 2, 3 or 4");
+    }
+}
+
 void write_packed(h5::File& file, const PackedTierRecord& tier,
                   const std::vector<std::vector<std::uint8_t>>& group_bytes) {
     file.create_group(kPacked, "packed");
@@ -57,7 +68,7 @@ void write_packed(h5::File& file, const PackedTierRecord& tier,
         file.write_double_attribute(g, "p99_cm", r.p99_cm);
         file.write_double_attribute(g, "rmse_cm", r.rmse_cm);
         file.write_compressed_bytes(g + "/bytes", group_bytes[i], "byte", "");
-        file.write_string_attribute(g + "/bytes", "codec", kPackedGroupCodec);
+        file.write_string_attribute(g + "/bytes", "codec", packed_group_codec(group_bytes[i]));
         const std::size_t n = r.clips.size();
         std::vector<std::string> ids;
         std::vector<std::int64_t> frames, payload;
@@ -103,10 +114,10 @@ PackedTierRecord read_packed_record(const h5::File& file) {
             throw StoreError(file.name(), g + "/bytes",
                              "expected uint8 (byte), found " + bytes.dtype + " " + h5::shape_text(bytes.shape));
         const std::string codec = file.read_string_attribute(g + "/bytes", "codec");
-        if (codec != kPackedGroupCodec && codec != kPackedGroupCodecV2)
+        if (codec != kPackedGroupCodecRuntime && codec != kPackedGroupCodec && codec != kPackedGroupCodecV2)
             throw StoreError(file.name(), g + "/bytes",
-                             "attribute 'codec': expected \"" + kPackedGroupCodec + "\" or \"" + kPackedGroupCodecV2 +
-                                 "\", found \"" + codec + "\"");
+                             "attribute 'codec': expected \"" + kPackedGroupCodecRuntime + "\", \"" +
+                                 kPackedGroupCodec + "\" or \"" + kPackedGroupCodecV2 + "\", found \"" + codec + "\"");
         r.bytes = bytes.shape[0];
         r.stored_bytes = bytes.stored_bytes;
         const std::vector<std::string> ids = file.read_strings(g + "/clip");

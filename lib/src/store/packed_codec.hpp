@@ -10,10 +10,16 @@
 
 namespace mocapdb::store {
 
-/// The `codec` attribute of /packed/{group}/bytes written (packing::pack_group's format, version 3)
-/// and the older one still read (version 2: no motion root or position-channel convention stored).
+/// The `codec` attribute of /packed/{group}/bytes: packing::pack_group's format version, written as
+/// the bytes' version byte says (4: runtime groups, 3: archive groups); version 2 (no motion root or
+/// position-channel convention stored) is still read.
+inline const std::string kPackedGroupCodecRuntime = "mocapdb-packed-group-4";
 inline const std::string kPackedGroupCodec = "mocapdb-packed-group-3";
 inline const std::string kPackedGroupCodecV2 = "mocapdb-packed-group-2";
+
+/// The codec of a group's bytes (its version byte); Error for bytes without the packed group's magic
+/// or of an unknown version.
+std::string packed_group_codec(const std::vector<std::uint8_t>& bytes);
 
 /// Writes /packed (which must not exist) with `tier`'s figures and one group per entry; the groups'
 /// names are tier.groups[i].name.

@@ -452,7 +452,12 @@ void check_packed(const std::filesystem::path& file, const Database& db,
                              " (the sum of clip_frames), found " + std::to_string(g.frames));
         const std::string bpath = gpath + "/bytes";
         try {
-            const packing::GroupDecoder decoder(store::read_packed_bytes(f, g.name));
+            std::vector<std::uint8_t> group_bytes = store::read_packed_bytes(f, g.name);
+            const std::string codec = f.read_string_attribute(bpath, "codec");
+            if (codec != store::packed_group_codec(group_bytes))
+                v.add(bpath, "attribute 'codec' is \"" + codec + "\", the bytes are \"" +
+                                 store::packed_group_codec(group_bytes) + "\"");
+            const packing::GroupDecoder decoder(std::move(group_bytes));
             if (decoder.clip_count() != g.clips.size()) {
                 v.add(bpath, "the bytes hold " + std::to_string(decoder.clip_count()) + " clips, expected " +
                                  std::to_string(g.clips.size()) + " (" + gpath + "/clip)");

@@ -94,11 +94,12 @@ struct PackedCollection {
     std::vector<std::vector<std::uint8_t>> group_bytes;
 };
 
-PackedCollection pack_collection(const Database& view, const Grouping& grouping, double E, int threads,
-                                 const ProgressCallback& progress) {
+PackedCollection pack_collection(const Database& view, const Grouping& grouping, double E,
+                                 const PackDatabaseOptions& options, const ProgressCallback& progress) {
     packing::PackOptions po;
     po.max_error_cm = E;
-    po.threads = threads;
+    po.threads = options.threads;
+    po.format = options.format;
     PackedCollection pc;
     PackDatabaseOutcome& out = pc.outcome;
     PackedTierRecord& tier = out.tier;
@@ -163,6 +164,8 @@ PackedCollection pack_collection(const Database& view, const Grouping& grouping,
         pc.group_bytes.push_back(std::move(measured.packed.bytes));
         frames_before += group_frames;
         out.group_seconds.push_back(seconds_since(group_start));
+        out.group_formats.push_back(decoder.format());
+        out.group_windows.push_back(static_cast<int>(decoder.window_length()));
         if (progress) progress(Progress{frames_before, grouping.total_frames, {}});
     }
     const packing::ErrorStats te = all.stats();
@@ -191,7 +194,7 @@ PackedCollection pack_to_budget(const Database& view, const Grouping& grouping, 
     auto attempt = [&](double E) {
         std::optional<PackedCollection> pc;
         try {
-            pc = pack_collection(view, grouping, E, options.threads, progress);
+            pc = pack_collection(view, grouping, E, options, progress);
         } catch (const packing::PackingFailed&) {
             // So fine a bound that even source rows miss it with the stored skeleton: too fine.
             budget.tried.push_back({E, 0, false});
@@ -268,7 +271,7 @@ PackDatabaseOutcome pack_database(const std::filesystem::path& db, const PackDat
     const Grouping grouping = group_collection(view, options.max_group_frames);
     PackDatabaseOutcome::Budget budget;
     PackedCollection pc = to_budget ? pack_to_budget(view, grouping, options, progress, budget)
-                                    : pack_collection(view, grouping, E, options.threads, progress);
+                                    : pack_collection(view, grouping, E, options, progress);
     PackDatabaseOutcome out = std::move(pc.outcome);
     if (to_budget) out.budget = std::move(budget);
     out.replaced = replaced;

@@ -6,10 +6,11 @@
 // A frame decodes to the same bits by every path (decode_pose, decode_window, decode_frames,
 // decode_clip, PoseSampler): the bits the encoder verified against the bound.
 //
-// Cost of one pose (decode_pose, cold): its window's coefficients are range-decoded whole (every
-// time-basis vector spans the window), then only its frame is reconstructed and turned into channels.
-// For many poses from the same windows (playback, crowds) use a PoseSampler (pose_sampler.hpp),
-// which keeps decoded windows; for random poses in a few µs, a PoseIndex (pose_index.hpp), which
+// Cost of one pose (decode_pose, cold). Runtime groups (format 4, what `pack` writes by default): its
+// two keys and its path of detail columns, about a microsecond (RuntimeDecoder). Archive groups
+// (format 3): its window's coefficients are range-decoded whole (every time-basis vector spans the
+// window), 15-100 µs; for many poses from the same windows use a PoseSampler (pose_sampler.hpp),
+// which keeps decoded windows, and for random poses in a few µs a PoseIndex (pose_index.hpp), which
 // keeps the whole group entropy-decoded.
 #include <cstddef>
 #include <cstdint>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "mocapdb/motion/clip.hpp"
+#include "mocapdb/packing/packed_group.hpp"
 
 namespace mocapdb::packing {
 
@@ -28,6 +30,7 @@ struct WindowScratch;
 
 class PoseSampler;
 class PoseIndex;
+class RuntimeDecoder;
 
 /// One frame as animation runtimes consume it (ACL, ozz-animation): per joint of the clip's skeleton
 /// (GroupDecoder::skeleton(clip)->joints() order, end sites included) the LOCAL transform forward
@@ -53,13 +56,18 @@ public:
     GroupDecoder(GroupDecoder&&) noexcept;
     GroupDecoder& operator=(GroupDecoder&&) noexcept;
 
+    /// Runtime (format 4: every method reads the stored bytes through a RuntimeDecoder, a cold pose
+    /// in about a microsecond) or Archive (formats 2 and 3: whole windows range-decoded).
+    PackFormat format() const;
     std::size_t clip_count() const;
     std::size_t frame_count(std::size_t clip) const;
     double frame_rate() const;
-    /// Frames per window (W); window w of a clip holds frames [w·W, min((w+1)·W, frames)).
+    /// Frames per window (W); window w of a clip holds frames [w·W, min((w+1)·W, frames)). Runtime:
+    /// frames from key to key.
     std::size_t window_length() const;
     std::size_t window_count(std::size_t clip) const;
-    /// Coded bytes of the clip's windows (payload only: the header and tables are shared).
+    /// Coded bytes of the clip's windows (payload only: the header and tables are shared; Runtime:
+    /// its keys and windows).
     std::size_t clip_payload_bytes(std::size_t clip) const;
     /// Memory the decoder holds beyond its copy of the stored bytes, counted from its containers'
     /// capacities (allocator overhead not counted): the parsed model (bases, scan and context tables,
@@ -99,7 +107,8 @@ private:
     /// Coded windows: range-decodes and dequantizes into s.g / s.columns.
     void load_window(const detail::WindowEntry& e, detail::WindowScratch& s) const;
     std::vector<std::uint8_t> bytes_;
-    std::unique_ptr<detail::GroupModel> model_;
+    std::unique_ptr<detail::GroupModel> model_;  ///< Archive formats (null for a runtime group with clips)
+    std::unique_ptr<RuntimeDecoder> runtime_;    ///< Runtime format, viewing bytes_
     std::size_t payload_ = 0;
     std::size_t channels_ = 0;
     /// Scan-position classes per step index, for the steps the window table uses (empty otherwise).

@@ -15,6 +15,13 @@
 
 namespace mocapdb::packing {
 
+/// What pack_group writes. Runtime (format 4): the group's header, then a body from which one pose
+/// decodes in about a microsecond with nothing decoded before it (time-local keys and detail levels,
+/// static codes; runtime_decoder.hpp), at somewhat more bytes than Archive on fine bounds (RESULTS.md).
+/// Archive (format 3): whole windows range-coded with adaptive contexts, the smallest bytes, a pose
+/// costs its window's decoding (15-100 µs). Both meet E on every source frame, and GroupDecoder reads both.
+enum class PackFormat { Runtime, Archive };
+
 /// The time basis of a group: learned (eigenvectors of the windows' time second moment) or the
 /// orthonormal DCT-II (cosines); Auto tries both on a sample of the group (see PackOptions).
 enum class TimeBasis { Auto, Learned, Cosine };
@@ -23,7 +30,13 @@ enum class DofBasis { Auto, Learned, Identity };
 
 struct PackOptions {
     double max_error_cm = 1.0;  ///< E, > 0 and finite
-    int window = 32;            ///< W, source frames per window, 2 ... 256
+    PackFormat format = PackFormat::Runtime;
+    /// Runtime format: frames from key to key, 8, 16 or 0 (both encoded, the smaller kept:
+    /// RuntimeOptions::window, runtime_encoder.hpp). A group with more active dofs than the runtime
+    /// format holds (1024), or with a frame that no quantizer step of the runtime format brings within
+    /// E, is written in the Archive format (PackStats::format says which).
+    int runtime_window = 0;
+    int window = 32;  ///< Archive format: W, source frames per window, 2 ... 256
     /// Quantizer rounding offset in [0.1, 0.5]: q = sign(c)·floor(|c|/step + rounding). 0.5 is plain
     /// rounding; smaller values widen the zero bin (fewer nonzero coefficients, finer step needed).
     double rounding = 0.4;
@@ -34,7 +47,8 @@ struct PackOptions {
     /// scan order where the window still meets the bound (0 = off).
     int trim_tail = 64;
     int threads = 2;  ///< encoder threads (>= 1)
-    /// Bases. With Auto, each candidate combination is packed on a sample of the group (every k-th
+    /// Bases (Archive format; the Runtime format uses the learned dof basis unless dof_basis is
+    /// Identity, and no time basis). With Auto, each candidate combination is packed on a sample of the group (every k-th
     /// clip, k = ceil(clips / 8), each cut to its first 4000 frames) and the one with the fewest
     /// estimated bytes for the whole group is used (about +60% encode time). Both kinds are stored
     /// the same way, so the decoder does not know or care which was chosen.
@@ -47,22 +61,27 @@ struct PackOptions {
 
 /// Where the bytes went and what the error is (measured at encode time, on every source frame).
 struct PackStats {
+    PackFormat format = PackFormat::Archive;  ///< what the bytes are
     std::size_t clips = 0;
     std::size_t frames = 0;
-    std::size_t windows = 0;
+    std::size_t windows = 0;        ///< windows (Runtime: from key to key)
     std::size_t channels = 0;       ///< channels per frame (float32 reference = frames·channels·4)
     std::size_t bytes = 0;          ///< total
     std::size_t header_bytes = 0;   ///< topology, skeletons, bases, contexts
-    std::size_t table_bytes = 0;    ///< per-clip and per-window entries
-    std::size_t payload_bytes = 0;  ///< coded coefficients
+    std::size_t table_bytes = 0;    ///< per-clip and per-window entries (Runtime: the clip table)
+    std::size_t payload_bytes = 0;  ///< coded coefficients (Runtime: the body)
     /// Bytes per kind of stored data, summing exactly to `bytes`: header, topology, skeletons,
     /// constant_dofs, bases, contexts, clip_table, window_table, payload (coded windows), raw_windows
-    /// (windows stored as source rows). An empty group has only "header".
+    /// (windows stored as source rows). Runtime: header, topology, skeletons, constant_dofs, bases,
+    /// clip_table, checksum, then the body's body_header, code_tables (quad codes, key widths and
+    /// centers, directory widths), offsets (each window's byte offset), payload (keys and windows) and
+    /// slack (zero bytes that let the decoder read 8 bytes at a time). An empty group has only "header".
     ByteParts parts;
     std::size_t probes = 0;       ///< window decodes tried while choosing steps
     std::size_t raw_windows = 0;  ///< windows stored as source rows (no step met the bound)
     ErrorStats error;
     double encode_seconds = 0.0;
+    int runtime_window = 0;                     ///< Runtime: W used (8 or 16)
     TimeBasis time_basis = TimeBasis::Learned;  ///< the bases used (never Auto)
     DofBasis dof_basis = DofBasis::Learned;
     /// With compare_zstd: the coefficients (zigzag varints after the step byte, per window) as

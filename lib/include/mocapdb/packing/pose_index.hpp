@@ -17,6 +17,8 @@ namespace mocapdb::packing {
 
 class PoseIndex {
 public:
+    /// Archive groups: their windows decoded here. Runtime groups (format 4) need no index: it holds
+    /// nothing and serves every pose from the decoder's cold path (about a microsecond).
     explicit PoseIndex(const GroupDecoder& decoder);
 
     /// The frame's channel row into out_row (decoder.skeleton(clip)->channel_count() values).

@@ -49,7 +49,8 @@ private:
     const GroupDecoder* decoder_;
     std::size_t channels_ = 0;
     std::vector<Slot> slots_;
-    std::vector<std::int32_t> slot_of_;  ///< per window of the group: its slot, or -1
+    std::vector<std::int32_t> slot_of_;        ///< per window of the group: its slot, or -1
+    std::vector<std::uint64_t> first_window_;  ///< per clip: its first window's index in the group
     std::unique_ptr<detail::WindowScratch> scratch_;
     std::uint64_t tick_ = 0;
     std::size_t hits_ = 0;

@@ -4,8 +4,8 @@
 // measurements: docs/packing.md, "The runtime tier".
 //
 // Ownership: the body is VIEWED (never copied): it must stay alive and unchanged while the decoder
-// is used. The packed group's bytes are only parsed at construction (its header: skeletons, bases,
-// clip table). Construction checks the body whole (its sizes, code tables, every entry's structure
+// is used (a runtime group, format 4, holds its body: the whole buffer is viewed). A format-3 group
+// beside a separate body is only parsed at construction (its header: skeletons, bases, clip table). Construction checks the body whole (its sizes, code tables, every entry's structure
 // and offsets) and builds the decode tables (resident_bytes()); damaged bytes throw mocapdb::Error
 // there, so decoding never reads outside the body.
 //
@@ -33,6 +33,11 @@ public:
     /// viewed. Throws Error when either is malformed, truncated or they do not belong together.
     RuntimeDecoder(const std::uint8_t* group, std::size_t group_size, const std::uint8_t* body, std::size_t body_size,
                    RuntimeKernels kernels = RuntimeKernels::Automatic);
+    /// A runtime group (pack_group with PackFormat::Runtime: header and body in one buffer, format
+    /// 4), viewed whole; its body's checksum is verified here. Throws Error when the bytes are
+    /// malformed, damaged or of another format, or hold no clips.
+    RuntimeDecoder(const std::uint8_t* group, std::size_t group_size,
+                   RuntimeKernels kernels = RuntimeKernels::Automatic);
     ~RuntimeDecoder();
     RuntimeDecoder(RuntimeDecoder&&) noexcept;
     RuntimeDecoder& operator=(RuntimeDecoder&&) noexcept;
@@ -42,6 +47,8 @@ public:
     double frame_rate() const;
     /// Frames from key to key (W).
     std::size_t window_length() const;
+    /// Bytes of the clip's entries (its keys and windows; the shared tables not included).
+    std::size_t clip_bytes(std::size_t clip) const;
     /// The clip's skeleton as decoded (offsets and axes rounded to float32, as GroupDecoder's).
     std::shared_ptr<const Skeleton> skeleton(std::size_t clip) const;
     /// Memory held beyond the viewed body (containers' capacities): the parsed model (skeletons, dof

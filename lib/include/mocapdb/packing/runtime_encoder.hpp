@@ -5,8 +5,8 @@
 // clip within E of its source by forward kinematics of every joint and end site (checked here, on
 // every frame, through the decoder's own arithmetic). Format and measurements: docs/packing.md, "The runtime tier".
 //
-// Inputs are read only and not kept; the result owns its bytes. Thread-safe (no shared state); one
-// thread. Cost: every key and window step is searched by decodes and forward kinematics of its frames,
+// Inputs are read only and not kept; the result owns its bytes. Thread-safe (no shared state); the
+// clips are searched on RuntimeOptions::threads workers. Cost: every key and window step is searched by decodes and forward kinematics of its frames,
 // about half of pack_group's time per window length on the shared folders (twice that with window 0).
 #include <cstddef>
 #include <cstdint>
@@ -25,6 +25,8 @@ struct RuntimeOptions {
     int window = 0;
     /// Quantizer rounding offset in [0.1, 0.5] (as PackOptions::rounding).
     double rounding = 0.4;
+    /// Encoder threads (>= 1), clip by clip; the bytes do not depend on their number.
+    int threads = 1;
 };
 
 struct RuntimeStats {

@@ -14,6 +14,7 @@
 #include "mocapdb/core/progress.hpp"
 #include "mocapdb/packing/byte_parts.hpp"
 #include "mocapdb/packing/group_split.hpp"
+#include "mocapdb/packing/packed_group.hpp"
 #include "mocapdb/store/database.hpp"
 
 namespace mocapdb::workflow {
@@ -37,6 +38,9 @@ struct PackDatabaseOptions {
     /// packs the whole collection in memory (measured as stored); only the E chosen is written.
     /// max_error_cm is then ignored.
     std::uint64_t max_bytes = 0;
+    /// Runtime (default): a pose decodes from the stored bytes in about a microsecond; Archive: the
+    /// smallest bytes, a pose costs its window's decoding (packing::PackFormat).
+    packing::PackFormat format = packing::PackFormat::Runtime;
     int threads = 2;  ///< encoder threads (>= 1)
     /// Replace an existing packed tier; without it a database that has one is refused (StoreError).
     bool replace = false;
@@ -67,6 +71,10 @@ struct PackDatabaseOutcome {
     PackedTierRecord tier;
     std::vector<std::uint64_t> group_float32_bytes;  ///< per group: frames × channels × 4
     std::vector<double> group_seconds;               ///< per group: encode + measurement, s
+    /// Per group: the format its bytes are in (Runtime unless asked for Archive, or a group the
+    /// runtime format cannot hold: packing::PackOptions::format) and its W.
+    std::vector<packing::PackFormat> group_formats;
+    std::vector<int> group_windows;
     /// Bytes per kind of stored data (packing::PackStats::parts), summing exactly to tier.bytes,
     /// and per group (each summing to its group's bytes).
     packing::ByteParts parts;
