@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -33,14 +32,6 @@ using namespace mocapdb;
 using namespace mocapdb::packing;
 
 namespace {
-
-std::vector<std::string> split_list(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    for (std::string item; std::getline(in, item, ',');)
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
 
 double max_error(const Clip& source, const Clip& decoded) {
     const MatX a = joint_positions(source), b = joint_positions(decoded);
@@ -62,13 +53,13 @@ int main(int argc, char** argv) {
     bool auto_bases = false, format3 = true;
     for (int a = 1; a + 1 < argc; a += 2) {
         const std::string k = argv[a], v = argv[a + 1];
-        if (k == "--folders") folders = split_list(v);
+        if (k == "--folders") folders = bench::split_list(v);
         else if (k == "--errors") {
             errors.clear();
-            for (const auto& s : split_list(v)) errors.push_back(std::stod(s));
+            for (const auto& s : bench::split_list(v)) errors.push_back(std::stod(s));
         } else if (k == "--windows") {
             windows.clear();
-            for (const auto& s : split_list(v)) windows.push_back(std::stoi(s));
+            for (const auto& s : bench::split_list(v)) windows.push_back(std::stoi(s));
         } else if (k == "--poses") poses = std::stoul(v);
         else if (k == "--reps") reps = std::max(1, std::stoi(v));
         else if (k == "--seed") seed = std::stoull(v);

@@ -43,7 +43,6 @@ double best_of(int repeats, F fn) {
     return result;
 }
 
-/// Written by benchmarks so the compiler cannot drop the measured work.
 /// "1,0.5,0.1" -> {1, 0.5, 0.1} (std::invalid_argument on a bad number).
 inline std::vector<double> parse_doubles(const std::string& text) {
     std::vector<double> out;
@@ -52,6 +51,16 @@ inline std::vector<double> parse_doubles(const std::string& text) {
     return out;
 }
 
+/// "a,b,,c" -> {"a", "b", "c"} (empty items dropped).
+inline std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream ss(text);
+    for (std::string item; std::getline(ss, item, ',');)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+/// Written by benchmarks so the compiler cannot drop the measured work.
 inline volatile double g_sink = 0.0;
 
 }  // namespace mocapdb::bench
