@@ -57,6 +57,14 @@ def test_pack_equals_the_cli(cli, db_copy, tmp_path):
     assert sum(ours["parts"].values()) == ours["bytes"]
     assert [sum(g["parts"].values()) for g in ours["groups"]] == [g["bytes"] for g in theirs["groups"]]
     assert ours["budget"] is None
+    # Runtime groups by default; the archive format on request, as the CLI's --format.
+    assert [g["format"] for g in ours["groups"]] == ["runtime"] * len(ours["groups"])
+    archive = mocapdb.pack(db_copy, max_error_cm=0.5, replace=True, format="archive")
+    theirs = cli_json(cli, "pack", cli_copy, "--max-error-cm", "0.5", "--force", "--format", "archive")
+    assert [g["format"] for g in archive["groups"]] == ["archive"] * len(archive["groups"])
+    assert archive["bytes"] == theirs["bytes"] and archive["max_cm"] <= 0.5
+    with pytest.raises(mocapdb.Error):
+        mocapdb.pack(db_copy, max_error_cm=0.5, replace=True, format="fast")
 
 
 def test_pack_to_a_byte_budget(cli, db_copy, tmp_path):
