@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <mutex>
 #include <random>
 #include <vector>
 
@@ -133,8 +134,20 @@ TEST_CASE("runtime group: the bytes do not depend on the thread count; pack_meas
     o.threads = 1;
     const PackedGroup one = pack_group(ptrs, o);
     o.threads = 3;
-    const PackedGroup three = pack_group(ptrs, o);
+    // Progress from the workers: done never falls, never passes the total, and ends there.
+    std::mutex mutex;
+    std::vector<Progress> seen;
+    const PackedGroup three = pack_group(ptrs, o, [&](const Progress& p) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        seen.push_back(p);
+    });
     CHECK(one.bytes == three.bytes);
+    REQUIRE(seen.size() > 3);
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+        CHECK(seen[i].done <= seen[i].total);
+        if (i > 0) CHECK(seen[i].done >= seen[i - 1].done);
+    }
+    CHECK(seen.back().done == seen.back().total);
     const MeasuredGroup measured = pack_measured(ptrs, o);
     CHECK(measured.packed.bytes == one.bytes);
     CHECK(measured.errors.stats().max_cm <= 0.5);

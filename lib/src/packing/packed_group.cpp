@@ -221,7 +221,11 @@ std::optional<PackedGroup> pack_runtime(const std::vector<const Clip*>& clips, c
     ro.window = options.runtime_window;
     ro.rounding = options.rounding;
     ro.threads = options.threads;
-    RuntimeBody body = detail::encode_runtime_body(seen, clips, ro);
+    // Progress: pass 0 counted each clip's windows (W of fit.window) once; the encode counts them again.
+    RuntimeBody body = detail::encode_runtime_body(seen, clips, ro, [&](std::size_t i, int passes) {
+        const auto windows = detail::window_count(clips[i]->frame_count(), fit.window);
+        run.done(*clips[i], static_cast<int>(windows / static_cast<std::uint64_t>(passes)));  // never past the total
+    });
     m.body_crc = detail::runtime_body_crc(body.bytes.data(), body.bytes.size());
     m.write_header(result.bytes, &result.stats.parts);
     PackStats& st = result.stats;

@@ -24,10 +24,11 @@ int rt_directory_levels_of(int W) {
 }
 
 RuntimeBody rt_encode_at(const detail::GroupModel& m, const detail::RuntimePosePlan& plan,
-                         const std::vector<const Clip*>& clips, const RuntimeOptions& o, int W) {
+                         const std::vector<const Clip*>& clips, const RuntimeOptions& o, int W,
+                         const detail::ClipDone& clip_done) {
     const int key_offset = rt_key_offset_of(W), stored = rt_directory_levels_of(W);
     const detail::RuntimeCoefficients r =
-        detail::runtime_transform(m, plan, clips, o.max_error_cm, W, key_offset, o.rounding, o.threads);
+        detail::runtime_transform(m, plan, clips, o.max_error_cm, W, key_offset, o.rounding, o.threads, clip_done);
     detail::RuntimeBodyParts parts;
     RuntimeBody out;
     out.bytes = detail::write_runtime_body(r, static_cast<int>(m.active.size()), stored, &parts);
@@ -51,15 +52,19 @@ RuntimeBody rt_encode_at(const detail::GroupModel& m, const detail::RuntimePoseP
 
 namespace detail {
 
-RuntimeBody encode_runtime_body(const GroupModel& m, const std::vector<const Clip*>& clips, const RuntimeOptions& o) {
+RuntimeBody encode_runtime_body(const GroupModel& m, const std::vector<const Clip*>& clips, const RuntimeOptions& o,
+                                const std::function<void(std::size_t, int)>& clip_done) {
     // The encoder checks with the portable kernels; the AVX2 ones give the same bits.
     RuntimePosePlan plan;
     make_runtime_pose_plan(m, false, plan);
-    if (o.window != 0) return rt_encode_at(m, plan, clips, o, o.window);
-    RuntimeBody w16 = rt_encode_at(m, plan, clips, o, 16);
-    RuntimeBody w8 = rt_encode_at(m, plan, clips, o, 8);
+    const int passes = o.window != 0 ? 1 : 2;
+    ClipDone done;
+    if (clip_done) done = [&](std::size_t i) { clip_done(i, passes); };
+    if (o.window != 0) return rt_encode_at(m, plan, clips, o, o.window, done);
+    RuntimeBody w16 = rt_encode_at(m, plan, clips, o, 16, done);
+    RuntimeBody w8 = rt_encode_at(m, plan, clips, o, 8, done);
     return static_cast<double>(w8.stats.bytes) <= 1.01 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
-                                                                                              : std::move(w16);
+                                                                                             : std::move(w16);
 }
 
 }  // namespace detail

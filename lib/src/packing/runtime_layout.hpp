@@ -18,11 +18,15 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <zlib.h>
 
 namespace mocapdb::packing::detail {
+
+/// Called with a clip's index when the encoder is done with it (progress).
+using ClipDone = std::function<void(std::size_t)>;
 
 /// CRC-32 (zlib's) of a runtime body, as a runtime group's header stores it.
 inline std::uint32_t runtime_body_crc(const std::uint8_t* data, std::size_t size) {

@@ -52,7 +52,7 @@ std::int32_t rt_quantize(double v, double inv_step, double rounding) {
 
 RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan& plan,
                                       const std::vector<const Clip*>& clips, double E, int W, int key_offset,
-                                      double rounding, int threads) {
+                                      double rounding, int threads, const ClipDone& clip_done) {
     RuntimeCoefficients r;
     r.window = W;
     r.key_offset = key_offset;
@@ -65,7 +65,14 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
     std::vector<std::vector<RuntimeEntry>> clip_entries(clips.size());
     std::vector<double> clip_max(clips.size(), 0.0);
     const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(std::max(1, threads)), clips.size());
-    run_on_workers(workers, clips.size(), [&](std::size_t i, std::size_t) {
+    // Longest clips first, so that no worker is left alone with a long clip at the end.
+    std::vector<std::size_t> order(clips.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return clips[a]->frame_count() > clips[b]->frame_count();
+    });
+    run_on_workers(workers, clips.size(), [&](std::size_t task, std::size_t) {
+        const std::size_t i = order[task];
         std::vector<double> row, p(static_cast<std::size_t>(m.dofs));
         GlobalPose pose;
         int k_prev = k_start, kk_prev = k_start;
@@ -178,6 +185,7 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
         end.key_step = key_step[static_cast<std::size_t>(nw)];
         end.key = std::move(key_q[static_cast<std::size_t>(nw)]);
         entries.push_back(std::move(end));
+        if (clip_done) clip_done(i);
     });
     for (std::size_t i = 0; i < clips.size(); ++i) {
         r.clip_first.push_back(r.entries.size());

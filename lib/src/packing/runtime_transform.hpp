@@ -17,9 +17,10 @@ namespace mocapdb::packing::detail {
 /// `clips` in group order (m.clips' order); W a power of two in 2..32; keys key_offset step indices
 /// finer than the coarsest that holds (checked again, made finer until they hold). Throws
 /// PackingFailed when a frame cannot meet E even at the finest step. Clips run on up to `threads`
-/// workers (the result does not depend on their number; a worker's exception reaches the caller).
+/// workers (the result does not depend on their number; a worker's exception reaches the caller);
+/// clip_done(i), when set, is called from the workers (concurrently) as each clip i is done.
 RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan& plan,
                                       const std::vector<const Clip*>& clips, double max_error_cm, int W, int key_offset,
-                                      double rounding, int threads = 1);
+                                      double rounding, int threads = 1, const ClipDone& clip_done = {});
 
 }  // namespace mocapdb::packing::detail
