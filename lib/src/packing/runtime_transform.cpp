@@ -68,9 +68,8 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
     // Longest clips first, so that no worker is left alone with a long clip at the end.
     std::vector<std::size_t> order(clips.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return clips[a]->frame_count() > clips[b]->frame_count();
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return clips[a]->frame_count() > clips[b]->frame_count(); });
     run_on_workers(workers, clips.size(), [&](std::size_t task, std::size_t) {
         const std::size_t i = order[task];
         std::vector<double> row, p(static_cast<std::size_t>(m.dofs));
