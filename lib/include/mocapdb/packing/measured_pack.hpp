@@ -8,8 +8,9 @@
 // E lowered by twice the excess, up to three attempts (the rule `mocapdb pack` applies,
 // workflow/pack_collection.cpp), so the figures are those of bytes that meet E.
 //
-// Inputs are borrowed for the call. Thread-safety: pack_group's threads (options.threads); the
-// measurement runs on the calling thread. Errors: those of pack_group; Error when the decoded group
+// Inputs are borrowed for the call. Thread-safety: pack_group's threads (options.threads), and as many
+// for the measurement (clip by clip; the figures do not depend on their number; decode_seconds sums
+// the clips' decode times). Errors: those of pack_group; Error when the decoded group
 // still misses E after three attempts.
 #include <cstddef>
 #include <vector>
