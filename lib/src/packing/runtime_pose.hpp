@@ -1,11 +1,12 @@
 #pragma once
 // The runtime tier's y -> local pose (internal to the packing module): x = U y in float32, the dofs,
-// and the non-root joints' rotations as ChannelWriter::write_local forms them (exp maps, projections
-// onto the joints' channels), from plain arrays. One kernel source (runtime_pose_kernel.inc) built
-// twice: portable (runtime_pose_portable.cpp) and with AVX2 + FMA (runtime_pose_avx2.cpp, when the
-// compiler takes the flags), chosen at run time by the CPU. No Eigen and no shared inline code in the
-// kernels, so the AVX2 build's code cannot stand in for the portable one's (ODR). Both builds give
-// the same bits (IEEE operations lane by lane, no contraction); tests/packing checks it.
+// and the joints' rotations as ChannelWriter::write_local forms them (exp maps, projections onto the
+// joints' channels; equal to its rotations to rounding, not to the bit), from plain arrays. One kernel
+// source (runtime_pose_kernel.inc) built twice: portable (runtime_pose_portable.cpp) and with AVX2 +
+// FMA (runtime_pose_avx2.cpp, when the compiler takes the flags), chosen at run time by the CPU. No
+// Eigen and no shared inline code in the kernels, so the AVX2 build's code cannot stand in for the
+// portable one's (ODR). Both builds give the same bits (IEEE operations lane by lane, no
+// contraction); tests/packing checks it.
 #include <cstddef>
 
 namespace mocapdb::packing::detail {
@@ -49,6 +50,7 @@ void pose_dofs_avx2(const PoseKernel& k, const double* y, double* p);
 /// The rotations (x, y, z, w per joint, the layout of Eigen::Quaterniond) of the lanes' joints from
 /// p; false when a lane needs ChannelWriter's scalar path (an angle under 1e-12, near gimbal lock or
 /// the Euler family boundary): then nothing is complete and the caller decodes the pose that way.
+/// Each lane's rotation is write_local's to rounding (~1e-16).
 bool pose_rotations_portable(const PoseKernel& k, const double* p, double* rotations);
 bool pose_rotations_avx2(const PoseKernel& k, const double* p, double* rotations);
 /// The motion root's rotation and translation (x, y, z, w and x, y, z at its joint) from p, for a
@@ -58,19 +60,28 @@ bool pose_root_portable(const PoseKernel& k, const double* placement, const doub
                         double* translations);
 bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations,
                     double* translations);
+/// pose_root then pose_rotations (the same bits), their stages interleaved; false when either is.
+bool pose_local_portable(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                         double* translations);
+bool pose_local_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                     double* translations);
 /// Whether this build has the AVX2 kernels and the CPU runs them.
 bool pose_avx2_available();
 
 /// The functions above of one build (suffix portable or avx2), in a file that includes
 /// runtime_pose_kernel.inc.
-#define MOCAPDB_POSE_KERNELS(suffix)                                                                          \
-    void pose_dofs_##suffix(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }        \
-    bool pose_rotations_##suffix(const PoseKernel& k, const double* p, double* rotations) {                   \
-        return kernel_rotations(k, p, rotations);                                                             \
-    }                                                                                                         \
-    bool pose_root_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations, \
-                            double* translations) {                                                           \
-        return kernel_root(k, placement, p, rotations, translations);                                         \
+#define MOCAPDB_POSE_KERNELS(suffix)                                                                           \
+    void pose_dofs_##suffix(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }         \
+    bool pose_rotations_##suffix(const PoseKernel& k, const double* p, double* rotations) {                    \
+        return kernel_local(k, nullptr, p, rotations, nullptr, false, true);                                   \
+    }                                                                                                          \
+    bool pose_root_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations,  \
+                            double* translations) {                                                            \
+        return kernel_local(k, placement, p, rotations, translations, true, false);                            \
+    }                                                                                                          \
+    bool pose_local_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations, \
+                             double* translations) {                                                           \
+        return kernel_local(k, placement, p, rotations, translations, true, true);                             \
     }
 
 }  // namespace mocapdb::packing::detail

@@ -116,11 +116,8 @@ void runtime_local_pose(const GroupModel& m, const RuntimePosePlan& plan, const 
     std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));
     auto* rotations = reinterpret_cast<double*>(out.rotations.data());
     auto* translations = reinterpret_cast<double*>(out.translations.data());
-    bool ok = plan.avx2 ? pose_root_avx2(sk.kernel, placement, p, rotations, translations)
-                        : pose_root_portable(sk.kernel, placement, p, rotations, translations);
-    ok =
-        (plan.avx2 ? pose_rotations_avx2(sk.kernel, p, rotations) : pose_rotations_portable(sk.kernel, p, rotations)) &&
-        ok;
+    const bool ok = plan.avx2 ? pose_local_avx2(sk.kernel, placement, p, rotations, translations)
+                              : pose_local_portable(sk.kernel, placement, p, rotations, translations);
     if (!ok || sk.root_projects) {
         m.local_of(e, p, out);
         return;
