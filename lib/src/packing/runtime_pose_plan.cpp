@@ -20,10 +20,11 @@ std::size_t RuntimePosePlan::memory_bytes() const {
 }
 
 void make_runtime_pose_plan(const GroupModel& m, bool allow_avx2, RuntimePosePlan& plan) {
-    const int da = static_cast<int>(m.active.size()), dp = (da + 7) / 8 * 8;
+    const int da = static_cast<int>(m.active.size()), dp = (da + 15) / 16 * 16;
     if (da > 256)
         throw InvalidArgument("runtime tier: " + std::to_string(da) + " active dofs in a group, expected at most 256");
     plan.avx2 = allow_avx2 && pose_avx2_available();
+    plan.avx512 = allow_avx2 && pose_avx512_available();
     plan.basis.assign(static_cast<std::size_t>(dp) * static_cast<std::size_t>(da), 0.0f);
     for (int c = 0; c < da; ++c)
         for (int r = 0; r < da; ++r)
@@ -116,8 +117,9 @@ void runtime_local_pose(const GroupModel& m, const RuntimePosePlan& plan, const 
     std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));
     auto* rotations = reinterpret_cast<double*>(out.rotations.data());
     auto* translations = reinterpret_cast<double*>(out.translations.data());
-    const bool ok = plan.avx2 ? pose_local_avx2(sk.kernel, placement, p, rotations, translations)
-                              : pose_local_portable(sk.kernel, placement, p, rotations, translations);
+    const bool ok = plan.avx512 ? pose_local_avx512(sk.kernel, placement, p, rotations, translations)
+                    : plan.avx2 ? pose_local_avx2(sk.kernel, placement, p, rotations, translations)
+                                : pose_local_portable(sk.kernel, placement, p, rotations, translations);
     if (!ok || sk.root_projects) {
         m.local_of(e, p, out);
         return;
