@@ -13,7 +13,7 @@ namespace mocapdb::packing::detail {
 std::size_t RuntimePosePlan::memory_bytes() const {
     std::size_t total = sizeof(*this) + basis.capacity() * sizeof(float);
     for (const Skeleton& s : skeletons) {
-        total += sizeof(s) + s.inverse_weights.capacity() * sizeof(double);
+        total += sizeof(s) + s.inverse_weights.capacity() * sizeof(double) + s.rest_joints.capacity() * sizeof(int);
         for (const auto& lanes : s.lanes) total += lanes.capacity() * sizeof(PoseLanes);
     }
     return total;
@@ -68,6 +68,13 @@ void make_runtime_pose_plan(const GroupModel& m, bool allow_avx2, RuntimePosePla
             }
             first += count[kind];
         }
+        std::vector<bool> written(view.rest_rotations->size(), false);
+        written[view.motion_root] = view.root_rotates;
+        for (const auto& kind : sk.lanes)
+            for (const PoseLanes& lanes : kind)
+                for (int l = 0; l < lanes.count; ++l) written[static_cast<std::size_t>(lanes.joint[l])] = true;
+        for (std::size_t j = 0; j < written.size(); ++j)
+            if (!written[j]) sk.rest_joints.push_back(static_cast<int>(j));
         PoseRoot& root = sk.root;
         root.joint = static_cast<int>(view.motion_root);
         root.rotates = view.root_rotates;
@@ -110,8 +117,10 @@ void runtime_local_pose(const GroupModel& m, const RuntimePosePlan& plan, const 
     out.translations.resize(n);
     static_assert(sizeof(Quat) == 4 * sizeof(double) && sizeof(Vec3) == 3 * sizeof(double),
                   "Quat: x, y, z, w; Vec3: x, y, z");
-    std::memcpy(static_cast<void*>(out.rotations.data()), v.rest_rotations->data(), n * sizeof(Quat));
+    // Rest translations (the motion root's is written below) and the rest rotations the kernels leave.
     std::memcpy(static_cast<void*>(out.translations.data()), v.rest_translations->data(), n * sizeof(Vec3));
+    for (const int j : sk.rest_joints)
+        out.rotations[static_cast<std::size_t>(j)] = (*v.rest_rotations)[static_cast<std::size_t>(j)];
     double placement[7];
     std::memcpy(placement, e.placement.heading.coeffs().data(), 4 * sizeof(double));
     std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));

@@ -17,7 +17,8 @@ struct RuntimePosePlan {
         std::vector<PoseLanes> lanes[3];
         PoseKernel kernel;
         PoseRoot root;
-        bool root_projects = false;  ///< the motion root has rotation channels, but not three: library path
+        bool root_projects = false;    ///< the motion root has rotation channels, but not three: library path
+        std::vector<int> rest_joints;  ///< joints whose rotation the kernels do not write (it stays at rest)
     };
     std::vector<Skeleton> skeletons;
     bool avx2 = false;    ///< the AVX2 kernels (the CPU has them and they were not turned off)
