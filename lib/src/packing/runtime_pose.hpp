@@ -50,7 +50,7 @@ void pose_dofs_portable(const PoseKernel& k, const double* y, double* p);
 void pose_dofs_avx2(const PoseKernel& k, const double* y, double* p);
 void pose_dofs_avx512(const PoseKernel& k, const double* y, double* p);
 /// The rotations (x, y, z, w per joint, the layout of Eigen::Quaterniond) of the lanes' joints from
-/// p; false when a lane needs ChannelWriter's scalar path (an exp-map angle above 5 rad, near gimbal
+/// p; false when a lane needs ChannelWriter's scalar path (an exp-map angle above 7 rad, near gimbal
 /// lock or the Euler family boundary): then nothing is complete and the caller decodes the pose that
 /// way. Each lane's rotation is write_local's to rounding (~1e-15).
 bool pose_rotations_portable(const PoseKernel& k, const double* p, double* rotations);
