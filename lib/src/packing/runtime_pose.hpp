@@ -1,11 +1,13 @@
 #pragma once
 // The runtime tier's y -> local pose (internal to the packing module): x = U y in float32, the dofs,
-// and the non-root joints' rotations as ChannelWriter::write_local forms them (exp maps, projections
-// onto the joints' channels), from plain arrays. One kernel source (runtime_pose_kernel.inc) built
-// twice: portable (runtime_pose_portable.cpp) and with AVX2 + FMA (runtime_pose_avx2.cpp, when the
+// and the joints' rotations as ChannelWriter::write_local forms them (exp maps, projections onto the
+// joints' channels; equal to its rotations to rounding, not to the bit), from plain arrays. One kernel
+// source (runtime_pose_kernel.inc) built three times: portable (runtime_pose_portable.cpp), with AVX2
+// + FMA (runtime_pose_avx2.cpp) and with AVX-512 F and VL (runtime_pose_avx512.cpp; each where the
 // compiler takes the flags), chosen at run time by the CPU. No Eigen and no shared inline code in the
-// kernels, so the AVX2 build's code cannot stand in for the portable one's (ODR). Both builds give
-// the same bits (IEEE operations lane by lane, no contraction); tests/packing checks it.
+// kernels, so one build's code cannot stand in for another's (ODR). Every build gives the same bits
+// (IEEE operations lane by lane, no contraction); tests/packing checks the CPU's best against the
+// portable one.
 #include <cstddef>
 
 namespace mocapdb::packing::detail {
@@ -35,7 +37,7 @@ struct PoseRoot {
 
 /// One skeleton of a group: what the kernels read (owned by the caller).
 struct PoseKernel {
-    int da = 0, dp = 0, dofs = 0;             ///< active dofs, da rounded up to 8, all dofs
+    int da = 0, dp = 0, dofs = 0;             ///< active dofs, da rounded up to 16, all dofs
     const float* basis = nullptr;             ///< dp by da, column-major (column k at k·dp), rows past da zero
     const double* inverse_weights = nullptr;  ///< 1 / the da active weights
     const int* active = nullptr;              ///< da indices into p
@@ -49,11 +51,14 @@ struct PoseKernel {
 /// product then a sum, no FMA), x[i] · inverse_weights[i] at active[i], constant elsewhere.
 void pose_dofs_portable(const PoseKernel& k, const double* y, double* p);
 void pose_dofs_avx2(const PoseKernel& k, const double* y, double* p);
+void pose_dofs_avx512(const PoseKernel& k, const double* y, double* p);
 /// The rotations (x, y, z, w per joint, the layout of Eigen::Quaterniond) of the lanes' joints from
-/// p; false when a lane needs ChannelWriter's scalar path (an angle under 1e-12, near gimbal lock or
-/// the Euler family boundary): then nothing is complete and the caller decodes the pose that way.
+/// p; false when a lane needs ChannelWriter's scalar path (an exp-map angle above 7 rad, near gimbal
+/// lock or the Euler family boundary): then nothing is complete and the caller decodes the pose that
+/// way. Each lane's rotation is write_local's to rounding (~1e-15).
 bool pose_rotations_portable(const PoseKernel& k, const double* p, double* rotations);
 bool pose_rotations_avx2(const PoseKernel& k, const double* p, double* rotations);
+bool pose_rotations_avx512(const PoseKernel& k, const double* p, double* rotations);
 /// The motion root's rotation and translation (x, y, z, w and x, y, z at its joint) from p, for a
 /// clip placed by `placement` (heading x, y, z, w, then translation); false when an exp map's angle is
 /// under 1e-12 (then nothing is complete: the caller decodes the pose by ChannelWriter).
@@ -61,19 +66,34 @@ bool pose_root_portable(const PoseKernel& k, const double* placement, const doub
                         double* translations);
 bool pose_root_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations,
                     double* translations);
+bool pose_root_avx512(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                      double* translations);
+/// pose_root then pose_rotations (the same bits), their stages interleaved; false when either is.
+bool pose_local_portable(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                         double* translations);
+bool pose_local_avx2(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                     double* translations);
+bool pose_local_avx512(const PoseKernel& k, const double* placement, const double* p, double* rotations,
+                       double* translations);
 /// Whether this build has the AVX2 kernels and the CPU runs them.
 bool pose_avx2_available();
+/// Whether this build has the AVX-512 kernels and the CPU runs them (then it runs the AVX2 ones too).
+bool pose_avx512_available();
 
-/// The functions above of one build (suffix portable or avx2), in a file that includes
+/// The functions above of one build (suffix portable, avx2 or avx512), in a file that includes
 /// runtime_pose_kernel.inc.
-#define MOCAPDB_POSE_KERNELS(suffix)                                                                          \
-    void pose_dofs_##suffix(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }        \
-    bool pose_rotations_##suffix(const PoseKernel& k, const double* p, double* rotations) {                   \
-        return kernel_rotations(k, p, rotations);                                                             \
-    }                                                                                                         \
-    bool pose_root_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations, \
-                            double* translations) {                                                           \
-        return kernel_root(k, placement, p, rotations, translations);                                         \
+#define MOCAPDB_POSE_KERNELS(suffix)                                                                           \
+    void pose_dofs_##suffix(const PoseKernel& k, const double* y, double* p) { kernel_dofs(k, y, p); }         \
+    bool pose_rotations_##suffix(const PoseKernel& k, const double* p, double* rotations) {                    \
+        return kernel_local(k, nullptr, p, rotations, nullptr, false, true);                                   \
+    }                                                                                                          \
+    bool pose_root_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations,  \
+                            double* translations) {                                                            \
+        return kernel_local(k, placement, p, rotations, translations, true, false);                            \
+    }                                                                                                          \
+    bool pose_local_##suffix(const PoseKernel& k, const double* placement, const double* p, double* rotations, \
+                             double* translations) {                                                           \
+        return kernel_local(k, placement, p, rotations, translations, true, true);                             \
     }
 
 }  // namespace mocapdb::packing::detail

@@ -13,18 +13,19 @@ namespace mocapdb::packing::detail {
 std::size_t RuntimePosePlan::memory_bytes() const {
     std::size_t total = sizeof(*this) + basis.capacity() * sizeof(float);
     for (const Skeleton& s : skeletons) {
-        total += sizeof(s) + s.inverse_weights.capacity() * sizeof(double);
+        total += sizeof(s) + s.inverse_weights.capacity() * sizeof(double) + s.rest_joints.capacity() * sizeof(int);
         for (const auto& lanes : s.lanes) total += lanes.capacity() * sizeof(PoseLanes);
     }
     return total;
 }
 
 void make_runtime_pose_plan(const GroupModel& m, bool allow_avx2, RuntimePosePlan& plan) {
-    const int da = static_cast<int>(m.active.size()), dp = (da + 7) / 8 * 8;
+    const int da = static_cast<int>(m.active.size()), dp = (da + 15) / 16 * 16;
     if (da > kRuntimeMaxDofs)
         throw InvalidArgument("runtime tier: " + std::to_string(da) + " active dofs in a group, expected at most " +
                               std::to_string(kRuntimeMaxDofs));
     plan.avx2 = allow_avx2 && pose_avx2_available();
+    plan.avx512 = allow_avx2 && pose_avx512_available();
     plan.basis.assign(static_cast<std::size_t>(dp) * static_cast<std::size_t>(da), 0.0f);
     for (int c = 0; c < da; ++c)
         for (int r = 0; r < da; ++r)
@@ -68,6 +69,13 @@ void make_runtime_pose_plan(const GroupModel& m, bool allow_avx2, RuntimePosePla
             }
             first += count[kind];
         }
+        std::vector<bool> written(view.rest_rotations->size(), false);
+        written[view.motion_root] = view.root_rotates;
+        for (const auto& kind : sk.lanes)
+            for (const PoseLanes& lanes : kind)
+                for (int l = 0; l < lanes.count; ++l) written[static_cast<std::size_t>(lanes.joint[l])] = true;
+        for (std::size_t j = 0; j < written.size(); ++j)
+            if (!written[j]) sk.rest_joints.push_back(static_cast<int>(j));
         PoseRoot& root = sk.root;
         root.joint = static_cast<int>(view.motion_root);
         root.rotates = view.root_rotates;
@@ -110,18 +118,18 @@ void runtime_local_pose(const GroupModel& m, const RuntimePosePlan& plan, const 
     out.translations.resize(n);
     static_assert(sizeof(Quat) == 4 * sizeof(double) && sizeof(Vec3) == 3 * sizeof(double),
                   "Quat: x, y, z, w; Vec3: x, y, z");
-    std::memcpy(static_cast<void*>(out.rotations.data()), v.rest_rotations->data(), n * sizeof(Quat));
+    // Rest translations (the motion root's is written below) and the rest rotations the kernels leave.
     std::memcpy(static_cast<void*>(out.translations.data()), v.rest_translations->data(), n * sizeof(Vec3));
+    for (const int j : sk.rest_joints)
+        out.rotations[static_cast<std::size_t>(j)] = (*v.rest_rotations)[static_cast<std::size_t>(j)];
     double placement[7];
     std::memcpy(placement, e.placement.heading.coeffs().data(), 4 * sizeof(double));
     std::memcpy(placement + 4, e.placement.translation.data(), 3 * sizeof(double));
     auto* rotations = reinterpret_cast<double*>(out.rotations.data());
     auto* translations = reinterpret_cast<double*>(out.translations.data());
-    bool ok = plan.avx2 ? pose_root_avx2(sk.kernel, placement, p, rotations, translations)
-                        : pose_root_portable(sk.kernel, placement, p, rotations, translations);
-    ok =
-        (plan.avx2 ? pose_rotations_avx2(sk.kernel, p, rotations) : pose_rotations_portable(sk.kernel, p, rotations)) &&
-        ok;
+    const bool ok = plan.avx512 ? pose_local_avx512(sk.kernel, placement, p, rotations, translations)
+                    : plan.avx2 ? pose_local_avx2(sk.kernel, placement, p, rotations, translations)
+                                : pose_local_portable(sk.kernel, placement, p, rotations, translations);
     if (!ok || sk.root_projects) {
         m.local_of(e, p, out);
         return;

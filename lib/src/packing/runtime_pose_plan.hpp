@@ -11,29 +11,32 @@
 namespace mocapdb::packing::detail {
 
 struct RuntimePosePlan {
-    std::vector<float> basis;  ///< dp by da, column-major, rows past da zero
+    std::vector<float> basis;  ///< dp (da rounded up to 16) by da, column-major, rows past da zero
     struct Skeleton {
         std::vector<double> inverse_weights;
         std::vector<PoseLanes> lanes[3];
         PoseKernel kernel;
         PoseRoot root;
-        bool root_projects = false;  ///< the motion root has rotation channels, but not three: library path
+        bool root_projects = false;    ///< the motion root has rotation channels, but not three: library path
+        std::vector<int> rest_joints;  ///< joints whose rotation the kernels do not write (it stays at rest)
     };
     std::vector<Skeleton> skeletons;
-    bool avx2 = false;  ///< the AVX2 kernels (the CPU has them and they were not turned off)
+    bool avx2 = false;    ///< the AVX2 kernels (the CPU has them and they were not turned off)
+    bool avx512 = false;  ///< the AVX-512 kernels instead (the same conditions)
 
     /// Memory held (containers' capacities).
     std::size_t memory_bytes() const;
 };
 
 /// The plan of model m (at most 256 active dofs: InvalidArgument otherwise). `allow_avx2`: use the
-/// AVX2 kernels where the CPU has them.
+/// AVX-512 or AVX2 kernels where the CPU has them.
 void make_runtime_pose_plan(const GroupModel& m, bool allow_avx2, RuntimePosePlan& out);
 
 /// Frame y's dofs (m.dofs values into p): x = U y in float32, unweighted, constants elsewhere.
 inline void runtime_dofs(const RuntimePosePlan& plan, const ClipEntry& e, const double* y, double* p) {
     const PoseKernel& k = plan.skeletons[e.skeleton].kernel;
-    if (plan.avx2) pose_dofs_avx2(k, y, p);
+    if (plan.avx512) pose_dofs_avx512(k, y, p);
+    else if (plan.avx2) pose_dofs_avx2(k, y, p);
     else pose_dofs_portable(k, y, p);
 }
 

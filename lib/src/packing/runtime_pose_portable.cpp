@@ -20,9 +20,21 @@ bool pose_avx2_available() {
 #endif
 }
 
+bool pose_avx512_available() {
+#if defined(MOCAPDB_POSE_AVX512)
+    return pose_avx2_available() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
+#else
+    return false;
+#endif
+}
+
 #if !defined(MOCAPDB_POSE_AVX2)
 // No AVX2 build of the kernels: never called (pose_avx2_available() is false); the portable ones.
 MOCAPDB_POSE_KERNELS(avx2)
+#endif
+#if !defined(MOCAPDB_POSE_AVX512)
+// No AVX-512 build: never called (pose_avx512_available() is false); the portable ones.
+MOCAPDB_POSE_KERNELS(avx512)
 #endif
 
 }  // namespace mocapdb::packing::detail
