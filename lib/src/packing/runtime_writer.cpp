@@ -144,10 +144,64 @@ std::size_t rt_quad_bits(const RtQuadCodes& qc, int level, const std::vector<std
     return bits;
 }
 
-/// A window: step byte, directory (widths: given per clip, or nullptr: in the window; need: only each
+/// Per clip the entries' step fields: field 0 the key's step minus the clip's base, field l (1 ..
+/// levels) level l's step minus the clip's base, times kRuntimePredictors plus the level's predictor
+/// at levels >= 2; each at the clip's width for the field. A level whose columns are all zero in a
+/// window decodes the same at any step: its field takes the base.
+struct RtStepFields {
+    std::vector<std::array<int, kMaxLevels + 1>> base, width;
+    static bool zero_level(const RuntimeEntry& e, const std::vector<int>& tree_level, int l) {
+        for (std::size_t c = 0; c < e.columns.size(); ++c)
+            if (tree_level[c] == l)
+                for (std::int32_t v : e.columns[c])
+                    if (v) return false;
+        return true;
+    }
+    std::uint64_t value(std::size_t clip, int l, const RuntimeEntry& e, const std::vector<int>& tree_level) const {
+        const int b = base[clip][static_cast<std::size_t>(l)];
+        if (l == 0) return static_cast<std::uint64_t>(e.key_step - b);
+        const auto k = static_cast<std::size_t>(l - 1);
+        const int step = zero_level(e, tree_level, l) ? b : e.level_step[k];
+        return static_cast<std::uint64_t>(l == 1 ? step - b : (step - b) * kRuntimePredictors + e.level_predictor[k]);
+    }
+    RtStepFields(const RuntimeCoefficients& r, const std::vector<int>& tree_level) {
+        const std::size_t clips = r.clip_first.size() - 1;
+        base.assign(clips, {});
+        width.assign(clips, {});
+        for (std::size_t i = 0; i < clips; ++i) {
+            std::array<int, kMaxLevels + 1> lo, hi;
+            lo.fill(kMaxStep + 1);
+            hi.fill(-1);
+            for (std::size_t k = r.clip_first[i]; k < r.clip_first[i + 1]; ++k) {
+                const RuntimeEntry& e = r.entries[k];
+                lo[0] = std::min(lo[0], e.key_step);
+                hi[0] = std::max(hi[0], e.key_step);
+                if (e.step < 0) continue;
+                for (int l = 1; l <= r.levels; ++l)
+                    if (!zero_level(e, tree_level, l)) {
+                        const auto L = static_cast<std::size_t>(l);
+                        lo[L] = std::min(lo[L], e.level_step[L - 1]);
+                        hi[L] = std::max(hi[L], e.level_step[L - 1]);
+                    }
+            }
+            for (int l = 0; l <= r.levels; ++l) {
+                const auto L = static_cast<std::size_t>(l);
+                base[i][L] = hi[L] < 0 ? 0 : lo[L];
+            }
+            std::uint64_t largest[kMaxLevels + 1] = {0};
+            for (std::size_t k = r.clip_first[i]; k < r.clip_first[i + 1]; ++k)
+                for (int l = 0; l <= (r.entries[k].step < 0 ? 0 : r.levels); ++l)
+                    largest[l] = std::max(largest[l], value(i, l, r.entries[k], tree_level));
+            for (int l = 0; l <= r.levels; ++l) width[i][static_cast<std::size_t>(l)] = rt_bit_length(largest[l]);
+        }
+    }
+};
+
+/// A window: step fields, directory (widths: given per clip, or nullptr: in the window; need: only each
 /// level's largest width into need[l], nothing written), columns in tree order.
 void rt_write_window(RtBitWriter& out, const RtQuadCodes& qc, const RuntimeEntry& e, const std::vector<int>& tree_level,
-                     int levels, int stored, const int* widths, int* need) {
+                     int levels, int stored, const int* widths, int* need, const RtStepFields* fields = nullptr,
+                     std::size_t clip = 0) {
     std::vector<std::size_t> size;
     for (std::size_t i = 0; i < e.columns.size(); ++i) size.push_back(rt_quad_bits(qc, tree_level[i], e.columns[i]));
     std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(levels));
@@ -168,7 +222,8 @@ void rt_write_window(RtBitWriter& out, const RtQuadCodes& qc, const RuntimeEntry
         if (need) need[l] = std::max(need[l], width[static_cast<std::size_t>(l)]);
     }
     if (need) return;
-    out.put(static_cast<std::uint64_t>(e.step), 8);
+    for (int l = 1; l <= levels; ++l)
+        out.put(fields->value(clip, l, e, tree_level), fields->width[clip][static_cast<std::size_t>(l)]);
     for (int l = 1; l <= stored; ++l) {
         if (widths) width[static_cast<std::size_t>(l)] = widths[l];
         else out.put(static_cast<std::uint64_t>(width[static_cast<std::size_t>(l)]), 5);
@@ -208,6 +263,7 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
         qc.codes.push_back(rt_canonical_codes(qc.lengths.back()));
     }
     const RtKeyRows keys = rt_key_rows(r, n);
+    const RtStepFields fields(r, tree_level);
 
     // Entries, clip by clip; per clip the directory's widths in the clip table or in each window,
     // whichever gives the clip's entries fewer bytes.
@@ -223,9 +279,9 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
                 rt_write_window(entries, qc, r.entries[k], tree_level, levels, stored, nullptr, widths);
         auto entry = [&](RtBitWriter& o, std::size_t k, const int* w) {
             const RuntimeEntry& e = r.entries[k];
-            o.put(static_cast<std::uint64_t>(e.key_step), 8);
+            o.put(fields.value(i, 0, e, tree_level), fields.width[i][0]);
             rt_write_key(o, keys, i, n, e.key);
-            if (e.step >= 0) rt_write_window(o, qc, e, tree_level, levels, stored, w, nullptr);
+            if (e.step >= 0) rt_write_window(o, qc, e, tree_level, levels, stored, w, nullptr, &fields, i);
             o.align();
         };
         std::size_t per_clip = 0, per_window = 0;
@@ -286,7 +342,11 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
     rt_write_lengths(side, delta_lengths, kSideSymbolBits);
     rt_write_lengths(side, center_lengths, kSideSymbolBits);
     rt_write_lengths(side, extra_lengths, kSideSymbolBits);
-    for (std::size_t i = 0; i < clips; ++i)
+    for (std::size_t i = 0; i < clips; ++i) {
+        for (int l = 0; l <= levels; ++l) {
+            side.put(static_cast<std::uint64_t>(fields.base[i][static_cast<std::size_t>(l)]), 8);
+            side.put(static_cast<std::uint64_t>(fields.width[i][static_cast<std::size_t>(l)]), 4);
+        }
         for (std::size_t d = 0; d < n; ++d) {
             const auto delta = static_cast<std::size_t>(largest[d] - keys.width[i * n + d]);
             const std::int32_t center = keys.center[i * n + d];
@@ -297,6 +357,7 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
             side.put(static_cast<std::uint64_t>(static_cast<std::int64_t>(center)), static_cast<int>(cw));
             side.put(extra_codes[extra], extra_lengths[extra]);
         }
+    }
     for (std::size_t i = 0; i < clips; ++i) {
         const bool by_clip = widths_by_clip[i] != 0;
         side.put(by_clip ? 1 : 0, 1);
