@@ -30,8 +30,9 @@ struct RtPlanRow {
 
 /// Per clip: where its entries' offsets are, its key plan's counts, its directory widths.
 struct RtClipInfo {
-    std::uint32_t base = 0;       ///< first entry's byte offset in the entries
-    std::uint32_t at = 0;         ///< bit of its later entries' offsets in the offset stream
+    std::int64_t origin = 0;  ///< entry k's byte offset in the entries: origin + k · slope + its field
+    std::uint32_t slope = 0;
+    std::uint32_t at = 0;         ///< bit of its entries' offset fields in the offset stream
     std::uint32_t entries = 0;    ///< entries (windows + 1)
     std::uint16_t slot_bits = 0;  ///< the keys' step field and slots (escaped values follow)
     std::uint16_t plain = 0;      ///< plan rows of nonzero width without escapes
@@ -81,7 +82,9 @@ struct RuntimeDecoder::Impl {
     void walk() const;
     std::size_t entry_offset(std::size_t clip, std::size_t k) const {
         const RtClipInfo& c = clips[clip];
-        return c.base + (k ? rt_unsigned_bits(offsets, c.at + (k - 1) * c.offset_width, c.offset_width) : 0);
+        return static_cast<std::size_t>(
+            c.origin + static_cast<std::int64_t>(k * c.slope) +
+            static_cast<std::int64_t>(rt_field(offsets, c.at + k * c.offset_width, c.offset_width)));
     }
 
     // The hot path (no checks: the walk at construction made every read stay in the body).
@@ -347,14 +350,15 @@ void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_si
         c.by_clip = static_cast<std::uint8_t>(in.get(1));
         if (c.by_clip)
             for (int l = 1; l <= stored; ++l) c.widths[l] = static_cast<std::uint8_t>(in.get(5));
-        c.base = static_cast<std::uint32_t>(in.get(32));
+        c.origin = in.get_signed(34);
+        c.slope = static_cast<std::uint32_t>(in.get(24));
         c.offset_width = static_cast<std::uint8_t>(in.get(6));
         c.entries = static_cast<std::uint32_t>(runtime_entry_count(model.clips[i].frames, W));
         c.at = static_cast<std::uint32_t>(offset_bit);
-        if (c.entries > 1 && (c.offset_width == 0 || c.offset_width > 32))
+        if (c.offset_width > 32)
             throw Error("runtime body: clip " + std::to_string(i) + " offsets of " + std::to_string(c.offset_width) +
-                        " bits, expected 1-32");
-        offset_bit += (c.entries > 0 ? c.entries - 1 : 0) * static_cast<std::size_t>(c.offset_width);
+                        " bits, expected at most 32");
+        offset_bit += c.entries * static_cast<std::size_t>(c.offset_width);
         if (offset_bit > 8 * offset_bytes)
             throw Error("runtime body: the offsets of clip " + std::to_string(i) + " pass the offset stream's " +
                         std::to_string(offset_bytes) + " bytes");
@@ -671,7 +675,7 @@ void RuntimeDecoder::Impl::frame_y(std::size_t clip, std::size_t frame, double* 
         key_one(clip, o0, y);
         return;
     }
-    const std::size_t o1 = ci.base + rt_unsigned_bits(offsets, ci.at + w * ci.offset_width, ci.offset_width);
+    const std::size_t o1 = entry_offset(clip, w + 1);
     {
         // The window's bytes and the next key's: prefetched first, so that the misses overlap.
         const std::size_t end = o1 + ci.slot_bits / 8 + 8;
@@ -682,9 +686,8 @@ void RuntimeDecoder::Impl::frame_y(std::size_t clip, std::size_t frame, double* 
 
 void RuntimeDecoder::Impl::window_y(std::size_t clip, std::size_t w, double* frames) const {
     const auto n = static_cast<std::size_t>(Da);
-    const RtClipInfo& ci = clips[clip];
     const std::size_t o0 = entry_offset(clip, w);
-    const std::size_t o1 = ci.base + rt_unsigned_bits(offsets, ci.at + w * ci.offset_width, ci.offset_width);
+    const std::size_t o1 = entry_offset(clip, w + 1);
     const std::size_t bit = key_pair(clip, o0, o1, frames, frames + static_cast<std::size_t>(W) * n);
     double step[kMaxLevels + 1];
     int predictor[kMaxLevels + 1];

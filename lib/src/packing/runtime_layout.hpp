@@ -7,9 +7,10 @@
 // byte sizes of the side stream, the offset stream and the entries, each u32 little-endian), the side
 // stream (quad code tables; the keys' largest widths and three side codes; per clip its step fields'
 // bases (8 bits) and widths (4 bits), field 0 to levels, then its key rows' widths, centers and escape
-// widths; per clip the directory widths and its entries' offset base and width), the offset stream
-// (per clip each later entry's byte offset from the clip's first) and the entries (byte-aligned, clip
-// by clip), then kRuntimeSlack zero bytes.
+// widths; per clip the directory widths, its entries' offset line (origin, 34 bits two's complement,
+// and slope, 24 bits) and offset width), the offset stream (per clip each entry's byte offset minus
+// origin + k · slope, at the clip's width) and the entries (byte-aligned, clip by clip), then
+// kRuntimeSlack zero bytes.
 //
 // An entry: its key (step field 0: the step minus the clip's base; then per row the value minus the
 // clip's center at the clip's width for the row; a value outside the width's range is -2^(w-1) in its

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -305,16 +306,52 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
     }
     entries.align();
 
-    // Offsets: per clip each later entry's byte offset from the clip's first, at the clip's width.
+    // Offsets: per clip each entry's byte offset minus the clip's line (origin + k · slope), at the
+    // clip's width; the slope (near the clip's mean entry size) whose residuals span the fewest values.
     RtBitWriter offset_bits;
-    std::vector<std::size_t> base(clips, 0);
+    std::vector<std::int64_t> origin(clips, 0), slope(clips, 0);
     std::vector<int> offset_width(clips, 0);
     for (std::size_t i = 0; i < clips; ++i) {
         const std::size_t first = r.clip_first[i], last = r.clip_first[i + 1];
-        base[i] = first < last ? offsets[first] : entries.bytes.size();
         if (first == last) continue;
-        offset_width[i] = rt_bit_length(offsets[last - 1] - base[i]);
-        for (std::size_t k = first + 1; k < last; ++k) offset_bits.put(offsets[k] - base[i], offset_width[i]);
+        auto at = [&](std::size_t k) { return static_cast<std::int64_t>(offsets[first + k]); };
+        const std::size_t m = last - first;
+        std::vector<std::int64_t> candidates{0};
+        if (m > 1) {
+            // The line through the ends, and the least-squares line.
+            const std::int64_t ends = (at(m - 1) - at(0)) / static_cast<std::int64_t>(m - 1);
+            double sk = 0, so = 0, skk = 0, sko = 0;
+            for (std::size_t k = 0; k < m; ++k) {
+                const auto x = static_cast<double>(k), o = static_cast<double>(at(k));
+                sk += x;
+                so += o;
+                skk += x * x;
+                sko += x * o;
+            }
+            const double nm = static_cast<double>(m);
+            const auto ls = static_cast<std::int64_t>(std::llround((nm * sko - sk * so) / (nm * skk - sk * sk)));
+            for (std::int64_t c : {ends, ls})
+                for (std::int64_t d = -2; d <= 2; ++d)
+                    if (c + d >= 0) candidates.push_back(c + d);
+        }
+        std::int64_t best = -1;
+        for (std::int64_t c : candidates) {
+            std::int64_t lo = at(0), hi = at(0);
+            for (std::size_t k = 0; k < m; ++k) {
+                lo = std::min(lo, at(k) - static_cast<std::int64_t>(k) * c);
+                hi = std::max(hi, at(k) - static_cast<std::int64_t>(k) * c);
+            }
+            if (best < 0 || hi - lo < best) {
+                best = hi - lo;
+                slope[i] = c;
+                origin[i] = lo;
+            }
+        }
+        if (slope[i] >= (std::int64_t{1} << 24)) throw PackingFailed("runtime tier: entries of more than 2^24 bytes");
+        offset_width[i] = rt_bit_length(static_cast<std::uint64_t>(best));
+        for (std::size_t k = 0; k < m; ++k)
+            offset_bits.put(static_cast<std::uint64_t>(at(k) - static_cast<std::int64_t>(k) * slope[i] - origin[i]),
+                            offset_width[i]);
     }
     offset_bits.align();
 
@@ -364,7 +401,8 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
         if (by_clip)
             for (int l = 1; l <= stored; ++l)
                 side.put(static_cast<std::uint64_t>(clip_widths[i][static_cast<std::size_t>(l)]), 5);
-        side.put(base[i], 32);
+        side.put(static_cast<std::uint64_t>(origin[i]), 34);
+        side.put(static_cast<std::uint64_t>(slope[i]), 24);
         side.put(static_cast<std::uint64_t>(offset_width[i]), 6);
     }
     side.align();
