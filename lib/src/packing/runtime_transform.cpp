@@ -178,22 +178,29 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                         }
                     }
                 }
+                bool zeros = true;              // the last encode quantized every value to 0
+                int zeros_from = kMaxStep + 1;  // a step from which on the level is zeros and holds
                 auto encode = [&](int k) {
                     const double step = step_of(k), inv = 1.0 / step;
+                    zeros = true;
                     for (int t = h; t < W; t += 2 * h) {
                         const RtPredictorFrames f = rt_predictor_frames(t, h);
                         for (Eigen::Index d = 0; d < Da; ++d) {
                             const double pred = rt_predict(pm, yh, d, t0, f);
                             const std::int32_t v = rt_quantize(y(d, t0 + t) - pred, inv, rounding);
                             q[static_cast<std::size_t>(t * Da + d)] = v;
+                            zeros = zeros && v == 0;
                             yh(d, t0 + t) = v ? pred + v * step : pred;  // the decoder's form: zeros add nothing
                         }
                     }
                 };
+                // Zeros at step k stay zeros at any coarser step, with the same decoded frames.
                 auto passes = [&](int k) {
+                    if (k >= zeros_from) return true;
                     encode(k);
                     for (int t = h; t < W && t0 + t < F; t += 2 * h)
                         if (!frame_ok(t0 + t, yh.col(t0 + t).data())) return false;
+                    if (zeros) zeros_from = k;
                     return true;
                 };
                 int k;
@@ -206,10 +213,11 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                     if (k < 0)
                         throw PackingFailed(where + ": window " + std::to_string(w) +
                                             " fails E even at the finest step");
-                    kp = k;
                     worst = 0.0;
+                    zeros_from = kMaxStep + 1;
                     passes(k);
                     r.max_error_cm = std::max(r.max_error_cm, worst);
+                    kp = k;
                 }
                 entry.level_step[static_cast<std::size_t>(j - 1)] = k;
                 entry.level_predictor[static_cast<std::size_t>(j - 1)] = pm;
