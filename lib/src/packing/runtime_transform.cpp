@@ -80,7 +80,8 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
     int k_prev = std::clamp(static_cast<int>(std::lround(12.0 * (std::log2(E) + 14.0))), 0, kMaxStep);
     int kk_prev = k_prev;
     std::vector<int> k_level(kMaxLevels + 1, k_prev);
-    std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W));
+    std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W)), kept_q(q.size());
+    std::vector<double> kept_y(q.size());
     VecX tmp(Da);
     for (std::size_t i = 0; i < clips.size(); ++i) {
         r.clip_first.push_back(r.entries.size());
@@ -194,13 +195,32 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                         }
                     }
                 };
+                // The level's values, decoded frames and max error at the last step that held (the
+                // search's last passing step is the one it returns: no encode again).
+                auto keep = [&](bool restore) {
+                    std::size_t at = 0;
+                    for (int t = h; t < W; t += 2 * h)
+                        for (Eigen::Index d = 0; d < Da; ++d, ++at) {
+                            if (restore) {
+                                q[static_cast<std::size_t>(t * Da + d)] = kept_q[at];
+                                yh(d, t0 + t) = kept_y[at];
+                            } else {
+                                kept_q[at] = q[static_cast<std::size_t>(t * Da + d)];
+                                kept_y[at] = yh(d, t0 + t);
+                            }
+                        }
+                };
+                double kept_worst = 0.0;
                 // Zeros at step k stay zeros at any coarser step, with the same decoded frames.
                 auto passes = [&](int k) {
                     if (k >= zeros_from) return true;
                     encode(k);
+                    worst = 0.0;
                     for (int t = h; t < W && t0 + t < F; t += 2 * h)
                         if (!frame_ok(t0 + t, yh.col(t0 + t).data())) return false;
                     if (zeros) zeros_from = k;
+                    keep(false);
+                    kept_worst = worst;
                     return true;
                 };
                 int k;
@@ -213,10 +233,8 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                     if (k < 0)
                         throw PackingFailed(where + ": window " + std::to_string(w) +
                                             " fails E even at the finest step");
-                    worst = 0.0;
-                    zeros_from = kMaxStep + 1;
-                    passes(k);
-                    r.max_error_cm = std::max(r.max_error_cm, worst);
+                    keep(true);
+                    r.max_error_cm = std::max(r.max_error_cm, kept_worst);
                     kp = k;
                 }
                 entry.level_step[static_cast<std::size_t>(j - 1)] = k;
