@@ -211,9 +211,13 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                         }
                 };
                 double kept_worst = 0.0;
+                int kept_k = -1;
                 // Zeros at step k stay zeros at any coarser step, with the same decoded frames.
                 auto passes = [&](int k) {
-                    if (k >= zeros_from) return true;
+                    if (k >= zeros_from && kept_k >= zeros_from) {
+                        kept_k = k;  // the kept state is the zeros'
+                        return true;
+                    }
                     encode(k);
                     worst = 0.0;
                     for (int t = h; t < W && t0 + t < F; t += 2 * h)
@@ -221,6 +225,7 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                     if (zeros) zeros_from = k;
                     keep(false);
                     kept_worst = worst;
+                    kept_k = k;
                     return true;
                 };
                 int k;
@@ -233,6 +238,13 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
                     if (k < 0)
                         throw PackingFailed(where + ": window " + std::to_string(w) +
                                             " fails E even at the finest step");
+                    // The bound is not monotone in the step: two coarser steps are tried as well.
+                    for (const int c : {k + 2, k + 4})
+                        if (c <= kMaxStep && passes(c)) k = c;
+                    if (kept_k != k) {  // the kept state is the last step that held, k's (a safeguard)
+                        zeros_from = kMaxStep + 1;
+                        passes(k);
+                    }
                     keep(true);
                     r.max_error_cm = std::max(r.max_error_cm, kept_worst);
                     kp = k;
