@@ -82,8 +82,8 @@ RuntimeBody encode_runtime(const std::vector<std::uint8_t>& group, const std::ve
     } else {
         RuntimeBody w16 = rt_encode_at(m, plan, clips, o, 16);
         RuntimeBody w8 = rt_encode_at(m, plan, clips, o, 8);
-        out = static_cast<double>(w8.stats.bytes) <= 1.02 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
-                                                                                                 : std::move(w16);
+        out = static_cast<double>(w8.stats.bytes) <= 1.025 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
+                                                                                                  : std::move(w16);
     }
     out.stats.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;

@@ -3,8 +3,8 @@
 // every frame (x: weighted active dofs, U: the group's dof basis), keys every W frames at their own
 // step, and between them hierarchical levels, each frame predicted from decoded frames on its path
 // (runtime_layout.hpp's predictors, one per window and level) and the difference quantized. Every key
-// and every level of a window takes the coarsest step (galloping from the previous one) for which
-// every one of its source frames stays within E by forward kinematics of every joint and end site,
+// and every level of a window takes the coarsest step (galloping from the previous one, then two and
+// four indices coarser tried) for which every one of its source frames stays within E by forward kinematics of every joint and end site,
 // through the decoder's own y -> dofs -> row (runtime_pose_plan.hpp): what is checked is what any
 // decode gives.
 #include <vector>
