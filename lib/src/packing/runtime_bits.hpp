@@ -86,6 +86,11 @@ inline std::int64_t rt_signed_bits(const std::uint8_t* data, std::size_t p, int 
     return w ? q : 0;
 }
 
+/// w unsigned bits at bit p (0 <= w <= 57; 0 for w 0).
+inline std::size_t rt_field(const std::uint8_t* data, std::size_t p, int w) {
+    return static_cast<std::size_t>((rt_peek(data, p) >> 1) >> (63 - w));
+}
+
 /// w unsigned bits at bit p (1 <= w <= 57).
 inline std::size_t rt_unsigned_bits(const std::uint8_t* data, std::size_t p, int w) {
     return static_cast<std::size_t>(rt_peek(data, p) >> (64 - w));

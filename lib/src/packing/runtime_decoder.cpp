@@ -30,15 +30,18 @@ struct RtPlanRow {
 
 /// Per clip: where its entries' offsets are, its key plan's counts, its directory widths.
 struct RtClipInfo {
-    std::uint32_t base = 0;       ///< first entry's byte offset in the entries
-    std::uint32_t at = 0;         ///< bit of its later entries' offsets in the offset stream
+    std::int64_t origin = 0;  ///< entry k's byte offset in the entries: origin + k · slope + its field
+    std::uint32_t slope = 0;
+    std::uint32_t at = 0;         ///< bit of its entries' offset fields in the offset stream
     std::uint32_t entries = 0;    ///< entries (windows + 1)
-    std::uint16_t slot_bits = 0;  ///< the keys' slots (escaped values follow)
+    std::uint16_t slot_bits = 0;  ///< the keys' step field and slots (escaped values follow)
     std::uint16_t plain = 0;      ///< plan rows of nonzero width without escapes
     std::uint16_t nonzero = 0;    ///< plan rows of nonzero width
     std::uint8_t offset_width = 0;
     std::uint8_t by_clip = 0;  ///< directory widths below (else in each window)
     std::uint8_t widths[kMaxLevels + 1] = {};
+    std::uint8_t step_base[kMaxLevels + 1] = {};  ///< step fields: 0 the key's, l level l's
+    std::uint8_t step_width[kMaxLevels + 1] = {};
 };
 
 }  // namespace detail
@@ -79,7 +82,9 @@ struct RuntimeDecoder::Impl {
     void walk() const;
     std::size_t entry_offset(std::size_t clip, std::size_t k) const {
         const RtClipInfo& c = clips[clip];
-        return c.base + (k ? rt_unsigned_bits(offsets, c.at + (k - 1) * c.offset_width, c.offset_width) : 0);
+        return static_cast<std::size_t>(
+            c.origin + static_cast<std::int64_t>(k * c.slope) +
+            static_cast<std::int64_t>(rt_field(offsets, c.at + k * c.offset_width, c.offset_width)));
     }
 
     // The hot path (no checks: the walk at construction made every read stay in the body).
@@ -89,6 +94,22 @@ struct RuntimeDecoder::Impl {
     std::size_t skip_quads(std::size_t pos, int level) const;
     std::size_t skip_subtree(std::size_t pos, int level) const;
     std::size_t directory(std::size_t clip, std::size_t pos, int t, std::size_t* skip) const;
+    /// A window's steps and predictors per level (step[1 .. levels], predictor[1 .. levels]) from its
+    /// step fields at bit pos; returns the bit after them.
+    std::size_t window_steps(std::size_t clip, std::size_t pos, double* step, int* predictor) const {
+        const RtClipInfo& c = clips[clip];
+        const std::size_t f = rt_field(data, pos, c.step_width[1]);
+        step[1] = steps[c.step_base[1] + f];
+        predictor[1] = 0;
+        pos += c.step_width[1];
+        for (int l = 2; l <= levels; ++l) {
+            const auto v = static_cast<unsigned>(rt_field(data, pos, c.step_width[l]));
+            step[l] = steps[c.step_base[l] + v / kRuntimePredictors];
+            predictor[l] = static_cast<int>(v % kRuntimePredictors);
+            pos += c.step_width[l];
+        }
+        return pos;
+    }
     void path(std::size_t clip, std::size_t bit, int t, double* y, double* a, double* b, double* c) const;
     void frame_y(std::size_t clip, std::size_t frame, double* y, double* a, double* b, double* c) const;
     /// Window w's W + 1 frames of y (frames: (W + 1) · Da values).
@@ -165,6 +186,30 @@ inline void rt_combine(double* out, const double* lo, const double* hi, const st
 #endif
     for (; d < Da; ++d) {
         const double p = 0.5 * (lo[d] + hi[d]);
+        out[d] = q[d] ? p + q[d] * step : p;
+    }
+}
+
+/// out[d] = p + q[d] * step where q[d] is nonzero, else p, with p = w[0] · near[d] + w[1] · far[d] +
+/// w[2] · third[d] in that order (the encoder's predictor). out may be third.
+inline void rt_combine3(double* out, const double* near, const double* far, const double* third, const std::int32_t* q,
+                        double step, const double* w, int Da) {
+    int d = 0;
+#if defined(__SSE2__)
+    const __m128d w0 = _mm_set1_pd(w[0]), w1 = _mm_set1_pd(w[1]), w2 = _mm_set1_pd(w[2]), s = _mm_set1_pd(step),
+                  zero = _mm_setzero_pd();
+    for (; d + 2 <= Da; d += 2) {
+        const __m128d p =
+            _mm_add_pd(_mm_add_pd(_mm_mul_pd(w0, _mm_loadu_pd(near + d)), _mm_mul_pd(w1, _mm_loadu_pd(far + d))),
+                       _mm_mul_pd(w2, _mm_loadu_pd(third + d)));
+        const __m128d v = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + d)));
+        const __m128d nonzero = _mm_cmpneq_pd(v, zero);
+        const __m128d sum = _mm_add_pd(p, _mm_mul_pd(v, s));
+        _mm_storeu_pd(out + d, _mm_or_pd(_mm_and_pd(nonzero, sum), _mm_andnot_pd(nonzero, p)));
+    }
+#endif
+    for (; d < Da; ++d) {
+        const double p = w[0] * near[d] + w[1] * far[d] + w[2] * third[d];
         out[d] = q[d] ? p + q[d] * step : p;
     }
 }
@@ -266,7 +311,16 @@ void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_si
     rows.clear();
     rows.reserve(clip_count * rowsn);
     for (std::size_t i = 0; i < clip_count; ++i) {
-        std::uint32_t slots = 0;
+        RtClipInfo& c = clips[i];
+        for (int l = 0; l <= levels; ++l) {
+            c.step_base[l] = static_cast<std::uint8_t>(in.get(8));
+            c.step_width[l] = static_cast<std::uint8_t>(in.get(4));
+            if (c.step_base[l] > kMaxStep || c.step_width[l] > 10)
+                throw Error("runtime body: clip " + std::to_string(i) + " step field " + std::to_string(l) +
+                            ": base above 254 or width above 10 bits");
+        }
+        // The key's step field, then its slots.
+        std::uint32_t slots = c.step_width[0];
         std::vector<std::uint16_t> at(rowsn);
         for (std::size_t d = 0; d < rowsn; ++d) {
             const int w = largest[d] - delta_code.read(in);
@@ -283,7 +337,6 @@ void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_si
             at[d] = static_cast<std::uint16_t>(slots);
             slots += static_cast<std::uint32_t>(w);
         }
-        RtClipInfo& c = clips[i];
         c.slot_bits = static_cast<std::uint16_t>(slots);
         // The plan: rows of nonzero width without escapes, then with escapes (each ascending), then width 0.
         std::uint16_t count[3] = {0, 0, 0};
@@ -306,14 +359,15 @@ void RuntimeDecoder::Impl::parse(const std::uint8_t* group, std::size_t group_si
         c.by_clip = static_cast<std::uint8_t>(in.get(1));
         if (c.by_clip)
             for (int l = 1; l <= stored; ++l) c.widths[l] = static_cast<std::uint8_t>(in.get(5));
-        c.base = static_cast<std::uint32_t>(in.get(32));
+        c.origin = in.get_signed(34);
+        c.slope = static_cast<std::uint32_t>(in.get(24));
         c.offset_width = static_cast<std::uint8_t>(in.get(6));
         c.entries = static_cast<std::uint32_t>(runtime_entry_count(model.clips[i].frames, W));
         c.at = static_cast<std::uint32_t>(offset_bit);
-        if (c.entries > 1 && (c.offset_width == 0 || c.offset_width > 32))
+        if (c.offset_width > 32)
             throw Error("runtime body: clip " + std::to_string(i) + " offsets of " + std::to_string(c.offset_width) +
-                        " bits, expected 1-32");
-        offset_bit += (c.entries > 0 ? c.entries - 1 : 0) * static_cast<std::size_t>(c.offset_width);
+                        " bits, expected at most 32");
+        offset_bit += c.entries * static_cast<std::size_t>(c.offset_width);
         if (offset_bit > 8 * offset_bytes)
             throw Error("runtime body: the offsets of clip " + std::to_string(i) + " pass the offset stream's " +
                         std::to_string(offset_bytes) + " bytes");
@@ -342,13 +396,11 @@ void RuntimeDecoder::Impl::walk() const {
             auto need = [&](std::size_t bits) {
                 if (pos + bits > limit) throw Error(where + ": truncated (passes the entries' end)");
             };
-            need(8);
-            if (data[start] > kMaxStep)
-                throw Error(where + ": key step " + std::to_string(data[start]) + ", expected 0-254");
-            pos += 8;
             need(c.slot_bits);
+            if (c.step_base[0] + rt_field(data, pos, c.step_width[0]) > kMaxStep)
+                throw Error(where + ": key step above 254");
             std::size_t escape_bits = 0;
-            for (std::size_t d = 0, at = pos; d < rowsn; ++d) {
+            for (std::size_t d = 0, at = pos + c.step_width[0]; d < rowsn; ++d) {
                 const int w = width[i * rowsn + d];
                 const std::int64_t v = rt_signed_bits(data, at, w);
                 if (full[i * rowsn + d] > w && v == -(std::int64_t{1} << (w - 1))) escape_bits += full[i * rowsn + d];
@@ -358,9 +410,13 @@ void RuntimeDecoder::Impl::walk() const {
             need(escape_bits);
             pos += escape_bits;
             if (k + 1 < c.entries) {
-                need(8);
-                if (rt_unsigned_bits(data, pos, 8) > kMaxStep) throw Error(where + ": window step above 254");
-                pos += 8;
+                for (int l = 1; l <= levels; ++l) {
+                    need(c.step_width[l]);
+                    const std::size_t f = rt_field(data, pos, c.step_width[l]);
+                    if (c.step_base[l] + (l == 1 ? f : f / kRuntimePredictors) > kMaxStep)
+                        throw Error(where + ": window step above 254");
+                    pos += c.step_width[l];
+                }
                 int w[kMaxLevels + 1] = {0};
                 for (int l = 1; l <= stored; ++l) {
                     if (c.by_clip) {
@@ -422,8 +478,8 @@ void RuntimeDecoder::Impl::key_one(std::size_t clip, std::size_t at, double* out
     const RtClipInfo& c = clips[clip];
     const RtPlanRow* r = rows.data() + clip * n;
     const std::int32_t* ce = center.data() + clip * n;
-    const double step = steps[data[at]];
-    const std::uint8_t* pa = data + at + 1;
+    const double step = steps[c.step_base[0] + rt_field(data, 8 * at, c.step_width[0])];
+    const std::uint8_t* pa = data + at;
     int escaped[kRuntimeMaxDofs];
     int ne = 0;
     for (int k = 0; k < c.nonzero; ++k) {
@@ -436,7 +492,7 @@ void RuntimeDecoder::Impl::key_one(std::size_t clip, std::size_t at, double* out
     }
     for (int k = c.nonzero; k < Da; ++k) out[r[k].d] = static_cast<double>(std::int64_t{0} + ce[r[k].d]) * step;
     const std::uint8_t* f = full.data() + clip * n;
-    std::size_t escape = 8 * (at + 1) + c.slot_bits;
+    std::size_t escape = 8 * at + c.slot_bits;
     for (int k = 0; k < ne; ++k) {
         const int d = escaped[k];
         out[d] = static_cast<double>(rt_signed_bits(data, escape, f[d]) + ce[d]) * step;
@@ -450,9 +506,10 @@ std::size_t RuntimeDecoder::Impl::key_pair(std::size_t clip, std::size_t at_a, s
     const RtClipInfo& c = clips[clip];
     const RtPlanRow* r = rows.data() + clip * n;
     const std::int32_t* ce = center.data() + clip * n;
-    const double step_a = steps[data[at_a]], step_b = steps[data[at_b]];
-    const std::uint8_t* pa = data + at_a + 1;
-    const std::uint8_t* pb = data + at_b + 1;
+    const double step_a = steps[c.step_base[0] + rt_field(data, 8 * at_a, c.step_width[0])],
+                 step_b = steps[c.step_base[0] + rt_field(data, 8 * at_b, c.step_width[0])];
+    const std::uint8_t* pa = data + at_a;
+    const std::uint8_t* pb = data + at_b;
     auto row = [&](const RtPlanRow x, std::int64_t& qa, std::int64_t& qb) {
         std::uint64_t va, vb;
         std::memcpy(&va, pa + x.byte, 8);
@@ -480,7 +537,7 @@ std::size_t RuntimeDecoder::Impl::key_pair(std::size_t clip, std::size_t at_a, s
         b[d] = static_cast<double>(std::int64_t{0} + ce[d]) * step_b;
     }
     const std::uint8_t* f = full.data() + clip * n;
-    std::size_t escape_a = 8 * (at_a + 1) + c.slot_bits, escape_b = 8 * (at_b + 1) + c.slot_bits;
+    std::size_t escape_a = 8 * at_a + c.slot_bits, escape_b = 8 * at_b + c.slot_bits;
     for (int k = 0; k < nb; ++k) {
         const int d = escaped_b[k];
         b[d] = static_cast<double>(rt_signed_bits(data, escape_b, f[d]) + ce[d]) * step_b;
@@ -574,23 +631,34 @@ std::size_t RuntimeDecoder::Impl::directory(std::size_t clip, std::size_t pos, i
 void RuntimeDecoder::Impl::path(std::size_t clip, std::size_t bit, int t, double* y, double* a, double* b,
                                 double* c) const {
     alignas(16) std::int32_t q[260];
-    const double step = steps[rt_unsigned_bits(data, bit, 8)];
+    double step[kMaxLevels + 1];
+    int predictor[kMaxLevels + 1];
     std::size_t skip[kMaxLevels + 1] = {0};
-    std::size_t pos = directory(clip, bit + 8, t, skip);
+    std::size_t pos = directory(clip, window_steps(clip, bit, step, predictor), t, skip);
     int lo = 0, hi = W;
     double* lo_y = a;
     double* hi_y = b;
+    // The parent interval's far end (none at level 1) and whether it lies beyond hi: a frame's
+    // value is dead once its children are made, so each level writes over it.
+    double* third = c;
+    bool third_hi = false;
     for (int l = 1;; ++l) {
         const int mid = (lo + hi) / 2;
-        double* out = mid == t ? y : (lo_y != a && hi_y != a ? a : lo_y != b && hi_y != b ? b : c);
+        double* out = mid == t ? y : third;
         pos = read_quads(pos, l, q);
-        rt_combine(out, lo_y, hi_y, q, step, Da);
+        if (predictor[l] == 0) rt_combine(out, lo_y, hi_y, q, step[l], Da);
+        else if (third_hi) rt_combine3(out, hi_y, lo_y, third, q, step[l], kRuntimePredictorWeights[predictor[l]], Da);
+        else rt_combine3(out, lo_y, hi_y, third, q, step[l], kRuntimePredictorWeights[predictor[l]], Da);
         if (mid == t) return;
         if (t < mid) {
+            third = hi_y;
+            third_hi = true;
             hi = mid;
             hi_y = out;
         } else {
             pos = l <= stored ? pos + skip[l] : skip_subtree(pos, l + 1);
+            third = lo_y;
+            third_hi = false;
             lo = mid;
             lo_y = out;
         }
@@ -616,10 +684,10 @@ void RuntimeDecoder::Impl::frame_y(std::size_t clip, std::size_t frame, double* 
         key_one(clip, o0, y);
         return;
     }
-    const std::size_t o1 = ci.base + rt_unsigned_bits(offsets, ci.at + w * ci.offset_width, ci.offset_width);
+    const std::size_t o1 = entry_offset(clip, w + 1);
     {
         // The window's bytes and the next key's: prefetched first, so that the misses overlap.
-        const std::size_t end = o1 + ci.slot_bits / 8 + 9;
+        const std::size_t end = o1 + ci.slot_bits / 8 + 8;
         for (std::size_t x = o0 & ~std::size_t{63}; x < end; x += 64) __builtin_prefetch(data + x);
     }
     path(clip, key_pair(clip, o0, o1, a, b), t, y, a, b, c);
@@ -627,32 +695,38 @@ void RuntimeDecoder::Impl::frame_y(std::size_t clip, std::size_t frame, double* 
 
 void RuntimeDecoder::Impl::window_y(std::size_t clip, std::size_t w, double* frames) const {
     const auto n = static_cast<std::size_t>(Da);
-    const RtClipInfo& ci = clips[clip];
     const std::size_t o0 = entry_offset(clip, w);
-    const std::size_t o1 = ci.base + rt_unsigned_bits(offsets, ci.at + w * ci.offset_width, ci.offset_width);
+    const std::size_t o1 = entry_offset(clip, w + 1);
     const std::size_t bit = key_pair(clip, o0, o1, frames, frames + static_cast<std::size_t>(W) * n);
-    const double step = steps[rt_unsigned_bits(data, bit, 8)];
+    double step[kMaxLevels + 1];
+    int predictor[kMaxLevels + 1];
     std::size_t skip[kMaxLevels + 1] = {0};
-    std::size_t pos = directory(clip, bit + 8, 1, skip);
+    std::size_t pos = directory(clip, window_steps(clip, bit, step, predictor), 1, skip);
     alignas(16) std::int32_t q[260];
     struct Tree {
         const Impl& d;
         double* frames;
         std::size_t n;
-        double step;
+        const double* step;
+        const int* predictor;
         std::int32_t* q;
         std::size_t pos;
-        void run(int lo, int hi, int level) {
+        double* at(int t) const { return frames + static_cast<std::size_t>(t) * n; }
+        /// Interval [lo, hi] of a parent interval whose other end is `third` (-1 at level 1).
+        void run(int lo, int hi, int third, int level) {
             if (hi - lo < 2) return;
             const int mid = (lo + hi) / 2;
             pos = d.read_quads(pos, level, q);
-            rt_combine(frames + static_cast<std::size_t>(mid) * n, frames + static_cast<std::size_t>(lo) * n,
-                       frames + static_cast<std::size_t>(hi) * n, q, step, d.Da);
-            run(lo, mid, level + 1);
-            run(mid, hi, level + 1);
+            const int p = predictor[level];
+            if (p == 0) rt_combine(at(mid), at(lo), at(hi), q, step[level], d.Da);
+            else if (third > hi)
+                rt_combine3(at(mid), at(hi), at(lo), at(third), q, step[level], kRuntimePredictorWeights[p], d.Da);
+            else rt_combine3(at(mid), at(lo), at(hi), at(third), q, step[level], kRuntimePredictorWeights[p], d.Da);
+            run(lo, mid, hi, level + 1);
+            run(mid, hi, lo, level + 1);
         }
-    } tree{*this, frames, n, step, q, pos};
-    tree.run(0, W, 1);
+    } tree{*this, frames, n, step, predictor, q, pos};
+    tree.run(0, W, -1, 1);
 }
 
 RuntimeDecoder::RuntimeDecoder(const std::uint8_t* group, std::size_t group_size, const std::uint8_t* body,
@@ -683,8 +757,8 @@ bool RuntimeDecoder::uses_avx2() const { return impl_->plan.avx2; }
 std::size_t RuntimeDecoder::clip_bytes(std::size_t clip) const {
     const Impl& d = *impl_;
     d.check(clip);
-    const std::size_t end = clip + 1 < d.clips.size() ? d.clips[clip + 1].base : d.entry_bytes;
-    return end - d.clips[clip].base;
+    const std::size_t end = clip + 1 < d.clips.size() ? d.entry_offset(clip + 1, 0) : d.entry_bytes;
+    return end - d.entry_offset(clip, 0);
 }
 
 std::shared_ptr<const Skeleton> RuntimeDecoder::skeleton(std::size_t clip) const {

@@ -15,8 +15,8 @@ namespace mocapdb::packing {
 
 namespace {
 
-/// Keys' step offset and directory levels of window W: the prototype's best (W 8: 4 and 1, W 16: 12 and 2).
-int rt_key_offset_of(int W) { return W <= 8 ? 4 : 12; }
+/// Keys' step offset and directory levels of window W: the measured best (W 8: 4 and 1, W 16: 8 and 2).
+int rt_key_offset_of(int W) { return W <= 8 ? 4 : 8; }
 int rt_directory_levels_of(int W) {
     int levels = 0;
     while ((1 << levels) < W) ++levels;
@@ -63,7 +63,7 @@ RuntimeBody encode_runtime_body(const GroupModel& m, const std::vector<const Cli
     if (o.window != 0) return rt_encode_at(m, plan, clips, o, o.window, done);
     RuntimeBody w16 = rt_encode_at(m, plan, clips, o, 16, done);
     RuntimeBody w8 = rt_encode_at(m, plan, clips, o, 8, done);
-    return static_cast<double>(w8.stats.bytes) <= 1.01 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
+    return static_cast<double>(w8.stats.bytes) <= 1.025 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
                                                                                               : std::move(w16);
 }
 

@@ -5,16 +5,20 @@
 //
 // Body: a 24-byte header (version, log2 W, directory levels, key offset, Da as u16, clips, then the
 // byte sizes of the side stream, the offset stream and the entries, each u32 little-endian), the side
-// stream (quad code tables, the keys' per-clip widths, centers and escape widths, per clip the
-// directory widths and its entries' offset base and width), the offset stream (per clip each later
-// entry's byte offset from the clip's first) and the entries (byte-aligned, clip by clip), then
+// stream (quad code tables; the keys' largest widths and three side codes; per clip its step fields'
+// bases (8 bits) and widths (4 bits), field 0 to levels, then its key rows' widths, centers and escape
+// widths; per clip the directory widths, its entries' offset line (origin, 34 bits two's complement,
+// and slope, 24 bits) and offset width), the offset stream (per clip each entry's byte offset minus
+// origin + k · slope, at the clip's width) and the entries (byte-aligned, clip by clip), then
 // kRuntimeSlack zero bytes.
 //
-// An entry: its key (step byte, then per row the value minus the clip's center at the clip's width for
-// the row; a value outside the width's range is -2^(w-1) in its slot and follows the slots at the
-// row's escape width) and, unless it is the clip's last, its window: step byte, the directory (per
-// level 1..stored the width unless the clip table holds it, then each node's left-subtree size in
-// bits), and the detail columns in tree order, each by quads.
+// An entry: its key (step field 0: the step minus the clip's base; then per row the value minus the
+// clip's center at the clip's width for the row; a value outside the width's range is -2^(w-1) in its
+// slot and follows the slots at the row's escape width) and, unless it is the clip's last, its window:
+// per level l the step field l (level 1: step minus base; deeper: (step minus base) ·
+// kRuntimePredictors + predictor), the directory (per level 1..stored the width unless the clip table
+// holds it, then each node's left-subtree size in bits), and the detail columns in tree order, each by
+// quads.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -39,7 +43,7 @@ inline std::uint32_t runtime_body_crc(const std::uint8_t* data, std::size_t size
     return static_cast<std::uint32_t>(crc);
 }
 
-constexpr std::uint8_t kRuntimeVersion = 1;
+constexpr std::uint8_t kRuntimeVersion = 2;
 constexpr std::size_t kRuntimeHeaderBytes = 24;
 /// Quads: a pattern when all four values are in [-1, 1] (81 patterns), else a width symbol and the
 /// four values at that width; code lengths (and the lookup) kQuadCodeBits; contexts per (level,
@@ -60,6 +64,14 @@ constexpr int kSideAlphabet = 41;
 constexpr int kSideSymbolBits = 6;
 constexpr int kSideCodeBits = 15;
 constexpr int kMaxLevels = 5;  ///< W up to 32
+
+/// Predictors of a frame at level >= 2 from its interval's ends lo, hi and the parent interval's far
+/// end (third): 0 the mean of lo and hi, c > 0: w0 · near + w1 · far + w2 · third (near: lo or hi,
+/// whichever is on third's side), in that order of operations. 1: the quadratic through the three, 2:
+/// halfway between 0 and 1.
+constexpr int kRuntimePredictors = 3;
+constexpr double kRuntimePredictorWeights[kRuntimePredictors][3] = {
+    {0.5, 0.5, 0.0}, {0.75, 0.375, -0.125}, {0.625, 0.4375, -0.0625}};
 
 /// Quad contexts per level for Da rows.
 inline int quad_contexts_per_level(int da) { return ((da + 3) >> kQuadShift) + 1; }
@@ -94,7 +106,9 @@ inline void runtime_tree_order(int W, std::vector<int>& level, std::vector<int>&
 struct RuntimeEntry {
     int key_step = 0;
     std::vector<std::int32_t> key;                   ///< Da values
-    int step = -1;                                   ///< the window's step index; -1: the end key
+    int step = -1;                                   ///< level 1's step index; -1: the end key
+    std::vector<int> level_step;                     ///< per level 1..levels its step index (step: level 1's)
+    std::vector<int> level_predictor;                ///< per level its predictor (0 at level 1)
     std::vector<std::vector<std::int32_t>> columns;  ///< detail columns in tree order (Da values each)
 };
 struct RuntimeCoefficients {

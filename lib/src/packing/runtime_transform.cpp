@@ -42,6 +42,23 @@ int rt_coarsest_step(int start, F passes) {
     return lo;
 }
 
+/// The frames frame t of level spacing h is predicted from: lo and hi (t -+ h), and the far end of
+/// the parent interval (t + 3h when t - h starts it, else t - 3h), with "near" the neighbour on its side.
+struct RtPredictorFrames {
+    Eigen::Index lo, hi, near, far, third;
+};
+RtPredictorFrames rt_predictor_frames(int t, int h) {
+    const bool third_hi = (t - h) % (4 * h) == 0;
+    return {t - h, t + h, third_hi ? t + h : t - h, third_hi ? t - h : t + h, third_hi ? t + 3 * h : t - 3 * h};
+}
+
+/// Predictor c of row d (the decoder's expressions, runtime_decoder.cpp rt_combine / rt_combine3).
+double rt_predict(int c, const MatX& yh, Eigen::Index d, Eigen::Index t0, const RtPredictorFrames& f) {
+    if (c == 0) return 0.5 * (yh(d, t0 + f.lo) + yh(d, t0 + f.hi));
+    const double* w = kRuntimePredictorWeights[c];
+    return w[0] * yh(d, t0 + f.near) + w[1] * yh(d, t0 + f.far) + w[2] * yh(d, t0 + f.third);
+}
+
 std::int32_t rt_quantize(double v, double inv_step, double rounding) {
     const double a = std::abs(v) * inv_step;
     const auto m = static_cast<std::int32_t>(std::floor(a + rounding));
@@ -74,8 +91,10 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
         const std::size_t i = order[task];
         std::vector<double> row, p(static_cast<std::size_t>(m.dofs));
         GlobalPose pose;
-        int k_prev = k_start, kk_prev = k_start;
-        std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W));
+        int kk_prev = k_start;
+        std::vector<int> k_level(kMaxLevels + 1, k_start);
+        std::vector<std::int32_t> q(static_cast<std::size_t>(Da * W)), kept_q(q.size());
+        std::vector<double> kept_y(q.size());
         VecX tmp(Da);
         std::vector<RuntimeEntry>& entries = clip_entries[i];
         double& max_error_cm = clip_max[i];
@@ -146,37 +165,109 @@ RuntimeCoefficients runtime_transform(const GroupModel& m, const RuntimePosePlan
         runtime_tree_order(W, tree_level, tree_frame);
         for (Eigen::Index w = 0; w < nw; ++w) {
             const Eigen::Index t0 = w * W;
-            auto encode = [&](int k) {
-                const double step = step_of(k), inv = 1.0 / step;
-                for (int j = 1; j <= r.levels; ++j) {
-                    const int h = W >> j;
-                    for (int t = h; t < W; t += 2 * h) {
-                        for (Eigen::Index d = 0; d < Da; ++d) {
-                            const double pred = 0.5 * (yh(d, t0 + t - h) + yh(d, t0 + t + h));
-                            const std::int32_t v = rt_quantize(y(d, t0 + t) - pred, inv, rounding);
-                            q[static_cast<std::size_t>(t * Da + d)] = v;
-                            yh(d, t0 + t) = v ? pred + v * step : pred;  // the decoder's form: zeros add nothing
+            RuntimeEntry entry;
+            entry.level_step.assign(static_cast<std::size_t>(r.levels), 0);
+            entry.level_predictor.assign(static_cast<std::size_t>(r.levels), 0);
+            // Level by level: a frame's error is its own column's, so each level takes the coarsest
+            // step for which its own frames hold, given the levels above it as decoded.
+            for (int j = 1; j <= r.levels; ++j) {
+                const int h = W >> j;
+                int& kp = k_level[static_cast<std::size_t>(j)];
+                // The predictor: the one whose residuals (against the decoded frames) cost the fewest
+                // bits at the previous window's step of this level, by an estimate.
+                int pm = 0;
+                if (j > 1) {
+                    const double inv = 1.0 / step_of(kp);
+                    double best = 0.0;
+                    for (int c = 0; c < kRuntimePredictors; ++c) {
+                        double cost = 0.0;
+                        for (int t = h; t < W && t0 + t < F; t += 2 * h) {
+                            const RtPredictorFrames f = rt_predictor_frames(t, h);
+                            for (Eigen::Index d = 0; d < Da; ++d)
+                                cost += std::log2(1.0 + std::abs(y(d, t0 + t) - rt_predict(c, yh, d, t0, f)) * inv);
+                        }
+                        if (c == 0 || cost < best) {
+                            best = cost;
+                            pm = c;
                         }
                     }
                 }
-            };
-            auto passes = [&](int k) {
-                encode(k);
-                for (int t = 1; t < W && t0 + t < F; ++t)
-                    if (!frame_ok(t0 + t, yh.col(t0 + t).data())) return false;
-                return true;
-            };
-            const int k = rt_coarsest_step(k_prev, passes);
-            if (k < 0)
-                throw PackingFailed(where + ": window " + std::to_string(w) + " fails E even at the finest step");
-            k_prev = k;
-            worst = 0.0;
-            passes(k);
-            max_error_cm = std::max(max_error_cm, worst);
-            RuntimeEntry entry;
+                bool zeros = true;              // the last encode quantized every value to 0
+                int zeros_from = kMaxStep + 1;  // a step from which on the level is zeros and holds
+                auto encode = [&](int k) {
+                    const double step = step_of(k), inv = 1.0 / step;
+                    zeros = true;
+                    for (int t = h; t < W; t += 2 * h) {
+                        const RtPredictorFrames f = rt_predictor_frames(t, h);
+                        for (Eigen::Index d = 0; d < Da; ++d) {
+                            const double pred = rt_predict(pm, yh, d, t0, f);
+                            const std::int32_t v = rt_quantize(y(d, t0 + t) - pred, inv, rounding);
+                            q[static_cast<std::size_t>(t * Da + d)] = v;
+                            zeros = zeros && v == 0;
+                            yh(d, t0 + t) = v ? pred + v * step : pred;  // the decoder's form: zeros add nothing
+                        }
+                    }
+                };
+                // The level's values, decoded frames and max error at the last step that held (the
+                // search's last passing step is the one it returns: no encode again).
+                auto keep = [&](bool restore) {
+                    std::size_t at = 0;
+                    for (int t = h; t < W; t += 2 * h)
+                        for (Eigen::Index d = 0; d < Da; ++d, ++at) {
+                            if (restore) {
+                                q[static_cast<std::size_t>(t * Da + d)] = kept_q[at];
+                                yh(d, t0 + t) = kept_y[at];
+                            } else {
+                                kept_q[at] = q[static_cast<std::size_t>(t * Da + d)];
+                                kept_y[at] = yh(d, t0 + t);
+                            }
+                        }
+                };
+                double kept_worst = 0.0;
+                int kept_k = -1;
+                // Zeros at step k stay zeros at any coarser step, with the same decoded frames.
+                auto passes = [&](int k) {
+                    if (k >= zeros_from && kept_k >= zeros_from) {
+                        kept_k = k;  // the kept state is the zeros'
+                        return true;
+                    }
+                    encode(k);
+                    worst = 0.0;
+                    for (int t = h; t < W && t0 + t < F; t += 2 * h)
+                        if (!frame_ok(t0 + t, yh.col(t0 + t).data())) return false;
+                    if (zeros) zeros_from = k;
+                    keep(false);
+                    kept_worst = worst;
+                    kept_k = k;
+                    return true;
+                };
+                int k;
+                if (t0 + h >= F) {
+                    k = j > 1 ? entry.level_step[static_cast<std::size_t>(j - 2)]
+                              : kp;  // no source frame at this level
+                    encode(k);
+                } else {
+                    k = rt_coarsest_step(kp, passes);
+                    if (k < 0)
+                        throw PackingFailed(where + ": window " + std::to_string(w) +
+                                            " fails E even at the finest step");
+                    // The bound is not monotone in the step: two coarser steps are tried as well.
+                    for (const int c : {k + 2, k + 4})
+                        if (c <= kMaxStep && passes(c)) k = c;
+                    if (kept_k != k) {  // the kept state is the last step that held, k's (a safeguard)
+                        zeros_from = kMaxStep + 1;
+                        passes(k);
+                    }
+                    keep(true);
+                    max_error_cm = std::max(max_error_cm, kept_worst);
+                    kp = k;
+                }
+                entry.level_step[static_cast<std::size_t>(j - 1)] = k;
+                entry.level_predictor[static_cast<std::size_t>(j - 1)] = pm;
+            }
             entry.key_step = key_step[static_cast<std::size_t>(w)];
             entry.key = std::move(key_q[static_cast<std::size_t>(w)]);
-            entry.step = k;
+            entry.step = entry.level_step[0];
             for (int t : tree_frame) entry.columns.emplace_back(q.begin() + t * Da, q.begin() + (t + 1) * Da);
             entries.push_back(std::move(entry));
         }

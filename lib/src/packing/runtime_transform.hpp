@@ -1,11 +1,12 @@
 #pragma once
 // The runtime tier's closed-loop transform (internal to the packing module): per clip, y = U⁻¹ x of
 // every frame (x: weighted active dofs, U: the group's dof basis), keys every W frames at their own
-// step, and between them hierarchical levels, each frame predicted as the mean of its two decoded
-// neighbours and the difference quantized. Every key and window takes the coarsest step (galloping
-// from the previous one) for which every one of its source frames stays within E by forward
-// kinematics of every joint and end site, through the decoder's own y -> dofs -> row
-// (runtime_pose_plan.hpp): what is checked is what any decode gives.
+// step, and between them hierarchical levels, each frame predicted from decoded frames on its path
+// (runtime_layout.hpp's predictors, one per window and level) and the difference quantized. Every key
+// and every level of a window takes the coarsest step (galloping from the previous one, then two and
+// four indices coarser tried) for which every one of its source frames stays within E by forward kinematics of every joint and end site,
+// through the decoder's own y -> dofs -> row (runtime_pose_plan.hpp): what is checked is what any
+// decode gives.
 #include <vector>
 
 #include "group_model.hpp"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -144,10 +145,64 @@ std::size_t rt_quad_bits(const RtQuadCodes& qc, int level, const std::vector<std
     return bits;
 }
 
-/// A window: step byte, directory (widths: given per clip, or nullptr: in the window; need: only each
+/// Per clip the entries' step fields: field 0 the key's step minus the clip's base, field l (1 ..
+/// levels) level l's step minus the clip's base, times kRuntimePredictors plus the level's predictor
+/// at levels >= 2; each at the clip's width for the field. A level whose columns are all zero in a
+/// window decodes the same at any step: its field takes the base.
+struct RtStepFields {
+    std::vector<std::array<int, kMaxLevels + 1>> base, width;
+    static bool zero_level(const RuntimeEntry& e, const std::vector<int>& tree_level, int l) {
+        for (std::size_t c = 0; c < e.columns.size(); ++c)
+            if (tree_level[c] == l)
+                for (std::int32_t v : e.columns[c])
+                    if (v) return false;
+        return true;
+    }
+    std::uint64_t value(std::size_t clip, int l, const RuntimeEntry& e, const std::vector<int>& tree_level) const {
+        const int b = base[clip][static_cast<std::size_t>(l)];
+        if (l == 0) return static_cast<std::uint64_t>(e.key_step - b);
+        const auto k = static_cast<std::size_t>(l - 1);
+        const int step = zero_level(e, tree_level, l) ? b : e.level_step[k];
+        return static_cast<std::uint64_t>(l == 1 ? step - b : (step - b) * kRuntimePredictors + e.level_predictor[k]);
+    }
+    RtStepFields(const RuntimeCoefficients& r, const std::vector<int>& tree_level) {
+        const std::size_t clips = r.clip_first.size() - 1;
+        base.assign(clips, {});
+        width.assign(clips, {});
+        for (std::size_t i = 0; i < clips; ++i) {
+            std::array<int, kMaxLevels + 1> lo, hi;
+            lo.fill(kMaxStep + 1);
+            hi.fill(-1);
+            for (std::size_t k = r.clip_first[i]; k < r.clip_first[i + 1]; ++k) {
+                const RuntimeEntry& e = r.entries[k];
+                lo[0] = std::min(lo[0], e.key_step);
+                hi[0] = std::max(hi[0], e.key_step);
+                if (e.step < 0) continue;
+                for (int l = 1; l <= r.levels; ++l)
+                    if (!zero_level(e, tree_level, l)) {
+                        const auto L = static_cast<std::size_t>(l);
+                        lo[L] = std::min(lo[L], e.level_step[L - 1]);
+                        hi[L] = std::max(hi[L], e.level_step[L - 1]);
+                    }
+            }
+            for (int l = 0; l <= r.levels; ++l) {
+                const auto L = static_cast<std::size_t>(l);
+                base[i][L] = hi[L] < 0 ? 0 : lo[L];
+            }
+            std::uint64_t largest[kMaxLevels + 1] = {0};
+            for (std::size_t k = r.clip_first[i]; k < r.clip_first[i + 1]; ++k)
+                for (int l = 0; l <= (r.entries[k].step < 0 ? 0 : r.levels); ++l)
+                    largest[l] = std::max(largest[l], value(i, l, r.entries[k], tree_level));
+            for (int l = 0; l <= r.levels; ++l) width[i][static_cast<std::size_t>(l)] = rt_bit_length(largest[l]);
+        }
+    }
+};
+
+/// A window: step fields, directory (widths: given per clip, or nullptr: in the window; need: only each
 /// level's largest width into need[l], nothing written), columns in tree order.
 void rt_write_window(RtBitWriter& out, const RtQuadCodes& qc, const RuntimeEntry& e, const std::vector<int>& tree_level,
-                     int levels, int stored, const int* widths, int* need) {
+                     int levels, int stored, const int* widths, int* need, const RtStepFields* fields = nullptr,
+                     std::size_t clip = 0) {
     std::vector<std::size_t> size;
     for (std::size_t i = 0; i < e.columns.size(); ++i) size.push_back(rt_quad_bits(qc, tree_level[i], e.columns[i]));
     std::vector<std::vector<std::size_t>> left(static_cast<std::size_t>(levels));
@@ -168,7 +223,8 @@ void rt_write_window(RtBitWriter& out, const RtQuadCodes& qc, const RuntimeEntry
         if (need) need[l] = std::max(need[l], width[static_cast<std::size_t>(l)]);
     }
     if (need) return;
-    out.put(static_cast<std::uint64_t>(e.step), 8);
+    for (int l = 1; l <= levels; ++l)
+        out.put(fields->value(clip, l, e, tree_level), fields->width[clip][static_cast<std::size_t>(l)]);
     for (int l = 1; l <= stored; ++l) {
         if (widths) width[static_cast<std::size_t>(l)] = widths[l];
         else out.put(static_cast<std::uint64_t>(width[static_cast<std::size_t>(l)]), 5);
@@ -208,6 +264,7 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
         qc.codes.push_back(rt_canonical_codes(qc.lengths.back()));
     }
     const RtKeyRows keys = rt_key_rows(r, n);
+    const RtStepFields fields(r, tree_level);
 
     // Entries, clip by clip; per clip the directory's widths in the clip table or in each window,
     // whichever gives the clip's entries fewer bytes.
@@ -223,9 +280,9 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
                 rt_write_window(entries, qc, r.entries[k], tree_level, levels, stored, nullptr, widths);
         auto entry = [&](RtBitWriter& o, std::size_t k, const int* w) {
             const RuntimeEntry& e = r.entries[k];
-            o.put(static_cast<std::uint64_t>(e.key_step), 8);
+            o.put(fields.value(i, 0, e, tree_level), fields.width[i][0]);
             rt_write_key(o, keys, i, n, e.key);
-            if (e.step >= 0) rt_write_window(o, qc, e, tree_level, levels, stored, w, nullptr);
+            if (e.step >= 0) rt_write_window(o, qc, e, tree_level, levels, stored, w, nullptr, &fields, i);
             o.align();
         };
         std::size_t per_clip = 0, per_window = 0;
@@ -249,16 +306,52 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
     }
     entries.align();
 
-    // Offsets: per clip each later entry's byte offset from the clip's first, at the clip's width.
+    // Offsets: per clip each entry's byte offset minus the clip's line (origin + k · slope), at the
+    // clip's width; the slope (near the clip's mean entry size) whose residuals span the fewest values.
     RtBitWriter offset_bits;
-    std::vector<std::size_t> base(clips, 0);
+    std::vector<std::int64_t> origin(clips, 0), slope(clips, 0);
     std::vector<int> offset_width(clips, 0);
     for (std::size_t i = 0; i < clips; ++i) {
         const std::size_t first = r.clip_first[i], last = r.clip_first[i + 1];
-        base[i] = first < last ? offsets[first] : entries.bytes.size();
         if (first == last) continue;
-        offset_width[i] = rt_bit_length(offsets[last - 1] - base[i]);
-        for (std::size_t k = first + 1; k < last; ++k) offset_bits.put(offsets[k] - base[i], offset_width[i]);
+        auto at = [&](std::size_t k) { return static_cast<std::int64_t>(offsets[first + k]); };
+        const std::size_t m = last - first;
+        std::vector<std::int64_t> candidates{0};
+        if (m > 1) {
+            // The line through the ends, and the least-squares line.
+            const std::int64_t ends = (at(m - 1) - at(0)) / static_cast<std::int64_t>(m - 1);
+            double sk = 0, so = 0, skk = 0, sko = 0;
+            for (std::size_t k = 0; k < m; ++k) {
+                const auto x = static_cast<double>(k), o = static_cast<double>(at(k));
+                sk += x;
+                so += o;
+                skk += x * x;
+                sko += x * o;
+            }
+            const double nm = static_cast<double>(m);
+            const auto ls = static_cast<std::int64_t>(std::llround((nm * sko - sk * so) / (nm * skk - sk * sk)));
+            for (std::int64_t c : {ends, ls})
+                for (std::int64_t d = -2; d <= 2; ++d)
+                    if (c + d >= 0) candidates.push_back(c + d);
+        }
+        std::int64_t best = -1;
+        for (std::int64_t c : candidates) {
+            std::int64_t lo = at(0), hi = at(0);
+            for (std::size_t k = 0; k < m; ++k) {
+                lo = std::min(lo, at(k) - static_cast<std::int64_t>(k) * c);
+                hi = std::max(hi, at(k) - static_cast<std::int64_t>(k) * c);
+            }
+            if (best < 0 || hi - lo < best) {
+                best = hi - lo;
+                slope[i] = c;
+                origin[i] = lo;
+            }
+        }
+        if (slope[i] >= (std::int64_t{1} << 24)) throw PackingFailed("runtime tier: entries of more than 2^24 bytes");
+        offset_width[i] = rt_bit_length(static_cast<std::uint64_t>(best));
+        for (std::size_t k = 0; k < m; ++k)
+            offset_bits.put(static_cast<std::uint64_t>(at(k) - static_cast<std::int64_t>(k) * slope[i] - origin[i]),
+                            offset_width[i]);
     }
     offset_bits.align();
 
@@ -286,7 +379,11 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
     rt_write_lengths(side, delta_lengths, kSideSymbolBits);
     rt_write_lengths(side, center_lengths, kSideSymbolBits);
     rt_write_lengths(side, extra_lengths, kSideSymbolBits);
-    for (std::size_t i = 0; i < clips; ++i)
+    for (std::size_t i = 0; i < clips; ++i) {
+        for (int l = 0; l <= levels; ++l) {
+            side.put(static_cast<std::uint64_t>(fields.base[i][static_cast<std::size_t>(l)]), 8);
+            side.put(static_cast<std::uint64_t>(fields.width[i][static_cast<std::size_t>(l)]), 4);
+        }
         for (std::size_t d = 0; d < n; ++d) {
             const auto delta = static_cast<std::size_t>(largest[d] - keys.width[i * n + d]);
             const std::int32_t center = keys.center[i * n + d];
@@ -297,13 +394,15 @@ std::vector<std::uint8_t> write_runtime_body(const RuntimeCoefficients& r, int D
             side.put(static_cast<std::uint64_t>(static_cast<std::int64_t>(center)), static_cast<int>(cw));
             side.put(extra_codes[extra], extra_lengths[extra]);
         }
+    }
     for (std::size_t i = 0; i < clips; ++i) {
         const bool by_clip = widths_by_clip[i] != 0;
         side.put(by_clip ? 1 : 0, 1);
         if (by_clip)
             for (int l = 1; l <= stored; ++l)
                 side.put(static_cast<std::uint64_t>(clip_widths[i][static_cast<std::size_t>(l)]), 5);
-        side.put(base[i], 32);
+        side.put(static_cast<std::uint64_t>(origin[i]), 34);
+        side.put(static_cast<std::uint64_t>(slope[i]), 24);
         side.put(static_cast<std::uint64_t>(offset_width[i]), 6);
     }
     side.align();

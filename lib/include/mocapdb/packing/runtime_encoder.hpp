@@ -19,9 +19,10 @@ namespace mocapdb::packing {
 struct RuntimeOptions {
     double max_error_cm = 1.0;  ///< E, > 0 and finite
     /// Frames from key to key: 8 (keys 4 step indices finer than the coarsest that holds, a directory
-    /// of 1 level), 16 (12 finer, 2 levels), or 0: both are encoded and W = 8 is kept when its bytes
-    /// are at most 1 % above W = 16's (W = 8 decodes a pose 10-20 % faster; on rigs whose keys are a
-    /// large share of the bytes, such as CMU ASF/AMC, it costs 3-8 % bytes and W = 16 is kept).
+    /// of 1 level), 16 (8 finer, 2 levels), or 0: both are encoded and W = 8 is kept when its bytes
+    /// are at most 2.5 % above W = 16's (W = 8 decodes a pose 10-20 % faster; on PFNN it costs 0.2-2.1 %
+    /// bytes; on rigs whose keys are a large share of the bytes, such as CMU ASF/AMC, 2.9-10.4 % and
+    /// W = 16 is kept).
     int window = 0;
     /// Quantizer rounding offset in [0.1, 0.5] (as PackOptions::rounding).
     double rounding = 0.4;
