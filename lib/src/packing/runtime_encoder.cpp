@@ -64,7 +64,7 @@ RuntimeBody encode_runtime_body(const GroupModel& m, const std::vector<const Cli
     RuntimeBody w16 = rt_encode_at(m, plan, clips, o, 16, done);
     RuntimeBody w8 = rt_encode_at(m, plan, clips, o, 8, done);
     return static_cast<double>(w8.stats.bytes) <= 1.025 * static_cast<double>(w16.stats.bytes) ? std::move(w8)
-                                                                                              : std::move(w16);
+                                                                                               : std::move(w16);
 }
 
 }  // namespace detail
