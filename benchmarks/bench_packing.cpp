@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     std::string folder = "all";
     std::vector<double> errors{1.0, 0.5, 0.1};
     packing::PackOptions options;
+    options.format = packing::PackFormat::Archive;  // the archive codec's windows, bases and zstd comparison
     std::size_t limit = 0;
     bool verify = true;
     for (int i = 1; i < argc; ++i) {

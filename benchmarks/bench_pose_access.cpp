@@ -74,6 +74,7 @@ std::vector<std::uint8_t> packed_bytes(const std::string& folder, double E, cons
     std::vector<const Clip*> group;
     for (std::size_t i : groups.front()) group.push_back(ptrs[i]);
     packing::PackOptions options;
+    options.format = packing::PackFormat::Archive;  // the archive format's decode paths and index
     options.max_error_cm = E;
     packing::PackedGroup packed = packing::pack_group(group, options);
     if (!file.empty()) {

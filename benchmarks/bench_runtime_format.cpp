@@ -94,6 +94,7 @@ int main(int argc, char** argv) {
         }
         for (double E : errors) {
             PackOptions po;
+            po.format = PackFormat::Archive;  // the format-3 group encode_runtime reads
             po.max_error_cm = E;
             if (!auto_bases) {
                 po.time_basis = TimeBasis::Learned;

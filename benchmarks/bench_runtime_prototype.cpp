@@ -449,6 +449,7 @@ int main(int argc, char** argv) {
         const auto groups = group_clips(all);
         for (double E : errors) {
             PackOptions o;
+            o.format = PackFormat::Archive;  // the format-3 group the runtime body goes beside
             o.max_error_cm = E;
             o.time_basis = TimeBasis::Learned;
             o.dof_basis = DofBasis::Learned;
