@@ -170,18 +170,25 @@ std::uint32_t rt_read_u32(const std::uint8_t* p) {
            static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
 }
 
+#if defined(__SSE2__)
+/// Two rows: out = p + v · s where v (from q) is nonzero, else p (zeros add nothing, as the encoder forms it).
+inline void rt_store_residual(double* out, __m128d p, const std::int32_t* q, __m128d s) {
+    const __m128d v = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q)));
+    const __m128d nonzero = _mm_cmpneq_pd(v, _mm_setzero_pd());
+    const __m128d sum = _mm_add_pd(p, _mm_mul_pd(v, s));
+    _mm_storeu_pd(out, _mm_or_pd(_mm_and_pd(nonzero, sum), _mm_andnot_pd(nonzero, p)));
+}
+#endif
+
 /// out[d] = p + q[d] * step where q[d] is nonzero, else p, with p = 0.5 * (lo[d] + hi[d]): the
 /// encoder's expressions (SSE2 two rows at a time: the same operations, a select instead of a branch).
 inline void rt_combine(double* out, const double* lo, const double* hi, const std::int32_t* q, double step, int Da) {
     int d = 0;
 #if defined(__SSE2__)
-    const __m128d half = _mm_set1_pd(0.5), s = _mm_set1_pd(step), zero = _mm_setzero_pd();
+    const __m128d half = _mm_set1_pd(0.5), s = _mm_set1_pd(step);
     for (; d + 2 <= Da; d += 2) {
         const __m128d p = _mm_mul_pd(half, _mm_add_pd(_mm_loadu_pd(lo + d), _mm_loadu_pd(hi + d)));
-        const __m128d v = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + d)));
-        const __m128d nonzero = _mm_cmpneq_pd(v, zero);
-        const __m128d sum = _mm_add_pd(p, _mm_mul_pd(v, s));
-        _mm_storeu_pd(out + d, _mm_or_pd(_mm_and_pd(nonzero, sum), _mm_andnot_pd(nonzero, p)));
+        rt_store_residual(out + d, p, q + d, s);
     }
 #endif
     for (; d < Da; ++d) {
@@ -196,16 +203,12 @@ inline void rt_combine3(double* out, const double* near, const double* far, cons
                         double step, const double* w, int Da) {
     int d = 0;
 #if defined(__SSE2__)
-    const __m128d w0 = _mm_set1_pd(w[0]), w1 = _mm_set1_pd(w[1]), w2 = _mm_set1_pd(w[2]), s = _mm_set1_pd(step),
-                  zero = _mm_setzero_pd();
+    const __m128d w0 = _mm_set1_pd(w[0]), w1 = _mm_set1_pd(w[1]), w2 = _mm_set1_pd(w[2]), s = _mm_set1_pd(step);
     for (; d + 2 <= Da; d += 2) {
         const __m128d p =
             _mm_add_pd(_mm_add_pd(_mm_mul_pd(w0, _mm_loadu_pd(near + d)), _mm_mul_pd(w1, _mm_loadu_pd(far + d))),
                        _mm_mul_pd(w2, _mm_loadu_pd(third + d)));
-        const __m128d v = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q + d)));
-        const __m128d nonzero = _mm_cmpneq_pd(v, zero);
-        const __m128d sum = _mm_add_pd(p, _mm_mul_pd(v, s));
-        _mm_storeu_pd(out + d, _mm_or_pd(_mm_and_pd(nonzero, sum), _mm_andnot_pd(nonzero, p)));
+        rt_store_residual(out + d, p, q + d, s);
     }
 #endif
     for (; d < Da; ++d) {
