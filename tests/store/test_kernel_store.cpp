@@ -31,6 +31,13 @@ namespace {
 
 const std::string kKernel = "/sets/walks/model/kernel";
 
+/// The set's kernel fit stored in one committed session.
+void store_kernel_fit(const std::filesystem::path& path, const synthesis::KernelFit& fit) {
+    DatabaseWriter w(path);
+    w.put_kernel_fit("walks", fit);
+    w.commit();
+}
+
 // A database with a clip, a 6-sample set with 2 parameters, its aligned form (full multilinear rank)
 // and a model.
 struct KernelFixture {
@@ -171,11 +178,7 @@ TEST_CASE("kernel: the cross-validated predictor round-trips, is used by the loa
     choice.folds = 4;
     choice.samples = 6;
     fit.predictor = choice;
-    {
-        DatabaseWriter w(path);
-        w.put_kernel_fit("walks", fit);
-        w.commit();
-    }
+    store_kernel_fit(path, fit);
     const auto back = Database(path).load_kernel_fit("walks");
     REQUIRE(back->predictor.has_value());
     CHECK(back->predictor->chosen == synthesis::Predictor::Trend);
@@ -231,11 +234,7 @@ TEST_CASE("kernel: an averaged predictor round-trips with its weights and errors
     choice.folds = 4;
     choice.samples = 6;
     fit.predictor = choice;
-    {
-        DatabaseWriter w(path);
-        w.put_kernel_fit("walks", fit);
-        w.commit();
-    }
+    store_kernel_fit(path, fit);
     const auto back = Database(path).load_kernel_fit("walks");
     REQUIRE(back->predictor.has_value());
     CHECK(back->predictor->chosen == Predictor::Average);
@@ -271,11 +270,7 @@ TEST_CASE("kernel: an averaged predictor round-trips with its weights and errors
     fit.predictor->chosen = Predictor::Rbf;
     fit.predictor->scores[0].weight = 0.0;
     fit.predictor->scores[1].weight = 1.0;
-    {
-        DatabaseWriter w(path);
-        w.put_kernel_fit("walks", fit);
-        w.commit();
-    }
+    store_kernel_fit(path, fit);
     CHECK(Database(path).load_kernel_fit("walks")->predictor->chosen == Predictor::Rbf);
     set_kernel_attributes(path, {"predictor:s=average"});
     const auto e = kernel_error(path);
@@ -303,11 +298,7 @@ TEST_CASE("kernel: the calibrated warning threshold round-trips, warns the loade
     edge.probe_requests = MatX::Random(40, fx.set.parameters.cols());
     for (std::size_t i = 0; i < 40; ++i) edge.probe_missed.push_back(i % 6 == 0 ? 1 : 0);
     fit.edge_warning = edge;
-    {
-        DatabaseWriter w(path);
-        w.put_kernel_fit("walks", fit);
-        w.commit();
-    }
+    store_kernel_fit(path, fit);
     const auto back = Database(path).load_kernel_fit("walks");
     REQUIRE(back->edge_warning.has_value());
     CHECK(back->edge_warning->variance_ratio == edge.variance_ratio);
@@ -535,11 +526,7 @@ TEST_CASE("kernel: the factorized system round-trips bit for bit, unfiltered; a 
         REQUIRE(back->system);
         return *back->system;
     };
-    {
-        DatabaseWriter w(path);
-        w.put_kernel_fit("walks", fit);
-        w.commit();
-    }
+    store_kernel_fit(path, fit);
     CHECK(on_system(path, "filters") == "fletcher32\n");  // deflate does not shrink these doubles
     kriging::CovarianceInverse back = stored();
     CHECK(back.inverse == inverse);
